@@ -1,0 +1,368 @@
+//! Emission of a built kernel as Rust source: `quote!` token streams, parsed back by `syn`
+//! (a malformed emission fails loudly), checked to be straight-line, formatted by
+//! `prettyplease`.
+//!
+//! The emitted functions are generic over the runtime crate's `Scalar` (f32, f64, exact
+//! rationals), with every operation on references (`&a * &b`), so the same source serves
+//! `Copy` floats and heap-allocated rationals.
+
+use crate::ir::{Id, Node};
+use crate::model::{names, skew_pairs, Kernel, Variant};
+use crate::schedule::{schedule, OpCount, Schedule};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+use std::collections::{BTreeSet, HashMap};
+
+/// One emitted kernel with its cost.
+#[derive(Debug)]
+pub struct EmittedKernel {
+    pub dim: usize,
+    pub variant: Variant,
+    pub ops: OpCount,
+    /// Intermediate terms (`let` bindings of computed values).
+    pub terms: usize,
+    pub tokens: TokenStream,
+}
+
+fn ident(name: &str) -> Ident {
+    Ident::new(name, Span::call_site())
+}
+
+fn lit(n: usize) -> Literal {
+    Literal::usize_unsuffixed(n)
+}
+
+fn const_name(c: &BigRational) -> String {
+    let part = |x: &BigInt| {
+        if x.is_negative() {
+            format!("m{}", x.abs())
+        } else {
+            x.to_string()
+        }
+    };
+    if c.is_integer() {
+        format!("lit_{}", part(c.numer()))
+    } else {
+        format!("lit_{}_{}", part(c.numer()), c.denom())
+    }
+}
+
+/// `T::from_ratio(p, q)` for an exact constant. Kernels only hold small constants.
+fn const_value(c: &BigRational) -> TokenStream {
+    let p = c.numer().to_i64().expect("kernel constant numerator fits i64");
+    let q = c.denom().to_i64().expect("kernel constant denominator fits i64");
+    let (p, q) = (Literal::i64_unsuffixed(p), Literal::i64_unsuffixed(q));
+    quote!(T::from_ratio(#p, #q))
+}
+
+struct Namer<'a> {
+    kernel: &'a Kernel,
+    names: HashMap<Id, String>,
+}
+
+impl<'a> Namer<'a> {
+    fn new(kernel: &'a Kernel, sched: &Schedule) -> Self {
+        let g = &kernel.graph;
+        let mut names = HashMap::new();
+        let mut used = BTreeSet::new();
+        let mut tmp = 0;
+        for &id in &sched.constants {
+            let name = const_name(g.as_const(id).expect("constant node"));
+            assert!(used.insert(name.clone()), "duplicate binding {name}");
+            names.insert(id, name);
+        }
+        for &id in &sched.steps {
+            let name = match g.label_of(id) {
+                Some(label) => label.to_string(),
+                _ => {
+                    tmp += 1;
+                    format!("tmp{}", tmp - 1)
+                }
+            };
+            assert!(used.insert(name.clone()), "duplicate binding {name}");
+            names.insert(id, name);
+        }
+        Namer { kernel, names }
+    }
+
+    /// An operand as a `&T` expression.
+    fn operand(&self, id: Id) -> TokenStream {
+        match self.kernel.graph.node(id) {
+            Node::Input(input) => {
+                let i = ident(&input.0);
+                quote!(#i)
+            }
+            _ => {
+                let i = ident(&self.names[&id]);
+                quote!(&#i)
+            }
+        }
+    }
+
+    fn binding(&self, id: Id) -> Ident {
+        ident(&self.names[&id])
+    }
+
+    /// An output as an owned `T`, moving a temporary when this is its only output use.
+    fn output(&self, id: Id, output_uses: &HashMap<Id, usize>) -> TokenStream {
+        match self.kernel.graph.node(id) {
+            Node::Input(input) => {
+                let i = ident(&input.0);
+                quote!(#i.clone())
+            }
+            Node::Const(c) => const_value(c),
+            _ => {
+                let i = self.binding(id);
+                if output_uses[&id] > 1 {
+                    quote!(#i.clone())
+                } else {
+                    quote!(#i)
+                }
+            }
+        }
+    }
+}
+
+fn doc_lines(lines: &[String]) -> TokenStream {
+    lines
+        .iter()
+        .map(|l| {
+            let l = format!(" {l}");
+            quote!(#[doc = #l])
+        })
+        .collect()
+}
+
+/// An array pattern binding the live names and `_` for the rest.
+fn array_pattern(names: impl IntoIterator<Item = String>, live: &BTreeSet<String>) -> TokenStream {
+    let elems = names.into_iter().map(|n| {
+        if live.contains(&n) {
+            let i = ident(&n);
+            quote!(#i)
+        } else {
+            quote!(_)
+        }
+    });
+    quote!([#(#elems),*])
+}
+
+fn state_pattern(n: usize, body: usize, live: &BTreeSet<String>) -> TokenStream {
+    let spin = array_pattern(
+        skew_pairs(n)
+            .into_iter()
+            .map(|(i, j)| names::spin(body, i, j)),
+        live,
+    );
+    let velocity = array_pattern((0..n).map(|k| names::velocity(body, k)), live);
+    quote!(BodyState { spin: #spin, velocity: #velocity })
+}
+
+fn ball_pattern(body: usize, live: &BTreeSet<String>) -> TokenStream {
+    let fields = [
+        ("inv_mass", names::inv_mass(body)),
+        ("radius", names::radius(body)),
+        ("gamma2", names::gamma2(body)),
+    ];
+    let bound: Vec<TokenStream> = fields
+        .iter()
+        .filter(|(_, n)| live.contains(n))
+        .map(|(f, n)| {
+            let (f, n) = (ident(f), ident(n));
+            quote!(#f: #n)
+        })
+        .collect();
+    let rest = (bound.len() < fields.len()).then(|| quote!(..));
+    quote!(Ball { #(#bound,)* #rest })
+}
+
+fn description(kernel: &Kernel) -> Vec<String> {
+    let n = kernel.dim;
+    let mut lines = match kernel.variant {
+        Variant::Free => vec![
+            format!("No-slip collision of two free balls in R^{n}: returns `[body 1, body 2]` after contact."),
+            String::new(),
+            "```text".into(),
+            "c = R_1 U_1 nu + R_2 U_2 nu,  du = u_2 - u_1,  dn = du . nu,  t = du - dn nu - c".into(),
+            "D = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2)".into(),
+            "P = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t".into(),
+            "u_1+ = u_1 + 2 w_1 P,  U_1+ = U_1 + (2 w_1 g_2 / (R_1 D)) nu ^ t".into(),
+            "u_2+ = u_2 - 2 w_2 P,  U_2+ = U_2 + (2 w_2 g_1 / (R_2 D)) nu ^ t".into(),
+            "```".into(),
+            String::new(),
+            "`w_i` = `inv_mass` (0: immovable), `g_i` = `gamma2` = 2 lambda_i / R_i^2.".into(),
+            "Finite for an immovable body with `gamma2 > 0` and for one point mass (`gamma2 = 0`)".into(),
+            "on a movable body; requires `D > 0` and `w_1 + w_2 > 0` (the checked `collide` ensures it).".into(),
+        ],
+        Variant::Fixed => vec![
+            format!("No-slip collision in R^{n} of a free ball (body 2) with an immovable one (body 1):"),
+            "returns body 2 after contact. The `w_1 -> 0` limit of [`free`]; body 2's mass drops out.".into(),
+            String::new(),
+            "```text".into(),
+            "c = R_1 U_1 nu + R_2 U_2 nu,  du = u_2 - u_1,  dn = du . nu,  t = du - dn nu - c".into(),
+            "P = dn nu + (g_2 / (1 + g_2)) t".into(),
+            "u_2+ = u_2 - 2 P,  U_2+ = U_2 + (2 / (R_2 (1 + g_2))) nu ^ t".into(),
+            "```".into(),
+            String::new(),
+            "Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).".into(),
+        ],
+    };
+    lines.push(String::new());
+    lines.push(format!(
+        "Skew storage: entries `(i, j)`, `i < j`, in the order {:?}.",
+        skew_pairs(n)
+    ));
+    lines.push("Straight-line: no branches, loops or calls; all operations on references.".into());
+    lines
+}
+
+/// Emit one kernel as a generic function.
+pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
+    let n = kernel.dim;
+    let s = n * (n - 1) / 2;
+    let roots = kernel
+        .outputs
+        .iter()
+        .flat_map(|o| o.spin.iter().chain(&o.velocity).copied());
+    let sched = schedule(&kernel.graph, roots);
+    let namer = Namer::new(kernel, &sched);
+    let live = &sched.inputs;
+
+    let constants = sched.constants.iter().map(|&id| {
+        let name = namer.binding(id);
+        let value = const_value(kernel.graph.as_const(id).expect("constant"));
+        quote!(let #name: T = #value;)
+    });
+    let steps = sched.steps.iter().map(|&id| {
+        let name = namer.binding(id);
+        let expr = match kernel.graph.node(id) {
+            Node::Add(a, b) => binary(&namer, *a, quote!(+), *b),
+            Node::Sub(a, b) => binary(&namer, *a, quote!(-), *b),
+            Node::Mul(a, b) => binary(&namer, *a, quote!(*), *b),
+            Node::Div(a, b) => binary(&namer, *a, quote!(/), *b),
+            Node::Neg(a) => {
+                let a = namer.operand(*a);
+                quote!(-#a)
+            }
+            Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
+        };
+        quote!(let #name: T = #expr;)
+    });
+
+    let mut output_uses: HashMap<Id, usize> = HashMap::new();
+    for o in &kernel.outputs {
+        for &id in o.spin.iter().chain(&o.velocity) {
+            *output_uses.entry(id).or_default() += 1;
+        }
+    }
+    let bodies: Vec<TokenStream> = kernel
+        .outputs
+        .iter()
+        .map(|o| {
+            let spin = o.spin.iter().map(|&id| namer.output(id, &output_uses));
+            let velocity = o.velocity.iter().map(|&id| namer.output(id, &output_uses));
+            quote!(BodyState { spin: [#(#spin),*], velocity: [#(#velocity),*] })
+        })
+        .collect();
+
+    let nu_pattern = array_pattern((0..n).map(names::nu), live);
+    let state1 = state_pattern(n, 1, live);
+    let state2 = state_pattern(n, 2, live);
+    let ball2 = ball_pattern(2, live);
+    let (nl, sl) = (lit(n), lit(s));
+    let state_ty = quote!(BodyState<T, #nl, #sl>);
+    let fn_name = ident(kernel.variant.name());
+
+    let mut doc = description(kernel);
+    doc.push(String::new());
+    doc.push(format!(
+        "Ops: {}; {} intermediate terms.",
+        sched.ops,
+        sched.steps.len()
+    ));
+    let doc = doc_lines(&doc);
+
+    let (params, prologue, ret_ty, ret) = match kernel.variant {
+        Variant::Free => {
+            let ball1 = ball_pattern(1, live);
+            (
+                quote!(nu: &[T; #nl], ball1: &Ball<T>, ball2: &Ball<T>, state1: &#state_ty, state2: &#state_ty),
+                quote!(let #ball1 = ball1; let #ball2 = ball2;),
+                quote!([#state_ty; 2]),
+                quote!([#(#bodies),*]),
+            )
+        }
+        Variant::Fixed => (
+            quote!(nu: &[T; #nl], radius1: &T, ball2: &Ball<T>, state1: &#state_ty, state2: &#state_ty),
+            quote!(let #ball2 = ball2;),
+            quote!(#state_ty),
+            quote!(#(#bodies)*),
+        ),
+    };
+
+    let tokens = quote! {
+        #doc
+        #[inline]
+        #[allow(non_snake_case, clippy::too_many_arguments)]
+        pub fn #fn_name<T: Scalar>(#params) -> #ret_ty
+        where
+            for<'a> &'a T: RefArith<T>,
+        {
+            let #nu_pattern = nu;
+            #prologue
+            let #state1 = state1;
+            let #state2 = state2;
+            #(#constants)*
+            #(#steps)*
+            #ret
+        }
+    };
+    EmittedKernel {
+        dim: n,
+        variant: kernel.variant,
+        ops: sched.ops,
+        terms: sched.steps.len(),
+        tokens,
+    }
+}
+
+fn binary(namer: &Namer<'_>, a: Id, op: TokenStream, b: Id) -> TokenStream {
+    let (a, b) = (namer.operand(a), namer.operand(b));
+    quote!(#a #op #b)
+}
+
+/// The header of a generated file: provenance, and the cost of every kernel in it.
+pub fn header(dim: usize, kernels: &[EmittedKernel]) -> String {
+    let mut h = format!(
+        "// @generated by noslip-codegen {} from the general SO(n) formulas (codegen/src/model.rs).\n\
+         // Do not edit: it is rewritten by collision-core's build.rs.\n\
+         // No-slip collision kernels for n = {dim}.\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    for k in kernels {
+        h.push_str(&format!(
+            "// {}: {}; {} intermediate terms.\n",
+            k.variant.name(),
+            k.ops,
+            k.terms
+        ));
+    }
+    h
+}
+
+/// Parse emitted items into a `syn::File`. Panics with the offending source when the
+/// emission is not valid Rust: that is a generator bug, and the build must stop.
+pub fn parse(tokens: TokenStream) -> syn::File {
+    match syn::parse2::<syn::File>(tokens.clone()) {
+        Ok(file) => file,
+        Err(e) => panic!("noslip-codegen emitted invalid Rust ({e}):\n{tokens}"),
+    }
+}
+
+/// The `use` line that brings the runtime types into a generated module.
+pub fn runtime_imports(crate_path: &str) -> TokenStream {
+    let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
+    quote!(use #path::{Ball, BodyState, RefArith, Scalar};)
+}

@@ -1,0 +1,329 @@
+//! A hash-consed expression DAG over scalar inputs with exact rational constants.
+//!
+//! Every node is created through the smart constructors of [`Graph`], which
+//! - fold constants exactly (`BigRational` arithmetic),
+//! - apply the identities `x + 0 = x`, `x * 1 = x`, `x * 0 = 0`, `x * (-1) = -x`,
+//!   `-(-x) = x`, `x - x = 0`, `x + (-y) = x - y`, `x - (-y) = x + y`, `(-x) * y = -(x y)`,
+//! - order the operands of `+` and `*` canonically,
+//! - and return the existing node when an identical one exists (hash-consing), which is
+//!   common-subexpression elimination by construction.
+//!
+//! All these rewrites are exact in IEEE arithmetic for finite operands (commutation, adding
+//! zero, multiplying by one, negation are exact), so a kernel emitted from the DAG rounds
+//! exactly as the formula it was built from, evaluated in the emitted order.
+
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+use std::collections::HashMap;
+
+/// Index of a node in its [`Graph`]. Operands always have smaller ids than the node
+/// itself, so increasing id order is a topological order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Id(pub(crate) u32);
+
+impl Id {
+    pub(crate) fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// A kernel input: one scalar, named by its Rust binding (e.g. `nu_0`, `U1_01`, `inv_mass1`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Input(pub String);
+
+/// One node of the DAG.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Node {
+    Input(Input),
+    Const(BigRational),
+    Add(Id, Id),
+    Sub(Id, Id),
+    Mul(Id, Id),
+    Div(Id, Id),
+    Neg(Id),
+}
+
+/// The expression DAG. Nodes are append-only; see the module docs for the rewrites.
+#[derive(Default, Debug)]
+pub struct Graph {
+    nodes: Vec<Node>,
+    interned: HashMap<Node, Id>,
+    labels: HashMap<Id, String>,
+}
+
+impl Graph {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub fn node(&self, id: Id) -> &Node {
+        &self.nodes[id.index()]
+    }
+
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// A readable name for a node (`dn`, `inv_d`, `t_0`): used by the emitter for the
+    /// `let` binding of that node instead of a numbered temporary. The first label wins.
+    pub fn label(&mut self, id: Id, name: impl Into<String>) {
+        if matches!(self.node(id), Node::Input(_) | Node::Const(_)) {
+            return;
+        }
+        self.labels.entry(id).or_insert_with(|| name.into());
+    }
+
+    pub fn label_of(&self, id: Id) -> Option<&str> {
+        self.labels.get(&id).map(String::as_str)
+    }
+
+    fn intern(&mut self, node: Node) -> Id {
+        if let Some(&id) = self.interned.get(&node) {
+            return id;
+        }
+        let id = Id(u32::try_from(self.nodes.len()).expect("graph larger than 2^32 nodes"));
+        self.nodes.push(node.clone());
+        self.interned.insert(node, id);
+        id
+    }
+
+    pub fn input(&mut self, name: impl Into<String>) -> Id {
+        self.intern(Node::Input(Input(name.into())))
+    }
+
+    pub fn constant(&mut self, value: BigRational) -> Id {
+        self.intern(Node::Const(value))
+    }
+
+    pub fn int(&mut self, value: i64) -> Id {
+        self.constant(BigRational::from_integer(value.into()))
+    }
+
+    /// The constant value of a node, if it is a constant.
+    pub fn as_const(&self, id: Id) -> Option<&BigRational> {
+        match self.node(id) {
+            Node::Const(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    fn is_const(&self, id: Id, pred: impl Fn(&BigRational) -> bool) -> bool {
+        self.as_const(id).is_some_and(pred)
+    }
+
+    fn negated(&self, id: Id) -> Option<Id> {
+        match self.node(id) {
+            Node::Neg(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    pub fn add(&mut self, a: Id, b: Id) -> Id {
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.constant(x + y);
+        }
+        if self.is_const(a, Zero::is_zero) {
+            return b;
+        }
+        if self.is_const(b, Zero::is_zero) {
+            return a;
+        }
+        if let Some(y) = self.negated(b) {
+            return self.sub(a, y);
+        }
+        if let Some(x) = self.negated(a) {
+            return self.sub(b, x);
+        }
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        self.intern(Node::Add(a, b))
+    }
+
+    pub fn sub(&mut self, a: Id, b: Id) -> Id {
+        if a == b {
+            return self.int(0);
+        }
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.constant(x - y);
+        }
+        if self.is_const(b, Zero::is_zero) {
+            return a;
+        }
+        if self.is_const(a, Zero::is_zero) {
+            return self.neg(b);
+        }
+        if let Some(y) = self.negated(b) {
+            return self.add(a, y);
+        }
+        self.intern(Node::Sub(a, b))
+    }
+
+    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.constant(x * y);
+        }
+        if self.is_const(a, Zero::is_zero) || self.is_const(b, Zero::is_zero) {
+            return self.int(0);
+        }
+        if self.is_const(a, One::is_one) {
+            return b;
+        }
+        if self.is_const(b, One::is_one) {
+            return a;
+        }
+        let minus_one = |c: &BigRational| c.is_negative() && c.abs().is_one();
+        if self.is_const(a, minus_one) {
+            return self.neg(b);
+        }
+        if self.is_const(b, minus_one) {
+            return self.neg(a);
+        }
+        if let Some(x) = self.negated(a) {
+            let p = self.mul(x, b);
+            return self.neg(p);
+        }
+        if let Some(y) = self.negated(b) {
+            let p = self.mul(a, y);
+            return self.neg(p);
+        }
+        // Constants first, then by id: `2 * x` reads better than `x * 2`.
+        let (a, b) = match (self.as_const(a).is_some(), self.as_const(b).is_some()) {
+            (false, true) => (b, a),
+            (true, false) => (a, b),
+            _ if a <= b => (a, b),
+            _ => (b, a),
+        };
+        self.intern(Node::Mul(a, b))
+    }
+
+    /// `a / b`. Panics on a constant zero divisor: that is a bug in the model builder.
+    pub fn div(&mut self, a: Id, b: Id) -> Id {
+        assert!(
+            !self.is_const(b, Zero::is_zero),
+            "model builder divided by the constant 0"
+        );
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.constant(x / y);
+        }
+        if self.is_const(a, Zero::is_zero) {
+            return self.int(0);
+        }
+        if self.is_const(b, One::is_one) {
+            return a;
+        }
+        if a == b {
+            return self.int(1);
+        }
+        self.intern(Node::Div(a, b))
+    }
+
+    pub fn neg(&mut self, a: Id) -> Id {
+        if let Some(x) = self.as_const(a) {
+            return self.constant(-x);
+        }
+        if let Some(x) = self.negated(a) {
+            return x;
+        }
+        self.intern(Node::Neg(a))
+    }
+
+    /// `sum_k terms[k]`, left to right (so the rounding order is the order given).
+    pub fn sum(&mut self, terms: impl IntoIterator<Item = Id>) -> Id {
+        let zero = self.int(0);
+        terms.into_iter().fold(zero, |acc, t| self.add(acc, t))
+    }
+
+    /// `sum_k a[k] * b[k]`, left to right.
+    pub fn dot(&mut self, a: &[Id], b: &[Id]) -> Id {
+        assert_eq!(a.len(), b.len());
+        let products: Vec<Id> = a.iter().zip(b).map(|(&x, &y)| self.mul(x, y)).collect();
+        self.sum(products)
+    }
+
+    /// Evaluate a node exactly, given exact values for the inputs (used by the generator's
+    /// own tests to compare a built DAG with an independent computation).
+    pub fn eval(&self, id: Id, inputs: &dyn Fn(&str) -> BigRational) -> BigRational {
+        let mut values: Vec<Option<BigRational>> = vec![None; id.index() + 1];
+        for i in 0..=id.index() {
+            let v = match &self.nodes[i] {
+                Node::Input(Input(name)) => inputs(name),
+                Node::Const(c) => c.clone(),
+                Node::Add(a, b) => val(&values, *a) + val(&values, *b),
+                Node::Sub(a, b) => val(&values, *a) - val(&values, *b),
+                Node::Mul(a, b) => val(&values, *a) * val(&values, *b),
+                Node::Div(a, b) => val(&values, *a) / val(&values, *b),
+                Node::Neg(a) => -val(&values, *a),
+            };
+            values[i] = Some(v);
+        }
+        values[id.index()].take().expect("evaluated above")
+    }
+}
+
+fn val(values: &[Option<BigRational>], id: Id) -> &BigRational {
+    values[id.index()].as_ref().expect("operands precede their node")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hash_consing_shares_commuted_products() {
+        let mut g = Graph::new();
+        let (x, y) = (g.input("x"), g.input("y"));
+        let xy = g.mul(x, y);
+        let yx = g.mul(y, x);
+        assert_eq!(xy, yx);
+        assert_eq!(g.add(x, y), g.add(y, x));
+        assert_ne!(g.sub(x, y), g.sub(y, x));
+        assert_eq!(g.len(), 5);
+    }
+
+    #[test]
+    fn identities_fold_away() {
+        let mut g = Graph::new();
+        let x = g.input("x");
+        let (zero, one, minus_one) = (g.int(0), g.int(1), g.int(-1));
+        assert_eq!(g.add(x, zero), x);
+        assert_eq!(g.mul(one, x), x);
+        assert_eq!(g.mul(x, zero), zero);
+        assert_eq!(g.sub(x, x), zero);
+        let nx = g.mul(minus_one, x);
+        assert_eq!(g.node(nx), &Node::Neg(x));
+        assert_eq!(g.neg(nx), x);
+        let y = g.input("y");
+        let x_plus_neg_y = {
+            let ny = g.neg(y);
+            g.add(x, ny)
+        };
+        assert_eq!(x_plus_neg_y, g.sub(x, y));
+        assert_eq!(g.div(x, one), x);
+    }
+
+    #[test]
+    fn constants_fold_exactly() {
+        let mut g = Graph::new();
+        let (a, b) = (g.int(1), g.int(3));
+        let third = g.div(a, b);
+        let sum = g.add(third, third);
+        let expected = BigRational::new(2.into(), 3.into());
+        assert_eq!(g.as_const(sum), Some(&expected));
+    }
+
+    #[test]
+    fn eval_follows_the_dag() {
+        let mut g = Graph::new();
+        let (x, y) = (g.input("x"), g.input("y"));
+        let q = g.div(x, y);
+        let e = g.sub(q, y);
+        let v = g.eval(e, &|name| match name {
+            "x" => BigRational::from_integer(3.into()),
+            _ => BigRational::from_integer(2.into()),
+        });
+        assert_eq!(v, BigRational::new((-1).into(), 2.into()));
+    }
+}

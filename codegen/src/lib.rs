@@ -1,0 +1,120 @@
+//! # noslip-codegen
+//!
+//! A build-time generator of the no-slip collision kernels: the general SO(n) formulas
+//! (`U nu`, the slip `t`, the impulse `P`, `nu ^ t`, the updates) are expanded component by
+//! component into a hash-consed expression DAG ([`ir`]), simplified and deduplicated as it is
+//! built, scheduled ([`schedule`]) and emitted as unrolled, branch-free Rust ([`emit`]),
+//! which is parsed back with `syn`, checked to be straight-line ([`straight_line`]) and
+//! formatted with `prettyplease`.
+//!
+//! Pipeline: [`model::build`] -> [`schedule::schedule`] -> [`emit::emit_kernel`] -> [`generate`].
+//!
+//! ```
+//! let module = noslip_codegen::generate(3, "crate");
+//! assert!(module.source.starts_with("// @generated"));
+//! assert_eq!(module.kernels.len(), 2); // free, fixed
+//! ```
+
+pub mod emit;
+pub mod ir;
+pub mod model;
+pub mod schedule;
+pub mod straight_line;
+
+pub use model::Variant;
+pub use schedule::OpCount;
+
+use std::io;
+use std::path::{Path, PathBuf};
+
+/// The dimensions the runtime crate ships kernels for.
+pub const DIMS: std::ops::RangeInclusive<usize> = 2..=6;
+
+/// Cost of one generated kernel.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct KernelSummary {
+    pub dim: usize,
+    pub variant: Variant,
+    pub ops: OpCount,
+    pub terms: usize,
+}
+
+/// The generated source of one dimension's module and the cost of each kernel in it.
+#[derive(Clone, Debug)]
+pub struct Module {
+    pub dim: usize,
+    pub source: String,
+    pub kernels: Vec<KernelSummary>,
+}
+
+/// Generate every kernel variant for dimension `dim` as one formatted source file.
+/// `crate_path` is the path of the runtime crate as seen from where the file is included
+/// (`"crate"` inside collision-core, `"collision_core"` elsewhere).
+///
+/// Panics if the emission is not valid Rust or not straight-line: both are generator bugs.
+pub fn generate(dim: usize, crate_path: &str) -> Module {
+    let kernels: Vec<emit::EmittedKernel> = Variant::ALL
+        .iter()
+        .map(|&v| emit::emit_kernel(&model::build(dim, v)))
+        .collect();
+    let imports = emit::runtime_imports(crate_path);
+    let items = kernels.iter().map(|k| &k.tokens);
+    let file = emit::parse(quote::quote!(#imports #(#items)*));
+    let violations = straight_line::check(&file);
+    assert!(
+        violations.is_empty(),
+        "generated kernels for n = {dim} are not straight-line: {violations:?}"
+    );
+    let source = format!(
+        "{}\n{}",
+        emit::header(dim, &kernels),
+        prettyplease::unparse(&file)
+    );
+    Module {
+        dim,
+        source,
+        kernels: kernels
+            .iter()
+            .map(|k| KernelSummary {
+                dim: k.dim,
+                variant: k.variant,
+                ops: k.ops,
+                terms: k.terms,
+            })
+            .collect(),
+    }
+}
+
+/// The file name of dimension `dim`'s module: `kernels_{dim}.rs`.
+pub fn file_name(dim: usize) -> String {
+    format!("kernels_{dim}.rs")
+}
+
+/// Write `contents` to `path` unless the file already holds exactly that (so that cargo
+/// and editors see no change). Returns whether it wrote.
+pub fn write_if_changed(path: &Path, contents: &str) -> io::Result<bool> {
+    if std::fs::read_to_string(path).is_ok_and(|old| old == contents) {
+        return Ok(false);
+    }
+    let tmp = path.with_extension("rs.tmp");
+    std::fs::write(&tmp, contents)?;
+    std::fs::rename(&tmp, path)?;
+    Ok(true)
+}
+
+/// Generate the modules of `dims` into `out_dir` (one [`file_name`] each), writing only
+/// what changed. For a build script.
+pub fn generate_into(
+    out_dir: &Path,
+    dims: impl IntoIterator<Item = usize>,
+    crate_path: &str,
+) -> io::Result<Vec<(PathBuf, Module)>> {
+    dims.into_iter()
+        .map(|dim| {
+            let module = generate(dim, crate_path);
+            let path = out_dir.join(file_name(dim));
+            write_if_changed(&path, &module.source)?;
+            Ok((path, module))
+        })
+        .collect()
+}

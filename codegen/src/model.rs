@@ -1,0 +1,315 @@
+//! The no-slip collision map of two balls in R^n, built component-wise from the general
+//! SO(n) formulas (see `docs/derivation.md` and `../shared/MATH.md`).
+//!
+//! With inverse masses `w_i`, radii `R_i`, `gamma_i^2 = 2 lambda_i / R_i^2` (written `g_i`),
+//! unit normal `nu` from body 1 to body 2, angular velocities `U_i` (skew) and centre
+//! velocities `u_i`:
+//!
+//! ```text
+//! c    = R_1 U_1 nu + R_2 U_2 nu
+//! du   = u_2 - u_1,            dn = du . nu
+//! t    = du - dn nu - c                                  (slip of the contact point)
+//! D    = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2)
+//! P    = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t           (half the impulse on body 1)
+//! u_1+ = u_1 + 2 w_1 P                u_2+ = u_2 - 2 w_2 P
+//! U_1+ = U_1 + (2 w_1 g_2 / (R_1 D)) nu ^ t
+//! U_2+ = U_2 + (2 w_2 g_1 / (R_2 D)) nu ^ t
+//! ```
+//!
+//! This is MATH.md's closed form with `k_i = w_i / g_i` and the tangential denominator
+//! `w_1 + w_2 + k_1 + k_2` multiplied through by `g_1 g_2`, and `nu ^ P = nu ^ P_t`
+//! (`nu ^ nu = 0`). Every term of `D` is non-negative, and every coefficient stays finite
+//! for an immovable body (`w_i = 0`) and for one point mass (`g_i = 0`).
+//!
+//! The immovable variant (body 1 immovable) is the same builder with `w_1 = 0`; the map is
+//! homogeneous of degree 0 in `(w_1, w_2)`, so `w_2 = 1`, and with `w_1 = 0` it does not
+//! depend on `g_1`, so `g_1 = 1`. Constant folding then leaves the reduced kernel; the
+//! verifier checks exactly that it is the `w_1 -> 0` limit of the free map.
+
+use crate::ir::{Graph, Id};
+
+/// Which bodies can move.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// Both bodies free: `[body1+, body2+] = free(nu, ball1, ball2, state1, state2)`.
+    Free,
+    /// Body 1 immovable (infinite mass): `body2+ = fixed(nu, radius1, ball2, state1, state2)`.
+    Fixed,
+}
+
+impl Variant {
+    pub const ALL: [Variant; 2] = [Variant::Free, Variant::Fixed];
+
+    /// The kernel's function name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Variant::Free => "free",
+            Variant::Fixed => "fixed",
+        }
+    }
+}
+
+/// The index pairs `(i, j)`, `i < j`, of the independent entries of a skew n x n matrix, in
+/// the order of the compact storage: `(0,1), (0,2), .., (0,n-1), (1,2), ..`.
+pub fn skew_pairs(n: usize) -> Vec<(usize, usize)> {
+    (0..n)
+        .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+        .collect()
+}
+
+/// Binding names of the kernel inputs. Body numbers are 1 and 2, as in the math.
+pub mod names {
+    pub fn nu(k: usize) -> String {
+        format!("nu_{k}")
+    }
+    pub fn spin(body: usize, i: usize, j: usize) -> String {
+        format!("U{body}_{i}{j}")
+    }
+    pub fn velocity(body: usize, k: usize) -> String {
+        format!("u{body}_{k}")
+    }
+    pub fn radius(body: usize) -> String {
+        format!("radius{body}")
+    }
+    pub fn inv_mass(body: usize) -> String {
+        format!("inv_mass{body}")
+    }
+    pub fn gamma2(body: usize) -> String {
+        format!("gamma2_{body}")
+    }
+}
+
+/// One body's post-collision state as DAG nodes.
+#[derive(Debug)]
+pub struct BodyOutput {
+    /// 1 or 2.
+    pub body: usize,
+    /// Compact skew entries, in [`skew_pairs`] order.
+    pub spin: Vec<Id>,
+    pub velocity: Vec<Id>,
+}
+
+/// A built kernel: its DAG and the nodes of its outputs.
+#[derive(Debug)]
+pub struct Kernel {
+    pub dim: usize,
+    pub variant: Variant,
+    pub graph: Graph,
+    pub outputs: Vec<BodyOutput>,
+}
+
+struct Body {
+    spin: Vec<Id>,
+    velocity: Vec<Id>,
+    radius: Id,
+    inv_mass: Id,
+    gamma2: Id,
+}
+
+fn body(g: &mut Graph, n: usize, b: usize, variant: Variant) -> Body {
+    let spin = skew_pairs(n)
+        .into_iter()
+        .map(|(i, j)| g.input(names::spin(b, i, j)))
+        .collect();
+    let velocity = (0..n).map(|k| g.input(names::velocity(b, k))).collect();
+    let radius = g.input(names::radius(b));
+    let (inv_mass, gamma2) = match (variant, b) {
+        // Immovable body 1: w_1 = 0, then w_2 = 1 and g_1 = 1 (see the module docs).
+        (Variant::Fixed, 1) => (g.int(0), g.int(1)),
+        (Variant::Fixed, _) => (g.int(1), g.input(names::gamma2(b))),
+        (Variant::Free, _) => (g.input(names::inv_mass(b)), g.input(names::gamma2(b))),
+    };
+    Body {
+        spin,
+        velocity,
+        radius,
+        inv_mass,
+        gamma2,
+    }
+}
+
+/// `U v` for a skew `U` in compact storage: `(U v)_i = sum_j U_ij v_j`, `U_ji = -U_ij`.
+pub fn skew_times(g: &mut Graph, n: usize, spin: &[Id], v: &[Id]) -> Vec<Id> {
+    let pairs = skew_pairs(n);
+    (0..n)
+        .map(|i| {
+            let terms: Vec<Id> = pairs
+                .iter()
+                .zip(spin)
+                .filter_map(|(&(p, q), &u)| {
+                    if p == i {
+                        Some(g.mul(u, v[q]))
+                    } else if q == i {
+                        let x = g.mul(u, v[p]);
+                        Some(g.neg(x))
+                    } else {
+                        None
+                    }
+                })
+                .collect();
+            g.sum(terms)
+        })
+        .collect()
+}
+
+/// `a ^ b = b a^T - a b^T` in compact storage: `(a ^ b)_ij = b_i a_j - a_i b_j`.
+pub fn wedge(g: &mut Graph, n: usize, a: &[Id], b: &[Id]) -> Vec<Id> {
+    skew_pairs(n)
+        .into_iter()
+        .map(|(i, j)| {
+            let x = g.mul(b[i], a[j]);
+            let y = g.mul(a[i], b[j]);
+            g.sub(x, y)
+        })
+        .collect()
+}
+
+fn label_all(g: &mut Graph, ids: &[Id], stem: &str) {
+    for (k, &id) in ids.iter().enumerate() {
+        g.label(id, format!("{stem}_{k}"));
+    }
+}
+
+/// Build the collision kernel for dimension `n >= 2`.
+pub fn build(n: usize, variant: Variant) -> Kernel {
+    assert!(n >= 2, "the collision map needs n >= 2");
+    let mut g = Graph::new();
+    let nu: Vec<Id> = (0..n).map(|k| g.input(names::nu(k))).collect();
+    let b1 = body(&mut g, n, 1, variant);
+    let b2 = body(&mut g, n, 2, variant);
+
+    // c = R_1 U_1 nu + R_2 U_2 nu
+    let u1_nu = skew_times(&mut g, n, &b1.spin, &nu);
+    let u2_nu = skew_times(&mut g, n, &b2.spin, &nu);
+    let c: Vec<Id> = (0..n)
+        .map(|k| {
+            let x = g.mul(b1.radius, u1_nu[k]);
+            let y = g.mul(b2.radius, u2_nu[k]);
+            g.add(x, y)
+        })
+        .collect();
+    label_all(&mut g, &c, "c");
+
+    // du = u_2 - u_1, dn = du . nu, t = du - dn nu - c
+    let du: Vec<Id> = (0..n)
+        .map(|k| g.sub(b2.velocity[k], b1.velocity[k]))
+        .collect();
+    label_all(&mut g, &du, "du");
+    let dn = g.dot(&du, &nu);
+    g.label(dn, "dn");
+    let t: Vec<Id> = (0..n)
+        .map(|k| {
+            let normal = g.mul(dn, nu[k]);
+            let tangential = g.sub(du[k], normal);
+            g.sub(tangential, c[k])
+        })
+        .collect();
+    label_all(&mut g, &t, "t");
+
+    // P = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t
+    let (w1, w2, g1, g2) = (b1.inv_mass, b2.inv_mass, b1.gamma2, b2.gamma2);
+    let one = g.int(1);
+    let two = g.int(2);
+    let w_sum = g.add(w1, w2);
+    let p_n = g.div(dn, w_sum);
+    g.label(p_n, "p_n");
+    let d = {
+        let one_g1 = g.add(one, g1);
+        let one_g2 = g.add(one, g2);
+        let x = g.mul(w1, g2);
+        let x = g.mul(x, one_g1);
+        let y = g.mul(w2, g1);
+        let y = g.mul(y, one_g2);
+        g.add(x, y)
+    };
+    g.label(d, "d");
+    let g1g2 = g.mul(g1, g2);
+    let p_t = g.div(g1g2, d);
+    g.label(p_t, "p_t");
+    let p: Vec<Id> = (0..n)
+        .map(|k| {
+            let x = g.mul(p_n, nu[k]);
+            let y = g.mul(p_t, t[k]);
+            g.add(x, y)
+        })
+        .collect();
+    label_all(&mut g, &p, "p");
+
+    // nu ^ t, shared by both angular updates.
+    let nu_t = wedge(&mut g, n, &nu, &t);
+    for (&id, (i, j)) in nu_t.iter().zip(skew_pairs(n)) {
+        g.label(id, format!("nu_t_{i}{j}"));
+    }
+
+    let update = |g: &mut Graph, body: &Body, other_g: Id, sign: i64, index: usize| {
+        // u_i+ = u_i -/+ 2 w_i P
+        let scale = g.mul(two, body.inv_mass);
+        let velocity = (0..n)
+            .map(|k| {
+                let dv = g.mul(scale, p[k]);
+                if sign > 0 {
+                    g.add(body.velocity[k], dv)
+                } else {
+                    g.sub(body.velocity[k], dv)
+                }
+            })
+            .collect();
+        // U_i+ = U_i + (2 w_i g_j / (R_i D)) nu ^ t
+        let num = g.mul(scale, other_g);
+        let den = g.mul(body.radius, d);
+        let rho = g.div(num, den);
+        g.label(rho, format!("rho{index}"));
+        let spin = body
+            .spin
+            .iter()
+            .zip(&nu_t)
+            .map(|(&u, &x)| {
+                let du = g.mul(rho, x);
+                g.add(u, du)
+            })
+            .collect();
+        BodyOutput {
+            body: index,
+            spin,
+            velocity,
+        }
+    };
+    let mut outputs = Vec::new();
+    if variant == Variant::Free {
+        outputs.push(update(&mut g, &b1, g2, 1, 1));
+    }
+    outputs.push(update(&mut g, &b2, g1, -1, 2));
+    Kernel {
+        dim: n,
+        variant,
+        graph: g,
+        outputs,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn skew_pairs_are_lexicographic() {
+        assert_eq!(skew_pairs(2), vec![(0, 1)]);
+        assert_eq!(skew_pairs(3), vec![(0, 1), (0, 2), (1, 2)]);
+        assert_eq!(skew_pairs(6).len(), 15);
+    }
+
+    #[test]
+    fn output_shapes_match_dimension() {
+        for n in 2..=6 {
+            for v in Variant::ALL {
+                let k = build(n, v);
+                let bodies = if v == Variant::Free { 2 } else { 1 };
+                assert_eq!(k.outputs.len(), bodies);
+                for out in &k.outputs {
+                    assert_eq!(out.spin.len(), n * (n - 1) / 2);
+                    assert_eq!(out.velocity.len(), n);
+                }
+            }
+        }
+    }
+}
