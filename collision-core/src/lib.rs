@@ -1,1 +1,42 @@
+//! # collision-core
+//!
+//! The no-slip collision of two rigid balls in R^n with radially symmetric mass
+//! distributions: at contact, the state `xi = (U_1, u_1, U_2, u_2)` (angular velocities
+//! `U_i` in so(n), centre velocities `u_i`) jumps to its reflection, in the kinetic-energy
+//! metric, across the no-slip subspace `G_q = { V_1(Q) = V_2(Q) }`:
+//!
+//! $$ \xi^+ = 2 P_{G_q} \xi^- - \xi^- . $$
+//!
+//! - [`kernels`]: the generated, unrolled, branch-free kernels for n = 2..6 (`free`, both
+//!   bodies move; `fixed`, body 1 immovable), generic over [`Scalar`]: `f32`, `f64`, [`Exact`].
+//! - [`collide`]: validates the inputs (typed [`InputError`] naming the field) and runs the
+//!   kernel; [`collide_unchecked`] is the fast path.
+//! - [`reference`]: the map built from the definitions (impulse basis, Gram matrix,
+//!   projection) for any n: the independent check of the kernels.
+//!
+//! ```
+//! use collision_core::{collide, Ball, Inertia, Mass, State3};
+//! let ball = Ball::new(3, Mass::Finite(1.0), 1.0, Inertia::Uniform).unwrap();
+//! let wall = Ball::immovable(3, 1.0);
+//! let rest = State3::zero();
+//! let spin_and_fall = State3::from_omega([0.0, 0.0, 2.0], [0.0, -1.0, 0.0]);
+//! // body 1 is the wall below, body 2 the ball: nu points up.
+//! let [_, after] = collide(&[0.0, 1.0, 0.0], [&wall, &ball], [&rest, &spin_and_fall]).unwrap();
+//! assert_eq!(after.velocity[1], 1.0); // the normal velocity flips
+//! ```
 
+mod ball;
+mod collide;
+mod error;
+pub mod kernels;
+pub mod linalg;
+pub mod reference;
+mod scalar;
+mod state;
+
+pub use ball::{Ball, Inertia, Mass};
+pub use collide::{collide, collide_unchecked, validate, validate_parts};
+pub use error::{BodyField, Field, InputError};
+pub use kernels::{Generated, Kernel};
+pub use scalar::{Exact, RefArith, Scalar};
+pub use state::{skew_pairs, BodyState, State2, State3, State4, State5, State6};

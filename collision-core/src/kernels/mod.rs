@@ -1,0 +1,80 @@
+//! The generated kernels, one module per dimension, and a trait that picks them by
+//! dimension for generic code.
+//!
+//! Each module `dN` holds `free` (both bodies move) and `fixed` (body 1 immovable), emitted
+//! by noslip-codegen from the general SO(n) formulas at build time; their doc comments state
+//! the formula and the op counts. They are the unchecked fast path: no validation, no
+//! branches. Preconditions (which [`crate::collide`] checks): finite inputs, `|nu| = 1`,
+//! parameters as documented on [`crate::Ball`], and for `free` `w_1 + w_2 > 0` and
+//! `D = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2) > 0` (not both `gamma2` zero; a body with
+//! `gamma2 = 0` is movable). Violations give NaN or infinities, never a panic (floats).
+
+use crate::{Ball, BodyState, RefArith, Scalar};
+
+macro_rules! generated {
+    ($($module:ident $n:literal $s:literal $file:literal;)*) => {$(
+        #[doc = concat!("Generated kernels for n = ", stringify!($n), ".")]
+        pub mod $module {
+            include!(concat!(env!("OUT_DIR"), "/", $file));
+        }
+
+        impl<T: Scalar> Kernel<T, $n, $s> for Generated
+        where
+            for<'a> &'a T: RefArith<T>,
+        {
+            #[inline(always)]
+            fn free(
+                nu: &[T; $n],
+                ball1: &Ball<T>,
+                ball2: &Ball<T>,
+                state1: &BodyState<T, $n, $s>,
+                state2: &BodyState<T, $n, $s>,
+            ) -> [BodyState<T, $n, $s>; 2] {
+                $module::free(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed(
+                nu: &[T; $n],
+                radius1: &T,
+                ball2: &Ball<T>,
+                state1: &BodyState<T, $n, $s>,
+                state2: &BodyState<T, $n, $s>,
+            ) -> BodyState<T, $n, $s> {
+                $module::fixed(nu, radius1, ball2, state1, state2)
+            }
+        }
+    )*};
+}
+
+/// The generated kernels of one dimension `N` (`S = N(N-1)/2`), for generic code.
+pub trait Kernel<T, const N: usize, const S: usize> {
+    /// Both bodies free: `[body 1+, body 2+]`.
+    fn free(
+        nu: &[T; N],
+        ball1: &Ball<T>,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> [BodyState<T, N, S>; 2];
+
+    /// Body 1 immovable: body 2+.
+    fn fixed(
+        nu: &[T; N],
+        radius1: &T,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S>;
+}
+
+/// The generated kernels: `Generated: Kernel<T, N, S>` for `N = 2..6`.
+pub struct Generated;
+
+generated! {
+    d2 2 1 "kernels_2.rs";
+    d3 3 3 "kernels_3.rs";
+    d4 4 6 "kernels_4.rs";
+    d5 5 10 "kernels_5.rs";
+    d6 6 15 "kernels_6.rs";
+}

@@ -1,0 +1,167 @@
+//! The scalar types the generated kernels run on: `f32`, `f64` and exact rationals.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::fmt::Debug;
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// Exact rational numbers: the kernels instantiated with this type compute the collision
+/// map with no rounding at all.
+pub type Exact = BigRational;
+
+/// Arithmetic on references, `&a + &b -> T`, which the generated kernels use so that the
+/// same code serves `Copy` floats and heap-allocated rationals. Implemented for every `&T`
+/// that has the operations; generic callers add `where for<'a> &'a T: RefArith<T>`.
+pub trait RefArith<T>:
+    Sized
+    + Add<Self, Output = T>
+    + Sub<Self, Output = T>
+    + Mul<Self, Output = T>
+    + Div<Self, Output = T>
+    + Neg<Output = T>
+{
+}
+
+impl<'a, T: 'a> RefArith<T> for &'a T where
+    &'a T: Add<&'a T, Output = T>
+        + Sub<&'a T, Output = T>
+        + Mul<&'a T, Output = T>
+        + Div<&'a T, Output = T>
+        + Neg<Output = T>
+{
+}
+
+/// A field the kernels and the reference run in.
+pub trait Scalar:
+    Clone
+    + Debug
+    + PartialEq
+    + PartialOrd
+    + Zero
+    + One
+    + Signed
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + DivAssign
+    + 'static
+{
+    /// `"f32"`, `"f64"` or `"exact"`.
+    const NAME: &'static str;
+    /// Whether arithmetic is exact (no rounding).
+    const EXACT: bool;
+
+    /// `num / den`: exact for rationals; for floats the correctly rounded quotient whenever
+    /// `num` and `den` are exactly representable (IEEE division is correctly rounded).
+    fn from_ratio(num: i64, den: i64) -> Self;
+    /// Neither NaN nor infinite (always true for rationals).
+    fn is_finite(&self) -> bool;
+    /// The nearest `f64` (for reports and tolerances).
+    fn to_f64(&self) -> f64;
+    /// Allowed `| |nu|^2 - 1 |` for a contact normal: 0 for exact arithmetic, `2e-12` for
+    /// `f64` (|nu| within 1e-12 of 1), `2e-6` for `f32` (about 16 ulps at 1).
+    fn unit_tolerance() -> Self;
+    /// Relative slack on upper bounds that inputs may exceed by their own rounding (a shell
+    /// written as `R^2/n` in decimal): 0 exactly; `8 eps` in floats, the rounding of the
+    /// few operations between the input and the bound.
+    fn rounding_slack() -> Self;
+}
+
+impl Scalar for f64 {
+    const NAME: &'static str = "f64";
+    const EXACT: bool = false;
+    #[inline(always)]
+    fn from_ratio(num: i64, den: i64) -> Self {
+        num as f64 / den as f64
+    }
+    fn is_finite(&self) -> bool {
+        f64::is_finite(*self)
+    }
+    fn to_f64(&self) -> f64 {
+        *self
+    }
+    fn unit_tolerance() -> Self {
+        2e-12
+    }
+    fn rounding_slack() -> Self {
+        8.0 * f64::EPSILON
+    }
+}
+
+impl Scalar for f32 {
+    const NAME: &'static str = "f32";
+    const EXACT: bool = false;
+    #[inline(always)]
+    fn from_ratio(num: i64, den: i64) -> Self {
+        num as f32 / den as f32
+    }
+    fn is_finite(&self) -> bool {
+        f32::is_finite(*self)
+    }
+    fn to_f64(&self) -> f64 {
+        f64::from(*self)
+    }
+    fn unit_tolerance() -> Self {
+        2e-6
+    }
+    fn rounding_slack() -> Self {
+        8.0 * f32::EPSILON
+    }
+}
+
+impl Scalar for Exact {
+    const NAME: &'static str = "exact";
+    const EXACT: bool = true;
+    fn from_ratio(num: i64, den: i64) -> Self {
+        BigRational::new(BigInt::from(num), BigInt::from(den))
+    }
+    fn is_finite(&self) -> bool {
+        true
+    }
+    fn to_f64(&self) -> f64 {
+        ToPrimitive::to_f64(self).unwrap_or(f64::NAN)
+    }
+    fn unit_tolerance() -> Self {
+        Self::zero()
+    }
+    fn rounding_slack() -> Self {
+        Self::zero()
+    }
+}
+
+/// `|x| <= bound * (1 + slack)`, for bounds that rounded inputs may overshoot.
+pub(crate) fn within_slack<T: Scalar>(x: &T, bound: &T) -> bool {
+    *x <= bound.clone() * (T::one() + T::rounding_slack())
+}
+
+/// `2` in any scalar.
+pub(crate) fn two<T: Scalar>() -> T {
+    T::one() + T::one()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ratios_are_exact_or_correctly_rounded() {
+        assert_eq!(<f64 as Scalar>::from_ratio(1, 3), 1.0 / 3.0);
+        assert_eq!(<f32 as Scalar>::from_ratio(-2, 1), -2.0);
+        assert_eq!(Exact::from_ratio(2, 6), Exact::new(1.into(), 3.into()));
+    }
+
+    #[test]
+    fn slack_accepts_rounded_bounds_only() {
+        let shell = 2.0 / 3.0;
+        assert!(within_slack(&(shell * (1.0 + 2.0 * f64::EPSILON)), &shell));
+        assert!(!within_slack(&(shell * (1.0 + 1e-9)), &shell));
+        let third = Exact::from_ratio(1, 3);
+        assert!(!within_slack(&(third.clone() + Exact::from_ratio(1, 10_i64.pow(18))), &third));
+    }
+}

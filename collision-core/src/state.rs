@@ -1,0 +1,159 @@
+//! A body's velocity state: angular velocity `U` in so(n), stored as its independent entries,
+//! and centre velocity `u` in R^n.
+
+use crate::error::{BodyField, Field, InputError};
+use crate::scalar::{two, Scalar};
+
+/// Angular velocity `U` (skew, `n(n-1)/2` entries `U_ij`, `i < j`, in the order
+/// `(0,1), (0,2), .., (0,n-1), (1,2), ..`) and centre velocity `u`. `S = N(N-1)/2`.
+///
+/// The velocity of the body point `x` is `U (x - a) + u`, `a` the centre.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyState<T, const N: usize, const S: usize> {
+    pub spin: [T; S],
+    pub velocity: [T; N],
+}
+
+pub type State2<T> = BodyState<T, 2, 1>;
+pub type State3<T> = BodyState<T, 3, 3>;
+pub type State4<T> = BodyState<T, 4, 6>;
+pub type State5<T> = BodyState<T, 5, 10>;
+pub type State6<T> = BodyState<T, 6, 15>;
+
+/// The `(i, j)` index of each compact skew entry, for `n x n`.
+pub fn skew_pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
+    (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
+}
+
+impl<T: Scalar, const N: usize, const S: usize> BodyState<T, N, S> {
+    /// The state at rest.
+    pub fn zero() -> Self {
+        Self {
+            spin: std::array::from_fn(|_| T::zero()),
+            velocity: std::array::from_fn(|_| T::zero()),
+        }
+    }
+
+    /// From the full `n x n` angular velocity matrix (row by row), which must be skew:
+    /// exactly in exact arithmetic; in floats `|U_ij + U_ji| <= 1e-12 max|U|` (the skew part
+    /// `(U - U^T)/2` is kept). Errors name `angular_velocity` of body `body` (0-based).
+    pub fn from_matrix(
+        body: usize,
+        matrix: &[[T; N]; N],
+        velocity: [T; N],
+    ) -> Result<Self, InputError> {
+        assert_eq!(S, N * (N - 1) / 2, "S must be N(N-1)/2");
+        let field = Field::Body(body, BodyField::AngularVelocity);
+        let scale = matrix
+            .iter()
+            .flatten()
+            .fold(T::zero(), |m, x| if x.abs() > m { x.abs() } else { m });
+        let tol = scale * T::unit_tolerance() / two::<T>();
+        for i in 0..N {
+            if matrix[i][i].abs() > tol {
+                return Err(InputError::new(
+                    field,
+                    format!("not skew: diagonal entry ({i},{i}) is not 0"),
+                ));
+            }
+            for j in i + 1..N {
+                if (matrix[i][j].clone() + matrix[j][i].clone()).abs() > tol {
+                    return Err(InputError::new(
+                        field,
+                        format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
+                    ));
+                }
+            }
+        }
+        let mut pairs = skew_pairs(N);
+        let spin = std::array::from_fn(|_| {
+            let (i, j) = pairs.next().expect("S = N(N-1)/2 pairs");
+            (matrix[i][j].clone() - matrix[j][i].clone()) / two::<T>()
+        });
+        Ok(Self { spin, velocity })
+    }
+
+    /// The full skew matrix `U`.
+    pub fn spin_matrix(&self) -> [[T; N]; N] {
+        let mut m: [[T; N]; N] = std::array::from_fn(|_| std::array::from_fn(|_| T::zero()));
+        for ((i, j), x) in skew_pairs(N).zip(&self.spin) {
+            m[i][j] = x.clone();
+            m[j][i] = -x.clone();
+        }
+        m
+    }
+}
+
+impl<T: Scalar> State2<T> {
+    /// 2D: `U = c J`, `J = [[0, -1], [1, 0]]` (counter-clockwise spin `c`).
+    pub fn from_scalar_spin(c: T, velocity: [T; 2]) -> Self {
+        Self {
+            spin: [-c],
+            velocity,
+        }
+    }
+
+    /// The `c` of `U = c J`.
+    pub fn scalar_spin(&self) -> T {
+        -self.spin[0].clone()
+    }
+}
+
+impl<T: Scalar> State3<T> {
+    /// 3D: `U x = omega x x`, i.e. `U = [[0, -w3, w2], [w3, 0, -w1], [-w2, w1, 0]]`.
+    pub fn from_omega(omega: [T; 3], velocity: [T; 3]) -> Self {
+        let [w1, w2, w3] = omega;
+        Self {
+            spin: [-w3, w2, -w1],
+            velocity,
+        }
+    }
+
+    /// The `omega` with `U x = omega x x`.
+    pub fn omega(&self) -> [T; 3] {
+        let [u01, u02, u12] = self.spin.clone();
+        [-u12, u02, -u01]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Exact;
+
+    fn q(n: i64, d: i64) -> Exact {
+        Exact::from_ratio(n, d)
+    }
+
+    #[test]
+    fn omega_form_is_the_cross_product() {
+        let s = State3::from_omega([q(1, 1), q(-2, 1), q(3, 1)], std::array::from_fn(|_| q(0, 1)));
+        let u = s.spin_matrix();
+        let x = [q(2, 1), q(5, 1), q(-7, 1)];
+        let ux: Vec<Exact> = (0..3)
+            .map(|i| (0..3).map(|j| u[i][j].clone() * x[j].clone()).sum())
+            .collect();
+        // omega x x = (1,-2,3) x (2,5,-7) = (14-15, 6+7, 5+4)
+        assert_eq!(ux, vec![q(-1, 1), q(13, 1), q(9, 1)]);
+        assert_eq!(s.omega(), [q(1, 1), q(-2, 1), q(3, 1)]);
+    }
+
+    #[test]
+    fn scalar_spin_is_c_times_j() {
+        let s = State2::from_scalar_spin(q(3, 1), [q(0, 1), q(0, 1)]);
+        assert_eq!(s.spin_matrix(), [[q(0, 1), q(-3, 1)], [q(3, 1), q(0, 1)]]);
+        assert_eq!(s.scalar_spin(), q(3, 1));
+    }
+
+    #[test]
+    fn matrix_round_trip_and_skew_check() {
+        let m = [[0.0, 1.0, -2.0], [-1.0, 0.0, 3.0], [2.0, -3.0, 0.0]];
+        let s = State3::<f64>::from_matrix(0, &m, [0.0; 3]).unwrap();
+        assert_eq!(s.spin_matrix(), m);
+        let bad = [[0.0, 1.0, -2.0], [1.0, 0.0, 3.0], [2.0, -3.0, 0.0]];
+        let e = State3::<f64>::from_matrix(1, &bad, [0.0; 3]).unwrap_err();
+        assert_eq!(e.to_string(), "bodies[1].angular_velocity: not skew: entries (0,1) and (1,0) are not opposite");
+        let diag = [[q(1, 10), q(0, 1)], [q(0, 1), q(0, 1)]];
+        assert!(State2::from_matrix(0, &diag, [q(0, 1), q(0, 1)]).is_err());
+    }
+}
