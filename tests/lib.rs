@@ -1,1 +1,105 @@
+//! Shared helpers of the cross-crate tests: deterministic exact sampling of valid collision
+//! inputs, and the physical quantities the tests compare.
 
+use collision_core::{skew_pairs, Ball, BodyState, Exact, Scalar};
+use num_traits::{One, Zero};
+
+/// SplitMix64: a tiny deterministic generator, so that every exact test is reproducible.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform integer in `lo..=hi`.
+    pub fn int(&mut self, lo: i64, hi: i64) -> i64 {
+        lo + (self.next_u64() % (hi - lo + 1) as u64) as i64
+    }
+
+    /// `p/q` with `p` in `lo..=hi`, `q` in `1..=den`.
+    pub fn ratio(&mut self, lo: i64, hi: i64, den: i64) -> Exact {
+        Exact::from_ratio(self.int(lo, hi), self.int(1, den))
+    }
+}
+
+/// An exactly unit normal: the inverse stereographic projection of a rational point `y`,
+/// `nu = (2 y, |y|^2 - 1) / (|y|^2 + 1)`.
+pub fn unit_normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
+    let y: Vec<Exact> = (0..N - 1).map(|_| rng.ratio(-5, 5, 4)).collect();
+    let y2: Exact = y.iter().map(|x| x * x).sum();
+    let den = &y2 + Exact::one();
+    std::array::from_fn(|k| {
+        if k + 1 < N {
+            Exact::from_ratio(2, 1) * &y[k] / &den
+        } else {
+            (&y2 - Exact::one()) / &den
+        }
+    })
+}
+
+/// A valid movable ball: mass in [1/4, 4], radius in [1/3, 3], gamma2 in (0, 2/n].
+pub fn free_ball(rng: &mut Rng, n: usize) -> Ball<Exact> {
+    let gamma2 = Exact::from_ratio(2 * rng.int(1, 12), 12 * n as i64);
+    Ball {
+        inv_mass: Exact::from_ratio(rng.int(1, 16), 4),
+        radius: Exact::from_ratio(rng.int(1, 9), 3),
+        gamma2,
+    }
+}
+
+pub fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<Exact, N, S> {
+    BodyState {
+        spin: std::array::from_fn(|_| rng.ratio(-9, 9, 5)),
+        velocity: std::array::from_fn(|_| rng.ratio(-9, 9, 5)),
+    }
+}
+
+/// Make the pair approach (or graze): if `(u_2 - u_1) . nu > 0`, reflect `u_2`'s normal part.
+pub fn approaching<const N: usize, const S: usize>(nu: &[Exact; N], states: &mut [BodyState<Exact, N, S>; 2]) {
+    let dn = relative_normal_velocity(nu, states);
+    if dn > Exact::zero() {
+        for k in 0..N {
+            states[1].velocity[k] -= Exact::from_ratio(2, 1) * &dn * &nu[k];
+        }
+    }
+}
+
+/// `(u_2 - u_1) . nu`.
+pub fn relative_normal_velocity<T: Scalar, const N: usize, const S: usize>(nu: &[T; N], s: &[BodyState<T, N, S>; 2]) -> T {
+    (0..N).fold(T::zero(), |acc, k| acc + (s[1].velocity[k].clone() - s[0].velocity[k].clone()) * nu[k].clone())
+}
+
+/// Twice the kinetic energy of a movable body, `m [lambda Tr(U U^T) + |u|^2]`, with
+/// `Tr(U U^T) = 2 sum_{i<j} U_ij^2`.
+pub fn energy<const N: usize, const S: usize>(ball: &Ball<Exact>, s: &BodyState<Exact, N, S>) -> Exact {
+    let m = Exact::one() / &ball.inv_mass;
+    let spin2: Exact = s.spin.iter().map(|x| x * x).sum();
+    let vel2: Exact = s.velocity.iter().map(|x| x * x).sum();
+    m * (ball.lambda() * Exact::from_ratio(2, 1) * spin2 + vel2)
+}
+
+/// Angular momentum about the contact point `Q` of body `i` (0 or 1), as compact skew
+/// entries: `m (r ^ u) + 2 m lambda U` with `r = a - Q` (`-R_1 nu` for body 1, `R_2 nu`
+/// for body 2) and `(a ^ b)_ij = b_i a_j - a_i b_j`.
+pub fn angular_momentum<const N: usize, const S: usize>(
+    body: usize,
+    nu: &[Exact; N],
+    ball: &Ball<Exact>,
+    s: &BodyState<Exact, N, S>,
+) -> Vec<Exact> {
+    let m = Exact::one() / &ball.inv_mass;
+    let sign = if body == 0 { -Exact::one() } else { Exact::one() };
+    let r: Vec<Exact> = nu.iter().map(|x| &sign * &ball.radius * x).collect();
+    skew_pairs(N)
+        .zip(&s.spin)
+        .map(|((i, j), u)| {
+            let r_wedge_u = &s.velocity[i] * &r[j] - &r[i] * &s.velocity[j];
+            &m * r_wedge_u + Exact::from_ratio(2, 1) * &m * ball.lambda() * u
+        })
+        .collect()
+}

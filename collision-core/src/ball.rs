@@ -47,7 +47,7 @@ fn finite<T: Scalar>(x: &T, field: BodyField) -> Result<(), InputError> {
     if x.is_finite() {
         Ok(())
     } else {
-        Err(err(field, format!("must be a finite number, got {x:?}")))
+        Err(err(field, format!("must be a finite number, got {x}")))
     }
 }
 
@@ -58,7 +58,7 @@ fn in_range<T: Scalar>(x: T, bound: &T, field: BodyField, what: &str) -> Result<
     if x < T::zero() || !within_slack(&x, bound) {
         return Err(err(
             field,
-            format!("must be in [0, {what}] = [0, {:?}], got {x:?}", bound),
+            format!("must be in [0, {what}] = [0, {bound}], got {x}"),
         ));
     }
     Ok(if x > *bound { bound.clone() } else { x })
@@ -70,14 +70,14 @@ impl<T: Scalar> Ball<T> {
     pub fn new(dim: usize, mass: Mass<T>, radius: T, inertia: Inertia<T>) -> Result<Self, InputError> {
         finite(&radius, BodyField::Radius)?;
         if radius <= T::zero() {
-            return Err(err(BodyField::Radius, format!("must be positive, got {radius:?}")));
+            return Err(err(BodyField::Radius, format!("must be positive, got {radius}")));
         }
         let inv_mass = match mass {
             Mass::Infinite => T::zero(),
             Mass::Finite(m) => {
                 finite(&m, BodyField::Mass)?;
                 if m <= T::zero() {
-                    return Err(err(BodyField::Mass, format!("must be positive (or \"inf\"), got {m:?}")));
+                    return Err(err(BodyField::Mass, format!("must be positive (or \"inf\"), got {m}")));
                 }
                 T::one() / m
             }
@@ -135,7 +135,7 @@ impl<T: Scalar> Ball<T> {
         if self.gamma2 < T::zero() || self.gamma2 > shell {
             return Err(err(
                 BodyField::Gamma2,
-                format!("must be in [0, 2/n] = [0, {shell:?}], got {:?}", self.gamma2),
+                format!("must be in [0, 2/n] = [0, {shell}], got {}", self.gamma2),
             ));
         }
         Ok(())

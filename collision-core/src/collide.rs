@@ -64,21 +64,21 @@ pub fn validate_parts<T: Scalar>(
         return Err(InputError::new(Field::Dim, format!("must be at least 2, got {n}")));
     }
     if let Some(x) = nu.iter().find(|x| !x.is_finite()) {
-        return Err(InputError::new(Field::Normal, format!("must be finite, got {x:?}")));
+        return Err(InputError::new(Field::Normal, format!("must be finite, got {x}")));
     }
     let norm2 = nu.iter().fold(T::zero(), |s, x| s + x.clone() * x.clone());
     if (norm2.clone() - T::one()).abs() > T::unit_tolerance() {
         let how = if T::EXACT { "exactly" } else { "within tolerance" };
         return Err(InputError::new(
             Field::Normal,
-            format!("must be a unit vector ({how}), got |nu|^2 = {norm2:?}"),
+            format!("must be a unit vector ({how}), got |nu|^2 = {norm2}"),
         ));
     }
     for (i, (ball, (spin, velocity))) in balls.iter().zip(states).enumerate() {
         ball.validate(n).map_err(|e| e.at_body(i))?;
         for (values, field) in [(spin, BodyField::AngularVelocity), (velocity, BodyField::Velocity)] {
             if let Some(x) = values.iter().find(|x| !x.is_finite()) {
-                return Err(InputError::new(Field::Body(i, field), format!("must be finite, got {x:?}")));
+                return Err(InputError::new(Field::Body(i, field), format!("must be finite, got {x}")));
             }
         }
     }
@@ -98,7 +98,7 @@ pub fn validate_parts<T: Scalar>(
     if dn > T::zero() {
         return Err(InputError::new(
             Field::RelativeVelocity,
-            format!("the bodies are separating: (u_2 - u_1) . nu = {dn:?} > 0"),
+            format!("the bodies are separating: (u_2 - u_1) . nu = {dn} > 0"),
         ));
     }
     Ok(())

@@ -3,7 +3,7 @@
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
-use std::fmt::Debug;
+use std::fmt::{Debug, Display};
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// Exact rational numbers: the kernels instantiated with this type compute the collision
@@ -36,6 +36,7 @@ impl<'a, T: 'a> RefArith<T> for &'a T where
 pub trait Scalar:
     Clone
     + Debug
+    + Display
     + PartialEq
     + PartialOrd
     + Zero
