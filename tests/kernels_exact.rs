@@ -1,7 +1,10 @@
 //! The generated kernels, instantiated with exact rationals, against the general-n reference
 //! and the exact facts of MATH.md, for n = 2..6 and both variants.
 
-use collision_core::{collide, collide_unchecked, reference, Ball, BodyState, Exact, Generated, Kernel, Scalar, State2};
+use collision_core::{
+    collide, collide_unchecked, reference, Ball, BodyState, Exact, Generated, Kernel, Scalar,
+    State2,
+};
 use noslip_tests::*;
 use num_traits::{One, Zero};
 
@@ -12,7 +15,10 @@ fn q(p: i64, d: i64) -> Exact {
 }
 
 /// A random valid case; body 1 immovable when `fixed`.
-fn case<const N: usize, const S: usize>(rng: &mut Rng, fixed: bool) -> ([Exact; N], [Ball<Exact>; 2], [BodyState<Exact, N, S>; 2]) {
+fn case<const N: usize, const S: usize>(
+    rng: &mut Rng,
+    fixed: bool,
+) -> ([Exact; N], [Ball<Exact>; 2], [BodyState<Exact, N, S>; 2]) {
     let nu = unit_normal::<N>(rng);
     let mut b1 = free_ball(rng, N);
     if fixed {
@@ -72,7 +78,10 @@ where
             );
         }
         // The normal relative velocity flips.
-        assert_eq!(relative_normal_velocity(&nu, &after), -relative_normal_velocity(&nu, &states));
+        assert_eq!(
+            relative_normal_velocity(&nu, &after),
+            -relative_normal_velocity(&nu, &states)
+        );
         // C o C = id (the post state separates, so the unchecked path).
         let twice = collide_unchecked(&nu, b, [&after[0], &after[1]]);
         assert_eq!(twice, states, "C o C, n = {N}");
@@ -116,7 +125,11 @@ fn disk_on_a_wall_matrix_of_math_md() {
         let g2 = &gamma * &gamma;
         let nu = [q(3, 5), q(4, 5)];
         let wall = Ball::immovable(2, q(7, 3));
-        let disk = Ball { inv_mass: q(1, 3), radius: q(3, 2), gamma2: g2.clone() };
+        let disk = Ball {
+            inv_mass: q(1, 3),
+            radius: q(3, 2),
+            gamma2: g2.clone(),
+        };
         let den = Exact::one() + &g2;
         let a = (Exact::one() - &g2) / &den;
         let b = q(2, 1) * &gamma / &den;
@@ -126,12 +139,17 @@ fn disk_on_a_wall_matrix_of_math_md() {
             [q(0, 1), q(0, 1), q(-1, 1)],
         ];
         for col in 0..3 {
-            let x: Vec<Exact> = (0..3).map(|k| if k == col { q(1, 1) } else { q(0, 1) }).collect();
+            let x: Vec<Exact> = (0..3)
+                .map(|k| if k == col { q(1, 1) } else { q(0, 1) })
+                .collect();
             let before = state2(&gamma, &disk.radius, &nu, &x);
             let [_, after] = collide_unchecked(&nu, [&wall, &disk], [&State2::zero(), &before]);
             let y = coords2(&gamma, &disk.radius, &nu, &after);
             for row in 0..3 {
-                assert_eq!(y[row], expected[row][col], "gamma {gamma}, entry ({row},{col})");
+                assert_eq!(
+                    y[row], expected[row][col],
+                    "gamma {gamma}, entry ({row},{col})"
+                );
             }
         }
         if gamma == q(1, 2) {
@@ -160,14 +178,26 @@ fn equal_masses_matrix_of_the_notes_page_17() {
     let nu = [q(-5, 13), q(12, 13)];
     // Equal masses and distributions, different radii (the matrix does not depend on them).
     let balls = [
-        Ball { inv_mass: q(2, 7), radius: q(1, 2), gamma2: g2.clone() },
-        Ball { inv_mass: q(2, 7), radius: q(5, 4), gamma2: g2.clone() },
+        Ball {
+            inv_mass: q(2, 7),
+            radius: q(1, 2),
+            gamma2: g2.clone(),
+        },
+        Ball {
+            inv_mass: q(2, 7),
+            radius: q(5, 4),
+            gamma2: g2.clone(),
+        },
     ];
     for col in 0..6 {
-        let x: Vec<Exact> = (0..6).map(|k| if k == col { o.clone() } else { z.clone() }).collect();
+        let x: Vec<Exact> = (0..6)
+            .map(|k| if k == col { o.clone() } else { z.clone() })
+            .collect();
         let before = [0, 1].map(|i| state2(&gamma, &balls[i].radius, &nu, &x[3 * i..3 * i + 3]));
         let after = collide_unchecked(&nu, [&balls[0], &balls[1]], [&before[0], &before[1]]);
-        let y: Vec<Exact> = (0..2).flat_map(|i| coords2(&gamma, &balls[i].radius, &nu, &after[i])).collect();
+        let y: Vec<Exact> = (0..2)
+            .flat_map(|i| coords2(&gamma, &balls[i].radius, &nu, &after[i]))
+            .collect();
         for row in 0..6 {
             assert_eq!(y[row], expected[row][col], "entry ({row},{col})");
         }
@@ -184,15 +214,25 @@ fn the_example_case_of_the_issue_separates_and_its_mirror_collides() {
     let nu = [q(0, 1), q(3, 5), q(4, 5)];
     let b1 = Ball::new(3, Mass::Finite(q(2, 1)), q(1, 1), Inertia::Lambda(q(1, 5))).unwrap();
     let b2 = Ball::new(3, Mass::Infinite, q(3, 2), Inertia::Gamma2(q(2, 5))).unwrap();
-    let m = [[q(0, 1), q(1, 1), q(-2, 1)], [q(-1, 1), q(0, 1), q(3, 1)], [q(2, 1), q(-3, 1), q(0, 1)]];
+    let m = [
+        [q(0, 1), q(1, 1), q(-2, 1)],
+        [q(-1, 1), q(0, 1), q(3, 1)],
+        [q(2, 1), q(-3, 1), q(0, 1)],
+    ];
     let s2 = BodyState::zero();
     let away = BodyState::from_matrix(0, &m, [q(1, 1), q(0, 1), q(-1, 2)]).unwrap();
     let e = collide(&nu, [&b1, &b2], [&away, &s2]).unwrap_err();
     assert_eq!(e.field, Field::RelativeVelocity);
-    assert_eq!(e.to_string(), "bodies[*].velocity: the bodies are separating: (u_2 - u_1) . nu = 2/5 > 0");
+    assert_eq!(
+        e.to_string(),
+        "bodies[*].velocity: the bodies are separating: (u_2 - u_1) . nu = 2/5 > 0"
+    );
     let toward = BodyState::from_matrix(0, &m, [q(1, 1), q(0, 1), q(1, 2)]).unwrap();
     let out = collide(&nu, [&b1, &b2], [&toward, &s2]).unwrap();
-    assert_eq!(out, reference::collide(&nu, [&b1, &b2], [&toward, &s2]).unwrap());
+    assert_eq!(
+        out,
+        reference::collide(&nu, [&b1, &b2], [&toward, &s2]).unwrap()
+    );
     assert_eq!(out[1], s2, "the immovable body is unchanged");
     assert_eq!(relative_normal_velocity(&nu, &out), q(2, 5));
 }

@@ -40,7 +40,9 @@ where
         balls[0].inv_mass = 0.0;
     }
     let mut states: [BodyState<f64, N, S>; 2] = reference::from_coords(&xi.into());
-    let dn: f64 = (0..N).map(|k| (states[1].velocity[k] - states[0].velocity[k]) * nu[k]).sum();
+    let dn: f64 = (0..N)
+        .map(|k| (states[1].velocity[k] - states[0].velocity[k]) * nu[k])
+        .sum();
     if dn > 0.0 {
         for k in 0..N {
             states[1].velocity[k] -= 2.0 * dn * nu[k];
@@ -51,10 +53,19 @@ where
     let kernel = collide(&nu, b, s).unwrap();
     let reference = reference::collide(&nu, b, s).unwrap();
     let before = reference::coords(s);
-    let (k, r) = (reference::coords([&kernel[0], &kernel[1]]), reference::coords([&reference[0], &reference[1]]));
-    let scale = before.iter().chain(r.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+    let (k, r) = (
+        reference::coords([&kernel[0], &kernel[1]]),
+        reference::coords([&reference[0], &reference[1]]),
+    );
+    let scale = before
+        .iter()
+        .chain(r.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
     let err = (k - r).amax();
-    prop_assert!(err <= 1e-9 * scale, "n = {N}, fixed = {fixed}: error {err:e}, scale {scale:e}");
+    prop_assert!(
+        err <= 1e-9 * scale,
+        "n = {N}, fixed = {fixed}: error {err:e}, scale {scale:e}"
+    );
     Ok(())
 }
 

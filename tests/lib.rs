@@ -60,7 +60,10 @@ pub fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<Exact, 
 }
 
 /// Make the pair approach (or graze): if `(u_2 - u_1) . nu > 0`, reflect `u_2`'s normal part.
-pub fn approaching<const N: usize, const S: usize>(nu: &[Exact; N], states: &mut [BodyState<Exact, N, S>; 2]) {
+pub fn approaching<const N: usize, const S: usize>(
+    nu: &[Exact; N],
+    states: &mut [BodyState<Exact, N, S>; 2],
+) {
     let dn = relative_normal_velocity(nu, states);
     if dn > Exact::zero() {
         for k in 0..N {
@@ -70,13 +73,21 @@ pub fn approaching<const N: usize, const S: usize>(nu: &[Exact; N], states: &mut
 }
 
 /// `(u_2 - u_1) . nu`.
-pub fn relative_normal_velocity<T: Scalar, const N: usize, const S: usize>(nu: &[T; N], s: &[BodyState<T, N, S>; 2]) -> T {
-    (0..N).fold(T::zero(), |acc, k| acc + (s[1].velocity[k].clone() - s[0].velocity[k].clone()) * nu[k].clone())
+pub fn relative_normal_velocity<T: Scalar, const N: usize, const S: usize>(
+    nu: &[T; N],
+    s: &[BodyState<T, N, S>; 2],
+) -> T {
+    (0..N).fold(T::zero(), |acc, k| {
+        acc + (s[1].velocity[k].clone() - s[0].velocity[k].clone()) * nu[k].clone()
+    })
 }
 
 /// Twice the kinetic energy of a movable body, `m [lambda Tr(U U^T) + |u|^2]`, with
 /// `Tr(U U^T) = 2 sum_{i<j} U_ij^2`.
-pub fn energy<const N: usize, const S: usize>(ball: &Ball<Exact>, s: &BodyState<Exact, N, S>) -> Exact {
+pub fn energy<const N: usize, const S: usize>(
+    ball: &Ball<Exact>,
+    s: &BodyState<Exact, N, S>,
+) -> Exact {
     let m = Exact::one() / &ball.inv_mass;
     let spin2: Exact = s.spin.iter().map(|x| x * x).sum();
     let vel2: Exact = s.velocity.iter().map(|x| x * x).sum();
@@ -93,7 +104,11 @@ pub fn angular_momentum<const N: usize, const S: usize>(
     s: &BodyState<Exact, N, S>,
 ) -> Vec<Exact> {
     let m = Exact::one() / &ball.inv_mass;
-    let sign = if body == 0 { -Exact::one() } else { Exact::one() };
+    let sign = if body == 0 {
+        -Exact::one()
+    } else {
+        Exact::one()
+    };
     let r: Vec<Exact> = nu.iter().map(|x| &sign * &ball.radius * x).collect();
     skew_pairs(N)
         .zip(&s.spin)

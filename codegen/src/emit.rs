@@ -52,8 +52,14 @@ fn const_name(c: &BigRational) -> String {
 
 /// `T::from_ratio(p, q)` for an exact constant. Kernels only hold small constants.
 fn const_value(c: &BigRational) -> TokenStream {
-    let p = c.numer().to_i64().expect("kernel constant numerator fits i64");
-    let q = c.denom().to_i64().expect("kernel constant denominator fits i64");
+    let p = c
+        .numer()
+        .to_i64()
+        .expect("kernel constant numerator fits i64");
+    let q = c
+        .denom()
+        .to_i64()
+        .expect("kernel constant denominator fits i64");
     let (p, q) = (Literal::i64_unsuffixed(p), Literal::i64_unsuffixed(q));
     quote!(T::from_ratio(#p, #q))
 }

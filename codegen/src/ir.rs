@@ -4,6 +4,7 @@
 //! - fold constants exactly (`BigRational` arithmetic),
 //! - apply the identities `x + 0 = x`, `x * 1 = x`, `x * 0 = 0`, `x * (-1) = -x`,
 //!   `-(-x) = x`, `x - x = 0`, `x + (-y) = x - y`, `x - (-y) = x + y`, `(-x) * y = -(x y)`,
+//!   `(-x) + (-y) = -(x + y)`,
 //! - order the operands of `+` and `*` canonically,
 //! - and return the existing node when an identical one exists (hash-consing), which is
 //!   common-subexpression elimination by construction.
@@ -132,11 +133,14 @@ impl Graph {
         if self.is_const(b, Zero::is_zero) {
             return a;
         }
-        if let Some(y) = self.negated(b) {
-            return self.sub(a, y);
-        }
-        if let Some(x) = self.negated(a) {
-            return self.sub(b, x);
+        match (self.negated(a), self.negated(b)) {
+            (Some(x), Some(y)) => {
+                let s = self.add(x, y);
+                return self.neg(s);
+            }
+            (None, Some(y)) => return self.sub(a, y),
+            (Some(x), None) => return self.sub(b, x),
+            (None, None) => {}
         }
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
         self.intern(Node::Add(a, b))
@@ -264,7 +268,9 @@ impl Graph {
 }
 
 fn val(values: &[Option<BigRational>], id: Id) -> &BigRational {
-    values[id.index()].as_ref().expect("operands precede their node")
+    values[id.index()]
+        .as_ref()
+        .expect("operands precede their node")
 }
 
 #[cfg(test)]
@@ -280,7 +286,7 @@ mod tests {
         assert_eq!(xy, yx);
         assert_eq!(g.add(x, y), g.add(y, x));
         assert_ne!(g.sub(x, y), g.sub(y, x));
-        assert_eq!(g.len(), 5);
+        assert_eq!(g.len(), 6); // x, y, x y, x + y, x - y, y - x
     }
 
     #[test]

@@ -128,25 +128,24 @@ fn body(g: &mut Graph, n: usize, b: usize, variant: Variant) -> Body {
     }
 }
 
-/// `U v` for a skew `U` in compact storage: `(U v)_i = sum_j U_ij v_j`, `U_ji = -U_ij`.
+/// `U v` for a skew `U` in compact storage: `(U v)_i = sum_{j>i} U_ij v_j - sum_{j<i} U_ji v_j`
+/// (`U_ji = -U_ij`); the positive terms first, so that the negative ones become subtractions.
 pub fn skew_times(g: &mut Graph, n: usize, spin: &[Id], v: &[Id]) -> Vec<Id> {
     let pairs = skew_pairs(n);
     (0..n)
         .map(|i| {
-            let terms: Vec<Id> = pairs
-                .iter()
-                .zip(spin)
-                .filter_map(|(&(p, q), &u)| {
-                    if p == i {
-                        Some(g.mul(u, v[q]))
-                    } else if q == i {
-                        let x = g.mul(u, v[p]);
-                        Some(g.neg(x))
-                    } else {
-                        None
-                    }
-                })
-                .collect();
+            let mut terms = Vec::new();
+            for (&(p, q), &u) in pairs.iter().zip(spin) {
+                if p == i {
+                    terms.push(g.mul(u, v[q]));
+                }
+            }
+            for (&(p, q), &u) in pairs.iter().zip(spin) {
+                if q == i {
+                    let x = g.mul(u, v[p]);
+                    terms.push(g.neg(x));
+                }
+            }
             g.sum(terms)
         })
         .collect()

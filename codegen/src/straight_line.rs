@@ -170,13 +170,28 @@ mod tests {
     #[test]
     fn rejects_control_flow_and_calls() {
         let cases = [
-            ("fn k(a: f64) -> f64 { if a > 0.0 { a } else { -a } }", "`if`"),
+            (
+                "fn k(a: f64) -> f64 { if a > 0.0 { a } else { -a } }",
+                "`if`",
+            ),
             ("fn k(a: f64) -> f64 { match a { _ => a } }", "`match`"),
-            ("fn k(a: f64) -> f64 { let mut s = a; for _ in 0..2 { s = s + a; } s }", "a loop"),
-            ("fn k(a: f64) -> f64 { a.sqrt() }", "a method call other than `.clone()`"),
-            ("fn k(a: f64) -> f64 { f(a) }", "a call other than `T::from_ratio(int, int)`"),
+            (
+                "fn k(a: f64) -> f64 { let mut s = a; for _ in 0..2 { s = s + a; } s }",
+                "a loop",
+            ),
+            (
+                "fn k(a: f64) -> f64 { a.sqrt() }",
+                "a method call other than `.clone()`",
+            ),
+            (
+                "fn k(a: f64) -> f64 { f(a) }",
+                "a call other than `T::from_ratio(int, int)`",
+            ),
             ("fn k(a: [f64; 2]) -> f64 { a[0] }", "indexing"),
-            ("fn k(a: f64) -> bool { a < 1.0 }", "a binary operator other than + - * /"),
+            (
+                "fn k(a: f64) -> bool { a < 1.0 }",
+                "a binary operator other than + - * /",
+            ),
         ];
         for (src, expected) in cases {
             let v = violations(src);

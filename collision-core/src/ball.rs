@@ -67,17 +67,28 @@ fn in_range<T: Scalar>(x: T, bound: &T, field: BodyField, what: &str) -> Result<
 impl<T: Scalar> Ball<T> {
     /// A validated ball in R^`dim`. Errors name the field (body index 0; see
     /// [`InputError::at_body`]).
-    pub fn new(dim: usize, mass: Mass<T>, radius: T, inertia: Inertia<T>) -> Result<Self, InputError> {
+    pub fn new(
+        dim: usize,
+        mass: Mass<T>,
+        radius: T,
+        inertia: Inertia<T>,
+    ) -> Result<Self, InputError> {
         finite(&radius, BodyField::Radius)?;
         if radius <= T::zero() {
-            return Err(err(BodyField::Radius, format!("must be positive, got {radius}")));
+            return Err(err(
+                BodyField::Radius,
+                format!("must be positive, got {radius}"),
+            ));
         }
         let inv_mass = match mass {
             Mass::Infinite => T::zero(),
             Mass::Finite(m) => {
                 finite(&m, BodyField::Mass)?;
                 if m <= T::zero() {
-                    return Err(err(BodyField::Mass, format!("must be positive (or \"inf\"), got {m}")));
+                    return Err(err(
+                        BodyField::Mass,
+                        format!("must be positive (or \"inf\"), got {m}"),
+                    ));
                 }
                 T::one() / m
             }
@@ -94,7 +105,11 @@ impl<T: Scalar> Ball<T> {
                 two::<T>() * l / r2
             }
         };
-        let ball = Ball { inv_mass, radius, gamma2 };
+        let ball = Ball {
+            inv_mass,
+            radius,
+            gamma2,
+        };
         ball.validate(dim)?;
         Ok(ball)
     }
@@ -180,9 +195,20 @@ mod tests {
     #[test]
     fn a_decimal_shell_is_accepted_in_floats_only() {
         // R^2/n for R = 1, n = 3 written in decimal, rounded up in its last digit.
-        let b = Ball::new(3, Mass::Finite(1.0), 1.0, Inertia::Lambda(0.33333333333333337)).unwrap();
+        let b = Ball::new(
+            3,
+            Mass::Finite(1.0),
+            1.0,
+            Inertia::Lambda(0.33333333333333337),
+        )
+        .unwrap();
         assert_eq!(b.gamma2, 2.0 / 3.0);
-        let exact = Ball::new(3, Mass::Finite(q(1, 1)), q(1, 1), Inertia::Lambda(q(333_333_333_333_333_37, 100_000_000_000_000_000)));
+        let exact = Ball::new(
+            3,
+            Mass::Finite(q(1, 1)),
+            q(1, 1),
+            Inertia::Lambda(q(333_333_333_333_333_37, 100_000_000_000_000_000)),
+        );
         assert!(exact.is_err());
     }
 }

@@ -47,7 +47,10 @@ where
         [s1.clone(), Generated::fixed(nu, &b1.radius, b2, s1, s2)]
     } else if b2.is_immovable() {
         let minus_nu = nu.clone().map(|x| -x);
-        [Generated::fixed(&minus_nu, &b2.radius, b1, s2, s1), s2.clone()]
+        [
+            Generated::fixed(&minus_nu, &b2.radius, b1, s2, s1),
+            s2.clone(),
+        ]
     } else {
         Generated::free(nu, b1, b2, s1, s2)
     }
@@ -61,14 +64,24 @@ pub fn validate_parts<T: Scalar>(
 ) -> Result<(), InputError> {
     let n = nu.len();
     if n < 2 {
-        return Err(InputError::new(Field::Dim, format!("must be at least 2, got {n}")));
+        return Err(InputError::new(
+            Field::Dim,
+            format!("must be at least 2, got {n}"),
+        ));
     }
     if let Some(x) = nu.iter().find(|x| !x.is_finite()) {
-        return Err(InputError::new(Field::Normal, format!("must be finite, got {x}")));
+        return Err(InputError::new(
+            Field::Normal,
+            format!("must be finite, got {x}"),
+        ));
     }
     let norm2 = nu.iter().fold(T::zero(), |s, x| s + x.clone() * x.clone());
     if (norm2.clone() - T::one()).abs() > T::unit_tolerance() {
-        let how = if T::EXACT { "exactly" } else { "within tolerance" };
+        let how = if T::EXACT {
+            "exactly"
+        } else {
+            "within tolerance"
+        };
         return Err(InputError::new(
             Field::Normal,
             format!("must be a unit vector ({how}), got |nu|^2 = {norm2}"),
@@ -76,15 +89,24 @@ pub fn validate_parts<T: Scalar>(
     }
     for (i, (ball, (spin, velocity))) in balls.iter().zip(states).enumerate() {
         ball.validate(n).map_err(|e| e.at_body(i))?;
-        for (values, field) in [(spin, BodyField::AngularVelocity), (velocity, BodyField::Velocity)] {
+        for (values, field) in [
+            (spin, BodyField::AngularVelocity),
+            (velocity, BodyField::Velocity),
+        ] {
             if let Some(x) = values.iter().find(|x| !x.is_finite()) {
-                return Err(InputError::new(Field::Body(i, field), format!("must be finite, got {x}")));
+                return Err(InputError::new(
+                    Field::Body(i, field),
+                    format!("must be finite, got {x}"),
+                ));
             }
         }
     }
     let [b1, b2] = balls;
     if b1.is_immovable() && b2.is_immovable() {
-        return Err(InputError::new(Field::Bodies, "both bodies are immovable (mass \"inf\"): at most one may be"));
+        return Err(InputError::new(
+            Field::Bodies,
+            "both bodies are immovable (mass \"inf\"): at most one may be",
+        ));
     }
     if !b1.is_immovable() && !b2.is_immovable() && b1.gamma2.is_zero() && b2.gamma2.is_zero() {
         return Err(InputError::new(
@@ -143,13 +165,21 @@ mod tests {
             (&nu, [&fixed, &fixed], [&approach, &rest], Field::Bodies),
             (&nu, [&point, &point], [&approach, &rest], Field::Bodies),
             (&nu, [&free, &free], [&away, &rest], Field::RelativeVelocity),
-            (&[q(1, 1), q(1, 1)], [&free, &free], [&approach, &rest], Field::Normal),
+            (
+                &[q(1, 1), q(1, 1)],
+                [&free, &free],
+                [&approach, &rest],
+                Field::Normal,
+            ),
         ];
         for (nu, balls, states, field) in cases {
             assert_eq!(collide(nu, balls, states).unwrap_err().field, field);
         }
         // A point mass against an immovable one is fine: its partner's inertia is unused.
-        let fixed_point = Ball { inv_mass: q(0, 1), ..point.clone() };
+        let fixed_point = Ball {
+            inv_mass: q(0, 1),
+            ..point.clone()
+        };
         assert!(collide(&nu, [&fixed_point, &point], [&approach, &rest]).is_ok());
         // Grazing contact is accepted.
         let graze = State2::from_scalar_spin(q(0, 1), [q(4, 1), q(-3, 1)]);

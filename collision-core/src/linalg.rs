@@ -16,7 +16,12 @@ fn echelon<T: Scalar>(m: &mut DMatrix<T>) -> Vec<usize> {
         }
         let best = (r..rows)
             .filter(|&i| !m[(i, c)].is_zero())
-            .max_by(|&i, &j| m[(i, c)].abs().partial_cmp(&m[(j, c)].abs()).expect("finite"));
+            .max_by(|&i, &j| {
+                m[(i, c)]
+                    .abs()
+                    .partial_cmp(&m[(j, c)].abs())
+                    .expect("finite")
+            });
         let Some(p) = best else { continue };
         m.swap_rows(r, p);
         for i in r + 1..rows {
@@ -44,7 +49,13 @@ pub fn rank<T: Scalar>(m: &DMatrix<T>) -> usize {
 pub fn solve<T: Scalar>(a: &DMatrix<T>, b: &DVector<T>) -> Option<DVector<T>> {
     let n = a.nrows();
     assert_eq!(a.ncols(), n, "solve needs a square matrix");
-    let mut aug = DMatrix::from_fn(n, n + 1, |i, j| if j < n { a[(i, j)].clone() } else { b[i].clone() });
+    let mut aug = DMatrix::from_fn(n, n + 1, |i, j| {
+        if j < n {
+            a[(i, j)].clone()
+        } else {
+            b[i].clone()
+        }
+    });
     if echelon(&mut aug) != (0..n).collect::<Vec<_>>() {
         return None;
     }
@@ -70,7 +81,11 @@ mod tests {
 
     #[test]
     fn solves_exactly_and_detects_singularity() {
-        let a = DMatrix::from_row_slice(3, 3, &[q(0), q(2), q(1), q(1), q(1), q(0), q(3), q(0), q(1)]);
+        let a = DMatrix::from_row_slice(
+            3,
+            3,
+            &[q(0), q(2), q(1), q(1), q(1), q(0), q(3), q(0), q(1)],
+        );
         let x = DVector::from_vec(vec![Exact::from_ratio(1, 3), q(-2), q(5)]);
         let b = &a * &x;
         assert_eq!(solve(&a, &b), Some(x));

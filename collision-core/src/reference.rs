@@ -34,7 +34,9 @@ pub fn state_len(n: usize) -> usize {
 }
 
 /// `[U_1, u_1, U_2, u_2]` as one vector.
-pub fn coords<T: Scalar, const N: usize, const S: usize>(states: [&BodyState<T, N, S>; 2]) -> DVector<T> {
+pub fn coords<T: Scalar, const N: usize, const S: usize>(
+    states: [&BodyState<T, N, S>; 2],
+) -> DVector<T> {
     DVector::from_iterator(
         state_len(N),
         states
@@ -44,7 +46,9 @@ pub fn coords<T: Scalar, const N: usize, const S: usize>(states: [&BodyState<T, 
 }
 
 /// The inverse of [`coords`].
-pub fn from_coords<T: Scalar, const N: usize, const S: usize>(xi: &DVector<T>) -> [BodyState<T, N, S>; 2] {
+pub fn from_coords<T: Scalar, const N: usize, const S: usize>(
+    xi: &DVector<T>,
+) -> [BodyState<T, N, S>; 2] {
     assert_eq!(xi.len(), 2 * (S + N));
     std::array::from_fn(|b| {
         let base = b * (S + N);
@@ -63,7 +67,9 @@ pub fn wedge<T: Scalar>(a: &[T], b: &[T]) -> Vec<T> {
 }
 
 fn unit<T: Scalar>(n: usize, k: usize) -> Vec<T> {
-    (0..n).map(|i| if i == k { T::one() } else { T::zero() }).collect()
+    (0..n)
+        .map(|i| if i == k { T::one() } else { T::zero() })
+        .collect()
 }
 
 /// Write one impulse column: body 1 gets `(a_1 nu ^ p, -c_1 p)`, body 2 `(a_2 nu ^ p, c_2 p)`.
@@ -113,14 +119,29 @@ pub fn momentum_basis<T: Scalar>(nu: &[T], radii: [&T; 2]) -> DMatrix<T> {
 
 /// The collision map on coordinates, any `n >= 2`, after the checks of
 /// [`crate::collide`].
-pub fn collide_coords<T: Scalar>(nu: &[T], balls: [&Ball<T>; 2], xi: &DVector<T>) -> Result<DVector<T>, InputError> {
+pub fn collide_coords<T: Scalar>(
+    nu: &[T],
+    balls: [&Ball<T>; 2],
+    xi: &DVector<T>,
+) -> Result<DVector<T>, InputError> {
     let n = nu.len();
     let s = n * (n - 1) / 2;
     if xi.len() != state_len(n) {
-        return Err(InputError::new(Field::Dim, "state length does not match the normal"));
+        return Err(InputError::new(
+            Field::Dim,
+            "state length does not match the normal",
+        ));
     }
-    let part = |b: usize, k: usize, len: usize| &xi.as_slice()[b * (s + n) + k..b * (s + n) + k + len];
-    validate_parts(nu, balls, [(part(0, 0, s), part(0, s, n)), (part(1, 0, s), part(1, s, n))])?;
+    let part =
+        |b: usize, k: usize, len: usize| &xi.as_slice()[b * (s + n) + k..b * (s + n) + k + len];
+    validate_parts(
+        nu,
+        balls,
+        [
+            (part(0, 0, s), part(0, s, n)),
+            (part(1, 0, s), part(1, s, n)),
+        ],
+    )?;
     let b = impulse_basis(nu, balls)?;
     let mb = momentum_basis(nu, [&balls[0].radius, &balls[1].radius]);
     let gram = b.transpose() * &mb;

@@ -163,6 +163,9 @@ mod tests {
         assert!(within_slack(&(shell * (1.0 + 2.0 * f64::EPSILON)), &shell));
         assert!(!within_slack(&(shell * (1.0 + 1e-9)), &shell));
         let third = Exact::from_ratio(1, 3);
-        assert!(!within_slack(&(third.clone() + Exact::from_ratio(1, 10_i64.pow(18))), &third));
+        assert!(!within_slack(
+            &(third.clone() + Exact::from_ratio(1, 10_i64.pow(18))),
+            &third
+        ));
     }
 }

@@ -127,7 +127,10 @@ mod tests {
 
     #[test]
     fn omega_form_is_the_cross_product() {
-        let s = State3::from_omega([q(1, 1), q(-2, 1), q(3, 1)], std::array::from_fn(|_| q(0, 1)));
+        let s = State3::from_omega(
+            [q(1, 1), q(-2, 1), q(3, 1)],
+            std::array::from_fn(|_| q(0, 1)),
+        );
         let u = s.spin_matrix();
         let x = [q(2, 1), q(5, 1), q(-7, 1)];
         let ux: Vec<Exact> = (0..3)
@@ -152,7 +155,10 @@ mod tests {
         assert_eq!(s.spin_matrix(), m);
         let bad = [[0.0, 1.0, -2.0], [1.0, 0.0, 3.0], [2.0, -3.0, 0.0]];
         let e = State3::<f64>::from_matrix(1, &bad, [0.0; 3]).unwrap_err();
-        assert_eq!(e.to_string(), "bodies[1].angular_velocity: not skew: entries (0,1) and (1,0) are not opposite");
+        assert_eq!(
+            e.to_string(),
+            "bodies[1].angular_velocity: not skew: entries (0,1) and (1,0) are not opposite"
+        );
         let diag = [[q(1, 10), q(0, 1)], [q(0, 1), q(0, 1)]];
         assert!(State2::from_matrix(0, &diag, [q(0, 1), q(0, 1)]).is_err());
     }

@@ -1,0 +1,88 @@
+//! Golden-file tests of the generator: the emitted text of the n = 2 kernels and the op
+//! counts of every kernel are checked in; a change to the generator shows up as a diff.
+//! Regenerate with `UPDATE_GOLDEN=1 cargo test -p noslip-codegen --test golden`.
+
+use noslip_codegen::{generate, straight_line, Variant, DIMS};
+use std::path::PathBuf;
+
+fn golden(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(name)
+}
+
+fn compare(name: &str, actual: &str) {
+    let path = golden(name);
+    if std::env::var_os("UPDATE_GOLDEN").is_some() {
+        std::fs::write(&path, actual).unwrap();
+        return;
+    }
+    let expected = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: {e}; run with UPDATE_GOLDEN=1", path.display()));
+    if expected != actual {
+        let first = expected
+            .lines()
+            .zip(actual.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(expected.lines().count().min(actual.lines().count()));
+        panic!(
+            "{name} differs from the golden copy at line {}:\n  golden: {:?}\n  now:    {:?}\n\
+             If the change is intended, run with UPDATE_GOLDEN=1 and review the diff.",
+            first + 1,
+            expected.lines().nth(first),
+            actual.lines().nth(first)
+        );
+    }
+}
+
+#[test]
+fn emitted_text_of_the_2d_kernels() {
+    compare("kernels_2.rs", &generate(2, "crate").source);
+}
+
+#[test]
+fn op_counts_of_every_kernel() {
+    let mut table = String::from("# dim variant: ops; intermediate terms\n");
+    for dim in DIMS {
+        for k in generate(dim, "crate").kernels {
+            table.push_str(&format!(
+                "{dim} {}: {}; {} terms\n",
+                k.variant.name(),
+                k.ops,
+                k.terms
+            ));
+        }
+    }
+    compare("op_counts.txt", &table);
+}
+
+#[test]
+fn divisions_do_not_grow_with_the_dimension() {
+    // 1/(w_1 + w_2), g_1 g_2 / D and one per angular update (free); the fixed variant keeps
+    // only g_2 / (1 + g_2) and 2 / (R_2 (1 + g_2)).
+    for dim in DIMS {
+        for k in generate(dim, "crate").kernels {
+            let expected = match k.variant {
+                Variant::Free => 4,
+                Variant::Fixed => 2,
+            };
+            assert_eq!(k.ops.div, expected, "n = {dim}, {:?}", k.variant);
+        }
+    }
+}
+
+#[test]
+fn every_generated_kernel_is_straight_line() {
+    for dim in DIMS {
+        let module = generate(dim, "crate");
+        let file = syn::parse_file(&module.source).expect("generated source parses");
+        let fns = file
+            .items
+            .iter()
+            .filter(|i| matches!(i, syn::Item::Fn(_)))
+            .count();
+        assert_eq!(fns, Variant::ALL.len());
+        assert_eq!(straight_line::check(&file), vec![], "n = {dim}");
+        assert!(module.source.starts_with("// @generated"));
+    }
+}

@@ -1,0 +1,73 @@
+//! The error of one case: which field, and what is wrong with it.
+
+use collision_core::InputError;
+use std::fmt;
+
+/// An error in one case of the input, naming the field by its path in the case
+/// (`dim`, `normal[2]`, `bodies[1].lambda`, ...). The message is one line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CaseError {
+    /// The path of the field in the case; empty for the case as a whole.
+    pub field: String,
+    /// What is wrong, one line.
+    pub message: String,
+}
+
+impl CaseError {
+    pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            field: field.into(),
+            message: one_line(message.into()),
+        }
+    }
+}
+
+impl From<InputError> for CaseError {
+    fn from(e: InputError) -> Self {
+        CaseError::new(e.field.to_string(), e.message)
+    }
+}
+
+impl fmt::Display for CaseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.is_empty() {
+            f.write_str(&self.message)
+        } else {
+            write!(f, "{}: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for CaseError {}
+
+/// Replace line breaks so that a message stays on one line.
+fn one_line(s: String) -> String {
+    if s.contains(['\n', '\r']) {
+        s.replace(['\n', '\r'], " ")
+    } else {
+        s
+    }
+}
+
+/// `text` quoted for a message: escaped (no line breaks) and cut to `max` characters.
+pub fn quote(text: &str, max: usize) -> String {
+    let mut chars = text.chars();
+    let head: String = chars.by_ref().take(max).collect();
+    if chars.next().is_some() {
+        format!("{:?}...", head)
+    } else {
+        format!("{head:?}")
+    }
+}
+
+/// The JSON type of a value, for messages.
+pub fn kind(v: &serde_json::Value) -> &'static str {
+    match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "a boolean",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::String(_) => "a string",
+        serde_json::Value::Array(_) => "an array",
+        serde_json::Value::Object(_) => "an object",
+    }
+}
