@@ -20,7 +20,7 @@ use std::collections::HashMap;
 /// Index of a node in its [`Graph`]. Operands always have smaller ids than the node
 /// itself, so increasing id order is a topological order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Id(pub(crate) u32);
+pub struct Id(pub u32);
 
 impl Id {
     pub(crate) fn index(self) -> usize {

@@ -98,15 +98,24 @@ pub struct Kernel {
     pub outputs: Vec<BodyOutput>,
 }
 
-struct Body {
-    spin: Vec<Id>,
-    velocity: Vec<Id>,
-    radius: Id,
-    inv_mass: Id,
-    gamma2: Id,
+/// The DAG nodes of one body's inputs.
+#[derive(Clone, Debug)]
+pub struct BodyInputs {
+    pub spin: Vec<Id>,
+    pub velocity: Vec<Id>,
+    pub radius: Id,
+    pub inv_mass: Id,
+    pub gamma2: Id,
 }
 
-fn body(g: &mut Graph, n: usize, b: usize, variant: Variant) -> Body {
+/// The DAG nodes of a kernel's inputs: the normal and both bodies.
+#[derive(Clone, Debug)]
+pub struct KernelInputs {
+    pub nu: Vec<Id>,
+    pub bodies: [BodyInputs; 2],
+}
+
+fn body_inputs(g: &mut Graph, n: usize, b: usize, variant: Variant) -> BodyInputs {
     let spin = skew_pairs(n)
         .into_iter()
         .map(|(i, j)| g.input(names::spin(b, i, j)))
@@ -119,12 +128,24 @@ fn body(g: &mut Graph, n: usize, b: usize, variant: Variant) -> Body {
         (Variant::Fixed, _) => (g.int(1), g.input(names::gamma2(b))),
         (Variant::Free, _) => (g.input(names::inv_mass(b)), g.input(names::gamma2(b))),
     };
-    Body {
+    BodyInputs {
         spin,
         velocity,
         radius,
         inv_mass,
         gamma2,
+    }
+}
+
+/// The named inputs of a kernel (`nu_k`, `U1_ij`, `u1_k`, `radius1`, ...), with the
+/// constants of the variant in place of the parameters it does not take.
+pub fn symbolic_inputs(g: &mut Graph, n: usize, variant: Variant) -> KernelInputs {
+    let nu = (0..n).map(|k| g.input(names::nu(k))).collect();
+    let b1 = body_inputs(g, n, 1, variant);
+    let b2 = body_inputs(g, n, 2, variant);
+    KernelInputs {
+        nu,
+        bodies: [b1, b2],
     }
 }
 
@@ -171,15 +192,29 @@ fn label_all(g: &mut Graph, ids: &[Id], stem: &str) {
 
 /// Build the collision kernel for dimension `n >= 2`.
 pub fn build(n: usize, variant: Variant) -> Kernel {
+    let mut graph = Graph::new();
+    let inputs = symbolic_inputs(&mut graph, n, variant);
+    let outputs = build_on(&mut graph, &inputs, variant);
+    Kernel {
+        dim: n,
+        variant,
+        graph,
+        outputs,
+    }
+}
+
+/// The collision map of `inputs` as nodes of `g` (both bodies for [`Variant::Free`], body 2
+/// for [`Variant::Fixed`]). The dimension is `inputs.nu.len()`. Used by [`build`], and by
+/// the verifier to compose the map with itself or substitute limits.
+pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<BodyOutput> {
+    let n = inputs.nu.len();
     assert!(n >= 2, "the collision map needs n >= 2");
-    let mut g = Graph::new();
-    let nu: Vec<Id> = (0..n).map(|k| g.input(names::nu(k))).collect();
-    let b1 = body(&mut g, n, 1, variant);
-    let b2 = body(&mut g, n, 2, variant);
+    let nu = &inputs.nu;
+    let [b1, b2] = &inputs.bodies;
 
     // c = R_1 U_1 nu + R_2 U_2 nu
-    let u1_nu = skew_times(&mut g, n, &b1.spin, &nu);
-    let u2_nu = skew_times(&mut g, n, &b2.spin, &nu);
+    let u1_nu = skew_times(g, n, &b1.spin, nu);
+    let u2_nu = skew_times(g, n, &b2.spin, nu);
     let c: Vec<Id> = (0..n)
         .map(|k| {
             let x = g.mul(b1.radius, u1_nu[k]);
@@ -187,14 +222,14 @@ pub fn build(n: usize, variant: Variant) -> Kernel {
             g.add(x, y)
         })
         .collect();
-    label_all(&mut g, &c, "c");
+    label_all(g, &c, "c");
 
     // du = u_2 - u_1, dn = du . nu, t = du - dn nu - c
     let du: Vec<Id> = (0..n)
         .map(|k| g.sub(b2.velocity[k], b1.velocity[k]))
         .collect();
-    label_all(&mut g, &du, "du");
-    let dn = g.dot(&du, &nu);
+    label_all(g, &du, "du");
+    let dn = g.dot(&du, nu);
     g.label(dn, "dn");
     let t: Vec<Id> = (0..n)
         .map(|k| {
@@ -203,7 +238,7 @@ pub fn build(n: usize, variant: Variant) -> Kernel {
             g.sub(tangential, c[k])
         })
         .collect();
-    label_all(&mut g, &t, "t");
+    label_all(g, &t, "t");
 
     // P = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t
     let (w1, w2, g1, g2) = (b1.inv_mass, b2.inv_mass, b1.gamma2, b2.gamma2);
@@ -232,15 +267,15 @@ pub fn build(n: usize, variant: Variant) -> Kernel {
             g.add(x, y)
         })
         .collect();
-    label_all(&mut g, &p, "p");
+    label_all(g, &p, "p");
 
     // nu ^ t, shared by both angular updates.
-    let nu_t = wedge(&mut g, n, &nu, &t);
+    let nu_t = wedge(g, n, nu, &t);
     for (&id, (i, j)) in nu_t.iter().zip(skew_pairs(n)) {
         g.label(id, format!("nu_t_{i}{j}"));
     }
 
-    let update = |g: &mut Graph, body: &Body, other_g: Id, sign: i64, index: usize| {
+    let update = |g: &mut Graph, body: &BodyInputs, other_g: Id, sign: i64, index: usize| {
         // u_i+ = u_i -/+ 2 w_i P
         let scale = g.mul(two, body.inv_mass);
         let velocity = (0..n)
@@ -275,15 +310,10 @@ pub fn build(n: usize, variant: Variant) -> Kernel {
     };
     let mut outputs = Vec::new();
     if variant == Variant::Free {
-        outputs.push(update(&mut g, &b1, g2, 1, 1));
+        outputs.push(update(g, b1, g2, 1, 1));
     }
-    outputs.push(update(&mut g, &b2, g1, -1, 2));
-    Kernel {
-        dim: n,
-        variant,
-        graph: g,
-        outputs,
-    }
+    outputs.push(update(g, b2, g1, -1, 2));
+    outputs
 }
 
 #[cfg(test)]

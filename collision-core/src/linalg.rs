@@ -45,6 +45,39 @@ pub fn rank<T: Scalar>(m: &DMatrix<T>) -> usize {
     echelon(&mut m.clone()).len()
 }
 
+/// A basis of the null space `{x : m x = 0}` (columns), exact for rationals.
+pub fn nullspace<T: Scalar>(m: &DMatrix<T>) -> DMatrix<T> {
+    let mut r = m.clone();
+    let pivots = echelon(&mut r);
+    let cols = m.ncols();
+    // Back-substitute to reduced row echelon form.
+    for (row, &c) in pivots.iter().enumerate().rev() {
+        let p = r[(row, c)].clone();
+        for k in c..cols {
+            r[(row, k)] /= p.clone();
+        }
+        for above in 0..row {
+            let f = r[(above, c)].clone();
+            if f.is_zero() {
+                continue;
+            }
+            for k in c..cols {
+                let x = f.clone() * r[(row, k)].clone();
+                r[(above, k)] -= x;
+            }
+        }
+    }
+    let free: Vec<usize> = (0..cols).filter(|c| !pivots.contains(c)).collect();
+    let mut basis = DMatrix::from_element(cols, free.len(), T::zero());
+    for (j, &f) in free.iter().enumerate() {
+        basis[(f, j)] = T::one();
+        for (row, &c) in pivots.iter().enumerate() {
+            basis[(c, j)] = -r[(row, f)].clone();
+        }
+    }
+    basis
+}
+
 /// The solution of `a x = b` for square non-singular `a`, or `None` if `a` is singular.
 pub fn solve<T: Scalar>(a: &DMatrix<T>, b: &DVector<T>) -> Option<DVector<T>> {
     let n = a.nrows();
@@ -74,6 +107,7 @@ pub fn solve<T: Scalar>(a: &DMatrix<T>, b: &DVector<T>) -> Option<DVector<T>> {
 mod tests {
     use super::*;
     use crate::Exact;
+    use num_traits::Zero;
 
     fn q(n: i64) -> Exact {
         Exact::from_ratio(n, 1)
@@ -93,5 +127,8 @@ mod tests {
         assert_eq!(solve(&singular, &DVector::from_vec(vec![q(1), q(1)])), None);
         assert_eq!(rank(&singular), 1);
         assert_eq!(rank(&a), 3);
+        let k = nullspace(&singular);
+        assert_eq!(k.ncols(), 1);
+        assert!((&singular * &k).iter().all(|x| x.is_zero()));
     }
 }

@@ -1,1 +1,10 @@
+//! The `noslip` command's library: the JSON side of `collide` ([`json`]) and the exact
+//! verification of the generated kernels ([`checks`], [`report`]).
 
+pub mod json;
+
+pub mod checks;
+pub mod degree;
+pub mod identities;
+pub mod kernel;
+pub mod sample;

@@ -1,1 +1,38 @@
-fn main() {}
+//! `noslip`: collide two balls from JSON (and, later, verify and report).
+//!
+//! One module per subcommand under `cli/`; a new subcommand is a variant of [`Command`],
+//! its `Args`, and a line in `main`.
+
+mod cli;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "noslip",
+    version,
+    about = "No-slip collisions of two rigid balls in R^n",
+    long_about = "No-slip collisions of two rigid balls in R^n.\n\n\
+        At contact, the state of two balls (angular velocities U_i in so(n), centre \
+        velocities u_i) jumps to its reflection, in the kinetic-energy metric, across the \
+        no-slip subspace {V_1(Q) = V_2(Q)}: the map is linear, an involution, and conserves \
+        energy, linear momentum and each body's angular momentum about the contact point. \
+        The kernels for n = 2..6 are generated code, run in f64 or in exact rationals.",
+    after_long_help = cli::EXIT_CODES
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    Collide(cli::collide::Args),
+}
+
+fn main() -> ExitCode {
+    match Cli::parse().command {
+        Command::Collide(args) => cli::collide::run(&args),
+    }
+}

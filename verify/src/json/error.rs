@@ -51,12 +51,20 @@ fn one_line(s: String) -> String {
 
 /// `text` quoted for a message: escaped (no line breaks) and cut to `max` characters.
 pub fn quote(text: &str, max: usize) -> String {
-    let mut chars = text.chars();
-    let head: String = chars.by_ref().take(max).collect();
-    if chars.next().is_some() {
-        format!("{:?}...", head)
-    } else {
-        format!("{head:?}")
+    let (head, cut) = split(text, max);
+    format!("{head:?}{}", if cut { "..." } else { "" })
+}
+
+/// `text` cut to `max` characters, for text known to be one plain line (a number literal).
+pub fn clip(text: &str, max: usize) -> String {
+    let (head, cut) = split(text, max);
+    format!("{head}{}", if cut { "..." } else { "" })
+}
+
+fn split(text: &str, max: usize) -> (&str, bool) {
+    match text.char_indices().nth(max) {
+        Some((k, _)) => (&text[..k], true),
+        None => (text, false),
     }
 }
 

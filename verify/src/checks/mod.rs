@@ -1,0 +1,6 @@
+//! The verifier's checks. Each runs the generated kernels in exact rationals against
+//! objects built independently from the definitions.
+
+pub mod identity;
+pub mod inertia;
+pub mod structure;

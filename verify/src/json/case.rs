@@ -1,0 +1,298 @@
+//! The input schema of one case, read from JSON into typed values. Every error names its
+//! field by path (`normal[2]`, `bodies[1].angular_velocity[0]`, ...).
+//!
+//! ```json
+//! {"dim": 3, "normal": ["0", "3/5", "4/5"],
+//!  "bodies": [{"mass": "2", "radius": "1", "lambda": "1/5",
+//!              "angular_velocity": [["0","1","-2"],["-1","0","3"],["2","-3","0"]],
+//!              "velocity": ["1","0","1/2"]},
+//!             {"mass": "inf", "radius": "3/2", "gamma2": "2/5",
+//!              "angular_velocity": [["0","0","0"],["0","0","0"],["0","0","0"]],
+//!              "velocity": ["0","0","0"]}]}
+//! ```
+//!
+//! Sizes are checked against `dim` before any number is read, and `dim` is bounded by
+//! [`MAX_DIM`], so nothing of size `dim` is built from a short input.
+
+use crate::json::error::{clip, kind, quote, CaseError};
+use crate::json::number::{from_json, integer_literal, InputScalar};
+use collision_core::{Inertia, Mass};
+use serde_json::{Map, Value};
+
+/// The largest `dim` accepted. Above 6 the general-n reference runs; its work grows like
+/// `n^5` (a Gram matrix of `n^2 x n` impulse columns, Gaussian elimination over rationals in
+/// `--exact`), so the bound keeps every accepted input fast.
+pub const MAX_DIM: usize = 32;
+
+/// The keys of a case.
+pub const CASE_KEYS: [&str; 3] = ["dim", "normal", "bodies"];
+/// The keys of a body.
+pub const BODY_KEYS: [&str; 7] = [
+    "mass",
+    "radius",
+    "lambda",
+    "gamma2",
+    "distribution",
+    "angular_velocity",
+    "velocity",
+];
+const INERTIA_KEYS: [&str; 3] = ["lambda", "gamma2", "distribution"];
+
+/// The angular velocity as given: the form is kept for the output.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Spin<T> {
+    /// The full `n x n` matrix, row by row.
+    Matrix(Vec<Vec<T>>),
+    /// 2D only: `U = c J`, `J = [[0, -1], [1, 0]]`.
+    Scalar(T),
+    /// 3D only: `U x = omega x x`.
+    Omega([T; 3]),
+}
+
+/// One body as given.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyInput<T> {
+    pub mass: Mass<T>,
+    pub radius: T,
+    pub inertia: Inertia<T>,
+    pub spin: Spin<T>,
+    pub velocity: Vec<T>,
+}
+
+/// One case as given; `normal` and `velocity` have length `dim`, a `Matrix` spin is
+/// `dim x dim`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case<T> {
+    pub dim: usize,
+    pub normal: Vec<T>,
+    pub bodies: [BodyInput<T>; 2],
+}
+
+fn join(path: &str, key: &str) -> String {
+    let simple = !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let key = if simple {
+        key.to_string()
+    } else {
+        quote(key, 40)
+    };
+    if path.is_empty() {
+        key
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+fn object<'a>(value: &'a Value, path: &str, what: &str) -> Result<&'a Map<String, Value>, CaseError> {
+    value
+        .as_object()
+        .ok_or_else(|| CaseError::new(path, format!("expected {what}, got {}", kind(value))))
+}
+
+fn no_unknown_keys(obj: &Map<String, Value>, path: &str, known: &[&str]) -> Result<(), CaseError> {
+    match obj.keys().find(|k| !known.contains(&k.as_str())) {
+        Some(k) => Err(CaseError::new(
+            join(path, k),
+            format!("unknown key (the keys are: {})", known.join(", ")),
+        )),
+        None => Ok(()),
+    }
+}
+
+fn get<'a>(obj: &'a Map<String, Value>, path: &str, key: &str) -> Result<&'a Value, CaseError> {
+    obj.get(key)
+        .ok_or_else(|| CaseError::new(join(path, key), "missing (required)"))
+}
+
+/// An array of exactly `len` numbers; the length is checked before any number is read.
+fn vector<T: InputScalar>(value: &Value, field: &str, len: usize) -> Result<Vec<T>, CaseError> {
+    let items = value.as_array().ok_or_else(|| {
+        CaseError::new(
+            field,
+            format!("expected an array of {len} numbers, got {}", kind(value)),
+        )
+    })?;
+    if items.len() != len {
+        return Err(CaseError::new(
+            field,
+            format!(
+                "expected {len} numbers (dim = {len}), got {}",
+                items.len()
+            ),
+        ));
+    }
+    items
+        .iter()
+        .enumerate()
+        .map(|(k, x)| from_json(x, &format!("{field}[{k}]")))
+        .collect()
+}
+
+fn dim(value: &Value) -> Result<usize, CaseError> {
+    let err = |m: String| CaseError::new("dim", m);
+    let Value::Number(n) = value else {
+        return Err(err(format!("expected an integer >= 2, got {}", kind(value))));
+    };
+    match integer_literal(n.as_str()) {
+        None => Err(err(format!(
+            "expected an integer >= 2, got {}",
+            clip(n.as_str(), 40)
+        ))),
+        Some((true, _)) | Some((false, 0..=1)) => Err(err(format!(
+            "must be at least 2, got {}",
+            clip(n.as_str(), 40)
+        ))),
+        Some((false, d)) if d > MAX_DIM => Err(err(format!(
+            "at most {MAX_DIM} is supported (dims above 6 run the general-n reference, \
+             whose cost grows like n^4), got {}",
+            clip(n.as_str(), 40)
+        ))),
+        Some((false, d)) => Ok(d),
+    }
+}
+
+/// The forms `angular_velocity` may take in `dim` dimensions, for messages.
+fn spin_forms(dim: usize) -> String {
+    match dim {
+        2 => "a 2 x 2 skew matrix or a number c (U = c J)".into(),
+        3 => "a 3 x 3 skew matrix or a 3-vector omega (U x = omega x x)".into(),
+        n => format!("a {n} x {n} skew matrix (an array of {n} rows of {n} numbers)"),
+    }
+}
+
+fn spin<T: InputScalar>(value: &Value, field: &str, dim: usize) -> Result<Spin<T>, CaseError> {
+    let wrong = |what: String| {
+        CaseError::new(
+            field,
+            format!("expected {}, got {what}", spin_forms(dim)),
+        )
+    };
+    match value {
+        Value::Number(_) | Value::String(_) if dim == 2 => Ok(Spin::Scalar(from_json(value, field)?)),
+        Value::Array(rows) if !rows.is_empty() && rows.iter().all(Value::is_array) => {
+            if rows.len() != dim {
+                return Err(wrong(format!("{} rows", rows.len())));
+            }
+            rows.iter()
+                .enumerate()
+                .map(|(r, row)| vector(row, &format!("{field}[{r}]"), dim))
+                .collect::<Result<_, _>>()
+                .map(Spin::Matrix)
+        }
+        Value::Array(items) if dim == 3 && items.len() == 3 && !items.iter().any(Value::is_array) => {
+            let [a, b, c] = [0, 1, 2].map(|k| from_json::<T>(&items[k], &format!("{field}[{k}]")));
+            Ok(Spin::Omega([a?, b?, c?]))
+        }
+        Value::Array(items) if items.is_empty() => Err(wrong("an empty array".into())),
+        Value::Array(items) if items.iter().any(Value::is_array) => {
+            Err(wrong("an array mixing rows and numbers".into()))
+        }
+        Value::Array(items) => Err(wrong(format!("an array of {} numbers", items.len()))),
+        other => Err(wrong(kind(other).into())),
+    }
+}
+
+fn inertia<T: InputScalar>(obj: &Map<String, Value>, path: &str) -> Result<Inertia<T>, CaseError> {
+    let given: Vec<&str> = INERTIA_KEYS
+        .into_iter()
+        .filter(|k| obj.contains_key(*k))
+        .collect();
+    if let [first, second, ..] = given[..] {
+        return Err(CaseError::new(
+            join(path, second),
+            format!("conflicts with {first}: give at most one of lambda, gamma2, distribution"),
+        ));
+    }
+    let field = |k: &str| join(path, k);
+    Ok(match given.first().copied() {
+        None => Inertia::Uniform,
+        Some("lambda") => Inertia::Lambda(from_json(&obj["lambda"], &field("lambda"))?),
+        Some("gamma2") => Inertia::Gamma2(from_json(&obj["gamma2"], &field("gamma2"))?),
+        Some(_) => match &obj["distribution"] {
+            Value::String(s) if s == "uniform" => Inertia::Uniform,
+            Value::String(s) if s == "shell" => Inertia::Shell,
+            other => {
+                let got = match other {
+                    Value::String(s) => quote(s, 40),
+                    v => kind(v).to_string(),
+                };
+                return Err(CaseError::new(
+                    field("distribution"),
+                    format!("expected \"uniform\" or \"shell\", got {got}"),
+                ));
+            }
+        },
+    })
+}
+
+impl<T: InputScalar> BodyInput<T> {
+    /// Body `index` of a case in `dim` dimensions.
+    pub fn from_json(value: &Value, index: usize, dim: usize) -> Result<Self, CaseError> {
+        let path = format!("bodies[{index}]");
+        let obj = object(
+            value,
+            &path,
+            "a body (an object with keys mass, radius, angular_velocity, velocity and at most \
+             one of lambda, gamma2, distribution)",
+        )?;
+        no_unknown_keys(obj, &path, &BODY_KEYS)?;
+        let field = |k: &str| join(&path, k);
+        let mass = match get(obj, &path, "mass")? {
+            Value::String(s) if s == "inf" => Mass::Infinite,
+            v => Mass::Finite(from_json(v, &field("mass"))?),
+        };
+        let radius = from_json(get(obj, &path, "radius")?, &field("radius"))?;
+        let inertia = inertia(obj, &path)?;
+        let velocity = vector(get(obj, &path, "velocity")?, &field("velocity"), dim)?;
+        let spin = spin(
+            get(obj, &path, "angular_velocity")?,
+            &field("angular_velocity"),
+            dim,
+        )?;
+        Ok(BodyInput {
+            mass,
+            radius,
+            inertia,
+            spin,
+            velocity,
+        })
+    }
+}
+
+impl<T: InputScalar> Case<T> {
+    /// One case of the input.
+    pub fn from_json(value: &Value) -> Result<Self, CaseError> {
+        let obj = object(
+            value,
+            "",
+            "a case (an object with keys dim, normal, bodies)",
+        )?;
+        no_unknown_keys(obj, "", &CASE_KEYS)?;
+        let dim = dim(get(obj, "", "dim")?)?;
+        let normal = vector(get(obj, "", "normal")?, "normal", dim)?;
+        let bodies = get(obj, "", "bodies")?;
+        let list = bodies.as_array().ok_or_else(|| {
+            CaseError::new(
+                "bodies",
+                format!("expected an array of 2 bodies, got {}", kind(bodies)),
+            )
+        })?;
+        if list.len() != 2 {
+            return Err(CaseError::new(
+                "bodies",
+                format!("expected 2 bodies, got {}", list.len()),
+            ));
+        }
+        let bodies = [
+            BodyInput::from_json(&list[0], 0, dim)?,
+            BodyInput::from_json(&list[1], 1, dim)?,
+        ];
+        Ok(Case {
+            dim,
+            normal,
+            bodies,
+        })
+    }
+}

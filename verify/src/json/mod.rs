@@ -1,0 +1,23 @@
+//! The JSON side of `noslip collide`: reading cases, running the collision, printing the
+//! result.
+//!
+//! - [`number`]: the number formats (decimals, rationals) and how `f64` and exact
+//!   rationals read and print them.
+//! - [`case`]: the input schema of a case.
+//! - [`solve`]: validation with readable messages, and the dispatch over `dim` to the
+//!   generated kernels (2..=6) or the general-n reference.
+//! - [`output`]: the output schema.
+//! - [`run`]: a whole input (one case or an array), in and out.
+//! - [`error`]: the one-line error of a case, naming the field.
+//! - [`guard`]: a panic in collision-core's reference turned into an error.
+
+pub mod case;
+pub mod error;
+pub mod guard;
+pub mod number;
+pub mod output;
+pub mod run;
+pub mod solve;
+
+pub use error::CaseError;
+pub use run::{collide_json, Mode, RunError};

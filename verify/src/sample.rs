@@ -1,0 +1,72 @@
+//! Exact sample points for the identity checks, with the finite set they are drawn from
+//! (what the Schwartz-Zippel bound needs).
+//!
+//! Every free input is drawn independently and uniformly from `S = {1, 2, .., 2^20}`: the
+//! inverse masses, radii and `gamma2` of both bodies, every entry of `U_i` and `u_i`, and
+//! the point `y` in S^(n-1) whose inverse stereographic projection is the normal,
+//! `nu = (2 y, |y|^2 - 1) / (|y|^2 + 1)` (exactly unit). Positive values keep every
+//! denominator of the map (`|y|^2 + 1`, `w_1 + w_2`, `D`, the Gram determinant) non-zero.
+//! The identities are rational-function identities, so physical ranges (`gamma2 <= 2/n`,
+//! approaching bodies) do not matter to them.
+
+use collision_core::{Ball, BodyState, Exact, Scalar};
+use num_bigint::BigInt;
+use num_traits::{One, Zero};
+
+/// `|S|`.
+pub const SET_SIZE: u64 = 1 << 20;
+
+/// SplitMix64: deterministic, seeded, so reports are reproducible.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `S`.
+    pub fn element(&mut self) -> Exact {
+        Exact::from_integer(BigInt::from(1 + self.next_u64() % SET_SIZE))
+    }
+}
+
+/// One exact point: a normal and two bodies (body 1 immovable when `fixed`).
+#[derive(Clone, Debug)]
+pub struct Point<const N: usize, const S: usize> {
+    pub nu: [Exact; N],
+    pub balls: [Ball<Exact>; 2],
+    pub states: [BodyState<Exact, N, S>; 2],
+}
+
+pub fn normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
+    let y: Vec<Exact> = (0..N - 1).map(|_| rng.element()).collect();
+    let y2: Exact = y.iter().map(|x| x * x).sum();
+    let den = &y2 + Exact::one();
+    std::array::from_fn(|k| {
+        if k + 1 < N {
+            Exact::from_ratio(2, 1) * &y[k] / &den
+        } else {
+            (&y2 - Exact::one()) / &den
+        }
+    })
+}
+
+pub fn point<const N: usize, const S: usize>(rng: &mut Rng, fixed: bool) -> Point<N, S> {
+    let nu = normal::<N>(rng);
+    let mut ball = |movable: bool| Ball {
+        inv_mass: if movable { rng.element() } else { Exact::zero() },
+        radius: rng.element(),
+        gamma2: rng.element(),
+    };
+    let balls = [ball(!fixed), ball(true)];
+    let mut state = || BodyState {
+        spin: std::array::from_fn(|_| rng.element()),
+        velocity: std::array::from_fn(|_| rng.element()),
+    };
+    let states = [state(), state()];
+    Point { nu, balls, states }
+}
