@@ -71,8 +71,9 @@ pub fn input_values<const N: usize, const S: usize>(
     v
 }
 
-/// The generator's DAG evaluated exactly with `mutation` applied: a corrupted kernel.
-pub fn mutated<const N: usize, const S: usize>(variant: Variant, mutation: Mutation) -> Box<ExactKernel<N, S>> {
+/// The generator's DAG evaluated exactly, with `mutation` applied: a corrupted kernel
+/// (`None`: the DAG as generated, the control).
+pub fn mutated<const N: usize, const S: usize>(variant: Variant, mutation: Option<Mutation>) -> Box<ExactKernel<N, S>> {
     let kernel = model::build(N, variant);
     Box::new(move |nu, balls, states| {
         let inputs = input_values(nu, balls, states);
@@ -84,12 +85,12 @@ pub fn mutated<const N: usize, const S: usize>(variant: Variant, mutation: Mutat
             let label = g.label_of(id);
             let v = match g.node(id) {
                 Node::Input(input) => inputs[&input.0].clone(),
-                Node::Const(c) if mutation == Mutation::WrongConstant && *c == Exact::from_integer(2.into()) => {
+                Node::Const(c) if mutation == Some(Mutation::WrongConstant) && *c == Exact::from_integer(2.into()) => {
                     Exact::from_integer(3.into())
                 }
                 Node::Const(c) => c.clone(),
-                Node::Add(a, b) if mutation == Mutation::FlippedSign && label == Some("dn") => val(&values, *a) - val(&values, *b),
-                Node::Add(a, _) if mutation == Mutation::DroppedTerm && label == Some("c_0") => val(&values, *a),
+                Node::Add(a, b) if mutation == Some(Mutation::FlippedSign) && label == Some("dn") => val(&values, *a) - val(&values, *b),
+                Node::Add(a, _) if mutation == Some(Mutation::DroppedTerm) && label == Some("c_0") => val(&values, *a),
                 Node::Add(a, b) => val(&values, *a) + val(&values, *b),
                 Node::Sub(a, b) => val(&values, *a) - val(&values, *b),
                 Node::Mul(a, b) => val(&values, *a) * val(&values, *b),

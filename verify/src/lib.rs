@@ -8,3 +8,5 @@ pub mod degree;
 pub mod identities;
 pub mod kernel;
 pub mod sample;
+pub mod report;
+pub mod run;

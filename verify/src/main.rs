@@ -29,10 +29,13 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     Collide(cli::collide::Args),
+    /// Prove the generated kernels exact: identities, decomposition, inertia; writes reports.
+    Verify(cli::verify::Args),
 }
 
 fn main() -> ExitCode {
     match Cli::parse().command {
         Command::Collide(args) => cli::collide::run(&args),
+        Command::Verify(args) => cli::verify::run_cmd(&args),
     }
 }

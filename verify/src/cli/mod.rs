@@ -1,6 +1,7 @@
 //! The subcommands of `noslip`, one module each.
 
 pub mod collide;
+pub mod verify;
 
 /// Exit codes shared by the subcommands (for `--help`).
 pub const EXIT_CODES: &str = "\

@@ -227,6 +227,12 @@ fn inertia<T: InputScalar>(obj: &Map<String, Value>, path: &str) -> Result<Inert
     })
 }
 
+/// `inf` or `infinity`, any case, any sign.
+fn is_infinity(s: &str) -> bool {
+    let body = s.strip_prefix(['+', '-']).unwrap_or(s);
+    body.eq_ignore_ascii_case("inf") || body.eq_ignore_ascii_case("infinity")
+}
+
 impl<T: InputScalar> BodyInput<T> {
     /// Body `index` of a case in `dim` dimensions.
     pub fn from_json(value: &Value, index: usize, dim: usize) -> Result<Self, CaseError> {
@@ -241,6 +247,17 @@ impl<T: InputScalar> BodyInput<T> {
         let field = |k: &str| join(&path, k);
         let mass = match get(obj, &path, "mass")? {
             Value::String(s) if s == "inf" => Mass::Infinite,
+            Value::String(s) if is_infinity(s) => {
+                let message = if s.starts_with('-') {
+                    "must be positive (or \"inf\" for an immovable body)"
+                } else {
+                    "write \"inf\" for an immovable body"
+                };
+                return Err(CaseError::new(
+                    field("mass"),
+                    format!("{message}, got {}", quote(s, 40)),
+                ));
+            }
             v => Mass::Finite(from_json(v, &field("mass"))?),
         };
         let radius = from_json(get(obj, &path, "radius")?, &field("radius"))?;

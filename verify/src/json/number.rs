@@ -61,7 +61,7 @@ impl InputScalar for f64 {
             Ok(x)
         } else {
             Err(format!(
-                "{} is out of the range of f64 (|x| < 1.8e308); --exact takes it",
+                "{} is out of the range of f64 (|x| < 1.8e308)",
                 quote(text, QUOTE_CHARS)
             ))
         }
@@ -142,7 +142,7 @@ fn scan(text: &str) -> Result<Scanned<'_>, String> {
         .any(|w| body.eq_ignore_ascii_case(w))
     {
         return Err(format!(
-            "{} is not a finite number (only a mass may be \"inf\")",
+            "{} is not a finite number (NaN and infinities are rejected; a mass may be \"inf\")",
             quote(text, QUOTE_CHARS)
         ));
     }
