@@ -44,7 +44,7 @@ const SEED: u64 = 0x6e6f_736c_6970; // "noslip"
 /// `|x - y| <= C eps (1 + A)`, `A = max_i 2 k_i / R_i = max_i 2 w_i / (g_i R_i)`.
 ///
 /// Handwritten vs generated, `C = 16`: both evaluate the same rational map with O(100)
-/// f64 operations (62 for n = 2 to 335 for n = 6) in different association. On these inputs
+/// f64 operations (about 60 for n = 2 to 330 for n = 6) in different association. On these inputs
 /// every quantity is O(1), the denominators `w_1 + w_2 >= 1` and `mu_t` (resp. `D`) are
 /// sums of positive terms (no cancellation) and each output is a short sum of O(1) products,
 /// so the forward error is a few ulps of the output scale, except for one amplification the

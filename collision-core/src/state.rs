@@ -49,20 +49,20 @@ impl<T: Scalar, const N: usize, const S: usize> BodyState<T, N, S> {
             .flatten()
             .fold(T::zero(), |m, x| if x.abs() > m { x.abs() } else { m });
         let tol = scale * T::unit_tolerance() / two::<T>();
-        for i in 0..N {
-            if matrix[i][i].abs() > tol {
+        for (i, row) in matrix.iter().enumerate() {
+            if row[i].abs() > tol {
                 return Err(InputError::new(
                     field,
                     format!("not skew: diagonal entry ({i},{i}) is not 0"),
                 ));
             }
-            for j in i + 1..N {
-                if (matrix[i][j].clone() + matrix[j][i].clone()).abs() > tol {
-                    return Err(InputError::new(
-                        field,
-                        format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
-                    ));
-                }
+        }
+        for (i, j) in skew_pairs(N) {
+            if (matrix[i][j].clone() + matrix[j][i].clone()).abs() > tol {
+                return Err(InputError::new(
+                    field,
+                    format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
+                ));
             }
         }
         let mut pairs = skew_pairs(N);

@@ -36,7 +36,9 @@ pub fn named_state(g: &mut Graph, n: usize, stem: &str) -> [StateIds; 2] {
             .into_iter()
             .map(|(i, j)| g.input(format!("{stem}{b}_U_{i}{j}")))
             .collect(),
-        velocity: (0..n).map(|k| g.input(format!("{stem}{b}_u_{k}"))).collect(),
+        velocity: (0..n)
+            .map(|k| g.input(format!("{stem}{b}_u_{k}")))
+            .collect(),
     })
 }
 
@@ -78,12 +80,28 @@ fn slip(g: &mut Graph, inputs: &KernelInputs, s: &[StateIds; 2]) -> Vec<Id> {
 /// `R_1 g_1 dU_1 = nu ^ du_1`, `R_2 g_2 dU_2 = -nu ^ du_2` (the angular change an impulse
 /// causes) and `w_2 du_1 + w_1 du_2 = 0` (equal and opposite impulses). With
 /// `G_q (+) E_q = T_q M` these determine `xi+` uniquely.
-pub fn reflection(g: &mut Graph, inputs: &KernelInputs, before: &[StateIds; 2], after: &[StateIds; 2], fixed: bool) -> Vec<Id> {
+pub fn reflection(
+    g: &mut Graph,
+    inputs: &KernelInputs,
+    before: &[StateIds; 2],
+    after: &[StateIds; 2],
+    fixed: bool,
+) -> Vec<Id> {
     let n = inputs.nu.len();
     let sum: Vec<StateIds> = (0..2)
         .map(|i| StateIds {
-            spin: before[i].spin.iter().zip(&after[i].spin).map(|(&a, &b)| g.add(a, b)).collect(),
-            velocity: before[i].velocity.iter().zip(&after[i].velocity).map(|(&a, &b)| g.add(a, b)).collect(),
+            spin: before[i]
+                .spin
+                .iter()
+                .zip(&after[i].spin)
+                .map(|(&a, &b)| g.add(a, b))
+                .collect(),
+            velocity: before[i]
+                .velocity
+                .iter()
+                .zip(&after[i].velocity)
+                .map(|(&a, &b)| g.add(a, b))
+                .collect(),
         })
         .collect();
     let mut zero = slip(g, inputs, &[sum[0].clone(), sum[1].clone()]);
@@ -138,17 +156,32 @@ fn energy(g: &mut Graph, inputs: &KernelInputs, s: &[StateIds; 2], bodies: &[usi
     g.sum(terms)
 }
 
-pub fn energy_conserved(g: &mut Graph, inputs: &KernelInputs, before: &[StateIds; 2], after: &[StateIds; 2], bodies: &[usize]) -> Vec<Id> {
+pub fn energy_conserved(
+    g: &mut Graph,
+    inputs: &KernelInputs,
+    before: &[StateIds; 2],
+    after: &[StateIds; 2],
+    bodies: &[usize],
+) -> Vec<Id> {
     let e0 = energy(g, inputs, before, bodies);
     let e1 = energy(g, inputs, after, bodies);
     vec![g.sub(e1, e0)]
 }
 
 /// `m_1 u_1 + m_2 u_2` conserved.
-pub fn momentum_conserved(g: &mut Graph, inputs: &KernelInputs, before: &[StateIds; 2], after: &[StateIds; 2]) -> Vec<Id> {
+pub fn momentum_conserved(
+    g: &mut Graph,
+    inputs: &KernelInputs,
+    before: &[StateIds; 2],
+    after: &[StateIds; 2],
+) -> Vec<Id> {
     let n = inputs.nu.len();
     let one = g.int(1);
-    let m: Vec<Id> = inputs.bodies.iter().map(|b| g.div(one, b.inv_mass)).collect();
+    let m: Vec<Id> = inputs
+        .bodies
+        .iter()
+        .map(|b| g.div(one, b.inv_mass))
+        .collect();
     (0..n)
         .map(|k| {
             let p = |g: &mut Graph, s: &[StateIds; 2]| {
@@ -164,7 +197,13 @@ pub fn momentum_conserved(g: &mut Graph, inputs: &KernelInputs, before: &[StateI
 
 /// Body `i`'s angular momentum about the contact point, `m (r ^ u) + m g R^2 U` with
 /// `r = a - Q` (`-R_1 nu`, `R_2 nu`), conserved for each body in `bodies`.
-pub fn angular_momentum_conserved(g: &mut Graph, inputs: &KernelInputs, before: &[StateIds; 2], after: &[StateIds; 2], bodies: &[usize]) -> Vec<Id> {
+pub fn angular_momentum_conserved(
+    g: &mut Graph,
+    inputs: &KernelInputs,
+    before: &[StateIds; 2],
+    after: &[StateIds; 2],
+    bodies: &[usize],
+) -> Vec<Id> {
     let n = inputs.nu.len();
     let one = g.int(1);
     let mut zero = Vec::new();
@@ -254,7 +293,10 @@ pub fn point_mass_limit(g: &mut Graph, inputs: &KernelInputs) -> [StateIds; 2] {
     let v1 = velocity(b1, true);
     let v2 = velocity(b2, false);
     [
-        StateIds { spin: spin1, velocity: v1 },
+        StateIds {
+            spin: spin1,
+            velocity: v1,
+        },
         StateIds {
             spin: b2.spin.clone(),
             velocity: v2,

@@ -9,8 +9,11 @@ use std::collections::HashMap;
 
 /// `[body 1+, body 2+]` from `(nu, balls, states)`; body 1 comes back unchanged for
 /// [`Variant::Fixed`].
-pub type ExactKernel<const N: usize, const S: usize> =
-    dyn Fn(&[Exact; N], [&Ball<Exact>; 2], [&BodyState<Exact, N, S>; 2]) -> [BodyState<Exact, N, S>; 2];
+pub type ExactKernel<const N: usize, const S: usize> = dyn Fn(
+    &[Exact; N],
+    [&Ball<Exact>; 2],
+    [&BodyState<Exact, N, S>; 2],
+) -> [BodyState<Exact, N, S>; 2];
 
 /// The compiled generated kernel of `variant`, instantiated with exact rationals.
 pub fn generated<const N: usize, const S: usize>(variant: Variant) -> Box<ExactKernel<N, S>>
@@ -19,7 +22,12 @@ where
 {
     match variant {
         Variant::Free => Box::new(|nu, b, s| Generated::free(nu, b[0], b[1], s[0], s[1])),
-        Variant::Fixed => Box::new(|nu, b, s| [s[0].clone(), Generated::fixed(nu, &b[0].radius, b[1], s[0], s[1])]),
+        Variant::Fixed => Box::new(|nu, b, s| {
+            [
+                s[0].clone(),
+                Generated::fixed(nu, &b[0].radius, b[1], s[0], s[1]),
+            ]
+        }),
     }
 }
 
@@ -35,7 +43,11 @@ pub enum Mutation {
 }
 
 impl Mutation {
-    pub const ALL: [Mutation; 3] = [Mutation::FlippedSign, Mutation::DroppedTerm, Mutation::WrongConstant];
+    pub const ALL: [Mutation; 3] = [
+        Mutation::FlippedSign,
+        Mutation::DroppedTerm,
+        Mutation::WrongConstant,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -73,7 +85,10 @@ pub fn input_values<const N: usize, const S: usize>(
 
 /// The generator's DAG evaluated exactly, with `mutation` applied: a corrupted kernel
 /// (`None`: the DAG as generated, the control).
-pub fn mutated<const N: usize, const S: usize>(variant: Variant, mutation: Option<Mutation>) -> Box<ExactKernel<N, S>> {
+pub fn mutated<const N: usize, const S: usize>(
+    variant: Variant,
+    mutation: Option<Mutation>,
+) -> Box<ExactKernel<N, S>> {
     let kernel = model::build(N, variant);
     Box::new(move |nu, balls, states| {
         let inputs = input_values(nu, balls, states);
@@ -85,12 +100,23 @@ pub fn mutated<const N: usize, const S: usize>(variant: Variant, mutation: Optio
             let label = g.label_of(id);
             let v = match g.node(id) {
                 Node::Input(input) => inputs[&input.0].clone(),
-                Node::Const(c) if mutation == Some(Mutation::WrongConstant) && *c == Exact::from_integer(2.into()) => {
+                Node::Const(c)
+                    if mutation == Some(Mutation::WrongConstant)
+                        && *c == Exact::from_integer(2.into()) =>
+                {
                     Exact::from_integer(3.into())
                 }
                 Node::Const(c) => c.clone(),
-                Node::Add(a, b) if mutation == Some(Mutation::FlippedSign) && label == Some("dn") => val(&values, *a) - val(&values, *b),
-                Node::Add(a, _) if mutation == Some(Mutation::DroppedTerm) && label == Some("c_0") => val(&values, *a),
+                Node::Add(a, b)
+                    if mutation == Some(Mutation::FlippedSign) && label == Some("dn") =>
+                {
+                    val(&values, *a) - val(&values, *b)
+                }
+                Node::Add(a, _)
+                    if mutation == Some(Mutation::DroppedTerm) && label == Some("c_0") =>
+                {
+                    val(&values, *a)
+                }
                 Node::Add(a, b) => val(&values, *a) + val(&values, *b),
                 Node::Sub(a, b) => val(&values, *a) - val(&values, *b),
                 Node::Mul(a, b) => val(&values, *a) * val(&values, *b),

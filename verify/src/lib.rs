@@ -7,6 +7,6 @@ pub mod checks;
 pub mod degree;
 pub mod identities;
 pub mod kernel;
-pub mod sample;
 pub mod report;
 pub mod run;
+pub mod sample;

@@ -10,7 +10,11 @@ use std::path::Path;
 pub enum Proof {
     /// A rational-function identity checked exactly at random points of `S^k`; a false one
     /// passes with probability at most `bound = (degree / set_size)^points`.
-    Identity { degree: u64, set_size: u64, bound: f64 },
+    Identity {
+        degree: u64,
+        set_size: u64,
+        bound: f64,
+    },
     /// Exact facts at the sampled configurations (ranks, orthogonality).
     ExactAtConfigurations,
     /// An exact computation (closed-form integrals, sequences).
@@ -78,11 +82,17 @@ impl Report {
                 ));
             }
             let (degree, bound) = match &r.proof {
-                Proof::Identity { degree, bound, .. } => (degree.to_string(), format!("{bound:.1e}")),
+                Proof::Identity { degree, bound, .. } => {
+                    (degree.to_string(), format!("{bound:.1e}"))
+                }
                 Proof::ExactAtConfigurations => ("-".into(), "exact at configurations".into()),
                 Proof::ExactComputation => ("-".into(), "exact".into()),
             };
-            let result = if r.passed { "pass".to_string() } else { format!("**FAIL**: {}", r.detail) };
+            let result = if r.passed {
+                "pass".to_string()
+            } else {
+                format!("**FAIL**: {}", r.detail)
+            };
             md.push_str(&format!(
                 "| {} | {} | {} | {} | {} | {} | {:.3} |\n",
                 r.variant, r.check, result, r.points, degree, bound, r.seconds
@@ -95,11 +105,16 @@ impl Report {
 /// Write `contents` to `path` atomically: a temporary file in the same directory, then a
 /// rename, so a reader never sees a half-written report and an old one is never lost.
 pub fn write_atomic(path: &Path, contents: &str) -> io::Result<()> {
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir)?;
     let tmp = dir.join(format!(
         ".{}.tmp{}",
-        path.file_name().and_then(|n| n.to_str()).unwrap_or("report"),
+        path.file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("report"),
         std::process::id()
     ));
     std::fs::write(&tmp, contents)?;
@@ -140,13 +155,20 @@ mod tests {
         write_atomic(&path, "one").unwrap();
         write_atomic(&path, "two").unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "two");
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "no temporary left behind");
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            1,
+            "no temporary left behind"
+        );
         std::fs::remove_dir_all(dir).unwrap();
     }
 
     #[test]
     fn diff_names_changed_lines() {
         assert_eq!(diff("a\nb\n", "a\nb\n"), None);
-        assert_eq!(diff("a\nb\n", "a\nc\n").unwrap(), "line 2: - b\nline 2: + c\n");
+        assert_eq!(
+            diff("a\nb\n", "a\nc\n").unwrap(),
+            "line 2: - b\nline 2: + c\n"
+        );
     }
 }

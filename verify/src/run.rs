@@ -32,7 +32,9 @@ impl Default for Options {
 /// The Schwartz-Zippel bound `(degree / |S|)^points` on the probability that a false
 /// identity passed.
 pub fn sz_bound(degree: u64, points: usize) -> f64 {
-    ((degree as f64) / (SET_SIZE as f64)).min(1.0).powi(points as i32)
+    ((degree as f64) / (SET_SIZE as f64))
+        .min(1.0)
+        .powi(points as i32)
 }
 
 /// The number of checks [`run_dim`] performs for one dimension (for progress bars).
@@ -65,7 +67,9 @@ where
         .iter()
         .enumerate()
         .map(|(k, &check)| {
-            let (outcome, seconds) = timed(|| identity::run::<N, S>(kernel, variant, check, opts.points, opts.seed + k as u64));
+            let (outcome, seconds) = timed(|| {
+                identity::run::<N, S>(kernel, variant, check, opts.points, opts.seed + k as u64)
+            });
             let degree = identity::degree(N, variant, check);
             let r = CheckResult {
                 dim: N,
@@ -88,13 +92,21 @@ where
 }
 
 /// Every check for dimension `N`.
-pub fn run_dim<const N: usize, const S: usize>(opts: &Options, progress: &mut dyn FnMut(&CheckResult)) -> Vec<CheckResult>
+pub fn run_dim<const N: usize, const S: usize>(
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+) -> Vec<CheckResult>
 where
     Generated: Kernel<Exact, N, S>,
 {
     let mut out = Vec::new();
     for variant in Variant::ALL {
-        out.extend(identity_checks::<N, S>(generated::<N, S>(variant).as_ref(), variant, opts, progress));
+        out.extend(identity_checks::<N, S>(
+            generated::<N, S>(variant).as_ref(),
+            variant,
+            opts,
+            progress,
+        ));
         let mut rng = Rng(opts.seed ^ (N as u64) << 8);
         let mut decomposition = Ok(());
         let mut dimensions = Ok(());
@@ -111,8 +123,14 @@ where
             }
         });
         for (name, outcome) in [
-            ("decomposition: G_q, Ebar_q, n_q orthogonal, n_q unit and outward", decomposition),
-            ("dimensions: Ebar_q = n-1, E_q = n, G_q = N-n, span N", dimensions),
+            (
+                "decomposition: G_q, Ebar_q, n_q orthogonal, n_q unit and outward",
+                decomposition,
+            ),
+            (
+                "dimensions: Ebar_q = n-1, E_q = n, G_q = N-n, span N",
+                dimensions,
+            ),
         ] {
             let r = CheckResult {
                 dim: N,
@@ -145,7 +163,11 @@ where
 }
 
 /// Every check for each dimension in `dims` (each in 2..=6).
-pub fn run(dims: &[usize], opts: &Options, progress: &mut dyn FnMut(&CheckResult)) -> Vec<CheckResult> {
+pub fn run(
+    dims: &[usize],
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+) -> Vec<CheckResult> {
     dims.iter()
         .flat_map(|&n| match n {
             2 => run_dim::<2, 1>(opts, progress),

@@ -58,7 +58,11 @@ pub fn normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
 pub fn point<const N: usize, const S: usize>(rng: &mut Rng, fixed: bool) -> Point<N, S> {
     let nu = normal::<N>(rng);
     let mut ball = |movable: bool| Ball {
-        inv_mass: if movable { rng.element() } else { Exact::zero() },
+        inv_mass: if movable {
+            rng.element()
+        } else {
+            Exact::zero()
+        },
         radius: rng.element(),
         gamma2: rng.element(),
     };

@@ -18,9 +18,17 @@ fn every_mutation_is_caught_by_some_check() {
         for mutation in Mutation::ALL {
             let kernel = mutated::<3, 3>(variant, Some(mutation));
             let results = identity_checks::<3, 3>(kernel.as_ref(), variant, &OPTS, &mut |_| {});
-            let caught: Vec<&str> = results.iter().filter(|r| !r.passed).map(|r| r.check.as_str()).collect();
+            let caught: Vec<&str> = results
+                .iter()
+                .filter(|r| !r.passed)
+                .map(|r| r.check.as_str())
+                .collect();
             println!("{variant:?}, {}: caught by {caught:?}", mutation.name());
-            assert!(!caught.is_empty(), "{variant:?}: {} slipped through", mutation.name());
+            assert!(
+                !caught.is_empty(),
+                "{variant:?}: {} slipped through",
+                mutation.name()
+            );
             assert!(
                 caught.iter().any(|c| c.starts_with("map: reflection")),
                 "{variant:?}: the reflection check must catch {}",

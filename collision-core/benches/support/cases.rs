@@ -79,8 +79,8 @@ pub fn case<const N: usize, const S: usize>(rng: &mut SplitMix64) -> Case<N, S> 
         .sum();
     if dn > -0.1 {
         let target = rng.range(-1.0, -0.1);
-        for a in 0..N {
-            states[1].velocity[a] += (target - dn) * nu[a];
+        for (v, n) in states[1].velocity.iter_mut().zip(&nu) {
+            *v += (target - dn) * n;
         }
     }
     Case { nu, balls, states }

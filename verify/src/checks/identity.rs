@@ -34,7 +34,14 @@ impl Identity {
     pub fn for_variant(variant: Variant) -> &'static [Identity] {
         use Identity::*;
         match variant {
-            Variant::Free => &[Reflection, Energy, LinearMomentum, AngularMomentum, Involution, PointMassLimit],
+            Variant::Free => &[
+                Reflection,
+                Energy,
+                LinearMomentum,
+                AngularMomentum,
+                Involution,
+                PointMassLimit,
+            ],
             Variant::Fixed => &[Reflection, Energy, AngularMomentum, Involution, MassLimit],
         }
     }
@@ -65,15 +72,25 @@ impl Identity {
     }
 
     /// The nodes that must vanish, given the named computed states.
-    fn zeros(self, g: &mut Graph, inputs: &KernelInputs, variant: Variant, states: &HashMap<&str, [StateIds; 2]>) -> Vec<Id> {
+    fn zeros(
+        self,
+        g: &mut Graph,
+        inputs: &KernelInputs,
+        variant: Variant,
+        states: &HashMap<&str, [StateIds; 2]>,
+    ) -> Vec<Id> {
         let before = id::before(inputs);
         let after = &states["after"];
         let fixed = variant == Variant::Fixed;
         match self {
             Identity::Reflection => id::reflection(g, inputs, &before, after, fixed),
-            Identity::Energy => id::energy_conserved(g, inputs, &before, after, Self::movable(variant)),
+            Identity::Energy => {
+                id::energy_conserved(g, inputs, &before, after, Self::movable(variant))
+            }
             Identity::LinearMomentum => id::momentum_conserved(g, inputs, &before, after),
-            Identity::AngularMomentum => id::angular_momentum_conserved(g, inputs, &before, after, Self::movable(variant)),
+            Identity::AngularMomentum => {
+                id::angular_momentum_conserved(g, inputs, &before, after, Self::movable(variant))
+            }
             Identity::Involution => id::equal(g, &states["twice"], &before),
             Identity::MassLimit => id::equal(g, &states["free_w1_0"], after),
             Identity::PointMassLimit => {
@@ -98,15 +115,24 @@ fn inputs_for(g: &mut Graph, n: usize, identity: Identity, variant: Variant) -> 
     if identity.body1_at_rest(variant) {
         let zero = g.int(0);
         let b1 = &mut inputs.bodies[0];
-        b1.spin.iter_mut().chain(b1.velocity.iter_mut()).for_each(|x| *x = zero);
+        b1.spin
+            .iter_mut()
+            .chain(b1.velocity.iter_mut())
+            .for_each(|x| *x = zero);
     }
     inputs
 }
 
-fn outputs_as_states(inputs: &KernelInputs, outs: Vec<noslip_codegen::model::BodyOutput>) -> [StateIds; 2] {
+fn outputs_as_states(
+    inputs: &KernelInputs,
+    outs: Vec<noslip_codegen::model::BodyOutput>,
+) -> [StateIds; 2] {
     let mut s = id::before(inputs);
     for o in outs {
-        s[o.body - 1] = StateIds { spin: o.spin, velocity: o.velocity };
+        s[o.body - 1] = StateIds {
+            spin: o.spin,
+            velocity: o.velocity,
+        };
     }
     s
 }
@@ -125,22 +151,35 @@ pub fn degree(n: usize, variant: Variant, identity: Identity) -> u64 {
     let mut g = Graph::new();
     let inputs = inputs_for(&mut g, n, identity, variant);
     let mut states = HashMap::new();
-    let kernel_inputs = if identity == Identity::MassLimit { symbolic_inputs(&mut g, n, Variant::Fixed) } else { inputs.clone() };
+    let kernel_inputs = if identity == Identity::MassLimit {
+        symbolic_inputs(&mut g, n, Variant::Fixed)
+    } else {
+        inputs.clone()
+    };
     let after = outputs_as_states(&kernel_inputs, build_on(&mut g, &kernel_inputs, variant));
     match identity {
         Identity::Involution => {
             let twice = build_on(&mut g, &with_states(&inputs, &after), variant);
-            states.insert("twice", outputs_as_states(&with_states(&inputs, &after), twice));
+            states.insert(
+                "twice",
+                outputs_as_states(&with_states(&inputs, &after), twice),
+            );
         }
         Identity::MassLimit => {
             let mut free = inputs.clone();
             free.bodies[0].inv_mass = g.int(0);
-            states.insert("free_w1_0", outputs_as_states(&free, build_on(&mut g, &free, Variant::Free)));
+            states.insert(
+                "free_w1_0",
+                outputs_as_states(&free, build_on(&mut g, &free, Variant::Free)),
+            );
         }
         Identity::PointMassLimit => {
             let mut free = inputs.clone();
             free.bodies[0].gamma2 = g.int(0);
-            states.insert("free_g1_0", outputs_as_states(&free, build_on(&mut g, &free, Variant::Free)));
+            states.insert(
+                "free_g1_0",
+                outputs_as_states(&free, build_on(&mut g, &free, Variant::Free)),
+            );
         }
         _ => {}
     }
@@ -154,7 +193,10 @@ fn eval_all(g: &Graph, inputs: &HashMap<String, Exact>) -> Result<Vec<Exact>, St
     for index in 0..g.len() {
         let at = |id: &Id| &v[id.0 as usize];
         let x = match g.node(Id(index as u32)) {
-            Node::Input(input) => inputs.get(&input.0).cloned().ok_or_else(|| format!("no value for input {}", input.0))?,
+            Node::Input(input) => inputs
+                .get(&input.0)
+                .cloned()
+                .ok_or_else(|| format!("no value for input {}", input.0))?,
             Node::Const(c) => c.clone(),
             Node::Add(a, b) => at(a) + at(b),
             Node::Sub(a, b) => at(a) - at(b),
@@ -227,7 +269,10 @@ pub fn check_at<const N: usize, const S: usize>(
     let v = eval_all(&g, &values)?;
     match zeros.iter().position(|z| !v[z.0 as usize].is_zero()) {
         None => Ok(()),
-        Some(k) => Err(format!("component {k} of the identity is {} at the sample point, not 0", v[zeros[k].0 as usize])),
+        Some(k) => Err(format!(
+            "component {k} of the identity is {} at the sample point, not 0",
+            v[zeros[k].0 as usize]
+        )),
     }
 }
 
@@ -253,7 +298,8 @@ where
     let mut rng = Rng(seed);
     for k in 0..points {
         let p = point::<N, S>(&mut rng, variant == Variant::Fixed);
-        check_at(kernel, free.as_ref(), variant, identity, &p).map_err(|e| format!("point {k}: {e}"))?;
+        check_at(kernel, free.as_ref(), variant, identity, &p)
+            .map_err(|e| format!("point {k}: {e}"))?;
     }
     Ok(())
 }
@@ -269,7 +315,8 @@ mod tests {
         for variant in Variant::ALL {
             let kernel = generated::<N, S>(variant);
             for &identity in Identity::for_variant(variant) {
-                run::<N, S>(kernel.as_ref(), variant, identity, 1, 7).unwrap_or_else(|e| panic!("n = {N} {variant:?} {identity:?}: {e}"));
+                run::<N, S>(kernel.as_ref(), variant, identity, 1, 7)
+                    .unwrap_or_else(|e| panic!("n = {N} {variant:?} {identity:?}: {e}"));
                 let d = degree(N, variant, identity);
                 assert!(d > 0 && d < 100_000, "degree {d}");
             }

@@ -31,7 +31,8 @@ fn moment(d: &Density, radius: &Exact, m: usize) -> Exact {
             let mut inner = Exact::zero();
             let mut total = Exact::zero();
             for (outer, rho) in layers {
-                total += rho * (pow(outer, m + 1) - pow(&inner, m + 1)) / Exact::from_ratio(m as i64 + 1, 1);
+                total += rho * (pow(outer, m + 1) - pow(&inner, m + 1))
+                    / Exact::from_ratio(m as i64 + 1, 1);
                 inner = outer.clone();
             }
             total
@@ -55,9 +56,15 @@ fn bernstein(c: &[Exact], a: &Exact, b: &Exact) -> Vec<Exact> {
         }
     }
     let h = b - a;
-    let q: Vec<Exact> = shifted.iter().enumerate().map(|(j, x)| x * pow(&h, j)).collect();
+    let q: Vec<Exact> = shifted
+        .iter()
+        .enumerate()
+        .map(|(j, x)| x * pow(&h, j))
+        .collect();
     let binom = |n: usize, k: usize| -> Exact {
-        Exact::from_integer((0..k).fold(num_bigint::BigInt::one(), |acc, i| acc * (n - i) / (i + 1)))
+        Exact::from_integer(
+            (0..k).fold(num_bigint::BigInt::one(), |acc, i| acc * (n - i) / (i + 1)),
+        )
     };
     (0..=d)
         .map(|k| (0..=k).map(|j| &q[j] * binom(k, j) / binom(d, j)).sum())
@@ -130,17 +137,33 @@ pub fn check(n: usize, seed: u64) -> Result<usize, String> {
             Err(format!("{what}: lambda = {got}, expected {want}"))
         }
     };
-    expect("uniform", lambda(n, &r, &Density::Polynomial(vec![q(1, 1)]))?, &r * &r / (&nn + q(2, 1)))?;
+    expect(
+        "uniform",
+        lambda(n, &r, &Density::Polynomial(vec![q(1, 1)]))?,
+        &r * &r / (&nn + q(2, 1)),
+    )?;
     // The extremes are attained in the limit: a thin shell [R (1 - 1/k), R] -> R^2/n and a
     // small core [0, R/k] -> 0, monotonically.
     let (mut last_shell, mut last_core) = (Exact::zero(), bound.clone());
     for k in [2i64, 10, 100, 1000, 10_000] {
-        let shell = lambda(n, &r, &Density::Layered(vec![(&r * q(k - 1, k), q(0, 1)), (r.clone(), q(1, 1))]))?;
-        let core = lambda(n, &r, &Density::Layered(vec![(&r / q(k, 1), q(1, 1)), (r.clone(), q(0, 1))]))?;
+        let shell = lambda(
+            n,
+            &r,
+            &Density::Layered(vec![(&r * q(k - 1, k), q(0, 1)), (r.clone(), q(1, 1))]),
+        )?;
+        let core = lambda(
+            n,
+            &r,
+            &Density::Layered(vec![(&r / q(k, 1), q(1, 1)), (r.clone(), q(0, 1))]),
+        )?;
         if !(shell > last_shell && shell < bound && core < last_core && core > Exact::zero()) {
-            return Err(format!("shell/core sequence not monotone towards R^2/n and 0 at k = {k}"));
+            return Err(format!(
+                "shell/core sequence not monotone towards R^2/n and 0 at k = {k}"
+            ));
         }
-        if (&bound - &shell) * q(k, 1) > bound.clone() * q(2, 1) || &core * q(k * k, 1) > bound.clone() {
+        if (&bound - &shell) * q(k, 1) > bound.clone() * q(2, 1)
+            || &core * q(k * k, 1) > bound.clone()
+        {
             return Err(format!("shell/core limits converge too slowly at k = {k}"));
         }
         (last_shell, last_core) = (shell, core);
@@ -148,7 +171,12 @@ pub fn check(n: usize, seed: u64) -> Result<usize, String> {
     // Random non-negative densities: polynomial (non-negative coefficients, and squares of
     // polynomials with sign changes) and layered; each lambda in [0, R^2/n].
     let mut rng = crate::sample::Rng(seed);
-    let mut small = |lo: i64, hi: i64| q(lo + (rng.next_u64() % (hi - lo + 1) as u64) as i64, 1 + (rng.next_u64() % 7) as i64);
+    let mut small = |lo: i64, hi: i64| {
+        q(
+            lo + (rng.next_u64() % (hi - lo + 1) as u64) as i64,
+            1 + (rng.next_u64() % 7) as i64,
+        )
+    };
     let mut count = 3;
     for _ in 0..20 {
         let a: Vec<Exact> = (0..3).map(|_| small(-5, 5)).collect();
@@ -163,7 +191,11 @@ pub fn check(n: usize, seed: u64) -> Result<usize, String> {
         square[0] += q(1, 10);
         let positive: Vec<Exact> = (0..4).map(|_| small(0, 9)).collect();
         let layers: Vec<(Exact, Exact)> = (1..=4).map(|k| (&r * q(k, 4), small(0, 9))).collect();
-        for d in [Density::Polynomial(square), Density::Polynomial(positive), Density::Layered(layers)] {
+        for d in [
+            Density::Polynomial(square),
+            Density::Polynomial(positive),
+            Density::Layered(layers),
+        ] {
             match lambda(n, &r, &d) {
                 Ok(l) if l >= Exact::zero() && l <= bound => count += 1,
                 Ok(l) => return Err(format!("{d:?}: lambda = {l} outside [0, R^2/n]")),
@@ -192,10 +224,19 @@ mod tests {
     #[test]
     fn negative_densities_are_rejected_with_a_witness() {
         let r = Exact::from_ratio(1, 1);
-        let e = lambda(3, &r, &Density::Polynomial(vec![Exact::from_ratio(-1, 2), Exact::from_ratio(1, 1)])).unwrap_err();
+        let e = lambda(
+            3,
+            &r,
+            &Density::Polynomial(vec![Exact::from_ratio(-1, 2), Exact::from_ratio(1, 1)]),
+        )
+        .unwrap_err();
         assert_eq!(e, "the density is negative at x = 0: P(x) = -1/2");
         // (x - 1/3)^2 touches zero inside: non-negative, certified or reported, never accepted wrongly.
-        let square = vec![Exact::from_ratio(1, 9), Exact::from_ratio(-2, 3), Exact::from_ratio(1, 1)];
+        let square = vec![
+            Exact::from_ratio(1, 9),
+            Exact::from_ratio(-2, 3),
+            Exact::from_ratio(1, 1),
+        ];
         if let Ok(l) = lambda(3, &r, &Density::Polynomial(square)) {
             assert!(l <= Exact::from_ratio(1, 3));
         }

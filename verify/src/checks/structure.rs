@@ -27,14 +27,20 @@ fn fail(what: &str) -> Result<Structure, String> {
 }
 
 /// The decomposition at one random configuration.
-pub fn check_at<const N: usize, const S: usize>(variant: Variant, rng: &mut Rng) -> Result<Structure, String> {
+pub fn check_at<const N: usize, const S: usize>(
+    variant: Variant,
+    rng: &mut Rng,
+) -> Result<Structure, String> {
     let p = point::<N, S>(rng, variant == Variant::Fixed);
     let movable: Vec<usize> = match variant {
         Variant::Free => vec![0, 1],
         Variant::Fixed => vec![1],
     };
     // Coordinates of the movable bodies: [U_i (S entries), u_i (N entries)] each.
-    let coords: Vec<usize> = movable.iter().flat_map(|&b| (0..S + N).map(move |k| b * (S + N) + k)).collect();
+    let coords: Vec<usize> = movable
+        .iter()
+        .flat_map(|&b| (0..S + N).map(move |k| b * (S + N) + k))
+        .collect();
     let dim = coords.len();
     // The kinetic metric, diagonal: 2 m lambda = m g R^2 on U entries, m on u entries.
     let metric = DVector::from_iterator(
@@ -46,7 +52,9 @@ pub fn check_at<const N: usize, const S: usize>(variant: Variant, rng: &mut Rng)
             std::iter::repeat_n(rot, S).chain(std::iter::repeat_n(m, N))
         }),
     );
-    let inner = |a: &DMatrix<Exact>, b: &DMatrix<Exact>| a.transpose() * DMatrix::from_diagonal(&metric) * b;
+    let inner = |a: &DMatrix<Exact>, b: &DMatrix<Exact>| {
+        a.transpose() * DMatrix::from_diagonal(&metric) * b
+    };
 
     // The no-slip condition as a matrix: column j is V_2(Q) - V_1(Q) of the unit state e_j,
     // with V_1(Q) = R_1 U_1 nu + u_1 and V_2(Q) = -R_2 U_2 nu + u_2 (U as a full matrix).
@@ -57,7 +65,11 @@ pub fn check_at<const N: usize, const S: usize>(variant: Variant, rng: &mut Rng)
         if k < S {
             let (r, s) = skew_pairs(N).nth(k).expect("k < S");
             // U = E_rs - E_sr: (U nu)_r = nu_s, (U nu)_s = -nu_r.
-            let scale = if b == 0 { p.balls[0].radius.clone() } else { -p.balls[1].radius.clone() };
+            let scale = if b == 0 {
+                p.balls[0].radius.clone()
+            } else {
+                -p.balls[1].radius.clone()
+            };
             slip[(r, j)] = &sign * &scale * &p.nu[s];
             slip[(s, j)] = -(&sign * &scale * &p.nu[r]);
         } else {

@@ -52,14 +52,25 @@ struct Dims(Vec<usize>);
 
 fn parse_dims(s: &str) -> Result<Dims, String> {
     let dims: Vec<usize> = if let Some((a, b)) = s.split_once("..") {
-        let a: usize = a.trim().parse().map_err(|_| format!("bad range start in {s:?}"))?;
-        let b: usize = b.trim_start_matches('=').trim().parse().map_err(|_| format!("bad range end in {s:?}"))?;
+        let a: usize = a
+            .trim()
+            .parse()
+            .map_err(|_| format!("bad range start in {s:?}"))?;
+        let b: usize = b
+            .trim_start_matches('=')
+            .trim()
+            .parse()
+            .map_err(|_| format!("bad range end in {s:?}"))?;
         (a..=b).collect()
     } else {
-        s.split(',').map(|x| x.trim().parse().map_err(|_| format!("bad dimension {x:?}"))).collect::<Result<_, _>>()?
+        s.split(',')
+            .map(|x| x.trim().parse().map_err(|_| format!("bad dimension {x:?}")))
+            .collect::<Result<_, _>>()?
     };
     if dims.is_empty() || dims.iter().any(|d| !(2..=6).contains(d)) {
-        return Err(format!("dimensions must be in 2..6 (the generated kernels), got {s:?}"));
+        return Err(format!(
+            "dimensions must be in 2..6 (the generated kernels), got {s:?}"
+        ));
     }
     Ok(Dims(dims))
 }
@@ -71,13 +82,18 @@ pub fn run_cmd(args: &Args) -> ExitCode {
     };
     let dims = &args.dims.0;
     let bar = ProgressBar::new((dims.len() * checks_per_dim()) as u64);
-    bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} checks  {msg}").expect("template"));
+    bar.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} checks  {msg}").expect("template"),
+    );
     let start = Instant::now();
     let results = run(dims, &opts, &mut |r| {
         bar.set_message(format!("n = {} {}: {}", r.dim, r.variant, r.check));
         bar.inc(1);
         if !r.passed {
-            bar.println(format!("FAIL n = {} {} {}: {}", r.dim, r.variant, r.check, r.detail));
+            bar.println(format!(
+                "FAIL n = {} {} {}: {}",
+                r.dim, r.variant, r.check, r.detail
+            ));
         }
     });
     bar.finish_and_clear();
@@ -88,7 +104,10 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         results,
         seconds: start.elapsed().as_secs_f64(),
     };
-    for (name, text) in [("verify.md", report.to_markdown()), ("verify.json", report.to_json())] {
+    for (name, text) in [
+        ("verify.md", report.to_markdown()),
+        ("verify.json", report.to_json()),
+    ] {
         let path = args.out.join(name);
         if let Err(e) = write_atomic(&path, &text) {
             eprintln!("error: cannot write {}: {e}", path.display());
@@ -124,13 +143,19 @@ pub fn run_cmd(args: &Args) -> ExitCode {
     if args.check_golden {
         match std::fs::read_to_string(&args.golden) {
             Err(e) => {
-                eprintln!("error: cannot read the golden copy {}: {e}", args.golden.display());
+                eprintln!(
+                    "error: cannot read the golden copy {}: {e}",
+                    args.golden.display()
+                );
                 return ExitCode::from(1);
             }
             Ok(golden) => match diff(&golden, &golden_text) {
                 None => println!("golden copy {}: unchanged", args.golden.display()),
                 Some(d) => {
-                    eprintln!("the results differ from the golden copy {}:\n{d}", args.golden.display());
+                    eprintln!(
+                        "the results differ from the golden copy {}:\n{d}",
+                        args.golden.display()
+                    );
                     return ExitCode::from(1);
                 }
             },

@@ -69,10 +69,7 @@ pub struct Case<T> {
 }
 
 fn join(path: &str, key: &str) -> String {
-    let simple = !key.is_empty()
-        && key
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let simple = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     let key = if simple {
         key.to_string()
     } else {
@@ -85,7 +82,11 @@ fn join(path: &str, key: &str) -> String {
     }
 }
 
-fn object<'a>(value: &'a Value, path: &str, what: &str) -> Result<&'a Map<String, Value>, CaseError> {
+fn object<'a>(
+    value: &'a Value,
+    path: &str,
+    what: &str,
+) -> Result<&'a Map<String, Value>, CaseError> {
     value
         .as_object()
         .ok_or_else(|| CaseError::new(path, format!("expected {what}, got {}", kind(value))))
@@ -117,10 +118,7 @@ fn vector<T: InputScalar>(value: &Value, field: &str, len: usize) -> Result<Vec<
     if items.len() != len {
         return Err(CaseError::new(
             field,
-            format!(
-                "expected {len} numbers (dim = {len}), got {}",
-                items.len()
-            ),
+            format!("expected {len} numbers (dim = {len}), got {}", items.len()),
         ));
     }
     items
@@ -133,7 +131,10 @@ fn vector<T: InputScalar>(value: &Value, field: &str, len: usize) -> Result<Vec<
 fn dim(value: &Value) -> Result<usize, CaseError> {
     let err = |m: String| CaseError::new("dim", m);
     let Value::Number(n) = value else {
-        return Err(err(format!("expected an integer >= 2, got {}", kind(value))));
+        return Err(err(format!(
+            "expected an integer >= 2, got {}",
+            kind(value)
+        )));
     };
     match integer_literal(n.as_str()) {
         None => Err(err(format!(
@@ -163,14 +164,12 @@ fn spin_forms(dim: usize) -> String {
 }
 
 fn spin<T: InputScalar>(value: &Value, field: &str, dim: usize) -> Result<Spin<T>, CaseError> {
-    let wrong = |what: String| {
-        CaseError::new(
-            field,
-            format!("expected {}, got {what}", spin_forms(dim)),
-        )
-    };
+    let wrong =
+        |what: String| CaseError::new(field, format!("expected {}, got {what}", spin_forms(dim)));
     match value {
-        Value::Number(_) | Value::String(_) if dim == 2 => Ok(Spin::Scalar(from_json(value, field)?)),
+        Value::Number(_) | Value::String(_) if dim == 2 => {
+            Ok(Spin::Scalar(from_json(value, field)?))
+        }
         Value::Array(rows) if !rows.is_empty() && rows.iter().all(Value::is_array) => {
             if rows.len() != dim {
                 return Err(wrong(format!("{} rows", rows.len())));
@@ -181,7 +180,9 @@ fn spin<T: InputScalar>(value: &Value, field: &str, dim: usize) -> Result<Spin<T
                 .collect::<Result<_, _>>()
                 .map(Spin::Matrix)
         }
-        Value::Array(items) if dim == 3 && items.len() == 3 && !items.iter().any(Value::is_array) => {
+        Value::Array(items)
+            if dim == 3 && items.len() == 3 && !items.iter().any(Value::is_array) =>
+        {
             let [a, b, c] = [0, 1, 2].map(|k| from_json::<T>(&items[k], &format!("{field}[{k}]")));
             Ok(Spin::Omega([a?, b?, c?]))
         }

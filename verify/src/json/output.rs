@@ -30,7 +30,12 @@ fn internal(what: &str) -> CaseError {
 }
 
 /// The angular velocity in the given form.
-fn spin<T: InputScalar>(form: &Spin<T>, out: &BodyOutput<T>, dim: usize, field: &str) -> Result<Value, CaseError> {
+fn spin<T: InputScalar>(
+    form: &Spin<T>,
+    out: &BodyOutput<T>,
+    dim: usize,
+    field: &str,
+) -> Result<Value, CaseError> {
     match form {
         Spin::Scalar(_) => {
             let [x] = <[T; 1]>::try_from(out.spin.clone()).map_err(|_| internal("2D spin"))?;
@@ -67,14 +72,22 @@ fn spin<T: InputScalar>(form: &Spin<T>, out: &BodyOutput<T>, dim: usize, field: 
 }
 
 /// The JSON output of a case.
-pub fn render<T: InputScalar>(case: &Case<T>, out: &[BodyOutput<T>; 2]) -> Result<Value, CaseError> {
+pub fn render<T: InputScalar>(
+    case: &Case<T>,
+    out: &[BodyOutput<T>; 2],
+) -> Result<Value, CaseError> {
     let bodies = (0..2)
         .map(|i| {
             let field = |f: &str| format!("bodies[{i}].{f}");
             let mut body = Map::new();
             body.insert(
                 "angular_velocity".into(),
-                spin(&case.bodies[i].spin, &out[i], case.dim, &field("angular_velocity"))?,
+                spin(
+                    &case.bodies[i].spin,
+                    &out[i],
+                    case.dim,
+                    &field("angular_velocity"),
+                )?,
             );
             body.insert(
                 "velocity".into(),

@@ -12,8 +12,8 @@ use crate::json::guard::quietly;
 use crate::json::number::InputScalar;
 use collision_core::reference::{collide_coords, state_len};
 use collision_core::{
-    collide, skew_pairs, validate_parts, Ball, BodyState, Field, Generated, Inertia, Kernel,
-    Mass, RefArith, State2, State3,
+    collide, skew_pairs, validate_parts, Ball, BodyState, Field, Generated, Inertia, Kernel, Mass,
+    RefArith, State2, State3,
 };
 use nalgebra::DVector;
 
@@ -76,7 +76,11 @@ fn ball<T: InputScalar>(dim: usize, body: &BodyInput<T>, i: usize) -> Result<Bal
         if *x < T::zero() || *x > bound.clone() * (T::one() + T::rounding_slack()) {
             Err(CaseError::new(
                 field(name),
-                format!("must be in [0, {what}] = [0, {}], got {}", bound.show(), x.show()),
+                format!(
+                    "must be in [0, {what}] = [0, {}], got {}",
+                    bound.show(),
+                    x.show()
+                ),
             ))
         } else {
             Ok(())
@@ -99,8 +103,13 @@ fn ball<T: InputScalar>(dim: usize, body: &BodyInput<T>, i: usize) -> Result<Bal
         Inertia::Gamma2(g) => check(g, two / n, "gamma2", "2/n")?,
         Inertia::Uniform | Inertia::Shell => {}
     }
-    Ball::new(dim, body.mass.clone(), body.radius.clone(), body.inertia.clone())
-        .map_err(|e| e.at_body(i).into())
+    Ball::new(
+        dim,
+        body.mass.clone(),
+        body.radius.clone(),
+        body.inertia.clone(),
+    )
+    .map_err(|e| e.at_body(i).into())
 }
 
 /// `collision_core::validate_parts`, with the normal's length and the separating velocity
@@ -193,10 +202,7 @@ where
     for<'a> &'a T: RefArith<T>,
     Generated: Kernel<T, N, S>,
 {
-    let states: [BodyState<T, N, S>; 2] = [
-        state(&case.bodies[0], 0)?,
-        state(&case.bodies[1], 1)?,
-    ];
+    let states: [BodyState<T, N, S>; 2] = [state(&case.bodies[0], 0)?, state(&case.bodies[1], 1)?];
     let balls = [&balls[0], &balls[1]];
     validate(
         &case.normal,
@@ -215,10 +221,17 @@ where
 
 /// The compact entries of a full `n x n` matrix, checked skew as `BodyState::from_matrix`
 /// does: exactly in exact arithmetic, within `1e-12 max|U|` in floats (the skew part is kept).
-fn compact_spin<T: InputScalar>(body: &BodyInput<T>, i: usize, n: usize) -> Result<Vec<T>, CaseError> {
+fn compact_spin<T: InputScalar>(
+    body: &BodyInput<T>,
+    i: usize,
+    n: usize,
+) -> Result<Vec<T>, CaseError> {
     let field = format!("bodies[{i}].angular_velocity");
     let Spin::Matrix(m) = &body.spin else {
-        return Err(CaseError::new(field, format!("expected a {n} x {n} matrix")));
+        return Err(CaseError::new(
+            field,
+            format!("expected a {n} x {n} matrix"),
+        ));
     };
     let scale = m
         .iter()
