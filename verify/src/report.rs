@@ -88,10 +88,10 @@ impl Report {
                 Proof::ExactAtConfigurations => ("-".into(), "exact at configurations".into()),
                 Proof::ExactComputation => ("-".into(), "exact".into()),
             };
-            let result = if r.passed {
-                "pass".to_string()
-            } else {
-                format!("**FAIL**: {}", r.detail)
+            let result = match (r.passed, r.detail.is_empty()) {
+                (true, true) => "pass".to_string(),
+                (true, false) => format!("pass ({})", r.detail),
+                (false, _) => format!("**FAIL**: {}", r.detail),
             };
             md.push_str(&format!(
                 "| {} | {} | {} | {} | {} | {} | {:.3} |\n",

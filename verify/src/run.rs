@@ -1,6 +1,7 @@
 //! Runs every check for the chosen dimensions and variants and collects the results.
 
 use crate::checks::identity::{self, Identity};
+use crate::checks::sequence::{self, Limit};
 use crate::checks::{inertia, structure};
 use crate::kernel::{generated, ExactKernel};
 use crate::report::{CheckResult, Proof};
@@ -43,7 +44,7 @@ pub fn checks_per_dim() -> usize {
         .iter()
         .map(|&v| Identity::for_variant(v).len() + 2)
         .sum::<usize>()
-        + 1
+        + 3
 }
 
 fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
@@ -145,6 +146,41 @@ where
             progress(&r);
             out.push(r);
         }
+    }
+    for (variant, limit, name) in [
+        (
+            Variant::Fixed,
+            Limit::Mass,
+            "limit m_1 = 10^k -> inf: error ~ 1/m_1",
+        ),
+        (
+            Variant::Free,
+            Limit::PointMass,
+            "limit gamma2_1 = 10^-k -> 0: error ~ gamma2_1",
+        ),
+    ] {
+        let (outcome, seconds) = timed(|| sequence::check::<N, S>(limit, opts.seed));
+        let r = CheckResult {
+            dim: N,
+            variant: variant.name().into(),
+            check: name.into(),
+            passed: outcome.is_ok(),
+            points: 8,
+            proof: Proof::ExactComputation,
+            detail: match outcome {
+                Ok(e) => format!(
+                    "errors for k = 1..8: {}",
+                    e.iter()
+                        .map(|x| format!("{x:.2e}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                Err(e) => e,
+            },
+            seconds,
+        };
+        progress(&r);
+        out.push(r);
     }
     let (outcome, seconds) = timed(|| inertia::check(N, opts.seed));
     let r = CheckResult {

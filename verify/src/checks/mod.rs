@@ -3,4 +3,5 @@
 
 pub mod identity;
 pub mod inertia;
+pub mod sequence;
 pub mod structure;

@@ -163,7 +163,10 @@ fn scan(text: &str) -> Result<Scanned<'_>, String> {
     };
     let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
     let part = |s: &str| s.is_empty() || digits(s);
-    let exp_ok = exp.map_or(true, |e| digits(e.strip_prefix(['+', '-']).unwrap_or(e)));
+    let exp_ok = match exp {
+        None => true,
+        Some(e) => digits(e.strip_prefix(['+', '-']).unwrap_or(e)),
+    };
     if part(int) && part(frac) && !(int.is_empty() && frac.is_empty()) && exp_ok {
         Ok(Scanned::Decimal {
             negative,

@@ -239,15 +239,15 @@ fn compact_spin<T: InputScalar>(
         .fold(T::zero(), |s, x| if x.abs() > s { x.abs() } else { s });
     let two = T::one() + T::one();
     let tol = scale * T::unit_tolerance() / two.clone();
-    for r in 0..n {
-        if m[r][r].abs() > tol {
+    for (r, row) in m.iter().enumerate() {
+        if row[r].abs() > tol {
             return Err(CaseError::new(
                 field,
                 format!("not skew: diagonal entry ({r},{r}) is not 0"),
             ));
         }
-        for c in r + 1..n {
-            if (m[r][c].clone() + m[c][r].clone()).abs() > tol {
+        for (c, x) in row.iter().enumerate().skip(r + 1) {
+            if (x.clone() + m[c][r].clone()).abs() > tol {
                 return Err(CaseError::new(
                     field,
                     format!("not skew: entries ({r},{c}) and ({c},{r}) are not opposite"),
