@@ -1,6 +1,8 @@
 //! The generated kernels, instantiated with exact rationals, against the general-n reference
 //! and the exact facts of MATH.md, for n = 2..6 and both variants.
 
+#![allow(clippy::needless_range_loop)] // matrix entries are indexed by (row, col) on purpose
+
 use collision_core::{
     collide, collide_unchecked, reference, Ball, BodyState, Exact, Generated, Kernel, Scalar,
     State2,

@@ -9,6 +9,8 @@
 //! typical differences are far smaller. The exact suite (`kernels_exact.rs`) is the strong
 //! check; this one shows the float instantiation runs the same map.
 
+#![allow(clippy::needless_range_loop)] // components of paired states are indexed together
+
 use collision_core::{collide, reference, Ball, BodyState, Generated, Kernel};
 use proptest::prelude::*;
 

@@ -66,8 +66,8 @@ pub fn approaching<const N: usize, const S: usize>(
 ) {
     let dn = relative_normal_velocity(nu, states);
     if dn > Exact::zero() {
-        for k in 0..N {
-            states[1].velocity[k] -= Exact::from_ratio(2, 1) * &dn * &nu[k];
+        for (v, x) in states[1].velocity.iter_mut().zip(nu) {
+            *v -= Exact::from_ratio(2, 1) * &dn * x;
         }
     }
 }

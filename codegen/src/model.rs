@@ -6,7 +6,7 @@
 //! velocities `u_i`:
 //!
 //! ```text
-//! c    = R_1 U_1 nu + R_2 U_2 nu
+//! c    = (R_1 U_1 + R_2 U_2) nu
 //! du   = u_2 - u_1,            dn = du . nu
 //! t    = du - dn nu - c                                  (slip of the contact point)
 //! D    = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2)
@@ -212,16 +212,18 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
     let nu = &inputs.nu;
     let [b1, b2] = &inputs.bodies;
 
-    // c = R_1 U_1 nu + R_2 U_2 nu
-    let u1_nu = skew_times(g, n, &b1.spin, nu);
-    let u2_nu = skew_times(g, n, &b2.spin, nu);
-    let c: Vec<Id> = (0..n)
-        .map(|k| {
-            let x = g.mul(b1.radius, u1_nu[k]);
-            let y = g.mul(b2.radius, u2_nu[k]);
+    // c = R_1 U_1 nu + R_2 U_2 nu = (R_1 U_1 + R_2 U_2) nu: one skew product, not two.
+    let w: Vec<Id> = b1
+        .spin
+        .iter()
+        .zip(&b2.spin)
+        .map(|(&x, &y)| {
+            let x = g.mul(b1.radius, x);
+            let y = g.mul(b2.radius, y);
             g.add(x, y)
         })
         .collect();
+    let c = skew_times(g, n, &w, nu);
     label_all(g, &c, "c");
 
     // du = u_2 - u_1, dn = du . nu, t = du - dn nu - c

@@ -161,7 +161,13 @@ mod tests {
         let rest = State2::zero();
         let approach = State2::from_scalar_spin(q(0, 1), [q(1, 1), q(0, 1)]);
         let away = State2::from_scalar_spin(q(0, 1), [q(-1, 1), q(0, 1)]);
-        let cases: [(&[Exact; 2], [&Ball<Exact>; 2], [&State2<Exact>; 2], Field); 4] = [
+        type Case<'a> = (
+            &'a [Exact; 2],
+            [&'a Ball<Exact>; 2],
+            [&'a State2<Exact>; 2],
+            Field,
+        );
+        let cases: [Case; 4] = [
             (&nu, [&fixed, &fixed], [&approach, &rest], Field::Bodies),
             (&nu, [&point, &point], [&approach, &rest], Field::Bodies),
             (&nu, [&free, &free], [&away, &rest], Field::RelativeVelocity),
