@@ -227,8 +227,8 @@ fn the_example_case_of_the_issue_separates_and_its_mirror_collides() {
     assert_eq!(e.field, Field::RelativeVelocity);
     assert_eq!(
         e.to_string(),
-        "bodies[*].velocity: the bodies are separating: (u_2 - u_1) . nu = 2/5 > 0"
-    );
+        "bodies[*].velocity: the bodies are separating: (u_2 - u_1) . nu = 2/5 > 0 (a collision needs them \
+         approaching or grazing; nu points from body 1 to body 2)");
     let toward = BodyState::from_matrix(0, &m, [q(1, 1), q(0, 1), q(1, 2)]).unwrap();
     let out = collide(&nu, [&b1, &b2], [&toward, &s2]).unwrap();
     assert_eq!(

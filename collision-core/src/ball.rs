@@ -47,7 +47,10 @@ fn finite<T: Scalar>(x: &T, field: BodyField) -> Result<(), InputError> {
     if x.is_finite() {
         Ok(())
     } else {
-        Err(err(field, format!("must be a finite number, got {x}")))
+        Err(err(
+            field,
+            format!("must be a finite number, got {}", x.show()),
+        ))
     }
 }
 
@@ -58,7 +61,11 @@ fn in_range<T: Scalar>(x: T, bound: &T, field: BodyField, what: &str) -> Result<
     if x < T::zero() || !within_slack(&x, bound) {
         return Err(err(
             field,
-            format!("must be in [0, {what}] = [0, {bound}], got {x}"),
+            format!(
+                "must be in [0, {what}] = [0, {}], got {}",
+                bound.show(),
+                x.show()
+            ),
         ));
     }
     Ok(if x > *bound { bound.clone() } else { x })
@@ -77,7 +84,7 @@ impl<T: Scalar> Ball<T> {
         if radius <= T::zero() {
             return Err(err(
                 BodyField::Radius,
-                format!("must be positive, got {radius}"),
+                format!("must be positive, got {}", radius.show()),
             ));
         }
         let inv_mass = match mass {
@@ -87,10 +94,17 @@ impl<T: Scalar> Ball<T> {
                 if m <= T::zero() {
                     return Err(err(
                         BodyField::Mass,
-                        format!("must be positive (or \"inf\"), got {m}"),
+                        format!("must be positive (or \"inf\"), got {}", m.show()),
                     ));
                 }
-                T::one() / m
+                let w = T::one() / m.clone();
+                if !w.is_finite() {
+                    return Err(err(
+                        BodyField::Mass,
+                        format!("is too small: 1/mass overflows, got {}", m.show()),
+                    ));
+                }
+                w
             }
         };
         let n = T::from_ratio(dim as i64, 1);
@@ -101,6 +115,16 @@ impl<T: Scalar> Ball<T> {
             Inertia::Gamma2(g) => in_range(g, &shell, BodyField::Gamma2, "2/n")?,
             Inertia::Lambda(l) => {
                 let r2 = radius.clone() * radius.clone();
+                if !r2.is_finite() || r2.is_zero() {
+                    return Err(err(
+                        BodyField::Radius,
+                        format!(
+                            "R^2 is out of range for {}, got R = {}; give gamma2 instead of lambda",
+                            T::NAME,
+                            radius.show()
+                        ),
+                    ));
+                }
                 let l = in_range(l, &(r2.clone() / n), BodyField::Lambda, "R^2/n")?;
                 two::<T>() * l / r2
             }
@@ -150,7 +174,11 @@ impl<T: Scalar> Ball<T> {
         if self.gamma2 < T::zero() || self.gamma2 > shell {
             return Err(err(
                 BodyField::Gamma2,
-                format!("must be in [0, 2/n] = [0, {shell}], got {}", self.gamma2),
+                format!(
+                    "must be in [0, 2/n] = [0, {}], got {}",
+                    shell.show(),
+                    self.gamma2.show()
+                ),
             ));
         }
         Ok(())

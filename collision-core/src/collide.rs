@@ -72,19 +72,22 @@ pub fn validate_parts<T: Scalar>(
     if let Some(x) = nu.iter().find(|x| !x.is_finite()) {
         return Err(InputError::new(
             Field::Normal,
-            format!("must be finite, got {x}"),
+            format!("must be finite, got {}", x.show()),
         ));
     }
     let norm2 = nu.iter().fold(T::zero(), |s, x| s + x.clone() * x.clone());
     if (norm2.clone() - T::one()).abs() > T::unit_tolerance() {
         let how = if T::EXACT {
-            "exactly"
+            "exactly".to_string()
         } else {
-            "within tolerance"
+            format!("| |nu|^2 - 1 | <= {}", T::unit_tolerance().show())
         };
         return Err(InputError::new(
             Field::Normal,
-            format!("must be a unit vector ({how}), got |nu|^2 = {norm2}"),
+            format!(
+                "must be a unit vector ({how}), got |nu|^2 = {}",
+                norm2.show()
+            ),
         ));
     }
     for (i, (ball, (spin, velocity))) in balls.iter().zip(states).enumerate() {
@@ -96,7 +99,7 @@ pub fn validate_parts<T: Scalar>(
             if let Some(x) = values.iter().find(|x| !x.is_finite()) {
                 return Err(InputError::new(
                     Field::Body(i, field),
-                    format!("must be finite, got {x}"),
+                    format!("must be finite, got {}", x.show()),
                 ));
             }
         }
@@ -120,7 +123,11 @@ pub fn validate_parts<T: Scalar>(
     if dn > T::zero() {
         return Err(InputError::new(
             Field::RelativeVelocity,
-            format!("the bodies are separating: (u_2 - u_1) . nu = {dn} > 0"),
+            format!(
+                "the bodies are separating: (u_2 - u_1) . nu = {} > 0 (a collision needs them \
+                 approaching or grazing; nu points from body 1 to body 2)",
+                dn.show()
+            ),
         ));
     }
     Ok(())

@@ -39,4 +39,4 @@ pub use collide::{collide, collide_unchecked, validate, validate_parts};
 pub use error::{BodyField, Field, InputError};
 pub use kernels::{Generated, Kernel};
 pub use scalar::{Exact, RefArith, Scalar};
-pub use state::{skew_pairs, BodyState, State2, State3, State4, State5, State6};
+pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};

@@ -5,14 +5,17 @@ use crate::Scalar;
 use nalgebra::{DMatrix, DVector};
 
 /// Row-reduce `m` in place to row echelon form (partial pivoting on the largest `|x|`);
-/// returns the pivot columns.
-fn echelon<T: Scalar>(m: &mut DMatrix<T>) -> Vec<usize> {
+/// returns the pivot columns, or `None` if a non-finite value (a float overflow) appears.
+fn echelon<T: Scalar>(m: &mut DMatrix<T>) -> Option<Vec<usize>> {
     let (rows, cols) = m.shape();
     let mut pivots = Vec::new();
     let mut r = 0;
     for c in 0..cols {
         if r == rows {
             break;
+        }
+        if (r..rows).any(|i| !m[(i, c)].is_finite()) {
+            return None;
         }
         let best = (r..rows)
             .filter(|&i| !m[(i, c)].is_zero())
@@ -37,18 +40,20 @@ fn echelon<T: Scalar>(m: &mut DMatrix<T>) -> Vec<usize> {
         pivots.push(c);
         r += 1;
     }
-    pivots
+    Some(pivots)
 }
 
-/// The rank of `m` (exact for rationals; for floats, the number of non-zero pivots).
-pub fn rank<T: Scalar>(m: &DMatrix<T>) -> usize {
-    echelon(&mut m.clone()).len()
+/// The rank of `m` (exact for rationals; for floats, the number of non-zero pivots), or
+/// `None` if a non-finite value appears.
+pub fn rank<T: Scalar>(m: &DMatrix<T>) -> Option<usize> {
+    echelon(&mut m.clone()).map(|p| p.len())
 }
 
-/// A basis of the null space `{x : m x = 0}` (columns), exact for rationals.
-pub fn nullspace<T: Scalar>(m: &DMatrix<T>) -> DMatrix<T> {
+/// A basis of the null space `{x : m x = 0}` (columns), exact for rationals; `None` if a
+/// non-finite value appears.
+pub fn nullspace<T: Scalar>(m: &DMatrix<T>) -> Option<DMatrix<T>> {
     let mut r = m.clone();
-    let pivots = echelon(&mut r);
+    let pivots = echelon(&mut r)?;
     let cols = m.ncols();
     // Back-substitute to reduced row echelon form.
     for (row, &c) in pivots.iter().enumerate().rev() {
@@ -75,10 +80,11 @@ pub fn nullspace<T: Scalar>(m: &DMatrix<T>) -> DMatrix<T> {
             basis[(c, j)] = -r[(row, f)].clone();
         }
     }
-    basis
+    Some(basis)
 }
 
-/// The solution of `a x = b` for square non-singular `a`, or `None` if `a` is singular.
+/// The solution of `a x = b` for square non-singular `a`, or `None` if `a` is singular (or,
+/// in floats, the elimination overflows).
 pub fn solve<T: Scalar>(a: &DMatrix<T>, b: &DVector<T>) -> Option<DVector<T>> {
     let n = a.nrows();
     assert_eq!(a.ncols(), n, "solve needs a square matrix");
@@ -89,7 +95,7 @@ pub fn solve<T: Scalar>(a: &DMatrix<T>, b: &DVector<T>) -> Option<DVector<T>> {
             b[i].clone()
         }
     });
-    if echelon(&mut aug) != (0..n).collect::<Vec<_>>() {
+    if echelon(&mut aug)? != (0..n).collect::<Vec<_>>() {
         return None;
     }
     let mut x = DVector::from_element(n, T::zero());
@@ -100,7 +106,7 @@ pub fn solve<T: Scalar>(a: &DMatrix<T>, b: &DVector<T>) -> Option<DVector<T>> {
         }
         x[i] = s / aug[(i, i)].clone();
     }
-    Some(x)
+    x.iter().all(Scalar::is_finite).then_some(x)
 }
 
 #[cfg(test)]
@@ -125,10 +131,19 @@ mod tests {
         assert_eq!(solve(&a, &b), Some(x));
         let singular = DMatrix::from_row_slice(2, 2, &[q(1), q(2), q(2), q(4)]);
         assert_eq!(solve(&singular, &DVector::from_vec(vec![q(1), q(1)])), None);
-        assert_eq!(rank(&singular), 1);
-        assert_eq!(rank(&a), 3);
-        let k = nullspace(&singular);
+        assert_eq!(rank(&singular), Some(1));
+        assert_eq!(rank(&a), Some(3));
+        let k = nullspace(&singular).unwrap();
         assert_eq!(k.ncols(), 1);
         assert!((&singular * &k).iter().all(|x| x.is_zero()));
+    }
+
+    #[test]
+    fn float_overflow_is_none_not_a_panic() {
+        let a = DMatrix::from_row_slice(2, 2, &[f64::NAN, 1.0, 1.0, 1.0]);
+        assert_eq!(solve(&a, &DVector::from_vec(vec![1.0, 1.0])), None);
+        // x_0 = 1e308 / 1e-308 overflows.
+        let tiny = DMatrix::from_row_slice(2, 2, &[1e-308, 0.0, 0.0, 1.0]);
+        assert_eq!(solve(&tiny, &DVector::from_vec(vec![1e308, 1.0])), None);
     }
 }

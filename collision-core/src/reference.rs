@@ -146,7 +146,17 @@ pub fn collide_coords<T: Scalar>(
     let mb = momentum_basis(nu, [&balls[0].radius, &balls[1].radius]);
     let gram = b.transpose() * &mb;
     let rhs = mb.transpose() * xi;
-    let a = solve(&gram, &rhs).expect("B^T M B is positive definite for valid inputs");
+    // B^T M B is positive definite for valid inputs; in floats the elimination can still
+    // overflow at extreme parameters.
+    let a = solve(&gram, &rhs).ok_or_else(|| {
+        InputError::new(
+            Field::Bodies,
+            format!(
+                "the reference's Gram solve failed in {} (overflow at extreme parameters); exact arithmetic computes it",
+                T::NAME
+            ),
+        )
+    })?;
     let two = T::one() + T::one();
     Ok(xi - b * a * two)
 }

@@ -68,6 +68,9 @@ pub trait Scalar:
     /// Allowed `| |nu|^2 - 1 |` for a contact normal: 0 for exact arithmetic, `2e-12` for
     /// `f64` (|nu| within 1e-12 of 1), `2e-6` for `f32` (about 16 ulps at 1).
     fn unit_tolerance() -> Self;
+    /// The value as written in messages: rationals as `p/q`, floats in Rust's shortest
+    /// round-trip form (`1e-300`, not 300 digits).
+    fn show(&self) -> String;
     /// Relative slack on upper bounds that inputs may exceed by their own rounding (a shell
     /// written as `R^2/n` in decimal): 0 exactly; `8 eps` in floats, the rounding of the
     /// few operations between the input and the bound.
@@ -76,6 +79,9 @@ pub trait Scalar:
 
 impl Scalar for f64 {
     const NAME: &'static str = "f64";
+    fn show(&self) -> String {
+        format!("{self:?}")
+    }
     const EXACT: bool = false;
     #[inline(always)]
     fn from_ratio(num: i64, den: i64) -> Self {
@@ -97,6 +103,9 @@ impl Scalar for f64 {
 
 impl Scalar for f32 {
     const NAME: &'static str = "f32";
+    fn show(&self) -> String {
+        format!("{self:?}")
+    }
     const EXACT: bool = false;
     #[inline(always)]
     fn from_ratio(num: i64, den: i64) -> Self {
@@ -118,6 +127,9 @@ impl Scalar for f32 {
 
 impl Scalar for Exact {
     const NAME: &'static str = "exact";
+    fn show(&self) -> String {
+        self.to_string()
+    }
     const EXACT: bool = true;
     fn from_ratio(num: i64, den: i64) -> Self {
         BigRational::new(BigInt::from(num), BigInt::from(den))

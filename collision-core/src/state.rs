@@ -25,6 +25,50 @@ pub fn skew_pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
     (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
 }
 
+/// The compact entries `U_ij`, `i < j`, of a full `n x n` angular velocity matrix (rows of
+/// any slice type), which must be skew: exactly in exact arithmetic; in floats
+/// `|U_ij + U_ji| <= tol max|U|` with `tol` = [`Scalar::unit_tolerance`] / 2 (the skew part
+/// `(U - U^T)/2` is kept). Errors name `angular_velocity` of body `body` (0-based).
+pub fn skew_entries<T: Scalar, R: AsRef<[T]>>(
+    body: usize,
+    matrix: &[R],
+) -> Result<Vec<T>, InputError> {
+    let n = matrix.len();
+    let field = Field::Body(body, BodyField::AngularVelocity);
+    let at = |i: usize, j: usize| &matrix[i].as_ref()[j];
+    if let Some(i) = (0..n).find(|&i| matrix[i].as_ref().len() != n) {
+        return Err(InputError::new(
+            field,
+            format!(
+                "row {i} has {} entries, expected {n}",
+                matrix[i].as_ref().len()
+            ),
+        ));
+    }
+    let scale = matrix
+        .iter()
+        .flat_map(|r| r.as_ref())
+        .fold(T::zero(), |m, x| if x.abs() > m { x.abs() } else { m });
+    let tol = scale * T::unit_tolerance() / two::<T>();
+    if let Some(i) = (0..n).find(|&i| at(i, i).abs() > tol) {
+        return Err(InputError::new(
+            field,
+            format!("not skew: diagonal entry ({i},{i}) is not 0"),
+        ));
+    }
+    if let Some((i, j)) =
+        skew_pairs(n).find(|&(i, j)| (at(i, j).clone() + at(j, i).clone()).abs() > tol)
+    {
+        return Err(InputError::new(
+            field,
+            format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
+        ));
+    }
+    Ok(skew_pairs(n)
+        .map(|(i, j)| (at(i, j).clone() - at(j, i).clone()) / two::<T>())
+        .collect())
+}
+
 impl<T: Scalar, const N: usize, const S: usize> BodyState<T, N, S> {
     /// The state at rest.
     pub fn zero() -> Self {
@@ -43,33 +87,10 @@ impl<T: Scalar, const N: usize, const S: usize> BodyState<T, N, S> {
         velocity: [T; N],
     ) -> Result<Self, InputError> {
         assert_eq!(S, N * (N - 1) / 2, "S must be N(N-1)/2");
-        let field = Field::Body(body, BodyField::AngularVelocity);
-        let scale = matrix
-            .iter()
-            .flatten()
-            .fold(T::zero(), |m, x| if x.abs() > m { x.abs() } else { m });
-        let tol = scale * T::unit_tolerance() / two::<T>();
-        for (i, row) in matrix.iter().enumerate() {
-            if row[i].abs() > tol {
-                return Err(InputError::new(
-                    field,
-                    format!("not skew: diagonal entry ({i},{i}) is not 0"),
-                ));
-            }
-        }
-        for (i, j) in skew_pairs(N) {
-            if (matrix[i][j].clone() + matrix[j][i].clone()).abs() > tol {
-                return Err(InputError::new(
-                    field,
-                    format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
-                ));
-            }
-        }
-        let mut pairs = skew_pairs(N);
-        let spin = std::array::from_fn(|_| {
-            let (i, j) = pairs.next().expect("S = N(N-1)/2 pairs");
-            (matrix[i][j].clone() - matrix[j][i].clone()) / two::<T>()
-        });
+        let entries = skew_entries(body, matrix)?;
+        let spin = entries
+            .try_into()
+            .unwrap_or_else(|_| unreachable!("N(N-1)/2 entries"));
         Ok(Self { spin, velocity })
     }
 

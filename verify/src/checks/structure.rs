@@ -76,13 +76,14 @@ pub fn check_at<const N: usize, const S: usize>(
             slip[(k - S, j)] = sign;
         }
     }
-    let g = nullspace(&slip);
+    let overflow = || "non-finite value in exact arithmetic".to_string();
+    let g = nullspace(&slip).ok_or_else(overflow)?;
 
     // Impulse space: velocity changes of p = e_1..e_n; Ebar: p orthogonal to nu.
     let b_full = impulse_basis(&p.nu, [&p.balls[0], &p.balls[1]]).map_err(|e| e.to_string())?;
     let b = DMatrix::from_fn(dim, N, |i, k| b_full[(coords[i], k)].clone());
     let nu = DMatrix::from_row_slice(1, N, &p.nu);
-    let ebar = &b * nullspace(&nu);
+    let ebar = &b * nullspace(&nu).ok_or_else(overflow)?;
     let n_dir = &b * DMatrix::from_column_slice(N, 1, &p.nu);
     // n_q = n_dir / sqrt(w_1 + w_2): its direction in coordinates is
     // (0, -w_1 nu, 0, w_2 nu); it is unit iff |n_dir|^2 = w_1 + w_2.
@@ -126,11 +127,12 @@ pub fn check_at<const N: usize, const S: usize>(
             n_dir[(i, 0)].clone()
         }
     });
+    let rank = |m: &DMatrix<Exact>| rank(m).ok_or_else(overflow);
     Ok(Structure {
-        dim_g: rank(&g),
-        dim_ebar: rank(&ebar),
-        dim_e: rank(&b),
-        span: rank(&all),
+        dim_g: rank(&g)?,
+        dim_ebar: rank(&ebar)?,
+        dim_e: rank(&b)?,
+        span: rank(&all)?,
         space: dim,
     })
 }

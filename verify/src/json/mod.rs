@@ -9,11 +9,9 @@
 //! - [`output`]: the output schema.
 //! - [`run`]: a whole input (one case or an array), in and out.
 //! - [`error`]: the one-line error of a case, naming the field.
-//! - [`guard`]: a panic in collision-core's reference turned into an error.
 
 pub mod case;
 pub mod error;
-pub mod guard;
 pub mod number;
 pub mod output;
 pub mod run;

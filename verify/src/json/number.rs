@@ -30,8 +30,6 @@ const QUOTE_CHARS: usize = 40;
 pub trait InputScalar: Scalar {
     /// The number `text` spells (see the module documentation); the error is a message.
     fn parse_number(text: &str) -> Result<Self, String>;
-    /// The value as written in error messages (`1/3`; `0.3333333333333333`).
-    fn show(&self) -> String;
     /// The value as JSON output; `None` if it is not finite.
     fn to_json(&self) -> Option<Value>;
 }
@@ -39,10 +37,6 @@ pub trait InputScalar: Scalar {
 impl InputScalar for Exact {
     fn parse_number(text: &str) -> Result<Self, String> {
         exact(&scan(text)?, text)
-    }
-
-    fn show(&self) -> String {
-        self.to_string()
     }
 
     /// A reduced rational as a string: `"-3/5"`, `"2"`.
@@ -67,10 +61,6 @@ impl InputScalar for f64 {
                 quote(text, QUOTE_CHARS)
             ))
         }
-    }
-
-    fn show(&self) -> String {
-        format!("{self:?}")
     }
 
     /// Rust's shortest round-trip form (`{:?}`): `2.0`, `-0.0`, `0.1`, `1e-300`, `1.5e300`

@@ -2,18 +2,16 @@
 //! (`collision_core::collide`, the same generic code for `f64` and exact rationals), the
 //! general-n reference (`collision_core::reference::collide_coords`) above.
 //!
-//! collision-core does every check; the checks whose messages carry numbers (ranges, the
-//! normal's length, separating bodies) are made here first, so that the numbers print as
-//! the user wrote them (`1/3`) rather than as their `Debug` form.
+//! collision-core does every check and writes every message; this module only shapes the
+//! case into its types.
 
 use crate::json::case::{BodyInput, Case, Spin};
 use crate::json::error::CaseError;
-use crate::json::guard::quietly;
 use crate::json::number::InputScalar;
 use collision_core::reference::{collide_coords, state_len};
 use collision_core::{
-    collide, skew_pairs, validate_parts, Ball, BodyState, Field, Generated, Inertia, Kernel, Mass,
-    RefArith, State2, State3,
+    collide, skew_entries, validate_parts, Ball, BodyState, Generated, Kernel, RefArith, State2,
+    State3,
 };
 use nalgebra::DVector;
 
@@ -46,63 +44,8 @@ where
     by_dim!(2 1, 3 3, 4 6, 5 10, 6 15)
 }
 
-/// A ball, after the range checks of `Ball::new` made here with readable numbers.
+/// A validated ball (collision-core's checks and messages).
 fn ball<T: InputScalar>(dim: usize, body: &BodyInput<T>, i: usize) -> Result<Ball<T>, CaseError> {
-    let field = |f: &str| format!("bodies[{i}].{f}");
-    if body.radius <= T::zero() {
-        return Err(CaseError::new(
-            field("radius"),
-            format!("must be positive, got {}", body.radius.show()),
-        ));
-    }
-    if let Mass::Finite(m) = &body.mass {
-        if *m <= T::zero() {
-            return Err(CaseError::new(
-                field("mass"),
-                format!("must be positive (or \"inf\"), got {}", m.show()),
-            ));
-        }
-        if !(T::one() / m.clone()).is_finite() {
-            return Err(CaseError::new(
-                field("mass"),
-                format!("is too small for f64: 1/mass overflows, got {}", m.show()),
-            ));
-        }
-    }
-    let n = T::from_ratio(dim as i64, 1);
-    let two = T::one() + T::one();
-    // The bound as Ball::new computes it, with the same slack for rounded floats.
-    let check = |x: &T, bound: T, name: &str, what: &str| {
-        if *x < T::zero() || *x > bound.clone() * (T::one() + T::rounding_slack()) {
-            Err(CaseError::new(
-                field(name),
-                format!(
-                    "must be in [0, {what}] = [0, {}], got {}",
-                    bound.show(),
-                    x.show()
-                ),
-            ))
-        } else {
-            Ok(())
-        }
-    };
-    match &body.inertia {
-        Inertia::Lambda(l) => {
-            let r2 = body.radius.clone() * body.radius.clone();
-            if !r2.is_finite() || r2.is_zero() {
-                return Err(CaseError::new(
-                    field("radius"),
-                    format!(
-                        "R^2 is out of the f64 range, got R = {}; give gamma2 instead of lambda",
-                        body.radius.show()
-                    ),
-                ));
-            }
-            check(l, r2 / n, "lambda", "R^2/n")?
-        }
-        Inertia::Gamma2(g) => check(g, two / n, "gamma2", "2/n")?,
-        Inertia::Uniform | Inertia::Shell => {}
-    }
     Ball::new(
         dim,
         body.mass.clone(),
@@ -112,45 +55,12 @@ fn ball<T: InputScalar>(dim: usize, body: &BodyInput<T>, i: usize) -> Result<Bal
     .map_err(|e| e.at_body(i).into())
 }
 
-/// `collision_core::validate_parts`, with the normal's length and the separating velocity
-/// printed readably.
 fn validate<T: InputScalar>(
     nu: &[T],
     balls: [&Ball<T>; 2],
     states: [(&[T], &[T]); 2],
 ) -> Result<(), CaseError> {
-    validate_parts(nu, balls, states).map_err(|e| match e.field {
-        Field::Normal => {
-            let norm2 = nu.iter().fold(T::zero(), |s, x| s + x.clone() * x.clone());
-            let how = if T::EXACT {
-                "exactly".to_string()
-            } else {
-                format!("| |nu|^2 - 1 | <= {}", T::unit_tolerance().show())
-            };
-            CaseError::new(
-                e.field.to_string(),
-                format!(
-                    "must be a unit vector ({how}), got |nu|^2 = {}",
-                    norm2.show()
-                ),
-            )
-        }
-        Field::RelativeVelocity => {
-            let [(_, u1), (_, u2)] = states;
-            let dn = (0..nu.len()).fold(T::zero(), |s, k| {
-                s + (u2[k].clone() - u1[k].clone()) * nu[k].clone()
-            });
-            CaseError::new(
-                e.field.to_string(),
-                format!(
-                    "the bodies are separating: (u_2 - u_1) . nu = {} > 0 (a collision needs \
-                     them approaching or grazing; nu points from bodies[0] to bodies[1])",
-                    dn.show()
-                ),
-            )
-        }
-        _ => e.into(),
-    })
+    validate_parts(nu, balls, states).map_err(CaseError::from)
 }
 
 fn array<T, const K: usize>(v: Vec<T>) -> Result<[T; K], CaseError> {
@@ -219,45 +129,19 @@ where
     }))
 }
 
-/// The compact entries of a full `n x n` matrix, checked skew as `BodyState::from_matrix`
-/// does: exactly in exact arithmetic, within `1e-12 max|U|` in floats (the skew part is kept).
+/// The compact entries of a full `n x n` angular velocity (collision-core's skew check).
 fn compact_spin<T: InputScalar>(
     body: &BodyInput<T>,
     i: usize,
     n: usize,
 ) -> Result<Vec<T>, CaseError> {
-    let field = format!("bodies[{i}].angular_velocity");
     let Spin::Matrix(m) = &body.spin else {
         return Err(CaseError::new(
-            field,
+            format!("bodies[{i}].angular_velocity"),
             format!("expected a {n} x {n} matrix"),
         ));
     };
-    let scale = m
-        .iter()
-        .flatten()
-        .fold(T::zero(), |s, x| if x.abs() > s { x.abs() } else { s });
-    let two = T::one() + T::one();
-    let tol = scale * T::unit_tolerance() / two.clone();
-    for (r, row) in m.iter().enumerate() {
-        if row[r].abs() > tol {
-            return Err(CaseError::new(
-                field,
-                format!("not skew: diagonal entry ({r},{r}) is not 0"),
-            ));
-        }
-        for (c, x) in row.iter().enumerate().skip(r + 1) {
-            if (x.clone() + m[c][r].clone()).abs() > tol {
-                return Err(CaseError::new(
-                    field,
-                    format!("not skew: entries ({r},{c}) and ({c},{r}) are not opposite"),
-                ));
-            }
-        }
-    }
-    Ok(skew_pairs(n)
-        .map(|(r, c)| (m[r][c].clone() - m[c][r].clone()) / two.clone())
-        .collect())
+    Ok(skew_entries(i, m)?)
 }
 
 /// `n > 6`: the general-n reference.
@@ -284,23 +168,11 @@ fn solve_reference<T: InputScalar>(
         state_len(n),
         (0..2).flat_map(|b| spins[b].iter().chain(velocities[b]).cloned()),
     );
-    let out = quietly(|| collide_coords(&case.normal, balls, &xi))
-        .ok_or_else(|| {
-            CaseError::new(
-                "",
-                if T::EXACT {
-                    "internal error: the general-n reference failed"
-                } else {
-                    "the general-n reference (dims above 6) failed in f64: its linear solve \
-                     overflowed; the inputs are too extreme for floats, --exact computes it"
-                },
-            )
-        })?
-        .map_err(|e| {
-            let mut e = CaseError::from(e);
-            e.message += " (dims above 6 run the general-n reference)";
-            e
-        })?;
+    let out = collide_coords(&case.normal, balls, &xi).map_err(|e| {
+        let mut e = CaseError::from(e);
+        e.message += " (dims above 6 run the general-n reference)";
+        e
+    })?;
     let s = spins[0].len();
     let part = |b: usize| BodyOutput {
         spin: out.as_slice()[b * (s + n)..b * (s + n) + s].to_vec(),
