@@ -36,7 +36,7 @@ fn kernels_equal_reference<const N: usize, const S: usize>()
 where
     Generated: Kernel<Exact, N, S>,
 {
-    let mut rng = Rng(N as u64);
+    let mut rng = Rng::new(N as u64);
     for fixed in [false, true] {
         for _ in 0..POINTS {
             let (nu, balls, states) = case::<N, S>(&mut rng, fixed);
@@ -56,7 +56,7 @@ fn conservation_and_involution<const N: usize, const S: usize>()
 where
     Generated: Kernel<Exact, N, S>,
 {
-    let mut rng = Rng(100 + N as u64);
+    let mut rng = Rng::new(100 + N as u64);
     for _ in 0..POINTS {
         let (nu, balls, states) = case::<N, S>(&mut rng, false);
         let b = [&balls[0], &balls[1]];

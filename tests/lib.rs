@@ -3,22 +3,20 @@
 
 use collision_core::{skew_pairs, Ball, BodyState, Exact, Scalar};
 use num_traits::{One, Zero};
+use rand::{Rng as _, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
-/// SplitMix64: a tiny deterministic generator, so that every exact test is reproducible.
-pub struct Rng(pub u64);
+/// A seeded ChaCha8 stream, so that every exact test is reproducible.
+pub struct Rng(ChaCha8Rng);
 
 impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+    pub fn new(seed: u64) -> Self {
+        Rng(ChaCha8Rng::seed_from_u64(seed))
     }
 
     /// Uniform integer in `lo..=hi`.
     pub fn int(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next_u64() % (hi - lo + 1) as u64) as i64
+        self.0.random_range(lo..=hi)
     }
 
     /// `p/q` with `p` in `lo..=hi`, `q` in `1..=den`.

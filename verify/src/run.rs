@@ -108,7 +108,7 @@ where
             opts,
             progress,
         ));
-        let mut rng = Rng(opts.seed ^ (N as u64) << 8);
+        let mut rng = Rng::new(opts.seed ^ (N as u64) << 8);
         let mut decomposition = Ok(());
         let mut dimensions = Ok(());
         let ((), seconds) = timed(|| {

@@ -12,25 +12,28 @@
 use collision_core::{Ball, BodyState, Exact, Scalar};
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
+use rand::{Rng as _, RngCore, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
 /// `|S|`.
 pub const SET_SIZE: u64 = 1 << 20;
 
-/// SplitMix64: deterministic, seeded, so reports are reproducible.
-pub struct Rng(pub u64);
+/// A seeded ChaCha8 stream (reproducible across platforms and crate versions), so reports
+/// are reproducible.
+pub struct Rng(ChaCha8Rng);
 
 impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(ChaCha8Rng::seed_from_u64(seed))
+    }
+
     pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
 
     /// Uniform in `S`.
     pub fn element(&mut self) -> Exact {
-        Exact::from_integer(BigInt::from(1 + self.next_u64() % SET_SIZE))
+        Exact::from_integer(BigInt::from(self.0.random_range(1..=SET_SIZE)))
     }
 }
 

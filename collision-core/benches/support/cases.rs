@@ -3,34 +3,11 @@
 //! approaching (`(u_2 - u_1) . nu` in [-1, -0.1]).
 
 use collision_core::{Ball, BodyState};
+use rand::{Rng as _, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
-/// SplitMix64 (Steele, Lea, Flood 2014): a tiny, fixed, portable generator, so the batch is
-/// the same on every machine and run.
-pub struct SplitMix64(u64);
-
-impl SplitMix64 {
-    pub fn new(seed: u64) -> Self {
-        Self(seed)
-    }
-
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1), 53 random bits.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
+/// A seeded ChaCha8 stream: the batch is the same on every machine and run.
+pub type Rng = ChaCha8Rng;
 
 /// One collision: normal, balls, states.
 pub struct Case<const N: usize, const S: usize> {
@@ -39,27 +16,27 @@ pub struct Case<const N: usize, const S: usize> {
     pub states: [BodyState<f64, N, S>; 2],
 }
 
-fn ball(rng: &mut SplitMix64, n: usize) -> Ball<f64> {
-    let mass = rng.range(0.5, 2.0);
+fn ball(rng: &mut Rng, n: usize) -> Ball<f64> {
+    let mass = rng.random_range(0.5..2.0);
     Ball {
         inv_mass: 1.0 / mass,
-        radius: rng.range(0.5, 2.0),
+        radius: rng.random_range(0.5..2.0),
         // (1 - [0, 1)) * 2/n is in (0, 2/n]; 2/n (a shell) is possible.
-        gamma2: (1.0 - rng.unit()) * (2.0 / n as f64),
+        gamma2: (1.0 - rng.random::<f64>()) * (2.0 / n as f64),
     }
 }
 
-fn state<const N: usize, const S: usize>(rng: &mut SplitMix64) -> BodyState<f64, N, S> {
+fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<f64, N, S> {
     BodyState {
-        spin: std::array::from_fn(|_| rng.range(-1.0, 1.0)),
-        velocity: std::array::from_fn(|_| rng.range(-1.0, 1.0)),
+        spin: std::array::from_fn(|_| rng.random_range(-1.0..1.0)),
+        velocity: std::array::from_fn(|_| rng.random_range(-1.0..1.0)),
     }
 }
 
 /// A unit vector, uniform on the sphere (rejection from the cube).
-fn normal<const N: usize>(rng: &mut SplitMix64) -> [f64; N] {
+fn normal<const N: usize>(rng: &mut Rng) -> [f64; N] {
     loop {
-        let v: [f64; N] = std::array::from_fn(|_| rng.range(-1.0, 1.0));
+        let v: [f64; N] = std::array::from_fn(|_| rng.random_range(-1.0..1.0));
         let norm2: f64 = v.iter().map(|x| x * x).sum();
         if (0.01..=1.0).contains(&norm2) {
             let norm = norm2.sqrt();
@@ -70,7 +47,7 @@ fn normal<const N: usize>(rng: &mut SplitMix64) -> [f64; N] {
 
 /// One approaching case: if `(u_2 - u_1) . nu` is above -0.1, body 2's normal velocity is
 /// replaced so that it is uniform in [-1, -0.1].
-pub fn case<const N: usize, const S: usize>(rng: &mut SplitMix64) -> Case<N, S> {
+pub fn case<const N: usize, const S: usize>(rng: &mut Rng) -> Case<N, S> {
     let nu = normal::<N>(rng);
     let balls = [ball(rng, N), ball(rng, N)];
     let mut states = [state::<N, S>(rng), state::<N, S>(rng)];
@@ -78,7 +55,7 @@ pub fn case<const N: usize, const S: usize>(rng: &mut SplitMix64) -> Case<N, S> 
         .map(|a| (states[1].velocity[a] - states[0].velocity[a]) * nu[a])
         .sum();
     if dn > -0.1 {
-        let target = rng.range(-1.0, -0.1);
+        let target = rng.random_range(-1.0..-0.1);
         for (v, n) in states[1].velocity.iter_mut().zip(&nu) {
             *v += (target - dn) * n;
         }
@@ -88,6 +65,6 @@ pub fn case<const N: usize, const S: usize>(rng: &mut SplitMix64) -> Case<N, S> 
 
 /// `len` cases from `seed`.
 pub fn batch<const N: usize, const S: usize>(seed: u64, len: usize) -> Vec<Case<N, S>> {
-    let mut rng = SplitMix64::new(seed);
+    let mut rng = Rng::seed_from_u64(seed);
     (0..len).map(|_| case(&mut rng)).collect()
 }

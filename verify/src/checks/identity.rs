@@ -295,7 +295,7 @@ where
     Generated: Kernel<Exact, N, S>,
 {
     let free = generated::<N, S>(Variant::Free);
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     for k in 0..points {
         let p = point::<N, S>(&mut rng, variant == Variant::Fixed);
         check_at(kernel, free.as_ref(), variant, identity, &p)

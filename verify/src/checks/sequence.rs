@@ -39,10 +39,10 @@ pub fn check<const N: usize, const S: usize>(limit: Limit, seed: u64) -> Result<
 where
     Generated: Kernel<Exact, N, S>,
 {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let mut small =
         |lo: u64, hi: u64| Exact::from_ratio((lo + rng.next_u64() % (hi - lo + 1)) as i64, 4);
-    let nu = crate::sample::normal::<N>(&mut Rng(seed + 1));
+    let nu = crate::sample::normal::<N>(&mut Rng::new(seed + 1));
     let mut ball = || Ball {
         inv_mass: small(1, 8),
         radius: small(1, 8),
