@@ -1,7 +1,7 @@
 //! Shared helpers of the cross-crate tests: deterministic exact sampling of valid collision
 //! inputs, and the physical quantities the tests compare.
 
-use collision_core::{skew_pairs, Ball, BodyState, Exact, Scalar};
+use collision_core::{skew_pairs, stereographic_normal, Ball, BodyState, Exact, Scalar};
 use num_traits::{One, Zero};
 use rand::{Rng as _, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -25,19 +25,10 @@ impl Rng {
     }
 }
 
-/// An exactly unit normal: the inverse stereographic projection of a rational point `y`,
-/// `nu = (2 y, |y|^2 - 1) / (|y|^2 + 1)`.
+/// An exactly unit normal: the inverse stereographic projection of a rational point.
 pub fn unit_normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
     let y: Vec<Exact> = (0..N - 1).map(|_| rng.ratio(-5, 5, 4)).collect();
-    let y2: Exact = y.iter().map(|x| x * x).sum();
-    let den = &y2 + Exact::one();
-    std::array::from_fn(|k| {
-        if k + 1 < N {
-            Exact::from_ratio(2, 1) * &y[k] / &den
-        } else {
-            (&y2 - Exact::one()) / &den
-        }
-    })
+    stereographic_normal(&y).try_into().expect("N components")
 }
 
 /// A valid movable ball: mass in [1/4, 4], radius in [1/3, 3], gamma2 in (0, 2/n].

@@ -9,9 +9,9 @@
 //! The identities are rational-function identities, so physical ranges (`gamma2 <= 2/n`,
 //! approaching bodies) do not matter to them.
 
-use collision_core::{Ball, BodyState, Exact, Scalar};
+use collision_core::{stereographic_normal, Ball, BodyState, Exact};
 use num_bigint::BigInt;
-use num_traits::{One, Zero};
+use num_traits::Zero;
 use rand::{Rng as _, RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -47,15 +47,7 @@ pub struct Point<const N: usize, const S: usize> {
 
 pub fn normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
     let y: Vec<Exact> = (0..N - 1).map(|_| rng.element()).collect();
-    let y2: Exact = y.iter().map(|x| x * x).sum();
-    let den = &y2 + Exact::one();
-    std::array::from_fn(|k| {
-        if k + 1 < N {
-            Exact::from_ratio(2, 1) * &y[k] / &den
-        } else {
-            (&y2 - Exact::one()) / &den
-        }
-    })
+    stereographic_normal(&y).try_into().expect("N components")
 }
 
 pub fn point<const N: usize, const S: usize>(rng: &mut Rng, fixed: bool) -> Point<N, S> {
