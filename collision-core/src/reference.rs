@@ -101,7 +101,7 @@ pub fn impulse_basis<T: Scalar>(nu: &[T], balls: [&Ball<T>; 2]) -> Result<DMatri
         if b.gamma2.is_zero() {
             return Err(InputError::new(
                 Field::Body(i, BodyField::Lambda),
-                "the reference needs lambda > 0 for a movable body",
+                "the general-n reference (used for n > 6) needs lambda > 0 for a movable body",
             ));
         }
         // R w / (2 lambda) = w / (R gamma^2)
@@ -152,7 +152,7 @@ pub fn collide_coords<T: Scalar>(
         InputError::new(
             Field::Bodies,
             format!(
-                "the reference's Gram solve failed in {} (overflow at extreme parameters); exact arithmetic computes it",
+                "the general-n reference (used for n > 6) failed in {}: its Gram solve overflowed at these extreme parameters; exact arithmetic computes it",
                 T::NAME
             ),
         )

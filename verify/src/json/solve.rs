@@ -10,8 +10,7 @@ use crate::json::error::CaseError;
 use crate::json::number::InputScalar;
 use collision_core::reference::{collide_coords, state_len};
 use collision_core::{
-    collide, skew_entries, validate_parts, Ball, BodyState, Generated, Kernel, RefArith, State2,
-    State3,
+    collide, skew_entries, Ball, BodyState, Generated, Kernel, RefArith, State2, State3,
 };
 use nalgebra::DVector;
 
@@ -53,14 +52,6 @@ fn ball<T: InputScalar>(dim: usize, body: &BodyInput<T>, i: usize) -> Result<Bal
         body.inertia.clone(),
     )
     .map_err(|e| e.at_body(i).into())
-}
-
-fn validate<T: InputScalar>(
-    nu: &[T],
-    balls: [&Ball<T>; 2],
-    states: [(&[T], &[T]); 2],
-) -> Result<(), CaseError> {
-    validate_parts(nu, balls, states).map_err(CaseError::from)
 }
 
 fn array<T, const K: usize>(v: Vec<T>) -> Result<[T; K], CaseError> {
@@ -114,13 +105,6 @@ where
 {
     let states: [BodyState<T, N, S>; 2] = [state(&case.bodies[0], 0)?, state(&case.bodies[1], 1)?];
     let balls = [&balls[0], &balls[1]];
-    validate(
-        &case.normal,
-        balls,
-        states
-            .each_ref()
-            .map(|s| (s.spin.as_slice(), s.velocity.as_slice())),
-    )?;
     let nu: [T; N] = array(case.normal.clone())?;
     let out = collide(&nu, balls, [&states[0], &states[1]])?;
     Ok(out.map(|s| BodyOutput {
@@ -156,23 +140,11 @@ fn solve_reference<T: InputScalar>(
     ];
     let velocities = [&case.bodies[0].velocity, &case.bodies[1].velocity];
     let balls = [&balls[0], &balls[1]];
-    validate(
-        &case.normal,
-        balls,
-        [
-            (spins[0].as_slice(), velocities[0].as_slice()),
-            (spins[1].as_slice(), velocities[1].as_slice()),
-        ],
-    )?;
     let xi = DVector::from_iterator(
         state_len(n),
         (0..2).flat_map(|b| spins[b].iter().chain(velocities[b]).cloned()),
     );
-    let out = collide_coords(&case.normal, balls, &xi).map_err(|e| {
-        let mut e = CaseError::from(e);
-        e.message += " (dims above 6 run the general-n reference)";
-        e
-    })?;
+    let out = collide_coords(&case.normal, balls, &xi)?;
     let s = spins[0].len();
     let part = |b: usize| BodyOutput {
         spin: out.as_slice()[b * (s + n)..b * (s + n) + s].to_vec(),
