@@ -44,6 +44,10 @@ pub enum Node {
     Neg(Id),
 }
 
+/// A hook of [`Graph::eval_all`]: a replacement value for node `id`, given the values of the
+/// nodes before it, or `None` to evaluate the node as built.
+pub type Rewrite<'a> = dyn Fn(Id, &Node, &[BigRational]) -> Option<BigRational> + 'a;
+
 /// The expression DAG. Nodes are append-only; see the module docs for the rewrites.
 #[derive(Default, Debug)]
 pub struct Graph {
@@ -247,30 +251,40 @@ impl Graph {
         self.sum(products)
     }
 
-    /// Evaluate a node exactly, given exact values for the inputs (used by the generator's
-    /// own tests to compare a built DAG with an independent computation).
-    pub fn eval(&self, id: Id, inputs: &dyn Fn(&str) -> BigRational) -> BigRational {
-        let mut values: Vec<Option<BigRational>> = vec![None; id.index() + 1];
-        for i in 0..=id.index() {
-            let v = match &self.nodes[i] {
-                Node::Input(Input(name)) => inputs(name),
-                Node::Const(c) => c.clone(),
-                Node::Add(a, b) => val(&values, *a) + val(&values, *b),
-                Node::Sub(a, b) => val(&values, *a) - val(&values, *b),
-                Node::Mul(a, b) => val(&values, *a) * val(&values, *b),
-                Node::Div(a, b) => val(&values, *a) / val(&values, *b),
-                Node::Neg(a) => -val(&values, *a),
+    /// Exact values of every node, in id order. `input` gives each input's value; `rewrite`
+    /// may replace a node's value, given the values of the nodes before it (the verifier
+    /// corrupts kernels with it on purpose; `|_, _, _| None` evaluates the DAG as built).
+    /// Errors name a missing input or a division by zero.
+    pub fn eval_all(
+        &self,
+        input: &dyn Fn(&str) -> Option<BigRational>,
+        rewrite: &Rewrite<'_>,
+    ) -> Result<Vec<BigRational>, String> {
+        let mut values: Vec<BigRational> = Vec::with_capacity(self.nodes.len());
+        for (i, node) in self.nodes.iter().enumerate() {
+            let id = Id(i as u32);
+            let v = match rewrite(id, node, &values) {
+                Some(v) => v,
+                None => {
+                    let at = |x: &Id| &values[x.index()];
+                    match node {
+                        Node::Input(Input(name)) => {
+                            input(name).ok_or_else(|| format!("no value for input {name}"))?
+                        }
+                        Node::Const(c) => c.clone(),
+                        Node::Add(a, b) => at(a) + at(b),
+                        Node::Sub(a, b) => at(a) - at(b),
+                        Node::Mul(a, b) => at(a) * at(b),
+                        Node::Div(_, b) if at(b).is_zero() => return Err("division by zero".into()),
+                        Node::Div(a, b) => at(a) / at(b),
+                        Node::Neg(a) => -at(a),
+                    }
+                }
             };
-            values[i] = Some(v);
+            values.push(v);
         }
-        values[id.index()].take().expect("evaluated above")
+        Ok(values)
     }
-}
-
-fn val(values: &[Option<BigRational>], id: Id) -> &BigRational {
-    values[id.index()]
-        .as_ref()
-        .expect("operands precede their node")
 }
 
 #[cfg(test)]
@@ -326,10 +340,24 @@ mod tests {
         let (x, y) = (g.input("x"), g.input("y"));
         let q = g.div(x, y);
         let e = g.sub(q, y);
-        let v = g.eval(e, &|name| match name {
-            "x" => BigRational::from_integer(3.into()),
-            _ => BigRational::from_integer(2.into()),
-        });
-        assert_eq!(v, BigRational::new((-1).into(), 2.into()));
+        let v = g
+            .eval_all(
+                &|name| match name {
+                    "x" => Some(BigRational::from_integer(3.into())),
+                    _ => Some(BigRational::from_integer(2.into())),
+                },
+                &|_, _, _| None,
+            )
+            .unwrap();
+        assert_eq!(v[e.index()], BigRational::new((-1).into(), 2.into()));
+        let y_zero = |name: &str| Some(BigRational::from_integer((name == "x").into()));
+        assert_eq!(
+            g.eval_all(&y_zero, &|_, _, _| None),
+            Err("division by zero".into())
+        );
+        assert_eq!(
+            g.eval_all(&|_| None, &|_, _, _| None),
+            Err("no value for input x".into())
+        );
     }
 }

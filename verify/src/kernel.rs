@@ -93,38 +93,28 @@ pub fn mutated<const N: usize, const S: usize>(
     Box::new(move |nu, balls, states| {
         let inputs = input_values(nu, balls, states);
         let g = &kernel.graph;
-        let mut values: Vec<Exact> = Vec::with_capacity(g.len());
-        let val = |values: &Vec<Exact>, id: Id| values[id.0 as usize].clone();
-        for index in 0..g.len() {
-            let id = Id(index as u32);
+        let two = Exact::from_integer(2.into());
+        let corrupt = |id: Id, node: &Node, values: &[Exact]| -> Option<Exact> {
             let label = g.label_of(id);
-            let v = match g.node(id) {
-                Node::Input(input) => inputs[&input.0].clone(),
-                Node::Const(c)
-                    if mutation == Some(Mutation::WrongConstant)
-                        && *c == Exact::from_integer(2.into()) =>
-                {
-                    Exact::from_integer(3.into())
+            match (mutation?, node) {
+                (Mutation::WrongConstant, Node::Const(c)) if *c == two => {
+                    Some(Exact::from_integer(3.into()))
                 }
-                Node::Const(c) => c.clone(),
-                Node::Add(a, b)
-                    if mutation == Some(Mutation::FlippedSign) && label == Some("dn") =>
-                {
-                    val(&values, *a) - val(&values, *b)
+                (Mutation::FlippedSign, Node::Add(a, b)) if label == Some("dn") => {
+                    Some(&values[a.0 as usize] - &values[b.0 as usize])
                 }
-                Node::Add(a, _)
-                    if mutation == Some(Mutation::DroppedTerm) && label == Some("c_0") =>
-                {
-                    val(&values, *a)
+                (Mutation::DroppedTerm, Node::Add(a, _)) if label == Some("c_0") => {
+                    Some(values[a.0 as usize].clone())
                 }
-                Node::Add(a, b) => val(&values, *a) + val(&values, *b),
-                Node::Sub(a, b) => val(&values, *a) - val(&values, *b),
-                Node::Mul(a, b) => val(&values, *a) * val(&values, *b),
-                Node::Div(a, b) => val(&values, *a) / val(&values, *b),
-                Node::Neg(a) => -val(&values, *a),
-            };
-            values.push(v);
-        }
+                _ => None,
+            }
+        };
+        let values = g
+            .eval_all(&|name| inputs.get(name).cloned(), &corrupt)
+            .expect(
+                "every input is given and the kernel's denominators are positive at valid points",
+            );
+        let val = |values: &Vec<Exact>, id: Id| values[id.0 as usize].clone();
         let read = |o: &model::BodyOutput| BodyState {
             spin: std::array::from_fn(|k| val(&values, o.spin[k])),
             velocity: std::array::from_fn(|k| val(&values, o.velocity[k])),

@@ -159,11 +159,9 @@ pub fn degree(n: usize, variant: Variant, identity: Identity) -> u64 {
     let after = outputs_as_states(&kernel_inputs, build_on(&mut g, &kernel_inputs, variant));
     match identity {
         Identity::Involution => {
-            let twice = build_on(&mut g, &with_states(&inputs, &after), variant);
-            states.insert(
-                "twice",
-                outputs_as_states(&with_states(&inputs, &after), twice),
-            );
+            let once = with_states(&inputs, &after);
+            let twice = build_on(&mut g, &once, variant);
+            states.insert("twice", outputs_as_states(&once, twice));
         }
         Identity::MassLimit => {
             let mut free = inputs.clone();
@@ -186,32 +184,6 @@ pub fn degree(n: usize, variant: Variant, identity: Identity) -> u64 {
     states.insert("after", after);
     let zeros = identity.zeros(&mut g, &inputs, variant, &states);
     crate::degree::identity_degree(&g, &zeros)
-}
-
-fn eval_all(g: &Graph, inputs: &HashMap<String, Exact>) -> Result<Vec<Exact>, String> {
-    let mut v: Vec<Exact> = Vec::with_capacity(g.len());
-    for index in 0..g.len() {
-        let at = |id: &Id| &v[id.0 as usize];
-        let x = match g.node(Id(index as u32)) {
-            Node::Input(input) => inputs
-                .get(&input.0)
-                .cloned()
-                .ok_or_else(|| format!("no value for input {}", input.0))?,
-            Node::Const(c) => c.clone(),
-            Node::Add(a, b) => at(a) + at(b),
-            Node::Sub(a, b) => at(a) - at(b),
-            Node::Mul(a, b) => at(a) * at(b),
-            Node::Div(a, b) => {
-                if at(b).is_zero() {
-                    return Err("division by zero at a sample point".into());
-                }
-                at(a) / at(b)
-            }
-            Node::Neg(a) => -at(a),
-        };
-        v.push(x);
-    }
-    Ok(v)
 }
 
 /// Evaluate `identity` at one point with `kernel`'s outputs; `Err` names what failed.
@@ -266,7 +238,7 @@ pub fn check_at<const N: usize, const S: usize>(
     }
     record(&mut g, "after", after);
     let zeros = identity.zeros(&mut g, &inputs, variant, &named);
-    let v = eval_all(&g, &values)?;
+    let v = g.eval_all(&|name| values.get(name).cloned(), &|_, _, _| None)?;
     match zeros.iter().position(|z| !v[z.0 as usize].is_zero()) {
         None => Ok(()),
         Some(k) => Err(format!(
