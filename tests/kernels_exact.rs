@@ -1,10 +1,10 @@
-//! The generated kernels, instantiated with exact rationals, against the general-n reference
-//! and the exact facts of MATH.md, for n = 2..6 and both variants.
+//! The generated kernels (plain and FMA), instantiated with exact rationals, against the
+//! general-n reference and the exact facts of MATH.md, for n = 2..6 and both variants.
 
 #![allow(clippy::needless_range_loop)] // matrix entries are indexed by (row, col) on purpose
 
 use collision_core::{
-    collide, collide_unchecked, reference, Ball, BodyState, Exact, Generated, Kernel, Scalar,
+    collide, collide_unchecked, collide_unchecked_fma, reference, Ball, BodyState, Exact, Generated, Kernel, Scalar,
     State2,
 };
 use noslip_tests::*;
@@ -45,6 +45,8 @@ where
             let kernel = collide(&nu, balls, states).unwrap();
             let reference = reference::collide(&nu, balls, states).unwrap();
             assert_eq!(kernel, reference, "n = {N}, fixed = {fixed}");
+            let fused = collide_unchecked_fma(&nu, balls, states);
+            assert_eq!(fused, reference, "FMA kernels, n = {N}, fixed = {fixed}");
             if fixed {
                 assert_eq!(&kernel[0], states[0], "an immovable body is unchanged");
             }

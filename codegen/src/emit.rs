@@ -6,6 +6,7 @@
 //! rationals), with every operation on references (`&a * &b`), so the same source serves
 //! `Copy` floats and heap-allocated rationals.
 
+use crate::fuse::{fuse, Fused, Fusion};
 use crate::ir::{Id, Node};
 use crate::model::{names, skew_pairs, Kernel, Variant};
 use crate::schedule::{schedule, OpCount, Schedule};
@@ -16,11 +17,34 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 use std::collections::{BTreeSet, HashMap};
 
+/// How the arithmetic of a kernel is emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Arith {
+    /// One IEEE operation per DAG node: `free`, `fixed`.
+    Plain,
+    /// Single-use products fused into their addition ([`crate::fuse`]): `free_fma`,
+    /// `fixed_fma`.
+    Fma,
+}
+
+impl Arith {
+    pub const ALL: [Arith; 2] = [Arith::Plain, Arith::Fma];
+
+    /// The function name of `variant` emitted this way.
+    pub fn function_name(self, variant: Variant) -> String {
+        match self {
+            Arith::Plain => variant.name().to_string(),
+            Arith::Fma => format!("{}_fma", variant.name()),
+        }
+    }
+}
+
 /// One emitted kernel with its cost.
 #[derive(Debug)]
 pub struct EmittedKernel {
     pub dim: usize,
     pub variant: Variant,
+    pub arith: Arith,
     pub ops: OpCount,
     /// Intermediate terms (`let` bindings of computed values).
     pub terms: usize,
@@ -70,7 +94,7 @@ struct Namer<'a> {
 }
 
 impl<'a> Namer<'a> {
-    fn new(kernel: &'a Kernel, sched: &Schedule) -> Self {
+    fn new(kernel: &'a Kernel, sched: &Schedule, steps: &[Id]) -> Self {
         let g = &kernel.graph;
         let mut names = HashMap::new();
         let mut used = BTreeSet::new();
@@ -80,7 +104,7 @@ impl<'a> Namer<'a> {
             assert!(used.insert(name.clone()), "duplicate binding {name}");
             names.insert(id, name);
         }
-        for &id in &sched.steps {
+        for &id in steps {
             let name = match g.label_of(id) {
                 Some(label) => label.to_string(),
                 _ => {
@@ -224,16 +248,36 @@ fn description(kernel: &Kernel) -> Vec<String> {
     lines
 }
 
-/// Emit one kernel as a generic function.
+/// Emit one kernel as a generic function with plain arithmetic.
 pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
+    emit_kernel_as(kernel, Arith::Plain)
+}
+
+/// Emit one kernel as a generic function, with the arithmetic `arith`.
+pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
     let n = kernel.dim;
     let s = n * (n - 1) / 2;
-    let roots = kernel
+    let roots: Vec<Id> = kernel
         .outputs
         .iter()
-        .flat_map(|o| o.spin.iter().chain(&o.velocity).copied());
-    let sched = schedule(&kernel.graph, roots);
-    let namer = Namer::new(kernel, &sched);
+        .flat_map(|o| o.spin.iter().chain(&o.velocity).copied())
+        .collect();
+    let sched = schedule(&kernel.graph, roots.iter().copied());
+    let fusion = match arith {
+        Arith::Plain => Fusion::default(),
+        Arith::Fma => fuse(&kernel.graph, &sched.steps, roots.iter().copied()),
+    };
+    let steps: Vec<Id> = sched
+        .steps
+        .iter()
+        .copied()
+        .filter(|id| !fusion.absorbed.contains(id))
+        .collect();
+    let mut ops = sched.ops;
+    ops.fma = fusion.fused.len();
+    ops.mul -= fusion.absorbed.len();
+    ops.add -= fusion.fused.len();
+    let namer = Namer::new(kernel, &sched, &steps);
     let live = &sched.inputs;
 
     let constants = sched.constants.iter().map(|&id| {
@@ -241,27 +285,28 @@ pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
         let value = const_value(kernel.graph.as_const(id).expect("constant"));
         quote!(let #name: T = #value;)
     });
-    let steps = sched.steps.iter().map(|&id| {
+    let step_tokens = steps.iter().map(|&id| {
         let name = namer.binding(id);
-        let expr = match kernel.graph.node(id) {
-            Node::Add(a, b) => binary(&namer, *a, quote!(+), *b),
-            Node::Sub(a, b) => binary(&namer, *a, quote!(-), *b),
-            Node::Mul(a, b) => binary(&namer, *a, quote!(*), *b),
-            Node::Div(a, b) => binary(&namer, *a, quote!(/), *b),
-            Node::Neg(a) => {
-                let a = namer.operand(*a);
-                quote!(-#a)
-            }
-            Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
+        let expr = match fusion.fused.get(&id) {
+            Some(fused) => fused_call(&namer, *fused),
+            None => match kernel.graph.node(id) {
+                Node::Add(a, b) => binary(&namer, *a, quote!(+), *b),
+                Node::Sub(a, b) => binary(&namer, *a, quote!(-), *b),
+                Node::Mul(a, b) => binary(&namer, *a, quote!(*), *b),
+                Node::Div(a, b) => binary(&namer, *a, quote!(/), *b),
+                Node::Neg(a) => {
+                    let a = namer.operand(*a);
+                    quote!(-#a)
+                }
+                Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
+            },
         };
         quote!(let #name: T = #expr;)
     });
 
     let mut output_uses: HashMap<Id, usize> = HashMap::new();
-    for o in &kernel.outputs {
-        for &id in o.spin.iter().chain(&o.velocity) {
-            *output_uses.entry(id).or_default() += 1;
-        }
+    for &id in &roots {
+        *output_uses.entry(id).or_default() += 1;
     }
     let bodies: Vec<TokenStream> = kernel
         .outputs
@@ -279,15 +324,24 @@ pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
     let ball2 = ball_pattern(2, live);
     let (nl, sl) = (lit(n), lit(s));
     let state_ty = quote!(BodyState<T, #nl, #sl>);
-    let fn_name = ident(kernel.variant.name());
+    let fn_name = ident(&arith.function_name(kernel.variant));
 
-    let mut doc = description(kernel);
+    let mut doc = match arith {
+        Arith::Plain => description(kernel),
+        Arith::Fma => vec![
+            format!(
+                "[`{}`] with every single-use product fused into the addition that consumes it",
+                kernel.variant.name()
+            ),
+            "(`T::mul_add`, `T::mul_sub`, `T::neg_mul_add`: one rounding for `a b + c` in floats;".into(),
+            "exact in rationals). Same formula, same operation order otherwise.".into(),
+            String::new(),
+            "Call it where the target has FMA instructions (`#[target_feature(enable = \"fma\")]`);".into(),
+            "elsewhere `f64::mul_add` is a library call and much slower.".into(),
+        ],
+    };
     doc.push(String::new());
-    doc.push(format!(
-        "Ops: {}; {} intermediate terms.",
-        sched.ops,
-        sched.steps.len()
-    ));
+    doc.push(format!("Ops: {}; {} intermediate terms.", ops, steps.len()));
     let doc = doc_lines(&doc);
 
     let (params, prologue, ret_ty, ret) = match kernel.variant {
@@ -321,17 +375,28 @@ pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
             let #state1 = state1;
             let #state2 = state2;
             #(#constants)*
-            #(#steps)*
+            #(#step_tokens)*
             #ret
         }
     };
     EmittedKernel {
         dim: n,
         variant: kernel.variant,
-        ops: sched.ops,
-        terms: sched.steps.len(),
+        arith,
+        ops,
+        terms: steps.len(),
         tokens,
     }
+}
+
+fn fused_call(namer: &Namer<'_>, fused: Fused) -> TokenStream {
+    let (f, a, b, c) = match fused {
+        Fused::MulAdd { a, b, c } => (quote!(mul_add), a, b, c),
+        Fused::MulSub { a, b, c } => (quote!(mul_sub), a, b, c),
+        Fused::NegMulAdd { a, b, c } => (quote!(neg_mul_add), a, b, c),
+    };
+    let (a, b, c) = (namer.operand(a), namer.operand(b), namer.operand(c));
+    quote!(T::#f(#a, #b, #c))
 }
 
 fn binary(namer: &Namer<'_>, a: Id, op: TokenStream, b: Id) -> TokenStream {
@@ -350,7 +415,7 @@ pub fn header(dim: usize, kernels: &[EmittedKernel]) -> String {
     for k in kernels {
         h.push_str(&format!(
             "// {}: {}; {} intermediate terms.\n",
-            k.variant.name(),
+            k.arith.function_name(k.variant),
             k.ops,
             k.terms
         ));

@@ -12,15 +12,17 @@
 //! ```
 //! let module = noslip_codegen::generate(3, "crate");
 //! assert!(module.source.starts_with("// @generated"));
-//! assert_eq!(module.kernels.len(), 2); // free, fixed
+//! assert_eq!(module.kernels.len(), 4); // free, fixed, free_fma, fixed_fma
 //! ```
 
 pub mod emit;
+pub mod fuse;
 pub mod ir;
 pub mod model;
 pub mod schedule;
 pub mod straight_line;
 
+pub use emit::Arith;
 pub use model::Variant;
 pub use schedule::OpCount;
 
@@ -35,8 +37,16 @@ pub const DIMS: std::ops::RangeInclusive<usize> = 2..=6;
 pub struct KernelSummary {
     pub dim: usize,
     pub variant: Variant,
+    pub arith: Arith,
     pub ops: OpCount,
     pub terms: usize,
+}
+
+impl KernelSummary {
+    /// The generated function's name: `free`, `fixed`, `free_fma`, `fixed_fma`.
+    pub fn name(&self) -> String {
+        self.arith.function_name(self.variant)
+    }
 }
 
 /// The generated source of one dimension's module and the cost of each kernel in it.
@@ -47,15 +57,20 @@ pub struct Module {
     pub kernels: Vec<KernelSummary>,
 }
 
-/// Generate every kernel variant for dimension `dim` as one formatted source file.
+/// Generate every kernel variant for dimension `dim` (each of [`Variant::ALL`] in each
+/// [`Arith::ALL`]) as one formatted source file.
 /// `crate_path` is the path of the runtime crate as seen from where the file is included
 /// (`"crate"` inside collision-core, `"collision_core"` elsewhere).
 ///
 /// Panics if the emission is not valid Rust or not straight-line: both are generator bugs.
 pub fn generate(dim: usize, crate_path: &str) -> Module {
-    let kernels: Vec<emit::EmittedKernel> = Variant::ALL
+    let kernels: Vec<emit::EmittedKernel> = Arith::ALL
         .iter()
-        .map(|&v| emit::emit_kernel(&model::build(dim, v)))
+        .flat_map(|&arith| {
+            Variant::ALL
+                .iter()
+                .map(move |&v| emit::emit_kernel_as(&model::build(dim, v), arith))
+        })
         .collect();
     let imports = emit::runtime_imports(crate_path);
     let items = kernels.iter().map(|k| &k.tokens);
@@ -78,6 +93,7 @@ pub fn generate(dim: usize, crate_path: &str) -> Module {
             .map(|k| KernelSummary {
                 dim: k.dim,
                 variant: k.variant,
+                arith: k.arith,
                 ops: k.ops,
                 terms: k.terms,
             })

@@ -13,16 +13,21 @@ pub struct OpCount {
     pub mul: usize,
     pub div: usize,
     pub neg: usize,
+    /// Fused multiply-adds (FMA kernels only): `a b + c` with one rounding.
+    pub fma: usize,
 }
 
 impl OpCount {
     pub fn total(&self) -> usize {
-        self.add + self.mul + self.div + self.neg
+        self.add + self.mul + self.div + self.neg + self.fma
     }
 }
 
 impl fmt::Display for OpCount {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.fma > 0 {
+            write!(f, "{} fma, ", self.fma)?;
+        }
         write!(
             f,
             "{} add, {} mul, {} div, {} neg ({} total)",
@@ -112,7 +117,8 @@ mod tests {
                 add: 1,
                 mul: 1,
                 div: 0,
-                neg: 1
+                neg: 1,
+                fma: 0,
             }
         );
         assert_eq!(sched.inputs.len(), 2);

@@ -38,6 +38,23 @@ impl Checker {
     }
 }
 
+/// `T::mul_add(a, b, c)`, `T::mul_sub(..)` or `T::neg_mul_add(..)`: one fused operation.
+fn is_fused_call(call: &syn::ExprCall) -> bool {
+    let Expr::Path(p) = &*call.func else {
+        return false;
+    };
+    let segments: Vec<String> = p
+        .path
+        .segments
+        .iter()
+        .map(|s| s.ident.to_string())
+        .collect();
+    matches!(
+        segments.iter().map(String::as_str).collect::<Vec<_>>()[..],
+        ["T", "mul_add" | "mul_sub" | "neg_mul_add"]
+    ) && call.args.len() == 3
+}
+
 fn is_from_ratio_call(call: &syn::ExprCall) -> bool {
     let Expr::Path(p) = &*call.func else {
         return false;
@@ -115,13 +132,16 @@ impl<'ast> Visit<'ast> for Checker {
             Expr::Path(_) | Expr::Lit(_) | Expr::Paren(_) => visit::visit_expr(self, expr),
             Expr::Array(_) | Expr::Struct(_) => visit::visit_expr(self, expr),
             Expr::Call(c) if is_from_ratio_call(c) => {}
+            Expr::Call(c) if is_fused_call(c) => visit::visit_expr_call(self, c),
             Expr::MethodCall(m) if m.method == "clone" && m.args.is_empty() => {
                 self.visit_expr(&m.receiver)
             }
             Expr::If(_) => self.flag("`if`"),
             Expr::Match(_) => self.flag("`match`"),
             Expr::Loop(_) | Expr::While(_) | Expr::ForLoop(_) => self.flag("a loop"),
-            Expr::Call(_) => self.flag("a call other than `T::from_ratio(int, int)`"),
+            Expr::Call(_) => self.flag(
+                "a call other than `T::from_ratio(int, int)` or a fused `T::mul_add(a, b, c)`",
+            ),
             Expr::MethodCall(_) => self.flag("a method call other than `.clone()`"),
             Expr::Closure(_) => self.flag("a closure"),
             Expr::Macro(_) => self.flag("a macro"),
@@ -163,7 +183,8 @@ mod tests {
     fn accepts_arithmetic_and_destructuring() {
         let src = "fn k<T>(nu: &[T; 2]) -> [T; 2] {
             let [a, _] = nu; let c_2: T = T::from_ratio(2, 1);
-            let x: T = &c_2 * a; let y: T = -&x; [x, y.clone()] }";
+            let x: T = &c_2 * a; let y: T = -&x; let z: T = T::mul_add(&x, a, &y);
+            [x, z.clone()] }";
         assert_eq!(violations(src), Vec::<String>::new());
     }
 
@@ -185,7 +206,15 @@ mod tests {
             ),
             (
                 "fn k(a: f64) -> f64 { f(a) }",
-                "a call other than `T::from_ratio(int, int)`",
+                "a call other than `T::from_ratio(int, int)` or a fused `T::mul_add(a, b, c)`",
+            ),
+            (
+                "fn k(a: f64) -> f64 { T::mul_add(a, a) }",
+                "a call other than `T::from_ratio(int, int)` or a fused `T::mul_add(a, b, c)`",
+            ),
+            (
+                "fn k(a: f64) -> f64 { T::mul_add(a, a, if a > 0.0 { a } else { a }) }",
+                "`if`",
             ),
             ("fn k(a: [f64; 2]) -> f64 { a[0] }", "indexing"),
             (

@@ -41,18 +41,54 @@ where
     T: Scalar,
     Generated: Kernel<T, N, S>,
 {
+    dispatch(nu, balls, states, Generated::free, Generated::fixed)
+}
+
+/// [`collide_unchecked`] with the FMA kernels (`free_fma`, `fixed_fma`). Fast only where
+/// the caller is compiled with FMA instructions (`#[target_feature(enable = "fma")]`).
+#[inline]
+pub fn collide_unchecked_fma<T, const N: usize, const S: usize>(
+    nu: &[T; N],
+    balls: [&Ball<T>; 2],
+    states: [&BodyState<T, N, S>; 2],
+) -> [BodyState<T, N, S>; 2]
+where
+    T: Scalar,
+    Generated: Kernel<T, N, S>,
+{
+    dispatch(nu, balls, states, Generated::free_fma, Generated::fixed_fma)
+}
+
+/// Body 1 immovable: `fixed`; body 2 immovable: `fixed` with the bodies swapped and `nu`
+/// negated; otherwise `free`.
+#[inline(always)]
+fn dispatch<T, const N: usize, const S: usize, Free, Fixed>(
+    nu: &[T; N],
+    balls: [&Ball<T>; 2],
+    states: [&BodyState<T, N, S>; 2],
+    free: Free,
+    fixed: Fixed,
+) -> [BodyState<T, N, S>; 2]
+where
+    T: Scalar,
+    Free: Fn(
+        &[T; N],
+        &Ball<T>,
+        &Ball<T>,
+        &BodyState<T, N, S>,
+        &BodyState<T, N, S>,
+    ) -> [BodyState<T, N, S>; 2],
+    Fixed: Fn(&[T; N], &T, &Ball<T>, &BodyState<T, N, S>, &BodyState<T, N, S>) -> BodyState<T, N, S>,
+{
     let [b1, b2] = balls;
     let [s1, s2] = states;
     if b1.is_immovable() {
-        [s1.clone(), Generated::fixed(nu, &b1.radius, b2, s1, s2)]
+        [s1.clone(), fixed(nu, &b1.radius, b2, s1, s2)]
     } else if b2.is_immovable() {
         let minus_nu = nu.clone().map(|x| -x);
-        [
-            Generated::fixed(&minus_nu, &b2.radius, b1, s2, s1),
-            s2.clone(),
-        ]
+        [fixed(&minus_nu, &b2.radius, b1, s2, s1), s2.clone()]
     } else {
-        Generated::free(nu, b1, b2, s1, s2)
+        free(nu, b1, b2, s1, s2)
     }
 }
 

@@ -36,9 +36,9 @@ mod scalar;
 mod state;
 
 pub use ball::{Ball, Inertia, Mass};
-pub use collide::{collide, collide_unchecked, validate, validate_parts};
+pub use collide::{collide, collide_unchecked, collide_unchecked_fma, validate, validate_parts};
 pub use error::{BodyField, Field, InputError};
 pub use kernels::{Generated, Kernel};
 pub use normal::stereographic_normal;
-pub use scalar::{Exact, RefArith, Scalar};
+pub use scalar::{DoubleDouble, Exact, RefArith, Scalar, DOUBLE_DOUBLE_EPSILON};
 pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};

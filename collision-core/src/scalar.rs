@@ -75,6 +75,18 @@ pub trait Scalar:
     /// written as `R^2/n` in decimal): 0 exactly; `8 eps` in floats, the rounding of the
     /// few operations between the input and the bound.
     fn rounding_slack() -> Self;
+
+    /// `a b + c`, fused (one rounding) in floats: the FMA kernels' operation. Exact in
+    /// rationals; double-double computes it as `a b + c` in its own arithmetic.
+    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self;
+    /// `a b - c`, fused.
+    fn mul_sub(a: &Self, b: &Self, c: &Self) -> Self {
+        Self::mul_add(a, b, &-c.clone())
+    }
+    /// `c - a b`, fused.
+    fn neg_mul_add(a: &Self, b: &Self, c: &Self) -> Self {
+        Self::mul_add(&-a.clone(), b, c)
+    }
 }
 
 impl Scalar for f64 {
@@ -98,6 +110,10 @@ impl Scalar for f64 {
     }
     fn rounding_slack() -> Self {
         8.0 * f64::EPSILON
+    }
+    #[inline(always)]
+    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
+        a.mul_add(*b, *c)
     }
 }
 
@@ -123,6 +139,10 @@ impl Scalar for f32 {
     fn rounding_slack() -> Self {
         8.0 * f32::EPSILON
     }
+    #[inline(always)]
+    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
+        a.mul_add(*b, *c)
+    }
 }
 
 impl Scalar for Exact {
@@ -146,6 +166,43 @@ impl Scalar for Exact {
     fn rounding_slack() -> Self {
         Self::zero()
     }
+    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
+        a * b + c
+    }
+}
+
+/// Double-double numbers (`hi + lo`, two non-overlapping `f64`s, about 106 bits): the
+/// generated kernels in extended precision, from the `twofloat` crate.
+pub type DoubleDouble = twofloat::TwoFloat;
+
+/// The unit roundoff of [`DoubleDouble`] arithmetic, `2^-104` (a bound on the relative
+/// error of one operation, Joldes, Muller and Popescu 2017, up to small constants).
+pub const DOUBLE_DOUBLE_EPSILON: f64 = 4.930380657631324e-32;
+
+impl Scalar for DoubleDouble {
+    const NAME: &'static str = "double-double";
+    fn show(&self) -> String {
+        format!("{:?}", f64::from(self))
+    }
+    const EXACT: bool = false;
+    fn from_ratio(num: i64, den: i64) -> Self {
+        DoubleDouble::from(num) / DoubleDouble::from(den)
+    }
+    fn is_finite(&self) -> bool {
+        self.hi().is_finite() && self.lo().is_finite()
+    }
+    fn to_f64(&self) -> f64 {
+        f64::from(self)
+    }
+    fn unit_tolerance() -> Self {
+        DoubleDouble::from(2e-12)
+    }
+    fn rounding_slack() -> Self {
+        DoubleDouble::from(8.0 * DOUBLE_DOUBLE_EPSILON)
+    }
+    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
+        a * b + c
+    }
 }
 
 /// `|x| <= bound * (1 + slack)`, for bounds that rounded inputs may overshoot.
@@ -167,6 +224,27 @@ mod tests {
         assert_eq!(<f64 as Scalar>::from_ratio(1, 3), 1.0 / 3.0);
         assert_eq!(<f32 as Scalar>::from_ratio(-2, 1), -2.0);
         assert_eq!(Exact::from_ratio(2, 6), Exact::new(1.into(), 3.into()));
+    }
+
+    #[test]
+    fn fused_operations_round_once() {
+        // (1 + 2^-30)^2 - 1 = 2^-29 + 2^-60: the plain product rounds 2^-60 away.
+        let a = 1.0 + 2f64.powi(-30);
+        let exact = 2f64.powi(-29) + 2f64.powi(-60);
+        assert_eq!(<f64 as Scalar>::mul_sub(&a, &a, &1.0), exact);
+        assert_ne!(a * a - 1.0, exact);
+        assert_eq!(<f64 as Scalar>::neg_mul_add(&a, &a, &1.0), -exact);
+        let (x, y, z) = (Exact::from_ratio(1, 3), Exact::from_ratio(3, 7), Exact::from_ratio(-1, 7));
+        assert!(Exact::mul_add(&x, &y, &z).is_zero());
+    }
+
+    #[test]
+    fn double_double_carries_what_f64_drops() {
+        let third = DoubleDouble::from_ratio(1, 3);
+        let residual = third * DoubleDouble::from(3.0) - DoubleDouble::from(1.0);
+        assert!(residual.to_f64().abs() < 4.0 * DOUBLE_DOUBLE_EPSILON);
+        assert_eq!(third.hi(), 1.0 / 3.0);
+        assert!(third.lo() != 0.0, "the low word holds the bits f64 rounds away");
     }
 
     #[test]

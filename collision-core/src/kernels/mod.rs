@@ -1,7 +1,8 @@
 //! The generated kernels, one module per dimension, and a trait that picks them by
 //! dimension for generic code.
 //!
-//! Each module `dN` holds `free` (both bodies move) and `fixed` (body 1 immovable), emitted
+//! Each module `dN` holds `free` (both bodies move) and `fixed` (body 1 immovable), and
+//! their FMA forms `free_fma` and `fixed_fma` (single-use products fused), emitted
 //! by noslip-codegen from the general SO(n) formulas at build time; their doc comments state
 //! the formula and the op counts. They are the unchecked fast path: no validation, no
 //! branches. Preconditions (which [`crate::collide`] checks): finite inputs, `|nu| = 1`,
@@ -43,6 +44,28 @@ macro_rules! generated {
             ) -> BodyState<T, $n, $s> {
                 $module::fixed(nu, radius1, ball2, state1, state2)
             }
+
+            #[inline(always)]
+            fn free_fma(
+                nu: &[T; $n],
+                ball1: &Ball<T>,
+                ball2: &Ball<T>,
+                state1: &BodyState<T, $n, $s>,
+                state2: &BodyState<T, $n, $s>,
+            ) -> [BodyState<T, $n, $s>; 2] {
+                $module::free_fma(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed_fma(
+                nu: &[T; $n],
+                radius1: &T,
+                ball2: &Ball<T>,
+                state1: &BodyState<T, $n, $s>,
+                state2: &BodyState<T, $n, $s>,
+            ) -> BodyState<T, $n, $s> {
+                $module::fixed_fma(nu, radius1, ball2, state1, state2)
+            }
         }
     )*};
 }
@@ -60,6 +83,24 @@ pub trait Kernel<T, const N: usize, const S: usize> {
 
     /// Body 1 immovable: body 2+.
     fn fixed(
+        nu: &[T; N],
+        radius1: &T,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S>;
+
+    /// [`Kernel::free`] with fused multiply-adds.
+    fn free_fma(
+        nu: &[T; N],
+        ball1: &Ball<T>,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> [BodyState<T, N, S>; 2];
+
+    /// [`Kernel::fixed`] with fused multiply-adds.
+    fn fixed_fma(
         nu: &[T; N],
         radius1: &T,
         ball2: &Ball<T>,
