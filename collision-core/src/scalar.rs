@@ -242,7 +242,7 @@ mod tests {
     fn double_double_carries_what_f64_drops() {
         let third = DoubleDouble::from_ratio(1, 3);
         let residual = third * DoubleDouble::from(3.0) - DoubleDouble::from(1.0);
-        assert!(residual.to_f64().abs() < 4.0 * DOUBLE_DOUBLE_EPSILON);
+        assert!(Scalar::to_f64(&residual).abs() < 4.0 * DOUBLE_DOUBLE_EPSILON);
         assert_eq!(third.hi(), 1.0 / 3.0);
         assert!(third.lo() != 0.0, "the low word holds the bits f64 rounds away");
     }
