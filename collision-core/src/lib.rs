@@ -40,5 +40,5 @@ pub use collide::{collide, collide_unchecked, collide_unchecked_fma, validate, v
 pub use error::{BodyField, Field, InputError};
 pub use kernels::{Generated, Kernel};
 pub use normal::stereographic_normal;
-pub use scalar::{DoubleDouble, Exact, RefArith, Scalar, DOUBLE_DOUBLE_EPSILON};
+pub use scalar::{Exact, RefArith, Scalar};
 pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};

@@ -77,7 +77,7 @@ pub trait Scalar:
     fn rounding_slack() -> Self;
 
     /// `a b + c`, fused (one rounding) in floats: the FMA kernels' operation. Exact in
-    /// rationals; double-double computes it as `a b + c` in its own arithmetic.
+    /// rationals.
     fn mul_add(a: &Self, b: &Self, c: &Self) -> Self;
     /// `a b - c`, fused.
     fn mul_sub(a: &Self, b: &Self, c: &Self) -> Self {
@@ -171,40 +171,6 @@ impl Scalar for Exact {
     }
 }
 
-/// Double-double numbers (`hi + lo`, two non-overlapping `f64`s, about 106 bits): the
-/// generated kernels in extended precision, from the `twofloat` crate.
-pub type DoubleDouble = twofloat::TwoFloat;
-
-/// The unit roundoff of [`DoubleDouble`] arithmetic, `2^-104` (a bound on the relative
-/// error of one operation, Joldes, Muller and Popescu 2017, up to small constants).
-pub const DOUBLE_DOUBLE_EPSILON: f64 = 4.930380657631324e-32;
-
-impl Scalar for DoubleDouble {
-    const NAME: &'static str = "double-double";
-    fn show(&self) -> String {
-        format!("{:?}", f64::from(self))
-    }
-    const EXACT: bool = false;
-    fn from_ratio(num: i64, den: i64) -> Self {
-        DoubleDouble::from(num) / DoubleDouble::from(den)
-    }
-    fn is_finite(&self) -> bool {
-        self.hi().is_finite() && self.lo().is_finite()
-    }
-    fn to_f64(&self) -> f64 {
-        f64::from(self)
-    }
-    fn unit_tolerance() -> Self {
-        DoubleDouble::from(2e-12)
-    }
-    fn rounding_slack() -> Self {
-        DoubleDouble::from(8.0 * DOUBLE_DOUBLE_EPSILON)
-    }
-    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
-        a * b + c
-    }
-}
-
 /// `|x| <= bound * (1 + slack)`, for bounds that rounded inputs may overshoot.
 pub(crate) fn within_slack<T: Scalar>(x: &T, bound: &T) -> bool {
     *x <= bound.clone() * (T::one() + T::rounding_slack())
@@ -236,15 +202,6 @@ mod tests {
         assert_eq!(<f64 as Scalar>::neg_mul_add(&a, &a, &1.0), -exact);
         let (x, y, z) = (Exact::from_ratio(1, 3), Exact::from_ratio(3, 7), Exact::from_ratio(-1, 7));
         assert!(Exact::mul_add(&x, &y, &z).is_zero());
-    }
-
-    #[test]
-    fn double_double_carries_what_f64_drops() {
-        let third = DoubleDouble::from_ratio(1, 3);
-        let residual = third * DoubleDouble::from(3.0) - DoubleDouble::from(1.0);
-        assert!(Scalar::to_f64(&residual).abs() < 4.0 * DOUBLE_DOUBLE_EPSILON);
-        assert_eq!(third.hi(), 1.0 / 3.0);
-        assert!(third.lo() != 0.0, "the low word holds the bits f64 rounds away");
     }
 
     #[test]
