@@ -1,7 +1,10 @@
 //! The `noslip` command's library: the JSON side of `collide` ([`json`]) and the exact
-//! verification of the generated kernels ([`checks`], [`report`]).
+//! verification of the generated kernels ([`checks`], [`report`]), and error against run
+//! time ([`accuracy`]).
 
 pub mod json;
+
+pub mod accuracy;
 
 pub mod checks;
 pub mod degree;

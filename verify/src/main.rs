@@ -31,11 +31,14 @@ enum Command {
     Collide(cli::collide::Args),
     /// Prove the generated kernels exact: identities, decomposition, inertia; writes reports.
     Verify(cli::verify::Args),
+    /// Error against run time of every kernel variant, in typical and extreme regimes.
+    Report(cli::report::Args),
 }
 
 fn main() -> ExitCode {
     match Cli::parse().command {
         Command::Collide(args) => cli::collide::run(&args),
         Command::Verify(args) => cli::verify::run_cmd(&args),
+        Command::Report(args) => cli::report::run_cmd(&args),
     }
 }

@@ -31,6 +31,17 @@ impl Rng {
         self.0.next_u64()
     }
 
+    /// Uniform in `[lo, hi)`, from 53 random bits.
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        let unit = (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+        lo + (hi - lo) * unit
+    }
+
+    /// `true` with probability 1/2.
+    pub fn coin(&mut self) -> bool {
+        self.0.next_u64() >> 63 == 1
+    }
+
     /// Uniform in `S`.
     pub fn element(&mut self) -> Exact {
         Exact::from_integer(BigInt::from(self.0.random_range(1..=SET_SIZE)))

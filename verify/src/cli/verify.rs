@@ -3,6 +3,7 @@
 use indicatif::{ProgressBar, ProgressStyle};
 use noslip_verify::report::{diff, write_atomic, Report};
 use noslip_verify::run::{checks_per_dim, run, Options};
+use super::{parse_dims, Dims};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -44,35 +45,6 @@ pub struct Args {
     /// The golden copy.
     #[arg(long, default_value = "docs/reports/verify.json")]
     golden: PathBuf,
-}
-
-/// The dimensions to verify.
-#[derive(Clone, Debug)]
-struct Dims(Vec<usize>);
-
-fn parse_dims(s: &str) -> Result<Dims, String> {
-    let dims: Vec<usize> = if let Some((a, b)) = s.split_once("..") {
-        let a: usize = a
-            .trim()
-            .parse()
-            .map_err(|_| format!("bad range start in {s:?}"))?;
-        let b: usize = b
-            .trim_start_matches('=')
-            .trim()
-            .parse()
-            .map_err(|_| format!("bad range end in {s:?}"))?;
-        (a..=b).collect()
-    } else {
-        s.split(',')
-            .map(|x| x.trim().parse().map_err(|_| format!("bad dimension {x:?}")))
-            .collect::<Result<_, _>>()?
-    };
-    if dims.is_empty() || dims.iter().any(|d| !(2..=6).contains(d)) {
-        return Err(format!(
-            "dimensions must be in 2..6 (the generated kernels), got {s:?}"
-        ));
-    }
-    Ok(Dims(dims))
 }
 
 pub fn run_cmd(args: &Args) -> ExitCode {

@@ -1,0 +1,24 @@
+//! Error against run time: every kernel variant measured against exact rational ground
+//! truth, in typical and extreme regimes (`noslip report`).
+//!
+//! - [`regime`]: the sampled input distributions.
+//! - [`variant`]: the variants (generated f64, FMA, f32, exact; the nalgebra reference; the
+//!   notes' dense matrix, [`dense`]) and how each runs and is timed ([`timing`]).
+//! - [`measure`]: bits of error, normwise error in each body's energy norm, conditioning.
+//! - [`run`]: one report run; [`render`]: Markdown and JSON; [`plot`]: the SVG plot.
+
+pub mod case;
+pub mod dense;
+pub mod measure;
+pub mod plot;
+pub mod regime;
+pub mod render;
+pub mod run;
+pub mod timing;
+pub mod variant;
+
+pub use case::Case;
+pub use regime::Regime;
+pub use render::{AccuracyReport, Provenance};
+pub use run::{dim_result, Options};
+pub use variant::Variant;

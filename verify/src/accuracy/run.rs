@@ -1,0 +1,357 @@
+//! One report run: for each dimension and regime, sample, compute the exact results, run
+//! and time every variant, and gather the error figures.
+
+use super::case::{component_names, Case};
+use super::measure::{bits, conditioning, exact_result, lambda, normwise, Float, Truth};
+use super::regime::Regime;
+use super::timing::Timing;
+use super::variant::{Outcome, Variant};
+use crate::sample::Rng;
+use collision_core::{validate, Exact, Generated, Kernel};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Options {
+    pub dims: Vec<usize>,
+    pub regimes: Vec<Regime>,
+    /// Sampled cases per dimension and regime.
+    pub samples: usize,
+    pub seed: u64,
+    /// Cases in the timed batch (in cache), and in the exact variant's batch.
+    pub batch: usize,
+    pub exact_batch: usize,
+    /// Timed samples per variant.
+    pub timing_samples: usize,
+    /// Cases per dimension and regime whose conditioning is estimated (besides every
+    /// body whose error exceeds the bound).
+    pub conditioned: usize,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            dims: (2..=6).collect(),
+            regimes: Regime::ALL.to_vec(),
+            samples: 1000,
+            seed: 2026,
+            batch: 256,
+            exact_batch: 32,
+            timing_samples: 21,
+            conditioned: 50,
+        }
+    }
+}
+
+/// Mean, 99th percentile and maximum.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Stats {
+    pub mean: f64,
+    pub p99: f64,
+    pub max: f64,
+}
+
+impl Stats {
+    pub fn of(values: &[f64]) -> Stats {
+        if values.is_empty() {
+            return Stats::default();
+        }
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        let p99 = v[((v.len() - 1) as f64 * 0.99).round() as usize];
+        Stats {
+            mean: v.iter().sum::<f64>() / v.len() as f64,
+            p99,
+            max: v[v.len() - 1],
+        }
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct VariantResult {
+    pub variant: Variant,
+    pub name: String,
+    /// Operation count of the generated kernel (the free one; `None` if not generated).
+    pub ops: Option<usize>,
+    pub timing: Option<Timing>,
+    /// Cases with a result; cases the variant refused, with the reason.
+    pub evaluated: usize,
+    pub unsupported: BTreeMap<String, usize>,
+    /// Results with a NaN or an infinity.
+    pub non_finite: usize,
+    /// Bits of error over every output component of every case.
+    pub bits: Stats,
+    /// The output component with the largest mean bits of error, and that mean.
+    pub dominant: Option<(String, f64)>,
+    /// Normwise error per movable body, in units of the format's epsilon.
+    pub normwise_eps: Stats,
+}
+
+/// How the generated `f64` kernel meets its bound in one regime.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stability {
+    pub bound_eps: f64,
+    pub max_normwise_eps: f64,
+    /// Bodies whose error exceeds the bound.
+    pub over_bound: usize,
+    /// Of those, bodies whose error also exceeds their conditioning (`error > kappa eps`):
+    /// a kernel weakness rather than an ill-conditioned problem. Must be 0.
+    pub over_conditioning: usize,
+    /// Largest `error / kappa` over the bodies above the bound (both in eps units).
+    pub worst_error_over_kappa: f64,
+    pub non_finite: usize,
+    pub passed: bool,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct RegimeResult {
+    pub regime: Regime,
+    pub name: String,
+    pub about: String,
+    pub sampled: usize,
+    /// Sampled cases refused by validation, with the reason (counted, then left out).
+    pub excluded: BTreeMap<String, usize>,
+    /// Estimated condition number per movable body (see `measure`).
+    pub conditioning: Stats,
+    pub variants: Vec<VariantResult>,
+    pub stability: Stability,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct DimResult {
+    pub dim: usize,
+    pub regimes: Vec<RegimeResult>,
+}
+
+/// Per-variant accumulators.
+#[derive(Default)]
+struct Acc {
+    bits: Vec<Vec<f64>>,
+    normwise: Vec<f64>,
+    non_finite: usize,
+    evaluated: usize,
+    unsupported: BTreeMap<String, usize>,
+}
+
+impl Acc {
+    /// Bits of every component, and the normwise error (in eps) of each movable body.
+    fn record<F: Float, const N: usize, const S: usize>(
+        &mut self,
+        computed: &[f64],
+        truth: &Truth,
+        case: &Case<Exact, N, S>,
+    ) -> [Option<f64>; 2] {
+        self.evaluated += 1;
+        if self.bits.is_empty() {
+            self.bits = vec![Vec::new(); computed.len()];
+        }
+        for (k, &c) in computed.iter().enumerate() {
+            // `computed` holds F-floats (widened exactly when F = f32).
+            let value = F::nearest(c, 0.0);
+            self.bits[k].push(bits(value, truth.hi[k], truth.lo[k]));
+        }
+        std::array::from_fn(|b| {
+            (!num_traits::Zero::is_zero(&case.balls[b].inv_mass)).then(|| {
+                let err = normwise(lambda(&case.balls[b]), S, N, b, computed, truth) / F::EPSILON;
+                self.normwise.push(err);
+                err
+            })
+        })
+    }
+
+    fn result(
+        self,
+        variant: Variant,
+        names: &[String],
+        ops: Option<usize>,
+        timing: Option<Timing>,
+    ) -> VariantResult {
+        let all: Vec<f64> = self.bits.iter().flatten().copied().collect();
+        let dominant = self
+            .bits
+            .iter()
+            .enumerate()
+            .map(|(k, v)| (k, v.iter().sum::<f64>() / v.len().max(1) as f64))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .filter(|(_, m)| *m > 0.0)
+            .map(|(k, m)| (names[k].clone(), m));
+        VariantResult {
+            variant,
+            name: variant.name().into(),
+            ops,
+            timing,
+            evaluated: self.evaluated,
+            unsupported: self.unsupported,
+            non_finite: self.non_finite,
+            bits: Stats::of(&all),
+            dominant,
+            normwise_eps: Stats::of(&self.normwise),
+        }
+    }
+}
+
+/// Operation counts of the generated free kernels of `dim`, by arithmetic.
+fn free_ops(dim: usize) -> Vec<(noslip_codegen::Arith, usize)> {
+    noslip_codegen::generate(dim, "crate")
+        .kernels
+        .iter()
+        .filter(|k| k.variant == noslip_codegen::Variant::Free)
+        .map(|k| (k.arith, k.ops.total()))
+        .collect()
+}
+
+/// Every figure of one dimension and regime.
+pub fn regime_result<const N: usize, const S: usize>(
+    regime: Regime,
+    opts: &Options,
+    ops: &[(noslip_codegen::Arith, usize)],
+) -> RegimeResult
+where
+    Generated: Kernel<f64, N, S> + Kernel<f32, N, S> + Kernel<Exact, N, S>,
+{
+    let mut rng = Rng::new(opts.seed ^ ((N as u64) << 32) ^ regime as u64);
+    let names = component_names(N);
+    let mut excluded = BTreeMap::new();
+    let mut cases = Vec::new();
+    for _ in 0..opts.samples {
+        let case = regime.sample::<N, S>(&mut rng);
+        match validate(&case.nu, case.ball_refs(), case.state_refs()) {
+            Ok(()) => cases.push(case),
+            Err(e) => *excluded.entry(e.to_string()).or_insert(0) += 1,
+        }
+    }
+    let mut acc: BTreeMap<usize, Acc> = BTreeMap::new();
+    let mut kappas = Vec::new();
+    let mut stability = Stability {
+        bound_eps: regime.bound_eps(),
+        max_normwise_eps: 0.0,
+        over_bound: 0,
+        over_conditioning: 0,
+        worst_error_over_kappa: 0.0,
+        non_finite: 0,
+        passed: true,
+    };
+    let mut cases32 = Vec::new();
+    for (index, case) in cases.iter().enumerate() {
+        let exact_case = case.to_exact();
+        let exact = exact_result(&exact_case);
+        let truth = Truth::of(&exact);
+        let mut kappa = None;
+        let mut kappa_of = |rng: &mut Rng| {
+            *kappa.get_or_insert_with(|| conditioning(&exact_case, &exact, &truth, rng))
+        };
+        if index < opts.conditioned {
+            kappas.extend(kappa_of(&mut rng).iter().flatten());
+        }
+        let case32 = case
+            .to_f32()
+            .ok()
+            .filter(|c| validate(&c.nu, c.ball_refs(), c.state_refs()).is_ok());
+        let truth32 = case32.as_ref().map(|c| {
+            let exact = c.to_exact();
+            (Truth::of(&exact_result(&exact)), exact)
+        });
+        for (i, &variant) in Variant::ALL.iter().enumerate() {
+            let a = acc.entry(i).or_default();
+            if variant == Variant::Exact {
+                a.evaluated += 1;
+                continue;
+            }
+            match variant.run(case, case32.as_ref()) {
+                Outcome::NonFinite => {
+                    a.non_finite += 1;
+                    if variant == Variant::F64 {
+                        stability.non_finite += 1;
+                    }
+                }
+                Outcome::Unsupported(why) => *a.unsupported.entry(why).or_insert(0) += 1,
+                Outcome::Done(r) if variant == Variant::F32 => {
+                    let (t32, c32) = truth32.as_ref().expect("f32 ran on representable inputs");
+                    a.record::<f32, N, S>(&r, t32, c32);
+                }
+                Outcome::Done(r) => {
+                    let errs = a.record::<f64, N, S>(&r, &truth, &exact_case);
+                    if variant != Variant::F64 {
+                        continue;
+                    }
+                    for (b, err) in errs.iter().enumerate() {
+                        let Some(err) = *err else { continue };
+                        stability.max_normwise_eps = stability.max_normwise_eps.max(err);
+                        if err > stability.bound_eps {
+                            stability.over_bound += 1;
+                            let k = kappa_of(&mut rng)[b].unwrap_or(0.0);
+                            let ratio = err / k.max(f64::MIN_POSITIVE);
+                            stability.worst_error_over_kappa =
+                                stability.worst_error_over_kappa.max(ratio);
+                            if err > k {
+                                stability.over_conditioning += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(c) = case32 {
+            cases32.push(c);
+        }
+    }
+    stability.passed = stability.non_finite == 0 && stability.over_conditioning == 0;
+
+    let batch: Vec<Case<f64, N, S>> = cases.iter().take(opts.batch).cloned().collect();
+    let batch32: Vec<Case<f32, N, S>> = cases32.iter().take(opts.batch).cloned().collect();
+    let batch_exact: Vec<Case<Exact, N, S>> = cases
+        .iter()
+        .take(opts.exact_batch)
+        .map(Case::to_exact)
+        .collect();
+    let variants = Variant::ALL
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            let timing = if batch.is_empty() {
+                None
+            } else {
+                v.time(&batch, &batch32, &batch_exact, opts.timing_samples)
+            };
+            let ops = v
+                .generated()
+                .and_then(|a| ops.iter().find(|(b, _)| *b == a).map(|(_, n)| *n));
+            acc.remove(&i)
+                .unwrap_or_default()
+                .result(v, &names, ops, timing)
+        })
+        .collect();
+    RegimeResult {
+        regime,
+        name: regime.name().into(),
+        about: regime.about().into(),
+        sampled: opts.samples,
+        excluded,
+        conditioning: Stats::of(&kappas),
+        variants,
+        stability,
+    }
+}
+
+/// One dimension's results, `progress` called after each regime.
+pub fn dim_result(dim: usize, opts: &Options, mut progress: impl FnMut(&RegimeResult)) -> DimResult {
+    let ops = free_ops(dim);
+    macro_rules! by_dim {
+        ($($n:literal $s:literal),*) => {
+            match dim {
+                $($n => opts
+                    .regimes
+                    .iter()
+                    .map(|&r| {
+                        let result = regime_result::<$n, $s>(r, opts, &ops);
+                        progress(&result);
+                        result
+                    })
+                    .collect(),)*
+                _ => panic!("no generated kernels for n = {dim}"),
+            }
+        };
+    }
+    let regimes = by_dim!(2 1, 3 3, 4 6, 5 10, 6 15);
+    DimResult { dim, regimes }
+}

@@ -1,0 +1,192 @@
+//! The kernel variants the report compares: what each computes and how it is timed.
+
+use super::case::{flatten, Case};
+use super::dense;
+use super::timing::{pass_over, time, Timing};
+use collision_core::{
+    collide_unchecked, collide_unchecked_fma, reference, BodyState, Exact, Generated, Kernel,
+    Scalar,
+};
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Variant {
+    /// The generated kernels in `f64`.
+    F64,
+    /// The generated FMA kernels in `f64`.
+    F64Fma,
+    /// The generated kernels in `f32` (inputs rounded to `f32`).
+    F32,
+    /// The generated kernels in exact rationals: the ground truth, at its real cost.
+    Exact,
+    /// The general-n nalgebra reference (impulse basis, Gram solve) in `f64`.
+    Reference,
+    /// The notes' dense `N x N` matrix, built per collision, times the state, in `f64`.
+    Dense,
+}
+
+/// What a variant returned on one case.
+pub enum Outcome {
+    /// The flattened result (`f32` results widened exactly).
+    Done(Vec<f64>),
+    /// A NaN or an infinity in the result: a stability failure.
+    NonFinite,
+    /// The variant refuses these inputs (the reference needs `lambda > 0`).
+    Unsupported(String),
+}
+
+impl Variant {
+    pub const ALL: [Variant; 6] = [
+        Variant::F64,
+        Variant::F64Fma,
+        Variant::F32,
+        Variant::Exact,
+        Variant::Reference,
+        Variant::Dense,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Variant::F64 => "generated f64",
+            Variant::F64Fma => "generated f64 FMA",
+            Variant::F32 => "generated f32",
+            Variant::Exact => "generated exact",
+            Variant::Reference => "nalgebra reference f64",
+            Variant::Dense => "dense matrix f64",
+        }
+    }
+
+    /// The epsilon of the variant's format (`0` for exact).
+    pub fn epsilon(self) -> f64 {
+        match self {
+            Variant::F32 => f32::EPSILON as f64,
+            Variant::Exact => 0.0,
+            _ => f64::EPSILON,
+        }
+    }
+
+    /// The name of the generated kernel pair it runs (`free`/`fixed` or the FMA forms).
+    pub fn generated(self) -> Option<noslip_codegen::Arith> {
+        match self {
+            Variant::F64 | Variant::F32 | Variant::Exact => Some(noslip_codegen::Arith::Plain),
+            Variant::F64Fma => Some(noslip_codegen::Arith::Fma),
+            Variant::Reference | Variant::Dense => None,
+        }
+    }
+
+    /// Run on one case (`f32` variants on the rounded inputs, when they exist).
+    pub fn run<const N: usize, const S: usize>(
+        self,
+        case: &Case<f64, N, S>,
+        case32: Option<&Case<f32, N, S>>,
+    ) -> Outcome
+    where
+        Generated: Kernel<f64, N, S> + Kernel<f32, N, S>,
+    {
+        let (nu, balls, states) = (&case.nu, case.ball_refs(), case.state_refs());
+        match self {
+            Variant::F64 => done(&collide_unchecked(nu, balls, states)),
+            Variant::F64Fma => done(&collide_unchecked_fma(nu, balls, states)),
+            Variant::F32 => match case32 {
+                Some(c) => done(&collide_unchecked(&c.nu, c.ball_refs(), c.state_refs())),
+                None => Outcome::Unsupported("inputs not representable in f32".into()),
+            },
+            Variant::Exact => unreachable!("the exact variant is the ground truth"),
+            Variant::Reference => match reference::collide(nu, balls, states) {
+                Ok(r) => done(&r),
+                Err(e) => Outcome::Unsupported(e.message),
+            },
+            Variant::Dense => done(&dense::collide(nu, balls, states)),
+        }
+    }
+
+    /// Median time per collision over `samples` timed samples of passes over the batch.
+    pub fn time<const N: usize, const S: usize>(
+        self,
+        cases: &[Case<f64, N, S>],
+        cases32: &[Case<f32, N, S>],
+        exact: &[Case<Exact, N, S>],
+        samples: usize,
+    ) -> Option<Timing>
+    where
+        Generated: Kernel<f64, N, S> + Kernel<f32, N, S> + Kernel<Exact, N, S>,
+    {
+        let run64 = |c: &Case<f64, N, S>| collide_unchecked(&c.nu, c.ball_refs(), c.state_refs());
+        Some(match self {
+            Variant::F64 => time(cases.len(), samples, || pass_over(cases, run64)),
+            Variant::F64Fma => time(cases.len(), samples, || fma_pass(cases)),
+            Variant::F32 if cases32.is_empty() => return None,
+            Variant::F32 => time(cases32.len(), samples, || {
+                pass_over(cases32, |c| {
+                    collide_unchecked(&c.nu, c.ball_refs(), c.state_refs())
+                })
+            }),
+            Variant::Exact => time(exact.len(), samples.min(5), || {
+                pass_over(exact, |c| {
+                    collide_unchecked(&c.nu, c.ball_refs(), c.state_refs())
+                })
+            }),
+            Variant::Reference => time(cases.len(), samples, || {
+                pass_over(cases, |c| {
+                    reference::collide(&c.nu, c.ball_refs(), c.state_refs())
+                })
+            }),
+            Variant::Dense => time(cases.len(), samples, || {
+                pass_over(cases, |c| {
+                    dense::collide(&c.nu, c.ball_refs(), c.state_refs())
+                })
+            }),
+        })
+    }
+}
+
+fn done<T: Scalar, const N: usize, const S: usize>(states: &[BodyState<T, N, S>; 2]) -> Outcome {
+    let flat: Vec<f64> = flatten(states).iter().map(Scalar::to_f64).collect();
+    if flat.iter().all(|x| x.is_finite()) {
+        Outcome::Done(flat)
+    } else {
+        Outcome::NonFinite
+    }
+}
+
+/// Whether this CPU runs the FMA kernels with FMA instructions.
+pub fn has_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// One pass of the FMA kernels, compiled with FMA instructions where the CPU has them
+/// (elsewhere `f64::mul_add` is a library call).
+fn fma_pass<const N: usize, const S: usize>(cases: &[Case<f64, N, S>])
+where
+    Generated: Kernel<f64, N, S>,
+{
+    #[cfg(target_arch = "x86_64")]
+    if has_fma() {
+        // SAFETY: the CPU has FMA (checked at run time just above).
+        unsafe { fma_pass_x86(cases) };
+        return;
+    }
+    pass_over(cases, |c| {
+        collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
+    })
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+unsafe fn fma_pass_x86<const N: usize, const S: usize>(cases: &[Case<f64, N, S>])
+where
+    Generated: Kernel<f64, N, S>,
+{
+    for c in cases {
+        let c = std::hint::black_box(c);
+        std::hint::black_box(collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs()));
+    }
+}
