@@ -4,8 +4,8 @@
 #![allow(clippy::needless_range_loop)] // matrix entries are indexed by (row, col) on purpose
 
 use collision_core::{
-    collide, collide_unchecked, collide_unchecked_fma, reference, Ball, BodyState, Exact, Generated, Kernel, Scalar,
-    State2,
+    collide, collide_unchecked, collide_unchecked_fma, reference, Ball, BodyState, Exact,
+    Generated, Kernel, Scalar, State2,
 };
 use noslip_tests::*;
 use num_traits::{One, Zero};

@@ -78,7 +78,8 @@ where
         &BodyState<T, N, S>,
         &BodyState<T, N, S>,
     ) -> [BodyState<T, N, S>; 2],
-    Fixed: Fn(&[T; N], &T, &Ball<T>, &BodyState<T, N, S>, &BodyState<T, N, S>) -> BodyState<T, N, S>,
+    Fixed:
+        Fn(&[T; N], &T, &Ball<T>, &BodyState<T, N, S>, &BodyState<T, N, S>) -> BodyState<T, N, S>,
 {
     let [b1, b2] = balls;
     let [s1, s2] = states;

@@ -200,7 +200,11 @@ mod tests {
         assert_eq!(<f64 as Scalar>::mul_sub(&a, &a, &1.0), exact);
         assert_ne!(a * a - 1.0, exact);
         assert_eq!(<f64 as Scalar>::neg_mul_add(&a, &a, &1.0), -exact);
-        let (x, y, z) = (Exact::from_ratio(1, 3), Exact::from_ratio(3, 7), Exact::from_ratio(-1, 7));
+        let (x, y, z) = (
+            Exact::from_ratio(1, 3),
+            Exact::from_ratio(3, 7),
+            Exact::from_ratio(-1, 7),
+        );
         assert!(Exact::mul_add(&x, &y, &z).is_zero());
     }
 

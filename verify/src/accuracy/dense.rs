@@ -63,9 +63,17 @@ pub fn matrix<T: Scalar>(nu: &[T], balls: [&Ball<T>; 2]) -> DMatrix<T> {
         add(row, vel2, &e * rho);
     }
     for (row, coef) in [(vel1, -(two.clone() * w1)), (vel2, two * w2)] {
-        add(row, spin1, &gamma * (coef.clone() * p_t.clone() * r1.clone()));
+        add(
+            row,
+            spin1,
+            &gamma * (coef.clone() * p_t.clone() * r1.clone()),
+        );
         add(row, vel1, &k * coef.clone());
-        add(row, spin2, &gamma * (coef.clone() * p_t.clone() * r2.clone()));
+        add(
+            row,
+            spin2,
+            &gamma * (coef.clone() * p_t.clone() * r2.clone()),
+        );
         add(row, vel2, &k * -coef);
     }
     c

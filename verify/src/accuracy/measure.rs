@@ -135,9 +135,22 @@ pub fn normwise(lambda: f64, s: usize, n: usize, b: usize, computed: &[f64], tru
 /// `|diff_b| / |exact_b|` for body `b` in its energy norm, with spin weight `2 lambda` on
 /// its compact skew entries (the mass cancels); `0` when `diff_b` vanishes, infinite when
 /// only `exact_b` does. Both slices are whole flattened results.
-pub fn relative_norm(lambda: f64, s: usize, n: usize, b: usize, diff: &[f64], exact: &[f64]) -> f64 {
+pub fn relative_norm(
+    lambda: f64,
+    s: usize,
+    n: usize,
+    b: usize,
+    diff: &[f64],
+    exact: &[f64],
+) -> f64 {
     let range = b * (s + n)..(b + 1) * (s + n);
-    let weight = move |k: usize| if k - b * (s + n) < s { 2.0 * lambda } else { 1.0 };
+    let weight = move |k: usize| {
+        if k - b * (s + n) < s {
+            2.0 * lambda
+        } else {
+            1.0
+        }
+    };
     let err = weighted_norm(range.clone().map(|k| (weight(k), diff[k])));
     let norm = weighted_norm(range.map(|k| (weight(k), exact[k])));
     if err == 0.0 {
@@ -233,7 +246,10 @@ mod tests {
         assert_eq!(bits_to(up3, &q(1, 3)), 2.0);
         // Across zero: -min and +min are two steps apart.
         let tiny = f64::from_bits(1);
-        assert_eq!(bits_to(-tiny, &Exact::from_float(tiny).unwrap()), 3f64.log2());
+        assert_eq!(
+            bits_to(-tiny, &Exact::from_float(tiny).unwrap()),
+            3f64.log2()
+        );
         // The exact zero against a tiny value: about 62 bits wrong.
         assert!(bits_to(1e-17f64, &Exact::zero()) > 60.0);
     }
@@ -267,7 +283,7 @@ mod tests {
         // lambda = 0: the spin does not count.
         assert_eq!(normwise(0.0, 1, 2, 1, &computed, &truth), 0.0);
         // Only the exact result vanishes: infinitely ill-conditioned.
-        let zero = Truth::of(&[BodyState::zero(), BodyState::zero()]);
+        let zero = Truth::of::<2, 1>(&[BodyState::zero(), BodyState::zero()]);
         assert!(normwise(1.0, 1, 2, 0, &[0.0, 1e-300, 0.0, 0.0, 0.0, 0.0], &zero).is_infinite());
     }
 

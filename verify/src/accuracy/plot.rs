@@ -117,9 +117,11 @@ pub fn svg(dim: &DimResult) -> Result<String, String> {
             .label("worst regime")
             .legend(|(x, y)| Cross::new((x + 9, y), 6, BLACK.stroke_width(2)));
         chart
-            .draw_series(labelled.iter().map(|(name, p)| {
-                Text::new(name.clone(), *p, ("sans-serif", 13).into_font())
-            }))
+            .draw_series(
+                labelled
+                    .iter()
+                    .map(|(name, p)| Text::new(name.clone(), *p, ("sans-serif", 13).into_font())),
+            )
             .map_err(|e| err(&e))?;
         chart
             .configure_series_labels()

@@ -209,7 +209,10 @@ mod tests {
         for _ in 0..50 {
             let case = Regime::Grazing.sample::<4, 6>(&mut rng);
             let (dn, slip) = normal_and_slip(&case);
-            assert!(dn < 0.0 && -dn < 2e-12 * slip && -dn > 0.5e-12 * slip, "{dn} {slip}");
+            assert!(
+                dn < 0.0 && -dn < 2e-12 * slip && -dn > 0.5e-12 * slip,
+                "{dn} {slip}"
+            );
         }
     }
 }

@@ -34,7 +34,10 @@ impl Provenance {
                 .map(|s| s.trim().to_string())
         };
         let commit = match git(&["rev-parse", "--short=12", "HEAD"]) {
-            Some(c) if git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty()) => {
+            Some(c)
+                if git(&["status", "--porcelain", "--untracked-files=no"])
+                    .is_some_and(|s| !s.is_empty()) =>
+            {
                 format!("{c} (with uncommitted changes)")
             }
             Some(c) => c,
@@ -101,12 +104,20 @@ impl AccuracyReport {
         let _ = writeln!(m, "| provenance | |\n|---|---|");
         let _ = writeln!(m, "| commit | {} |", p.commit);
         let _ = writeln!(m, "| compiler | {} |", p.rustc);
-        let _ = writeln!(m, "| build | profile `{}`, target `{}`, SIMD features `{}` |", p.profile, p.target, p.target_features);
+        let _ = writeln!(
+            m,
+            "| build | profile `{}`, target `{}`, SIMD features `{}` |",
+            p.profile, p.target, p.target_features
+        );
         let _ = writeln!(
             m,
             "| CPU | {} (FMA instructions: {}) |",
             p.cpu,
-            if p.cpu_has_fma { "yes, used by the FMA variant" } else { "no: the FMA variant calls libm" }
+            if p.cpu_has_fma {
+                "yes, used by the FMA variant"
+            } else {
+                "no: the FMA variant calls libm"
+            }
         );
         let _ = writeln!(m, "| run time | {:.1} s |\n", self.seconds);
         let _ = writeln!(
@@ -132,7 +143,11 @@ impl AccuracyReport {
         summary(&mut m, self);
         for d in &self.dims {
             let _ = writeln!(m, "## n = {}\n", d.dim);
-            let _ = writeln!(m, "![error against time, n = {}](error-vs-time-n{}.svg)\n", d.dim, d.dim);
+            let _ = writeln!(
+                m,
+                "![error against time, n = {}](error-vs-time-n{}.svg)\n",
+                d.dim, d.dim
+            );
             for r in &d.regimes {
                 regime(&mut m, r);
             }
@@ -150,7 +165,11 @@ fn summary(m: &mut String, report: &AccuracyReport) {
          conditioning (`error <= kappa eps`): the problem, not the kernel, limits it. \
          NaN or infinity anywhere fails.\n"
     );
-    let regimes: Vec<&str> = report.dims[0].regimes.iter().map(|r| r.name.as_str()).collect();
+    let regimes: Vec<&str> = report.dims[0]
+        .regimes
+        .iter()
+        .map(|r| r.name.as_str())
+        .collect();
     let _ = writeln!(m, "| n | {} |", regimes.join(" | "));
     let _ = writeln!(m, "|---|{}", "---|".repeat(regimes.len()));
     for d in &report.dims {
@@ -178,7 +197,8 @@ fn summary(m: &mut String, report: &AccuracyReport) {
          normwise difference, in eps, between `m_1 = 1e15 m_2` and an immovable body 1 (body \
          2's result) and between `gamma2_1 = 1e-15` and `0` (both bodies), over {} typical \
          cases: of the f64 results, of the exact results (the model's own difference at these \
-         parameters: it grows like `1e-15 w_2 / (w_1 sqrt(gamma2_2))` and is not rounding), \
+         parameters, not rounding: `1e-15` times a factor that grows as the other body's \
+         `gamma2` shrinks or the mass ratio grows), \
          and of the two (the rounding part, which must stay within 64 eps: no jump at the limit).\n",
         report.dims.first().map_or(0, |d| d.continuity.cases)
     );
@@ -187,11 +207,20 @@ fn summary(m: &mut String, report: &AccuracyReport) {
         "| n | mass: f64 | mass: exact | mass: rounding | gamma: f64 | gamma: exact | gamma: rounding |\n|---|---:|---:|---:|---:|---:|---:|"
     );
     for d in &report.dims {
-        let (a, b) = (&d.continuity.mass_1e15_vs_immovable, &d.continuity.gamma2_1e15_vs_zero);
+        let (a, b) = (
+            &d.continuity.mass_1e15_vs_immovable,
+            &d.continuity.gamma2_1e15_vs_zero,
+        );
         let _ = writeln!(
             m,
             "| {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
-            d.dim, a.computed_eps, a.exact_eps, a.rounding_eps, b.computed_eps, b.exact_eps, b.rounding_eps
+            d.dim,
+            a.computed_eps,
+            a.exact_eps,
+            a.rounding_eps,
+            b.computed_eps,
+            b.exact_eps,
+            b.rounding_eps
         );
     }
     let _ = writeln!(m);
@@ -240,7 +269,10 @@ fn regime(m: &mut String, r: &RegimeResult) {
         m,
         "| variant | ops | time (median) | spread | bits mean | bits p99 | bits max | normwise mean | p99 | max (eps) | dominant output (mean bits) | cases |"
     );
-    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|");
+    let _ = writeln!(
+        m,
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
+    );
     for v in &r.variants {
         let (t, spread) = time_cell(v);
         let ops = v.ops.map_or("-".into(), |o| o.to_string());

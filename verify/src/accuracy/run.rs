@@ -416,7 +416,11 @@ where
 }
 
 /// One dimension's results, `progress` called after each regime.
-pub fn dim_result(dim: usize, opts: &Options, mut progress: impl FnMut(&RegimeResult)) -> DimResult {
+pub fn dim_result(
+    dim: usize,
+    opts: &Options,
+    mut progress: impl FnMut(&RegimeResult),
+) -> DimResult {
     let ops = free_ops(dim);
     macro_rules! by_dim {
         ($($n:literal $s:literal),*) => {

@@ -40,4 +40,3 @@ pub fn parse_dims(s: &str) -> Result<Dims, String> {
     }
     Ok(Dims(dims))
 }
-

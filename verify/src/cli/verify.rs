@@ -1,9 +1,9 @@
 //! `noslip verify`: every exact check for the chosen dimensions, reports, golden copy.
 
+use super::{parse_dims, Dims};
 use indicatif::{ProgressBar, ProgressStyle};
 use noslip_verify::report::{diff, write_atomic, Report};
 use noslip_verify::run::{checks_per_dim, run, Options};
-use super::{parse_dims, Dims};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
