@@ -3,7 +3,7 @@
 //!
 //! - `generated`: `collision_core::kernels::dN::free::<f64>`, the generated straight-line
 //!   kernel, called directly (no dispatch, no validation);
-//! - `handwritten`: `support/handwritten.rs`, MATH.md's closed form written by hand in
+//! - `handwritten`: `collision_core::literal`, MATH.md's closed form written by hand in
 //!   `f64` with fixed-size loops that LLVM unrolls completely (the baseline);
 //! - `reference`: `collision_core::reference::collide` in `f64`: nalgebra, heap-allocating,
 //!   Gram matrix and Gaussian elimination, and it validates its inputs (unit normal, ball
@@ -23,8 +23,7 @@
 
 #[path = "support/cases.rs"]
 mod cases;
-#[path = "support/handwritten.rs"]
-mod handwritten;
+use collision_core::literal as handwritten;
 
 use cases::{batch, Case};
 use collision_core::{kernels, reference, Ball, BodyState};

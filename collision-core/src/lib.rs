@@ -30,6 +30,7 @@ mod collide;
 mod error;
 pub mod kernels;
 pub mod linalg;
+pub mod literal;
 mod normal;
 pub mod reference;
 mod scalar;

@@ -4,8 +4,8 @@ use super::case::{flatten, Case};
 use super::dense;
 use super::timing::{pass_over, time, Timing};
 use collision_core::{
-    collide_unchecked, collide_unchecked_fma, reference, BodyState, Exact, Generated, Kernel,
-    Scalar,
+    collide_unchecked, collide_unchecked_fma, literal, reference, BodyState, Exact, Generated,
+    Kernel, Scalar,
 };
 use serde::Serialize;
 
@@ -24,6 +24,9 @@ pub enum Variant {
     Reference,
     /// The notes' dense `N x N` matrix, built per collision, times the state, in `f64`.
     Dense,
+    /// MATH.md's closed form written literally (`k_i = w_i / gamma_i^2`), in `f64`: the
+    /// form before the generator's reformulation.
+    Literal,
 }
 
 /// What a variant returned on one case.
@@ -37,13 +40,14 @@ pub enum Outcome {
 }
 
 impl Variant {
-    pub const ALL: [Variant; 6] = [
+    pub const ALL: [Variant; 7] = [
         Variant::F64,
         Variant::F64Fma,
         Variant::F32,
         Variant::Exact,
         Variant::Reference,
         Variant::Dense,
+        Variant::Literal,
     ];
 
     pub fn name(self) -> &'static str {
@@ -54,6 +58,7 @@ impl Variant {
             Variant::Exact => "generated exact",
             Variant::Reference => "nalgebra reference f64",
             Variant::Dense => "dense matrix f64",
+            Variant::Literal => "literal closed form f64 (before)",
         }
     }
 
@@ -71,7 +76,7 @@ impl Variant {
         match self {
             Variant::F64 | Variant::F32 | Variant::Exact => Some(noslip_codegen::Arith::Plain),
             Variant::F64Fma => Some(noslip_codegen::Arith::Fma),
-            Variant::Reference | Variant::Dense => None,
+            Variant::Reference | Variant::Dense | Variant::Literal => None,
         }
     }
 
@@ -98,6 +103,7 @@ impl Variant {
                 Err(e) => Outcome::Unsupported(e.message),
             },
             Variant::Dense => done(&dense::collide(nu, balls, states)),
+            Variant::Literal => done(&literal::free(nu, balls[0], balls[1], states[0], states[1])),
         }
     }
 
@@ -135,6 +141,12 @@ impl Variant {
             Variant::Dense => time(cases.len(), samples, || {
                 pass_over(cases, |c| {
                     dense::collide(&c.nu, c.ball_refs(), c.state_refs())
+                })
+            }),
+            Variant::Literal => time(cases.len(), samples, || {
+                pass_over(cases, |c| {
+                    let ([b1, b2], [s1, s2]) = (c.ball_refs(), c.state_refs());
+                    literal::free(&c.nu, b1, b2, s1, s2)
                 })
             }),
         })

@@ -1,5 +1,8 @@
-//! A hand-written kernel of the closed form in `shared/MATH.md`, in `f64`, as a reader of
-//! that page would write it: the baseline the generated kernels are measured against.
+//! MATH.md's closed form written literally, by hand, in `f64`, as a reader of that page
+//! would write it: the baseline the generated kernels are measured against (benchmarks,
+//! and the "before" of the error report). Use the generated kernels: this form divides by
+//! `gamma^2` (`k_i = w_i / g_i`), so a point mass (`gamma2 = 0`) gives NaN, and the literal
+//! `nu ^ P` amplifies the rounding of `nu ^ (p_n nu) = 0` by `2 k_i / R_i`.
 //!
 //! ```text
 //! k_i  = w_i / g_i                        (g = gamma^2 = 2 lambda / R^2)
@@ -12,7 +15,7 @@
 //! ```
 //!
 //! with `(a ^ b)_ij = b_i a_j - a_i b_j` on the compact skew entries `i < j`, in the order
-//! `(0,1), (0,2), .., (1,2), ..` (as [`collision_core::BodyState`]).
+//! `(0,1), (0,2), .., (1,2), ..` (as [`crate::BodyState`]).
 //!
 //! Generic over the dimension with fixed-size loops whose trip counts are constants after
 //! monomorphization (`N`, or `S` over a constant table of `(i, j)` pairs), which LLVM
@@ -25,7 +28,7 @@
 //! (`-0.0 + x == x` for every `x`, including `x = -0.0`), so LLVM folds the first addition
 //! away; starting at `0.0` would cost one real addition per sum (`0.0 + -0.0 = 0.0`).
 
-use collision_core::{Ball, BodyState};
+use crate::{Ball, BodyState};
 
 /// The `(i, j)`, `i < j`, of each compact skew entry, as a constant table.
 struct Pairs<const N: usize, const S: usize>;
