@@ -77,9 +77,9 @@ impl<const N: usize, const S: usize> Case<f64, N, S> {
         let case = self.map(|&x| {
             let y = x as f32;
             if !y.is_finite() {
-                why = Some("overflows f32");
+                why = Some("inputs overflow f32");
             } else if x != 0.0 && !y.is_normal() {
-                why = Some("underflows f32");
+                why = Some("inputs underflow f32");
             }
             y
         });
@@ -140,8 +140,8 @@ mod tests {
         };
         assert!(case.to_f32().is_ok());
         case.states[1].velocity[0] = 1e100;
-        assert_eq!(case.to_f32().unwrap_err(), "overflows f32");
+        assert_eq!(case.to_f32().unwrap_err(), "inputs overflow f32");
         case.states[1].velocity[0] = 1e-100;
-        assert_eq!(case.to_f32().unwrap_err(), "underflows f32");
+        assert_eq!(case.to_f32().unwrap_err(), "inputs underflow f32");
     }
 }

@@ -100,7 +100,10 @@ impl AccuracyReport {
         let o = &self.options;
         let _ = writeln!(m, "# Error against run time of the no-slip kernels\n");
         let _ = writeln!(m, "Reproduce: `{}`\n", p.command);
-        let _ = writeln!(m, "How to read this report: [`docs/accuracy.md`](../docs/accuracy.md) in the repository.\n");
+        let _ = writeln!(
+            m,
+            "How to read this report: `docs/accuracy.md` in the repository.\n"
+        );
         let _ = writeln!(m, "| provenance | |\n|---|---|");
         let _ = writeln!(m, "| commit | {} |", p.commit);
         let _ = writeln!(m, "| compiler | {} |", p.rustc);

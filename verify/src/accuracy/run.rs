@@ -244,10 +244,15 @@ where
         if index < opts.conditioned {
             kappas.extend(kappa_of(&mut rng).iter().flatten());
         }
-        let case32 = case
-            .to_f32()
-            .ok()
-            .filter(|c| validate(&c.nu, c.ball_refs(), c.state_refs()).is_ok());
+        let case32 = case.to_f32().map_err(String::from).and_then(|c| {
+            match validate(&c.nu, c.ball_refs(), c.state_refs()) {
+                Ok(()) => Ok(c),
+                Err(e) => Err(format!(
+                    "inputs rounded to f32 fail validation at {}",
+                    e.field
+                )),
+            }
+        });
         let truth32 = case32.as_ref().map(|c| {
             let exact = c.to_exact();
             (Truth::of(&exact_result(&exact)), exact)
@@ -258,7 +263,7 @@ where
                 a.evaluated += 1;
                 continue;
             }
-            match variant.run(case, case32.as_ref()) {
+            match variant.run(case, case32.as_ref().map_err(String::as_str)) {
                 Outcome::NonFinite => {
                     a.non_finite += 1;
                     if variant == Variant::F64 {
@@ -292,7 +297,7 @@ where
                 }
             }
         }
-        if let Some(c) = case32 {
+        if let Ok(c) = case32 {
             cases32.push(c);
         }
     }

@@ -80,11 +80,12 @@ impl Variant {
         }
     }
 
-    /// Run on one case (`f32` variants on the rounded inputs, when they exist).
+    /// Run on one case (`f32` on the rounded inputs, or refused with the reason they are
+    /// not usable).
     pub fn run<const N: usize, const S: usize>(
         self,
         case: &Case<f64, N, S>,
-        case32: Option<&Case<f32, N, S>>,
+        case32: Result<&Case<f32, N, S>, &str>,
     ) -> Outcome
     where
         Generated: Kernel<f64, N, S> + Kernel<f32, N, S>,
@@ -94,8 +95,8 @@ impl Variant {
             Variant::F64 => done(&collide_unchecked(nu, balls, states)),
             Variant::F64Fma => done(&collide_unchecked_fma(nu, balls, states)),
             Variant::F32 => match case32 {
-                Some(c) => done(&collide_unchecked(&c.nu, c.ball_refs(), c.state_refs())),
-                None => Outcome::Unsupported("inputs not representable in f32".into()),
+                Ok(c) => done(&collide_unchecked(&c.nu, c.ball_refs(), c.state_refs())),
+                Err(why) => Outcome::Unsupported(why.into()),
             },
             Variant::Exact => unreachable!("the exact variant is the ground truth"),
             Variant::Reference => match reference::collide(nu, balls, states) {
