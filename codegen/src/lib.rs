@@ -17,7 +17,9 @@
 
 pub mod emit;
 pub mod ir;
+pub mod literal;
 pub mod model;
+pub mod scene;
 pub mod schedule;
 pub mod straight_line;
 

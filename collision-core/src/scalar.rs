@@ -75,6 +75,10 @@ pub trait Scalar:
     /// written as `R^2/n` in decimal): 0 exactly; `8 eps` in floats, the rounding of the
     /// few operations between the input and the bound.
     fn rounding_slack() -> Self;
+    /// An exact rational constant of a specialised kernel, given by the generator as its
+    /// correctly rounded `f64` and `f32` and its exact digits `num / den` (decimal
+    /// integers): floats return their literal, rationals parse the digits.
+    fn from_literal(x64: f64, x32: f32, num: &str, den: &str) -> Self;
 }
 
 impl Scalar for f64 {
@@ -98,6 +102,10 @@ impl Scalar for f64 {
     }
     fn rounding_slack() -> Self {
         8.0 * f64::EPSILON
+    }
+    #[inline(always)]
+    fn from_literal(x64: f64, _: f32, _: &str, _: &str) -> Self {
+        x64
     }
 }
 
@@ -123,6 +131,10 @@ impl Scalar for f32 {
     fn rounding_slack() -> Self {
         8.0 * f32::EPSILON
     }
+    #[inline(always)]
+    fn from_literal(_: f64, x32: f32, _: &str, _: &str) -> Self {
+        x32
+    }
 }
 
 impl Scalar for Exact {
@@ -145,6 +157,10 @@ impl Scalar for Exact {
     }
     fn rounding_slack() -> Self {
         Self::zero()
+    }
+    fn from_literal(_: f64, _: f32, num: &str, den: &str) -> Self {
+        let parse = |d: &str| d.parse::<BigInt>().expect("generated literal digits");
+        BigRational::new(parse(num), parse(den))
     }
 }
 
