@@ -65,7 +65,9 @@ fn const_value(c: &BigRational) -> TokenStream {
         return quote!(T::from_ratio(#p, #q));
     }
     let (x64, x32) = crate::literal::nearest_floats(c);
-    let (x64, x32) = (Literal::f64_suffixed(x64), Literal::f32_suffixed(x32));
+    let float = |lit: Literal, negative: bool| if negative { quote!(-#lit) } else { quote!(#lit) };
+    let x64 = float(Literal::f64_suffixed(x64.abs()), x64 < 0.0);
+    let x32 = float(Literal::f32_suffixed(x32.abs()), x32 < 0.0);
     let (p, q) = (c.numer().to_string(), c.denom().to_string());
     quote!(T::from_literal(#x64, #x32, #p, #q))
 }

@@ -21,6 +21,7 @@ pub mod literal;
 pub mod model;
 pub mod scene;
 pub mod schedule;
+pub mod specialise;
 pub mod straight_line;
 
 pub use model::Variant;

@@ -3,7 +3,7 @@
 //! Allowed in a kernel body: `let` bindings whose patterns are identifiers, `_`, arrays and
 //! struct destructurings; the expressions `a + b`, `a - b`, `a * b`, `a / b`, `-a`, `&a`,
 //! paths, integer literals, array and struct literals, `T::from_ratio(p, q)` with literal
-//! arguments, and `x.clone()`. Anything else (`if`, `match`, loops, closures, other calls or
+//! arguments, `T::from_literal(x64, x32, "p", "q")` with literal arguments, and `x.clone()`. Anything else (`if`, `match`, loops, closures, other calls or
 //! methods, macros, blocks, `return`, indexing) is a violation. Allowed at the top level of a
 //! generated file: `use` items and such functions.
 
@@ -56,7 +56,27 @@ fn is_from_ratio_call(call: &syn::ExprCall) -> bool {
         }
         _ => false,
     };
-    segments == ["T", "from_ratio"] && call.args.len() == 2 && call.args.iter().all(literal_int)
+    let literal = |e: &Expr, ok: fn(&syn::Lit) -> bool| match e {
+        Expr::Lit(l) => ok(&l.lit),
+        Expr::Unary(u) => {
+            matches!(u.op, UnOp::Neg(_)) && matches!(&*u.expr, Expr::Lit(l) if ok(&l.lit))
+        }
+        _ => false,
+    };
+    let float = |l: &syn::Lit| matches!(l, syn::Lit::Float(_));
+    let string = |l: &syn::Lit| matches!(l, syn::Lit::Str(_));
+    let args: Vec<&Expr> = call.args.iter().collect();
+    match segments.iter().map(String::as_str).collect::<Vec<_>>()[..] {
+        ["T", "from_ratio"] => args.len() == 2 && args.iter().all(|e| literal_int(e)),
+        ["T", "from_literal"] => {
+            args.len() == 4
+                && literal(args[0], float)
+                && literal(args[1], float)
+                && matches!(args[2], Expr::Lit(l) if string(&l.lit))
+                && matches!(args[3], Expr::Lit(l) if string(&l.lit))
+        }
+        _ => false,
+    }
 }
 
 impl<'ast> Visit<'ast> for Checker {
@@ -121,7 +141,7 @@ impl<'ast> Visit<'ast> for Checker {
             Expr::If(_) => self.flag("`if`"),
             Expr::Match(_) => self.flag("`match`"),
             Expr::Loop(_) | Expr::While(_) | Expr::ForLoop(_) => self.flag("a loop"),
-            Expr::Call(_) => self.flag("a call other than `T::from_ratio(int, int)`"),
+            Expr::Call(_) => self.flag("a call other than `T::from_ratio(int, int)` or `T::from_literal(float, float, str, str)`"),
             Expr::MethodCall(_) => self.flag("a method call other than `.clone()`"),
             Expr::Closure(_) => self.flag("a closure"),
             Expr::Macro(_) => self.flag("a macro"),

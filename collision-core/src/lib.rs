@@ -33,6 +33,7 @@ pub mod linalg;
 mod normal;
 pub mod reference;
 mod scalar;
+pub mod sim;
 mod state;
 
 pub use ball::{Ball, Inertia, Mass};
