@@ -31,11 +31,17 @@ enum Command {
     Collide(cli::collide::Args),
     /// Prove the generated kernels exact: identities, decomposition, inertia; writes reports.
     Verify(cli::verify::Args),
+    /// Run a scene: event-driven no-slip billiard / rough-ball gas; summary, log, plots.
+    Simulate(cli::simulate::Args),
+    /// Print the kernels specialised to a scene, with op counts (or check them exactly).
+    Gen(cli::gen::Args),
 }
 
 fn main() -> ExitCode {
     match Cli::parse().command {
         Command::Collide(args) => cli::collide::run(&args),
         Command::Verify(args) => cli::verify::run_cmd(&args),
+        Command::Simulate(args) => cli::simulate::run_cmd(&args),
+        Command::Gen(args) => cli::gen::run(&args),
     }
 }

@@ -165,6 +165,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.pos.is_empty()
     }
 
+    /// The box sides `L_k`.
+    pub fn box_size(&self) -> [f64; N] {
+        self.grid.size
+    }
+
     pub fn species_of(&self, i: usize) -> usize {
         self.kind[i]
     }
