@@ -127,6 +127,7 @@ fn species_body(g: &mut Graph, n: usize, b: usize, s: &Species, fixed: bool) -> 
 pub fn build(set: &PairSet, pair: Pair) -> Kernel {
     let n = set.dim;
     let mut g = Graph::new();
+    g.fold_reciprocals(true);
     let nu_inputs = |g: &mut Graph| (0..n).map(|k| g.input(names::nu(k))).collect();
     let inputs = match pair {
         Pair::BallBall(a, b) => KernelInputs {
@@ -294,6 +295,7 @@ fn dispatch(set: &PairSet, crate_path: &syn::Path) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         pub struct Kernels;
 
+        #[allow(unused_variables)]
         impl<T: Scalar> #crate_path::sim::PairKernels<T, #nl, #sl> for Kernels
         where
             for<'a> &'a T: RefArith<T>,
@@ -328,7 +330,7 @@ pub fn generate(set: &PairSet, crate_path: &str) -> SceneModule {
     let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
     let (kernels, pairs): (Vec<TokenStream>, Vec<PairSummary>) =
         set.all().into_iter().map(|p| emit_pair(set, p)).unzip();
-    let imports = emit::runtime_imports(crate_path);
+    let imports = quote!(use #path::{BodyState, RefArith, Scalar};);
     let kernel_file = emit::parse(quote!(#imports #(#kernels)*));
     let violations = crate::straight_line::check(&kernel_file);
     assert!(
