@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 fn main() {
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let dims = noslip_codegen::DIMS
-        .filter(|d| std::env::var_os(format!("CARGO_FEATURE_D{d}")).is_some());
+    let dims =
+        noslip_codegen::DIMS.filter(|d| std::env::var_os(format!("CARGO_FEATURE_D{d}")).is_some());
     noslip_codegen::generate_into(&out_dir, dims, "crate")
         .expect("write generated kernels to OUT_DIR");
     // The generator is a build dependency: cargo rebuilds this script when it changes.

@@ -65,7 +65,13 @@ fn const_value(c: &BigRational) -> TokenStream {
         return quote!(T::from_ratio(#p, #q));
     }
     let (x64, x32) = crate::literal::nearest_floats(c);
-    let float = |lit: Literal, negative: bool| if negative { quote!(-#lit) } else { quote!(#lit) };
+    let float = |lit: Literal, negative: bool| {
+        if negative {
+            quote!(-#lit)
+        } else {
+            quote!(#lit)
+        }
+    };
     let x64 = float(Literal::f64_suffixed(x64.abs()), x64 < 0.0);
     let x32 = float(Literal::f32_suffixed(x32.abs()), x32 < 0.0);
     let (p, q) = (c.numer().to_string(), c.denom().to_string());
@@ -151,7 +157,10 @@ pub(crate) fn doc_lines(lines: &[String]) -> TokenStream {
 }
 
 /// An array pattern binding the live names and `_` for the rest.
-pub(crate) fn array_pattern(names: impl IntoIterator<Item = String>, live: &BTreeSet<String>) -> TokenStream {
+pub(crate) fn array_pattern(
+    names: impl IntoIterator<Item = String>,
+    live: &BTreeSet<String>,
+) -> TokenStream {
     let elems = names.into_iter().map(|n| {
         if live.contains(&n) {
             let i = ident(&n);

@@ -16,7 +16,11 @@ fn generic(path: &str) -> GenericKernels<f64> {
         species: scene
             .species
             .iter()
-            .map(|s| Ball { inv_mass: f(&s.inv_mass), radius: f(&s.radius), gamma2: f(&s.gamma2) })
+            .map(|s| Ball {
+                inv_mass: f(&s.inv_mass),
+                radius: f(&s.radius),
+                gamma2: f(&s.gamma2),
+            })
             .collect(),
     }
 }
@@ -25,11 +29,26 @@ fn bench(c: &mut Criterion) {
     let gas = generic("../scenes/gas2d.toml");
     let billiard = generic("../scenes/sinai.toml");
     let nu = [0.6, 0.8];
-    let s1: State2<f64> = BodyState { spin: [0.3], velocity: [1.0, 0.5] };
-    let s2: State2<f64> = BodyState { spin: [-0.7], velocity: [-0.2, -1.1] };
+    let s1: State2<f64> = BodyState {
+        spin: [0.3],
+        velocity: [1.0, 0.5],
+    };
+    let s2: State2<f64> = BodyState {
+        spin: [-0.7],
+        velocity: [-0.2, -1.1],
+    };
     let mut g = c.benchmark_group("ball-ball");
     g.bench_function("generic", |b| {
-        b.iter(|| PairKernels::<f64, 2, 1>::ball_ball(&gas, black_box(0), black_box(1), black_box(&nu), black_box(&s1), black_box(&s2)))
+        b.iter(|| {
+            PairKernels::<f64, 2, 1>::ball_ball(
+                &gas,
+                black_box(0),
+                black_box(1),
+                black_box(&nu),
+                black_box(&s1),
+                black_box(&s2),
+            )
+        })
     });
     g.bench_function("specialised", |b| {
         b.iter(|| gas2d::ball_ball_0_1(black_box(&nu), black_box(&s1), black_box(&s2)))
@@ -37,13 +56,30 @@ fn bench(c: &mut Criterion) {
     g.finish();
     let mut g = c.benchmark_group("ball-wall");
     g.bench_function("generic", |b| {
-        b.iter(|| PairKernels::<f64, 2, 1>::ball_wall(&gas, black_box(0), black_box(1), black_box(false), black_box(&s2)))
+        b.iter(|| {
+            PairKernels::<f64, 2, 1>::ball_wall(
+                &gas,
+                black_box(0),
+                black_box(1),
+                black_box(false),
+                black_box(&s2),
+            )
+        })
     });
-    g.bench_function("specialised", |b| b.iter(|| gas2d::ball_wall_0_1_lower(black_box(&s2))));
+    g.bench_function("specialised", |b| {
+        b.iter(|| gas2d::ball_wall_0_1_lower(black_box(&s2)))
+    });
     g.finish();
     let mut g = c.benchmark_group("ball-obstacle");
     g.bench_function("generic", |b| {
-        b.iter(|| PairKernels::<f64, 2, 1>::ball_obstacle(&billiard, black_box(0), black_box(&nu), black_box(&s2)))
+        b.iter(|| {
+            PairKernels::<f64, 2, 1>::ball_obstacle(
+                &billiard,
+                black_box(0),
+                black_box(&nu),
+                black_box(&s2),
+            )
+        })
     });
     g.bench_function("specialised", |b| {
         b.iter(|| sinai::ball_obstacle_0(black_box(&nu), black_box(&s2)))

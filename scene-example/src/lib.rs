@@ -30,7 +30,10 @@ fn f(x: &BigRational) -> f64 {
 /// The 2D setup of a scene whose balls are all explicit (no random placement).
 pub fn explicit_setup(scene: &Scene) -> Setup<2, 1> {
     assert_eq!(scene.dim, 2);
-    assert!(scene.species.iter().all(|s| s.count == 0), "explicit balls only");
+    assert!(
+        scene.species.iter().all(|s| s.count == 0),
+        "explicit balls only"
+    );
     let v = |x: &[BigRational]| [f(&x[0]), f(&x[1])];
     Setup {
         size: v(&scene.size),
@@ -38,12 +41,19 @@ pub fn explicit_setup(scene: &Scene) -> Setup<2, 1> {
         species: scene
             .species
             .iter()
-            .map(|s| Ball { inv_mass: f(&s.inv_mass), radius: f(&s.radius), gamma2: f(&s.gamma2) })
+            .map(|s| Ball {
+                inv_mass: f(&s.inv_mass),
+                radius: f(&s.radius),
+                gamma2: f(&s.gamma2),
+            })
             .collect(),
         obstacles: scene
             .obstacles
             .iter()
-            .map(|o| FixedBall { position: v(&o.position), radius: f(&o.radius) })
+            .map(|o| FixedBall {
+                position: v(&o.position),
+                radius: f(&o.radius),
+            })
             .collect(),
         bodies: scene
             .balls
@@ -51,7 +61,10 @@ pub fn explicit_setup(scene: &Scene) -> Setup<2, 1> {
             .map(|b| Body {
                 species: b.species,
                 position: v(&b.position),
-                state: BodyState { spin: [f(&b.spin[0])], velocity: v(&b.velocity) },
+                state: BodyState {
+                    spin: [f(&b.spin[0])],
+                    velocity: v(&b.velocity),
+                },
             })
             .collect(),
         orientation: scene.simulation.orientation,

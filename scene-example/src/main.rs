@@ -16,13 +16,19 @@ fn run<K: PairKernels<f64, 2, 1>>(scene: &Scene, kernels: K, events: u64) {
     }
     let s = clock.elapsed().as_secs_f64();
     let drift = (sim.observables().energy - e0) / e0;
-    println!("{done} contacts in {s:.3} s ({:.0}/s), energy drift {drift:.3e}", done as f64 / s);
+    println!(
+        "{done} contacts in {s:.3} s ({:.0}/s), energy drift {drift:.3e}",
+        done as f64 / s
+    );
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let path = args.get(1).map_or("scenes/sinai.toml", String::as_str);
-    let events = args.get(2).and_then(|n| n.parse().ok()).unwrap_or(1_000_000);
+    let events = args
+        .get(2)
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(1_000_000);
     let scene = Scene::from_file(path.as_ref()).unwrap_or_else(|e| {
         eprintln!("error: {e}");
         std::process::exit(2)

@@ -42,9 +42,7 @@ pub fn parse_exact(text: &str) -> Result<BigRational, String> {
         None => (s, 0),
     };
     if exponent.abs() > MAX_EXPONENT {
-        return Err(format!(
-            "exponent of {text:?} is beyond +-{MAX_EXPONENT}"
-        ));
+        return Err(format!("exponent of {text:?} is beyond +-{MAX_EXPONENT}"));
     }
     let (int_part, frac_part) = mantissa.split_once('.').unwrap_or((mantissa, ""));
     let digits = format!("{int_part}{frac_part}");
@@ -53,7 +51,9 @@ pub fn parse_exact(text: &str) -> Result<BigRational, String> {
     if unsigned.is_empty() || !valid(unsigned) || !valid(frac_part) {
         return Err(format!("not a number: {text:?} (write 3/5, 0.25 or 1e-3)"));
     }
-    let value: BigInt = digits.parse().map_err(|_| format!("not a number: {text:?}"))?;
+    let value: BigInt = digits
+        .parse()
+        .map_err(|_| format!("not a number: {text:?}"))?;
     let scale = exponent - frac_part.len() as i64;
     let ten = BigInt::from(10);
     let power = num_traits::pow(ten, scale.unsigned_abs() as usize);

@@ -1,9 +1,7 @@
 //! Semantic checks of a parsed scene, in exact rationals. Each error names its key path.
 
 use super::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
-use super::{
-    BallSpec, Boundary, Number, Obstacle, Random, Scene, SceneError, Simulation, Species,
-};
+use super::{BallSpec, Boundary, Number, Obstacle, Random, Scene, SceneError, Simulation, Species};
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
@@ -50,12 +48,13 @@ fn q(n: i64) -> Q {
 fn gamma2(ctx: &Ctx, at: &str, s: &RawSpecies, radius: &Q, n: usize) -> Result<Q, SceneError> {
     let nq = q(n as i64);
     let shell = q(2) / &nq;
-    let given = [s.lambda.is_some(), s.gamma2.is_some(), s.distribution.is_some()];
+    let given = [
+        s.lambda.is_some(),
+        s.gamma2.is_some(),
+        s.distribution.is_some(),
+    ];
     if given.iter().filter(|&&g| g).count() > 1 {
-        return Err(ctx.err(
-            at,
-            "give at most one of lambda, gamma2 and distribution",
-        ));
+        return Err(ctx.err(at, "give at most one of lambda, gamma2 and distribution"));
     }
     let in_range = |x: &Q, bound: &Q, key: &str, what: &str| {
         if x.is_negative() || x > bound {
@@ -141,12 +140,7 @@ pub(crate) fn distance2(a: &[Q], b: &[Q], size: &[Q], boundary: &[Boundary]) -> 
     d2
 }
 
-fn ball(
-    ctx: &Ctx,
-    i: usize,
-    b: &RawBall,
-    scene: &Scene,
-) -> Result<BallSpec, SceneError> {
+fn ball(ctx: &Ctx, i: usize, b: &RawBall, scene: &Scene) -> Result<BallSpec, SceneError> {
     let at = format!("ball[{i}]");
     let n = scene.dim;
     let species = scene.species.get(b.species).ok_or_else(|| {
@@ -164,7 +158,11 @@ fn ball(
     for k in 0..n {
         let x = &position[k];
         let (lo, hi, what) = match scene.boundary[k] {
-            Boundary::Wall => (r.clone(), &scene.size[k] - r, "[R, L - R] (inside the walls)"),
+            Boundary::Wall => (
+                r.clone(),
+                &scene.size[k] - r,
+                "[R, L - R] (inside the walls)",
+            ),
             Boundary::Periodic => (Q::zero(), scene.size[k].clone(), "[0, L)"),
         };
         let outside = x < &lo || x > &hi || (scene.boundary[k] == Boundary::Periodic && x == &hi);
@@ -196,7 +194,10 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
     let size = ctx.vector("box.size", &raw.domain.size, n)?;
     for (k, l) in size.iter().enumerate() {
         if !l.is_positive() {
-            return Err(ctx.err(format!("box.size[{k}]"), format!("must be positive, got {l}")));
+            return Err(ctx.err(
+                format!("box.size[{k}]"),
+                format!("must be positive, got {l}"),
+            ));
         }
     }
     if raw.domain.boundary.len() != n {
@@ -236,10 +237,21 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
     }
     let random = Random {
         seed: raw.random.seed,
-        speed: raw.random.speed.as_ref().map_or_else(Q::one, |x| x.0.clone()),
-        spin: raw.random.spin.as_ref().map_or_else(Q::zero, |x| x.0.clone()),
+        speed: raw
+            .random
+            .speed
+            .as_ref()
+            .map_or_else(Q::one, |x| x.0.clone()),
+        spin: raw
+            .random
+            .spin
+            .as_ref()
+            .map_or_else(Q::zero, |x| x.0.clone()),
     };
-    for (key, x) in [("random.speed", &random.speed), ("random.spin", &random.spin)] {
+    for (key, x) in [
+        ("random.speed", &random.speed),
+        ("random.spin", &random.spin),
+    ] {
         if x.is_negative() {
             return Err(ctx.err(key, format!("must be >= 0, got {x}")));
         }
@@ -268,10 +280,14 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         let at = format!("obstacle[{i}]");
         let position = ctx.vector(&format!("{at}.position"), &o.position, n)?;
         let radius = ctx.positive(&format!("{at}.radius"), &o.radius)?;
-        if let Some(k) = (0..n).find(|&k| position[k].is_negative() || position[k] > scene.size[k]) {
+        if let Some(k) = (0..n).find(|&k| position[k].is_negative() || position[k] > scene.size[k])
+        {
             return Err(ctx.err(
                 format!("{at}.position[{k}]"),
-                format!("the centre {} is outside the box [0, {}]", position[k], scene.size[k]),
+                format!(
+                    "the centre {} is outside the box [0, {}]",
+                    position[k], scene.size[k]
+                ),
             ));
         }
         scene.obstacles.push(Obstacle { position, radius });
@@ -318,7 +334,10 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         ));
     }
     if scene.ball_count() == 0 {
-        return Err(ctx.err("species", "the scene has no balls: give count or [[ball]] entries"));
+        return Err(ctx.err(
+            "species",
+            "the scene has no balls: give count or [[ball]] entries",
+        ));
     }
     Ok(scene)
 }

@@ -84,7 +84,10 @@ impl Config {
         let out_dir = match &self.out_dir {
             Some(d) => d.clone(),
             None => PathBuf::from(std::env::var_os("OUT_DIR").ok_or_else(|| {
-                io::Error::new(io::ErrorKind::NotFound, "OUT_DIR is not set: not in a build script? use out_dir()")
+                io::Error::new(
+                    io::ErrorKind::NotFound,
+                    "OUT_DIR is not set: not in a build script? use out_dir()",
+                )
             })?),
         };
         sets.iter()

@@ -66,7 +66,10 @@ impl PairSet {
     /// Every pair kind, in emission order.
     pub fn all(&self) -> Vec<Pair> {
         let bb = self.ball_ball.iter().map(|&(a, b)| Pair::BallBall(a, b));
-        let bw = self.ball_wall.iter().map(|&(s, k, d)| Pair::BallWall(s, k, d));
+        let bw = self
+            .ball_wall
+            .iter()
+            .map(|&(s, k, d)| Pair::BallWall(s, k, d));
         let bo = self.ball_obstacle.iter().map(|&s| Pair::BallObstacle(s));
         bb.chain(bw).chain(bo).collect()
     }
@@ -118,7 +121,11 @@ fn species_body(g: &mut Graph, n: usize, b: usize, s: &Species, fixed: bool) -> 
         spin,
         velocity,
         radius: constant(g, &s.radius),
-        inv_mass: if fixed { g.int(1) } else { constant(g, &s.inv_mass) },
+        inv_mass: if fixed {
+            g.int(1)
+        } else {
+            constant(g, &s.inv_mass)
+        },
         gamma2: constant(g, &s.gamma2),
     }
 }
@@ -139,15 +146,23 @@ pub fn build(set: &PairSet, pair: Pair) -> Kernel {
         },
         Pair::BallWall(s, axis, side) => {
             let sign = if side == WallSide::Lower { 1 } else { -1 };
-            let nu = (0..n).map(|k| g.int(if k == axis { sign } else { 0 })).collect();
+            let nu = (0..n)
+                .map(|k| g.int(if k == axis { sign } else { 0 }))
+                .collect();
             KernelInputs {
                 nu,
-                bodies: [at_rest(&mut g, n), species_body(&mut g, n, 2, &set.species[s], true)],
+                bodies: [
+                    at_rest(&mut g, n),
+                    species_body(&mut g, n, 2, &set.species[s], true),
+                ],
             }
         }
         Pair::BallObstacle(s) => KernelInputs {
             nu: nu_inputs(&mut g),
-            bodies: [at_rest(&mut g, n), species_body(&mut g, n, 2, &set.species[s], true)],
+            bodies: [
+                at_rest(&mut g, n),
+                species_body(&mut g, n, 2, &set.species[s], true),
+            ],
         },
     };
     let outputs = model::build_on(&mut g, &inputs, pair.variant());

@@ -26,7 +26,8 @@ impl<const N: usize> Grid<N> {
         let n = std::array::from_fn(|k| ((size[k] / d_max).floor() as usize).clamp(1, 1 << 16));
         let width: [f64; N] = std::array::from_fn(|k| size[k] / n[k] as f64);
         // 1e-9 of slack: rounding at cell boundaries must not hide a partner.
-        let reach: [i64; N] = std::array::from_fn(|k| (d_max * (1.0 + 1e-9) / width[k]).ceil() as i64);
+        let reach: [i64; N] =
+            std::array::from_fn(|k| (d_max * (1.0 + 1e-9) / width[k]).ceil() as i64);
         let mut offsets = vec![[0i64; N]];
         for k in 0..N {
             offsets = offsets
@@ -40,7 +41,13 @@ impl<const N: usize> Grid<N> {
                 })
                 .collect();
         }
-        Grid { n, width, size, periodic, offsets }
+        Grid {
+            n,
+            width,
+            size,
+            periodic,
+            offsets,
+        }
     }
 
     pub fn cells(&self) -> usize {
@@ -53,7 +60,9 @@ impl<const N: usize> Grid<N> {
 
     /// The cell of a point inside the box (clamped, for points on the far boundary).
     pub fn cell_of(&self, x: &[f64; N]) -> [usize; N] {
-        std::array::from_fn(|k| ((x[k] / self.width[k]).floor().max(0.0) as usize).min(self.n[k] - 1))
+        std::array::from_fn(|k| {
+            ((x[k] / self.width[k]).floor().max(0.0) as usize).min(self.n[k] - 1)
+        })
     }
 
     /// Calls `f` for every cell within reach of cell `c` (with its image shift).
@@ -73,7 +82,10 @@ impl<const N: usize> Grid<N> {
                     continue 'offsets;
                 }
             }
-            f(Neighbour { cell: self.flat(&cell), shift });
+            f(Neighbour {
+                cell: self.flat(&cell),
+                shift,
+            });
         }
     }
 }

@@ -100,14 +100,18 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             .try_fold(0.0f64, |m, r| r.map(|r| m.max(r)))
             .ok_or_else(|| SetupError("a ball names a species that does not exist".into()))?;
         let r_obstacle = obstacles.iter().fold(0.0f64, |m, o| m.max(o.radius));
-        let d_max = (2.0 * r_ball).max(r_ball + r_obstacle).max(f64::MIN_POSITIVE);
+        let d_max = (2.0 * r_ball)
+            .max(r_ball + r_obstacle)
+            .max(f64::MIN_POSITIVE);
         let grid = Grid::new(size, periodic, d_max);
         let mut members = vec![Vec::new(); grid.cells()];
         let mut fixed_members = vec![Vec::new(); grid.cells()];
         let mut cell = Vec::with_capacity(bodies.len());
         for (i, b) in bodies.iter().enumerate() {
             if let Some(k) = (0..N).find(|&k| !(0.0..=size[k]).contains(&b.position[k])) {
-                return Err(SetupError(format!("ball {i} is outside the box along axis {k}")));
+                return Err(SetupError(format!(
+                    "ball {i} is outside the box along axis {k}"
+                )));
             }
             let c = grid.cell_of(&b.position);
             members[grid.flat(&c)].push(i as u32);
@@ -250,7 +254,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let sigma = r + self.species[self.kind[j]].radius;
                 if let Some(t) = contact_time(&d, &dv, sigma) {
                     let count = self.count[j];
-                    offer(t, What::Ball { j: j as u32, count, shift: nb.shift });
+                    offer(
+                        t,
+                        What::Ball {
+                            j: j as u32,
+                            count,
+                            shift: nb.shift,
+                        },
+                    );
                 }
             }
             for &o in &self.fixed_members[nb.cell] {
@@ -266,7 +277,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             let w = self.grid.width[k];
             if !self.grid.periodic[k] {
                 if let Some((t, upper)) = exit_time(a[k], v[k], r, self.grid.size[k] - r) {
-                    offer(t, What::Wall { axis: k as u8, upper });
+                    offer(
+                        t,
+                        What::Wall {
+                            axis: k as u8,
+                            upper,
+                        },
+                    );
                 }
                 if self.grid.n[k] == 1 {
                     continue;
@@ -295,7 +312,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.advance(i);
         let c = self.cell[i];
         let flat = self.grid.flat(&c);
-        let at = self.members[flat].iter().position(|&x| x as usize == i).expect("ball in its cell");
+        let at = self.members[flat]
+            .iter()
+            .position(|&x| x as usize == i)
+            .expect("ball in its cell");
         self.members[flat].swap_remove(at);
         let n = self.grid.n[axis];
         let mut c2 = c;
@@ -337,7 +357,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 What::Ball { j, count, .. } if count != self.count[j as usize] => self.predict(i),
                 What::Ball { j, shift, .. } => return Some(self.ball_ball(i, j as usize, &shift)),
                 What::Wall { axis, upper } => return Some(self.ball_wall(i, axis as usize, upper)),
-                What::Obstacle { o, shift } => return Some(self.ball_obstacle(i, o as usize, &shift)),
+                What::Obstacle { o, shift } => {
+                    return Some(self.ball_obstacle(i, o as usize, &shift))
+                }
             }
         }
         if until.is_finite() {
@@ -352,7 +374,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let b = self.image(j, shift);
         let nu = unit(std::array::from_fn(|k| b[k] - self.pos[i][k]));
         let pre = [self.state[i].clone(), self.state[j].clone()];
-        let [si, sj] = self.kernels.ball_ball(self.kind[i], self.kind[j], &nu, &pre[0], &pre[1]);
+        let [si, sj] = self
+            .kernels
+            .ball_ball(self.kind[i], self.kind[j], &nu, &pre[0], &pre[1]);
         self.state[i] = si;
         self.state[j] = sj;
         let event = self.finish(Contact::Ball { i, j }, nu, [i, j], pre);
@@ -363,7 +387,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     fn ball_wall(&mut self, i: usize, axis: usize, upper: bool) -> Event<N, S> {
         self.advance(i);
-        let nu = std::array::from_fn(|k| if k != axis { 0.0 } else if upper { -1.0 } else { 1.0 });
+        let nu = std::array::from_fn(|k| {
+            if k != axis {
+                0.0
+            } else if upper {
+                -1.0
+            } else {
+                1.0
+            }
+        });
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = self.kernels.ball_wall(self.kind[i], axis, upper, &pre[0]);
         let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre);

@@ -84,7 +84,13 @@ where
     ) -> BodyState<T, N, S> {
         let sign = if upper { -T::one() } else { T::one() };
         let nu = std::array::from_fn(|k| if k == axis { sign.clone() } else { T::zero() });
-        Generated::fixed(&nu, &T::one(), &self.species[species], &BodyState::zero(), state)
+        Generated::fixed(
+            &nu,
+            &T::one(),
+            &self.species[species],
+            &BodyState::zero(),
+            state,
+        )
     }
 
     #[inline]
@@ -94,7 +100,13 @@ where
         nu: &[T; N],
         state: &BodyState<T, N, S>,
     ) -> BodyState<T, N, S> {
-        Generated::fixed(nu, &T::one(), &self.species[species], &BodyState::zero(), state)
+        Generated::fixed(
+            nu,
+            &T::one(),
+            &self.species[species],
+            &BodyState::zero(),
+            state,
+        )
     }
 }
 

@@ -6,11 +6,24 @@ use std::cmp::Ordering;
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum What<const N: usize> {
     /// Ball `j` (shifted by `shift_k L_k` on periodic axes), as of `j`'s counter `count`.
-    Ball { j: u32, count: u32, shift: [i8; N] },
-    Obstacle { o: u32, shift: [i8; N] },
-    Wall { axis: u8, upper: bool },
+    Ball {
+        j: u32,
+        count: u32,
+        shift: [i8; N],
+    },
+    Obstacle {
+        o: u32,
+        shift: [i8; N],
+    },
+    Wall {
+        axis: u8,
+        upper: bool,
+    },
     /// The boundary of its cell along `axis`, moving `up` or down.
-    Cell { axis: u8, up: bool },
+    Cell {
+        axis: u8,
+        up: bool,
+    },
 }
 
 #[derive(Clone, Copy, Debug)]

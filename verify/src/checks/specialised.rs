@@ -33,7 +33,11 @@ fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<Exact, N, S
 }
 
 /// Compare every pair kind of `set` at `points` random points.
-pub fn check<const N: usize, const S: usize>(set: &PairSet, points: usize, seed: u64) -> Vec<PairCheck>
+pub fn check<const N: usize, const S: usize>(
+    set: &PairSet,
+    points: usize,
+    seed: u64,
+) -> Vec<PairCheck>
 where
     Generated: Kernel<Exact, N, S>,
 {
@@ -41,9 +45,15 @@ where
     let balls: Vec<Ball<Exact>> = set
         .species
         .iter()
-        .map(|s| Ball { inv_mass: s.inv_mass.clone(), radius: s.radius.clone(), gamma2: s.gamma2.clone() })
+        .map(|s| Ball {
+            inv_mass: s.inv_mass.clone(),
+            radius: s.radius.clone(),
+            gamma2: s.gamma2.clone(),
+        })
         .collect();
-    let generic = GenericKernels { species: balls.clone() };
+    let generic = GenericKernels {
+        species: balls.clone(),
+    };
     let mut rng = Rng::new(seed);
     set.all()
         .into_iter()
@@ -64,7 +74,9 @@ where
                 };
                 let got: Vec<BodyState<Exact, N, S>> = kernel.outputs.iter().map(read).collect();
                 let want: Vec<BodyState<Exact, N, S>> = match pair {
-                    Pair::BallBall(a, b) => generic.ball_ball(a, b, &nu, &states[0], &states[1]).to_vec(),
+                    Pair::BallBall(a, b) => generic
+                        .ball_ball(a, b, &nu, &states[0], &states[1])
+                        .to_vec(),
                     Pair::BallWall(s, axis, side) => {
                         vec![generic.ball_wall(s, axis, side == WallSide::Upper, &states[1])]
                     }
@@ -74,7 +86,11 @@ where
                     mismatches += 1;
                 }
             }
-            PairCheck { pair, points, mismatches }
+            PairCheck {
+                pair,
+                points,
+                mismatches,
+            }
         })
         .collect()
 }

@@ -54,7 +54,11 @@ pub fn run(args: &Args) -> ExitCode {
                 r.points
             );
         }
-        return if failed { ExitCode::from(1) } else { ExitCode::SUCCESS };
+        return if failed {
+            ExitCode::from(1)
+        } else {
+            ExitCode::SUCCESS
+        };
     }
     let module = generate(&set, &args.crate_path);
     if args.ops {

@@ -71,27 +71,44 @@ fn simulate<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Resul
 where
     Generated: Kernel<f64, N, S>,
 {
-    let setup: Setup<N, S> = setup::<N, S>(scene).map_err(|e| (2, format!("{}: {e}", scene.origin)))?;
+    let setup: Setup<N, S> =
+        setup::<N, S>(scene).map_err(|e| (2, format!("{}: {e}", scene.origin)))?;
     let species = setup.species.clone();
-    let obstacles: Vec<([f64; 2], f64)> =
-        setup.obstacles.iter().map(|o| ([o.position[0], o.position[1]], o.radius)).collect();
+    let obstacles: Vec<([f64; 2], f64)> = setup
+        .obstacles
+        .iter()
+        .map(|o| ([o.position[0], o.position[1]], o.radius))
+        .collect();
     let size = setup.size;
-    let kernels = GenericKernels { species: species.clone() };
-    let mut sim = Simulation::new(setup, kernels).map_err(|e| (2, format!("{}: {e}", scene.origin)))?;
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim =
+        Simulation::new(setup, kernels).map_err(|e| (2, format!("{}: {e}", scene.origin)))?;
     let mut events = args.events.or(scene.simulation.events);
     let time = args.time.or(scene.simulation.time.as_ref().map(f));
     if events.is_none() && time.is_none() {
         events = Some(100_000);
     }
-    let limits = Limits { events, time, samples: 2000, traced: 12, contact_points: 20_000 };
+    let limits = Limits {
+        events,
+        time,
+        samples: 2000,
+        traced: 12,
+        contact_points: 20_000,
+    };
     let out = args.out.clone().unwrap_or_else(|| {
-        let stem = Path::new(&scene.origin).file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+        let stem = Path::new(&scene.origin)
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         PathBuf::from("out/simulate").join(stem)
     });
     let mut log = match &args.log {
-        Some(p) => Some(BufWriter::new(
-            std::fs::File::create(p).map_err(|e| (1, format!("cannot write {}: {e}", p.display())))?,
-        )),
+        Some(p) => {
+            Some(BufWriter::new(std::fs::File::create(p).map_err(|e| {
+                (1, format!("cannot write {}: {e}", p.display()))
+            })?))
+        }
         None => None,
     };
     let progress = (!args.quiet).then(|| {
@@ -114,19 +131,45 @@ where
         pb.finish_and_clear();
     }
     if let Some(mut w) = log {
-        w.flush().map_err(|e| (1, format!("cannot write the events log: {e}")))?;
+        w.flush()
+            .map_err(|e| (1, format!("cannot write the events log: {e}")))?;
     }
     print_summary(&summary);
-    let write = |name: &str, r: std::io::Result<()>| r.map_err(|e| (1u8, format!("cannot write {}: {e}", out.join(name).display())));
+    let write = |name: &str, r: std::io::Result<()>| {
+        r.map_err(|e| {
+            (
+                1u8,
+                format!("cannot write {}: {e}", out.join(name).display()),
+            )
+        })
+    };
     let json = serde_json::to_string_pretty(&summary).expect("summary serialises");
-    write("summary.json", write_atomic(&out.join("summary.json"), &(json + "\n")))?;
-    let title = Path::new(&scene.origin).file_name().map_or(String::new(), |s| s.to_string_lossy().into_owned());
-    write("energy.svg", energy_svg(&out.join("energy.svg"), &format!("{title}: energy drift"), &trace))?;
+    write(
+        "summary.json",
+        write_atomic(&out.join("summary.json"), &(json + "\n")),
+    )?;
+    let title = Path::new(&scene.origin)
+        .file_name()
+        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+    write(
+        "energy.svg",
+        energy_svg(
+            &out.join("energy.svg"),
+            &format!("{title}: energy drift"),
+            &trace,
+        ),
+    )?;
     if N == 2 {
         let size2 = [size[0], size[1]];
         write(
             "trajectories.svg",
-            trajectories_svg(&out.join("trajectories.svg"), &format!("{title}: trajectories and contact points"), size2, &obstacles, &trace),
+            trajectories_svg(
+                &out.join("trajectories.svg"),
+                &format!("{title}: trajectories and contact points"),
+                size2,
+                &obstacles,
+                &trace,
+            ),
         )?;
     }
     println!("wrote {}", out.display());

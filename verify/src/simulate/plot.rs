@@ -17,7 +17,10 @@ pub fn energy_svg(path: &Path, title: &str, trace: &Trace) -> std::io::Result<()
         let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
         root.fill(&WHITE).map_err(io_err)?;
         let last = trace.energy.last().map_or(1, |e| e.0).max(1);
-        let big = trace.energy.iter().fold(f64::MIN_POSITIVE, |m, e| m.max(e.1.abs()));
+        let big = trace
+            .energy
+            .iter()
+            .fold(f64::MIN_POSITIVE, |m, e| m.max(e.1.abs()));
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 18))
             .margin(12)
@@ -51,7 +54,10 @@ pub fn trajectories_svg(
     let mut svg = String::new();
     {
         let scale = 720.0 / size[0].max(size[1]);
-        let dims = ((size[0] * scale) as u32 + 100, (size[1] * scale) as u32 + 80);
+        let dims = (
+            (size[0] * scale) as u32 + 100,
+            (size[1] * scale) as u32 + 80,
+        );
         let root = SVGBackend::with_string(&mut svg, dims).into_drawing_area();
         root.fill(&WHITE).map_err(io_err)?;
         let mut chart = ChartBuilder::on(&root)
@@ -61,13 +67,19 @@ pub fn trajectories_svg(
             .y_label_area_size(40)
             .build_cartesian_2d(0.0..size[0], 0.0..size[1])
             .map_err(io_err)?;
-        chart.configure_mesh().disable_mesh().draw().map_err(io_err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .draw()
+            .map_err(io_err)?;
         for &(c, r) in obstacles {
             let ring = (0..=90).map(|k| {
                 let a = k as f64 * std::f64::consts::TAU / 90.0;
                 (c[0] + r * a.cos(), c[1] + r * a.sin())
             });
-            chart.draw_series(LineSeries::new(ring, &BLACK)).map_err(io_err)?;
+            chart
+                .draw_series(LineSeries::new(ring, &BLACK))
+                .map_err(io_err)?;
         }
         for (b, pieces) in trace.paths.iter().enumerate() {
             let color = Palette99::pick(b).to_rgba();

@@ -70,9 +70,11 @@ pub fn event_json<const N: usize, const S: usize>(index: u64, e: &Event<N, S>) -
             json!({"balls": [i], "axis": axis, "side": if upper { "upper" } else { "lower" }}),
             1,
         ),
-        Contact::Obstacle { i, obstacle } => {
-            ("ball-obstacle", json!({"balls": [i], "obstacle": obstacle}), 1)
-        }
+        Contact::Obstacle { i, obstacle } => (
+            "ball-obstacle",
+            json!({"balls": [i], "obstacle": obstacle}),
+            1,
+        ),
     };
     let mut v = json!({
         "event": index,
@@ -106,7 +108,11 @@ fn scales<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// Run `sim` to the limits; log each contact to `log` (JSON lines) if given.
@@ -125,10 +131,12 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let traced = limits.traced.min(sim.len());
     let mut trace = Trace {
         energy: vec![(0, 0.0)],
-        paths: (0..traced).map(|i| {
-            let p = sim.position(i);
-            vec![vec![[p[0], p[1]]]]
-        }).collect(),
+        paths: (0..traced)
+            .map(|i| {
+                let p = sim.position(i);
+                vec![vec![[p[0], p[1]]]]
+            })
+            .collect(),
         contacts: Vec::new(),
     };
     let mut kinds = [0u64; 3];

@@ -23,7 +23,12 @@ fn unit(rng: &mut Rng) -> f64 {
 }
 
 /// Squared distance with the minimum image on periodic axes.
-fn distance2<const N: usize>(a: &[f64; N], b: &[f64; N], size: &[f64; N], periodic: &[bool; N]) -> f64 {
+fn distance2<const N: usize>(
+    a: &[f64; N],
+    b: &[f64; N],
+    size: &[f64; N],
+    periodic: &[bool; N],
+) -> f64 {
     (0..N)
         .map(|k| {
             let mut d = (a[k] - b[k]).abs();
@@ -49,12 +54,19 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     let species: Vec<Ball<f64>> = scene
         .species
         .iter()
-        .map(|s| Ball { inv_mass: f(&s.inv_mass), radius: f(&s.radius), gamma2: f(&s.gamma2) })
+        .map(|s| Ball {
+            inv_mass: f(&s.inv_mass),
+            radius: f(&s.radius),
+            gamma2: f(&s.gamma2),
+        })
         .collect();
     let obstacles: Vec<FixedBall<N>> = scene
         .obstacles
         .iter()
-        .map(|o| FixedBall { position: array(&o.position), radius: f(&o.radius) })
+        .map(|o| FixedBall {
+            position: array(&o.position),
+            radius: f(&o.radius),
+        })
         .collect();
     let mut bodies: Vec<Body<N, S>> = scene
         .balls
@@ -62,7 +74,10 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
         .map(|b| Body {
             species: b.species,
             position: array(&b.position),
-            state: BodyState { spin: array(&b.spin), velocity: array(&b.velocity) },
+            state: BodyState {
+                spin: array(&b.spin),
+                velocity: array(&b.velocity),
+            },
         })
         .collect();
     let mut rng = Rng::new(scene.random.seed);
@@ -73,7 +88,11 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
             let mut found = None;
             for _ in 0..ATTEMPTS {
                 let p: [f64; N] = std::array::from_fn(|a| {
-                    let (lo, hi) = if periodic[a] { (0.0, size[a]) } else { (r, size[a] - r) };
+                    let (lo, hi) = if periodic[a] {
+                        (0.0, size[a])
+                    } else {
+                        (r, size[a] - r)
+                    };
                     lo + (hi - lo) * unit(&mut rng)
                 });
                 let clear_balls = bodies.iter().all(|b| {
@@ -100,8 +119,19 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
             let mut uniform = |scale: f64| scale * (2.0 * unit(&mut rng) - 1.0);
             let velocity = std::array::from_fn(|_| uniform(speed));
             let spin = std::array::from_fn(|_| uniform(spin));
-            bodies.push(Body { species: k, position, state: BodyState { spin, velocity } });
+            bodies.push(Body {
+                species: k,
+                position,
+                state: BodyState { spin, velocity },
+            });
         }
     }
-    Ok(Setup { size, periodic, species, obstacles, bodies, orientation: scene.simulation.orientation })
+    Ok(Setup {
+        size,
+        periodic,
+        species,
+        obstacles,
+        bodies,
+        orientation: scene.simulation.orientation,
+    })
 }
