@@ -155,8 +155,7 @@ fn ball(ctx: &Ctx, i: usize, b: &RawBall, scene: &Scene) -> Result<BallSpec, Sce
     })?;
     let position = ctx.vector(&format!("{at}.position"), &b.position, n)?;
     let r = &species.radius;
-    for k in 0..n {
-        let x = &position[k];
+    for (k, x) in position.iter().enumerate() {
         let (lo, hi, what) = match scene.boundary[k] {
             Boundary::Wall => (
                 r.clone(),

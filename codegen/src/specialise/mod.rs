@@ -310,7 +310,7 @@ fn dispatch(set: &PairSet, crate_path: &syn::Path) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         pub struct Kernels;
 
-        #[allow(unused_variables)]
+        #[allow(unused_variables, clippy::match_single_binding)]
         impl<T: Scalar> #crate_path::sim::PairKernels<T, #nl, #sl> for Kernels
         where
             for<'a> &'a T: RefArith<T>,

@@ -233,7 +233,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Push ball `i`'s earliest event (ball `i` is advanced to now first).
     fn predict(&mut self, i: usize) {
         self.advance(i);
-        let (a, v) = (self.pos[i], self.state[i].velocity.clone());
+        let (a, v) = (self.pos[i], self.state[i].velocity);
         let r = self.species[self.kind[i]].radius;
         let mut best: Option<(f64, What<N>)> = None;
         let mut offer = |t: f64, what: What<N>| {
