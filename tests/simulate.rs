@@ -3,7 +3,7 @@
 
 use collision_core::sim::{GenericKernels, Simulation};
 use noslip_codegen::scene::Scene;
-use noslip_verify::simulate::run::{run, Limits};
+use noslip_verify::simulate::run::{run, Limits, Summary, Trace};
 use noslip_verify::simulate::setup::setup;
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
@@ -34,7 +34,12 @@ fn energy_bound(events: u64) -> f64 {
     8.0 * events as f64 * f64::EPSILON
 }
 
-fn drift_over<const N: usize, const S: usize>(name: &str, events: u64)
+/// Run the shipped scene `name` for `events` contacts on the generic kernels.
+fn simulate<const N: usize, const S: usize>(
+    name: &str,
+    events: u64,
+    log: Option<&mut dyn std::io::Write>,
+) -> (Scene, Summary, Trace)
 where
     collision_core::Generated: collision_core::Kernel<f64, N, S>,
 {
@@ -48,7 +53,15 @@ where
         },
     )
     .unwrap();
-    let (summary, trace) = run(&mut sim, &species, &limits(events), None, None).unwrap();
+    let (summary, trace) = run(&mut sim, &species, &limits(events), log, None).unwrap();
+    (scene, summary, trace)
+}
+
+fn drift_over<const N: usize, const S: usize>(name: &str, events: u64)
+where
+    collision_core::Generated: collision_core::Kernel<f64, N, S>,
+{
+    let (_, summary, trace) = simulate::<N, S>(name, events, None);
     assert_eq!(summary.events, events, "{name}: the gas keeps colliding");
     assert!(
         summary.ball_ball > events / 2,
@@ -78,17 +91,7 @@ fn periodic_gas_conserves_momentum() {
     // gas3d is periodic on every axis with no obstacles: only ball-ball contacts, which
     // conserve m_1 u_1 + m_2 u_2 exactly in exact arithmetic; in f64 each contact adds a few
     // roundings of the pair's momentum, bounded like the energy.
-    let scene = scene("gas3d.toml");
-    let setup = setup::<3, 3>(&scene).unwrap();
-    let species = setup.species.clone();
-    let mut sim = Simulation::new(
-        setup,
-        GenericKernels {
-            species: species.clone(),
-        },
-    )
-    .unwrap();
-    let (summary, _) = run(&mut sim, &species, &limits(100_000), None, None).unwrap();
+    let (_, summary, _) = simulate::<3, 3>("gas3d.toml", 100_000, None);
     assert_eq!(summary.ball_wall + summary.ball_obstacle, 0);
     assert!(
         summary.momentum_drift <= energy_bound(100_000),
@@ -134,21 +137,11 @@ fn disk_on_wall(
 
 #[test]
 fn two_wall_log_is_the_exact_disk_on_wall_map() {
-    let scene = scene("disk_between_walls.toml");
+    let mut log = Vec::new();
+    let (scene, summary, _) = simulate::<2, 1>("disk_between_walls.toml", 200, Some(&mut log));
     let sp = &scene.species[0];
     let (g2, r) = (sp.gamma2.clone(), sp.radius.clone());
     assert_eq!((g2.clone(), r.clone()), (q(1, 2), q(1, 2)));
-    let setup = setup::<2, 1>(&scene).unwrap();
-    let species = setup.species.clone();
-    let mut sim = Simulation::new(
-        setup,
-        GenericKernels {
-            species: species.clone(),
-        },
-    )
-    .unwrap();
-    let mut log = Vec::new();
-    let (summary, _) = run(&mut sim, &species, &limits(200), Some(&mut log), None).unwrap();
     assert_eq!(summary.ball_wall, 200);
     let lines: Vec<Value> = String::from_utf8(log)
         .unwrap()

@@ -3,25 +3,16 @@
 //! folded in (scenes/gas2d.toml: species 0 `small` and 1 `large`; scenes/sinai.toml).
 
 use collision_core::sim::{GenericKernels, PairKernels};
-use collision_core::{Ball, BodyState, State2};
+use collision_core::{BodyState, State2};
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use noslip_codegen::scene::Scene;
-use noslip_scene_example::{gas2d, sinai};
+use noslip_scene_example::{gas2d, sinai, species_balls};
 use num_traits::ToPrimitive;
 
 fn generic(path: &str) -> GenericKernels<f64> {
     let scene = Scene::from_file(path.as_ref()).expect("shipped scene");
-    let f = |x: &num_rational::BigRational| x.to_f64().expect("finite");
     GenericKernels {
-        species: scene
-            .species
-            .iter()
-            .map(|s| Ball {
-                inv_mass: f(&s.inv_mass),
-                radius: f(&s.radius),
-                gamma2: f(&s.gamma2),
-            })
-            .collect(),
+        species: species_balls(&scene, |x| x.to_f64().expect("finite")),
     }
 }
 

@@ -27,6 +27,19 @@ fn f(x: &BigRational) -> f64 {
     x.to_f64().unwrap_or(f64::NAN)
 }
 
+/// The kernels' `Ball` parameters of the scene's species, each constant mapped by `map`.
+pub fn species_balls<T>(scene: &Scene, map: impl Fn(&BigRational) -> T) -> Vec<Ball<T>> {
+    scene
+        .species
+        .iter()
+        .map(|s| Ball {
+            inv_mass: map(&s.inv_mass),
+            radius: map(&s.radius),
+            gamma2: map(&s.gamma2),
+        })
+        .collect()
+}
+
 /// The 2D setup of a scene whose balls are all explicit (no random placement).
 pub fn explicit_setup(scene: &Scene) -> Setup<2, 1> {
     assert_eq!(scene.dim, 2);
@@ -38,15 +51,7 @@ pub fn explicit_setup(scene: &Scene) -> Setup<2, 1> {
     Setup {
         size: v(&scene.size),
         periodic: [0, 1].map(|k| scene.boundary[k] == Boundary::Periodic),
-        species: scene
-            .species
-            .iter()
-            .map(|s| Ball {
-                inv_mass: f(&s.inv_mass),
-                radius: f(&s.radius),
-                gamma2: f(&s.gamma2),
-            })
-            .collect(),
+        species: species_balls(scene, f),
         obstacles: scene
             .obstacles
             .iter()

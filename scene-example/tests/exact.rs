@@ -3,10 +3,10 @@
 //! `noslip gen --check` for the argument that this proves the identity).
 
 use collision_core::sim::{GenericKernels, PairKernels};
-use collision_core::{stereographic_normal, Ball, BodyState, Exact};
+use collision_core::{stereographic_normal, BodyState, Exact};
 use noslip_codegen::scene::{Scene, WallSide};
 use noslip_codegen::specialise::Pair;
-use noslip_scene_example::{disk_between_walls, gas2d, sinai};
+use noslip_scene_example::{disk_between_walls, gas2d, sinai, species_balls};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -14,15 +14,7 @@ fn check<K: PairKernels<Exact, 2, 1>>(scene: &str, kernels: K) {
     let path = format!("{}/../scenes/{scene}", env!("CARGO_MANIFEST_DIR"));
     let scene = Scene::from_file(path.as_ref()).unwrap();
     let generic = GenericKernels {
-        species: scene
-            .species
-            .iter()
-            .map(|s| Ball {
-                inv_mass: s.inv_mass.clone(),
-                radius: s.radius.clone(),
-                gamma2: s.gamma2.clone(),
-            })
-            .collect(),
+        species: species_balls(&scene, Exact::clone),
     };
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     let mut q = || {

@@ -11,6 +11,7 @@
 
 use crate::kernel::input_values;
 use crate::sample::{normal, Rng};
+use crate::simulate::setup::species_balls;
 use collision_core::sim::{GenericKernels, PairKernels};
 use collision_core::{Ball, BodyState, Exact, Generated, Kernel};
 use noslip_codegen::scene::{PairSet, WallSide};
@@ -42,15 +43,7 @@ where
     Generated: Kernel<Exact, N, S>,
 {
     assert_eq!(set.dim, N);
-    let balls: Vec<Ball<Exact>> = set
-        .species
-        .iter()
-        .map(|s| Ball {
-            inv_mass: s.inv_mass.clone(),
-            radius: s.radius.clone(),
-            gamma2: s.gamma2.clone(),
-        })
-        .collect();
+    let balls: Vec<Ball<Exact>> = species_balls(&set.species, Exact::clone);
     let generic = GenericKernels {
         species: balls.clone(),
     };

@@ -40,6 +40,22 @@ fn distance2<const N: usize>(
         .sum()
 }
 
+/// The kernels' `Ball` parameters of the scene's species, each constant mapped by `f`
+/// (`f64` rounding for the simulator, `clone` for exact checks).
+pub fn species_balls<T>(
+    scene_species: &[noslip_codegen::scene::Species],
+    f: impl Fn(&BigRational) -> T,
+) -> Vec<Ball<T>> {
+    scene_species
+        .iter()
+        .map(|s| Ball {
+            inv_mass: f(&s.inv_mass),
+            radius: f(&s.radius),
+            gamma2: f(&s.gamma2),
+        })
+        .collect()
+}
+
 /// Attempts per randomly placed ball before the scene is declared too dense.
 pub const ATTEMPTS: usize = 10_000;
 
