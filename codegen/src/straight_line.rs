@@ -205,7 +205,11 @@ mod tests {
             ),
             (
                 "fn k(a: f64) -> f64 { f(a) }",
-                "a call other than `T::from_ratio(int, int)`",
+                "a call other than `T::from_ratio(int, int)` or `T::from_literal(float, float, str, str)`",
+            ),
+            (
+                "fn k(a: f64) -> f64 { T::from_literal(a, 0.1f32, \"1\", \"10\") }",
+                "a call other than `T::from_ratio(int, int)` or `T::from_literal(float, float, str, str)`",
             ),
             ("fn k(a: [f64; 2]) -> f64 { a[0] }", "indexing"),
             (
@@ -217,5 +221,8 @@ mod tests {
             let v = violations(src);
             assert!(v.iter().any(|w| w == expected), "{src}: {v:?}");
         }
+        let literal =
+            "fn k() -> f64 { let x: T = T::from_literal(-0.1f64, -0.1f32, \"-1\", \"10\"); x }";
+        assert!(violations(literal).is_empty(), "{:?}", violations(literal));
     }
 }
