@@ -1,9 +1,12 @@
-//! Generates the kernels for n = 2..6 into OUT_DIR (see noslip-codegen).
+//! Generates the kernels of the enabled dimensions (features `d2`..`d6`) into OUT_DIR (see
+//! noslip-codegen).
 use std::path::PathBuf;
 
 fn main() {
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    noslip_codegen::generate_into(&out_dir, noslip_codegen::DIMS, "crate")
+    let dims =
+        noslip_codegen::DIMS.filter(|d| std::env::var_os(format!("CARGO_FEATURE_D{d}")).is_some());
+    noslip_codegen::generate_into(&out_dir, dims, "crate")
         .expect("write generated kernels to OUT_DIR");
     // The generator is a build dependency: cargo rebuilds this script when it changes.
     // The script reads no other input.

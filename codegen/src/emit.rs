@@ -51,11 +51,11 @@ pub struct EmittedKernel {
     pub tokens: TokenStream,
 }
 
-fn ident(name: &str) -> Ident {
+pub(crate) fn ident(name: &str) -> Ident {
     Ident::new(name, Span::call_site())
 }
 
-fn lit(n: usize) -> Literal {
+pub(crate) fn lit(n: usize) -> Literal {
     Literal::usize_unsuffixed(n)
 }
 
@@ -74,18 +74,32 @@ fn const_name(c: &BigRational) -> String {
     }
 }
 
-/// `T::from_ratio(p, q)` for an exact constant. Kernels only hold small constants.
+/// Largest numerator and denominator emitted as `T::from_ratio(p, q)`: `2^24`, so that
+/// both are exact in `f32` and `f64` and the quotient is correctly rounded in both.
+const SMALL: i64 = 1 << 24;
+
+/// An exact constant as a `T` expression: `T::from_ratio(p, q)` when `|p|, q <= 2^24` (all
+/// constants of the generic kernels); otherwise (species constants folded by
+/// `crate::specialise`) `T::from_literal(x64, x32, "p", "q")` with `x64` and `x32` the
+/// correctly rounded `f64` and `f32` computed here, and the exact digits for rationals.
 fn const_value(c: &BigRational) -> TokenStream {
-    let p = c
-        .numer()
-        .to_i64()
-        .expect("kernel constant numerator fits i64");
-    let q = c
-        .denom()
-        .to_i64()
-        .expect("kernel constant denominator fits i64");
-    let (p, q) = (Literal::i64_unsuffixed(p), Literal::i64_unsuffixed(q));
-    quote!(T::from_ratio(#p, #q))
+    let small = |x: &BigInt| x.to_i64().filter(|v| v.abs() <= SMALL);
+    if let (Some(p), Some(q)) = (small(c.numer()), small(c.denom())) {
+        let (p, q) = (Literal::i64_unsuffixed(p), Literal::i64_unsuffixed(q));
+        return quote!(T::from_ratio(#p, #q));
+    }
+    let (x64, x32) = crate::literal::nearest_floats(c);
+    let float = |lit: Literal, negative: bool| {
+        if negative {
+            quote!(-#lit)
+        } else {
+            quote!(#lit)
+        }
+    };
+    let x64 = float(Literal::f64_suffixed(x64.abs()), x64 < 0.0);
+    let x32 = float(Literal::f32_suffixed(x32.abs()), x32 < 0.0);
+    let (p, q) = (c.numer().to_string(), c.denom().to_string());
+    quote!(T::from_literal(#x64, #x32, #p, #q))
 }
 
 struct Namer<'a> {
@@ -156,7 +170,7 @@ impl<'a> Namer<'a> {
     }
 }
 
-fn doc_lines(lines: &[String]) -> TokenStream {
+pub(crate) fn doc_lines(lines: &[String]) -> TokenStream {
     lines
         .iter()
         .map(|l| {
@@ -167,7 +181,10 @@ fn doc_lines(lines: &[String]) -> TokenStream {
 }
 
 /// An array pattern binding the live names and `_` for the rest.
-fn array_pattern(names: impl IntoIterator<Item = String>, live: &BTreeSet<String>) -> TokenStream {
+pub(crate) fn array_pattern(
+    names: impl IntoIterator<Item = String>,
+    live: &BTreeSet<String>,
+) -> TokenStream {
     let elems = names.into_iter().map(|n| {
         if live.contains(&n) {
             let i = ident(&n);
@@ -179,7 +196,7 @@ fn array_pattern(names: impl IntoIterator<Item = String>, live: &BTreeSet<String
     quote!([#(#elems),*])
 }
 
-fn state_pattern(n: usize, body: usize, live: &BTreeSet<String>) -> TokenStream {
+pub(crate) fn state_pattern(n: usize, body: usize, live: &BTreeSet<String>) -> TokenStream {
     let spin = array_pattern(
         skew_pairs(n)
             .into_iter()
@@ -248,15 +265,27 @@ fn description(kernel: &Kernel) -> Vec<String> {
     lines
 }
 
-/// Emit one kernel as a generic function with plain arithmetic.
-pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
-    emit_kernel_as(kernel, Arith::Plain)
+/// The statements and outputs of a kernel, shared by the generic kernels and the
+/// specialised ones (`crate::specialise`), which differ only in their signatures.
+#[derive(Debug)]
+pub struct EmittedBody {
+    /// Input names the body reads (the patterns bind these and `_` for the rest).
+    pub live: BTreeSet<String>,
+    /// The constant and intermediate `let` bindings, in schedule order.
+    pub statements: TokenStream,
+    /// One `BodyState { .. }` expression per output body, in the kernel's output order.
+    pub outputs: Vec<TokenStream>,
+    pub ops: OpCount,
+    pub terms: usize,
 }
 
-/// Emit one kernel as a generic function, with the arithmetic `arith`.
-pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
-    let n = kernel.dim;
-    let s = n * (n - 1) / 2;
+/// Schedule a kernel and emit its bindings and output expressions, plain arithmetic.
+pub fn emit_body(kernel: &Kernel) -> EmittedBody {
+    emit_body_as(kernel, Arith::Plain)
+}
+
+/// Schedule a kernel and emit its bindings and output expressions with `arith`.
+pub fn emit_body_as(kernel: &Kernel, arith: Arith) -> EmittedBody {
     let roots: Vec<Id> = kernel
         .outputs
         .iter()
@@ -278,7 +307,6 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
     ops.mul -= fusion.absorbed.len();
     ops.add -= fusion.fused.len();
     let namer = Namer::new(kernel, &sched, &steps);
-    let live = &sched.inputs;
 
     let constants = sched.constants.iter().map(|&id| {
         let name = namer.binding(id);
@@ -303,12 +331,13 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
         };
         quote!(let #name: T = #expr;)
     });
+    let statements = quote!(#(#constants)* #(#step_tokens)*);
 
     let mut output_uses: HashMap<Id, usize> = HashMap::new();
     for &id in &roots {
         *output_uses.entry(id).or_default() += 1;
     }
-    let bodies: Vec<TokenStream> = kernel
+    let outputs = kernel
         .outputs
         .iter()
         .map(|o| {
@@ -317,6 +346,32 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
             quote!(BodyState { spin: [#(#spin),*], velocity: [#(#velocity),*] })
         })
         .collect();
+    EmittedBody {
+        live: sched.inputs.clone(),
+        statements,
+        outputs,
+        ops,
+        terms: steps.len(),
+    }
+}
+
+/// Emit one kernel as a generic function with plain arithmetic.
+pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
+    emit_kernel_as(kernel, Arith::Plain)
+}
+
+/// Emit one kernel as a generic function, with the arithmetic `arith`.
+pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
+    let n = kernel.dim;
+    let s = n * (n - 1) / 2;
+    let EmittedBody {
+        live,
+        statements,
+        outputs: bodies,
+        ops,
+        terms,
+    } = emit_body_as(kernel, arith);
+    let live = &live;
 
     let nu_pattern = array_pattern((0..n).map(names::nu), live);
     let state1 = state_pattern(n, 1, live);
@@ -341,7 +396,7 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
         ],
     };
     doc.push(String::new());
-    doc.push(format!("Ops: {}; {} intermediate terms.", ops, steps.len()));
+    doc.push(format!("Ops: {ops}; {terms} intermediate terms."));
     let doc = doc_lines(&doc);
 
     let (params, prologue, ret_ty, ret) = match kernel.variant {
@@ -374,8 +429,7 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
             #prologue
             let #state1 = state1;
             let #state2 = state2;
-            #(#constants)*
-            #(#step_tokens)*
+            #statements
             #ret
         }
     };
@@ -384,7 +438,7 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
         variant: kernel.variant,
         arith,
         ops,
-        terms: steps.len(),
+        terms,
         tokens,
     }
 }

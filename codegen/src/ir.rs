@@ -54,11 +54,20 @@ pub struct Graph {
     nodes: Vec<Node>,
     interned: HashMap<Node, Id>,
     labels: HashMap<Id, String>,
+    reciprocal_constants: bool,
 }
 
 impl Graph {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Rewrite every division by a constant `a / c` as the product `a * (1/c)` with the
+    /// exact reciprocal folded into a literal (off by default). Exact in rationals; in floats
+    /// it rounds `1/c` once more unless `c` is a power of two, so it is used only for
+    /// specialised kernels, where it removes every run-time division.
+    pub fn fold_reciprocals(&mut self, yes: bool) {
+        self.reciprocal_constants = yes;
     }
 
     pub fn node(&self, id: Id) -> &Node {
@@ -224,6 +233,12 @@ impl Graph {
         }
         if a == b {
             return self.int(1);
+        }
+        if self.reciprocal_constants {
+            if let Some(c) = self.as_const(b) {
+                let r = self.constant(c.recip());
+                return self.mul(a, r);
+            }
         }
         self.intern(Node::Div(a, b))
     }

@@ -18,8 +18,11 @@
 pub mod emit;
 pub mod fuse;
 pub mod ir;
+pub mod literal;
 pub mod model;
+pub mod scene;
 pub mod schedule;
+pub mod specialise;
 pub mod straight_line;
 
 pub use emit::Arith;

@@ -3,7 +3,7 @@
 //! Allowed in a kernel body: `let` bindings whose patterns are identifiers, `_`, arrays and
 //! struct destructurings; the expressions `a + b`, `a - b`, `a * b`, `a / b`, `-a`, `&a`,
 //! paths, integer literals, array and struct literals, `T::from_ratio(p, q)` with literal
-//! arguments, and `x.clone()`. Anything else (`if`, `match`, loops, closures, other calls or
+//! arguments, `T::from_literal(x64, x32, "p", "q")` with literal arguments, and `x.clone()`. Anything else (`if`, `match`, loops, closures, other calls or
 //! methods, macros, blocks, `return`, indexing) is a violation. Allowed at the top level of a
 //! generated file: `use` items and such functions.
 
@@ -73,7 +73,27 @@ fn is_from_ratio_call(call: &syn::ExprCall) -> bool {
         }
         _ => false,
     };
-    segments == ["T", "from_ratio"] && call.args.len() == 2 && call.args.iter().all(literal_int)
+    let literal = |e: &Expr, ok: fn(&syn::Lit) -> bool| match e {
+        Expr::Lit(l) => ok(&l.lit),
+        Expr::Unary(u) => {
+            matches!(u.op, UnOp::Neg(_)) && matches!(&*u.expr, Expr::Lit(l) if ok(&l.lit))
+        }
+        _ => false,
+    };
+    let float = |l: &syn::Lit| matches!(l, syn::Lit::Float(_));
+    let string = |l: &syn::Lit| matches!(l, syn::Lit::Str(_));
+    let args: Vec<&Expr> = call.args.iter().collect();
+    match segments.iter().map(String::as_str).collect::<Vec<_>>()[..] {
+        ["T", "from_ratio"] => args.len() == 2 && args.iter().all(|e| literal_int(e)),
+        ["T", "from_literal"] => {
+            args.len() == 4
+                && literal(args[0], float)
+                && literal(args[1], float)
+                && matches!(args[2], Expr::Lit(l) if string(&l.lit))
+                && matches!(args[3], Expr::Lit(l) if string(&l.lit))
+        }
+        _ => false,
+    }
 }
 
 impl<'ast> Visit<'ast> for Checker {
@@ -140,7 +160,7 @@ impl<'ast> Visit<'ast> for Checker {
             Expr::Match(_) => self.flag("`match`"),
             Expr::Loop(_) | Expr::While(_) | Expr::ForLoop(_) => self.flag("a loop"),
             Expr::Call(_) => self.flag(
-                "a call other than `T::from_ratio(int, int)` or a fused `T::mul_add(a, b, c)`",
+                "a call other than `T::from_ratio(int, int)`, `T::from_literal(float, float, str, str)` or a fused `T::mul_add(a, b, c)`",
             ),
             Expr::MethodCall(_) => self.flag("a method call other than `.clone()`"),
             Expr::Closure(_) => self.flag("a closure"),
@@ -206,15 +226,23 @@ mod tests {
             ),
             (
                 "fn k(a: f64) -> f64 { f(a) }",
-                "a call other than `T::from_ratio(int, int)` or a fused `T::mul_add(a, b, c)`",
+                "a call other than `T::from_ratio(int, int)`, `T::from_literal(float, float, str, str)` or a fused `T::mul_add(a, b, c)`",
             ),
             (
                 "fn k(a: f64) -> f64 { T::mul_add(a, a) }",
-                "a call other than `T::from_ratio(int, int)` or a fused `T::mul_add(a, b, c)`",
+                "a call other than `T::from_ratio(int, int)`, `T::from_literal(float, float, str, str)` or a fused `T::mul_add(a, b, c)`",
             ),
             (
                 "fn k(a: f64) -> f64 { T::mul_add(a, a, if a > 0.0 { a } else { a }) }",
                 "`if`",
+            ),
+            (
+                "fn k(a: f64) -> f64 { g(a) }",
+                "a call other than `T::from_ratio(int, int)`, `T::from_literal(float, float, str, str)` or a fused `T::mul_add(a, b, c)`",
+            ),
+            (
+                "fn k(a: f64) -> f64 { T::from_literal(a, 0.1f32, \"1\", \"10\") }",
+                "a call other than `T::from_ratio(int, int)`, `T::from_literal(float, float, str, str)` or a fused `T::mul_add(a, b, c)`",
             ),
             ("fn k(a: [f64; 2]) -> f64 { a[0] }", "indexing"),
             (
@@ -226,5 +254,8 @@ mod tests {
             let v = violations(src);
             assert!(v.iter().any(|w| w == expected), "{src}: {v:?}");
         }
+        let literal =
+            "fn k() -> f64 { let x: T = T::from_literal(-0.1f64, -0.1f32, \"-1\", \"10\"); x }";
+        assert!(violations(literal).is_empty(), "{:?}", violations(literal));
     }
 }

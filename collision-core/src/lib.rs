@@ -34,6 +34,7 @@ pub mod literal;
 mod normal;
 pub mod reference;
 mod scalar;
+pub mod sim;
 mod state;
 
 pub use ball::{Ball, Inertia, Mass};

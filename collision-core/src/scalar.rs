@@ -87,6 +87,10 @@ pub trait Scalar:
     fn neg_mul_add(a: &Self, b: &Self, c: &Self) -> Self {
         Self::mul_add(&-a.clone(), b, c)
     }
+    /// An exact rational constant of a specialised kernel, given by the generator as its
+    /// correctly rounded `f64` and `f32` and its exact digits `num / den` (decimal
+    /// integers): floats return their literal, rationals parse the digits.
+    fn from_literal(x64: f64, x32: f32, num: &str, den: &str) -> Self;
 }
 
 impl Scalar for f64 {
@@ -114,6 +118,10 @@ impl Scalar for f64 {
     #[inline(always)]
     fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
         a.mul_add(*b, *c)
+    }
+    #[inline(always)]
+    fn from_literal(x64: f64, _: f32, _: &str, _: &str) -> Self {
+        x64
     }
 }
 
@@ -143,6 +151,10 @@ impl Scalar for f32 {
     fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
         a.mul_add(*b, *c)
     }
+    #[inline(always)]
+    fn from_literal(_: f64, x32: f32, _: &str, _: &str) -> Self {
+        x32
+    }
 }
 
 impl Scalar for Exact {
@@ -168,6 +180,11 @@ impl Scalar for Exact {
     }
     fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
         a * b + c
+    }
+    #[inline(always)]
+    fn from_literal(_: f64, _: f32, num: &str, den: &str) -> Self {
+        let parse = |d: &str| d.parse::<BigInt>().expect("generated literal digits");
+        BigRational::new(parse(num), parse(den))
     }
 }
 

@@ -13,3 +13,4 @@ pub mod kernel;
 pub mod report;
 pub mod run;
 pub mod sample;
+pub mod simulate;

@@ -33,6 +33,10 @@ enum Command {
     Verify(cli::verify::Args),
     /// Error against run time of every kernel variant, in typical and extreme regimes.
     Report(cli::report::Args),
+    /// Run a scene: event-driven no-slip billiard / rough-ball gas; summary, log, plots.
+    Simulate(cli::simulate::Args),
+    /// Print the kernels specialised to a scene, with op counts (or check them exactly).
+    Gen(cli::gen::Args),
 }
 
 fn main() -> ExitCode {
@@ -40,5 +44,7 @@ fn main() -> ExitCode {
         Command::Collide(args) => cli::collide::run(&args),
         Command::Verify(args) => cli::verify::run_cmd(&args),
         Command::Report(args) => cli::report::run_cmd(&args),
+        Command::Simulate(args) => cli::simulate::run_cmd(&args),
+        Command::Gen(args) => cli::gen::run(&args),
     }
 }

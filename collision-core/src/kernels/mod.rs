@@ -13,12 +13,14 @@
 use crate::{Ball, BodyState, RefArith, Scalar};
 
 macro_rules! generated {
-    ($($module:ident $n:literal $s:literal $file:literal;)*) => {$(
+    ($($module:ident $feature:literal $n:literal $s:literal $file:literal;)*) => {$(
         #[doc = concat!("Generated kernels for n = ", stringify!($n), ".")]
+        #[cfg(feature = $feature)]
         pub mod $module {
             include!(concat!(env!("OUT_DIR"), "/", $file));
         }
 
+        #[cfg(feature = $feature)]
         impl<T: Scalar> Kernel<T, $n, $s> for Generated
         where
             for<'a> &'a T: RefArith<T>,
@@ -109,13 +111,14 @@ pub trait Kernel<T, const N: usize, const S: usize> {
     ) -> BodyState<T, N, S>;
 }
 
-/// The generated kernels: `Generated: Kernel<T, N, S>` for `N = 2..6`.
+/// The generated kernels: `Generated: Kernel<T, N, S>` for `N = 2..6` (each dimension behind
+/// its cargo feature `dN`, all on by default).
 pub struct Generated;
 
 generated! {
-    d2 2 1 "kernels_2.rs";
-    d3 3 3 "kernels_3.rs";
-    d4 4 6 "kernels_4.rs";
-    d5 5 10 "kernels_5.rs";
-    d6 6 15 "kernels_6.rs";
+    d2 "d2" 2 1 "kernels_2.rs";
+    d3 "d3" 3 3 "kernels_3.rs";
+    d4 "d4" 4 6 "kernels_4.rs";
+    d5 "d5" 5 10 "kernels_5.rs";
+    d6 "d6" 6 15 "kernels_6.rs";
 }

@@ -4,4 +4,5 @@
 pub mod identity;
 pub mod inertia;
 pub mod sequence;
+pub mod specialised;
 pub mod structure;

@@ -1,0 +1,390 @@
+//! Kernels specialised to a scene: only its dimension, only its pair kinds, each species'
+//! constants folded into exact literals before scheduling.
+//!
+//! The same model builder ([`crate::model::build_on`]) runs with constants in place of the
+//! parameters, so the exact constant folding of [`crate::ir`] removes every division (the
+//! quotients of constants become literals) and every product with a folded factor of 0 or 1:
+//!
+//! - ball-ball `(a, b)`: the `free` map with `w_i, R_i, g_i` of species `a` and `b`;
+//! - ball-wall `(s, k, side)`: the `fixed` map with body 1 a wall at rest (`U_1 = 0`,
+//!   `u_1 = 0`) and `nu = +e_k` (lower wall) or `-e_k` (upper wall), so only body 2's state
+//!   is an input; the wall's radius multiplies `U_1 = 0` and drops out;
+//! - ball-obstacle `s`: the `fixed` map with body 1 a fixed ball at rest and `nu` an input.
+//!
+//! [`generate`] emits them with a dispatch `impl PairKernels` (collision-core's `sim`) so the
+//! simulator runs them in place of the generic kernels; [`Config`] is the build-script API.
+
+mod config;
+
+pub use config::{compile_scenes, Config};
+
+use crate::emit::{self, array_pattern, doc_lines, ident, lit, state_pattern, EmittedBody};
+use crate::ir::{Graph, Id};
+use crate::model::{self, names, skew_pairs, BodyInputs, Kernel, KernelInputs, Variant};
+use crate::scene::{PairSet, Species, WallSide};
+use crate::schedule::OpCount;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// A contact kind of a [`PairSet`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pair {
+    BallBall(usize, usize),
+    BallWall(usize, usize, WallSide),
+    BallObstacle(usize),
+}
+
+impl Pair {
+    /// The function name of the specialised kernel.
+    pub fn fn_name(self) -> String {
+        match self {
+            Pair::BallBall(a, b) => format!("ball_ball_{a}_{b}"),
+            Pair::BallWall(s, k, side) => format!("ball_wall_{s}_{k}_{}", side.name()),
+            Pair::BallObstacle(s) => format!("ball_obstacle_{s}"),
+        }
+    }
+
+    /// `ball-ball`, `ball-wall` or `ball-obstacle`.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Pair::BallBall(..) => "ball-ball",
+            Pair::BallWall(..) => "ball-wall",
+            Pair::BallObstacle(..) => "ball-obstacle",
+        }
+    }
+
+    /// The generic kernel it replaces.
+    pub fn variant(self) -> Variant {
+        match self {
+            Pair::BallBall(..) => Variant::Free,
+            _ => Variant::Fixed,
+        }
+    }
+}
+
+impl PairSet {
+    /// Every pair kind, in emission order.
+    pub fn all(&self) -> Vec<Pair> {
+        let bb = self.ball_ball.iter().map(|&(a, b)| Pair::BallBall(a, b));
+        let bw = self
+            .ball_wall
+            .iter()
+            .map(|&(s, k, d)| Pair::BallWall(s, k, d));
+        let bo = self.ball_obstacle.iter().map(|&s| Pair::BallObstacle(s));
+        bb.chain(bw).chain(bo).collect()
+    }
+}
+
+/// The cost of one specialised kernel and of the generic kernel it replaces.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PairSummary {
+    pub pair: Pair,
+    pub ops: OpCount,
+    pub terms: usize,
+    pub generic_ops: OpCount,
+}
+
+/// A generated scene module and its costs.
+#[derive(Clone, Debug)]
+pub struct SceneModule {
+    pub name: String,
+    pub dim: usize,
+    pub source: String,
+    pub pairs: Vec<PairSummary>,
+}
+
+fn constant(g: &mut Graph, x: &num_rational::BigRational) -> Id {
+    g.constant(x.clone())
+}
+
+/// A body at rest (a wall or an obstacle): the `fixed` variant's body 1 with zero state.
+fn at_rest(g: &mut Graph, n: usize) -> BodyInputs {
+    let zero = g.int(0);
+    BodyInputs {
+        spin: vec![zero; n * (n - 1) / 2],
+        velocity: vec![zero; n],
+        radius: g.int(1),
+        inv_mass: zero,
+        gamma2: g.int(1),
+    }
+}
+
+/// Body `b`'s state as named inputs, with species constants; `inv_mass` overrides `w`
+/// (the fixed variant's `w_2 = 1`).
+fn species_body(g: &mut Graph, n: usize, b: usize, s: &Species, fixed: bool) -> BodyInputs {
+    let spin = skew_pairs(n)
+        .into_iter()
+        .map(|(i, j)| g.input(names::spin(b, i, j)))
+        .collect();
+    let velocity = (0..n).map(|k| g.input(names::velocity(b, k))).collect();
+    BodyInputs {
+        spin,
+        velocity,
+        radius: constant(g, &s.radius),
+        inv_mass: if fixed {
+            g.int(1)
+        } else {
+            constant(g, &s.inv_mass)
+        },
+        gamma2: constant(g, &s.gamma2),
+    }
+}
+
+/// The DAG of one specialised kernel.
+pub fn build(set: &PairSet, pair: Pair) -> Kernel {
+    let n = set.dim;
+    let mut g = Graph::new();
+    g.fold_reciprocals(true);
+    let nu_inputs = |g: &mut Graph| (0..n).map(|k| g.input(names::nu(k))).collect();
+    let inputs = match pair {
+        Pair::BallBall(a, b) => KernelInputs {
+            nu: nu_inputs(&mut g),
+            bodies: [
+                species_body(&mut g, n, 1, &set.species[a], false),
+                species_body(&mut g, n, 2, &set.species[b], false),
+            ],
+        },
+        Pair::BallWall(s, axis, side) => {
+            let sign = if side == WallSide::Lower { 1 } else { -1 };
+            let nu = (0..n)
+                .map(|k| g.int(if k == axis { sign } else { 0 }))
+                .collect();
+            KernelInputs {
+                nu,
+                bodies: [
+                    at_rest(&mut g, n),
+                    species_body(&mut g, n, 2, &set.species[s], true),
+                ],
+            }
+        }
+        Pair::BallObstacle(s) => KernelInputs {
+            nu: nu_inputs(&mut g),
+            bodies: [
+                at_rest(&mut g, n),
+                species_body(&mut g, n, 2, &set.species[s], true),
+            ],
+        },
+    };
+    let outputs = model::build_on(&mut g, &inputs, pair.variant());
+    Kernel {
+        dim: n,
+        variant: pair.variant(),
+        graph: g,
+        outputs,
+    }
+}
+
+fn describe(set: &PairSet, pair: Pair) -> Vec<String> {
+    let sp = |s: usize| {
+        let x = &set.species[s];
+        format!(
+            "species {s} `{}` (m = {}, R = {}, gamma2 = {})",
+            x.name, x.mass, x.radius, x.gamma2
+        )
+    };
+    let n = set.dim;
+    match pair {
+        Pair::BallBall(a, b) => vec![
+            format!("The `free` no-slip map in R^{n} of body 1 of {} and body 2 of {}:", sp(a), sp(b)),
+            "returns `[body 1+, body 2+]`; `nu` is the unit normal from body 1's centre to body 2's.".into(),
+        ],
+        Pair::BallWall(s, k, side) => vec![
+            format!(
+                "The `fixed` no-slip map in R^{n} of {} on the {} wall of axis {k} (at rest,",
+                sp(s),
+                side.name()
+            ),
+            format!(
+                "normal nu = {}e_{k} into the box): returns the ball's state after contact.",
+                if side == WallSide::Lower { "+" } else { "-" }
+            ),
+        ],
+        Pair::BallObstacle(s) => vec![
+            format!("The `fixed` no-slip map in R^{n} of {} on a fixed ball at rest:", sp(s)),
+            "`nu` is the unit normal from the obstacle's centre to the ball's; returns the ball after contact.".into(),
+        ],
+    }
+}
+
+/// Emit one specialised kernel function.
+fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
+    let n = set.dim;
+    let kernel = build(set, pair);
+    let EmittedBody {
+        live,
+        statements,
+        outputs,
+        ops,
+        terms,
+    } = emit::emit_body(&kernel);
+    let generic = emit::emit_body(&model::build(n, pair.variant()));
+    let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
+    let state_ty = quote!(BodyState<T, #nl, #sl>);
+    let nu_pattern = array_pattern((0..n).map(names::nu), &live);
+    let state1 = state_pattern(n, 1, &live);
+    let state2 = state_pattern(n, 2, &live);
+    let (params, prologue, ret_ty, ret) = match pair {
+        Pair::BallBall(..) => (
+            quote!(nu: &[T; #nl], state1: &#state_ty, state2: &#state_ty),
+            quote!(let #nu_pattern = nu; let #state1 = state1; let #state2 = state2;),
+            quote!([#state_ty; 2]),
+            quote!([#(#outputs),*]),
+        ),
+        Pair::BallWall(..) => (
+            quote!(state: &#state_ty),
+            quote!(let #state2 = state;),
+            state_ty.clone(),
+            quote!(#(#outputs)*),
+        ),
+        Pair::BallObstacle(..) => (
+            quote!(nu: &[T; #nl], state: &#state_ty),
+            quote!(let #nu_pattern = nu; let #state2 = state;),
+            state_ty.clone(),
+            quote!(#(#outputs)*),
+        ),
+    };
+    let mut doc = describe(set, pair);
+    doc.push(String::new());
+    doc.push(format!(
+        "Ops: {ops}; {terms} intermediate terms (generic `{}`: {}).",
+        pair.variant().name(),
+        generic.ops
+    ));
+    let doc = doc_lines(&doc);
+    let name = ident(&pair.fn_name());
+    let tokens = quote! {
+        #doc
+        #[inline]
+        #[allow(non_snake_case, unused_variables)]
+        pub fn #name<T: Scalar>(#params) -> #ret_ty
+        where
+            for<'a> &'a T: RefArith<T>,
+        {
+            #prologue
+            #statements
+            #ret
+        }
+    };
+    let summary = PairSummary {
+        pair,
+        ops,
+        terms,
+        generic_ops: generic.ops,
+    };
+    (tokens, summary)
+}
+
+/// The `impl PairKernels` that dispatches by species (and wall) to the kernels. A pair that
+/// the scene cannot meet panics with the scene's name: the simulator never asks for one.
+fn dispatch(set: &PairSet, crate_path: &syn::Path) -> TokenStream {
+    let n = set.dim;
+    let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
+    let state_ty = quote!(BodyState<T, #nl, #sl>);
+    let name = &set.name;
+    let mut bb = Vec::new();
+    for &(a, b) in &set.ball_ball {
+        let f = ident(&Pair::BallBall(a, b).fn_name());
+        let (la, lb) = (lit(a), lit(b));
+        bb.push(quote!((#la, #lb) => #f(nu, state1, state2),));
+        if a != b {
+            bb.push(quote!((#lb, #la) => {
+                let minus_nu = nu.clone().map(|x| -x);
+                let [s2, s1] = #f(&minus_nu, state2, state1);
+                [s1, s2]
+            }));
+        }
+    }
+    let bw = set.ball_wall.iter().map(|&(s, k, side)| {
+        let f = ident(&Pair::BallWall(s, k, side).fn_name());
+        let upper = side == WallSide::Upper;
+        let (ls, lk) = (lit(s), lit(k));
+        quote!((#ls, #lk, #upper) => #f(state),)
+    });
+    let bo = set.ball_obstacle.iter().map(|&s| {
+        let f = ident(&Pair::BallObstacle(s).fn_name());
+        let ls = lit(s);
+        quote!(#ls => #f(nu, state),)
+    });
+    quote! {
+        /// The scene's kernels, dispatched by species for the simulator.
+        #[derive(Clone, Copy, Debug, Default)]
+        pub struct Kernels;
+
+        #[allow(unused_variables, clippy::match_single_binding)]
+        impl<T: Scalar> #crate_path::sim::PairKernels<T, #nl, #sl> for Kernels
+        where
+            for<'a> &'a T: RefArith<T>,
+        {
+            fn ball_ball(&self, a: usize, b: usize, nu: &[T; #nl], state1: &#state_ty, state2: &#state_ty) -> [#state_ty; 2] {
+                match (a, b) {
+                    #(#bb)*
+                    _ => panic!("scene {}: no ball-ball kernel for species ({a}, {b})", #name),
+                }
+            }
+            fn ball_wall(&self, species: usize, axis: usize, upper: bool, state: &#state_ty) -> #state_ty {
+                match (species, axis, upper) {
+                    #(#bw)*
+                    _ => panic!("scene {}: no ball-wall kernel for species {species}, axis {axis}", #name),
+                }
+            }
+            fn ball_obstacle(&self, species: usize, nu: &[T; #nl], state: &#state_ty) -> #state_ty {
+                match species {
+                    #(#bo)*
+                    _ => panic!("scene {}: no ball-obstacle kernel for species {species}", #name),
+                }
+            }
+        }
+    }
+}
+
+/// Generate the module of `set`: its kernels and the dispatch. `crate_path` is the runtime
+/// crate as seen from where the file is included (`"collision_core"` in a user's crate).
+///
+/// Panics if the kernels are not valid, straight-line Rust: a generator bug.
+pub fn generate(set: &PairSet, crate_path: &str) -> SceneModule {
+    let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
+    let (kernels, pairs): (Vec<TokenStream>, Vec<PairSummary>) =
+        set.all().into_iter().map(|p| emit_pair(set, p)).unzip();
+    let imports = quote!(use #path::{BodyState, RefArith, Scalar};);
+    let kernel_file = emit::parse(quote!(#imports #(#kernels)*));
+    let violations = crate::straight_line::check(&kernel_file);
+    assert!(
+        violations.is_empty(),
+        "specialised kernels of {} are not straight-line: {violations:?}",
+        set.name
+    );
+    let dim = lit(set.dim);
+    let dispatch = dispatch(set, &path);
+    let file = emit::parse(quote! {
+        #imports
+        /// The dimension of this scene.
+        pub const DIM: usize = #dim;
+        #(#kernels)*
+        #dispatch
+    });
+    let mut header = format!(
+        "// @generated by noslip-codegen {} (codegen/src/specialise): kernels specialised to scene `{}`.\n\
+         // Do not edit: the build script rewrites it.\n\
+         // n = {}; species constants folded into exact literals.\n",
+        env!("CARGO_PKG_VERSION"),
+        set.name,
+        set.dim
+    );
+    for p in &pairs {
+        header.push_str(&format!(
+            "// {} ({}): {}; {} intermediate terms (generic {}: {}).\n",
+            p.pair.fn_name(),
+            p.pair.kind(),
+            p.ops,
+            p.terms,
+            p.pair.variant().name(),
+            p.generic_ops
+        ));
+    }
+    SceneModule {
+        name: set.name.clone(),
+        dim: set.dim,
+        source: format!("{header}\n{}", prettyplease::unparse(&file)),
+        pairs,
+    }
+}

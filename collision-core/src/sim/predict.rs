@@ -1,0 +1,63 @@
+//! Next-event times in free flight.
+
+/// The time `t >= 0` at which two balls whose centres are `d` apart (`d = a_2 - a_1`) with
+/// relative velocity `dv = u_2 - u_1` first touch, `|d + t dv| = sigma`, or `None` if they
+/// never do. Only approaching pairs (`b = d . dv < 0`) collide; with `a = |dv|^2`,
+/// `c = |d|^2 - sigma^2` and discriminant `b^2 - a c >= 0`, the earlier root is
+/// `t = c / (-b + sqrt(b^2 - a c))` (the form without cancellation). A pair that overlaps by
+/// rounding (`c < 0`) while approaching collides at once (`t = 0`).
+#[inline]
+pub fn contact_time<const N: usize>(d: &[f64; N], dv: &[f64; N], sigma: f64) -> Option<f64> {
+    let mut a = 0.0;
+    let mut b = 0.0;
+    let mut dd = 0.0;
+    for k in 0..N {
+        a += dv[k] * dv[k];
+        b += d[k] * dv[k];
+        dd += d[k] * d[k];
+    }
+    if b >= 0.0 {
+        return None;
+    }
+    let c = dd - sigma * sigma;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    Some(c / (disc.sqrt() - b))
+}
+
+/// The time at which a coordinate `x` moving with speed `v` reaches `lo` (moving down) or
+/// `hi` (moving up): `(lo - x) / v` or `(hi - x) / v`, at least 0; `None` at rest.
+#[inline]
+pub fn exit_time(x: f64, v: f64, lo: f64, hi: f64) -> Option<(f64, bool)> {
+    if v > 0.0 {
+        Some((((hi - x) / v).max(0.0), true))
+    } else if v < 0.0 {
+        Some((((lo - x) / v).max(0.0), false))
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn head_on_and_missing_pairs() {
+        // Centres 4 apart, closing at 2: contact (distance 2) after 1.
+        assert_eq!(contact_time(&[4.0, 0.0], &[-2.0, 0.0], 2.0), Some(1.0));
+        // Receding, and passing at distance 3 > 2.
+        assert_eq!(contact_time(&[4.0, 0.0], &[2.0, 0.0], 2.0), None);
+        assert_eq!(contact_time(&[4.0, 3.0], &[-1.0, 0.0], 2.0), None);
+        // Grazing approach with offset 1.2: |(4 - t, 1.2)| = 2 at t = 4 - 1.6.
+        let t = contact_time(&[4.0, 1.2], &[-1.0, 0.0], 2.0).unwrap();
+        assert!((t - 2.4).abs() < 1e-15);
+        assert_eq!(exit_time(0.5, -0.25, 0.0, 1.0), Some((2.0, false)));
+        assert_eq!(exit_time(0.5, 0.0, 0.0, 1.0), None);
+    }
+}

@@ -1,0 +1,103 @@
+//! SVG pictures of a run (plotters, written atomically): energy drift against events (any
+//! dimension), and for 2D scenes the traced trajectories and the contact points.
+
+use super::run::Trace;
+use crate::report::write_atomic;
+use plotters::prelude::*;
+use std::path::Path;
+
+fn io_err(e: impl std::fmt::Display) -> std::io::Error {
+    std::io::Error::other(e.to_string())
+}
+
+/// `(E - E_0) / E_0` against the number of events.
+pub fn energy_svg(path: &Path, title: &str, trace: &Trace) -> std::io::Result<()> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
+        root.fill(&WHITE).map_err(io_err)?;
+        let last = trace.energy.last().map_or(1, |e| e.0).max(1);
+        let big = trace
+            .energy
+            .iter()
+            .fold(f64::MIN_POSITIVE, |m, e| m.max(e.1.abs()));
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(80)
+            .build_cartesian_2d(0u64..last, -1.1 * big..1.1 * big)
+            .map_err(io_err)?;
+        chart
+            .configure_mesh()
+            .x_desc("events")
+            .y_desc("(E - E0) / E0")
+            .y_label_formatter(&|y| format!("{y:.1e}"))
+            .draw()
+            .map_err(io_err)?;
+        chart
+            .draw_series(LineSeries::new(trace.energy.iter().copied(), &BLUE))
+            .map_err(io_err)?;
+        root.present().map_err(io_err)?;
+    }
+    write_atomic(path, &svg)
+}
+
+/// The box, the traced balls' centre paths and the contact points (2D).
+pub fn trajectories_svg(
+    path: &Path,
+    title: &str,
+    size: [f64; 2],
+    obstacles: &[([f64; 2], f64)],
+    trace: &Trace,
+) -> std::io::Result<()> {
+    let mut svg = String::new();
+    {
+        let scale = 720.0 / size[0].max(size[1]);
+        let dims = (
+            (size[0] * scale) as u32 + 100,
+            (size[1] * scale) as u32 + 80,
+        );
+        let root = SVGBackend::with_string(&mut svg, dims).into_drawing_area();
+        root.fill(&WHITE).map_err(io_err)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(40)
+            .build_cartesian_2d(0.0..size[0], 0.0..size[1])
+            .map_err(io_err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .draw()
+            .map_err(io_err)?;
+        for &(c, r) in obstacles {
+            let ring = (0..=90).map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 90.0;
+                (c[0] + r * a.cos(), c[1] + r * a.sin())
+            });
+            chart
+                .draw_series(LineSeries::new(ring, &BLACK))
+                .map_err(io_err)?;
+        }
+        for (b, pieces) in trace.paths.iter().enumerate() {
+            let color = Palette99::pick(b).to_rgba();
+            for piece in pieces {
+                chart
+                    .draw_series(LineSeries::new(piece.iter().map(|p| (p[0], p[1])), color))
+                    .map_err(io_err)?;
+            }
+        }
+        chart
+            .draw_series(
+                trace
+                    .contacts
+                    .iter()
+                    .map(|p| Circle::new((p[0], p[1]), 1, RED.filled())),
+            )
+            .map_err(io_err)?;
+        root.present().map_err(io_err)?;
+    }
+    write_atomic(path, &svg)
+}

@@ -1,0 +1,227 @@
+//! The run loop of `noslip simulate`: steps the engine, writes the events log, samples the
+//! energy drift and (for the picture) a few trajectories and the contact points.
+
+use collision_core::sim::{Contact, Event, PairKernels, Simulation};
+use collision_core::BodyState;
+use indicatif::ProgressBar;
+use serde_json::{json, Value};
+use std::io::{self, Write};
+use std::time::Instant;
+
+/// When to stop, and how much to record.
+#[derive(Clone, Debug)]
+pub struct Limits {
+    /// Stop after this many contacts.
+    pub events: Option<u64>,
+    /// Stop at this simulated time.
+    pub time: Option<f64>,
+    /// Energy samples for the drift plot (at most).
+    pub samples: u64,
+    /// Balls whose trajectories are recorded (2D picture).
+    pub traced: usize,
+    /// Contact points recorded (2D picture).
+    pub contact_points: usize,
+}
+
+/// Totals of a run. Drifts are relative to the start: `|E - E_0| / E_0` for energy,
+/// `|p - p_0| / sum m |u|_0` for momentum, `|L - L_0| / sum m (|a| |u| + 2 lambda |U|)_0` for
+/// angular momentum.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Summary {
+    pub dim: usize,
+    pub balls: usize,
+    pub events: u64,
+    pub ball_ball: u64,
+    pub ball_wall: u64,
+    pub ball_obstacle: u64,
+    pub cell_crossings: u64,
+    pub time: f64,
+    pub seconds: f64,
+    pub events_per_second: f64,
+    pub energy_start: f64,
+    pub energy_end: f64,
+    pub energy_drift: f64,
+    /// The largest `|E - E_0| / E_0` over the samples.
+    pub energy_drift_max: f64,
+    pub momentum_drift: f64,
+    pub angular_momentum_drift: f64,
+}
+
+/// What the pictures need.
+#[derive(Clone, Debug, Default)]
+pub struct Trace {
+    /// `(events, (E - E_0) / E_0)`.
+    pub energy: Vec<(u64, f64)>,
+    /// Per traced ball, polylines of its centre (first two coordinates), split at wraps.
+    pub paths: Vec<Vec<Vec<[f64; 2]>>>,
+    pub contacts: Vec<[f64; 2]>,
+}
+
+fn state_json<const N: usize, const S: usize>(s: &BodyState<f64, N, S>) -> Value {
+    json!({"spin": s.spin.to_vec(), "velocity": s.velocity.to_vec()})
+}
+
+/// One events-log line.
+pub fn event_json<const N: usize, const S: usize>(index: u64, e: &Event<N, S>) -> Value {
+    let (kind, who, n) = match e.contact {
+        Contact::Ball { i, j } => ("ball-ball", json!({"balls": [i, j]}), 2),
+        Contact::Wall { i, axis, upper } => (
+            "ball-wall",
+            json!({"balls": [i], "axis": axis, "side": if upper { "upper" } else { "lower" }}),
+            1,
+        ),
+        Contact::Obstacle { i, obstacle } => (
+            "ball-obstacle",
+            json!({"balls": [i], "obstacle": obstacle}),
+            1,
+        ),
+    };
+    let mut v = json!({
+        "event": index,
+        "time": e.time,
+        "kind": kind,
+        "nu": e.nu.to_vec(),
+        "positions": e.position[..n].iter().map(|p| p.to_vec()).collect::<Vec<_>>(),
+        "pre": e.pre[..n].iter().map(state_json).collect::<Vec<_>>(),
+        "post": e.post[..n].iter().map(state_json).collect::<Vec<_>>(),
+    });
+    if let (Value::Object(m), Value::Object(w)) = (&mut v, who) {
+        m.extend(w);
+    }
+    v
+}
+
+fn scales<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+) -> (f64, f64) {
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let (mut p, mut l) = (0.0, 0.0);
+    for i in 0..sim.len() {
+        let b = &species[sim.species_of(i)];
+        let m = 1.0 / b.inv_mass;
+        let s = sim.state(i);
+        p += m * norm(&s.velocity);
+        l += m * (norm(&sim.position(i)) * norm(&s.velocity) + 2.0 * b.lambda() * norm(&s.spin));
+    }
+    (p.max(f64::MIN_POSITIVE), l.max(f64::MIN_POSITIVE))
+}
+
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Run `sim` to the limits; log each contact to `log` (JSON lines) if given.
+pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &mut Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+    limits: &Limits,
+    mut log: Option<&mut dyn Write>,
+    progress: Option<&ProgressBar>,
+) -> io::Result<(Summary, Trace)> {
+    let start = sim.observables();
+    let (p_scale, l_scale) = scales(sim, species);
+    let events = limits.events.unwrap_or(u64::MAX);
+    let until = limits.time.unwrap_or(f64::INFINITY);
+    let every = (events.min(1 << 40) / limits.samples.max(1)).max(1);
+    let traced = limits.traced.min(sim.len());
+    let mut trace = Trace {
+        energy: vec![(0, 0.0)],
+        paths: (0..traced)
+            .map(|i| {
+                let p = sim.position(i);
+                vec![vec![[p[0], p[1]]]]
+            })
+            .collect(),
+        contacts: Vec::new(),
+    };
+    let mut kinds = [0u64; 3];
+    let mut drift_max: f64 = 0.0;
+    let clock = Instant::now();
+    let mut done = 0u64;
+    while done < events {
+        let Some(e) = sim.step(until) else { break };
+        done += 1;
+        let (k, balls) = match e.contact {
+            Contact::Ball { i, j } => (0, [i, j]),
+            Contact::Wall { i, .. } => (1, [i, i]),
+            Contact::Obstacle { i, .. } => (2, [i, i]),
+        };
+        kinds[k] += 1;
+        if let Some(w) = log.as_deref_mut() {
+            writeln!(w, "{}", event_json(done, &e))?;
+        }
+        for (slot, &b) in balls.iter().enumerate() {
+            if b < traced && (slot == 0 || balls[1] != balls[0]) {
+                let p = [e.position[slot][0], e.position[slot][1]];
+                let path = &mut trace.paths[b];
+                let last = *path.last().and_then(|s| s.last()).expect("a start point");
+                // A jump of more than half the box is a periodic wrap: start a new piece.
+                let size = sim.box_size();
+                let wrapped = (0..2).any(|k| (p[k] - last[k]).abs() > 0.5 * size[k]);
+                if wrapped {
+                    path.push(vec![p]);
+                } else {
+                    path.last_mut().expect("a piece").push(p);
+                }
+            }
+        }
+        if trace.contacts.len() < limits.contact_points {
+            let q = contact_point(&e, species, sim);
+            trace.contacts.push([q[0], q[1]]);
+        }
+        if done % every == 0 {
+            let energy = sim.observables().energy;
+            let drift = (energy - start.energy) / start.energy;
+            drift_max = drift_max.max(drift.abs());
+            trace.energy.push((done, drift));
+        }
+        if let Some(pb) = progress {
+            if done % 4096 == 0 {
+                pb.set_position(done);
+            }
+        }
+    }
+    let seconds = clock.elapsed().as_secs_f64();
+    let end = sim.observables();
+    let drift = (end.energy - start.energy) / start.energy;
+    drift_max = drift_max.max(drift.abs());
+    let summary = Summary {
+        dim: N,
+        balls: sim.len(),
+        events: done,
+        ball_ball: kinds[0],
+        ball_wall: kinds[1],
+        ball_obstacle: kinds[2],
+        cell_crossings: sim.crossings(),
+        time: sim.now(),
+        seconds,
+        events_per_second: done as f64 / seconds.max(1e-9),
+        energy_start: start.energy,
+        energy_end: end.energy,
+        energy_drift: drift.abs(),
+        energy_drift_max: drift_max,
+        momentum_drift: distance(&end.momentum, &start.momentum) / p_scale,
+        angular_momentum_drift: distance(&end.angular_momentum, &start.angular_momentum) / l_scale,
+    };
+    Ok((summary, trace))
+}
+
+/// The contact point `Q`: `a_i + R_i nu` for two balls, `a - R nu` for a ball on a wall or
+/// an obstacle (nu points from the wall or obstacle to the ball).
+fn contact_point<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    e: &Event<N, S>,
+    species: &[collision_core::Ball<f64>],
+    sim: &Simulation<N, S, K>,
+) -> [f64; N] {
+    let (i, sign) = match e.contact {
+        Contact::Ball { i, .. } => (i, 1.0),
+        Contact::Wall { i, .. } | Contact::Obstacle { i, .. } => (i, -1.0),
+    };
+    let r = species[sim.species_of(i)].radius;
+    std::array::from_fn(|k| e.position[0][k] + sign * r * e.nu[k])
+}
