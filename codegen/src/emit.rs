@@ -27,11 +27,11 @@ pub struct EmittedKernel {
     pub tokens: TokenStream,
 }
 
-fn ident(name: &str) -> Ident {
+pub(crate) fn ident(name: &str) -> Ident {
     Ident::new(name, Span::call_site())
 }
 
-fn lit(n: usize) -> Literal {
+pub(crate) fn lit(n: usize) -> Literal {
     Literal::usize_unsuffixed(n)
 }
 
@@ -51,7 +51,7 @@ fn const_name(c: &BigRational) -> String {
 }
 
 /// `T::from_ratio(p, q)` for an exact constant. Kernels only hold small constants.
-fn const_value(c: &BigRational) -> TokenStream {
+pub(crate) fn const_value(c: &BigRational) -> TokenStream {
     let p = c
         .numer()
         .to_i64()
@@ -64,13 +64,13 @@ fn const_value(c: &BigRational) -> TokenStream {
     quote!(T::from_ratio(#p, #q))
 }
 
-struct Namer<'a> {
+pub(crate) struct Namer<'a> {
     kernel: &'a Kernel,
     names: HashMap<Id, String>,
 }
 
 impl<'a> Namer<'a> {
-    fn new(kernel: &'a Kernel, sched: &Schedule) -> Self {
+    pub(crate) fn new(kernel: &'a Kernel, sched: &Schedule) -> Self {
         let g = &kernel.graph;
         let mut names = HashMap::new();
         let mut used = BTreeSet::new();
@@ -95,7 +95,7 @@ impl<'a> Namer<'a> {
     }
 
     /// An operand as a `&T` expression.
-    fn operand(&self, id: Id) -> TokenStream {
+    pub(crate) fn operand(&self, id: Id) -> TokenStream {
         match self.kernel.graph.node(id) {
             Node::Input(input) => {
                 let i = ident(&input.0);
@@ -108,12 +108,12 @@ impl<'a> Namer<'a> {
         }
     }
 
-    fn binding(&self, id: Id) -> Ident {
+    pub(crate) fn binding(&self, id: Id) -> Ident {
         ident(&self.names[&id])
     }
 
     /// An output as an owned `T`, moving a temporary when this is its only output use.
-    fn output(&self, id: Id, output_uses: &HashMap<Id, usize>) -> TokenStream {
+    pub(crate) fn output(&self, id: Id, output_uses: &HashMap<Id, usize>) -> TokenStream {
         match self.kernel.graph.node(id) {
             Node::Input(input) => {
                 let i = ident(&input.0);
@@ -132,7 +132,7 @@ impl<'a> Namer<'a> {
     }
 }
 
-fn doc_lines(lines: &[String]) -> TokenStream {
+pub(crate) fn doc_lines(lines: &[String]) -> TokenStream {
     lines
         .iter()
         .map(|l| {
@@ -184,7 +184,7 @@ fn ball_pattern(body: usize, live: &BTreeSet<String>) -> TokenStream {
     quote!(Ball { #(#bound,)* #rest })
 }
 
-fn description(kernel: &Kernel) -> Vec<String> {
+pub(crate) fn description(kernel: &Kernel) -> Vec<String> {
     let n = kernel.dim;
     let mut lines = match kernel.variant {
         Variant::Free => vec![
@@ -241,28 +241,8 @@ pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
         let value = const_value(kernel.graph.as_const(id).expect("constant"));
         quote!(let #name: T = #value;)
     });
-    let steps = sched.steps.iter().map(|&id| {
-        let name = namer.binding(id);
-        let expr = match kernel.graph.node(id) {
-            Node::Add(a, b) => binary(&namer, *a, quote!(+), *b),
-            Node::Sub(a, b) => binary(&namer, *a, quote!(-), *b),
-            Node::Mul(a, b) => binary(&namer, *a, quote!(*), *b),
-            Node::Div(a, b) => binary(&namer, *a, quote!(/), *b),
-            Node::Neg(a) => {
-                let a = namer.operand(*a);
-                quote!(-#a)
-            }
-            Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
-        };
-        quote!(let #name: T = #expr;)
-    });
-
-    let mut output_uses: HashMap<Id, usize> = HashMap::new();
-    for o in &kernel.outputs {
-        for &id in o.spin.iter().chain(&o.velocity) {
-            *output_uses.entry(id).or_default() += 1;
-        }
-    }
+    let steps = sched.steps.iter().map(|&id| step(&namer, id));
+    let output_uses = output_uses(kernel);
     let bodies: Vec<TokenStream> = kernel
         .outputs
         .iter()
@@ -332,6 +312,34 @@ pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
         terms: sched.steps.len(),
         tokens,
     }
+}
+
+/// The `let` binding of one scheduled step: `let name: T = a op b;`.
+pub(crate) fn step(namer: &Namer<'_>, id: Id) -> TokenStream {
+    let name = namer.binding(id);
+    let expr = match namer.kernel.graph.node(id) {
+        Node::Add(a, b) => binary(namer, *a, quote!(+), *b),
+        Node::Sub(a, b) => binary(namer, *a, quote!(-), *b),
+        Node::Mul(a, b) => binary(namer, *a, quote!(*), *b),
+        Node::Div(a, b) => binary(namer, *a, quote!(/), *b),
+        Node::Neg(a) => {
+            let a = namer.operand(*a);
+            quote!(-#a)
+        }
+        Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
+    };
+    quote!(let #name: T = #expr;)
+}
+
+/// How many output slots each node fills (a temporary used once is moved, not cloned).
+pub(crate) fn output_uses(kernel: &Kernel) -> HashMap<Id, usize> {
+    let mut uses: HashMap<Id, usize> = HashMap::new();
+    for o in &kernel.outputs {
+        for &id in o.spin.iter().chain(&o.velocity) {
+            *uses.entry(id).or_default() += 1;
+        }
+    }
+    uses
 }
 
 fn binary(namer: &Namer<'_>, a: Id, op: TokenStream, b: Id) -> TokenStream {

@@ -15,6 +15,7 @@
 //! assert_eq!(module.kernels.len(), 2); // free, fixed
 //! ```
 
+pub mod batch;
 pub mod emit;
 pub mod ir;
 pub mod model;
