@@ -1,10 +1,17 @@
-//! Generates the kernels for n = 2..6 into OUT_DIR (see noslip-codegen).
+//! Generates the kernels for n = 2..6 into OUT_DIR (see noslip-codegen): the scalar
+//! `kernels_{n}.rs` and the batch `batch_{n}.rs`.
 use std::path::PathBuf;
 
 fn main() {
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     noslip_codegen::generate_into(&out_dir, noslip_codegen::DIMS, "crate")
         .expect("write generated kernels to OUT_DIR");
+    for dim in noslip_codegen::DIMS {
+        let module = noslip_codegen::batch::generate(dim, "crate");
+        let path = out_dir.join(noslip_codegen::batch::file_name(dim));
+        noslip_codegen::write_if_changed(&path, &module.source)
+            .expect("write generated batch kernels to OUT_DIR");
+    }
     // The generator is a build dependency: cargo rebuilds this script when it changes.
     // The script reads no other input.
     println!("cargo:rerun-if-changed=build.rs");
