@@ -156,11 +156,13 @@ impl Exec {
         Generated: BatchKernel<T, N, S>,
     {
         states_for(out, batch.len());
-        self.drive(batch.blocks(), out.blocks_mut(), |blocks, out| FixedShared {
-            radius1,
-            ball2,
-            blocks,
-            out,
+        self.drive(batch.blocks(), out.blocks_mut(), |blocks, out| {
+            FixedShared {
+                radius1,
+                ball2,
+                blocks,
+                out,
+            }
         });
     }
 

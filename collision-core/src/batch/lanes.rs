@@ -84,7 +84,8 @@ pub struct BallLanes<T> {
 impl<T: Clone> Lanewise for BallLanes<T> {
     type Item = Ball<T>;
     fn splat(b: &Ball<T>) -> Self {
-        let [inv_mass, radius, gamma2] = splat(&[b.inv_mass.clone(), b.radius.clone(), b.gamma2.clone()]);
+        let [inv_mass, radius, gamma2] =
+            splat(&[b.inv_mass.clone(), b.radius.clone(), b.gamma2.clone()]);
         BallLanes {
             inv_mass,
             radius,
