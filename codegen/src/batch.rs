@@ -249,7 +249,8 @@ fn emit_batch(kernel: &Kernel, params: Params) -> EmittedBatch {
 
     let bind = |name: &String| {
         let (i, path) = (ident(name), input_path(name, n, variant, params));
-        quote!(let #i: &T = &#path;)
+        // A shared `radius1: &T` parameter is already the binding.
+        (path.to_string() != *name).then(|| quote!(let #i: &T = &#path;))
     };
     let shared_bindings = sched
         .inputs

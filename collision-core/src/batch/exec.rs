@@ -216,7 +216,7 @@ where
 {
     #[inline(always)]
     fn run(self) {
-        Generated::free(self.blocks, self.out)
+        Generated::free_blocks(self.blocks, self.out)
     }
 }
 
@@ -231,7 +231,7 @@ where
 {
     #[inline(always)]
     fn run(self) {
-        Generated::fixed(self.blocks, self.out)
+        Generated::fixed_blocks(self.blocks, self.out)
     }
 }
 
@@ -247,7 +247,7 @@ where
 {
     #[inline(always)]
     fn run(self) {
-        Generated::free_shared(self.balls, self.blocks, self.out)
+        Generated::free_shared_blocks(self.balls, self.blocks, self.out)
     }
 }
 
@@ -264,6 +264,6 @@ where
 {
     #[inline(always)]
     fn run(self) {
-        Generated::fixed_shared(self.radius1, self.ball2, self.blocks, self.out)
+        Generated::fixed_shared_blocks(self.radius1, self.ball2, self.blocks, self.out)
     }
 }

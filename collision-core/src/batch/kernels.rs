@@ -21,17 +21,17 @@ macro_rules! generated {
             for<'a> &'a T: RefArith<T>,
         {
             #[inline(always)]
-            fn free(blocks: &[FreeLanes<T, $n, $s>], out: &mut [[StateLanes<T, $n, $s>; 2]]) {
+            fn free_blocks(blocks: &[FreeLanes<T, $n, $s>], out: &mut [[StateLanes<T, $n, $s>; 2]]) {
                 $module::free(blocks, out)
             }
 
             #[inline(always)]
-            fn fixed(blocks: &[FixedLanes<T, $n, $s>], out: &mut [StateLanes<T, $n, $s>]) {
+            fn fixed_blocks(blocks: &[FixedLanes<T, $n, $s>], out: &mut [StateLanes<T, $n, $s>]) {
                 $module::fixed(blocks, out)
             }
 
             #[inline(always)]
-            fn free_shared(
+            fn free_shared_blocks(
                 balls: [&Ball<T>; 2],
                 blocks: &[ContactLanes<T, $n, $s>],
                 out: &mut [[StateLanes<T, $n, $s>; 2]],
@@ -40,7 +40,7 @@ macro_rules! generated {
             }
 
             #[inline(always)]
-            fn fixed_shared(
+            fn fixed_shared_blocks(
                 radius1: &T,
                 ball2: &Ball<T>,
                 blocks: &[ContactLanes<T, $n, $s>],
@@ -56,17 +56,17 @@ macro_rules! generated {
 /// Each processes `min(blocks.len(), out.len())` blocks.
 pub trait BatchKernel<T, const N: usize, const S: usize> {
     /// Both bodies free, parameters per contact: `out[k]` = `[body 1+, body 2+]` lanes.
-    fn free(blocks: &[FreeLanes<T, N, S>], out: &mut [[StateLanes<T, N, S>; 2]]);
+    fn free_blocks(blocks: &[FreeLanes<T, N, S>], out: &mut [[StateLanes<T, N, S>; 2]]);
     /// Body 1 immovable, parameters per contact: `out[k]` = body 2+ lanes.
-    fn fixed(blocks: &[FixedLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]);
+    fn fixed_blocks(blocks: &[FixedLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]);
     /// Both bodies free, one pair of balls for every contact.
-    fn free_shared(
+    fn free_shared_blocks(
         balls: [&Ball<T>; 2],
         blocks: &[ContactLanes<T, N, S>],
         out: &mut [[StateLanes<T, N, S>; 2]],
     );
     /// Body 1 immovable, one `radius1` and `ball2` for every contact.
-    fn fixed_shared(
+    fn fixed_shared_blocks(
         radius1: &T,
         ball2: &Ball<T>,
         blocks: &[ContactLanes<T, N, S>],

@@ -206,10 +206,9 @@ pub struct FixedLanes<T, const N: usize, const S: usize> {
 impl<T: Clone, const N: usize, const S: usize> Lanewise for FixedLanes<T, N, S> {
     type Item = (Contact<T, N, S>, T, Ball<T>);
     fn splat((c, radius1, ball2): &Self::Item) -> Self {
-        let [radius1] = splat(&[radius1.clone()]);
         FixedLanes {
             contact: ContactLanes::splat(c),
-            radius1,
+            radius1: std::array::from_fn(|_| radius1.clone()),
             ball2: BallLanes::splat(ball2),
         }
     }
