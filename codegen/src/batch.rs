@@ -249,8 +249,13 @@ fn emit_batch(kernel: &Kernel, params: Params) -> EmittedBatch {
 
     let bind = |name: &String| {
         let (i, path) = (ident(name), input_path(name, n, variant, params));
-        // A shared `radius1: &T` parameter is already the binding.
-        (path.to_string() != *name).then(|| quote!(let #i: &T = &#path;))
+        if shared.contains(name) {
+            // Shared parameters are copied into locals once per call: the stores into `out`
+            // cannot alias a local, so the lane loop keeps them in registers and vectorizes.
+            quote!(let #i: &T = &#path.clone();)
+        } else {
+            quote!(let #i: &T = &#path;)
+        }
     };
     let shared_bindings = sched
         .inputs

@@ -63,30 +63,35 @@ impl fmt::Display for Isa {
     }
 }
 
-/// A kernel call to be compiled inside a `#[target_feature]` wrapper. Implementations mark
-/// `run` `#[inline(always)]`, so that the whole kernel is inlined there and compiled for
-/// the wrapper's instruction set.
-pub(crate) trait Job {
-    fn run(self);
+/// A batch kernel to be compiled inside a `#[target_feature]` wrapper, holding what is
+/// shared by the whole call. Implementations mark `run` `#[inline(always)]`, so that the
+/// kernel is inlined there and compiled for the wrapper's instruction set.
+///
+/// The blocks and the output are arguments of the wrappers, never fields of the job: as
+/// function arguments, `&[B]` and `&mut [O]` are known not to alias, which the loop
+/// vectorizer needs (through a struct field that knowledge is lost and the lane loop stays
+/// scalar).
+pub(crate) trait Job<B, O> {
+    fn run(&self, blocks: &[B], out: &mut [O]);
 }
 
-/// Run `job` compiled for `isa`. The caller checked `isa.is_available()`; an unavailable
-/// level is never run (it falls back to the baseline).
+/// Run `job` on `blocks` and `out`, compiled for `isa` when this CPU has it, else for the
+/// baseline.
 #[inline(always)]
-pub(crate) fn run_on(isa: Isa, job: impl Job) {
+pub(crate) fn run_on<B, O>(isa: Isa, job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
     #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
     match isa {
         // SAFETY: the CPU has AVX-512F, AVX2 and FMA (checked just now by `is_available`,
         // which `is_x86_feature_detected!` caches).
-        Isa::Avx512 if isa.is_available() => unsafe { x86::avx512(job) },
+        Isa::Avx512 if isa.is_available() => unsafe { x86::avx512(job, blocks, out) },
         // SAFETY: the CPU has AVX2 and FMA (as above).
-        Isa::Avx2 if isa.is_available() => unsafe { x86::avx2(job) },
-        _ => job.run(),
+        Isa::Avx2 if isa.is_available() => unsafe { x86::avx2(job, blocks, out) },
+        _ => job.run(blocks, out),
     }
     #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
     {
         let _ = isa;
-        job.run()
+        job.run(blocks, out)
     }
 }
 
@@ -97,14 +102,14 @@ mod x86 {
     /// # Safety
     /// The CPU must support AVX2 and FMA.
     #[target_feature(enable = "avx2,fma")]
-    pub(super) unsafe fn avx2(job: impl Job) {
-        job.run()
+    pub(super) unsafe fn avx2<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
+        job.run(blocks, out)
     }
 
     /// # Safety
     /// The CPU must support AVX-512F, AVX2 and FMA.
     #[target_feature(enable = "avx512f,avx2,fma")]
-    pub(super) unsafe fn avx512(job: impl Job) {
-        job.run()
+    pub(super) unsafe fn avx512<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
+        job.run(blocks, out)
     }
 }

@@ -101,10 +101,7 @@ impl Exec {
         Generated: BatchKernel<T, N, S>,
     {
         pairs_for(out, batch.len());
-        self.drive(batch.blocks(), out.blocks_mut(), |blocks, out| Free {
-            blocks,
-            out,
-        });
+        self.drive(&Free, batch.blocks(), out.blocks_mut());
     }
 
     /// Body 1 immovable, parameters per contact: `out` becomes body 2+ of every contact.
@@ -118,10 +115,7 @@ impl Exec {
         Generated: BatchKernel<T, N, S>,
     {
         states_for(out, batch.len());
-        self.drive(batch.blocks(), out.blocks_mut(), |blocks, out| Fixed {
-            blocks,
-            out,
-        });
+        self.drive(&Fixed, batch.blocks(), out.blocks_mut());
     }
 
     /// Both bodies free, the same two balls in every contact.
@@ -136,11 +130,7 @@ impl Exec {
         Generated: BatchKernel<T, N, S>,
     {
         pairs_for(out, batch.len());
-        self.drive(batch.blocks(), out.blocks_mut(), |blocks, out| FreeShared {
-            balls,
-            blocks,
-            out,
-        });
+        self.drive(&FreeShared { balls }, batch.blocks(), out.blocks_mut());
     }
 
     /// Body 1 immovable, the same `radius1` and `ball2` in every contact.
@@ -156,25 +146,14 @@ impl Exec {
         Generated: BatchKernel<T, N, S>,
     {
         states_for(out, batch.len());
-        self.drive(batch.blocks(), out.blocks_mut(), |blocks, out| {
-            FixedShared {
-                radius1,
-                ball2,
-                blocks,
-                out,
-            }
-        });
+        let job = FixedShared { radius1, ball2 };
+        self.drive(&job, batch.blocks(), out.blocks_mut());
     }
 
-    /// Run `job(blocks, out)` on this instruction set, in chunks on rayon's pool when the
-    /// batch is long enough.
+    /// Run `job` on this instruction set, in chunks on rayon's pool when the batch is long
+    /// enough.
     #[inline(always)]
-    fn drive<'a, B: Sync, O: Send, J: Job>(
-        &self,
-        blocks: &'a [B],
-        out: &'a mut [O],
-        job: impl Fn(&'a [B], &'a mut [O]) -> J + Sync,
-    ) {
+    fn drive<B: Sync, O: Send>(&self, job: &(impl Job<B, O> + Sync), blocks: &[B], out: &mut [O]) {
         #[cfg(feature = "parallel")]
         if self
             .parallel_from
@@ -185,10 +164,10 @@ impl Exec {
             blocks
                 .par_chunks(CHUNK_BLOCKS)
                 .zip(out.par_chunks_mut(CHUNK_BLOCKS))
-                .for_each(|(b, o)| run_on(isa, job(b, o)));
+                .for_each(|(b, o)| run_on(isa, job, b, o));
             return;
         }
-        run_on(self.isa, job(blocks, out));
+        run_on(self.isa, job, blocks, out);
     }
 }
 
@@ -204,66 +183,58 @@ fn states_for<T: Scalar, const N: usize, const S: usize>(
     out.resize_with(len, || StateLanes::splat(&BodyState::zero()));
 }
 
-/// The jobs: one kernel call each, inlined into the dispatch wrappers.
-struct Free<'a, T, const N: usize, const S: usize> {
-    blocks: &'a [FreeLanes<T, N, S>],
-    out: &'a mut [[StateLanes<T, N, S>; 2]],
-}
+/// The jobs: one kernel each, with the parameters shared by the call.
+struct Free;
 
-impl<T, const N: usize, const S: usize> Job for Free<'_, T, N, S>
+impl<T, const N: usize, const S: usize> Job<FreeLanes<T, N, S>, [StateLanes<T, N, S>; 2]> for Free
 where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(self) {
-        Generated::free_blocks(self.blocks, self.out)
+    fn run(&self, blocks: &[FreeLanes<T, N, S>], out: &mut [[StateLanes<T, N, S>; 2]]) {
+        Generated::free_blocks(blocks, out)
     }
 }
 
-struct Fixed<'a, T, const N: usize, const S: usize> {
-    blocks: &'a [FixedLanes<T, N, S>],
-    out: &'a mut [StateLanes<T, N, S>],
-}
+struct Fixed;
 
-impl<T, const N: usize, const S: usize> Job for Fixed<'_, T, N, S>
+impl<T, const N: usize, const S: usize> Job<FixedLanes<T, N, S>, StateLanes<T, N, S>> for Fixed
 where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(self) {
-        Generated::fixed_blocks(self.blocks, self.out)
+    fn run(&self, blocks: &[FixedLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]) {
+        Generated::fixed_blocks(blocks, out)
     }
 }
 
-struct FreeShared<'a, T, const N: usize, const S: usize> {
+struct FreeShared<'a, T> {
     balls: [&'a Ball<T>; 2],
-    blocks: &'a [ContactLanes<T, N, S>],
-    out: &'a mut [[StateLanes<T, N, S>; 2]],
 }
 
-impl<T, const N: usize, const S: usize> Job for FreeShared<'_, T, N, S>
+impl<T, const N: usize, const S: usize> Job<ContactLanes<T, N, S>, [StateLanes<T, N, S>; 2]>
+    for FreeShared<'_, T>
 where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(self) {
-        Generated::free_shared_blocks(self.balls, self.blocks, self.out)
+    fn run(&self, blocks: &[ContactLanes<T, N, S>], out: &mut [[StateLanes<T, N, S>; 2]]) {
+        Generated::free_shared_blocks(self.balls, blocks, out)
     }
 }
 
-struct FixedShared<'a, T, const N: usize, const S: usize> {
+struct FixedShared<'a, T> {
     radius1: &'a T,
     ball2: &'a Ball<T>,
-    blocks: &'a [ContactLanes<T, N, S>],
-    out: &'a mut [StateLanes<T, N, S>],
 }
 
-impl<T, const N: usize, const S: usize> Job for FixedShared<'_, T, N, S>
+impl<T, const N: usize, const S: usize> Job<ContactLanes<T, N, S>, StateLanes<T, N, S>>
+    for FixedShared<'_, T>
 where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(self) {
-        Generated::fixed_shared_blocks(self.radius1, self.ball2, self.blocks, self.out)
+    fn run(&self, blocks: &[ContactLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]) {
+        Generated::fixed_shared_blocks(self.radius1, self.ball2, blocks, out)
     }
 }
