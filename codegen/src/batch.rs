@@ -6,12 +6,18 @@
 //! `collision_core::batch`). For each block the emitted code runs
 //!
 //! ```text
+//! prefetch(blocks.get(k + ahead));                        (a few kB ahead, out of cache)
 //! for l in 0..LANES {
 //!     let nu_0: &T = &block.contact.nu[0][l];  ...       (the live inputs of lane l)
 //!     let tmp0: T = U1_01 * radius1;  ...                (the scalar kernel's steps)
 //!     post[0].spin[0][l] = ...;  ...                     (the outputs of lane l)
 //! }
 //! ```
+//!
+//! The lane loop has a constant trip count and no dependence between lanes; LLVM's loop
+//! vectorizer turns each step into one vector operation over the lanes (2, 4 or 8 `f64`
+//! lanes for SSE2, AVX2, AVX-512), with plain vector loads and stores of the lane arrays:
+//! no gathers or scatters.
 //!
 //! The steps are the scalar kernel's, in the scalar kernel's order, with the same operands,
 //! so each lane rounds exactly as the scalar kernel does on that contact: the batch result is
@@ -173,7 +179,8 @@ struct EmittedBatch {
     tokens: TokenStream,
 }
 
-fn signature(n: usize, variant: Variant, params: Params) -> TokenStream {
+/// The kernel's parameters, and the type of one input block.
+fn signature(n: usize, variant: Variant, params: Params) -> (TokenStream, TokenStream) {
     let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
     let post = match variant {
         Variant::Free => quote!([StateLanes<T, #nl, #sl>; 2]),
@@ -191,7 +198,7 @@ fn signature(n: usize, variant: Variant, params: Params) -> TokenStream {
             quote!(ContactLanes<T, #nl, #sl>),
         ),
     };
-    quote!(#shared blocks: &[#block], out: &mut [#post])
+    (quote!(#shared blocks: &[#block], out: &mut [#post]), block)
 }
 
 fn docs(kernel: &Kernel, params: Params, per_contact: OpCount, per_batch: OpCount) -> TokenStream {
@@ -315,7 +322,7 @@ fn emit_batch(kernel: &Kernel, params: Params) -> EmittedBatch {
     let per_batch = count(&kernel.graph, &hoisted);
     let doc = docs(kernel, params, per_contact, per_batch);
     let fn_name = ident(&params.function_name(variant));
-    let sig = signature(n, variant, params);
+    let (sig, block_ty) = signature(n, variant, params);
     let tokens = quote! {
         #doc
         #[inline(always)]
@@ -327,7 +334,10 @@ fn emit_batch(kernel: &Kernel, params: Params) -> EmittedBatch {
             #(#shared_bindings)*
             #(#constants)*
             #(#hoisted_steps)*
-            for (block, post) in blocks.iter().zip(out.iter_mut()) {
+            let ahead = prefetch_distance::<#block_ty>();
+            for k in 0..blocks.len().min(out.len()) {
+                prefetch(blocks.get(k + ahead));
+                let (block, post) = (&blocks[k], &mut out[k]);
                 for l in 0..LANES {
                     #(#lane_bindings)*
                     #(#lane_steps)*
@@ -378,7 +388,7 @@ pub fn generate(dim: usize, crate_path: &str) -> BatchModule {
         .collect();
     let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
     let imports = quote! {
-        use #path::batch::{ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES};
+        use #path::batch::{prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance};
         use #path::{Ball, RefArith, Scalar};
     };
     let items = emitted.iter().map(|e| &e.tokens);
@@ -469,7 +479,7 @@ mod tests {
     fn shared_parameters_leave_the_lane_loop() {
         let source = generate(3, "crate").source;
         let shared = source.split("pub fn free_shared<").nth(1).unwrap();
-        let (before_loop, in_loop) = shared.split_once("for (block, post)").unwrap();
+        let (before_loop, in_loop) = shared.split_once("for k in 0..").unwrap();
         assert!(before_loop.contains("let d: T ="), "D is computed once");
         assert!(before_loop.contains("let rho1: T ="));
         assert!(

@@ -51,6 +51,7 @@ mod dispatch;
 mod exec;
 pub mod kernels;
 pub mod lanes;
+mod prefetch;
 
 #[cfg(test)]
 mod tests;
@@ -63,6 +64,7 @@ pub use lanes::{
     BallLanes, Contact, ContactLanes, FixedLanes, FreeLanes, Lane, Lanes, Lanewise, StateLanes,
     LANES,
 };
+pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
 
 use crate::kernels::Generated;
 use crate::{Ball, RefArith, Scalar};
