@@ -17,22 +17,23 @@
 //!
 //! | batch | one item | kernel |
 //! |---|---|---|
-//! | [`FreeBatch`] | `(Contact, [Ball; 2])` | [`free`]: both bodies free, balls per contact |
-//! | [`FixedBatch`] | `(Contact, radius1, Ball)` | [`fixed`]: body 1 immovable, parameters per contact |
-//! | [`ContactBatch`] | [`Contact`] (`nu`, both states) | [`free_shared`], [`fixed_shared`]: one set of ball parameters for the batch |
+//! | [`FreeBatch`] | `(Contact, [Ball; 2])` | [`Exec::free`]: both bodies free, balls per contact |
+//! | [`FixedBatch`] | `(Contact, radius1, Ball)` | [`Exec::fixed`]: body 1 immovable, parameters per contact |
+//! | [`ContactBatch`] | [`Contact`] (`nu`, both states) | [`Exec::free_shared`], [`Exec::fixed_shared`]: one set of ball parameters for the batch |
 //! | [`PairBatch`] | `[BodyState; 2]` | output of `free`, `free_shared` |
 //! | [`StateBatch`] | `BodyState` | output of `fixed`, `fixed_shared` (body 2) |
 //!
 //! **Execution.** [`Exec`] picks the instruction set ([`Isa`]: the default target, AVX2 +
 //! FMA, AVX-512F; [`Exec::auto`] takes the widest this CPU has) and, with the `parallel`
-//! feature, splits batches of at least [`PARALLEL_FROM`] contacts across rayon's pool. The
-//! free functions of this module run with [`Exec::auto`].
+//! feature, splits batches of at least [`PARALLEL_FROM`] contacts across rayon's pool. Its
+//! methods [`Exec::free`], [`Exec::fixed`], [`Exec::free_shared`] and [`Exec::fixed_shared`]
+//! run the kernels; [`BatchKernel`] reaches the generated block kernels of each n directly.
 //!
 //! **Preconditions** are those of the scalar kernels (see [`crate::kernels`]); nothing is
 //! validated, and invalid contacts give NaN or infinities in their own lanes only.
 //!
 //! ```
-//! use collision_core::batch::{self, Contact, FreeBatch, PairBatch};
+//! use collision_core::batch::{Contact, Exec, FreeBatch, PairBatch};
 //! use collision_core::{Ball, Inertia, Mass, State3};
 //! let ball = Ball::new(3, Mass::Finite(1.0), 1.0, Inertia::Uniform).unwrap();
 //! let falling = State3::from_omega([0.0, 0.0, 2.0], [0.0, -1.0, 0.0]);
@@ -40,7 +41,7 @@
 //! let contacts: FreeBatch<f64, 3, 3> =
 //!     (0..20).map(|_| (contact.clone(), [ball.clone(), ball.clone()])).collect();
 //! let mut after = PairBatch::new();
-//! batch::free(&contacts, &mut after);
+//! Exec::auto().free(&contacts, &mut after);
 //! assert_eq!(after.len(), 20);
 //! let [b1, b2] = after.get(19).unwrap();
 //! assert_eq!(b1.velocity[1] + b2.velocity[1], -1.0); // momentum is conserved
@@ -66,9 +67,6 @@ pub use lanes::{
 };
 pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
 
-use crate::kernels::Generated;
-use crate::{Ball, RefArith, Scalar};
-
 /// Contacts of two free balls with their own parameters.
 pub type FreeBatch<T, const N: usize, const S: usize> = Batch<FreeLanes<T, N, S>>;
 /// Contacts with an immovable body 1, with their own parameters.
@@ -79,54 +77,3 @@ pub type ContactBatch<T, const N: usize, const S: usize> = Batch<ContactLanes<T,
 pub type PairBatch<T, const N: usize, const S: usize> = Batch<[StateLanes<T, N, S>; 2]>;
 /// One body's state of every contact.
 pub type StateBatch<T, const N: usize, const S: usize> = Batch<StateLanes<T, N, S>>;
-
-/// [`Exec::free`] with [`Exec::auto`].
-pub fn free<T, const N: usize, const S: usize>(
-    batch: &FreeBatch<T, N, S>,
-    out: &mut PairBatch<T, N, S>,
-) where
-    T: Scalar + Send + Sync,
-    for<'a> &'a T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
-{
-    Exec::auto().free(batch, out)
-}
-
-/// [`Exec::fixed`] with [`Exec::auto`].
-pub fn fixed<T, const N: usize, const S: usize>(
-    batch: &FixedBatch<T, N, S>,
-    out: &mut StateBatch<T, N, S>,
-) where
-    T: Scalar + Send + Sync,
-    for<'a> &'a T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
-{
-    Exec::auto().fixed(batch, out)
-}
-
-/// [`Exec::free_shared`] with [`Exec::auto`].
-pub fn free_shared<T, const N: usize, const S: usize>(
-    balls: [&Ball<T>; 2],
-    batch: &ContactBatch<T, N, S>,
-    out: &mut PairBatch<T, N, S>,
-) where
-    T: Scalar + Send + Sync,
-    for<'a> &'a T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
-{
-    Exec::auto().free_shared(balls, batch, out)
-}
-
-/// [`Exec::fixed_shared`] with [`Exec::auto`].
-pub fn fixed_shared<T, const N: usize, const S: usize>(
-    radius1: &T,
-    ball2: &Ball<T>,
-    batch: &ContactBatch<T, N, S>,
-    out: &mut StateBatch<T, N, S>,
-) where
-    T: Scalar + Send + Sync,
-    for<'a> &'a T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
-{
-    Exec::auto().fixed_shared(radius1, ball2, batch, out)
-}
