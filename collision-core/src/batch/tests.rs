@@ -3,7 +3,8 @@
 //! (feature `parallel`) threaded, with batch lengths that leave ragged last blocks.
 
 use super::*;
-use crate::{BodyState, Exact, Kernel};
+use crate::kernels::Generated;
+use crate::{Ball, BodyState, Exact, Kernel, RefArith, Scalar};
 use rand::{Rng as _, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
