@@ -82,7 +82,7 @@ const SMALL: i64 = 1 << 24;
 /// constants of the generic kernels); otherwise (species constants folded by
 /// `crate::specialise`) `T::from_literal(x64, x32, "p", "q")` with `x64` and `x32` the
 /// correctly rounded `f64` and `f32` computed here, and the exact digits for rationals.
-fn const_value(c: &BigRational) -> TokenStream {
+pub(crate) fn const_value(c: &BigRational) -> TokenStream {
     let small = |x: &BigInt| x.to_i64().filter(|v| v.abs() <= SMALL);
     if let (Some(p), Some(q)) = (small(c.numer()), small(c.denom())) {
         let (p, q) = (Literal::i64_unsuffixed(p), Literal::i64_unsuffixed(q));
@@ -102,13 +102,13 @@ fn const_value(c: &BigRational) -> TokenStream {
     quote!(T::from_literal(#x64, #x32, #p, #q))
 }
 
-struct Namer<'a> {
+pub(crate) struct Namer<'a> {
     kernel: &'a Kernel,
     names: HashMap<Id, String>,
 }
 
 impl<'a> Namer<'a> {
-    fn new(kernel: &'a Kernel, sched: &Schedule, steps: &[Id]) -> Self {
+    pub(crate) fn new(kernel: &'a Kernel, sched: &Schedule, steps: &[Id]) -> Self {
         let g = &kernel.graph;
         let mut names = HashMap::new();
         let mut used = BTreeSet::new();
@@ -133,7 +133,7 @@ impl<'a> Namer<'a> {
     }
 
     /// An operand as a `&T` expression.
-    fn operand(&self, id: Id) -> TokenStream {
+    pub(crate) fn operand(&self, id: Id) -> TokenStream {
         match self.kernel.graph.node(id) {
             Node::Input(input) => {
                 let i = ident(&input.0);
@@ -146,12 +146,12 @@ impl<'a> Namer<'a> {
         }
     }
 
-    fn binding(&self, id: Id) -> Ident {
+    pub(crate) fn binding(&self, id: Id) -> Ident {
         ident(&self.names[&id])
     }
 
     /// An output as an owned `T`, moving a temporary when this is its only output use.
-    fn output(&self, id: Id, output_uses: &HashMap<Id, usize>) -> TokenStream {
+    pub(crate) fn output(&self, id: Id, output_uses: &HashMap<Id, usize>) -> TokenStream {
         match self.kernel.graph.node(id) {
             Node::Input(input) => {
                 let i = ident(&input.0);
@@ -225,7 +225,7 @@ fn ball_pattern(body: usize, live: &BTreeSet<String>) -> TokenStream {
     quote!(Ball { #(#bound,)* #rest })
 }
 
-fn description(kernel: &Kernel) -> Vec<String> {
+pub(crate) fn description(kernel: &Kernel) -> Vec<String> {
     let n = kernel.dim;
     let mut lines = match kernel.variant {
         Variant::Free => vec![
@@ -313,30 +313,17 @@ pub fn emit_body_as(kernel: &Kernel, arith: Arith) -> EmittedBody {
         let value = const_value(kernel.graph.as_const(id).expect("constant"));
         quote!(let #name: T = #value;)
     });
-    let step_tokens = steps.iter().map(|&id| {
-        let name = namer.binding(id);
-        let expr = match fusion.fused.get(&id) {
-            Some(fused) => fused_call(&namer, *fused),
-            None => match kernel.graph.node(id) {
-                Node::Add(a, b) => binary(&namer, *a, quote!(+), *b),
-                Node::Sub(a, b) => binary(&namer, *a, quote!(-), *b),
-                Node::Mul(a, b) => binary(&namer, *a, quote!(*), *b),
-                Node::Div(a, b) => binary(&namer, *a, quote!(/), *b),
-                Node::Neg(a) => {
-                    let a = namer.operand(*a);
-                    quote!(-#a)
-                }
-                Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
-            },
-        };
-        quote!(let #name: T = #expr;)
+    let step_tokens = steps.iter().map(|&id| match fusion.fused.get(&id) {
+        Some(fused) => {
+            let name = namer.binding(id);
+            let expr = fused_call(&namer, *fused);
+            quote!(let #name: T = #expr;)
+        }
+        None => step(&namer, id),
     });
     let statements = quote!(#(#constants)* #(#step_tokens)*);
 
-    let mut output_uses: HashMap<Id, usize> = HashMap::new();
-    for &id in &roots {
-        *output_uses.entry(id).or_default() += 1;
-    }
+    let output_uses = output_uses(kernel);
     let outputs = kernel
         .outputs
         .iter()
@@ -451,6 +438,34 @@ fn fused_call(namer: &Namer<'_>, fused: Fused) -> TokenStream {
     };
     let (a, b, c) = (namer.operand(a), namer.operand(b), namer.operand(c));
     quote!(T::#f(#a, #b, #c))
+}
+
+/// The `let` binding of one scheduled step: `let name: T = a op b;`.
+pub(crate) fn step(namer: &Namer<'_>, id: Id) -> TokenStream {
+    let name = namer.binding(id);
+    let expr = match namer.kernel.graph.node(id) {
+        Node::Add(a, b) => binary(namer, *a, quote!(+), *b),
+        Node::Sub(a, b) => binary(namer, *a, quote!(-), *b),
+        Node::Mul(a, b) => binary(namer, *a, quote!(*), *b),
+        Node::Div(a, b) => binary(namer, *a, quote!(/), *b),
+        Node::Neg(a) => {
+            let a = namer.operand(*a);
+            quote!(-#a)
+        }
+        Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
+    };
+    quote!(let #name: T = #expr;)
+}
+
+/// How many output slots each node fills (a temporary used once is moved, not cloned).
+pub(crate) fn output_uses(kernel: &Kernel) -> HashMap<Id, usize> {
+    let mut uses: HashMap<Id, usize> = HashMap::new();
+    for o in &kernel.outputs {
+        for &id in o.spin.iter().chain(&o.velocity) {
+            *uses.entry(id).or_default() += 1;
+        }
+    }
+    uses
 }
 
 fn binary(namer: &Namer<'_>, a: Id, op: TokenStream, b: Id) -> TokenStream {

@@ -15,6 +15,7 @@
 //! assert_eq!(module.kernels.len(), 4); // free, fixed, free_fma, fixed_fma
 //! ```
 
+pub mod batch;
 pub mod emit;
 pub mod fuse;
 pub mod ir;

@@ -86,3 +86,11 @@ fn every_generated_kernel_is_straight_line() {
         assert!(module.source.starts_with("// @generated"));
     }
 }
+
+#[test]
+fn emitted_text_of_the_2d_batch_kernels() {
+    compare(
+        "batch_2.rs",
+        &noslip_codegen::batch::generate(2, "crate").source,
+    );
+}

@@ -11,6 +11,8 @@
 //!   bodies move; `fixed`, body 1 immovable), generic over [`Scalar`]: `f32`, `f64`, [`Exact`].
 //! - [`collide`]: validates the inputs (typed [`InputError`] naming the field) and runs the
 //!   kernel; [`collide_unchecked`] is the fast path.
+//! - [`batch`]: the same kernels over blocked batches of contacts, vectorized, with the
+//!   instruction set chosen at run time and optional threads (feature `parallel`).
 //! - [`reference`]: the map built from the definitions (impulse basis, Gram matrix,
 //!   projection) for any n: the independent check of the kernels.
 //!
@@ -26,6 +28,7 @@
 //! ```
 
 mod ball;
+pub mod batch;
 mod collide;
 mod error;
 pub mod kernels;

@@ -1,0 +1,492 @@
+//! Emission of the batch kernels: the scalar kernel's DAG and schedule, evaluated for a
+//! block of `LANES` contacts at a time in a fixed-length lane loop that LLVM vectorizes.
+//!
+//! The layout is blocked (AoSoA): every scalar field of a contact is a `[T; LANES]` lane
+//! array, and a batch is a slice of blocks (the runtime types are in
+//! `collision_core::batch`). For each block the emitted code runs
+//!
+//! ```text
+//! prefetch(blocks.get(k + ahead));                        (a few kB ahead, out of cache)
+//! for l in 0..LANES {
+//!     let nu_0: &T = &block.contact.nu[0][l];  ...       (the live inputs of lane l)
+//!     let tmp0: T = U1_01 * radius1;  ...                (the scalar kernel's steps)
+//!     post[0].spin[0][l] = ...;  ...                     (the outputs of lane l)
+//! }
+//! ```
+//!
+//! The lane loop has a constant trip count and no dependence between lanes; LLVM's loop
+//! vectorizer turns each step into one vector operation over the lanes (2, 4 or 8 `f64`
+//! lanes for SSE2, AVX2, AVX-512), with plain vector loads and stores of the lane arrays:
+//! no gathers or scatters.
+//!
+//! The steps are the scalar kernel's, in the scalar kernel's order, with the same operands,
+//! so each lane rounds exactly as the scalar kernel does on that contact: the batch result is
+//! bit for bit the scalar one (Rust never contracts `a * b + c` into a fused multiply-add).
+//!
+//! Two parameter modes per variant:
+//!
+//! - per contact ([`Params::PerContact`]): the balls are lane arrays of the block;
+//! - shared ([`Params::Shared`]): one set of ball parameters for the whole batch, passed as
+//!   scalars. Every node that depends only on them (`D`, `g_1 g_2 / D`, `rho_i`, ...) is
+//!   computed once per call, before the block loop, by the same operations; only the
+//!   per-contact rest runs in the lane loop.
+
+use crate::emit::{self, ident, lit, Namer};
+use crate::ir::{Graph, Id, Node};
+use crate::model::{self, names, skew_pairs, Kernel, Variant};
+use crate::schedule::{schedule, OpCount, Schedule};
+use proc_macro2::TokenStream;
+use quote::quote;
+use std::collections::BTreeSet;
+
+/// Where a batch kernel's ball parameters come from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Params {
+    /// One set per contact, in the block's lanes.
+    PerContact,
+    /// One set for the whole batch, passed as scalars (broadcast).
+    Shared,
+}
+
+impl Params {
+    pub const ALL: [Params; 2] = [Params::PerContact, Params::Shared];
+
+    /// The batch kernel's function name: `free`, `fixed`, `free_shared`, `fixed_shared`.
+    pub fn function_name(self, variant: Variant) -> String {
+        match self {
+            Params::PerContact => variant.name().to_string(),
+            Params::Shared => format!("{}_shared", variant.name()),
+        }
+    }
+}
+
+/// Cost of one batch kernel, split into the part run for every contact and the part run
+/// once per call (nonzero only with shared parameters). Their sum is the scalar kernel's.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BatchSummary {
+    pub dim: usize,
+    pub variant: Variant,
+    pub params: Params,
+    pub per_contact: OpCount,
+    pub per_batch: OpCount,
+}
+
+/// The generated source of one dimension's batch module and the cost of its kernels.
+#[derive(Clone, Debug)]
+pub struct BatchModule {
+    pub dim: usize,
+    pub source: String,
+    pub kernels: Vec<BatchSummary>,
+}
+
+/// The file name of dimension `dim`'s batch module: `batch_{dim}.rs`.
+pub fn file_name(dim: usize) -> String {
+    format!("batch_{dim}.rs")
+}
+
+/// The ball inputs a variant takes as shared scalars in [`Params::Shared`] mode.
+fn shared_inputs(variant: Variant) -> BTreeSet<String> {
+    let mut set: BTreeSet<String> = [names::radius(1), names::radius(2), names::gamma2(2)]
+        .into_iter()
+        .collect();
+    if variant == Variant::Free {
+        set.extend([names::inv_mass(1), names::inv_mass(2), names::gamma2(1)]);
+    }
+    set
+}
+
+/// `uniform[id]`: the node depends on no per-contact input (only constants and `shared`).
+fn uniform_nodes(graph: &Graph, shared: &BTreeSet<String>) -> Vec<bool> {
+    let mut uniform: Vec<bool> = Vec::with_capacity(graph.len());
+    for index in 0..graph.len() {
+        let u = match graph.node(Id(index as u32)) {
+            Node::Input(input) => shared.contains(&input.0),
+            Node::Const(_) => true,
+            Node::Neg(a) => uniform[a.0 as usize],
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+                uniform[a.0 as usize] && uniform[b.0 as usize]
+            }
+        };
+        uniform.push(u);
+    }
+    uniform
+}
+
+/// The place of a kernel input in the batch: a path to a lane array (indexed by `l`) or, for
+/// a shared parameter, to a scalar.
+fn input_path(name: &str, n: usize, variant: Variant, params: Params) -> TokenStream {
+    let contact = match params {
+        Params::PerContact => quote!(block.contact),
+        Params::Shared => quote!(block),
+    };
+    for k in 0..n {
+        if name == names::nu(k) {
+            let k = lit(k);
+            return quote!(#contact.nu[#k][l]);
+        }
+    }
+    for body in 1..=2 {
+        let b = lit(body - 1);
+        for (idx, (i, j)) in skew_pairs(n).into_iter().enumerate() {
+            if name == names::spin(body, i, j) {
+                let idx = lit(idx);
+                return quote!(#contact.states[#b].spin[#idx][l]);
+            }
+        }
+        for k in 0..n {
+            if name == names::velocity(body, k) {
+                let k = lit(k);
+                return quote!(#contact.states[#b].velocity[#k][l]);
+            }
+        }
+        let fields = [
+            (names::inv_mass(body), "inv_mass"),
+            (names::radius(body), "radius"),
+            (names::gamma2(body), "gamma2"),
+        ];
+        if let Some((_, field)) = fields.iter().find(|(n, _)| n == name) {
+            let field = ident(field);
+            return match (params, variant, body) {
+                (Params::Shared, Variant::Fixed, 1) => quote!(radius1),
+                (Params::Shared, _, 1) => quote!(ball1.#field),
+                (Params::Shared, _, _) => quote!(ball2.#field),
+                (Params::PerContact, Variant::Fixed, 1) => quote!(block.radius1[l]),
+                (Params::PerContact, Variant::Fixed, _) => quote!(block.ball2.#field[l]),
+                (Params::PerContact, Variant::Free, _) => quote!(block.balls[#b].#field[l]),
+            };
+        }
+    }
+    panic!("unknown kernel input {name}")
+}
+
+fn count(graph: &Graph, ids: &[Id]) -> OpCount {
+    let mut ops = OpCount::default();
+    for &id in ids {
+        match graph.node(id) {
+            Node::Add(..) | Node::Sub(..) => ops.add += 1,
+            Node::Mul(..) => ops.mul += 1,
+            Node::Div(..) => ops.div += 1,
+            Node::Neg(..) => ops.neg += 1,
+            Node::Input(_) | Node::Const(_) => {}
+        }
+    }
+    ops
+}
+
+/// One emitted batch kernel and its cost.
+struct EmittedBatch {
+    summary: BatchSummary,
+    tokens: TokenStream,
+}
+
+/// The kernel's parameters, and the type of one input block.
+fn signature(n: usize, variant: Variant, params: Params) -> (TokenStream, TokenStream) {
+    let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
+    let post = match variant {
+        Variant::Free => quote!([StateLanes<T, #nl, #sl>; 2]),
+        Variant::Fixed => quote!(StateLanes<T, #nl, #sl>),
+    };
+    let (shared, block) = match (params, variant) {
+        (Params::PerContact, Variant::Free) => (quote!(), quote!(FreeLanes<T, #nl, #sl>)),
+        (Params::PerContact, Variant::Fixed) => (quote!(), quote!(FixedLanes<T, #nl, #sl>)),
+        (Params::Shared, Variant::Free) => (
+            quote!(ball1: &Ball<T>, ball2: &Ball<T>,),
+            quote!(ContactLanes<T, #nl, #sl>),
+        ),
+        (Params::Shared, Variant::Fixed) => (
+            quote!(radius1: &T, ball2: &Ball<T>,),
+            quote!(ContactLanes<T, #nl, #sl>),
+        ),
+    };
+    (quote!(#shared blocks: &[#block], out: &mut [#post]), block)
+}
+
+fn docs(kernel: &Kernel, params: Params, per_contact: OpCount, per_batch: OpCount) -> TokenStream {
+    let scalar = kernel.variant.name();
+    let mut lines = vec![
+        format!(
+            "Batch form of [`crate::kernels::d{}::{scalar}`]: block `k` of `blocks` into `out[k]`,",
+            kernel.dim
+        ),
+        "lane by lane, for `min(blocks.len(), out.len())` blocks.".into(),
+    ];
+    match params {
+        Params::PerContact => lines.push("Ball parameters: per contact, in the lanes.".into()),
+        Params::Shared => lines.push(
+            "Ball parameters: shared by every contact; what depends on them alone is computed once."
+                .into(),
+        ),
+    }
+    lines.extend([
+        "Each lane runs the scalar kernel's operations in its order: the same bits in floats."
+            .into(),
+        String::new(),
+    ]);
+    // The scalar kernel's description, less its straight-line note (this one loops).
+    lines.extend(
+        emit::description(kernel)
+            .into_iter()
+            .filter(|l| !l.starts_with("Straight-line")),
+    );
+    lines.push(String::new());
+    lines.push(format!("Ops per contact: {per_contact}."));
+    if params == Params::Shared {
+        lines.push(format!(
+            "Ops per call, on the shared parameters: {per_batch}."
+        ));
+    }
+    emit::doc_lines(&lines)
+}
+
+fn emit_batch(kernel: &Kernel, params: Params) -> EmittedBatch {
+    let (n, variant) = (kernel.dim, kernel.variant);
+    let roots = kernel
+        .outputs
+        .iter()
+        .flat_map(|o| o.spin.iter().chain(&o.velocity).copied());
+    let sched: Schedule = schedule(&kernel.graph, roots);
+    let namer = Namer::new(kernel, &sched, &sched.steps);
+    let shared = match params {
+        Params::PerContact => BTreeSet::new(),
+        Params::Shared => shared_inputs(variant),
+    };
+    let uniform = uniform_nodes(&kernel.graph, &shared);
+    let (hoisted, lane): (Vec<Id>, Vec<Id>) =
+        sched.steps.iter().partition(|id| uniform[id.0 as usize]);
+
+    let bind = |name: &String| {
+        let (i, path) = (ident(name), input_path(name, n, variant, params));
+        if shared.contains(name) {
+            // Shared parameters are copied into locals once per call: the stores into `out`
+            // cannot alias a local, so the lane loop keeps them in registers and vectorizes.
+            quote!(let #i: &T = &#path.clone();)
+        } else {
+            quote!(let #i: &T = &#path;)
+        }
+    };
+    let shared_bindings = sched
+        .inputs
+        .iter()
+        .filter(|i| shared.contains(*i))
+        .map(bind);
+    let lane_bindings = sched
+        .inputs
+        .iter()
+        .filter(|i| !shared.contains(*i))
+        .map(bind);
+    let constants = sched.constants.iter().map(|&id| {
+        let name = namer.binding(id);
+        let value = emit::const_value(kernel.graph.as_const(id).expect("constant"));
+        quote!(let #name: T = #value;)
+    });
+    let hoisted_steps = hoisted.iter().map(|&id| emit::step(&namer, id));
+    let lane_steps = lane.iter().map(|&id| emit::step(&namer, id));
+
+    let output_uses = emit::output_uses(kernel);
+    let stores = kernel.outputs.iter().enumerate().flat_map(|(slot, o)| {
+        let target = match variant {
+            Variant::Free => {
+                let slot = lit(slot);
+                quote!(post[#slot])
+            }
+            Variant::Fixed => quote!(post),
+        };
+        let spin = o
+            .spin
+            .iter()
+            .enumerate()
+            .map(|(k, &id)| (quote!(spin), k, id));
+        let velocity = o
+            .velocity
+            .iter()
+            .enumerate()
+            .map(|(k, &id)| (quote!(velocity), k, id));
+        let namer = &namer;
+        let output_uses = &output_uses;
+        let uniform = &uniform;
+        let graph = &kernel.graph;
+        spin.chain(velocity)
+            .map(move |(field, k, id)| {
+                assert!(
+                    !uniform[id.0 as usize] || matches!(graph.node(id), Node::Const(_)),
+                    "an output of the n = {n} {variant:?} kernel depends on shared parameters only"
+                );
+                let value = namer.output(id, output_uses);
+                let k = lit(k);
+                quote!(#target.#field[#k][l] = #value;)
+            })
+            .collect::<Vec<_>>()
+    });
+
+    let per_contact = count(&kernel.graph, &lane);
+    let per_batch = count(&kernel.graph, &hoisted);
+    let doc = docs(kernel, params, per_contact, per_batch);
+    let fn_name = ident(&params.function_name(variant));
+    let (sig, block_ty) = signature(n, variant, params);
+    let tokens = quote! {
+        #doc
+        #[inline(always)]
+        #[allow(non_snake_case, clippy::needless_range_loop)]
+        pub fn #fn_name<T: Scalar>(#sig)
+        where
+            for<'a> &'a T: RefArith<T>,
+        {
+            #(#shared_bindings)*
+            #(#constants)*
+            #(#hoisted_steps)*
+            let ahead = prefetch_distance::<#block_ty>();
+            for k in 0..blocks.len().min(out.len()) {
+                prefetch(blocks.get(k + ahead));
+                let (block, post) = (&blocks[k], &mut out[k]);
+                for l in 0..LANES {
+                    #(#lane_bindings)*
+                    #(#lane_steps)*
+                    #(#stores)*
+                }
+            }
+        }
+    };
+    EmittedBatch {
+        summary: BatchSummary {
+            dim: n,
+            variant,
+            params,
+            per_contact,
+            per_batch,
+        },
+        tokens,
+    }
+}
+
+fn header(dim: usize, kernels: &[BatchSummary]) -> String {
+    let mut h = format!(
+        "// @generated by noslip-codegen {} from the general SO(n) formulas (codegen/src/model.rs),\n\
+         // batch form (codegen/src/batch.rs). Do not edit: it is rewritten by collision-core's build.rs.\n\
+         // No-slip collision batch kernels for n = {dim}, blocks of LANES contacts.\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    for k in kernels {
+        h.push_str(&format!(
+            "// {}: per contact {}; per call {}.\n",
+            k.params.function_name(k.variant),
+            k.per_contact,
+            k.per_batch
+        ));
+    }
+    h
+}
+
+/// Generate the batch kernels of dimension `dim` (`free`, `fixed`, `free_shared`,
+/// `fixed_shared`) as one formatted source file; `crate_path` as in [`crate::generate`].
+///
+/// Panics if the emission is not valid Rust: a generator bug.
+pub fn generate(dim: usize, crate_path: &str) -> BatchModule {
+    let built: Vec<Kernel> = Variant::ALL.iter().map(|&v| model::build(dim, v)).collect();
+    let emitted: Vec<EmittedBatch> = Params::ALL
+        .iter()
+        .flat_map(|&p| built.iter().map(move |k| emit_batch(k, p)))
+        .collect();
+    let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
+    let imports = quote! {
+        use #path::batch::{prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance};
+        use #path::{Ball, RefArith, Scalar};
+    };
+    let items = emitted.iter().map(|e| &e.tokens);
+    let file = emit::parse(quote!(#imports #(#items)*));
+    let kernels: Vec<BatchSummary> = emitted.into_iter().map(|e| e.summary).collect();
+    BatchModule {
+        dim,
+        source: format!(
+            "{}\n{}",
+            header(dim, &kernels),
+            prettyplease::unparse(&file)
+        ),
+        kernels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::DIMS;
+    use std::collections::HashMap;
+
+    /// How many lane stores one block writes: every output component of every lane.
+    fn stores_per_lane(dim: usize, variant: Variant) -> usize {
+        let bodies = match variant {
+            Variant::Free => 2,
+            Variant::Fixed => 1,
+        };
+        bodies * (dim + dim * (dim - 1) / 2)
+    }
+
+    fn add(a: OpCount, b: OpCount) -> OpCount {
+        OpCount {
+            add: a.add + b.add,
+            mul: a.mul + b.mul,
+            div: a.div + b.div,
+            neg: a.neg + b.neg,
+            fma: a.fma + b.fma,
+        }
+    }
+
+    #[test]
+    fn per_contact_and_per_call_ops_partition_the_scalar_kernel() {
+        for dim in DIMS {
+            let scalar: HashMap<Variant, OpCount> = crate::generate(dim, "crate")
+                .kernels
+                .into_iter()
+                .filter(|k| k.arith == crate::Arith::Plain)
+                .map(|k| (k.variant, k.ops))
+                .collect();
+            for k in generate(dim, "crate").kernels {
+                assert_eq!(
+                    add(k.per_contact, k.per_batch),
+                    scalar[&k.variant],
+                    "n = {dim}, {:?} {:?}",
+                    k.variant,
+                    k.params
+                );
+                match k.params {
+                    Params::PerContact => assert_eq!(k.per_batch, OpCount::default()),
+                    // D, g_1 g_2 / D (or g_2 / (1 + g_2)) and the rho_i leave the lane loop.
+                    Params::Shared => assert!(k.per_batch.div >= 2, "{k:?}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn every_output_lane_is_stored_once() {
+        for dim in DIMS {
+            let source = generate(dim, "crate").source;
+            let file = syn::parse_file(&source).expect("generated source parses");
+            assert_eq!(file.items.len(), 2 + 4, "two use items, four kernels");
+            for v in Variant::ALL {
+                for p in Params::ALL {
+                    let name = p.function_name(v);
+                    let body = source
+                        .split(&format!("pub fn {name}<"))
+                        .nth(1)
+                        .expect("kernel emitted");
+                    let body = body.split("\npub fn ").next().unwrap_or(body);
+                    let stores = body.matches("[l] = ").count();
+                    assert_eq!(stores, stores_per_lane(dim, v), "n = {dim}, {name}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn shared_parameters_leave_the_lane_loop() {
+        let source = generate(3, "crate").source;
+        let shared = source.split("pub fn free_shared<").nth(1).unwrap();
+        let (before_loop, in_loop) = shared.split_once("for k in 0..").unwrap();
+        assert!(before_loop.contains("let d: T ="), "D is computed once");
+        assert!(before_loop.contains("let rho1: T ="));
+        assert!(
+            !in_loop.contains("ball1."),
+            "no ball field is read per lane"
+        );
+    }
+}

@@ -1,0 +1,115 @@
+//! Run-time choice of the instruction set: the same generic kernel compiled three times,
+//! for the default target (x86-64: SSE2), with AVX2 + FMA and with AVX-512F enabled, and
+//! picked by `is_x86_feature_detected!`.
+//!
+//! The kernels are `#[inline(always)]` and are inlined into `#[target_feature]` wrappers,
+//! where LLVM's loop vectorizer widens the lane loop to the wider registers. Enabling `fma`
+//! lets LLVM use FMA instructions only where the source asks for them: Rust never contracts
+//! `a * b + c` on its own, so every level rounds exactly like the scalar kernel.
+
+use std::fmt;
+
+/// An instruction-set level the batch kernels are compiled for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Isa {
+    /// The crate's compilation target as configured (x86-64 default: SSE2, 2 `f64` lanes).
+    Baseline,
+    /// AVX2 and FMA (4 `f64` lanes).
+    Avx2,
+    /// AVX-512F, with AVX2 and FMA (8 `f64` lanes).
+    Avx512,
+}
+
+impl Isa {
+    /// Every level, narrowest first.
+    pub const ALL: [Isa; 3] = [Isa::Baseline, Isa::Avx2, Isa::Avx512];
+
+    /// Whether this CPU runs the level (`Baseline` always).
+    pub fn is_available(self) -> bool {
+        match self {
+            Isa::Baseline => true,
+            #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+            Isa::Avx2 => is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma"),
+            #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+            Isa::Avx512 => Isa::Avx2.is_available() && is_x86_feature_detected!("avx512f"),
+            #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+            Isa::Avx2 | Isa::Avx512 => false,
+        }
+    }
+
+    /// The widest available level.
+    pub fn detect() -> Isa {
+        Isa::available().last().unwrap_or(Isa::Baseline)
+    }
+
+    /// The available levels, narrowest first.
+    pub fn available() -> impl DoubleEndedIterator<Item = Isa> {
+        Isa::ALL.into_iter().filter(|isa| isa.is_available())
+    }
+
+    /// `"baseline"`, `"avx2"`, `"avx512"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Isa::Baseline => "baseline",
+            Isa::Avx2 => "avx2",
+            Isa::Avx512 => "avx512",
+        }
+    }
+}
+
+impl fmt::Display for Isa {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A batch kernel to be compiled inside a `#[target_feature]` wrapper, holding what is
+/// shared by the whole call. Implementations mark `run` `#[inline(always)]`, so that the
+/// kernel is inlined there and compiled for the wrapper's instruction set.
+///
+/// The blocks and the output are arguments of the wrappers, never fields of the job: as
+/// function arguments, `&[B]` and `&mut [O]` are known not to alias, which the loop
+/// vectorizer needs (through a struct field that knowledge is lost and the lane loop stays
+/// scalar).
+pub(crate) trait Job<B, O> {
+    fn run(&self, blocks: &[B], out: &mut [O]);
+}
+
+/// Run `job` on `blocks` and `out`, compiled for `isa` when this CPU has it, else for the
+/// baseline.
+#[inline(always)]
+pub(crate) fn run_on<B, O>(isa: Isa, job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    match isa {
+        // SAFETY: the CPU has AVX-512F, AVX2 and FMA (checked just now by `is_available`,
+        // which `is_x86_feature_detected!` caches).
+        Isa::Avx512 if isa.is_available() => unsafe { x86::avx512(job, blocks, out) },
+        // SAFETY: the CPU has AVX2 and FMA (as above).
+        Isa::Avx2 if isa.is_available() => unsafe { x86::avx2(job, blocks, out) },
+        _ => job.run(blocks, out),
+    }
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    {
+        let _ = isa;
+        job.run(blocks, out)
+    }
+}
+
+#[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+mod x86 {
+    use super::Job;
+
+    /// # Safety
+    /// The CPU must support AVX2 and FMA.
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn avx2<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
+        job.run(blocks, out)
+    }
+
+    /// # Safety
+    /// The CPU must support AVX-512F, AVX2 and FMA.
+    #[target_feature(enable = "avx512f,avx2,fma")]
+    pub(super) unsafe fn avx512<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
+        job.run(blocks, out)
+    }
+}

@@ -1,0 +1,264 @@
+//! The batch kernels against the scalar kernels: bit for bit in `f64` and `f32`, exactly in
+//! `Exact`, on seeded random contacts, for every instruction set this CPU runs, serial and
+//! (feature `parallel`) threaded, with batch lengths that leave ragged last blocks.
+
+use super::*;
+use crate::kernels::Generated;
+use crate::{Ball, BodyState, Exact, Kernel, RefArith, Scalar};
+use rand::{Rng as _, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+type Item<T, const N: usize, const S: usize> = (Contact<T, N, S>, [Ball<T>; 2]);
+
+/// Lengths around the block size: empty, one lane, ragged, full, and several blocks.
+const LENGTHS: [usize; 6] = [0, 1, 7, 8, 9, 37];
+
+/// `len` contacts with masses and radii in [1/2, 2), `gamma2` in [1/(5n), 2/n), spins and
+/// velocities in [-1, 1), normals unit in floats (in `Exact` not: the kernels are rational
+/// functions, and equality with the scalar kernel holds for any inputs); each number drawn
+/// by `num(rng, lo, hi)`.
+fn sample<T: Scalar, const N: usize, const S: usize>(
+    seed: u64,
+    len: usize,
+    num: impl Fn(&mut ChaCha8Rng, f64, f64) -> T,
+) -> Vec<Item<T, N, S>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let n = N as f64;
+    (0..len)
+        .map(|_| {
+            let raw: [T; N] = std::array::from_fn(|_| num(&mut rng, -1.0, 1.0));
+            let norm2 = raw.iter().fold(T::zero(), |s, x| s + x.clone() * x.clone());
+            let nu = if T::EXACT {
+                raw
+            } else {
+                let norm = T::one() / from_f64::<T>(norm2.to_f64().sqrt());
+                raw.map(|x| x * norm.clone())
+            };
+            let mut ball = || Ball {
+                inv_mass: num(&mut rng, 0.5, 2.0),
+                radius: num(&mut rng, 0.5, 2.0),
+                gamma2: num(&mut rng, 0.2 / n, 2.0 / n),
+            };
+            let balls = [ball(), ball()];
+            let mut state = || BodyState {
+                spin: std::array::from_fn(|_| num(&mut rng, -1.0, 1.0)),
+                velocity: std::array::from_fn(|_| num(&mut rng, -1.0, 1.0)),
+            };
+            let states = [state(), state()];
+            (Contact { nu, states }, balls)
+        })
+        .collect()
+}
+
+/// `x` rounded to a multiple of `2^-40`, in `T` (for the float samples).
+fn from_f64<T: Scalar>(x: f64) -> T {
+    let scale = 1i64 << 40;
+    T::from_ratio((x * scale as f64).round() as i64, scale)
+}
+
+fn float<T: Scalar>(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> T {
+    from_f64(rng.random_range(lo..hi))
+}
+
+/// A multiple of 1/64 in `[lo, hi]`.
+fn rational(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> Exact {
+    let (lo, hi) = ((lo * 64.0).ceil() as i64, (hi * 64.0).floor() as i64);
+    Exact::from_ratio(rng.random_range(lo..=hi), 64)
+}
+
+/// Equal values with equal bits (through `f64`, exact from `f32`): tells `-0.0` from `0.0`.
+fn same<T: Scalar>(a: &T, b: &T) -> bool {
+    a == b && a.to_f64().to_bits() == b.to_f64().to_bits()
+}
+
+fn same_state<T: Scalar, const N: usize, const S: usize>(
+    a: &BodyState<T, N, S>,
+    b: &BodyState<T, N, S>,
+) -> bool {
+    a.spin.iter().zip(&b.spin).all(|(x, y)| same(x, y))
+        && a.velocity.iter().zip(&b.velocity).all(|(x, y)| same(x, y))
+}
+
+/// Every instruction set this CPU runs, serial and (feature `parallel`) threaded from the
+/// first contact on.
+fn execs() -> Vec<Exec> {
+    let mut out = Vec::new();
+    for isa in Isa::available() {
+        let exec = Exec::auto().with_isa(isa).expect("available").serial();
+        out.push(exec);
+        #[cfg(feature = "parallel")]
+        out.push(exec.parallel_from(1));
+    }
+    out
+}
+
+/// All four batch kernels on `items` against the scalar kernels, for every [`execs`].
+fn check<T, const N: usize, const S: usize>(items: &[Item<T, N, S>])
+where
+    T: Scalar + Send + Sync,
+    for<'a> &'a T: RefArith<T>,
+    Generated: BatchKernel<T, N, S> + Kernel<T, N, S>,
+{
+    let free_batch: FreeBatch<T, N, S> = items.iter().cloned().collect();
+    let fixed_batch: FixedBatch<T, N, S> = items
+        .iter()
+        .map(|(c, [b1, b2])| (c.clone(), b1.radius.clone(), b2.clone()))
+        .collect();
+    let contacts: ContactBatch<T, N, S> = items.iter().map(|(c, _)| c.clone()).collect();
+    let shared = match items.first() {
+        Some((_, balls)) => balls.clone(),
+        None => return check_empty(&free_batch, &fixed_batch, &contacts),
+    };
+    for exec in execs() {
+        let what = |kernel: &str, k: usize| {
+            format!(
+                "{} n = {N}, {kernel}, {exec:?}, contact {k} of {}",
+                T::NAME,
+                items.len()
+            )
+        };
+        let (mut pairs, mut states) = (PairBatch::new(), StateBatch::new());
+        exec.free(&free_batch, &mut pairs);
+        assert_eq!(pairs.len(), items.len());
+        for (k, ((c, [b1, b2]), got)) in items.iter().zip(pairs.iter()).enumerate() {
+            let want =
+                <Generated as Kernel<T, N, S>>::free(&c.nu, b1, b2, &c.states[0], &c.states[1]);
+            assert!(
+                same_state(&got[0], &want[0]) && same_state(&got[1], &want[1]),
+                "{}",
+                what("free", k)
+            );
+        }
+        exec.fixed(&fixed_batch, &mut states);
+        assert_eq!(states.len(), items.len());
+        for (k, ((c, [b1, b2]), got)) in items.iter().zip(states.iter()).enumerate() {
+            let want = <Generated as Kernel<T, N, S>>::fixed(
+                &c.nu,
+                &b1.radius,
+                b2,
+                &c.states[0],
+                &c.states[1],
+            );
+            assert!(same_state(&got, &want), "{}", what("fixed", k));
+        }
+        let [s1, s2] = &shared;
+        exec.free_shared([s1, s2], &contacts, &mut pairs);
+        for (k, ((c, _), got)) in items.iter().zip(pairs.iter()).enumerate() {
+            let want =
+                <Generated as Kernel<T, N, S>>::free(&c.nu, s1, s2, &c.states[0], &c.states[1]);
+            assert!(
+                same_state(&got[0], &want[0]) && same_state(&got[1], &want[1]),
+                "{}",
+                what("free_shared", k)
+            );
+        }
+        exec.fixed_shared(&s1.radius, s2, &contacts, &mut states);
+        for (k, ((c, _), got)) in items.iter().zip(states.iter()).enumerate() {
+            let want = <Generated as Kernel<T, N, S>>::fixed(
+                &c.nu,
+                &s1.radius,
+                s2,
+                &c.states[0],
+                &c.states[1],
+            );
+            assert!(same_state(&got, &want), "{}", what("fixed_shared", k));
+        }
+    }
+}
+
+/// An empty batch gives empty outputs (and an output that held results is emptied).
+fn check_empty<T, const N: usize, const S: usize>(
+    free_batch: &FreeBatch<T, N, S>,
+    fixed_batch: &FixedBatch<T, N, S>,
+    contacts: &ContactBatch<T, N, S>,
+) where
+    T: Scalar + Send + Sync,
+    for<'a> &'a T: RefArith<T>,
+    Generated: BatchKernel<T, N, S>,
+{
+    let ball = Ball::immovable(N, T::one());
+    for exec in execs() {
+        let mut pairs: PairBatch<T, N, S> =
+            std::iter::once([BodyState::zero(), BodyState::zero()]).collect();
+        exec.free(free_batch, &mut pairs);
+        assert!(pairs.is_empty() && pairs.blocks().is_empty());
+        exec.free_shared([&ball, &ball], contacts, &mut pairs);
+        assert!(pairs.is_empty());
+        let mut states: StateBatch<T, N, S> = std::iter::once(BodyState::zero()).collect();
+        exec.fixed(fixed_batch, &mut states);
+        assert!(states.is_empty() && states.blocks().is_empty());
+        exec.fixed_shared(&ball.radius, &ball, contacts, &mut states);
+        assert!(states.is_empty());
+    }
+}
+
+macro_rules! per_dim {
+    ($($f64:ident $f32:ident $exact:ident $n:literal $s:literal;)*) => {$(
+        #[test]
+        fn $f64() {
+            for (i, len) in LENGTHS.into_iter().enumerate() {
+                check::<f64, $n, $s>(&sample(0xb17 ^ (100 * $n + i as u64), len, float));
+            }
+        }
+
+        #[test]
+        fn $f32() {
+            for (i, len) in LENGTHS.into_iter().enumerate() {
+                check::<f32, $n, $s>(&sample(0xf32 ^ (100 * $n + i as u64), len, float));
+            }
+        }
+
+        #[test]
+        fn $exact() {
+            check::<Exact, $n, $s>(&sample(0xe ^ $n, 11, rational));
+        }
+    )*};
+}
+
+per_dim! {
+    d2_f64_bit_for_bit d2_f32_bit_for_bit d2_exact 2 1;
+    d3_f64_bit_for_bit d3_f32_bit_for_bit d3_exact 3 3;
+    d4_f64_bit_for_bit d4_f32_bit_for_bit d4_exact 4 6;
+    d5_f64_bit_for_bit d5_f32_bit_for_bit d5_exact 5 10;
+    d6_f64_bit_for_bit d6_f32_bit_for_bit d6_exact 6 15;
+}
+
+#[test]
+fn batches_round_trip_the_per_collision_types() {
+    for len in LENGTHS {
+        let items = sample::<f64, 3, 3>(7 + len as u64, len, float);
+        let batch: FreeBatch<f64, 3, 3> = items.iter().cloned().collect();
+        assert_eq!(batch.len(), len);
+        assert_eq!(batch.blocks().len(), len.div_ceil(LANES));
+        assert_eq!(batch.iter().collect::<Vec<_>>(), items);
+        for (i, item) in items.iter().enumerate() {
+            assert_eq!(batch.get(i).as_ref(), Some(item));
+        }
+        assert_eq!(batch.get(len), None);
+        // Padding lanes repeat the last block's first contact.
+        if let Some(last) = batch.blocks().last() {
+            let first = &items[(len - 1) / LANES * LANES];
+            for l in Lane::all().skip((len - 1) % LANES + 1) {
+                assert_eq!(&last.lane(l), first);
+            }
+        }
+    }
+}
+
+#[test]
+fn lanes_are_checked_and_isas_reported_as_available() {
+    assert_eq!(Lane::new(LANES), None);
+    assert_eq!(Lane::new(LANES - 1).map(Lane::index), Some(LANES - 1));
+    assert_eq!(Lane::all().count(), LANES);
+    for isa in Isa::ALL {
+        match Exec::auto().with_isa(isa) {
+            Ok(exec) => assert!(isa.is_available() && exec.isa() == isa),
+            Err(e) => {
+                assert!(!isa.is_available());
+                assert_eq!(e, BatchError::UnavailableIsa(isa));
+            }
+        }
+    }
+    assert!(Isa::Baseline.is_available());
+    assert_eq!(Exec::auto().isa(), Isa::detect());
+}
