@@ -20,6 +20,8 @@ pub struct Provenance {
     pub target_features: String,
     pub cpu: String,
     pub cpu_has_fma: bool,
+    /// The instruction set the batch variant runs at (`Exec::auto`).
+    pub batch_isa: String,
 }
 
 impl Provenance {
@@ -66,6 +68,7 @@ impl Provenance {
             target_features: simd.join(","),
             cpu,
             cpu_has_fma: has_fma(),
+            batch_isa: collision_core::batch::Exec::auto().isa().name().into(),
         }
     }
 }
@@ -114,13 +117,14 @@ impl AccuracyReport {
         );
         let _ = writeln!(
             m,
-            "| CPU | {} (FMA instructions: {}) |",
+            "| CPU | {} (FMA instructions: {}; batch kernels run at `{}`) |",
             p.cpu,
             if p.cpu_has_fma {
                 "yes, used by the FMA variant"
             } else {
                 "no: the FMA variant calls libm"
-            }
+            },
+            p.batch_isa
         );
         let _ = writeln!(m, "| run time | {:.1} s |\n", self.seconds);
         let _ = writeln!(

@@ -208,7 +208,10 @@ pub fn regime_result<const N: usize, const S: usize>(
     ops: &[(noslip_codegen::Arith, usize)],
 ) -> RegimeResult
 where
-    Generated: Kernel<f64, N, S> + Kernel<f32, N, S> + Kernel<Exact, N, S>,
+    Generated: Kernel<f64, N, S>
+        + Kernel<f32, N, S>
+        + Kernel<Exact, N, S>
+        + collision_core::batch::BatchKernel<f64, N, S>,
 {
     let mut rng = Rng::new(opts.seed ^ ((N as u64) << 32) ^ regime as u64);
     let names = component_names(N);

@@ -3,6 +3,7 @@
 use super::case::{flatten, Case};
 use super::dense;
 use super::timing::{pass_over, time, Timing};
+use collision_core::batch::{BatchKernel, Contact, Exec, FreeBatch, PairBatch};
 use collision_core::{
     collide_unchecked, collide_unchecked_fma, literal, reference, BodyState, Exact, Generated,
     Kernel, Scalar,
@@ -27,6 +28,10 @@ pub enum Variant {
     /// MATH.md's closed form written literally (`k_i = w_i / gamma_i^2`), in `f64`: the
     /// form before the generator's reformulation.
     Literal,
+    /// The generated batch `free` kernel (blocks of 8 contacts) in `f64`, at the widest
+    /// instruction set the CPU has (`collision_core::batch::Exec::auto`). An immovable body
+    /// goes through `free` with `inv_mass = 0`, not through `fixed`.
+    Batch,
 }
 
 /// What a variant returned on one case.
@@ -40,7 +45,7 @@ pub enum Outcome {
 }
 
 impl Variant {
-    pub const ALL: [Variant; 7] = [
+    pub const ALL: [Variant; 8] = [
         Variant::F64,
         Variant::F64Fma,
         Variant::F32,
@@ -48,6 +53,7 @@ impl Variant {
         Variant::Reference,
         Variant::Dense,
         Variant::Literal,
+        Variant::Batch,
     ];
 
     pub fn name(self) -> &'static str {
@@ -59,6 +65,7 @@ impl Variant {
             Variant::Reference => "nalgebra reference f64",
             Variant::Dense => "dense matrix f64",
             Variant::Literal => "literal closed form f64 (before)",
+            Variant::Batch => "generated f64 batch (x8 lanes)",
         }
     }
 
@@ -74,7 +81,9 @@ impl Variant {
     /// The name of the generated kernel pair it runs (`free`/`fixed` or the FMA forms).
     pub fn generated(self) -> Option<noslip_codegen::Arith> {
         match self {
-            Variant::F64 | Variant::F32 | Variant::Exact => Some(noslip_codegen::Arith::Plain),
+            Variant::F64 | Variant::F32 | Variant::Exact | Variant::Batch => {
+                Some(noslip_codegen::Arith::Plain)
+            }
             Variant::F64Fma => Some(noslip_codegen::Arith::Fma),
             Variant::Reference | Variant::Dense | Variant::Literal => None,
         }
@@ -88,7 +97,7 @@ impl Variant {
         case32: Result<&Case<f32, N, S>, &str>,
     ) -> Outcome
     where
-        Generated: Kernel<f64, N, S> + Kernel<f32, N, S>,
+        Generated: Kernel<f64, N, S> + Kernel<f32, N, S> + BatchKernel<f64, N, S>,
     {
         let (nu, balls, states) = (&case.nu, case.ball_refs(), case.state_refs());
         match self {
@@ -105,6 +114,16 @@ impl Variant {
             },
             Variant::Dense => done(&dense::collide(nu, balls, states)),
             Variant::Literal => done(&literal::free(nu, balls[0], balls[1], states[0], states[1])),
+            Variant::Batch => {
+                let mut out = PairBatch::new();
+                Exec::auto()
+                    .serial()
+                    .free(&free_batch(std::slice::from_ref(case)), &mut out);
+                match out.get(0) {
+                    Some(r) => done(&r),
+                    None => Outcome::Unsupported("empty batch".into()),
+                }
+            }
         }
     }
 
@@ -117,7 +136,8 @@ impl Variant {
         samples: usize,
     ) -> Option<Timing>
     where
-        Generated: Kernel<f64, N, S> + Kernel<f32, N, S> + Kernel<Exact, N, S>,
+        Generated:
+            Kernel<f64, N, S> + Kernel<f32, N, S> + Kernel<Exact, N, S> + BatchKernel<f64, N, S>,
     {
         let run64 = |c: &Case<f64, N, S>| collide_unchecked(&c.nu, c.ball_refs(), c.state_refs());
         Some(match self {
@@ -144,6 +164,14 @@ impl Variant {
                     dense::collide(&c.nu, c.ball_refs(), c.state_refs())
                 })
             }),
+            Variant::Batch => {
+                let (exec, batch) = (Exec::auto().serial(), free_batch(cases));
+                let mut out = PairBatch::new();
+                time(cases.len(), samples, || {
+                    exec.free(std::hint::black_box(&batch), &mut out);
+                    std::hint::black_box(&out);
+                })
+            }
             Variant::Literal => time(cases.len(), samples, || {
                 pass_over(cases, |c| {
                     let ([b1, b2], [s1, s2]) = (c.ball_refs(), c.state_refs());
@@ -161,6 +189,20 @@ fn done<T: Scalar, const N: usize, const S: usize>(states: &[BodyState<T, N, S>;
     } else {
         Outcome::NonFinite
     }
+}
+
+/// The cases as one per-contact batch.
+fn free_batch<const N: usize, const S: usize>(cases: &[Case<f64, N, S>]) -> FreeBatch<f64, N, S> {
+    cases
+        .iter()
+        .map(|c| {
+            let contact = Contact {
+                nu: c.nu,
+                states: c.states.clone(),
+            };
+            (contact, c.balls.clone())
+        })
+        .collect()
 }
 
 /// Whether this CPU runs the FMA kernels with FMA instructions.
