@@ -13,7 +13,7 @@
 //!   kernel; [`collide_unchecked`] is the fast path.
 //! - [`batch`]: the same kernels over blocked batches of contacts, vectorized, with the
 //!   instruction set chosen at run time and optional threads (feature `parallel`).
-//! - [`reference`]: the map built from the definitions (impulse basis, Gram matrix,
+//! - [`reference`](mod@reference): the map built from the definitions (impulse basis, Gram matrix,
 //!   projection) for any n: the independent check of the kernels.
 //!
 //! ```
