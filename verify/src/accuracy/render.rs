@@ -25,7 +25,9 @@ pub struct Provenance {
 }
 
 impl Provenance {
-    pub fn collect(command: String) -> Provenance {
+    /// `out` is the report's own directory: regenerating a checked-in report there does not
+    /// count as an uncommitted change.
+    pub fn collect(command: String, out: &std::path::Path) -> Provenance {
         let git = |args: &[&str]| {
             std::process::Command::new("git")
                 .args(args)
@@ -35,10 +37,18 @@ impl Provenance {
                 .and_then(|o| String::from_utf8(o.stdout).ok())
                 .map(|s| s.trim().to_string())
         };
+        let exclude = format!(":(exclude){}", out.display());
         let commit = match git(&["rev-parse", "--short=12", "HEAD"]) {
             Some(c)
-                if git(&["status", "--porcelain", "--untracked-files=no"])
-                    .is_some_and(|s| !s.is_empty()) =>
+                if git(&[
+                    "status",
+                    "--porcelain",
+                    "--untracked-files=no",
+                    "--",
+                    ".",
+                    &exclude,
+                ])
+                .is_some_and(|s| !s.is_empty()) =>
             {
                 format!("{c} (with uncommitted changes)")
             }

@@ -92,7 +92,7 @@ pub fn run_cmd(args: &Args) -> ExitCode {
     bar.finish_and_clear();
     let report = AccuracyReport {
         tool: format!("noslip {}", env!("CARGO_PKG_VERSION")),
-        provenance: Provenance::collect(command),
+        provenance: Provenance::collect(command, &args.out),
         options: opts,
         dims,
         seconds: start.elapsed().as_secs_f64(),
