@@ -38,33 +38,32 @@ impl Checker {
     }
 }
 
+/// The segments of a call's path (`["T", "from_ratio"]`), empty for any other callee.
+fn call_path(call: &syn::ExprCall) -> Vec<String> {
+    match &*call.func {
+        Expr::Path(p) => p
+            .path
+            .segments
+            .iter()
+            .map(|s| s.ident.to_string())
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
 /// `T::mul_add(a, b, c)`, `T::mul_sub(..)` or `T::neg_mul_add(..)`: one fused operation.
 fn is_fused_call(call: &syn::ExprCall) -> bool {
-    let Expr::Path(p) = &*call.func else {
-        return false;
-    };
-    let segments: Vec<String> = p
-        .path
-        .segments
-        .iter()
-        .map(|s| s.ident.to_string())
-        .collect();
     matches!(
-        segments.iter().map(String::as_str).collect::<Vec<_>>()[..],
+        call_path(call)
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>()[..],
         ["T", "mul_add" | "mul_sub" | "neg_mul_add"]
     ) && call.args.len() == 3
 }
 
 fn is_from_ratio_call(call: &syn::ExprCall) -> bool {
-    let Expr::Path(p) = &*call.func else {
-        return false;
-    };
-    let segments: Vec<String> = p
-        .path
-        .segments
-        .iter()
-        .map(|s| s.ident.to_string())
-        .collect();
+    let segments = call_path(call);
     let literal_int = |e: &Expr| match e {
         Expr::Lit(l) => matches!(l.lit, syn::Lit::Int(_)),
         Expr::Unary(u) => {
