@@ -31,22 +31,6 @@ impl<T, const N: usize, const S: usize> Case<T, N, S> {
         }
     }
 
-    /// Every input, in a fixed order (the normal, the balls, the states).
-    pub fn values(&self) -> impl Iterator<Item = &T> {
-        self.nu
-            .iter()
-            .chain(
-                self.balls
-                    .iter()
-                    .flat_map(|b| [&b.inv_mass, &b.radius, &b.gamma2]),
-            )
-            .chain(
-                self.states
-                    .iter()
-                    .flat_map(|s| s.spin.iter().chain(&s.velocity)),
-            )
-    }
-
     pub fn ball_refs(&self) -> [&Ball<T>; 2] {
         [&self.balls[0], &self.balls[1]]
     }
@@ -56,15 +40,10 @@ impl<T, const N: usize, const S: usize> Case<T, N, S> {
     }
 }
 
-/// A binary float exactly as a rational (`None` for NaN and infinities).
-pub fn exact_of(x: f64) -> Option<Exact> {
-    Exact::from_float(x)
-}
-
 impl<T: Scalar, const N: usize, const S: usize> Case<T, N, S> {
     /// The same (finite, binary float) inputs, exactly.
     pub fn to_exact(&self) -> Case<Exact, N, S> {
-        self.map(|x| exact_of(x.to_f64()).expect("sampled inputs are finite"))
+        self.map(|x| Exact::from_float(x.to_f64()).expect("sampled inputs are finite"))
     }
 }
 

@@ -397,7 +397,7 @@ where
             })
             .collect();
         let reference: Vec<f64> = eb.iter().map(to_f64).collect();
-        let lambda = b.balls[body].gamma2 * b.balls[body].radius.powi(2) / 2.0;
+        let lambda = b.balls[body].lambda();
         let rel = |d: &[f64]| relative_norm(lambda, S, N, body, d, &reference) / f64::EPSILON;
         limit.computed_eps = limit.computed_eps.max(rel(&computed));
         limit.exact_eps = limit.exact_eps.max(rel(&exact));

@@ -240,8 +240,7 @@ unsafe fn fma_pass_x86<const N: usize, const S: usize>(cases: &[Case<f64, N, S>]
 where
     Generated: Kernel<f64, N, S>,
 {
-    for c in cases {
-        let c = std::hint::black_box(c);
-        std::hint::black_box(collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs()));
-    }
+    pass_over(cases, |c| {
+        collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
+    })
 }
