@@ -12,10 +12,11 @@
 //! `d_max + s_k` then needs a reach `K = ceil((d_max + s_k) / L_k) <= 2`, more is refused).
 //!
 //! **Size.** The number of cells is capped at [`CELLS_PER_BODY`] times the number of bodies
-//! (balls and obstacles): when the widest reach-1 grid `m_k = max{n : L_k / n > d_max + s_k}`
+//! (balls and obstacles): when the finest reach-1 grid `m_k = max{n : L_k / n > d_max + s_k}`
 //! has more cells than that, the cells are widened to a common width `w` (the least for which
-//! `prod_k min(m_k, floor(L_k / w)) <= cap`, found by bisection), so memory is `O(bodies)`
-//! whatever the box, no cell count overflows, and the reach stays 1.
+//! `prod_k min(m_k, floor(L_k / w)) <= cap`, found by bisection), then the widest are split
+//! again one axis at a time while the cap allows; so memory is `O(bodies)` whatever the box,
+//! no cell count overflows, and the reach stays 1.
 
 /// The cap on the number of cells per body (ball or obstacle); see the module docs.
 pub(crate) const CELLS_PER_BODY: usize = 4;
@@ -90,7 +91,24 @@ impl<const N: usize> Grid<N> {
                     lo = mid;
                 }
             }
-            fit(hi)
+            // Then more cells where the cap still allows (on sides of equal length the
+            // common width leaves up to a factor 2^n unused), widest cells first.
+            let mut n = fit(hi);
+            let mut grown = true;
+            while grown {
+                grown = false;
+                let mut axes: [usize; N] = std::array::from_fn(|k| k);
+                axes.sort_by(|&a, &b| (size[b] / n[b] as f64).total_cmp(&(size[a] / n[a] as f64)));
+                for k in axes {
+                    let mut more = n;
+                    more[k] += 1;
+                    if more[k] <= most[k] && cells_of(&more) <= cap as u128 {
+                        n = more;
+                        grown = true;
+                    }
+                }
+            }
+            n
         };
         let width: [f64; N] = std::array::from_fn(|k| size[k] / n[k] as f64);
         let mut reach = [0i64; N];
@@ -246,6 +264,9 @@ mod tests {
         assert!(g.cells() <= CELLS_PER_BODY * 100, "{:?}", g.n);
         // Balanced: the cells are as square as the cap allows (20 x 20 = 400).
         assert_eq!(g.n, [20, 20]);
+        // 6D, 10 balls: a common width gives 1 cell per axis (2^6 > 40); 2^5 fit.
+        let g = Grid::<6>::new([1e6; 6], [true; 6], 1.0, 10).unwrap();
+        assert_eq!(g.cells(), 32, "{:?}", g.n);
         // A long thin box keeps its cells along the long side.
         let g = Grid::<2>::new([1e6, 3.0], [true, true], 1.0, 10).unwrap();
         assert_eq!(g.n, [40, 1]);
