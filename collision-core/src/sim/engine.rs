@@ -35,7 +35,9 @@
 //! absolute time, so contacts stay at contact distance in long runs and after long quiet
 //! stretches (a gas started almost at rest); the check runs at each popped entry and after each
 //! contact (before the new predictions), and a rebase costs `O(balls + queue)` once per 16 cell
-//! widths travelled by the fastest ball, which is `O(1)` per event amortised.
+//! widths travelled by the fastest ball, while every ball crosses a cell or meets another each
+//! cell width or so: amortised over many events (per 10^5 contacts of the shipped gases 26
+//! rebases in gas2d, 22 in gas3d, 242 in gas4d).
 //!
 //! **No further contact.** [`Simulation::step`] returns [`Step::Never`] when it can tell that
 //! no contact will ever happen again ([`NoContact`]): checked at the first step and then after
