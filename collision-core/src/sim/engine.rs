@@ -44,7 +44,7 @@
 //! `max(1024, 2 balls)`, twice, four times that many events without a contact.
 
 use super::cells::Grid;
-use super::never::{Flight, NoContact};
+use super::no_contact::{Flight, NoContact};
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::predict::{contact_time, exit_time};
@@ -542,7 +542,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let side = self.grid.size.iter().copied().fold(0.0, f64::max);
         let box_lengths = (self.now - self.last_contact) * slowest / side;
-        (box_lengths >= super::never::QUIET_BOX_LENGTHS).then_some(NoContact::Quiet { box_lengths })
+        (box_lengths >= super::no_contact::QUIET_BOX_LENGTHS)
+            .then_some(NoContact::Quiet { box_lengths })
     }
 
     fn speed2_of(&self, i: usize) -> f64 {

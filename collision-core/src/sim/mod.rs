@@ -12,11 +12,11 @@
 //! priority queue that holds, per ball, its earliest predicted event ([`engine`] gives the
 //! invariants: the image rule across periodic faces, the local clock); contact times solve
 //! `|d + t dv|^2 = (R_i + R_j)^2` ([`predict`]). A run stops by itself when no contact can
-//! happen again ([`never`]).
+//! happen again ([`no_contact`]).
 
 mod cells;
 pub mod engine;
-pub mod never;
+pub mod no_contact;
 mod observe;
 mod orientation;
 pub mod predict;
@@ -25,7 +25,7 @@ mod queue;
 mod tests;
 
 pub use engine::{Contact, Event, SetupError, Simulation, Step};
-pub use never::NoContact;
+pub use no_contact::NoContact;
 pub use observe::Observables;
 
 use crate::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};

@@ -126,7 +126,7 @@ fn a_closed_orbit_that_misses_stops_by_the_stated_criterion() {
         panic!("the quiet criterion")
     };
     assert!(
-        (super::never::QUIET_BOX_LENGTHS..2.0 * super::never::QUIET_BOX_LENGTHS + 1.0)
+        (super::no_contact::QUIET_BOX_LENGTHS..2.0 * super::no_contact::QUIET_BOX_LENGTHS + 1.0)
             .contains(&box_lengths),
         "{box_lengths}"
     );
