@@ -32,7 +32,15 @@ fn shipped_scenes_are_valid() {
     names.sort();
     assert_eq!(
         names,
-        ["disk_between_walls", "gas2d", "gas3d", "gas4d", "sinai"]
+        [
+            "disk_between_walls",
+            "gas2d",
+            "gas3d",
+            "gas4d",
+            "gas5d",
+            "gas6d",
+            "sinai"
+        ]
     );
 }
 

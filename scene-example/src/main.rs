@@ -1,7 +1,7 @@
 //! Run a 2D scene with explicit balls on its specialised kernels:
 //! `cargo run --release -p noslip-scene-example -- scenes/sinai.toml 1000000`.
 
-use collision_core::sim::{PairKernels, Simulation};
+use collision_core::sim::{PairKernels, Simulation, Step};
 use noslip_codegen::scene::Scene;
 use noslip_scene_example::{disk_between_walls, explicit_setup, sinai};
 use std::time::Instant;
@@ -11,7 +11,7 @@ fn run<K: PairKernels<f64, 2, 1>>(scene: &Scene, kernels: K, events: u64) {
     let e0 = sim.observables().energy;
     let clock = Instant::now();
     let mut done = 0;
-    while done < events && sim.step(f64::INFINITY).is_some() {
+    while done < events && matches!(sim.step(f64::INFINITY), Step::Contact(_)) {
         done += 1;
     }
     let s = clock.elapsed().as_secs_f64();

@@ -94,3 +94,56 @@ fn gen_prints_the_module_and_checks_it() {
         .unwrap()
         .contains("ok   ball_obstacle_0: 4 of 4"));
 }
+
+#[test]
+fn a_scene_without_possible_contacts_stops_with_its_reason() {
+    // issue 16: one disk moving parallel to the walls of a periodic axis, an event limit and
+    // no time limit, ran forever printing nothing.
+    let dir = std::env::temp_dir().join(format!("noslip-never-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("parallel.toml");
+    std::fs::write(
+        &scene,
+        "dim = 2\n[box]\nsize = [10, 4]\nboundary = [\"periodic\", \"wall\"]\n\
+         [[species]]\nmass = 1\nradius = \"1/2\"\n\
+         [[ball]]\nspecies = 0\nposition = [1, 2]\nvelocity = [1, 0]\n\
+         [simulation]\nevents = 1000\n",
+    )
+    .unwrap();
+    let mut child = noslip()
+        .args(["simulate", scene.to_str().unwrap(), "--quiet", "--out"])
+        .arg(dir.join("out"))
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // It must stop by itself: kill it after 60 s rather than hang the test suite.
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed().as_secs() > 60 {
+            child.kill().unwrap();
+            panic!("simulate did not stop within 60 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.starts_with("0 contacts"), "{stdout}");
+    assert!(
+        stdout.contains("stopped: no contact can happen: no ball moves along a walled axis"),
+        "{stdout}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap())
+            .unwrap();
+    assert!(summary["stopped"]
+        .as_str()
+        .unwrap()
+        .starts_with("no contact can happen"));
+}

@@ -7,18 +7,25 @@
 //! the pair: [`PairKernels`], the generic generated kernels ([`GenericKernels`]) or a scene's
 //! specialised ones (noslip-codegen's `specialise`).
 //!
-//! Events are found with a cell list and a priority queue that holds, per ball, its earliest
-//! predicted event ([`engine`] gives the invariants); contact times solve
-//! `|d + t dv|^2 = (R_i + R_j)^2` ([`predict`]).
+//! Events are found with a cell list (cells wider than the largest contact distance, so only
+//! the `3^n` neighbouring cells are scanned, at most 4 cells per body whatever the box) and a
+//! priority queue that holds, per ball, its earliest predicted event ([`engine`] gives the
+//! invariants: the image rule across periodic faces, the local clock); contact times solve
+//! `|d + t dv|^2 = (R_i + R_j)^2` ([`predict`]). A run stops by itself when no contact can
+//! happen again ([`no_contact`]).
 
 mod cells;
 pub mod engine;
+pub mod no_contact;
 mod observe;
 mod orientation;
 pub mod predict;
 mod queue;
+#[cfg(test)]
+mod tests;
 
-pub use engine::{Contact, Event, SetupError, Simulation};
+pub use engine::{Contact, Event, SetupError, Simulation, Step};
+pub use no_contact::NoContact;
 pub use observe::Observables;
 
 use crate::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};

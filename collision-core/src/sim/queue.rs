@@ -5,12 +5,15 @@ use std::cmp::Ordering;
 /// What ball `ball` will meet.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum What<const N: usize> {
-    /// Ball `j` (shifted by `shift_k L_k` on periodic axes), as of `j`'s counter `count`.
+    /// Ball `j` as of `j`'s counter `count`, its image named in unwrapped coordinates: the
+    /// cell shift `s` (box lengths on periodic axes) minus `j`'s wrap counters plus the
+    /// owner's, modulo 256 (see the engine's image rule).
     Ball {
         j: u32,
         count: u32,
         shift: [i8; N],
     },
+    /// Obstacle `o` shifted by `shift_k L_k` (the owner does not wrap while this is pending).
     Obstacle {
         o: u32,
         shift: [i8; N],

@@ -65,6 +65,9 @@ fn print_summary(s: &Summary) {
         "momentum drift {:.3e}, angular momentum drift {:.3e} (relative; conserved only without walls/obstacles, angular also without periodic wrapping)",
         s.momentum_drift, s.angular_momentum_drift
     );
+    if let Some(why) = &s.stopped {
+        println!("stopped: {why}");
+    }
 }
 
 fn simulate<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Result<(), (u8, String)>

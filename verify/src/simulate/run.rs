@@ -1,7 +1,7 @@
 //! The run loop of `noslip simulate`: steps the engine, writes the events log, samples the
 //! energy drift and (for the picture) a few trajectories and the contact points.
 
-use collision_core::sim::{Contact, Event, PairKernels, Simulation};
+use collision_core::sim::{Contact, Event, PairKernels, Simulation, Step};
 use collision_core::BodyState;
 use indicatif::ProgressBar;
 use serde_json::{json, Value};
@@ -45,6 +45,9 @@ pub struct Summary {
     pub energy_drift_max: f64,
     pub momentum_drift: f64,
     pub angular_momentum_drift: f64,
+    /// Why the run stopped before its limits: the engine found that no contact will happen
+    /// again ([`collision_core::sim::NoContact`]).
+    pub stopped: Option<String>,
 }
 
 /// What the pictures need.
@@ -143,8 +146,16 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let mut drift_max: f64 = 0.0;
     let clock = Instant::now();
     let mut done = 0u64;
+    let mut stopped = None;
     while done < events {
-        let Some(e) = sim.step(until) else { break };
+        let e = match sim.step(until) {
+            Step::Contact(e) => e,
+            Step::Until => break,
+            Step::Never(why) => {
+                stopped = Some(why.to_string());
+                break;
+            }
+        };
         done += 1;
         let (k, balls) = match e.contact {
             Contact::Ball { i, j } => (0, [i, j]),
@@ -207,6 +218,7 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         energy_drift_max: drift_max,
         momentum_drift: distance(&end.momentum, &start.momentum) / p_scale,
         angular_momentum_drift: distance(&end.angular_momentum, &start.angular_momentum) / l_scale,
+        stopped,
     };
     Ok((summary, trace))
 }
