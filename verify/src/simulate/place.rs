@@ -6,7 +6,8 @@
 //! distance at which two items can overlap; two centres closer than `reach` (minimum image on
 //! periodic axes) are then in the same or adjacent cells, with a margin of `2^-20` of a cell
 //! for the rounding of `x / width` (the cell coordinates are below `2^26`, so that rounding
-//! is below `2^-27` of a cell). The grid has at most `2 capacity + 16` cells (wider cells in a
+//! is below `2^-27` of a cell). Of the `3^n` cells around a point only those that come within
+//! `reach` of it are visited. The grid has at most `2 capacity + 16` cells (wider cells in a
 //! large box), so its memory is `O(capacity)` whatever the box: a head per cell and a link
 //! per item.
 
@@ -14,6 +15,7 @@
 /// with 0 for none).
 #[derive(Clone, Debug)]
 pub struct Cells<const N: usize> {
+    reach: f64,
     n: [usize; N],
     width: [f64; N],
     periodic: [bool; N],
@@ -41,6 +43,7 @@ impl<const N: usize> Cells<N> {
         }
         let width = std::array::from_fn(|k| size[k] / n[k] as f64);
         Cells {
+            reach,
             n,
             width,
             periodic,
@@ -79,29 +82,58 @@ impl<const N: usize> Cells<N> {
         self.next.is_empty()
     }
 
-    /// `true` if `clear(item)` holds for every item in the cells around `x` (stops at the
-    /// first that fails). Each cell is visited once, also when an axis has fewer than 3 cells.
+    /// `true` if `clear(item)` holds for every item in the cells that come within `reach` of
+    /// `x` (stops at the first that fails). A neighbouring cell is visited only if the sum of
+    /// the squared gaps from `x` to it along the axes where it lies beside `x`'s cell is below
+    /// `reach^2` (with `2^-20` of slack for rounding): an item closer than `reach` has each
+    /// coordinate offset at least that gap. Each cell is visited once, also when a periodic
+    /// axis has fewer than 3 cells.
     pub fn all_near(&self, x: &[f64; N], mut clear: impl FnMut(usize) -> bool) -> bool {
         let c = self.cell_of(x);
-        let axes: [Vec<usize>; N] = std::array::from_fn(|k| {
-            let n = self.n[k];
-            if self.periodic[k] && n >= 3 {
-                vec![(c[k] + n - 1) % n, c[k], (c[k] + 1) % n]
-            } else if self.periodic[k] {
-                (0..n).collect()
-            } else {
-                (c[k].saturating_sub(1)..=(c[k] + 1).min(n - 1)).collect()
+        let reach = self.reach * (1.0 + 1.0 / (1u64 << 20) as f64);
+        // Per axis up to 3 cells, each with its squared gap from x.
+        let mut cells = [[0usize; 3]; N];
+        let mut gaps = [[0.0f64; 3]; N];
+        let mut len = [1usize; N];
+        for k in 0..N {
+            let (n, w) = (self.n[k], self.width[k]);
+            let lo = (x[k] - c[k] as f64 * w).max(0.0);
+            let hi = (w - lo).max(0.0);
+            cells[k][0] = c[k];
+            let mut add = |cell: usize, gap: f64| {
+                if gap < reach {
+                    cells[k][len[k]] = cell;
+                    gaps[k][len[k]] = gap * gap;
+                    len[k] += 1;
+                }
+            };
+            if self.periodic[k] && n == 2 {
+                add(1 - c[k], lo.min(hi));
+            } else if self.periodic[k] && n >= 3 {
+                add((c[k] + n - 1) % n, lo);
+                add((c[k] + 1) % n, hi);
+            } else if !self.periodic[k] {
+                if c[k] > 0 {
+                    add(c[k] - 1, lo);
+                }
+                if c[k] + 1 < n {
+                    add(c[k] + 1, hi);
+                }
             }
-        });
+        }
+        let reach2 = reach * reach;
         let mut pick = [0usize; N];
         loop {
-            let cell: [usize; N] = std::array::from_fn(|k| axes[k][pick[k]]);
-            let mut item = self.head[self.flat(&cell)];
-            while item != 0 {
-                if !clear(item as usize - 1) {
-                    return false;
+            let gap2: f64 = (0..N).map(|k| gaps[k][pick[k]]).sum();
+            if gap2 < reach2 {
+                let cell: [usize; N] = std::array::from_fn(|k| cells[k][pick[k]]);
+                let mut item = self.head[self.flat(&cell)];
+                while item != 0 {
+                    if !clear(item as usize - 1) {
+                        return false;
+                    }
+                    item = self.next[item as usize - 1];
                 }
-                item = self.next[item as usize - 1];
             }
             // The next combination of per-axis choices.
             let mut k = 0;
@@ -110,7 +142,7 @@ impl<const N: usize> Cells<N> {
                     return true;
                 }
                 pick[k] += 1;
-                if pick[k] < axes[k].len() {
+                if pick[k] < len[k] {
                     break;
                 }
                 pick[k] = 0;

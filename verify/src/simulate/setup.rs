@@ -59,8 +59,21 @@ pub fn species_balls<T>(
         .collect()
 }
 
-/// Attempts per randomly placed ball before the scene is declared too dense.
+/// Attempts in a row for one randomly placed ball before the scene is declared too dense.
 pub const ATTEMPTS: usize = 10_000;
+
+/// Attempts per randomly placed ball on average (over all placed so far, plus [`ATTEMPTS`])
+/// before the scene is declared too dense: near the jamming packing every ball takes longer,
+/// and this bounds the whole placement to `O(N)` attempts.
+pub const AVERAGE_ATTEMPTS: usize = 1_000;
+
+/// The packing fraction at which random sequential placement of equal balls in R^n saturates,
+/// about `(0.202 + 0.974 n) / 2^n` (the fit of Torquato, Uche and Stillinger, Phys. Rev. E 74,
+/// 061308 (2006), for n = 2..6): 0.54, 0.39, 0.26, 0.16, 0.09. Placement slows down well
+/// before it.
+pub fn saturation(n: usize) -> f64 {
+    (0.202048 + 0.973872 * n as f64) / (1u64 << n) as f64
+}
 
 /// `log` of the volume of the unit ball in R^n, `pi^(n/2) / Gamma(n/2 + 1)`.
 fn log_unit_ball(n: usize) -> f64 {
@@ -94,7 +107,9 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 /// The engine's setup for `scene` (whose `dim` must be `N`), after the range checks of
 /// [`super::range`]. Random balls: positions uniform in the box (inside the walls), rejected
 /// while they overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
-/// visits only the cells around the candidate); velocity components uniform in `[-speed,
+/// visits only the cells around the candidate), at most [`ATTEMPTS`] times in a row and
+/// [`AVERAGE_ATTEMPTS`] per ball overall; balls that would fill more than the box are refused
+/// before any attempt; velocity components uniform in `[-speed,
 /// speed]`, skew entries of `U` uniform in `[-spin, spin]`; one ChaCha8 stream seeded with
 /// `random.seed`, species in order. Errors are `field: message`.
 pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S>, String> {
@@ -150,11 +165,26 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     }
     let mut rng = Rng::new(scene.random.seed);
     let (speed, spin) = (f(&scene.random.speed), f(&scene.random.spin));
+    let (mut attempts, mut placed_random) = (0usize, 0usize);
+    let too_full = |k: usize, placed: usize, why: String| {
+        format!(
+            "species[{k}].count: placed {placed} of {} balls, then {why}: the box is too full \
+             for random placement (the balls would fill {fraction:.3} of it; random sequential \
+             placement of equal balls saturates near {:.2} in {N}D)",
+            scene.species[k].count,
+            saturation(N)
+        )
+    };
     for (k, sp) in scene.species.iter().enumerate() {
         let r = species[k].radius;
         for placed in 0..sp.count {
+            if attempts > AVERAGE_ATTEMPTS * placed_random + ATTEMPTS {
+                let why = format!("{attempts} attempts (over {AVERAGE_ATTEMPTS} per ball)");
+                return Err(too_full(k, placed, why));
+            }
             let mut found = None;
             for _ in 0..ATTEMPTS {
+                attempts += 1;
                 let p: [f64; N] = std::array::from_fn(|a| {
                     let (lo, hi) = if periodic[a] {
                         (0.0, size[a])
@@ -180,14 +210,10 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                 }
             }
             let Some(position) = found else {
-                return Err(format!(
-                    "species[{k}].count: placed {placed} of {} balls, then {ATTEMPTS} random \
-                     positions in a row overlapped: the box is too full for random placement \
-                     (the balls fill {fraction:.3} of its volume; random sequential placement \
-                     jams near 0.55 in 2D and 0.38 in 3D, less in higher dimensions)",
-                    sp.count
-                ));
+                let why = format!("{ATTEMPTS} random positions in a row overlapped");
+                return Err(too_full(k, placed, why));
             };
+            placed_random += 1;
             let mut uniform = |scale: f64| scale * (2.0 * unit(&mut rng) - 1.0);
             let velocity = std::array::from_fn(|_| uniform(speed));
             let spin = std::array::from_fn(|_| uniform(spin));
