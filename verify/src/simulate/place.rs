@@ -188,7 +188,15 @@ mod tests {
                     items.push(p);
                 }
             }
-            for probe in [[0.0, 0.0], [1.3, 0.7], [size[0] - 0.01, size[1] - 0.2]] {
+            let probes = (0..=20).flat_map(|i| {
+                (0..=20).map(move |j| {
+                    [
+                        size[0] * i as f64 / 20.0,
+                        size[1] * (j as f64 + 0.37) / 21.0,
+                    ]
+                })
+            });
+            for probe in probes {
                 let mut seen = vec![0; items.len()];
                 assert!(g.all_near(&probe, |i| {
                     seen[i] += 1;
