@@ -6,7 +6,8 @@
 //! discarded, so the run goes on to its end and its summary is still written; the error is
 //! returned by [`LogFile::finish`]. A log that is never finished (an early error) removes its
 //! temporary file when dropped. When `FILE` exists and is not a regular file (`/dev/stdout`,
-//! a pipe), lines are written to it directly: a stream cannot be replaced atomically.
+//! a pipe, a device, a symbolic link), lines are written to it directly: a stream cannot be
+//! replaced atomically, and renaming over a link would replace the link, not its target.
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -25,9 +26,13 @@ pub struct LogFile {
 impl LogFile {
     /// Open the log for `path` (creating its directory).
     pub fn create(path: &Path) -> io::Result<LogFile> {
-        let stream = std::fs::metadata(path).is_ok_and(|m| !m.is_file());
+        let stream = std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file());
         if stream {
-            let file = std::fs::OpenOptions::new().write(true).open(path)?;
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .create(true)
+                .truncate(true)
+                .open(path)?;
             return Ok(LogFile {
                 path: path.to_path_buf(),
                 tmp: None,
@@ -160,6 +165,34 @@ mod tests {
         }
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "old\n");
         assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1);
+        std::fs::remove_dir_all(d).unwrap();
+    }
+
+    #[test]
+    fn devices_and_links_are_written_directly() {
+        use std::os::unix::fs::FileTypeExt;
+        let mut log = LogFile::create(Path::new("/dev/null")).unwrap();
+        writeln!(log, "gone").unwrap();
+        log.finish().unwrap();
+        assert!(std::fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device());
+        // A link stays a link; its target gets the lines.
+        let d = dir("link");
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::write(d.join("target.jsonl"), "a much longer old content\n").unwrap();
+        std::os::unix::fs::symlink("target.jsonl", d.join("link.jsonl")).unwrap();
+        let mut log = LogFile::create(&d.join("link.jsonl")).unwrap();
+        writeln!(log, "new").unwrap();
+        log.finish().unwrap();
+        assert!(std::fs::symlink_metadata(d.join("link.jsonl"))
+            .unwrap()
+            .is_symlink());
+        assert_eq!(
+            std::fs::read_to_string(d.join("target.jsonl")).unwrap(),
+            "new\n"
+        );
         std::fs::remove_dir_all(d).unwrap();
     }
 }

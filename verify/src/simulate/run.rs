@@ -1,7 +1,7 @@
 //! The run loop of `noslip simulate`: steps the engine, writes the events log, samples the
 //! energy drift and (for the picture) a few trajectories and the contact points.
 
-use super::trace::Tracer;
+use super::trace::{Tracer, CONTACT_DOTS};
 use collision_core::sim::{Contact, Event, PairKernels, Simulation};
 use collision_core::BodyState;
 use indicatif::ProgressBar;
@@ -20,7 +20,8 @@ pub struct Limits {
     pub samples: u64,
     /// Balls whose trajectories are recorded (2D picture).
     pub traced: usize,
-    /// Contact points recorded (2D picture).
+    /// Contact points recorded (2D picture), at most; the picture keeps one per pixel and at
+    /// most [`CONTACT_DOTS`].
     pub contact_points: usize,
 }
 
@@ -167,7 +168,7 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
                 );
             }
         }
-        if tracer.contacts.len() < limits.contact_points {
+        if tracer.contacts.len() < limits.contact_points.min(CONTACT_DOTS) {
             tracer.contact(two(&contact_point(&e, species, sim)));
         }
         if done % every == 0 {
