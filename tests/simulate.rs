@@ -5,6 +5,7 @@ use collision_core::sim::{GenericKernels, Simulation};
 use noslip_codegen::scene::Scene;
 use noslip_verify::simulate::run::{run, Limits, Summary, Trace};
 use noslip_verify::simulate::setup::setup;
+use noslip_verify::simulate::trace::{CONTACT_DOTS, PATH_BUDGET, PICTURE, PIECE_COST};
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
 use serde_json::Value;
@@ -178,5 +179,109 @@ fn two_wall_log_is_the_exact_disk_on_wall_map() {
             assert_eq!(p["post"][0], line["pre"][0]);
         }
         previous = Some(line.clone());
+    }
+}
+
+/// Run the shipped 2D scene `name` for `events` contacts, tracing `traced` balls and every
+/// contact point the picture keeps.
+fn traced(name: &str, events: u64, traced: usize) -> Trace {
+    let scene = scene(name);
+    let setup = setup::<2, 1>(&scene).expect("placement succeeds");
+    let species = setup.species.clone();
+    let mut sim = Simulation::new(
+        setup,
+        GenericKernels {
+            species: species.clone(),
+        },
+    )
+    .unwrap();
+    let limits = Limits {
+        events: Some(events),
+        time: None,
+        samples: 100,
+        traced,
+        contact_points: usize::MAX,
+    };
+    run(&mut sim, &species, &limits, None, None).unwrap().1
+}
+
+/// The distance from `c` to the segment from `a` to `b`.
+fn segment_distance(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    let (d, e) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let s = if len2 > 0.0 {
+        ((e[0] * d[0] + e[1] * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (e[0] - s * d[0]).hypot(e[1] - s * d[1])
+}
+
+#[test]
+fn sinai_paths_are_cut_at_wraps_and_never_cross_the_obstacle() {
+    // The disk's centre keeps a distance >= R + R_obstacle from the obstacle's centre, and
+    // stays in the unit square once wrapped. A drawn segment is within half a pixel of the
+    // path (the thinning), so it must keep that clearance less half a pixel; a chord across a
+    // wrap (the old picture) passes through the obstacle.
+    let scene = scene("sinai.toml");
+    let centre = [
+        scene.obstacles[0].position[0].to_f64().unwrap(),
+        scene.obstacles[0].position[1].to_f64().unwrap(),
+    ];
+    let clearance = (&scene.obstacles[0].radius + &scene.species[0].radius)
+        .to_f64()
+        .unwrap();
+    let half_pixel = 0.5 / PICTURE;
+    let trace = traced("sinai.toml", 3000, 1);
+    let pieces = &trace.paths[0];
+    assert!(
+        pieces.len() > 100,
+        "the path wraps: {} pieces",
+        pieces.len()
+    );
+    let mut segments = 0;
+    for piece in pieces {
+        for p in piece {
+            assert!(
+                p.iter().all(|x| (-1e-12..=1.0 + 1e-12).contains(x)),
+                "{p:?} outside the box"
+            );
+        }
+        for w in piece.windows(2) {
+            let d = segment_distance(w[0], w[1], centre);
+            assert!(
+                d >= clearance - half_pixel - 1e-12,
+                "segment {w:?} passes {d} from the obstacle's centre (clearance {clearance})"
+            );
+            segments += 1;
+        }
+    }
+    assert!(segments > 100, "{segments} segments");
+}
+
+#[test]
+fn traces_stay_bounded_at_many_events() {
+    // 10^6 Sinai contacts used to keep 10^6 path points (1.56 GB at 10^7 contacts): the
+    // thinned paths, the contact points and the energy samples must stay within their budgets
+    // whatever the number of events.
+    for (name, events, balls) in [("sinai.toml", 1_000_000, 12), ("gas2d.toml", 100_000, 12)] {
+        let trace = traced(name, events, balls);
+        let points: usize = trace.paths.iter().flatten().map(Vec::len).sum();
+        let pieces: usize = trace.paths.iter().map(Vec::len).sum();
+        let cost = points + PIECE_COST * pieces;
+        assert!(
+            cost <= PATH_BUDGET + PIECE_COST + 1,
+            "{name}: {points} points, {pieces} pieces"
+        );
+        assert!(
+            trace.contacts.len() <= CONTACT_DOTS,
+            "{name}: {} contacts",
+            trace.contacts.len()
+        );
+        assert!(
+            trace.energy.len() <= 101,
+            "{name}: {} energy samples",
+            trace.energy.len()
+        );
     }
 }

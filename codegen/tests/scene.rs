@@ -1,6 +1,6 @@
 //! Scene files: the shipped ones are valid; bad ones are refused with the place named.
 
-use noslip_codegen::scene::{Boundary, Scene, WallSide};
+use noslip_codegen::scene::{Boundary, Scene, WallSide, MAX_BALLS};
 use std::path::Path;
 
 const BASE: &str = r#"
@@ -108,5 +108,64 @@ fn bad_scenes_name_the_place() {
     assert_eq!(
         dims.unwrap_err().to_string(),
         "d.toml: dim: must be in 2..=6, got 7"
+    );
+}
+
+#[test]
+fn duplicate_keys_are_refused() {
+    let cases = [
+        (
+            "mass = 2\n",
+            "t.toml: line 9, column 1: duplicate key `mass`",
+        ),
+        (
+            "[[ball]]\nspecies = 0\nspecies = 0\nposition = [1, 1]\n",
+            "t.toml: line 11, column 1: duplicate key `species`",
+        ),
+        (
+            "[random]\nseed = 1\n[random]\nseed = 2\n",
+            "t.toml: line 11, column 1: invalid table header duplicate key `random`",
+        ),
+    ];
+    for (extra, want) in cases {
+        let got = error(extra);
+        assert!(
+            got.starts_with(want),
+            "for {extra:?}:\n got  {got}\n want {want}"
+        );
+    }
+}
+
+#[test]
+fn ball_counts_are_summed_without_overflow_and_limited() {
+    // Four species of 2^62 balls: the total 2^64 used to wrap to 0 ("the scene has no balls").
+    let big = "[[species]]\nmass = 1\nradius = \"1/2\"\ncount = 4611686018427387904\n".repeat(4);
+    let got = error(&big);
+    assert!(
+        got.starts_with("t.toml: species[1].count: 4611686018427387904 balls"),
+        "{got}"
+    );
+    // The limit itself is accepted, one more is not.
+    let at = |n: usize| format!("[[species]]\nmass = 1\nradius = \"1/2\"\ncount = {n}\n");
+    Scene::from_toml(&format!("{BASE}{}", at(MAX_BALLS)), "t.toml").unwrap();
+    let over = error(&format!(
+        "{}[[ball]]\nspecies = 0\nposition = [1, 1]\n",
+        at(MAX_BALLS)
+    ));
+    assert!(
+        over.starts_with(&format!(
+            "t.toml: species[1].count: {} balls",
+            MAX_BALLS + 1
+        )),
+        "{over}"
+    );
+}
+
+#[test]
+fn a_run_of_no_events_is_refused() {
+    let got = error("[simulation]\nevents = 0\n");
+    assert!(
+        got.starts_with("t.toml: simulation.events: must be at least 1"),
+        "{got}"
     );
 }

@@ -1,5 +1,6 @@
 //! `noslip simulate` and `noslip gen` from the outside: exit codes, one-line errors, outputs.
 
+use std::path::Path;
 use std::process::Command;
 
 fn noslip() -> Command {
@@ -146,4 +147,492 @@ fn a_scene_without_possible_contacts_stops_with_its_reason() {
         .as_str()
         .unwrap()
         .starts_with("no contact can happen"));
+}
+
+/// A fresh scratch directory for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Run `cmd`, killing it (and failing) if it does not finish within `seconds`.
+fn output_within(cmd: &mut Command, seconds: u64) -> std::process::Output {
+    use std::process::Stdio;
+    let mut child = cmd
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed().as_secs() >= seconds {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("{cmd:?} did not finish within {seconds} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// `noslip simulate` on the scene `text` (written to `dir/name.toml`) with `extra` flags:
+/// exit code, stdout, stderr.
+fn simulate_text(
+    dir: &std::path::Path,
+    name: &str,
+    text: &str,
+    extra: &[&str],
+) -> (i32, String, String) {
+    let file = dir.join(format!("{name}.toml"));
+    std::fs::write(&file, text).unwrap();
+    let mut cmd = noslip();
+    cmd.arg("simulate")
+        .arg(&file)
+        .args(["--quiet", "--out"])
+        .arg(dir.join(format!("out-{name}")))
+        .args(extra);
+    let out = output_within(&mut cmd, 60);
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+/// A 2D scene: box sides, species lines, extra tables.
+fn scene2(size: &str, species: &str, extra: &str) -> String {
+    format!(
+        "dim = 2\n[box]\nsize = [{size}, {size}]\nboundary = [\"wall\", \"periodic\"]\n\
+         [[species]]\n{species}\n{extra}"
+    )
+}
+
+#[test]
+fn scenes_outside_the_f64_range_are_refused_naming_the_field() {
+    let dir = scratch("range");
+    let cases = [
+        // Issue 16's cases: 1/m overflows; R^2 underflows (energy NaN); the box scale squared
+        // overflows (phantom contacts); the spin energy overflows; |u|^2 underflows.
+        ("mass", scene2("10", "mass = \"1e-400\"\nradius = \"1/2\"\ncount = 3", ""), "species[0].mass: "),
+        ("heavy", scene2("10", "mass = \"1e400\"\nradius = \"1/2\"\ncount = 3", ""), "species[0].mass: "),
+        ("radius", scene2("10", "mass = 1\nradius = \"1e-200\"\ncount = 3", ""), "species[0].radius: "),
+        ("box", scene2("\"1e200\"", "mass = 1\nradius = 1\ncount = 3", ""), "box.size[0]: "),
+        ("spin", scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 3", "[random]\nspin = \"1e300\"\n"), "random.spin: "),
+        ("speed", scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 3", "[random]\nspeed = \"1e-300\"\n"), "random.speed: "),
+        // lambda = gamma^2 R^2 / 2 underflows.
+        ("gamma2", scene2("10", "mass = 1\nradius = \"1/2\"\ngamma2 = \"1e-320\"\ncount = 3", ""), "species[0].gamma2: "),
+        ("lambda", scene2("10", "mass = 1\nradius = \"1/2\"\nlambda = \"1e-330\"\ncount = 3", ""), "species[0].lambda: "),
+        // Species 1 (m = 1e300, R = 1e-100) meets itself: R D = 1e-100 * 1.5e-300 underflows.
+        (
+            "pair",
+            scene2(
+                "\"1e-95\"",
+                "mass = 1\nradius = \"1e-100\"\ncount = 2\n[[species]]\nmass = \"1e300\"\nradius = \"1e-100\"\ncount = 2",
+                "",
+            ),
+            "species[1]: with species[1], the contact map's D",
+        ),
+        (
+            "obstacle",
+            scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 3", "[[obstacle]]\nposition = [5, 5]\nradius = \"1e200\"\n"),
+            "obstacle[0].radius: the box scale",
+        ),
+        // R / L = 1e-9 < 2^-26: contact distances would keep fewer than half the digits.
+        ("resolution", scene2("\"1e9\"", "mass = 1\nradius = 1\ncount = 3", ""), "species[0].radius: R = 1e0 is less than 2^-26"),
+        (
+            "velocity",
+            scene2("10", "mass = 1\nradius = \"1/2\"", "[[ball]]\nspecies = 0\nposition = [1, 1]\nvelocity = [\"1e200\", 0]\n"),
+            "ball[0].velocity: ",
+        ),
+        (
+            "angular",
+            scene2("10", "mass = 1\nradius = \"1/2\"", "[[ball]]\nspecies = 0\nposition = [1, 1]\nvelocity = [1, 0]\nangular_velocity = \"1e300\"\n"),
+            "ball[0].angular_velocity: ",
+        ),
+        // The speed is fine alone, but (B V)^2 of the contact-time discriminant overflows.
+        ("discriminant", scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 3", "[random]\nspeed = \"1e152\"\n"), "random.speed: the box scale"),
+        // (R_min v)^2 = (1e-80 * 1e-120)^2 underflows at the contact scale.
+        (
+            "contact",
+            scene2("\"1e-75\"", "mass = 1\nradius = \"1e-80\"\ncount = 3", "[random]\nspeed = \"1e-120\"\n"),
+            "random.speed: with the typical speed",
+        ),
+        ("time", scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 3", "[simulation]\ntime = \"1e-400\"\n"), "simulation.time: "),
+        ("still", scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 3", "[random]\nspeed = 0\n"), "random.speed: nothing moves"),
+    ];
+    for (name, text, want) in cases {
+        let (code, _, err) = simulate_text(&dir, name, &text, &["--events", "100"]);
+        assert_eq!(code, 2, "{name}: exit {code}, stderr {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        let want = format!(
+            "error: {}: {want}",
+            dir.join(format!("{name}.toml")).display()
+        );
+        assert!(err.starts_with(&want), "{name}:\n got  {err}\n want {want}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// Every number of an events-log line, with positions scaled by `length`, velocities by
+/// `speed`, spins by `spin` and times by `time` (powers of two, so exactly).
+fn scaled(
+    line: &serde_json::Value,
+    length: f64,
+    speed: f64,
+    spin: f64,
+    time: f64,
+) -> serde_json::Value {
+    let mut v = line.clone();
+    let num = |x: &serde_json::Value, s: f64| serde_json::json!(x.as_f64().unwrap() * s);
+    v["time"] = num(&line["time"], time);
+    for (k, p) in line["positions"].as_array().unwrap().iter().enumerate() {
+        for (a, x) in p.as_array().unwrap().iter().enumerate() {
+            v["positions"][k][a] = num(x, length);
+        }
+    }
+    for side in ["pre", "post"] {
+        for (k, s) in line[side].as_array().unwrap().iter().enumerate() {
+            for (a, x) in s["velocity"].as_array().unwrap().iter().enumerate() {
+                v[side][k]["velocity"][a] = num(x, speed);
+            }
+            for (a, x) in s["spin"].as_array().unwrap().iter().enumerate() {
+                v[side][k]["spin"][a] = num(x, spin);
+            }
+        }
+    }
+    v
+}
+
+#[test]
+fn an_accepted_scene_far_from_unit_scale_runs_the_same_events() {
+    // Lengths x 2^250, times x 2^350 (speeds x 2^-100, spins x 2^-350), masses x 2^-400: every
+    // product the range rule bounds stays normal, and scaling by powers of two changes no digit,
+    // so the events must be the unscaled ones scaled, bit for bit.
+    let dir = scratch("scale");
+    let (length, time, mass) = (2f64.powi(250), 2f64.powi(350), 2f64.powi(-400));
+    let scene = |l: f64, t: f64, m: f64| {
+        format!(
+            "dim = 2\n[box]\nsize = [{:e}, {:e}]\nboundary = [\"wall\", \"periodic\"]\n\
+             [[species]]\nmass = {:e}\nradius = {:e}\ngamma2 = \"1/2\"\ncount = 40\n\
+             [[species]]\nmass = {:e}\nradius = {:e}\ngamma2 = \"2/5\"\ncount = 10\n\
+             [random]\nseed = 5\nspeed = {:e}\nspin = {:e}\n",
+            20.0 * l,
+            20.0 * l,
+            m,
+            0.5 * l,
+            4.0 * m,
+            l,
+            l / t,
+            1.0 / t
+        )
+    };
+    let mut logs = Vec::new();
+    for (name, l, t, m) in [("unit", 1.0, 1.0, 1.0), ("far", length, time, mass)] {
+        let log = dir.join(format!("{name}.jsonl"));
+        let (code, out, err) = simulate_text(
+            &dir,
+            name,
+            &scene(l, t, m),
+            &["--events", "400", "--log", log.to_str().unwrap()],
+        );
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(out.starts_with("400 contacts ("), "{out}");
+        let lines: Vec<serde_json::Value> = std::fs::read_to_string(&log)
+            .unwrap()
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        assert_eq!(lines.len(), 400);
+        logs.push(lines);
+    }
+    let kinds: std::collections::BTreeSet<_> =
+        logs[0].iter().map(|l| l["kind"].to_string()).collect();
+    assert!(
+        kinds.len() >= 2,
+        "both ball-ball and ball-wall contacts: {kinds:?}"
+    );
+    for (a, b) in logs[0].iter().zip(&logs[1]) {
+        assert_eq!(scaled(a, length, length / time, 1.0 / time, time), *b);
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn counts_beyond_the_limit_or_the_box_are_refused_at_once() {
+    let dir = scratch("counts");
+    let cases = [
+        // 10^9 balls in a box they would fill to 1e-3: placement used to run for ever.
+        (
+            "billion",
+            scene2(
+                "\"1e6\"",
+                "mass = 1\nradius = \"1/2\"\ncount = 1_000_000_000",
+                "",
+            ),
+            "species[0].count: 1000000000 balls",
+        ),
+        // 4 x 2^62 balls: the total used to wrap to 0 ("the scene has no balls").
+        (
+            "wrap",
+            scene2(
+                "10",
+                &["mass = 1\nradius = \"1/2\"\ncount = 4611686018427387904"; 4]
+                    .join("\n[[species]]\n"),
+                "",
+            ),
+            "species[0].count: 4611686018427387904 balls",
+        ),
+        // 200 disks of area pi/4 in a box of area 100: more than the box holds.
+        (
+            "full",
+            scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 200", ""),
+            "species[0].count: the balls would fill 1.571 times",
+        ),
+        // 0.70 of the box: possible (hexagonal packing reaches 0.91) but beyond random placement.
+        (
+            "jammed",
+            scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 89", ""),
+            "species[0].count: placed ",
+        ),
+    ];
+    for (name, text, want) in cases {
+        let (code, _, err) = simulate_text(&dir, name, &text, &["--events", "10"]);
+        assert_eq!(code, 2, "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        let want = format!(
+            "error: {}: {want}",
+            dir.join(format!("{name}.toml")).display()
+        );
+        assert!(err.starts_with(&want), "{name}:\n got  {err}\n want {want}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn time_and_events_flags_are_checked_like_the_scene() {
+    for (flag, value, want) in [
+        (
+            "--time",
+            "NaN",
+            "error: --time: must be positive and finite, got NaN",
+        ),
+        (
+            "--time",
+            "-1",
+            "error: --time: must be positive and finite, got -1",
+        ),
+        (
+            "--time",
+            "0",
+            "error: --time: must be positive and finite, got 0",
+        ),
+        (
+            "--time",
+            "inf",
+            "error: --time: must be positive and finite, got inf",
+        ),
+        ("--events", "0", "error: --events: must be at least 1"),
+    ] {
+        let out = noslip()
+            .args(["simulate", "scenes/sinai.toml", "--quiet", flag, value])
+            .output()
+            .unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{flag} {value}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with(want), "{flag} {value}: {err}");
+    }
+}
+
+#[test]
+fn sinai_trajectories_stay_small_at_many_events() {
+    // 10^5 contacts used to write 9.2 MB of 81 000 polylines, most with one point.
+    let dir = scratch("sinai-size");
+    let out = noslip()
+        .args([
+            "simulate",
+            "scenes/sinai.toml",
+            "--events",
+            "200000",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(dir.join("trajectories.svg")).unwrap();
+    assert!(
+        svg.len() <= 1_000_000,
+        "trajectories.svg is {} bytes",
+        svg.len()
+    );
+    let single = svg
+        .lines()
+        .filter(|l| l.starts_with("<polyline") && l.matches(',').count() == 1)
+        .count();
+    assert_eq!(single, 0, "one-point polylines");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn the_log_may_go_into_the_output_directory_not_yet_made() {
+    let dir = scratch("log-dir");
+    let out_dir = dir.join("run");
+    let log = out_dir.join("events.jsonl");
+    let out = noslip()
+        .args([
+            "simulate",
+            "scenes/sinai.toml",
+            "--events",
+            "50",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&out_dir)
+        .arg("--log")
+        .arg(&log)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&log).unwrap().lines().count(), 50);
+    let mut names: Vec<String> = std::fs::read_dir(&out_dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "energy.svg",
+            "events.jsonl",
+            "summary.json",
+            "trajectories.svg"
+        ]
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// The entries of `dir` whose names contain `part`.
+fn entries_with(dir: &Path, part: &str) -> Vec<std::path::PathBuf> {
+    let mut v: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_string_lossy().contains(part))
+        .collect();
+    v.sort();
+    v
+}
+
+/// A run whose log cannot be written: exit 1 with one line, the summary printed and written,
+/// and nothing left where the log was to go (no new entry of its directory carries its name).
+fn log_fails_cleanly(log: &Path, out_dir: &Path) {
+    let (dir, name) = (
+        log.parent().unwrap(),
+        log.file_name().unwrap().to_string_lossy(),
+    );
+    let before = entries_with(dir, &name);
+    let out = noslip()
+        .args([
+            "simulate",
+            "scenes/sinai.toml",
+            "--events",
+            "5000",
+            "--quiet",
+            "--out",
+        ])
+        .arg(out_dir)
+        .arg("--log")
+        .arg(log)
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: cannot write the events log"),
+        "{err}"
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.starts_with("5000 contacts ("), "{stdout}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["events"], 5000);
+    assert_eq!(
+        entries_with(dir, &name),
+        before,
+        "no partial log or temporary file in {}",
+        dir.display()
+    );
+}
+
+#[test]
+fn a_log_on_a_full_device_leaves_nothing_and_the_summary_is_written() {
+    let out_dir = scratch("log-full");
+    // /dev/full: every write fails with ENOSPC; it must stay the device it is.
+    log_fails_cleanly(Path::new("/dev/full"), &out_dir);
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::metadata("/dev/full")
+        .unwrap()
+        .file_type()
+        .is_char_device());
+    std::fs::remove_dir_all(&out_dir).unwrap();
+}
+
+/// A tmpfs of 64 kB mounted on a fresh directory, unmounted when dropped.
+struct TinyDisk(std::path::PathBuf);
+
+impl Drop for TinyDisk {
+    fn drop(&mut self) {
+        let _ = Command::new("umount").arg(&self.0).status();
+        let _ = std::fs::remove_dir(&self.0);
+    }
+}
+
+#[test]
+fn a_log_on_a_full_disk_leaves_nothing_and_the_summary_is_written() {
+    let out_dir = scratch("log-disk");
+    let mount = std::env::temp_dir().join(format!("noslip-tiny-{}", std::process::id()));
+    std::fs::create_dir_all(&mount).unwrap();
+    let mounted = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=64k", "tmpfs"])
+        .arg(&mount)
+        .output();
+    let disk = TinyDisk(mount.clone());
+    match mounted {
+        Ok(o) if o.status.success() => {}
+        Ok(o) => {
+            println!(
+                "skipped: cannot mount a tmpfs here ({}); the /dev/full test covers the write failure",
+                String::from_utf8_lossy(&o.stderr).trim()
+            );
+            return;
+        }
+        Err(e) => {
+            println!(
+                "skipped: no mount command ({e}); the /dev/full test covers the write failure"
+            );
+            return;
+        }
+    }
+    // 5000 Sinai contacts make about 3 MB of log: the disk fills part way through a line.
+    log_fails_cleanly(&disk.0.join("events.jsonl"), &out_dir);
+    assert_eq!(
+        std::fs::read_dir(&disk.0).unwrap().count(),
+        0,
+        "the full disk is left empty"
+    );
+    drop(disk);
+    std::fs::remove_dir_all(&out_dir).unwrap();
 }

@@ -2,7 +2,7 @@
 //! axes are walled or periodic, species of balls, explicit balls, fixed ball obstacles,
 //! seeded random placement and defaults for the run.
 //!
-//! [`Scene::from_toml`] parses ([`raw`], unknown keys refused) and validates ([`validate`])
+//! [`Scene::from_toml`] parses ([`raw`], unknown keys refused) and validates (`validate`)
 //! in exact rationals; every error names the place: a line and column for syntax and
 //! unknown keys, a key path such as `species[1].radius` or `ball[3].position` otherwise.
 //! The generator needs [`Scene::pairs`]; the simulator also needs the placement.
@@ -30,9 +30,19 @@ pub struct Species {
     pub radius: BigRational,
     /// `gamma^2 = 2 lambda / R^2` in `[0, 2/n]`.
     pub gamma2: BigRational,
+    /// The key that set `gamma2` (`"lambda"`, `"gamma2"` or `"distribution"`; `None`: the
+    /// default, a uniform ball), for messages.
+    pub gamma2_key: Option<&'static str>,
     /// Balls of this species placed at random (besides the explicit ones).
     pub count: usize,
 }
+
+/// The most balls a scene may hold, explicit and random together: `2^24`. The simulator keeps
+/// every ball in memory several times over (its setup, the engine's state, cell lists and
+/// queue: a few hundred bytes each, more in higher dimensions; see docs/scenes.md) and places
+/// the random ones one by one; the limit keeps both within an ordinary machine and is
+/// checked before anything is allocated, with sums that cannot overflow.
+pub const MAX_BALLS: usize = 1 << 24;
 
 /// An explicitly placed ball.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,7 +1,9 @@
 //! Semantic checks of a parsed scene, in exact rationals. Each error names its key path.
 
 use super::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
-use super::{BallSpec, Boundary, Number, Obstacle, Random, Scene, SceneError, Simulation, Species};
+use super::{
+    BallSpec, Boundary, Number, Obstacle, Random, Scene, SceneError, Simulation, Species, MAX_BALLS,
+};
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
@@ -140,6 +142,26 @@ pub(crate) fn distance2(a: &[Q], b: &[Q], size: &[Q], boundary: &[Boundary]) -> 
     d2
 }
 
+/// The number of balls, explicit and random, summed in `u128` (no overflow), is at most
+/// [`MAX_BALLS`]; the error names the species whose `count` passes it.
+fn count_limit(ctx: &Ctx, raw: &RawScene) -> Result<(), SceneError> {
+    let mut total = raw.ball.len() as u128;
+    for (i, s) in raw.species.iter().enumerate() {
+        total += s.count as u128;
+        if total > MAX_BALLS as u128 {
+            return Err(ctx.err(
+                format!("species[{i}].count"),
+                format!(
+                    "{total} balls (with the explicit ones and the species before) exceed the \
+                     limit of 2^24 = {MAX_BALLS}: the simulator keeps a few hundred bytes per \
+                     ball and places the random ones one by one"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn ball(ctx: &Ctx, i: usize, b: &RawBall, scene: &Scene) -> Result<BallSpec, SceneError> {
     let at = format!("ball[{i}]");
     let n = scene.dim;
@@ -225,15 +247,23 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
             }
         }
         let gamma2 = gamma2(&ctx, &at, s, &radius, n)?;
+        let gamma2_key = match (&s.lambda, &s.gamma2, s.distribution) {
+            (Some(_), _, _) => Some("lambda"),
+            (_, Some(_), _) => Some("gamma2"),
+            (_, _, Some(_)) => Some("distribution"),
+            _ => None,
+        };
         species.push(Species {
             name: s.name.clone().unwrap_or_else(|| format!("species{i}")),
             inv_mass: Q::one() / &mass,
             mass,
             radius,
             gamma2,
+            gamma2_key,
             count: s.count,
         });
     }
+    count_limit(&ctx, &raw)?;
     let random = Random {
         seed: raw.random.seed,
         speed: raw
@@ -254,6 +284,12 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         if x.is_negative() {
             return Err(ctx.err(key, format!("must be >= 0, got {x}")));
         }
+    }
+    if raw.simulation.events == Some(0) {
+        return Err(ctx.err(
+            "simulation.events",
+            "must be at least 1 (a run of no contacts has nothing to report)",
+        ));
     }
     let simulation = Simulation {
         events: raw.simulation.events,

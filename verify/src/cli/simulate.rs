@@ -6,10 +6,11 @@ use collision_core::Kernel;
 use indicatif::{ProgressBar, ProgressStyle};
 use noslip_codegen::scene::Scene;
 use noslip_verify::report::write_atomic;
+use noslip_verify::simulate::log::LogFile;
 use noslip_verify::simulate::plot::{energy_svg, trajectories_svg};
 use noslip_verify::simulate::run::{run, Limits, Summary};
 use noslip_verify::simulate::setup::{f, setup};
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -19,23 +20,28 @@ no-slip collisions. Balls fly freely between events; at each ball-ball, ball-wal
 ball-obstacle contact the pair's state jumps by the no-slip map (the generated f64 kernels).
 Contacts are found with a cell list and a priority queue; periodic axes use images.
 
-Stops after --events contacts or at --time (default: the scene's [simulation] values, else
-100000 events). Prints a summary (events, events per second, kinetic energy and the drift of
-energy, linear and angular momentum relative to the start) and writes to --out:
-summary.json, energy.svg (energy drift over events) and, in 2D, trajectories.svg (a few
-balls' paths and the contact points). --log writes every contact as a JSON line: time, kind,
-balls, normal, positions, pre and post states.";
+Stops after --events contacts (at least 1) or at --time (positive and finite; default: the
+scene's [simulation] values, else 100000 events). Prints a summary (events, events per
+second, kinetic energy and the drift of energy, linear and angular momentum relative to the
+start) and writes to --out: summary.json, energy.svg (energy drift over events) and, in 2D,
+trajectories.svg (a few balls' paths, cut at periodic wraps and thinned, and the contact
+points). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
+and post states; the log file appears complete at the end of the run or not at all (if it
+cannot be written, the run still ends, prints and writes its summary, and exits 1).
+
+A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, \"The
+scene in f64\") is refused with exit code 2, naming the field.";
 
 #[derive(clap::Args)]
 #[command(long_about = LONG_ABOUT, after_long_help = super::EXIT_CODES)]
 pub struct Args {
     /// The scene file.
     file: PathBuf,
-    /// Stop after this many contacts.
+    /// Stop after this many contacts (at least 1).
     #[arg(long)]
     events: Option<u64>,
-    /// Stop at this simulated time.
-    #[arg(long)]
+    /// Stop at this simulated time (positive and finite).
+    #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
     /// Write every contact as a JSON line to this file.
     #[arg(long)]
@@ -82,7 +88,7 @@ where
         .iter()
         .map(|o| ([o.position[0], o.position[1]], o.radius))
         .collect();
-    let size = setup.size;
+    let (size, periodic) = (setup.size, setup.periodic);
     let kernels = GenericKernels {
         species: species.clone(),
     };
@@ -97,8 +103,8 @@ where
         events,
         time,
         samples: 2000,
-        traced: 12,
-        contact_points: 20_000,
+        traced: if N == 2 { 12 } else { 0 },
+        contact_points: if N == 2 { usize::MAX } else { 0 },
     };
     let out = args.out.clone().unwrap_or_else(|| {
         let stem = Path::new(&scene.origin)
@@ -107,11 +113,9 @@ where
         PathBuf::from("out/simulate").join(stem)
     });
     let mut log = match &args.log {
-        Some(p) => {
-            Some(BufWriter::new(std::fs::File::create(p).map_err(|e| {
-                (1, format!("cannot write {}: {e}", p.display()))
-            })?))
-        }
+        Some(p) => Some(
+            LogFile::create(p).map_err(|e| (1, format!("cannot write {}: {e}", p.display())))?,
+        ),
         None => None,
     };
     let progress = (!args.quiet).then(|| {
@@ -133,10 +137,19 @@ where
     if let Some(pb) = progress {
         pb.finish_and_clear();
     }
-    if let Some(mut w) = log {
-        w.flush()
-            .map_err(|e| (1, format!("cannot write the events log: {e}")))?;
-    }
+    // The log is complete or absent; its failure does not stop the summary and pictures.
+    let log_failed = match (log, &args.log) {
+        (Some(log), Some(p)) => log.finish().err().map(|e| {
+            (
+                1u8,
+                format!(
+                    "cannot write the events log {}: {e} (no log was left; the summary was written)",
+                    p.display()
+                ),
+            )
+        }),
+        _ => None,
+    };
     print_summary(&summary);
     let write = |name: &str, r: std::io::Result<()>| {
         r.map_err(|e| {
@@ -164,22 +177,48 @@ where
     )?;
     if N == 2 {
         let size2 = [size[0], size[1]];
+        let balls = trace.paths.len();
         write(
             "trajectories.svg",
             trajectories_svg(
                 &out.join("trajectories.svg"),
-                &format!("{title}: trajectories and contact points"),
+                &format!(
+                    "{title}: {balls} ball{} up to t = {:.6}, {} contact points",
+                    if balls == 1 { "" } else { "s" },
+                    trace.paths_until,
+                    trace.contacts.len()
+                ),
                 size2,
+                [periodic[0], periodic[1]],
                 &obstacles,
                 &trace,
             ),
         )?;
     }
     println!("wrote {}", out.display());
+    log_failed.map_or(Ok(()), Err)
+}
+
+/// `--time` and `--events` as the scene file has them: a positive finite time, at least one
+/// contact.
+fn check_limits(args: &Args) -> Result<(), String> {
+    if let Some(t) = args.time {
+        if !(t > 0.0 && t.is_finite()) {
+            return Err(format!("--time: must be positive and finite, got {t}"));
+        }
+    }
+    if args.events == Some(0) {
+        return Err(
+            "--events: must be at least 1 (a run of no contacts has nothing to report)".into(),
+        );
+    }
     Ok(())
 }
 
 pub fn run_cmd(args: &Args) -> ExitCode {
+    if let Err(e) = check_limits(args) {
+        return super::fail(2, &e);
+    }
     let scene = match Scene::from_file(&args.file) {
         Ok(s) => s,
         Err(e) => return super::fail(2, &e.to_string()),

@@ -2,6 +2,7 @@
 //! dimension), and for 2D scenes the traced trajectories and the contact points.
 
 use super::run::Trace;
+use super::trace::PICTURE;
 use crate::report::write_atomic;
 use plotters::prelude::*;
 use std::path::Path;
@@ -43,17 +44,37 @@ pub fn energy_svg(path: &Path, title: &str, trace: &Trace) -> std::io::Result<()
     write_atomic(path, &svg)
 }
 
-/// The box, the traced balls' centre paths and the contact points (2D).
+/// The most obstacles drawn (each a ring of up to 90 points, with its periodic images).
+pub const OBSTACLES_DRAWN: usize = 200;
+
+/// The runs of a closed ring of points that lie in the box `[0, size_0] x [0, size_1]`.
+fn clip_ring(ring: &[(f64, f64)], size: [f64; 2]) -> Vec<Vec<(f64, f64)>> {
+    let inside = |p: &(f64, f64)| (0.0..=size[0]).contains(&p.0) && (0.0..=size[1]).contains(&p.1);
+    let mut runs = vec![Vec::new()];
+    for p in ring {
+        if inside(p) {
+            runs.last_mut().expect("a run").push(*p);
+        } else if !runs.last().expect("a run").is_empty() {
+            runs.push(Vec::new());
+        }
+    }
+    runs.retain(|r| r.len() > 1);
+    runs
+}
+
+/// The box, the obstacles (with their images on periodic axes), the traced balls' centre
+/// paths (cut at periodic wraps, thinned; see [`super::trace`]) and the contact points (2D).
 pub fn trajectories_svg(
     path: &Path,
     title: &str,
     size: [f64; 2],
+    periodic: [bool; 2],
     obstacles: &[([f64; 2], f64)],
     trace: &Trace,
 ) -> std::io::Result<()> {
     let mut svg = String::new();
     {
-        let scale = 720.0 / size[0].max(size[1]);
+        let scale = PICTURE / size[0].max(size[1]);
         let dims = (
             (size[0] * scale) as u32 + 100,
             (size[1] * scale) as u32 + 80,
@@ -61,7 +82,7 @@ pub fn trajectories_svg(
         let root = SVGBackend::with_string(&mut svg, dims).into_drawing_area();
         root.fill(&WHITE).map_err(io_err)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 18))
+            .caption(title, ("sans-serif", 16))
             .margin(10)
             .x_label_area_size(30)
             .y_label_area_size(40)
@@ -72,18 +93,37 @@ pub fn trajectories_svg(
             .disable_mesh()
             .draw()
             .map_err(io_err)?;
-        for &(c, r) in obstacles {
-            let ring = (0..=90).map(|k| {
-                let a = k as f64 * std::f64::consts::TAU / 90.0;
-                (c[0] + r * a.cos(), c[1] + r * a.sin())
-            });
-            chart
-                .draw_series(LineSeries::new(ring, &BLACK))
-                .map_err(io_err)?;
+        let images = |k: usize| {
+            if periodic[k] {
+                vec![-1.0, 0.0, 1.0]
+            } else {
+                vec![0.0]
+            }
+        };
+        for &(c, r) in obstacles.iter().take(OBSTACLES_DRAWN) {
+            let segments = (std::f64::consts::TAU * r * scale / 6.0)
+                .ceil()
+                .clamp(12.0, 90.0) as usize;
+            for sx in images(0) {
+                for sy in images(1) {
+                    let centre = (c[0] + sx * size[0], c[1] + sy * size[1]);
+                    let ring: Vec<(f64, f64)> = (0..=segments)
+                        .map(|k| {
+                            let a = k as f64 * std::f64::consts::TAU / segments as f64;
+                            (centre.0 + r * a.cos(), centre.1 + r * a.sin())
+                        })
+                        .collect();
+                    for run in clip_ring(&ring, size) {
+                        chart
+                            .draw_series(LineSeries::new(run, &BLACK))
+                            .map_err(io_err)?;
+                    }
+                }
+            }
         }
         for (b, pieces) in trace.paths.iter().enumerate() {
             let color = Palette99::pick(b).to_rgba();
-            for piece in pieces {
+            for piece in pieces.iter().filter(|p| p.len() > 1) {
                 chart
                     .draw_series(LineSeries::new(piece.iter().map(|p| (p[0], p[1])), color))
                     .map_err(io_err)?;

@@ -1,6 +1,7 @@
 //! The run loop of `noslip simulate`: steps the engine, writes the events log, samples the
 //! energy drift and (for the picture) a few trajectories and the contact points.
 
+use super::trace::{Tracer, CONTACT_DOTS};
 use collision_core::sim::{Contact, Event, PairKernels, Simulation, Step};
 use collision_core::BodyState;
 use indicatif::ProgressBar;
@@ -19,7 +20,8 @@ pub struct Limits {
     pub samples: u64,
     /// Balls whose trajectories are recorded (2D picture).
     pub traced: usize,
-    /// Contact points recorded (2D picture).
+    /// Contact points recorded (2D picture), at most; the picture keeps one per pixel and at
+    /// most [`CONTACT_DOTS`].
     pub contact_points: usize,
 }
 
@@ -50,13 +52,17 @@ pub struct Summary {
     pub stopped: Option<String>,
 }
 
-/// What the pictures need.
+/// What the pictures need (bounded whatever the number of events; see [`super::trace`]).
 #[derive(Clone, Debug, Default)]
 pub struct Trace {
     /// `(events, (E - E_0) / E_0)`.
     pub energy: Vec<(u64, f64)>,
-    /// Per traced ball, polylines of its centre (first two coordinates), split at wraps.
+    /// Per traced ball, polylines of its centre (first two coordinates), cut at periodic
+    /// wraps and thinned to half a pixel.
     pub paths: Vec<Vec<Vec<[f64; 2]>>>,
+    /// The time up to which the paths are drawn.
+    pub paths_until: f64,
+    /// Contact points (first two coordinates), one per picture pixel.
     pub contacts: Vec<[f64; 2]>,
 }
 
@@ -132,16 +138,13 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let until = limits.time.unwrap_or(f64::INFINITY);
     let every = (events.min(1 << 40) / limits.samples.max(1)).max(1);
     let traced = limits.traced.min(sim.len());
-    let mut trace = Trace {
-        energy: vec![(0, 0.0)],
-        paths: (0..traced)
-            .map(|i| {
-                let p = sim.position(i);
-                vec![vec![[p[0], p[1]]]]
-            })
-            .collect(),
-        contacts: Vec::new(),
-    };
+    let size = sim.box_size();
+    let two = |x: &[f64; N]| [x[0], x[1]];
+    let start_points: Vec<([f64; 2], [f64; 2])> = (0..traced)
+        .map(|i| (two(&sim.position(i)), two(&sim.state(i).velocity)))
+        .collect();
+    let mut tracer = Tracer::new(two(&size), sim.now(), &start_points);
+    let mut samples = vec![(0, 0.0)];
     let mut kinds = [0u64; 3];
     let mut drift_max: f64 = 0.0;
     let clock = Instant::now();
@@ -168,28 +171,22 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         }
         for (slot, &b) in balls.iter().enumerate() {
             if b < traced && (slot == 0 || balls[1] != balls[0]) {
-                let p = [e.position[slot][0], e.position[slot][1]];
-                let path = &mut trace.paths[b];
-                let last = *path.last().and_then(|s| s.last()).expect("a start point");
-                // A jump of more than half the box is a periodic wrap: start a new piece.
-                let size = sim.box_size();
-                let wrapped = (0..2).any(|k| (p[k] - last[k]).abs() > 0.5 * size[k]);
-                if wrapped {
-                    path.push(vec![p]);
-                } else {
-                    path.last_mut().expect("a piece").push(p);
-                }
+                tracer.flight(
+                    b,
+                    e.time,
+                    two(&e.position[slot]),
+                    two(&e.post[slot].velocity),
+                );
             }
         }
-        if trace.contacts.len() < limits.contact_points {
-            let q = contact_point(&e, species, sim);
-            trace.contacts.push([q[0], q[1]]);
+        if tracer.contacts.len() < limits.contact_points.min(CONTACT_DOTS) {
+            tracer.contact(two(&contact_point(&e, species, sim)));
         }
         if done % every == 0 {
             let energy = sim.observables().energy;
             let drift = (energy - start.energy) / start.energy;
             drift_max = drift_max.max(drift.abs());
-            trace.energy.push((done, drift));
+            samples.push((done, drift));
         }
         if let Some(pb) = progress {
             if done % 4096 == 0 {
@@ -198,6 +195,14 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         }
     }
     let seconds = clock.elapsed().as_secs_f64();
+    let ends: Vec<[f64; 2]> = (0..traced).map(|i| two(&sim.position(i))).collect();
+    tracer.finish(sim.now(), &ends);
+    let trace = Trace {
+        energy: samples,
+        paths: tracer.paths,
+        paths_until: tracer.until,
+        contacts: tracer.contacts,
+    };
     let end = sim.observables();
     let drift = (end.energy - start.energy) / start.energy;
     drift_max = drift_max.max(drift.abs());
