@@ -42,7 +42,7 @@ fn max_abs<W: Scalar>(xs: &[W]) -> W {
 pub(crate) fn prepare<T: Scalar>(
     nu: &[T],
     balls: [&Ball<T>; 2],
-    states: [(&[T], &[T]); 2],
+    states: Parts<'_, T>,
 ) -> Result<Prepared<T::Unbounded>, InputError> {
     let n = nu.len();
     if n < 2 {
@@ -64,8 +64,9 @@ pub(crate) fn prepare<T: Scalar>(
             "exactly".to_string()
         } else {
             format!(
-                "| |nu|^2 - 1 | <= {} |nu|^2, the rounding allowance",
-                T::rounding_slack().show()
+                "| |nu|^2 - 1 | <= {} eps |nu|^2 = {}, the rounding allowance",
+                allowance::ULPS,
+                crate::scalar::allowance(&norm2).show()
             )
         };
         return Err(InputError::new(
@@ -191,8 +192,9 @@ fn speed_source<W: Scalar>(p: &Prepared<W>) -> (W, Field, String) {
 }
 
 /// The error for a result of body `b` (`spin` or velocity) beyond the range of `T`, naming the
-/// input at fault: the velocity results are bounded by a few times the speed scale (see
-/// [`speed_source`]), the angular ones by that over `R_b`.
+/// input at fault: the velocity results are bounded by a few times the speed scale `V` (see
+/// [`speed_source`]), so its source is named; the angular ones by `V / R_b`, so the radius is
+/// named when it brings more of the magnitude (`R_b V < 1`), else the source of `V`.
 fn overflow<T: Scalar>(
     p: &Prepared<T::Unbounded>,
     b: usize,
@@ -270,15 +272,20 @@ fn underflow<T: Scalar>(
     )
 }
 
+/// Both bodies' `(spin, velocity)`, borrowed.
+pub(crate) type Parts<'a, T> = [(&'a [T], &'a [T]); 2];
+/// One body's `(spin, velocity)`.
+pub(crate) type BodyParts<T> = (Vec<T>, Vec<T>);
+
 /// The movable bodies' results `(spin, velocity)` rounded to `T`, or the error naming the
 /// input at fault when one does not fit (see the module docs). An immovable body's result is
 /// its input, returned as given.
 pub(crate) fn round_results<T: Scalar>(
     p: &Prepared<T::Unbounded>,
-    results: [(&[T::Unbounded], &[T::Unbounded]); 2],
-    inputs: [(&[T], &[T]); 2],
-) -> Result<[(Vec<T>, Vec<T>); 2], InputError> {
-    let mut out: [(Vec<T>, Vec<T>); 2] = Default::default();
+    results: Parts<'_, T::Unbounded>,
+    inputs: Parts<'_, T>,
+) -> Result<[BodyParts<T>; 2], InputError> {
+    let mut out: [BodyParts<T>; 2] = Default::default();
     for b in 0..2 {
         let ball = &p.balls[b];
         if ball.is_immovable() {

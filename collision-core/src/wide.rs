@@ -266,7 +266,8 @@ impl<F: Binary> Rem for Wide<F> {
     fn rem(self, rhs: Self) -> Self {
         if self.special() || rhs.special() {
             // x % inf = x for finite x (NaN is the one value unequal to itself).
-            if !rhs.m.finite() && rhs.m == rhs.m && self.m.finite() {
+            let nan = rhs.m.partial_cmp(&rhs.m).is_none();
+            if !rhs.m.finite() && !nan && self.m.finite() {
                 return self;
             }
             return Wide::scaled(self.m % rhs.m, 0);
