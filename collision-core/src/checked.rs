@@ -390,6 +390,35 @@ mod tests {
     }
 
     #[test]
+    fn f32_computes_with_an_unbounded_exponent_too() {
+        // R_2 = 2e38 (f32 ends at 3.4e38): the f32 kernel's R_2 D overflows as f64's did.
+        let ball32 = |m: f32, r: f32| Ball::new(2, Mass::Finite(m), r, Inertia::Uniform).unwrap();
+        let balls = [ball32(0.5, 1.0), ball32(0.5, 2e38)];
+        let s = [
+            State2::<f32>::from_scalar_spin(1.0, [-1.0, 0.5]),
+            State2::from_scalar_spin(0.125, [-2.0, 0.0]),
+        ];
+        let plain = collide_unchecked(&[1.0, 0.0], [&balls[0], &balls[1]], [&s[0], &s[1]]);
+        assert_eq!(plain[1].spin, s[1].spin, "the f32 kernel's defect");
+        let got = collide(&[1.0f32, 0.0], [&balls[0], &balls[1]], [&s[0], &s[1]]).unwrap();
+        let wide = balls.clone().map(|b| Ball {
+            inv_mass: f64::from(b.inv_mass),
+            radius: f64::from(b.radius),
+            gamma2: f64::from(b.gamma2),
+        });
+        let s64 = s.clone().map(|s| BodyState {
+            spin: s.spin.map(f64::from),
+            velocity: s.velocity.map(f64::from),
+        });
+        let want = exact_result([1.0, 0.0], [&wide[0], &wide[1]], [&s64[0], &s64[1]]);
+        let (x, y) = (f64::from(got[1].spin[0]), Scalar::to_f64(&want[1].spin[0]));
+        assert!(
+            (x - y).abs() <= 8.0 * f64::from(f32::EPSILON) * y.abs(),
+            "{x} vs {y}"
+        );
+    }
+
+    #[test]
     fn results_beyond_f64_are_refused_naming_the_input_at_fault() {
         let nu = [1.0, 0.0];
         // A tiny radius: the contact-point slip 1e10 over R_1 = 1e-300 spins body 1 at ~1e310.

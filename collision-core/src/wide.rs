@@ -244,7 +244,17 @@ impl<F: Binary> Mul for Wide<F> {
         if self.special() || rhs.special() {
             return Wide::scaled(self.m * rhs.m, 0);
         }
-        Wide::scaled(self.m * rhs.m, self.e + rhs.e)
+        // 1 <= |m| < 4: at most one halving (exact) normalises it.
+        let (m, e) = (self.m * rhs.m, self.e + rhs.e);
+        let two = F::one() + F::one();
+        if m.abs() >= two {
+            Wide {
+                m: m / two,
+                e: e + 1,
+            }
+        } else {
+            Wide { m, e }
+        }
     }
 }
 
@@ -256,7 +266,13 @@ impl<F: Binary> Div for Wide<F> {
             // 0/y = 0, x/0 = inf, x/inf = 0, and NaN where F gives NaN.
             return Wide::scaled(self.m / rhs.m, 0);
         }
-        Wide::scaled(self.m / rhs.m, self.e - rhs.e)
+        // 1/2 < |m| < 2 (the quotient never rounds up to 2): at most one doubling (exact).
+        let (m, e) = (self.m / rhs.m, self.e - rhs.e);
+        if m.abs() < F::one() {
+            Wide { m: m + m, e: e - 1 }
+        } else {
+            Wide { m, e }
+        }
     }
 }
 
