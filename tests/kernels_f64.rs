@@ -11,7 +11,7 @@
 
 #![allow(clippy::needless_range_loop)] // components of paired states are indexed together
 
-use collision_core::{collide, reference, Ball, BodyState, Generated, Kernel};
+use collision_core::{collide, reference, Ball, BodyState, Generated, Kernel, Wide};
 use proptest::prelude::*;
 
 fn unit(v: Vec<f64>) -> Option<Vec<f64>> {
@@ -34,7 +34,7 @@ fn check<const N: usize, const S: usize>(
     fixed: bool,
 ) -> Result<(), TestCaseError>
 where
-    Generated: Kernel<f64, N, S>,
+    Generated: Kernel<Wide<f64>, N, S>,
 {
     let Some(nu) = unit(nu) else { return Ok(()) };
     let nu: [f64; N] = nu.try_into().unwrap();

@@ -2,8 +2,10 @@
 //! `gamma^2 = 2 lambda / R^2`, all finite at the extremes (an immovable body has
 //! `inv_mass = 0`; a point mass has `gamma2 = 0`).
 
+use crate::allowance;
 use crate::error::{BodyField, Field, InputError};
-use crate::scalar::{two, within_slack, Scalar};
+use crate::scalar::{self, two, Scalar};
+use num_traits::Signed;
 
 /// The kernels' parameters of one ball.
 ///
@@ -54,21 +56,19 @@ fn finite<T: Scalar>(x: &T, field: BodyField) -> Result<(), InputError> {
     }
 }
 
-/// Bring a value that may exceed `bound` by its own rounding back to the bound; reject
-/// anything outside `[0, bound]` beyond that slack.
-fn in_range<T: Scalar>(x: T, bound: &T, field: BodyField, what: &str) -> Result<T, InputError> {
-    finite(&x, field)?;
-    if x < T::zero() || !within_slack(&x, bound) {
-        return Err(err(
+/// `x` in `[0, bound]` under [the rounding allowance](crate::allowance) (scale `bound`):
+/// clamped to the range, or an error naming `field`.
+fn in_range<T: Scalar>(x: &T, bound: &T, field: BodyField, what: &str) -> Result<T, InputError> {
+    allowance::within(x, &T::zero(), bound, &scalar::allowance(bound)).ok_or_else(|| {
+        err(
             field,
             format!(
                 "must be in [0, {what}] = [0, {}], got {}",
                 bound.show(),
                 x.show()
             ),
-        ));
-    }
-    Ok(if x > *bound { bound.clone() } else { x })
+        )
+    })
 }
 
 impl<T: Scalar> Ball<T> {
@@ -112,21 +112,13 @@ impl<T: Scalar> Ball<T> {
         let gamma2 = match inertia {
             Inertia::Uniform => two::<T>() / (n + two::<T>()),
             Inertia::Shell => shell,
-            Inertia::Gamma2(g) => in_range(g, &shell, BodyField::Gamma2, "2/n")?,
+            Inertia::Gamma2(g) => {
+                finite(&g, BodyField::Gamma2)?;
+                in_range(&g, &shell, BodyField::Gamma2, "2/n")?
+            }
             Inertia::Lambda(l) => {
-                let r2 = radius.clone() * radius.clone();
-                if !r2.is_finite() || r2.is_zero() {
-                    return Err(err(
-                        BodyField::Radius,
-                        format!(
-                            "R^2 is out of range for {}, got R = {}; give gamma2 instead of lambda",
-                            T::NAME,
-                            radius.show()
-                        ),
-                    ));
-                }
-                let l = in_range(l, &(r2.clone() / n), BodyField::Lambda, "R^2/n")?;
-                two::<T>() * l / r2
+                finite(&l, BodyField::Lambda)?;
+                gamma2_of_lambda(dim, &radius, &l)?
             }
         };
         let ball = Ball {
@@ -159,8 +151,14 @@ impl<T: Scalar> Ball<T> {
     }
 
     /// Check the invariants of the fields as stored (the fields are public): finite,
-    /// `inv_mass >= 0`, `radius > 0`, `0 <= gamma2 <= 2/n` exactly.
+    /// `inv_mass >= 0`, `radius > 0`, `0 <= gamma2 <= 2/n` under [the rounding
+    /// allowance](crate::allowance).
     pub fn validate(&self, dim: usize) -> Result<(), InputError> {
+        self.clamped(dim).map(|_| ())
+    }
+
+    /// The ball after [`Ball::validate`]'s checks, with `gamma2` clamped to `[0, 2/n]`.
+    pub(crate) fn clamped(&self, dim: usize) -> Result<Self, InputError> {
         finite(&self.inv_mass, BodyField::Mass)?;
         finite(&self.radius, BodyField::Radius)?;
         finite(&self.gamma2, BodyField::Gamma2)?;
@@ -171,18 +169,46 @@ impl<T: Scalar> Ball<T> {
             return Err(err(BodyField::Radius, "must be positive"));
         }
         let shell = two::<T>() / T::from_ratio(dim as i64, 1);
-        if self.gamma2 < T::zero() || self.gamma2 > shell {
-            return Err(err(
-                BodyField::Gamma2,
-                format!(
-                    "must be in [0, 2/n] = [0, {}], got {}",
-                    shell.show(),
-                    self.gamma2.show()
-                ),
-            ));
-        }
-        Ok(())
+        Ok(Ball {
+            gamma2: in_range(&self.gamma2, &shell, BodyField::Gamma2, "2/n")?,
+            ..self.clone()
+        })
     }
+}
+
+/// `gamma2 = 2 lambda / R^2` of a finite `lambda`, with `lambda` in `[0, R^2/n]` and
+/// `gamma2` in `[0, 2/n]` under the rounding allowance. Computed with an unbounded exponent
+/// (`R^2` may be beyond the range of `T`); `gamma2` must come back to `T` within rounding,
+/// that is not below `T`'s normal range.
+fn gamma2_of_lambda<T: Scalar>(dim: usize, radius: &T, lambda: &T) -> Result<T, InputError> {
+    let n = T::Unbounded::from_ratio(dim as i64, 1);
+    let two = two::<T::Unbounded>();
+    let r2 = radius.unbounded() * radius.unbounded();
+    let l = in_range(
+        &lambda.unbounded(),
+        &(r2.clone() / n.clone()),
+        BodyField::Lambda,
+        "R^2/n",
+    )?;
+    let exact = in_range(
+        &(two.clone() * l / r2),
+        &(two / n),
+        BodyField::Lambda,
+        "2/n, as gamma2 = 2 lambda / R^2,",
+    )?;
+    let gamma2 = T::from_unbounded(&exact);
+    if (gamma2.unbounded() - exact.clone()).abs() > scalar::allowance::<T::Unbounded>(&exact) {
+        return Err(err(
+            BodyField::Lambda,
+            format!(
+                "gamma2 = 2 lambda / R^2 = {} is below the normal range of {} and would lose \
+                 precision; give gamma2 instead",
+                exact.show(),
+                T::NAME
+            ),
+        ));
+    }
+    Ok(gamma2)
 }
 
 #[cfg(test)]
@@ -238,5 +264,88 @@ mod tests {
             Inertia::Lambda(q(33_333_333_333_333_337, 100_000_000_000_000_000)),
         );
         assert!(exact.is_err());
+    }
+
+    /// `x` moved by `k` ulps (positive: up, in magnitude).
+    fn ulps(x: f64, k: i64) -> f64 {
+        f64::from_bits((x.to_bits() as i64 + k) as u64)
+    }
+
+    fn ball(dim: usize, radius: f64, inertia: Inertia<f64>) -> Result<Ball<f64>, InputError> {
+        Ball::new(dim, Mass::Finite(2.0), radius, inertia)
+    }
+
+    #[test]
+    fn the_issues_thin_shell_in_f64_is_the_shell() {
+        // R = 5, lambda = 25/3 computed in f64: gamma2 = 2 lambda / R^2 rounds one ulp above
+        // 2/3, within rounding of the bound, and is clamped to it.
+        let b = ball(3, 5.0, Inertia::Lambda(25.0 / 3.0)).unwrap();
+        assert_eq!(b.gamma2, 2.0 / 3.0);
+        assert_eq!(b.gamma2, ball(3, 5.0, Inertia::Shell).unwrap().gamma2);
+    }
+
+    #[test]
+    fn bounds_take_eight_eps_of_their_scale_and_no_more() {
+        // 4D: gamma2 <= 2/n = 1/2 (ulp 2^-53 = eps/2: 8 eps of 1/2 is 8 ulps); lambda <= R^2/n
+        // = 1/4 for R = 1 (ulp eps/4: again 8 ulps). Beyond the bound by up to 8 eps of it:
+        // clamped to the bound; one ulp more: refused. The same below 0.
+        for (inertia, bound, field) in [
+            (
+                Inertia::Gamma2 as fn(f64) -> Inertia<f64>,
+                0.5,
+                BodyField::Gamma2,
+            ),
+            (Inertia::Lambda, 0.25, BodyField::Lambda),
+        ] {
+            let edge = ball(4, 1.0, inertia(ulps(bound, 8))).unwrap();
+            assert_eq!(edge.gamma2, 0.5, "{field:?}");
+            let e = ball(4, 1.0, inertia(ulps(bound, 9))).unwrap_err();
+            assert_eq!(e.field, Field::Body(0, field));
+            let allowance = 8.0 * f64::EPSILON * bound;
+            assert_eq!(ball(4, 1.0, inertia(-allowance)).unwrap().gamma2, 0.0);
+            let e = ball(4, 1.0, inertia(ulps(-allowance, 1))).unwrap_err();
+            assert_eq!(e.field, Field::Body(0, field));
+        }
+        // Balls built by hand: validate takes the same allowance, collide clamps.
+        let by_hand = Ball {
+            inv_mass: 1.0,
+            radius: 1.0,
+            gamma2: ulps(0.5, 8),
+        };
+        assert!(by_hand.validate(4).is_ok());
+        assert_eq!(by_hand.clamped(4).unwrap().gamma2, 0.5);
+        let beyond = Ball {
+            gamma2: ulps(0.5, 9),
+            ..by_hand
+        };
+        assert!(beyond.validate(4).is_err());
+        // Exact arithmetic takes no allowance.
+        let exact = Ball::new(
+            4,
+            Mass::Finite(q(1, 1)),
+            q(1, 1),
+            Inertia::Gamma2(q(1, 2) + q(1, 1 << 62)),
+        );
+        assert_eq!(exact.unwrap_err().field, Field::Body(0, BodyField::Gamma2));
+    }
+
+    #[test]
+    fn lambda_needs_no_representable_r_squared() {
+        // R^2 = 1e400 is beyond f64; gamma2 = 2 lambda / R^2 = 2e-100 is not.
+        let b = ball(3, 1e200, Inertia::Lambda(1e300)).unwrap();
+        assert!(
+            (b.gamma2 / 2e-100 - 1.0).abs() <= f64::EPSILON,
+            "{}",
+            b.gamma2
+        );
+        // A gamma2 that would land below the normal range is refused, naming lambda.
+        let e = ball(3, 1e200, Inertia::Lambda(1e-250)).unwrap_err();
+        assert_eq!(e.field, Field::Body(0, BodyField::Lambda));
+        assert!(e.message.contains("below the normal range"), "{e}");
+        // Given directly, such a gamma2 is exact and taken as it is.
+        assert_eq!(
+            ball(3, 1e200, Inertia::Gamma2(2e-320)).unwrap().gamma2,
+            2e-320
+        );
     }
 }

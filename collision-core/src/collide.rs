@@ -1,17 +1,30 @@
 //! The checked entry point: validate, then run the generated kernel of the dimension.
 
-use crate::error::{BodyField, Field, InputError};
+use crate::checked;
+use crate::error::{Field, InputError};
 use crate::kernels::{Generated, Kernel};
-use crate::{Ball, BodyState, RefArith, Scalar};
+use crate::reference;
+use crate::{Ball, BodyState, Scalar};
+use nalgebra::DVector;
 
 /// The post-collision states of two balls in contact at normal `nu` (unit, from body 1's
 /// centre to body 2's), after validating every input:
 ///
-/// - every number finite; `| |nu|^2 - 1 | <=` [`Scalar::unit_tolerance`] (exactly unit in
-///   exact arithmetic);
+/// - every number finite; `|nu|^2 = 1`;
 /// - each ball valid ([`Ball::validate`]); not both immovable; not both point masses
 ///   (`gamma2 = 0`) unless one of them is immovable (its inertia is then unused);
 /// - approaching or grazing: `(u_2 - u_1) . nu <= 0`.
+///
+/// In floats, a bound missed by rounding is met by [the rounding allowance](crate::allowance):
+/// `|nu|^2`, `gamma2` and `(u_2 - u_1) . nu` within `8 eps` of their scale are accepted and
+/// clamped (`nu` renormalised, `gamma2` set to the bound, a grazing contact's normal relative
+/// velocity removed); exact arithmetic takes no allowance.
+///
+/// In floats the kernel runs with an unbounded exponent ([`crate::Wide`]): the result is
+/// the format's kernel result bit for bit wherever that kernel stays in range, and right where
+/// an intermediate quantity would overflow or underflow. A result that does not fit the format
+/// (a component beyond its range, or a body's whole result below its normal range) is an
+/// error naming the inputs that drive it.
 ///
 /// An immovable body (`inv_mass = 0`) comes back unchanged; the map is then the `fixed`
 /// kernel (with the bodies swapped and `nu` negated when body 2 is the immovable one).
@@ -22,11 +35,78 @@ pub fn collide<T, const N: usize, const S: usize>(
 ) -> Result<[BodyState<T, N, S>; 2], InputError>
 where
     T: Scalar,
-    for<'a> &'a T: RefArith<T>,
-    Generated: Kernel<T, N, S>,
+    Generated: Kernel<T::Unbounded, N, S>,
 {
-    validate(nu, balls, states)?;
-    Ok(collide_unchecked(nu, balls, states))
+    let inputs = states.map(|s| (s.spin.as_slice(), s.velocity.as_slice()));
+    let p = checked::prepare(nu, balls, inputs)?;
+    let array = |v: &[T::Unbounded]| -> Vec<T::Unbounded> { v.to_vec() };
+    let nu_w: [T::Unbounded; N] = fixed_len(array(&p.nu));
+    let states_w: [BodyState<T::Unbounded, N, S>; 2] = std::array::from_fn(|b| BodyState {
+        spin: fixed_len(array(&p.spins[b])),
+        velocity: fixed_len(array(&p.velocities[b])),
+    });
+    let out = collide_unchecked(
+        &nu_w,
+        [&p.balls[0], &p.balls[1]],
+        [&states_w[0], &states_w[1]],
+    );
+    let results = [0, 1].map(|b| (out[b].spin.as_slice(), out[b].velocity.as_slice()));
+    let [(s1, v1), (s2, v2)] = checked::round_results(&p, results, inputs)?;
+    Ok([
+        BodyState {
+            spin: fixed_len(s1),
+            velocity: fixed_len(v1),
+        },
+        BodyState {
+            spin: fixed_len(s2),
+            velocity: fixed_len(v2),
+        },
+    ])
+}
+
+/// [`collide`] for any `n = nu.len() >= 2`, through the general-n reference
+/// ([`crate::reference::collide_coords`]) on the coordinates `xi = [U_1, u_1, U_2, u_2]`:
+/// the same checks, the same allowance, the same unbounded exponent and the same refusal of
+/// results that do not fit.
+pub fn collide_general<T: Scalar>(
+    nu: &[T],
+    balls: [&Ball<T>; 2],
+    xi: &DVector<T>,
+) -> Result<DVector<T>, InputError> {
+    let n = nu.len();
+    let s = n * (n.max(1) - 1) / 2;
+    if xi.len() != reference::state_len(n) {
+        return Err(InputError::new(
+            Field::Dim,
+            "state length does not match the normal",
+        ));
+    }
+    let part = |b: usize| {
+        let body = &xi.as_slice()[b * (s + n)..(b + 1) * (s + n)];
+        (&body[..s], &body[s..])
+    };
+    let inputs = [part(0), part(1)];
+    let p = checked::prepare(nu, balls, inputs)?;
+    let xi_w = DVector::from_iterator(
+        xi.len(),
+        (0..2).flat_map(|b| p.spins[b].iter().chain(&p.velocities[b]).cloned()),
+    );
+    let out = reference::collide_coords(&p.nu, [&p.balls[0], &p.balls[1]], &xi_w)?;
+    let body = |b: usize| {
+        let v = &out.as_slice()[b * (s + n)..(b + 1) * (s + n)];
+        (&v[..s], &v[s..])
+    };
+    let [(s1, v1), (s2, v2)] = checked::round_results(&p, [body(0), body(1)], inputs)?;
+    Ok(DVector::from_iterator(
+        xi.len(),
+        s1.into_iter().chain(v1).chain(s2).chain(v2),
+    ))
+}
+
+/// A vector of known length as an array (the lengths are fixed by the types).
+fn fixed_len<T, const K: usize>(v: Vec<T>) -> [T; K] {
+    v.try_into()
+        .unwrap_or_else(|_| unreachable!("the prepared inputs keep their lengths"))
 }
 
 /// [`collide`] without validation: the dispatch to the generated kernels alone. With
@@ -93,81 +173,14 @@ where
     }
 }
 
-/// The checks of [`collide`], for any `n` (the reference uses them too).
+/// The checks of [`collide`], for any `n` (the reference uses them too). A quantity within
+/// [the rounding allowance](crate::allowance) of its bound passes.
 pub fn validate_parts<T: Scalar>(
     nu: &[T],
     balls: [&Ball<T>; 2],
     states: [(&[T], &[T]); 2],
 ) -> Result<(), InputError> {
-    let n = nu.len();
-    if n < 2 {
-        return Err(InputError::new(
-            Field::Dim,
-            format!("must be at least 2, got {n}"),
-        ));
-    }
-    if let Some(x) = nu.iter().find(|x| !x.is_finite()) {
-        return Err(InputError::new(
-            Field::Normal,
-            format!("must be finite, got {}", x.show()),
-        ));
-    }
-    let norm2 = nu.iter().fold(T::zero(), |s, x| s + x.clone() * x.clone());
-    if (norm2.clone() - T::one()).abs() > T::unit_tolerance() {
-        let how = if T::EXACT {
-            "exactly".to_string()
-        } else {
-            format!("| |nu|^2 - 1 | <= {}", T::unit_tolerance().show())
-        };
-        return Err(InputError::new(
-            Field::Normal,
-            format!(
-                "must be a unit vector ({how}), got |nu|^2 = {}",
-                norm2.show()
-            ),
-        ));
-    }
-    for (i, (ball, (spin, velocity))) in balls.iter().zip(states).enumerate() {
-        ball.validate(n).map_err(|e| e.at_body(i))?;
-        for (values, field) in [
-            (spin, BodyField::AngularVelocity),
-            (velocity, BodyField::Velocity),
-        ] {
-            if let Some(x) = values.iter().find(|x| !x.is_finite()) {
-                return Err(InputError::new(
-                    Field::Body(i, field),
-                    format!("must be finite, got {}", x.show()),
-                ));
-            }
-        }
-    }
-    let [b1, b2] = balls;
-    if b1.is_immovable() && b2.is_immovable() {
-        return Err(InputError::new(
-            Field::Bodies,
-            "both bodies are immovable (mass \"inf\"): at most one may be",
-        ));
-    }
-    if !b1.is_immovable() && !b2.is_immovable() && b1.gamma2.is_zero() && b2.gamma2.is_zero() {
-        return Err(InputError::new(
-            Field::Bodies,
-            "both bodies are point masses (lambda = 0): the no-slip map is undefined; at most one may be",
-        ));
-    }
-    let dn = (0..n).fold(T::zero(), |s, k| {
-        s + (states[1].1[k].clone() - states[0].1[k].clone()) * nu[k].clone()
-    });
-    if dn > T::zero() {
-        return Err(InputError::new(
-            Field::RelativeVelocity,
-            format!(
-                "the bodies are separating: (u_2 - u_1) . nu = {} > 0 (a collision needs them \
-                 approaching or grazing; nu points from body 1 to body 2)",
-                dn.show()
-            ),
-        ));
-    }
-    Ok(())
+    checked::prepare(nu, balls, states).map(|_| ())
 }
 
 /// The checks of [`collide`].
@@ -186,7 +199,7 @@ pub fn validate<T: Scalar, const N: usize, const S: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Exact, Inertia, Mass, State2};
+    use crate::{BodyField, Exact, Inertia, Mass, State2};
 
     fn q(n: i64, d: i64) -> Exact {
         Exact::from_ratio(n, d)
@@ -242,5 +255,48 @@ mod tests {
         let s = State2::from_scalar_spin(f64::NAN, [1.0, 0.0]);
         let e = collide(&[1.0, 0.0], [&b, &b], [&s, &State2::zero()]).unwrap_err();
         assert_eq!(e.field, Field::Body(0, BodyField::AngularVelocity));
+    }
+
+    fn f64_ball(mass: f64) -> Ball<f64> {
+        Ball::new(2, Mass::Finite(mass), 1.0, Inertia::Uniform).unwrap()
+    }
+
+    #[test]
+    fn a_normal_within_eight_eps_is_renormalised_and_no_further_one_accepted() {
+        let eps = f64::EPSILON;
+        let b = f64_ball(1.0);
+        let states = [
+            State2::from_scalar_spin(0.5, [1.0, 0.25]),
+            State2::from_scalar_spin(-1.0, [0.0, 0.0]),
+        ];
+        let [s1, s2] = [&states[0], &states[1]];
+        let unit = collide(&[1.0, 0.0], [&b, &b], [s1, s2]).unwrap();
+        // |nu|^2 = 1 + 8 eps and 1 - 8 eps (the ulp below 1 is eps/2): renormalised to the
+        // unit vector, so the same result.
+        for nu0 in [1.0 + 4.0 * eps, 1.0 - 8.0 * (eps / 2.0)] {
+            assert_eq!(collide(&[nu0, 0.0], [&b, &b], [s1, s2]).unwrap(), unit);
+        }
+        for nu0 in [1.0 + 5.0 * eps, 1.0 - 9.0 * (eps / 2.0)] {
+            let e = collide(&[nu0, 0.0], [&b, &b], [s1, s2]).unwrap_err();
+            assert_eq!(e.field, Field::Normal);
+        }
+    }
+
+    #[test]
+    fn grazing_within_eight_eps_loses_its_normal_velocity_and_no_further_one_is_accepted() {
+        let eps = f64::EPSILON;
+        // nu = e_0, u_1 = (1, 5), u_2 = (1 + 16 eps, -3): (u_2 - u_1) . nu = 16 eps against the
+        // scale |u_1,0| + |u_2,0| = 2 + 16 eps: inside 8 eps of it.
+        let (b1, b2) = (f64_ball(1.0), f64_ball(3.0));
+        let s1 = State2::from_scalar_spin(0.5, [1.0, 5.0]);
+        let graze = State2::from_scalar_spin(2.0, [1.0 + 16.0 * eps, -3.0]);
+        let [a1, a2] = collide(&[1.0, 0.0], [&b1, &b2], [&s1, &graze]).unwrap();
+        // Clamped to grazing: the kernel saw no normal relative velocity (none after), and
+        // the normal momentum m_1 u_1 + m_2 u_2 = 1 + 3 (1 + 16 eps) is kept exactly.
+        assert_eq!(a2.velocity[0] - a1.velocity[0], 0.0);
+        assert_eq!(a1.velocity[0] + 3.0 * a2.velocity[0], 4.0 + 48.0 * eps);
+        let away = State2::from_scalar_spin(2.0, [1.0 + 18.0 * eps, -3.0]);
+        let e = collide(&[1.0, 0.0], [&b1, &b2], [&s1, &away]).unwrap_err();
+        assert_eq!(e.field, Field::RelativeVelocity);
     }
 }

@@ -9,8 +9,10 @@
 //!
 //! - [`kernels`]: the generated, unrolled, branch-free kernels for n = 2..6 (`free`, both
 //!   bodies move; `fixed`, body 1 immovable), generic over [`Scalar`]: `f32`, `f64`, [`Exact`].
-//! - [`collide`]: validates the inputs (typed [`InputError`] naming the field) and runs the
-//!   kernel; [`collide_unchecked`] is the fast path.
+//! - [`collide`]: validates the inputs (typed [`InputError`] naming the field; bounds missed
+//!   by rounding are met by [the rounding allowance](allowance)) and runs the kernel with an
+//!   unbounded exponent ([`Wide`]), so that no intermediate overflows or underflows;
+//!   [`collide_unchecked`] is the fast path.
 //! - [`batch`]: the same kernels over blocked batches of contacts, vectorized, with the
 //!   instruction set chosen at run time and optional threads (feature `parallel`).
 //! - [`reference`](mod@reference): the map built from the definitions (impulse basis, Gram matrix,
@@ -27,8 +29,10 @@
 //! assert_eq!(after.velocity[1], 1.0); // the normal velocity flips
 //! ```
 
+pub mod allowance;
 mod ball;
 pub mod batch;
+mod checked;
 mod collide;
 mod error;
 pub mod kernels;
@@ -39,11 +43,15 @@ pub mod reference;
 mod scalar;
 pub mod sim;
 mod state;
+mod wide;
 
 pub use ball::{Ball, Inertia, Mass};
-pub use collide::{collide, collide_unchecked, collide_unchecked_fma, validate, validate_parts};
+pub use collide::{
+    collide, collide_general, collide_unchecked, collide_unchecked_fma, validate, validate_parts,
+};
 pub use error::{BodyField, Field, InputError};
 pub use kernels::{Generated, Kernel};
 pub use normal::stereographic_normal;
 pub use scalar::{Exact, RefArith, Scalar};
 pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};
+pub use wide::{Binary, Wide};

@@ -1,5 +1,7 @@
 //! The scalar types the generated kernels run on: `f32`, `f64` and exact rationals.
 
+use crate::allowance::ULPS;
+use crate::wide::Wide;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -65,16 +67,22 @@ pub trait Scalar:
     fn is_finite(&self) -> bool;
     /// The nearest `f64` (for reports and tolerances).
     fn to_f64(&self) -> f64;
-    /// Allowed `| |nu|^2 - 1 |` for a contact normal: 0 for exact arithmetic, `2e-12` for
-    /// `f64` (|nu| within 1e-12 of 1), `2e-6` for `f32` (about 16 ulps at 1).
-    fn unit_tolerance() -> Self;
     /// The value as written in messages: rationals as `p/q`, floats in Rust's shortest
     /// round-trip form (`1e-300`, not 300 digits).
     fn show(&self) -> String;
-    /// Relative slack on upper bounds that inputs may exceed by their own rounding (a shell
-    /// written as `R^2/n` in decimal): 0 exactly; `8 eps` in floats, the rounding of the
-    /// few operations between the input and the bound.
+    /// The factor of [the rounding allowance](crate::allowance): `ULPS eps` (`8 eps`) in
+    /// floats, 0 in exact arithmetic. A bound may be crossed by `rounding_slack() * s`, `s` the
+    /// scale of the quantity.
     fn rounding_slack() -> Self;
+
+    /// The arithmetic the checked entry points compute in: the same precision with an
+    /// unbounded exponent ([`crate::Wide`]) for floats, so that no intermediate quantity
+    /// overflows or underflows; the type itself for exact rationals.
+    type Unbounded: Scalar;
+    /// The value in [`Scalar::Unbounded`] (exact).
+    fn unbounded(&self) -> Self::Unbounded;
+    /// The nearest value of this type: `±inf` above its range, subnormal or zero below it.
+    fn from_unbounded(x: &Self::Unbounded) -> Self;
 
     /// `a b + c`, fused (one rounding) in floats: the FMA kernels' operation. Exact in
     /// rationals.
@@ -109,11 +117,15 @@ impl Scalar for f64 {
     fn to_f64(&self) -> f64 {
         *self
     }
-    fn unit_tolerance() -> Self {
-        2e-12
-    }
     fn rounding_slack() -> Self {
-        8.0 * f64::EPSILON
+        f64::from(ULPS) * f64::EPSILON
+    }
+    type Unbounded = Wide<f64>;
+    fn unbounded(&self) -> Wide<f64> {
+        Wide::from(*self)
+    }
+    fn from_unbounded(x: &Wide<f64>) -> Self {
+        x.round()
     }
     #[inline(always)]
     fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
@@ -141,11 +153,15 @@ impl Scalar for f32 {
     fn to_f64(&self) -> f64 {
         f64::from(*self)
     }
-    fn unit_tolerance() -> Self {
-        2e-6
-    }
     fn rounding_slack() -> Self {
-        8.0 * f32::EPSILON
+        ULPS as f32 * f32::EPSILON
+    }
+    type Unbounded = Wide<f32>;
+    fn unbounded(&self) -> Wide<f32> {
+        Wide::from(*self)
+    }
+    fn from_unbounded(x: &Wide<f32>) -> Self {
+        x.round()
     }
     #[inline(always)]
     fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
@@ -172,11 +188,15 @@ impl Scalar for Exact {
     fn to_f64(&self) -> f64 {
         ToPrimitive::to_f64(self).unwrap_or(f64::NAN)
     }
-    fn unit_tolerance() -> Self {
-        Self::zero()
-    }
     fn rounding_slack() -> Self {
         Self::zero()
+    }
+    type Unbounded = Exact;
+    fn unbounded(&self) -> Exact {
+        self.clone()
+    }
+    fn from_unbounded(x: &Exact) -> Self {
+        x.clone()
     }
     fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
         a * b + c
@@ -188,9 +208,9 @@ impl Scalar for Exact {
     }
 }
 
-/// `|x| <= bound * (1 + slack)`, for bounds that rounded inputs may overshoot.
-pub(crate) fn within_slack<T: Scalar>(x: &T, bound: &T) -> bool {
-    *x <= bound.clone() * (T::one() + T::rounding_slack())
+/// The rounding allowance of a quantity of scale `s`: `rounding_slack() |s|`.
+pub(crate) fn allowance<T: Scalar>(s: &T) -> T {
+    T::rounding_slack() * s.abs()
 }
 
 /// `2` in any scalar.
@@ -226,14 +246,13 @@ mod tests {
     }
 
     #[test]
-    fn slack_accepts_rounded_bounds_only() {
-        let shell = 2.0 / 3.0;
-        assert!(within_slack(&(shell * (1.0 + 2.0 * f64::EPSILON)), &shell));
-        assert!(!within_slack(&(shell * (1.0 + 1e-9)), &shell));
-        let third = Exact::from_ratio(1, 3);
-        assert!(!within_slack(
-            &(third.clone() + Exact::from_ratio(1, 10_i64.pow(18))),
-            &third
-        ));
+    fn the_allowance_is_eight_ulps_in_floats_and_nothing_exactly() {
+        assert_eq!(allowance(&-2.0f64), 16.0 * f64::EPSILON);
+        assert_eq!(allowance(&1.0f32), 8.0 * f32::EPSILON);
+        assert_eq!(allowance(&Exact::from_ratio(1, 3)), Exact::zero());
+        assert_eq!(
+            <Wide<f64> as Scalar>::rounding_slack().round(),
+            f64::rounding_slack()
+        );
     }
 }

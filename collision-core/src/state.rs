@@ -1,8 +1,10 @@
 //! A body's velocity state: angular velocity `U` in so(n), stored as its independent entries,
 //! and centre velocity `u` in R^n.
 
+use crate::allowance;
 use crate::error::{BodyField, Field, InputError};
-use crate::scalar::{two, Scalar};
+use crate::scalar::{allowance, two, Scalar};
+use num_traits::{Signed, Zero};
 
 /// Angular velocity `U` (skew, `n(n-1)/2` entries `U_ij`, `i < j`, in the order
 /// `(0,1), (0,2), .., (0,n-1), (1,2), ..`) and centre velocity `u`. `S = N(N-1)/2`.
@@ -26,16 +28,16 @@ pub fn skew_pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
 }
 
 /// The compact entries `U_ij`, `i < j`, of a full `n x n` angular velocity matrix (rows of
-/// any slice type), which must be skew: exactly in exact arithmetic; in floats
-/// `|U_ij + U_ji| <= tol max|U|` with `tol` = [`Scalar::unit_tolerance`] / 2 (the skew part
-/// `(U - U^T)/2` is kept). Errors name `angular_velocity` of body `body` (0-based).
+/// any slice type), which must be skew under [the rounding allowance](crate::allowance):
+/// `|U_ij + U_ji|` and `|U_ii|` at most `rounding_slack() max|U|` (so exactly skew in exact
+/// arithmetic); the skew part `(U_ij - U_ji)/2` is kept. Errors name `angular_velocity` of body
+/// `body` (0-based).
 pub fn skew_entries<T: Scalar, R: AsRef<[T]>>(
     body: usize,
     matrix: &[R],
 ) -> Result<Vec<T>, InputError> {
     let n = matrix.len();
     let field = Field::Body(body, BodyField::AngularVelocity);
-    let at = |i: usize, j: usize| &matrix[i].as_ref()[j];
     if let Some(i) = (0..n).find(|&i| matrix[i].as_ref().len() != n) {
         return Err(InputError::new(
             field,
@@ -45,27 +47,35 @@ pub fn skew_entries<T: Scalar, R: AsRef<[T]>>(
             ),
         ));
     }
+    // In the unbounded type: U_ij + U_ji and U_ij - U_ji do not overflow.
+    let at = |i: usize, j: usize| matrix[i].as_ref()[j].unbounded();
     let scale = matrix
         .iter()
         .flat_map(|r| r.as_ref())
-        .fold(T::zero(), |m, x| if x.abs() > m { x.abs() } else { m });
-    let tol = scale * T::unit_tolerance() / two::<T>();
-    if let Some(i) = (0..n).find(|&i| at(i, i).abs() > tol) {
+        .fold(T::Unbounded::zero(), |m, x| {
+            if x.unbounded().abs() > m {
+                x.unbounded().abs()
+            } else {
+                m
+            }
+        });
+    let zero = T::Unbounded::zero();
+    let tol = allowance(&scale);
+    let skew = |x: T::Unbounded| allowance::within(&x, &zero, &zero, &tol).is_some();
+    if let Some(i) = (0..n).find(|&i| !skew(at(i, i))) {
         return Err(InputError::new(
             field,
             format!("not skew: diagonal entry ({i},{i}) is not 0"),
         ));
     }
-    if let Some((i, j)) =
-        skew_pairs(n).find(|&(i, j)| (at(i, j).clone() + at(j, i).clone()).abs() > tol)
-    {
+    if let Some((i, j)) = skew_pairs(n).find(|&(i, j)| !skew(at(i, j) + at(j, i))) {
         return Err(InputError::new(
             field,
             format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
         ));
     }
     Ok(skew_pairs(n)
-        .map(|(i, j)| (at(i, j).clone() - at(j, i).clone()) / two::<T>())
+        .map(|(i, j)| T::from_unbounded(&((at(i, j) - at(j, i)) / two::<T::Unbounded>())))
         .collect())
 }
 
@@ -78,9 +88,9 @@ impl<T: Scalar, const N: usize, const S: usize> BodyState<T, N, S> {
         }
     }
 
-    /// From the full `n x n` angular velocity matrix (row by row), which must be skew:
-    /// exactly in exact arithmetic; in floats `|U_ij + U_ji| <= 1e-12 max|U|` (the skew part
-    /// `(U - U^T)/2` is kept). Errors name `angular_velocity` of body `body` (0-based).
+    /// From the full `n x n` angular velocity matrix (row by row), which must be skew as
+    /// [`skew_entries`] says (the skew part `(U - U^T)/2` is kept). Errors name
+    /// `angular_velocity` of body `body` (0-based).
     pub fn from_matrix(
         body: usize,
         matrix: &[[T; N]; N],
@@ -182,5 +192,31 @@ mod tests {
         );
         let diag = [[q(1, 10), q(0, 1)], [q(0, 1), q(0, 1)]];
         assert!(State2::from_matrix(0, &diag, [q(0, 1), q(0, 1)]).is_err());
+    }
+
+    #[test]
+    fn skew_takes_eight_eps_of_max_u_and_no_more() {
+        let eps = f64::EPSILON;
+        // U_01 + U_10 = 8 eps (1 + 8 eps) <= 8 eps max|U|: the skew part is kept.
+        let edge = [[0.0, 1.0 + 8.0 * eps], [-1.0, 0.0]];
+        let s = State2::<f64>::from_matrix(0, &edge, [0.0; 2]).unwrap();
+        assert_eq!(s.spin, [1.0 + 4.0 * eps]);
+        let beyond = [[0.0, 1.0 + 10.0 * eps], [-1.0, 0.0]];
+        assert!(State2::<f64>::from_matrix(0, &beyond, [0.0; 2]).is_err());
+        let diagonal = [[8.0 * eps, 1.0], [-1.0, 0.0]];
+        assert_eq!(
+            State2::<f64>::from_matrix(0, &diagonal, [0.0; 2])
+                .unwrap()
+                .spin,
+            [1.0]
+        );
+        let diagonal = [[9.0 * eps, 1.0], [-1.0, 0.0]];
+        assert!(State2::<f64>::from_matrix(0, &diagonal, [0.0; 2]).is_err());
+        // Entries near the largest f64: the sum and the skew part do not overflow.
+        let big = [[0.0, f64::MAX], [-f64::MAX, 0.0]];
+        assert_eq!(
+            State2::<f64>::from_matrix(0, &big, [0.0; 2]).unwrap().spin,
+            [f64::MAX]
+        );
     }
 }

@@ -3,8 +3,12 @@
 //! The expected outputs are derived by hand from the closed form of MATH.md (derivations in
 //! the comments), not copied from the program.
 
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::Signed;
 use serde_json::{json, Value};
 use std::io::Write;
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// `(exit code, stdout, stderr)` of `noslip <args>` with `stdin` as input.
@@ -127,6 +131,15 @@ fn leaves(v: &Value, out: &mut Vec<f64>) {
         Value::Array(xs) => xs.iter().for_each(|x| leaves(x, out)),
         Value::Object(m) => m.values().for_each(|x| leaves(x, out)),
         x => out.push(f64_of(x)),
+    }
+}
+
+/// The numbers of an exact output, in order.
+fn exact_leaves(v: &Value, out: &mut Vec<BigRational>) {
+    match v {
+        Value::Array(xs) => xs.iter().for_each(|x| exact_leaves(x, out)),
+        Value::Object(m) => m.values().for_each(|x| exact_leaves(x, out)),
+        x => out.push(rational(x)),
     }
 }
 
@@ -436,7 +449,7 @@ fn every_kind_of_bad_input_has_its_message() {
         (exact, with(&["bodies", "0", "angular_velocity", "1", "0"], json!("1")), b0("angular_velocity"), "not skew: entries (0,1) and (1,0) are not opposite"),
         (float, with(&["bodies", "0", "angular_velocity", "2", "2"], json!(0.1)), b0("angular_velocity"), "not skew: diagonal entry (2,2)"),
         (exact, with(&["normal", "1"], json!("0.6000001")), "normal".into(), "must be a unit vector (exactly), got |nu|^2 = "),
-        (float, with(&["normal"], json!([0, 1, 1])), "normal".into(), "must be a unit vector (| |nu|^2 - 1 | <= 2e-12), got |nu|^2 = 2.0"),
+        (float, with(&["normal"], json!([0, 1, 1])), "normal".into(), "must be a unit vector (| |nu|^2 - 1 | <= 8 eps |nu|^2 = 3.552713678800501e-15, the rounding allowance), got |nu|^2 = 2.0"),
         (exact, with(&["bodies", "0", "mass"], json!("inf")), "bodies".into(), "both bodies are immovable"),
         (exact, with(&["bodies", "1", "velocity", "2"], json!("1")), "bodies[*].velocity".into(), "separating: (u_2 - u_1) . nu = 2/5 > 0"),
         (float, with(&["bodies", "1", "velocity", "2"], json!("1")), "bodies[*].velocity".into(), "separating: (u_2 - u_1) . nu = 0.4"),
@@ -570,6 +583,11 @@ fn help_describes_schema_numbers_modes_and_exit_codes() {
         "1e-3",
         "round-trip",
         "reference",
+        "rounding allowance",
+        "8 eps (eps = 2^-52)",
+        "unbounded exponent",
+        "digits (a decimal's mantissa",
+        "given twice",
         "Exit codes",
         "2  bad input",
     ] {
@@ -578,4 +596,350 @@ fn help_describes_schema_numbers_modes_and_exit_codes() {
     // Usage errors are clap's, also exit code 2.
     let (code, _, _) = noslip(&["collide", "--bogus"], "");
     assert_eq!(code, 2);
+}
+
+/// The case of issue 11: a thin shell, R = 5, with lambda = 25/3 computed in f64.
+fn thin_shell(inertia: Value) -> String {
+    let mut case = json!({"dim": 3, "normal": [0, 0, 1], "bodies": [
+        {"mass": 2, "radius": 5, "angular_velocity": [1, 0, 0], "velocity": [0, 1, 1]},
+        {"mass": 1, "radius": 1, "angular_velocity": [0, 0, 0], "velocity": [0, 0, 0]}]});
+    let (key, value) = inertia.as_object().unwrap().iter().next().unwrap();
+    case["bodies"][0][key] = value.clone();
+    case.to_string()
+}
+
+#[test]
+fn a_thin_shell_written_in_floating_point_is_the_shell() {
+    // 25/3 in f64 is 8.333333333333334; 2 lambda / R^2 then rounds one ulp above 2/3. Within
+    // the rounding allowance it is clamped: the same answer as the shell itself.
+    let shell = collide(&["collide"], &thin_shell(json!({"distribution": "shell"})));
+    let lambda = collide(&["collide"], &thin_shell(json!({"lambda": 25.0 / 3.0})));
+    assert_eq!(lambda, shell);
+    assert_eq!(
+        collide(
+            &["collide"],
+            &thin_shell(json!({"gamma2": 0.6666666666666667}))
+        ),
+        shell
+    );
+    // In 4D with R = 1 the bound R^2/n = 1/4 has ulps of eps/4: 8 ulps above it is the edge
+    // of the allowance (8 eps of 1/4), 9 ulps beyond.
+    let up = |k: u64| f64::from_bits(0.25f64.to_bits() + k);
+    let four_d = |lambda: f64| {
+        json!({"dim": 4, "normal": [0, 0, 0, 1], "bodies": [
+            {"mass": 1, "radius": 1, "lambda": lambda,
+             "angular_velocity": [[0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]],
+             "velocity": [0, 0, 0, 1]},
+            {"mass": "inf", "radius": 1,
+             "angular_velocity": [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]],
+             "velocity": [0, 0, 0, 0]}]})
+        .to_string()
+    };
+    assert_eq!(
+        collide(&["collide"], &four_d(up(8))),
+        collide(&["collide"], &four_d(0.25))
+    );
+    reject(
+        &["collide"],
+        &four_d(up(9)),
+        0,
+        "bodies[0].lambda",
+        "must be in [0, R^2/n]",
+    );
+    // Exact arithmetic takes no allowance: the decimal is above 25/3 and refused.
+    reject(
+        &["collide", "--exact"],
+        &thin_shell(json!({"lambda": "8.333333333333334"})),
+        0,
+        "bodies[0].lambda",
+        "must be in [0, R^2/n] = [0, 25/3]",
+    );
+}
+
+#[test]
+fn keys_given_twice_are_refused_naming_the_key() {
+    let case = example("1/2").to_string();
+    let twice = case.replacen("\"mass\":\"2\"", "\"mass\":\"2\",\"mass\":\"3\"", 1);
+    assert_ne!(twice, case);
+    for args in [&["collide"][..], &["collide", "--exact"][..]] {
+        reject(args, &twice, 0, "bodies[0].mass", "repeated key");
+        reject(
+            args,
+            &format!("[{case}, {twice}]"),
+            1,
+            "bodies[0].mass",
+            "repeated key",
+        );
+    }
+    reject(
+        &["collide"],
+        &case.replacen("{", "{\"dim\":3,", 1),
+        0,
+        "dim",
+        "repeated key",
+    );
+}
+
+#[test]
+fn numbers_have_at_most_100_digits() {
+    // One number of 10^5 digits took 24 s in --exact and longer in f64 (issue 16).
+    let long_decimal = format!("1.{}", "0".repeat(100_000));
+    let long_ratio = format!("1/{}", "7".repeat(100_000));
+    for args in [&["collide"][..], &["collide", "--exact"][..]] {
+        for text in [&long_decimal, &long_ratio] {
+            let input = with(&["bodies", "0", "mass"], json!(text));
+            reject(
+                args,
+                &input,
+                0,
+                "bodies[0].mass",
+                "digits: at most 100 are accepted",
+            );
+        }
+    }
+    let fits = format!("1/{}", "7".repeat(99));
+    collide(
+        &["collide", "--exact"],
+        &with(&["bodies", "0", "mass"], json!(fits)),
+    );
+}
+
+/// Two disks: body 1 at rest, body 2 hitting it along e_0 with a tangential slip.
+fn disks(r1: &str, r2: &str, m: &str, u2: [&str; 2], spin2: &str) -> String {
+    json!({"dim": 2, "normal": [1, 0], "bodies": [
+        {"mass": m, "radius": r1, "angular_velocity": 0, "velocity": [0, 0]},
+        {"mass": m, "radius": r2, "angular_velocity": spin2, "velocity": u2}]})
+    .to_string()
+}
+
+#[test]
+fn extreme_magnitudes_are_computed_or_refused_naming_the_input_at_fault() {
+    // Issue 16: R_2 = 8e307 with O(1) everything else. The f64 kernel's R_2 D overflowed
+    // and body 2's spin came back unchanged; now it agrees with --exact to rounding.
+    let case = disks("1", "8e307", "1/2", ["-2", "1/2"], "1/8");
+    let float = collide(&["collide"], &case);
+    let exact = collide(&["collide", "--exact"], &case);
+    let (mut got, mut want) = (vec![], vec![]);
+    leaves(&float, &mut got);
+    exact_leaves(&exact, &mut want);
+    assert_eq!(got.len(), want.len());
+    let eps8 = BigRational::new(1.into(), BigInt::from(1u64 << 49));
+    for (g, w) in got.iter().zip(&want) {
+        // Each component to 8 eps of itself (no cancellation in this case), exactly.
+        let g = BigRational::from_float(*g).unwrap();
+        assert!((&g - w).abs() <= &eps8 * w.abs(), "{g} vs {w}");
+    }
+    assert_ne!(float["bodies"][1]["angular_velocity"], json!(0.125));
+    // An answer beyond f64: body 1's spin ~ slip / R_1 = 1e10 / 1e-300. The error names the
+    // radius at fault, not the output where the overflow landed.
+    reject(
+        &["collide"],
+        &disks("1e-300", "1", "1", ["-1", "1e10"], "0"),
+        0,
+        "bodies[0].radius",
+        "the results bodies[0].angular_velocity overflow f64",
+    );
+    // --exact computes it.
+    collide(
+        &["collide", "--exact"],
+        &disks("1e-300", "1", "1", ["-1", "1e10"], "0"),
+    );
+}
+
+/// `noslip collide FILE` run by `sh` with `redirect` applied to its stdout.
+#[cfg(target_os = "linux")]
+fn with_stdout(redirect: &str) -> (i32, String) {
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_collide_stdout.json");
+    std::fs::write(&path, example("1/2").to_string()).unwrap();
+    let out = Command::new("sh")
+        .arg("-c")
+        .arg(format!("exec \"$0\" collide \"$1\" {redirect}"))
+        .arg(env!("CARGO_BIN_EXE_noslip"))
+        .arg(&path)
+        .output()
+        .expect("run sh");
+    (
+        out.status.code().expect("an exit code"),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_answer_that_cannot_be_written_is_exit_1_with_a_message() {
+    // Issue 16: with stdout closed the answer went nowhere and the exit code was 0.
+    let (code, err) = with_stdout(">&-");
+    assert_eq!(code, 1, "{err}");
+    assert_eq!(
+        err.trim_end(),
+        "error: cannot write the output: stdout is closed"
+    );
+    let (code, err) = with_stdout("> /dev/full");
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.starts_with("error: cannot write the output: No space left on device"),
+        "{err}"
+    );
+    // Discarding the answer on purpose is not an error.
+    assert_eq!(with_stdout("> /dev/null"), (0, String::new()));
+}
+
+#[test]
+fn a_broken_pipe_is_exit_1_not_a_panic() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_noslip"))
+        .arg("collide")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run noslip");
+    // The reader goes away before the command writes (it is still waiting for its input).
+    drop(child.stdout.take());
+    let mut stdin = child.stdin.take().unwrap();
+    stdin
+        .write_all(example("1/2").to_string().as_bytes())
+        .unwrap();
+    drop(stdin);
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with("error: cannot write the output: Broken pipe"),
+        "{err}"
+    );
+}
+
+/// An exact rational from the case's text (`"3/5"`, `"2"`).
+fn rational(v: &Value) -> BigRational {
+    let s = v.as_str().expect("the example writes numbers as strings");
+    let (p, q) = s.split_once('/').unwrap_or((s, "1"));
+    BigRational::new(p.parse::<BigInt>().unwrap(), q.parse::<BigInt>().unwrap())
+}
+
+/// MATH.md's closed form, in exact rationals, for a case in the matrix form: inverse masses
+/// `w_i` (0 for "inf"), `k_i = w_i R_i^2 / (2 lambda_i)`,
+/// `c = R_1 U_1 nu + R_2 U_2 nu`, `dn = (u_2 - u_1) . nu`, `t = u_2 - u_1 - dn nu - c`,
+/// `P = dn/(w_1 + w_2) nu + t/(w_1 + w_2 + k_1 + k_2)`, `u_1+ = u_1 + 2 w_1 P`,
+/// `u_2+ = u_2 - 2 w_2 P`, `U_i+ = U_i + (2 k_i / R_i) nu ^ P` with
+/// `(nu ^ P)_ij = P_i nu_j - nu_i P_j`. Per body: the matrix `U+` and `u+`.
+fn closed_form(case: &Value) -> [(Vec<Vec<BigRational>>, Vec<BigRational>); 2] {
+    let n = case["dim"].as_u64().unwrap() as usize;
+    let q = |i: i64| BigRational::from_integer(i.into());
+    let nu: Vec<BigRational> = (0..n).map(|k| rational(&case["normal"][k])).collect();
+    let body = |b: usize| {
+        let v = &case["bodies"][b];
+        let radius = rational(&v["radius"]);
+        let w = match v["mass"].as_str() {
+            Some("inf") => q(0),
+            _ => q(1) / rational(&v["mass"]),
+        };
+        let lambda = if v.get("lambda").is_some() {
+            rational(&v["lambda"])
+        } else {
+            rational(&v["gamma2"]) * &radius * &radius / q(2)
+        };
+        let k = &w * &radius * &radius / (q(2) * lambda);
+        let u: Vec<BigRational> = (0..n).map(|i| rational(&v["velocity"][i])).collect();
+        let spin: Vec<Vec<BigRational>> = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| rational(&v["angular_velocity"][i][j]))
+                    .collect()
+            })
+            .collect();
+        (w, k, radius, spin, u)
+    };
+    let [(w1, k1, r1, s1, u1), (w2, k2, r2, s2, u2)] = [body(0), body(1)];
+    let times = |m: &Vec<Vec<BigRational>>, x: &[BigRational]| -> Vec<BigRational> {
+        (0..n)
+            .map(|i| (0..n).map(|j| &m[i][j] * &x[j]).sum())
+            .collect()
+    };
+    let (a, b) = (times(&s1, &nu), times(&s2, &nu));
+    let c: Vec<BigRational> = (0..n).map(|i| &r1 * &a[i] + &r2 * &b[i]).collect();
+    let dn: BigRational = (0..n).map(|i| (&u2[i] - &u1[i]) * &nu[i]).sum();
+    let t: Vec<BigRational> = (0..n)
+        .map(|i| &u2[i] - &u1[i] - &dn * &nu[i] - &c[i])
+        .collect();
+    let p: Vec<BigRational> = (0..n)
+        .map(|i| &dn / (&w1 + &w2) * &nu[i] + &t[i] / (&w1 + &w2 + &k1 + &k2))
+        .collect();
+    let wedge = |i: usize, j: usize| &p[i] * &nu[j] - &nu[i] * &p[j];
+    let after = |spin: &Vec<Vec<BigRational>>,
+                 u: &[BigRational],
+                 w: &BigRational,
+                 k: &BigRational,
+                 r: &BigRational,
+                 sign: i64| {
+        let spin = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| &spin[i][j] + q(2) * k / r * wedge(i, j))
+                    .collect()
+            })
+            .collect();
+        let u = (0..n).map(|i| &u[i] + q(2 * sign) * w * &p[i]).collect();
+        (spin, u)
+    };
+    [
+        after(&s1, &u1, &w1, &k1, &r1, 1),
+        after(&s2, &u2, &w2, &k2, &r2, -1),
+    ]
+}
+
+#[test]
+fn the_readmes_collide_command_runs_as_written() {
+    // The command of README's `noslip collide` section, from the repository root.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let section = readme
+        .split("## `noslip collide`")
+        .nth(1)
+        .expect("the section");
+    let line = section
+        .lines()
+        .find(|l| l.starts_with("cargo run"))
+        .expect("the command");
+    let command = line.split('#').next().unwrap();
+    let args: Vec<&str> = command
+        .split_once(" -- ")
+        .expect("cargo run ... -- ARGS")
+        .1
+        .split_whitespace()
+        .collect();
+    assert_eq!(args[0], "collide", "{line}");
+    let out = Command::new(env!("CARGO_BIN_EXE_noslip"))
+        .args(&args)
+        .current_dir(&root)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{line}: {err}");
+    let got: Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The file is the README's JSON, and the answer MATH.md's closed form on it.
+    let file = args
+        .iter()
+        .find(|a| a.ends_with(".json"))
+        .expect("a file argument");
+    let text = std::fs::read_to_string(root.join(file)).unwrap();
+    assert!(
+        section.contains(text.trim()),
+        "{file} is not the README's case"
+    );
+    let case: Value = serde_json::from_str(&text).unwrap();
+    for (b, (spin, u)) in closed_form(&case).iter().enumerate() {
+        let body = &got["bodies"][b];
+        for (i, row) in spin.iter().enumerate() {
+            for (j, x) in row.iter().enumerate() {
+                assert_eq!(
+                    rational(&body["angular_velocity"][i][j]),
+                    *x,
+                    "body {b} U[{i}][{j}]"
+                );
+            }
+        }
+        for (i, x) in u.iter().enumerate() {
+            assert_eq!(rational(&body["velocity"][i]), *x, "body {b} u[{i}]");
+        }
+    }
 }

@@ -12,7 +12,7 @@ mod pairs;
 pub mod raw;
 mod validate;
 
-pub use number::{parse_exact, Number};
+pub use number::{parse_exact, Number, MAX_DIGITS};
 pub use pairs::{PairSet, WallSide};
 pub use raw::{Boundary, Distribution};
 

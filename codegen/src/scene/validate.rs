@@ -4,6 +4,7 @@ use super::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
 use super::{
     BallSpec, Boundary, Number, Obstacle, Random, Scene, SceneError, Simulation, Species, MAX_BALLS,
 };
+use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
@@ -46,7 +47,11 @@ fn q(n: i64) -> Q {
 
 /// `gamma^2` from the species' inertia keys: `lambda` in `[0, R^2/n]` (`gamma^2 = 2 lambda /
 /// R^2`), `gamma2` in `[0, 2/n]`, `distribution` uniform (`2/(n+2)`) or shell (`2/n`); none
-/// means uniform. The bounds are those of `collision_core::Ball::new`, checked exactly.
+/// means uniform. The bounds are those of `collision_core::Ball::new`, under the same rounding
+/// allowance (`collision_core::allowance`) with the epsilon of `f64`, the arithmetic scenes
+/// run in: a value within `8 eps` of its range (relative to the bound) is clamped to it
+/// exactly, so an `f64` printed in full (`lambda = "8.333333333333334"` for `R = 5` in 3D)
+/// is the shell `25/3` it stands for.
 fn gamma2(ctx: &Ctx, at: &str, s: &RawSpecies, radius: &Q, n: usize) -> Result<Q, SceneError> {
     let nq = q(n as i64);
     let shell = q(2) / &nq;
@@ -59,29 +64,35 @@ fn gamma2(ctx: &Ctx, at: &str, s: &RawSpecies, radius: &Q, n: usize) -> Result<Q
         return Err(ctx.err(at, "give at most one of lambda, gamma2 and distribution"));
     }
     let in_range = |x: &Q, bound: &Q, key: &str, what: &str| {
-        if x.is_negative() || x > bound {
-            Err(ctx.err(
+        allowance::within(x, &Q::zero(), bound, &f64_allowance(bound)).ok_or_else(|| {
+            ctx.err(
                 format!("{at}.{key}"),
                 format!("must be in [0, {what}] = [0, {bound}], got {x}"),
-            ))
-        } else {
-            Ok(())
-        }
+            )
+        })
     };
     Ok(match (&s.lambda, &s.gamma2, s.distribution) {
         (Some(l), _, _) => {
             let r2 = radius * radius;
-            in_range(&l.0, &(&r2 / &nq), "lambda", "R^2/n")?;
-            q(2) * &l.0 / r2
+            let l = in_range(&l.0, &(&r2 / &nq), "lambda", "R^2/n")?;
+            q(2) * l / r2
         }
-        (_, Some(g), _) => {
-            in_range(&g.0, &shell, "gamma2", "2/n")?;
-            g.0.clone()
-        }
+        (_, Some(g), _) => in_range(&g.0, &shell, "gamma2", "2/n")?,
         (_, _, Some(Distribution::Shell)) => shell,
         _ => q(2) / (nq + q(2)),
     })
 }
+
+/// The rounding allowance of `f64` at scale `s`: `ULPS 2^-52 |s|`.
+fn f64_allowance(s: &Q) -> Q {
+    let eps = Q::new(BigInt::one(), BigInt::one() << 52);
+    Q::from_integer(allowance::ULPS.into()) * eps * s.abs()
+}
+
+/// The rule of collision-core's checked `collide`, compiled here from its one source file
+/// (collision-core builds with this crate, so this crate cannot depend on it).
+#[path = "../../../collision-core/src/allowance.rs"]
+mod allowance;
 
 fn spin(ctx: &Ctx, at: &str, s: &Option<RawSpin>, n: usize) -> Result<Vec<Q>, SceneError> {
     let len = n * (n - 1) / 2;

@@ -1,10 +1,10 @@
 //! `noslip collide [--exact] [FILE]`: JSON cases in, post-collision states out.
 
 use noslip_verify::json::case::MAX_DIM;
-use noslip_verify::json::number::MAX_EXACT_EXPONENT;
+use noslip_verify::json::number::{MAX_DIGITS, MAX_EXACT_EXPONENT};
 use noslip_verify::json::{collide_json, Mode};
 use std::io::{Read, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const ABOUT: &str = "Collide two balls in contact: JSON cases in, post-collision states out";
@@ -45,25 +45,42 @@ Input (one case; body 1 of the formulas is bodies[0], body 2 is bodies[1]):
                     J = [[0,-1],[1,0]]); in 3D also a 3-vector omega (U x = omega x x).
                     The output uses the same form, per body.
     velocity        u, the centre velocity: n numbers
-  Unknown keys are errors. The bodies must approach or graze: (u_2 - u_1) . nu <= 0. At
-  most one body may be immovable, and at most one movable body a point mass (lambda = 0).
+  Unknown keys and keys given twice are errors. The bodies must approach or graze:
+  (u_2 - u_1) . nu <= 0. At most one body may be immovable, and at most one movable body a
+  point mass (lambda = 0).
 
 Numbers:
   A JSON number, or a string holding a decimal (\"0.1\", \"1e-3\", \"-2.5E+3\") or a rational
   (\"3/5\", \"-7/2\"). The text is read as written: a JSON number 0.1 is also 1/10. NaN and
-  infinities are rejected; \"inf\" is allowed for mass only.
+  infinities are rejected; \"inf\" is allowed for mass only. A number has at most
+  {MAX_DIGITS} digits (a decimal's mantissa, or a rational's numerator and denominator
+  together): at that size a 6D case takes 0.7 s in --exact.
 
 Modes:
   (default)  f64. Each number is rounded once to the nearest f64 (a rational as the exact
-             quotient, rounded). nu must be unit within | |nu|^2 - 1 | <= 2e-12, U skew
-             within 1e-12 max|U| (its skew part is used); lambda and gamma2 may exceed
-             their bound by 8 ulps (a shell written in decimal). Numbers beyond the f64
-             range are errors. Output: JSON numbers in Rust's shortest round-trip form,
-             integers with a trailing .0 (2.0, -0.0, 0.1, 1e-300, 1.5e+300); reading
-             them back as f64 gives the computed values exactly.
-  --exact    Exact rationals: no rounding anywhere. nu must be exactly unit (use rationals
-             such as 3/5, 4/5) and U exactly skew; decimal exponents are limited to
-             |e| <= {MAX_EXACT_EXPONENT}. Output: reduced rationals as strings (\"-3/5\", \"2\").
+             quotient, rounded); numbers beyond the f64 range are errors.
+             The rounding allowance: a quantity that misses its bound by rounding, by at
+             most 8 eps (eps = 2^-52) of its scale, is accepted and clamped to the bound:
+               lambda in [0, R^2/n]   scale R^2/n   set to the bound
+               gamma2 in [0, 2/n]     scale 2/n     set to the bound (also 2 lambda/R^2)
+               |nu|^2 = 1             scale |nu|^2  nu renormalised
+               U skew                 scale max|U|  its skew part (U - U^T)/2 used
+               (u_2 - u_1) . nu <= 0  scale sum_k |nu_k| (|u_1k| + |u_2k|)
+                                      grazing: the normal part of u_2 - u_1 removed,
+                                      momentum kept
+             Beyond the allowance these are errors.
+             The kernel computes with an unbounded exponent: no intermediate quantity
+             overflows or underflows, so any magnitudes (1e-300 .. 1e300 in any field)
+             give the f64 kernel's accuracy. A case whose answer does not fit f64 (a
+             component beyond 1.8e308, or a body's whole answer below the normal range,
+             2.2e-308) is an error naming the inputs that drive it; --exact computes it.
+             Output: JSON numbers in Rust's shortest round-trip form, integers with a
+             trailing .0 (2.0, -0.0, 0.1, 1e-300, 1.5e+300); reading them back as f64
+             gives the computed values exactly.
+  --exact    Exact rationals: no rounding and no allowance anywhere. nu must be exactly
+             unit (use rationals such as 3/5, 4/5) and U exactly skew; decimal exponents
+             are limited to |e| <= {MAX_EXACT_EXPONENT}. Output: reduced rationals as strings
+             (\"-3/5\", \"2\").
 
 Output (one line per input):
   {{\"bodies\": [{{\"angular_velocity\": [[..], ..], \"velocity\": [..]}}, {{..}}]}}
@@ -72,7 +89,9 @@ Dimensions:
   2..=6      the generated kernels (the same generic code in f64 and in --exact)
   7..={MAX_DIM}     the general-n reference (the reflection built from its definition: an
              impulse basis, a Gram matrix and a linear solve); slower, and it needs
-             lambda > 0 for each movable body
+             lambda > 0 for each movable body. In --exact its cost grows fast with n
+             and with the size of the numbers: at n = 16, 4 s with 17-digit rationals,
+             34 s with 50 digits, 75 s with exponents near 1000
 
 {}",
         super::EXIT_CODES
@@ -105,9 +124,48 @@ fn read_input(file: Option<&PathBuf>) -> Result<String, String> {
 }
 
 fn fail(code: u8, message: &str) -> ExitCode {
-    // A message is one line; a path with a line break must not break that.
-    eprintln!("error: {}", message.replace(['\n', '\r'], " "));
+    // A message is one line; a path with a line break must not break that. A failure to
+    // write it (stderr a broken pipe) leaves the exit code to say it.
+    let _ = writeln!(
+        std::io::stderr(),
+        "error: {}",
+        message.replace(['\n', '\r'], " ")
+    );
     ExitCode::from(code)
+}
+
+/// Whether stdout was closed when the program started (`noslip collide case.json >&-`). The
+/// Rust runtime puts `/dev/null`, opened read-write, in place of a closed standard
+/// descriptor, so writes would succeed and the answer be lost; a `> /dev/null` of the shell
+/// opens it write-only. Linux only (it reads `/proc/self`); elsewhere `false`.
+fn stdout_was_closed() -> bool {
+    if !cfg!(target_os = "linux") {
+        return false;
+    }
+    let null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|p| p == Path::new("/dev/null"));
+    let read_write = std::fs::read_to_string("/proc/self/fdinfo/1")
+        .ok()
+        .and_then(|info| {
+            let flags = info.lines().find_map(|l| l.strip_prefix("flags:"))?;
+            u32::from_str_radix(flags.trim(), 8).ok()
+        })
+        .is_some_and(|flags| flags & 0o3 == 0o2);
+    null && read_write
+}
+
+/// Write the answer and a newline to stdout, all of it, or say why not (a closed stdout, a
+/// broken pipe, a full disk).
+fn write_answer(answer: &str) -> std::io::Result<()> {
+    if stdout_was_closed() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::BrokenPipe,
+            "stdout is closed",
+        ));
+    }
+    let mut stdout = std::io::stdout().lock();
+    stdout.write_all(answer.as_bytes())?;
+    stdout.write_all(b"\n")?;
+    stdout.flush()
 }
 
 pub fn run(args: &Args) -> ExitCode {
@@ -116,12 +174,11 @@ pub fn run(args: &Args) -> ExitCode {
         Err(m) => return fail(2, &m),
     };
     let mode = if args.exact { Mode::Exact } else { Mode::Float };
-    let output = match collide_json(&input, mode) {
+    let answer = match collide_json(&input, mode) {
         Ok(out) => out,
         Err(e) => return fail(2, &e.to_string()),
     };
-    let mut stdout = std::io::stdout().lock();
-    match writeln!(stdout, "{output}").and_then(|()| stdout.flush()) {
+    match write_answer(&answer) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => fail(1, &format!("cannot write the output: {e}")),
     }

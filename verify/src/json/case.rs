@@ -70,7 +70,8 @@ pub struct Case<T> {
     pub bodies: [BodyInput<T>; 2],
 }
 
-fn join(path: &str, key: &str) -> String {
+/// `path.key`, the key quoted unless it is plain (letters, digits, `_`).
+pub(crate) fn join(path: &str, key: &str) -> String {
     let simple = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     let key = if simple {
         key.to_string()

@@ -4,6 +4,7 @@
 //! - [`number`]: the number formats (decimals, rationals) and how `f64` and exact
 //!   rationals read and print them.
 //! - [`case`]: the input schema of a case.
+//! - [`keys`]: keys given twice (which `serde_json::Value` would drop silently).
 //! - [`solve`]: validation with readable messages, and the dispatch over `dim` to the
 //!   generated kernels (2..=6) or the general-n reference.
 //! - [`output`]: the output schema.
@@ -12,6 +13,7 @@
 
 pub mod case;
 pub mod error;
+pub mod keys;
 pub mod number;
 pub mod output;
 pub mod run;

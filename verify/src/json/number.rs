@@ -5,6 +5,9 @@
 //! in front). A JSON number is read from its literal text (serde_json's
 //! `arbitrary_precision`), so `0.1` is 1/10 however it is written.
 //!
+//! A number has at most [`MAX_DIGITS`] digits (a decimal's mantissa, or a rational's numerator
+//! and denominator together), in both modes, so that no input asks for a huge integer.
+//!
 //! - [`Exact`]: the number the text spells, exactly. The exponent of a decimal is limited
 //!   to `|e| <=` [`MAX_EXACT_EXPONENT`] so that a short input cannot ask for a huge integer.
 //! - `f64`: the nearest `f64` (round half to even): decimals by Rust's correctly rounded
@@ -17,6 +20,9 @@ use num_bigint::BigInt;
 use num_traits::{ToPrimitive, Zero};
 use serde_json::Value;
 use std::str::FromStr;
+
+/// The most digits of one number (the scene grammar's limit, the same for both).
+pub use noslip_codegen::scene::MAX_DIGITS;
 
 /// The largest `|e|` accepted in the exponent of a decimal in exact mode: beyond the range
 /// of `f64` (`1e-324 .. 1.8e308`) with room, while keeping every case fast (a 3D case with
@@ -123,6 +129,18 @@ fn digits(s: &str) -> bool {
     !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit())
 }
 
+/// Refuse a number with more than [`MAX_DIGITS`] digits in `parts`.
+fn digit_limit(text: &str, parts: &[&str]) -> Result<(), String> {
+    let count: usize = parts.iter().map(|p| p.len()).sum();
+    if count > MAX_DIGITS {
+        return Err(format!(
+            "{} has {count} digits: at most {MAX_DIGITS} are accepted",
+            quote(text, QUOTE_CHARS)
+        ));
+    }
+    Ok(())
+}
+
 fn scan(text: &str) -> Result<Scanned<'_>, String> {
     let (negative, body) = match text.as_bytes().first() {
         Some(b'-') => (true, &text[1..]),
@@ -140,6 +158,7 @@ fn scan(text: &str) -> Result<Scanned<'_>, String> {
     }
     if let Some((numer, denom)) = body.split_once('/') {
         return if digits(numer) && digits(denom) {
+            digit_limit(text, &[numer, denom])?;
             Ok(Scanned::Ratio {
                 negative,
                 numer,
@@ -160,6 +179,7 @@ fn scan(text: &str) -> Result<Scanned<'_>, String> {
         Some(e) => digits(e.strip_prefix(['+', '-']).unwrap_or(e)),
     };
     if part(int) && part(frac) && !(int.is_empty() && frac.is_empty()) && exp_ok {
+        digit_limit(text, &[int, frac])?;
         Ok(Scanned::Decimal {
             negative,
             int,
@@ -338,8 +358,40 @@ mod tests {
             let r = Exact::parse_number(d).unwrap();
             let ratio = format!("{}/{}", r.numer(), r.denom());
             let want: f64 = d.parse().unwrap();
-            assert_eq!(f64::parse_number(&ratio), Ok(want), "{d} as {ratio}");
+            // The rational's rounding (what a rational input goes through)...
+            assert_eq!(ToPrimitive::to_f64(&r), Some(want), "{d} as {ratio}");
+            // ... reachable from the input when the ratio has at most MAX_DIGITS digits.
+            if ratio.len() - 1 <= MAX_DIGITS {
+                assert_eq!(f64::parse_number(&ratio), Ok(want), "{d} as {ratio}");
+            } else {
+                assert!(f64::parse_number(&ratio).unwrap_err().contains("digits"));
+            }
             assert_eq!(f64::parse_number(d), Ok(want), "{d}");
+        }
+    }
+
+    #[test]
+    fn numbers_have_at_most_max_digits() {
+        let fits = "9".repeat(MAX_DIGITS);
+        assert!(Exact::parse_number(&fits).is_ok());
+        let half = "7".repeat(MAX_DIGITS / 2);
+        assert!(f64::parse_number(&format!("-{half}/{half}")).is_ok());
+        for text in [
+            "9".repeat(MAX_DIGITS + 1),
+            format!("0.{}", "0".repeat(MAX_DIGITS)),
+            format!("{half}/{half}7"),
+            format!("1.{}e5", "0".repeat(10 * MAX_DIGITS)),
+        ] {
+            for e in [
+                Exact::parse_number(&text).unwrap_err(),
+                f64::parse_number(&text).unwrap_err(),
+            ] {
+                assert!(
+                    e.contains(&format!("at most {MAX_DIGITS} are accepted")),
+                    "{e}"
+                );
+                assert!(e.len() < 120, "{e}");
+            }
         }
     }
 

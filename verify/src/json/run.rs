@@ -1,7 +1,8 @@
 //! The whole input: one case or an array of cases, in, and the same shape out.
 
-use crate::json::case::Case;
+use crate::json::case::{join, Case};
 use crate::json::error::{kind, CaseError};
+use crate::json::keys::{first_repeated_key, Step};
 use crate::json::number::InputScalar;
 use crate::json::output::render;
 use crate::json::solve::solve;
@@ -41,11 +42,31 @@ impl fmt::Display for RunError {
 
 impl std::error::Error for RunError {}
 
+/// The error for a key given twice at `path`: its case (the first index of an array input)
+/// and its field.
+fn repeated_key(input: &Value, path: &[Step]) -> RunError {
+    let (case, rest) = match (input, path.first()) {
+        (Value::Array(_), Some(Step::Index(i))) => (*i, &path[1..]),
+        _ => (0, path),
+    };
+    let field = rest.iter().fold(String::new(), |field, step| match step {
+        Step::Index(i) => format!("{field}[{i}]"),
+        Step::Key(k) => join(&field, k),
+    });
+    RunError::Case(
+        case,
+        CaseError::new(
+            field,
+            "repeated key: each key may be given once (JSON readers differ on which one wins)",
+        ),
+    )
+}
+
 /// One case, JSON in, JSON out.
 pub fn collide_case<T>(case: &Value) -> Result<Value, CaseError>
 where
     T: InputScalar,
-    for<'a> &'a T: RefArith<T>,
+    for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
 {
     let case = Case::<T>::from_json(case)?;
     let out = solve(&case)?;
@@ -54,9 +75,13 @@ where
 
 /// Collide every case of `input` (a case, or an array of cases) and return the output
 /// JSON (one line, no trailing newline): an array for an array, an object for an object.
-/// Stops at the first invalid case; nothing is output then.
+/// A key given twice in one object is an error (naming its case and path). Stops at the
+/// first invalid case; nothing is output then.
 pub fn collide_json(input: &str, mode: Mode) -> Result<String, RunError> {
     let value: Value = serde_json::from_str(input).map_err(RunError::Json)?;
+    if let Some(path) = first_repeated_key(input) {
+        return Err(repeated_key(&value, &path));
+    }
     let one = |i: usize, case: &Value| {
         match mode {
             Mode::Float => collide_case::<f64>(case),

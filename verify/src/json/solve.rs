@@ -8,14 +8,15 @@
 use crate::json::case::{BodyInput, Case, Spin};
 use crate::json::error::CaseError;
 use crate::json::number::InputScalar;
-use collision_core::reference::{collide_coords, state_len};
+use collision_core::reference::state_len;
 use collision_core::{
-    collide, skew_entries, Ball, BodyState, Generated, Kernel, RefArith, State2, State3,
+    collide, collide_general, skew_entries, Ball, BodyState, Generated, Kernel, RefArith, State2,
+    State3,
 };
 use nalgebra::DVector;
 
 /// A body after the collision: the compact angular velocity (the entries `U_ij`, `i < j`, in
-/// the order of [`skew_pairs`]) and the velocity.
+/// the order of [`skew_pairs`](collision_core::skew_pairs)) and the velocity.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyOutput<T> {
     pub spin: Vec<T>,
@@ -26,7 +27,7 @@ pub struct BodyOutput<T> {
 pub fn solve<T>(case: &Case<T>) -> Result<[BodyOutput<T>; 2], CaseError>
 where
     T: InputScalar,
-    for<'a> &'a T: RefArith<T>,
+    for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
 {
     let balls = [
         ball(case.dim, &case.bodies[0], 0)?,
@@ -100,8 +101,7 @@ fn solve_kernel<T, const N: usize, const S: usize>(
 ) -> Result<[BodyOutput<T>; 2], CaseError>
 where
     T: InputScalar,
-    for<'a> &'a T: RefArith<T>,
-    Generated: Kernel<T, N, S>,
+    Generated: Kernel<T::Unbounded, N, S>,
 {
     let states: [BodyState<T, N, S>; 2] = [state(&case.bodies[0], 0)?, state(&case.bodies[1], 1)?];
     let balls = [&balls[0], &balls[1]];
@@ -128,7 +128,7 @@ fn compact_spin<T: InputScalar>(
     Ok(skew_entries(i, m)?)
 }
 
-/// `n > 6`: the general-n reference.
+/// `n > 6`: the general-n reference (collision-core's checks and arithmetic as for the kernels).
 fn solve_reference<T: InputScalar>(
     case: &Case<T>,
     balls: &[Ball<T>; 2],
@@ -144,7 +144,7 @@ fn solve_reference<T: InputScalar>(
         state_len(n),
         (0..2).flat_map(|b| spins[b].iter().chain(velocities[b]).cloned()),
     );
-    let out = collide_coords(&case.normal, balls, &xi)?;
+    let out = collide_general(&case.normal, balls, &xi)?;
     let s = spins[0].len();
     let part = |b: usize| BodyOutput {
         spin: out.as_slice()[b * (s + n)..b * (s + n) + s].to_vec(),
