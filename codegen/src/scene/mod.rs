@@ -2,7 +2,7 @@
 //! axes are walled or periodic, species of balls, explicit balls, fixed ball obstacles,
 //! seeded random placement and defaults for the run.
 //!
-//! [`Scene::from_toml`] parses ([`raw`], unknown keys refused) and validates ([`validate`])
+//! [`Scene::from_toml`] parses ([`raw`], unknown keys refused) and validates (`validate`)
 //! in exact rationals; every error names the place: a line and column for syntax and
 //! unknown keys, a key path such as `species[1].radius` or `ball[3].position` otherwise.
 //! The generator needs [`Scene::pairs`]; the simulator also needs the placement.
