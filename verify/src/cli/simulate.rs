@@ -1,5 +1,7 @@
 //! `noslip simulate FILE`: run a scene, event by event.
 
+use super::exit::{self, Exit, Failure};
+use super::out::outln;
 use collision_core::sim::{GenericKernels, Setup, Simulation};
 use collision_core::Generated;
 use collision_core::Kernel;
@@ -27,7 +29,7 @@ balls' paths and the contact points). --log writes every contact as a JSON line:
 balls, normal, positions, pre and post states.";
 
 #[derive(clap::Args)]
-#[command(long_about = LONG_ABOUT, after_long_help = super::EXIT_CODES)]
+#[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
     /// The scene file.
     file: PathBuf,
@@ -48,23 +50,38 @@ pub struct Args {
     quiet: bool,
 }
 
-fn print_summary(s: &Summary) {
-    println!(
+/// What `simulate` can return.
+pub const CODES: &[Exit] = &[Exit::Success, Exit::OutputFailed, Exit::BadInput];
+
+/// The summary on stdout (after the files are written: a failing stdout loses nothing).
+fn print_summary(s: &Summary) -> Result<(), Failure> {
+    outln!(
         "{} contacts ({} ball-ball, {} ball-wall, {} ball-obstacle), {} cell crossings, t = {:.6}",
-        s.events, s.ball_ball, s.ball_wall, s.ball_obstacle, s.cell_crossings, s.time
-    );
-    println!(
+        s.events,
+        s.ball_ball,
+        s.ball_wall,
+        s.ball_obstacle,
+        s.cell_crossings,
+        s.time
+    )?;
+    outln!(
         "{:.3} s wall clock, {:.0} events/s, {} balls in R^{}",
-        s.seconds, s.events_per_second, s.balls, s.dim
-    );
-    println!(
+        s.seconds,
+        s.events_per_second,
+        s.balls,
+        s.dim
+    )?;
+    outln!(
         "energy {:.17e} -> {:.17e}: drift {:.3e} (max over samples {:.3e})",
-        s.energy_start, s.energy_end, s.energy_drift, s.energy_drift_max
-    );
-    println!(
+        s.energy_start,
+        s.energy_end,
+        s.energy_drift,
+        s.energy_drift_max
+    )?;
+    outln!(
         "momentum drift {:.3e}, angular momentum drift {:.3e} (relative; conserved only without walls/obstacles, angular also without periodic wrapping)",
         s.momentum_drift, s.angular_momentum_drift
-    );
+    )
 }
 
 fn simulate<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Result<(), (u8, String)>
@@ -134,7 +151,6 @@ where
         w.flush()
             .map_err(|e| (1, format!("cannot write the events log: {e}")))?;
     }
-    print_summary(&summary);
     let write = |name: &str, r: std::io::Result<()>| {
         r.map_err(|e| {
             (
@@ -172,17 +188,26 @@ where
             ),
         )?;
     }
-    println!("wrote {}", out.display());
+    print_summary(&summary).map_err(|f| (f.exit.code(), f.message))?;
+    outln!("wrote {}", out.display()).map_err(|f| (f.exit.code(), f.message))?;
     Ok(())
 }
 
 pub fn run_cmd(args: &Args) -> ExitCode {
     let scene = match Scene::from_file(&args.file) {
         Ok(s) => s,
-        Err(e) => return super::fail(2, &e.to_string()),
+        Err(e) => return exit::finish(Err(Failure::bad_input(e.to_string()))),
     };
-    match super::with_dim!(scene.dim, simulate(&scene, args)) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err((code, m)) => super::fail(code, &m),
-    }
+    exit::finish(
+        super::with_dim!(scene.dim, simulate(&scene, args))
+            .map(|()| Exit::Success)
+            .map_err(|(code, m)| {
+                let exit = if code == 2 {
+                    Exit::BadInput
+                } else {
+                    Exit::OutputFailed
+                };
+                Failure::new(exit, m)
+            }),
+    )
 }
