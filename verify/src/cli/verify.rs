@@ -63,7 +63,11 @@ pub const CODES: &[Exit] = &[
 
 /// The golden copy shipped in the source tree this binary was built from.
 fn shipped_golden() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/reports/verify.json")
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    crate_dir
+        .parent()
+        .unwrap_or(crate_dir)
+        .join("docs/reports/verify.json")
 }
 
 pub fn run_cmd(args: &Args) -> Result<Exit, Failure> {
