@@ -17,7 +17,8 @@
 //!   the next publish to `D` first renames the aside copy back (the old set), then proceeds.
 //! - **Temporaries.** The staging directory (`.NAME.noslip-new-PID`) is removed on every
 //!   error path (a drop guard); the temporaries of killed runs (their process no longer
-//!   exists) are removed by the next publish to the same `D`.
+//!   exists) are removed by the next publish to the same `D`. A set is removed marker last,
+//!   so a removal cut short leaves a directory the next run still recognises as noslip's.
 //!
 //! Files are written with `sync_all` before the switch, so the switch never publishes a
 //! file whose contents are still in flight.
@@ -156,7 +157,7 @@ impl Staging {
         }
         let dir = parent.join(temporary(&name, "new", std::process::id()));
         if dir.exists() {
-            fs::remove_dir_all(&dir).map_err(at(&dir))?;
+            remove_set(&dir).map_err(at(&dir))?;
         }
         fs::create_dir(&dir).map_err(at(&dir))?;
         let staging = Staging {
@@ -262,7 +263,7 @@ impl Staging {
             return Ok(());
         }
         if let Some(old) = old {
-            fs::remove_dir_all(&old).map_err(at(&old))?;
+            remove_set(&old).map_err(at(&old))?;
         }
         Ok(())
     }
@@ -277,7 +278,7 @@ impl Staging {
 impl Drop for Staging {
     fn drop(&mut self) {
         if !self.done {
-            let _ = fs::remove_dir_all(&self.dir);
+            let _ = remove_set(&self.dir);
         }
     }
 }
@@ -327,10 +328,31 @@ fn recover_and_clean(parent: &Path, name: &str, target: &Path) -> Result<(), Pub
     }
     for (_, path) in stale {
         if path.exists() {
-            fs::remove_dir_all(&path).map_err(at(&path))?;
+            remove_set(&path).map_err(at(&path))?;
         }
     }
     Ok(())
+}
+
+/// Remove a set's directory, its marker last: a removal cut short still leaves a marked
+/// directory, which the next publish recognises and removes.
+fn remove_set(dir: &Path) -> io::Result<()> {
+    for entry in fs::read_dir(dir)? {
+        let entry = entry?;
+        if entry.file_name() == MARKER {
+            continue;
+        }
+        if entry.file_type()?.is_dir() {
+            fs::remove_dir_all(entry.path())?;
+        } else {
+            fs::remove_file(entry.path())?;
+        }
+    }
+    match fs::remove_file(dir.join(MARKER)) {
+        Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
+        _ => {}
+    }
+    fs::remove_dir(dir)
 }
 
 /// `target` may be replaced: it does not exist, is an empty directory, or carries the marker.
