@@ -470,8 +470,9 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, entries: &[Entry]) -> Resu
             y += 14;
             area.draw(&Text::new(
                 format!(
-                    "NaN or infinity in {} cases ({})",
+                    "NaN or infinity in {} case{} ({})",
                     e.non_finite.0,
+                    if e.non_finite.0 == 1 { "" } else { "s" },
                     e.non_finite.1.join(", ")
                 ),
                 left(y, 30),
