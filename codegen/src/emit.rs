@@ -82,6 +82,8 @@ const SMALL: i64 = 1 << 24;
 /// constants of the generic kernels); otherwise (species constants folded by
 /// `crate::specialise`) `T::from_literal(x64, x32, "p", "q")` with `x64` and `x32` the
 /// correctly rounded `f64` and `f32` computed here, and the exact digits for rationals.
+/// Panics if a float overflows: the specialiser refuses such constants before emitting
+/// ([`crate::literal::overflows`]).
 pub(crate) fn const_value(c: &BigRational) -> TokenStream {
     let small = |x: &BigInt| x.to_i64().filter(|v| v.abs() <= SMALL);
     if let (Some(p), Some(q)) = (small(c.numer()), small(c.denom())) {
@@ -89,15 +91,8 @@ pub(crate) fn const_value(c: &BigRational) -> TokenStream {
         return quote!(T::from_ratio(#p, #q));
     }
     let (x64, x32) = crate::literal::nearest_floats(c);
-    let float = |lit: Literal, negative: bool| {
-        if negative {
-            quote!(-#lit)
-        } else {
-            quote!(#lit)
-        }
-    };
-    let x64 = float(Literal::f64_suffixed(x64.abs()), x64 < 0.0);
-    let x32 = float(Literal::f32_suffixed(x32.abs()), x32 < 0.0);
+    let x64 = crate::literal::f64_tokens(x64);
+    let x32 = crate::literal::f32_tokens(x32);
     let (p, q) = (c.numer().to_string(), c.denom().to_string());
     quote!(T::from_literal(#x64, #x32, #p, #q))
 }

@@ -1,5 +1,5 @@
 //! Kernels specialised to shipped scenes by `build.rs` (noslip-codegen's build-script API),
-//! and a simulation setup for scenes with explicit balls only.
+//! and a 2D simulation setup ([`place`]).
 
 /// `scenes/disk_between_walls.toml`: ball-wall kernels for the two walls of axis 1.
 pub mod disk_between_walls {
@@ -16,16 +16,13 @@ pub mod sinai {
     include!(concat!(env!("OUT_DIR"), "/sinai.rs"));
 }
 
-use collision_core::sim::{Body, FixedBall, Setup};
-use collision_core::{Ball, BodyState};
-use noslip_codegen::scene::{Boundary, Scene};
-use num_rational::BigRational;
-use num_traits::ToPrimitive;
+pub mod place;
 
-/// The nearest f64 of an exact scene number.
-fn f(x: &BigRational) -> f64 {
-    x.to_f64().unwrap_or(f64::NAN)
-}
+pub use place::setup;
+
+use collision_core::Ball;
+use noslip_codegen::scene::{PairSet, Scene};
+use num_rational::BigRational;
 
 /// The kernels' `Ball` parameters of the scene's species, each constant mapped by `map`.
 pub fn species_balls<T>(scene: &Scene, map: impl Fn(&BigRational) -> T) -> Vec<Ball<T>> {
@@ -40,38 +37,65 @@ pub fn species_balls<T>(scene: &Scene, map: impl Fn(&BigRational) -> T) -> Vec<B
         .collect()
 }
 
-/// The 2D setup of a scene whose balls are all explicit (no random placement).
-pub fn explicit_setup(scene: &Scene) -> Setup<2, 1> {
-    assert_eq!(scene.dim, 2);
-    assert!(
-        scene.species.iter().all(|s| s.count == 0),
-        "explicit balls only"
-    );
-    let v = |x: &[BigRational]| [f(&x[0]), f(&x[1])];
-    Setup {
-        size: v(&scene.size),
-        periodic: [0, 1].map(|k| scene.boundary[k] == Boundary::Periodic),
-        species: species_balls(scene, f),
-        obstacles: scene
-            .obstacles
+/// The shipped scene files whose kernels `build.rs` compiles, by module name.
+pub const COMPILED: [(&str, &str); 3] = [
+    (
+        "disk_between_walls",
+        include_str!("../../scenes/disk_between_walls.toml"),
+    ),
+    ("gas2d", include_str!("../../scenes/gas2d.toml")),
+    ("sinai", include_str!("../../scenes/sinai.toml")),
+];
+
+/// Whether the kernels compiled for `compiled` serve `scene`: the same dimension and
+/// species constants (`inv_mass`, `radius`, `gamma2`; counts may differ), and every pair
+/// kind `scene` can meet among the compiled ones. A scene file that merely shares a
+/// shipped scene's name does not get its kernels.
+pub fn kernels_fit(compiled: &PairSet, scene: &PairSet) -> bool {
+    let constants = |s: &PairSet| -> Vec<[BigRational; 3]> {
+        s.species
             .iter()
-            .map(|o| FixedBall {
-                position: v(&o.position),
-                radius: f(&o.radius),
-            })
-            .collect(),
-        bodies: scene
-            .balls
+            .map(|x| [x.inv_mass.clone(), x.radius.clone(), x.gamma2.clone()])
+            .collect()
+    };
+    compiled.dim == scene.dim
+        && constants(compiled) == constants(scene)
+        && scene
+            .ball_ball
             .iter()
-            .map(|b| Body {
-                species: b.species,
-                position: v(&b.position),
-                state: BodyState {
-                    spin: [f(&b.spin[0])],
-                    velocity: v(&b.velocity),
-                },
+            .all(|p| compiled.ball_ball.contains(p))
+        && scene
+            .ball_wall
+            .iter()
+            .all(|p| compiled.ball_wall.contains(p))
+        && scene
+            .ball_obstacle
+            .iter()
+            .all(|p| compiled.ball_obstacle.contains(p))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_compiled_scene_fits_itself_and_not_another() {
+        let sets: Vec<PairSet> = COMPILED
+            .iter()
+            .map(|(name, text)| {
+                Scene::from_toml(text, &format!("{name}.toml"))
+                    .unwrap()
+                    .pairs()
             })
-            .collect(),
-        orientation: scene.simulation.orientation,
+            .collect();
+        for (i, a) in sets.iter().enumerate() {
+            for (j, b) in sets.iter().enumerate() {
+                assert_eq!(kernels_fit(a, b), i == j, "{} for {}", a.name, b.name);
+            }
+        }
+        // Other constants under the same name do not fit.
+        let text = COMPILED[1].1.replace("mass = 4", "mass = 5");
+        let changed = Scene::from_toml(&text, "gas2d.toml").unwrap().pairs();
+        assert!(!kernels_fit(&sets[1], &changed));
     }
 }

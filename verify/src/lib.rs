@@ -8,8 +8,10 @@ pub mod accuracy;
 
 pub mod checks;
 pub mod degree;
+pub mod diff;
 pub mod identities;
 pub mod kernel;
+pub mod publish;
 pub mod report;
 pub mod run;
 pub mod sample;

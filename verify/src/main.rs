@@ -1,4 +1,4 @@
-//! `noslip`: collide two balls from JSON (and, later, verify and report).
+//! `noslip`: collide two balls from JSON, verify and measure the kernels, run scenes.
 //!
 //! One module per subcommand under `cli/`; a new subcommand is a variant of [`Command`],
 //! its `Args`, and a line in `main`.
@@ -19,7 +19,7 @@ use std::process::ExitCode;
         no-slip subspace {V_1(Q) = V_2(Q)}: the map is linear, an involution, and conserves \
         energy, linear momentum and each body's angular momentum about the contact point. \
         The kernels for n = 2..6 are generated code, run in f64 or in exact rationals.",
-    after_long_help = cli::EXIT_CODES
+    after_long_help = cli::exit::help(cli::exit::ALL)
 )]
 struct Cli {
     #[command(subcommand)]
@@ -42,9 +42,9 @@ enum Command {
 fn main() -> ExitCode {
     match Cli::parse().command {
         Command::Collide(args) => cli::collide::run(&args),
-        Command::Verify(args) => cli::verify::run_cmd(&args),
-        Command::Report(args) => cli::report::run_cmd(&args),
+        Command::Verify(args) => cli::exit::finish(cli::verify::run_cmd(&args)),
+        Command::Report(args) => cli::exit::finish(cli::report::run_cmd(&args)),
         Command::Simulate(args) => cli::simulate::run_cmd(&args),
-        Command::Gen(args) => cli::gen::run(&args),
+        Command::Gen(args) => cli::exit::finish(cli::gen::run(&args)),
     }
 }

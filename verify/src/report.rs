@@ -1,8 +1,8 @@
-//! `verify.md` and `verify.json`, written atomically, and the golden-copy comparison.
+//! `verify.md` and `verify.json`, and the golden-copy comparison.
 
 use serde::{Deserialize, Serialize};
-use std::io;
-use std::path::Path;
+
+pub use crate::publish::write_atomic;
 
 /// What a passing check establishes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -102,73 +102,214 @@ impl Report {
     }
 }
 
-/// Write `contents` to `path` atomically: a temporary file in the same directory, then a
-/// rename, so a reader never sees a half-written report and an old one is never lost.
-pub fn write_atomic(path: &Path, contents: &str) -> io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        path.file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or("report"),
-        std::process::id()
-    ));
-    std::fs::write(&tmp, contents)?;
-    std::fs::rename(&tmp, path)
-}
+/// The golden copy: the results without timings of every dimension, compared and updated
+/// by dimension.
+///
+/// A run of some dimensions is compared with the golden results of those dimensions only
+/// (each dimension's checks draw from their own seeded streams, so a subset reproduces
+/// exactly). The copy is read in its own schema ([`golden::Copy`]) whose numbers keep the
+/// digits written: reading them as `f64` would round some of them differently.
+pub mod golden {
+    use super::Report;
+    use serde::{Deserialize, Serialize};
+    use serde_json::Number;
 
-/// A line diff of two texts: `None` if equal, else the differing lines as `-`/`+`.
-pub fn diff(golden: &str, fresh: &str) -> Option<String> {
-    if golden == fresh {
-        return None;
+    /// The golden copy as written: [`Report`]'s fields in its order, numbers as digits.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct Copy {
+        tool: String,
+        seed: u64,
+        points: usize,
+        results: Vec<Check>,
+        seconds: Number,
     }
-    let (a, b): (Vec<&str>, Vec<&str>) = (golden.lines().collect(), fresh.lines().collect());
-    let mut out = String::new();
-    for i in 0..a.len().max(b.len()) {
-        match (a.get(i), b.get(i)) {
-            (Some(x), Some(y)) if x == y => {}
-            (x, y) => {
-                if let Some(x) = x {
-                    out.push_str(&format!("line {}: - {x}\n", i + 1));
-                }
-                if let Some(y) = y {
-                    out.push_str(&format!("line {}: + {y}\n", i + 1));
-                }
-            }
+
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Check {
+        dim: usize,
+        variant: String,
+        check: String,
+        passed: bool,
+        points: usize,
+        proof: Proof,
+        detail: String,
+        seconds: Number,
+    }
+
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Proof {
+        kind: String,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        degree: Option<Number>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        set_size: Option<Number>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        bound: Option<Number>,
+    }
+
+    impl Copy {
+        /// Read a golden copy.
+        pub fn parse(text: &str) -> Result<Copy, String> {
+            serde_json::from_str(text).map_err(|e| format!("not a verify report: {e}"))
+        }
+
+        /// A run's results without timings, as a golden copy.
+        pub fn of(run: &Report) -> Result<Copy, String> {
+            Copy::parse(&run.without_timings().to_json())
+                .map_err(|e| format!("this run's report: {e}"))
+        }
+
+        /// The text of the file: [`Report::to_json`]'s layout.
+        pub fn to_json(&self) -> String {
+            serde_json::to_string_pretty(self).expect("golden copy serialises") + "\n"
+        }
+
+        /// The results for the dimensions in `dims` only, in increasing dimension.
+        pub fn restricted(&self, dims: &[usize]) -> Copy {
+            let mut c = self.clone();
+            c.results.retain(|r| dims.contains(&r.dim));
+            c.results.sort_by_key(|r| r.dim);
+            c
         }
     }
-    Some(out)
+
+    /// The unified diff of the golden copy against `run` (timings removed), over the
+    /// dimensions in `dims`: `Ok(None)` if they agree.
+    pub fn compare(golden: &str, run: &Report, dims: &[usize]) -> Result<Option<String>, String> {
+        let golden = Copy::parse(golden)?.restricted(dims).to_json();
+        let fresh = Copy::of(run)?.restricted(dims).to_json();
+        Ok(crate::diff::unified(
+            "golden copy",
+            "this run",
+            &golden,
+            &fresh,
+            3,
+        ))
+    }
+
+    /// The golden copy updated with `run`: its results replace those of its dimensions, the
+    /// other dimensions' results are kept, in dimension order. A run of only some dimensions
+    /// must use the golden copy's seed and points (else the copy would mix two samplings).
+    pub fn update(golden: Option<&str>, run: &Report, dims: &[usize]) -> Result<Copy, String> {
+        let fresh = Copy::of(run)?;
+        let Some(golden) = golden else {
+            return Ok(fresh);
+        };
+        let old = Copy::parse(golden)?;
+        let kept: Vec<Check> = old
+            .results
+            .iter()
+            .filter(|c| !dims.contains(&c.dim))
+            .cloned()
+            .collect();
+        if !kept.is_empty() && (old.seed, old.points) != (fresh.seed, fresh.points) {
+            return Err(format!(
+                "the golden copy was made with seed {} and {} points, this run with seed {} and \
+                 {} points: update it with the same --points, or with every dimension it holds",
+                old.seed, old.points, fresh.seed, fresh.points
+            ));
+        }
+        let mut merged = fresh;
+        merged.results.extend(kept);
+        merged.results.sort_by_key(|c| c.dim);
+        Ok(merged)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn atomic_write_replaces_whole_files() {
-        let dir = std::env::temp_dir().join(format!("noslip-report-{}", std::process::id()));
-        let path = dir.join("r.md");
-        write_atomic(&path, "one").unwrap();
-        write_atomic(&path, "two").unwrap();
-        assert_eq!(std::fs::read_to_string(&path).unwrap(), "two");
-        assert_eq!(
-            std::fs::read_dir(&dir).unwrap().count(),
-            1,
-            "no temporary left behind"
-        );
-        std::fs::remove_dir_all(dir).unwrap();
+    fn check(dim: usize, name: &str, passed: bool) -> CheckResult {
+        CheckResult {
+            dim,
+            variant: "free".into(),
+            check: name.into(),
+            passed,
+            points: 4,
+            proof: Proof::ExactComputation,
+            detail: String::new(),
+            seconds: 0.5,
+        }
+    }
+
+    fn report(points: usize, results: Vec<CheckResult>) -> Report {
+        Report {
+            tool: "noslip test".into(),
+            seed: 2026,
+            points,
+            results,
+            seconds: 3.0,
+        }
     }
 
     #[test]
-    fn diff_names_changed_lines() {
-        assert_eq!(diff("a\nb\n", "a\nb\n"), None);
+    fn the_shipped_golden_copy_reads_back_to_the_same_text() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/reports/verify.json");
+        let text = std::fs::read_to_string(path).unwrap();
+        let copy = golden::Copy::parse(&text).unwrap();
+        assert_eq!(copy.to_json(), text);
+        // A run's report in the golden layout: the same text as the report's own JSON.
+        let run = report(4, (2..=6).map(|n| check(n, "energy", true)).collect());
         assert_eq!(
-            diff("a\nb\n", "a\nc\n").unwrap(),
-            "line 2: - b\nline 2: + c\n"
+            golden::Copy::of(&run).unwrap().to_json(),
+            run.without_timings().to_json()
+        );
+    }
+
+    #[test]
+    fn a_run_of_some_dimensions_is_compared_with_those_only() {
+        let all = report(4, (2..=6).map(|n| check(n, "energy", true)).collect());
+        let golden = all.without_timings().to_json();
+        let run3 = report(4, vec![check(3, "energy", true)]);
+        assert_eq!(golden::compare(&golden, &run3, &[3]).unwrap(), None);
+        // A change in n = 3 shows as a unified diff of that line.
+        let failed3 = report(4, vec![check(3, "energy", false)]);
+        let d = golden::compare(&golden, &failed3, &[3]).unwrap().unwrap();
+        assert!(d.starts_with("--- golden copy\n+++ this run\n@@ "), "{d}");
+        let changed: Vec<&str> = d
+            .lines()
+            .filter(|l| l.starts_with(['-', '+']) && !l.starts_with("---") && !l.starts_with("+++"))
+            .collect();
+        assert_eq!(
+            changed,
+            ["-      \"passed\": true,", "+      \"passed\": false,"]
+        );
+        // A dimension missing from the golden copy differs.
+        let golden23 = report(4, vec![check(2, "energy", true)])
+            .without_timings()
+            .to_json();
+        assert!(golden::compare(&golden23, &run3, &[3]).unwrap().is_some());
+    }
+
+    #[test]
+    fn updating_with_some_dimensions_keeps_the_others() {
+        let golden = report(4, (2..=4).map(|n| check(n, "energy", true)).collect())
+            .without_timings()
+            .to_json();
+        let run3 = report(4, vec![check(3, "energy", false)]);
+        let merged = golden::update(Some(&golden), &run3, &[3]).unwrap();
+        let expected = report(
+            4,
+            vec![
+                check(2, "energy", true),
+                check(3, "energy", false),
+                check(4, "energy", true),
+            ],
+        );
+        assert_eq!(merged.to_json(), expected.without_timings().to_json());
+        // Other points for only some dimensions would mix two samplings.
+        let run3_other = report(8, vec![check(3, "energy", true)]);
+        assert!(golden::update(Some(&golden), &run3_other, &[3]).is_err());
+        let all8 = report(8, (2..=4).map(|n| check(n, "energy", true)).collect());
+        assert_eq!(
+            golden::update(Some(&golden), &all8, &[2, 3, 4])
+                .unwrap()
+                .to_json(),
+            all8.without_timings().to_json()
         );
     }
 }

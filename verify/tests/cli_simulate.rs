@@ -514,6 +514,7 @@ fn the_log_may_go_into_the_output_directory_not_yet_made() {
     assert_eq!(
         names,
         [
+            ".noslip-output",
             "energy.svg",
             "events.jsonl",
             "summary.json",
@@ -635,4 +636,45 @@ fn a_log_on_a_full_disk_leaves_nothing_and_the_summary_is_written() {
     );
     drop(disk);
     std::fs::remove_dir_all(&out_dir).unwrap();
+}
+
+#[test]
+fn the_output_directory_is_replaced_as_one_set_and_never_a_foreign_one() {
+    let dir = scratch("sim-set");
+    let out = dir.join("out");
+    let run = |scene: &str, out: &Path| {
+        noslip()
+            .args(["simulate", scene, "--events", "20", "--quiet", "--out"])
+            .arg(out)
+            .output()
+            .unwrap()
+    };
+    // A 2D run writes the trajectories; a 3D run into the same directory replaces the whole
+    // set, so no picture of the first run is left beside the second run's summary.
+    assert!(run("scenes/sinai.toml", &out).status.success());
+    assert!(out.join("trajectories.svg").exists());
+    let second = run("scenes/gas3d.toml", &out);
+    assert!(
+        second.status.success(),
+        "{}",
+        String::from_utf8_lossy(&second.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["dim"], 3);
+    assert!(!out.join("trajectories.svg").exists());
+    // A directory noslip did not make is refused before the run, and left as it was.
+    let foreign = dir.join("notes");
+    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::write(foreign.join("keep.txt"), "keep me").unwrap();
+    let refused = run("scenes/sinai.toml", &foreign);
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.starts_with("error: --out: ") && stderr.contains("refusing to replace"),
+        "{stderr}"
+    );
+    assert!(refused.stdout.is_empty(), "no run before the refusal");
+    assert_eq!(std::fs::read_dir(&foreign).unwrap().count(), 1);
+    std::fs::remove_dir_all(dir).unwrap();
 }

@@ -68,7 +68,8 @@ impl Config {
     }
 
     /// Read and validate `scenes`, then generate every scene and explicit pair set.
-    /// A bad scene is an `InvalidData` error naming the file and place.
+    /// A bad scene, a bad crate path or a scene whose constants overflow `f32` or `f64`
+    /// ([`super::check_ranges`]) is an `InvalidData` error naming the file and place.
     pub fn compile_scenes(&mut self, scenes: &[impl AsRef<Path>]) -> io::Result<Vec<SceneModule>> {
         let mut sets = Vec::new();
         for path in scenes {
@@ -92,7 +93,12 @@ impl Config {
         };
         sets.iter()
             .map(|set| {
-                let module = generate(set, &self.crate_path);
+                let module = generate(set, &self.crate_path).map_err(|e| {
+                    io::Error::new(
+                        io::ErrorKind::InvalidData,
+                        format!("scene {}: {e}", set.name),
+                    )
+                })?;
                 write_if_changed(&out_dir.join(format!("{}.rs", module.name)), &module.source)?;
                 Ok(module)
             })

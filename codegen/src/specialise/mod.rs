@@ -13,10 +13,16 @@
 //!
 //! [`generate`] emits them with a dispatch `impl PairKernels` (collision-core's `sim`) so the
 //! simulator runs them in place of the generic kernels; [`Config`] is the build-script API.
+//!
+//! Every folded constant must have a finite `f32` and `f64` literal (the kernels are generic
+//! over both): a scene whose species need a constant beyond either range is refused with a
+//! [`ConstantOutOfRange`] naming the species field at fault (see [`crate::literal`]).
 
 mod config;
+mod range;
 
 pub use config::{compile_scenes, Config};
+pub use range::{check_ranges, ConstantOutOfRange, GenerateError};
 
 use crate::emit::{self, array_pattern, doc_lines, ident, lit, state_pattern, EmittedBody};
 use crate::ir::{Graph, Id};
@@ -339,10 +345,14 @@ fn dispatch(set: &PairSet, crate_path: &syn::Path) -> TokenStream {
 
 /// Generate the module of `set`: its kernels and the dispatch. `crate_path` is the runtime
 /// crate as seen from where the file is included (`"collision_core"` in a user's crate).
+/// Refuses a `crate_path` that is not a Rust path, and a set whose constants overflow `f32`
+/// or `f64` ([`check_ranges`]).
 ///
 /// Panics if the kernels are not valid, straight-line Rust: a generator bug.
-pub fn generate(set: &PairSet, crate_path: &str) -> SceneModule {
-    let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
+pub fn generate(set: &PairSet, crate_path: &str) -> Result<SceneModule, GenerateError> {
+    let path: syn::Path =
+        syn::parse_str(crate_path).map_err(|_| GenerateError::CratePath(crate_path.to_string()))?;
+    check_ranges(set).map_err(GenerateError::OutOfRange)?;
     let (kernels, pairs): (Vec<TokenStream>, Vec<PairSummary>) =
         set.all().into_iter().map(|p| emit_pair(set, p)).unzip();
     let imports = quote!(use #path::{BodyState, RefArith, Scalar};);
@@ -381,10 +391,10 @@ pub fn generate(set: &PairSet, crate_path: &str) -> SceneModule {
             p.generic_ops
         ));
     }
-    SceneModule {
+    Ok(SceneModule {
         name: set.name.clone(),
         dim: set.dim,
         source: format!("{header}\n{}", prettyplease::unparse(&file)),
         pairs,
-    }
+    })
 }

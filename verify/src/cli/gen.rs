@@ -1,10 +1,11 @@
 //! `noslip gen --scene FILE`: print the kernels specialised to a scene, with op counts.
 
+use super::exit::{self, Exit, Failure};
+use super::out::{outln, print};
 use noslip_codegen::scene::Scene;
 use noslip_codegen::specialise::generate;
 use noslip_verify::checks::specialised::check;
 use std::path::PathBuf;
-use std::process::ExitCode;
 
 const LONG_ABOUT: &str = "\
 Print the Rust module of kernels specialised to a scene: only its dimension, only the pair
@@ -18,7 +19,7 @@ writes from a build script.
 kernel run with the same constants, and exits 1 on any difference.";
 
 #[derive(clap::Args)]
-#[command(long_about = LONG_ABOUT)]
+#[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
     /// The scene file (TOML; see docs/scenes.md).
     #[arg(long)]
@@ -34,11 +35,16 @@ pub struct Args {
     check: Option<usize>,
 }
 
-pub fn run(args: &Args) -> ExitCode {
-    let scene = match Scene::from_file(&args.scene) {
-        Ok(s) => s,
-        Err(e) => return super::fail(2, &e.to_string()),
-    };
+/// What `gen` can return.
+pub const CODES: &[Exit] = &[
+    Exit::Success,
+    Exit::CheckFailed,
+    Exit::OutputFailed,
+    Exit::BadInput,
+];
+
+pub fn run(args: &Args) -> Result<Exit, Failure> {
+    let scene = Scene::from_file(&args.scene).map_err(|e| Failure::bad_input(e.to_string()))?;
     let set = scene.pairs();
     if let Some(points) = args.check {
         let results = super::with_dim!(set.dim, check(&set, points, 2026));
@@ -46,36 +52,37 @@ pub fn run(args: &Args) -> ExitCode {
         for r in &results {
             let ok = r.mismatches == 0;
             failed |= !ok;
-            println!(
+            outln!(
                 "{} {}: {} of {} exact points equal the generic map",
                 if ok { "ok  " } else { "FAIL" },
                 r.pair.fn_name(),
                 r.points - r.mismatches,
                 r.points
-            );
+            )?;
         }
-        return if failed {
-            ExitCode::from(1)
+        return Ok(if failed {
+            Exit::CheckFailed
         } else {
-            ExitCode::SUCCESS
-        };
+            Exit::Success
+        });
     }
-    let module = generate(&set, &args.crate_path);
+    let module = generate(&set, &args.crate_path)
+        .map_err(|e| Failure::bad_input(format!("{}: {e}", args.scene.display())))?;
     if args.ops {
-        println!("| kernel | kind | specialised ops | generic ops |");
-        println!("|---|---|---|---|");
+        outln!("| kernel | kind | specialised ops | generic ops |")?;
+        outln!("|---|---|---|---|")?;
         for p in &module.pairs {
-            println!(
+            outln!(
                 "| `{}` | {} | {} | {} (`{}`) |",
                 p.pair.fn_name(),
                 p.pair.kind(),
                 p.ops,
                 p.generic_ops,
                 p.pair.variant().name()
-            );
+            )?;
         }
     } else {
-        print!("{}", module.source);
+        print(&module.source)?;
     }
-    ExitCode::SUCCESS
+    Ok(Exit::Success)
 }

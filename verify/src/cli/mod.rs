@@ -1,20 +1,30 @@
 //! The subcommands of `noslip`, one module each.
 
 pub mod collide;
+pub mod exit;
 pub mod gen;
+pub mod out;
+pub mod progress;
 pub mod report;
 pub mod simulate;
 pub mod verify;
 
-/// Exit codes shared by the subcommands (for `--help`).
-pub const EXIT_CODES: &str = "\
-Exit codes:
-  0  success
-  1  the output could not be written
-  2  bad input or usage: the input file cannot be read, is not JSON, or a case is invalid
-     (one line on stderr says which case, which field and what is wrong)";
+use exit::{Exit, Failure};
+use noslip_verify::publish::PublishError;
 
-/// The dimensions to run, `--dims 2..6` or `--dims 2,3,5`.
+/// The `Exit codes:` section of `collide --help` (rendered from [`exit::Exit`]).
+pub const EXIT_CODES: exit::Codes =
+    exit::Codes(&[Exit::Success, Exit::OutputFailed, Exit::BadInput]);
+
+/// A publishing error as a failure: a directory that is not noslip's is bad usage of --out.
+pub fn publish_failure(e: &PublishError) -> Failure {
+    match e {
+        PublishError::NotOurs(_) => Failure::bad_input(format!("--out: {e}")),
+        PublishError::Io { .. } => Failure::output(format!("cannot write the output: {e}")),
+    }
+}
+
+/// The dimensions to run, `--dims 2..6` or `--dims 2,3,5`: in increasing order, each once.
 #[derive(Clone, Debug)]
 pub struct Dims(pub Vec<usize>);
 
@@ -40,12 +50,10 @@ pub fn parse_dims(s: &str) -> Result<Dims, String> {
             "dimensions must be in 2..6 (the generated kernels), got {s:?}"
         ));
     }
+    let mut dims = dims;
+    dims.sort_unstable();
+    dims.dedup();
     Ok(Dims(dims))
-}
-/// Print one line on stderr and return `code`.
-pub fn fail(code: u8, message: &str) -> std::process::ExitCode {
-    eprintln!("error: {}", message.replace(['\n', '\r'], " "));
-    std::process::ExitCode::from(code)
 }
 
 /// Evaluate `$body` with const generics `N` (= `$dim`, 2..=6) and `S = N(N-1)/2` in scope.

@@ -1,12 +1,13 @@
 //! `noslip report`: error against run time for every kernel variant and regime.
 
-use super::{parse_dims, Dims};
-use indicatif::{ProgressBar, ProgressStyle};
+use super::exit::{self, Exit, Failure};
+use super::out::outln;
+use super::progress::Progress;
+use super::{parse_dims, publish_failure, Dims};
 use noslip_verify::accuracy::plot::svg;
 use noslip_verify::accuracy::{dim_result, AccuracyReport, Options, Provenance};
-use noslip_verify::report::write_atomic;
+use noslip_verify::publish::Staging;
 use std::path::PathBuf;
-use std::process::ExitCode;
 use std::time::Instant;
 
 const LONG_ABOUT: &str = "\
@@ -23,17 +24,18 @@ own kinetic-energy norm in units of the format's epsilon, with each body's condi
 generated f64 kernel must stay within 16 eps (typical) and 64 eps (elsewhere), or within the
 problem's conditioning; no NaN or infinity anywhere.
 
-Writes OUT/report.md, OUT/report.json and OUT/error-vs-time-nN.svg atomically; exits 1 if the
-stability requirement fails or a file cannot be written.";
+Writes report.md, report.json and error-vs-time-nN.svg into the directory --out, replaced as
+one set; prints one summary line.";
 
 #[derive(clap::Args)]
-#[command(long_about = LONG_ABOUT)]
+#[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
     /// Dimensions, as a range `2..6` (inclusive) or a list `2,3,5`.
     #[arg(long, default_value = "2..6", value_parser = parse_dims)]
     dims: Dims,
-    /// Directory for report.md, report.json and the plots.
-    #[arg(long, default_value = "out")]
+    /// Output directory for report.md, report.json and the plots, replaced as a whole by each
+    /// run (refused if it exists, is not empty and was not made by noslip).
+    #[arg(long, default_value = "out/report")]
     out: PathBuf,
     /// Sampled cases per dimension and regime.
     #[arg(long, default_value_t = Options::default().samples)]
@@ -43,7 +45,15 @@ pub struct Args {
     seed: u64,
 }
 
-pub fn run_cmd(args: &Args) -> ExitCode {
+/// What `report` can return.
+pub const CODES: &[Exit] = &[
+    Exit::Success,
+    Exit::CheckFailed,
+    Exit::OutputFailed,
+    Exit::BadInput,
+];
+
+pub fn run_cmd(args: &Args) -> Result<Exit, Failure> {
     let opts = Options {
         dims: args.dims.0.clone(),
         samples: args.samples,
@@ -51,8 +61,7 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         ..Options::default()
     };
     if opts.samples == 0 {
-        eprintln!("error: --samples must be at least 1");
-        return ExitCode::from(2);
+        return Err(Failure::bad_input("--samples must be at least 1"));
     }
     let command = format!(
         "cargo run --release -p noslip-verify -- report --dims {} --samples {} --seed {} --out {}",
@@ -65,20 +74,19 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         opts.seed,
         args.out.display()
     );
-    let bar = ProgressBar::new((opts.dims.len() * opts.regimes.len()) as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} regimes  {msg}").expect("template"),
-    );
+    let mut staging = Staging::new(&args.out).map_err(|e| publish_failure(&e))?;
+    let regimes = opts.regimes.len();
+    let progress = Progress::new((opts.dims.len() * regimes) as u64, "regimes");
     let start = Instant::now();
+    let mut done = 0;
     let dims = opts
         .dims
         .iter()
         .map(|&dim| {
-            bar.set_message(format!("n = {dim}"));
+            progress.set_message(format!("n = {dim}"));
             dim_result(dim, &opts, |r| {
-                bar.inc(1);
                 if !r.stability.passed {
-                    bar.println(format!(
+                    progress.println(format!(
                         "FAIL n = {dim} {}: max normwise {:.2} eps, {} beyond conditioning, {} non-finite",
                         r.name,
                         r.stability.max_normwise_eps,
@@ -86,10 +94,17 @@ pub fn run_cmd(args: &Args) -> ExitCode {
                         r.stability.non_finite
                     ));
                 }
+                done += 1;
+                progress.inc(Some(format!(
+                    "report: n = {dim} {} done ({done} of {} regimes), {:.0} s",
+                    r.name,
+                    opts.dims.len() * regimes,
+                    start.elapsed().as_secs_f64()
+                )));
             })
         })
         .collect();
-    bar.finish_and_clear();
+    progress.finish();
     let report = AccuracyReport {
         tool: format!("noslip {}", env!("CARGO_PKG_VERSION")),
         provenance: Provenance::collect(command, &args.out),
@@ -102,21 +117,16 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         ("report.json".to_string(), report.to_json()),
     ];
     for d in &report.dims {
-        match svg(d) {
-            Ok(text) => files.push((format!("error-vs-time-n{}.svg", d.dim), text)),
-            Err(e) => {
-                eprintln!("error: cannot draw the plot for n = {}: {e}", d.dim);
-                return ExitCode::from(1);
-            }
-        }
+        let text = svg(d)
+            .map_err(|e| Failure::output(format!("cannot draw the plot for n = {}: {e}", d.dim)))?;
+        files.push((format!("error-vs-time-n{}.svg", d.dim), text));
     }
     for (name, text) in &files {
-        let path = args.out.join(name);
-        if let Err(e) = write_atomic(&path, text) {
-            eprintln!("error: cannot write {}: {e}", path.display());
-            return ExitCode::from(1);
-        }
+        staging
+            .write(name, text.as_bytes())
+            .map_err(|e| publish_failure(&e))?;
     }
+    staging.commit().map_err(|e| publish_failure(&e))?;
     let mut failing: Vec<String> = report
         .dims
         .iter()
@@ -136,7 +146,7 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         .flat_map(|d| &d.regimes)
         .map(|r| r.stability.max_normwise_eps)
         .fold(0.0, f64::max);
-    println!(
+    outln!(
         "report: n = {:?}, {} regimes, {} cases each, {:.1} s; generated f64 worst normwise error {:.2} eps; {}; reports in {}",
         report.options.dims,
         report.options.regimes.len(),
@@ -145,10 +155,10 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         worst,
         if failing.is_empty() { "stability requirement met".to_string() } else { format!("FAILS in {}", failing.join(", ")) },
         args.out.display()
-    );
-    if failing.is_empty() {
-        ExitCode::SUCCESS
+    )?;
+    Ok(if failing.is_empty() {
+        Exit::Success
     } else {
-        ExitCode::from(1)
-    }
+        Exit::CheckFailed
+    })
 }

@@ -1,11 +1,13 @@
 //! `noslip simulate FILE`: run a scene, event by event.
 
+use super::exit::{self, Exit, Failure};
+use super::out::outln;
 use collision_core::sim::{GenericKernels, Setup, Simulation};
 use collision_core::Generated;
 use collision_core::Kernel;
 use indicatif::{ProgressBar, ProgressStyle};
 use noslip_codegen::scene::Scene;
-use noslip_verify::report::write_atomic;
+use noslip_verify::publish::Staging;
 use noslip_verify::simulate::log::LogFile;
 use noslip_verify::simulate::plot::{energy_svg, trajectories_svg};
 use noslip_verify::simulate::run::{run, Limits, Summary};
@@ -23,9 +25,10 @@ Contacts are found with a cell list and a priority queue; periodic axes use imag
 Stops after --events contacts (at least 1) or at --time (positive and finite; default: the
 scene's [simulation] values, else 100000 events). Prints a summary (events, events per
 second, kinetic energy and the drift of energy, linear and angular momentum relative to the
-start) and writes to --out: summary.json, energy.svg (energy drift over events) and, in 2D,
-trajectories.svg (a few balls' paths, cut at periodic wraps and thinned, and the contact
-points). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
+start) and writes to --out, published as one set (the whole directory is replaced at once;
+a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
+drift over events) and, in 2D, trajectories.svg (a few balls' paths, cut at periodic wraps
+and thinned, and the contact points); a --log file inside --out belongs to the set. --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
 and post states; the log file appears complete at the end of the run or not at all (if it
 cannot be written, the run still ends, prints and writes its summary, and exits 1).
 
@@ -33,7 +36,7 @@ A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, 
 scene in f64\") is refused with exit code 2, naming the field.";
 
 #[derive(clap::Args)]
-#[command(long_about = LONG_ABOUT, after_long_help = super::EXIT_CODES)]
+#[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
     /// The scene file.
     file: PathBuf,
@@ -54,34 +57,50 @@ pub struct Args {
     quiet: bool,
 }
 
-fn print_summary(s: &Summary) {
-    println!(
+/// What `simulate` can return.
+pub const CODES: &[Exit] = &[Exit::Success, Exit::OutputFailed, Exit::BadInput];
+
+/// The summary on stdout (after the files are written: a failing stdout loses nothing).
+fn print_summary(s: &Summary) -> Result<(), Failure> {
+    outln!(
         "{} contacts ({} ball-ball, {} ball-wall, {} ball-obstacle), {} cell crossings, t = {:.6}",
-        s.events, s.ball_ball, s.ball_wall, s.ball_obstacle, s.cell_crossings, s.time
-    );
-    println!(
+        s.events,
+        s.ball_ball,
+        s.ball_wall,
+        s.ball_obstacle,
+        s.cell_crossings,
+        s.time
+    )?;
+    outln!(
         "{:.3} s wall clock, {:.0} events/s, {} balls in R^{}",
-        s.seconds, s.events_per_second, s.balls, s.dim
-    );
-    println!(
+        s.seconds,
+        s.events_per_second,
+        s.balls,
+        s.dim
+    )?;
+    outln!(
         "energy {:.17e} -> {:.17e}: drift {:.3e} (max over samples {:.3e})",
-        s.energy_start, s.energy_end, s.energy_drift, s.energy_drift_max
-    );
-    println!(
+        s.energy_start,
+        s.energy_end,
+        s.energy_drift,
+        s.energy_drift_max
+    )?;
+    outln!(
         "momentum drift {:.3e}, angular momentum drift {:.3e} (relative; conserved only without walls/obstacles, angular also without periodic wrapping)",
         s.momentum_drift, s.angular_momentum_drift
-    );
+    )?;
     if let Some(why) = &s.stopped {
-        println!("stopped: {why}");
+        outln!("stopped: {why}")?;
     }
+    Ok(())
 }
 
-fn simulate<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Result<(), (u8, String)>
+fn simulate<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Result<(), Failure>
 where
     Generated: Kernel<f64, N, S>,
 {
     let setup: Setup<N, S> =
-        setup::<N, S>(scene).map_err(|e| (2, format!("{}: {e}", scene.origin)))?;
+        setup::<N, S>(scene).map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
     let species = setup.species.clone();
     let obstacles: Vec<([f64; 2], f64)> = setup
         .obstacles
@@ -92,8 +111,8 @@ where
     let kernels = GenericKernels {
         species: species.clone(),
     };
-    let mut sim =
-        Simulation::new(setup, kernels).map_err(|e| (2, format!("{}: {e}", scene.origin)))?;
+    let mut sim = Simulation::new(setup, kernels)
+        .map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
     let mut events = args.events.or(scene.simulation.events);
     let time = args.time.or(scene.simulation.time.as_ref().map(f));
     if events.is_none() && time.is_none() {
@@ -112,10 +131,20 @@ where
             .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         PathBuf::from("out/simulate").join(stem)
     });
+    // The output set is staged before the run, so that a refused --out costs no run, and a
+    // log asked for inside it (`--log OUT/events.jsonl`) is written into the set itself.
+    let mut set = Staging::new(&out).map_err(|e| super::publish_failure(&e))?;
     let mut log = match &args.log {
-        Some(p) => Some(
-            LogFile::create(p).map_err(|e| (1, format!("cannot write {}: {e}", p.display())))?,
-        ),
+        Some(p) => {
+            let at = match p.file_name() {
+                Some(name) if same_dir(p.parent(), &out) => set.path(&name.to_string_lossy()),
+                _ => p.clone(),
+            };
+            Some(
+                LogFile::create(&at)
+                    .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
+            )
+        }
         None => None,
     };
     let progress = (!args.quiet).then(|| {
@@ -133,98 +162,93 @@ where
         log.as_mut().map(|w| w as &mut dyn Write),
         progress.as_ref(),
     )
-    .map_err(|e| (1, format!("cannot write the events log: {e}")))?;
+    .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
     if let Some(pb) = progress {
         pb.finish_and_clear();
     }
     // The log is complete or absent; its failure does not stop the summary and pictures.
     let log_failed = match (log, &args.log) {
         (Some(log), Some(p)) => log.finish().err().map(|e| {
-            (
-                1u8,
-                format!(
-                    "cannot write the events log {}: {e} (no log was left; the summary was written)",
-                    p.display()
-                ),
-            )
+            Failure::output(format!(
+                "cannot write the events log {}: {e} (no log was left; the summary was written)",
+                p.display()
+            ))
         }),
         _ => None,
     };
-    print_summary(&summary);
-    let write = |name: &str, r: std::io::Result<()>| {
-        r.map_err(|e| {
-            (
-                1u8,
-                format!("cannot write {}: {e}", out.join(name).display()),
-            )
-        })
+    let staged = |r: std::io::Result<String>, name: &str| {
+        r.map_err(|e| Failure::output(format!("cannot draw {name}: {e}")))
     };
-    let json = serde_json::to_string_pretty(&summary).expect("summary serialises");
-    write(
-        "summary.json",
-        write_atomic(&out.join("summary.json"), &(json + "\n")),
-    )?;
+    let json = serde_json::to_string_pretty(&summary).expect("summary serialises") + "\n";
+    set.write("summary.json", json.as_bytes())
+        .map_err(|e| super::publish_failure(&e))?;
     let title = Path::new(&scene.origin)
         .file_name()
         .map_or(String::new(), |s| s.to_string_lossy().into_owned());
-    write(
+    let energy = staged(
+        energy_svg(&format!("{title}: energy drift"), &trace),
         "energy.svg",
-        energy_svg(
-            &out.join("energy.svg"),
-            &format!("{title}: energy drift"),
-            &trace,
-        ),
     )?;
+    set.write("energy.svg", energy.as_bytes())
+        .map_err(|e| super::publish_failure(&e))?;
     if N == 2 {
-        let size2 = [size[0], size[1]];
         let balls = trace.paths.len();
-        write(
-            "trajectories.svg",
+        let picture = staged(
             trajectories_svg(
-                &out.join("trajectories.svg"),
                 &format!(
                     "{title}: {balls} ball{} up to t = {:.6}, {} contact points",
                     if balls == 1 { "" } else { "s" },
                     trace.paths_until,
                     trace.contacts.len()
                 ),
-                size2,
+                [size[0], size[1]],
                 [periodic[0], periodic[1]],
                 &obstacles,
                 &trace,
             ),
+            "trajectories.svg",
         )?;
+        set.write("trajectories.svg", picture.as_bytes())
+            .map_err(|e| super::publish_failure(&e))?;
     }
-    println!("wrote {}", out.display());
+    set.commit().map_err(|e| super::publish_failure(&e))?;
+    print_summary(&summary)?;
+    outln!("wrote {}", out.display())?;
     log_failed.map_or(Ok(()), Err)
+}
+
+/// Whether `dir` (a log file's parent) is the output directory `out`, lexically (neither need
+/// exist yet): `OUT/events.jsonl` is then a file of the published set.
+fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
+    let clean = |p: &Path| -> PathBuf {
+        p.components()
+            .filter(|c| !matches!(c, std::path::Component::CurDir))
+            .collect()
+    };
+    dir.is_some_and(|d| clean(d) == clean(out))
 }
 
 /// `--time` and `--events` as the scene file has them: a positive finite time, at least one
 /// contact.
-fn check_limits(args: &Args) -> Result<(), String> {
+fn check_limits(args: &Args) -> Result<(), Failure> {
     if let Some(t) = args.time {
         if !(t > 0.0 && t.is_finite()) {
-            return Err(format!("--time: must be positive and finite, got {t}"));
+            return Err(Failure::bad_input(format!(
+                "--time: must be positive and finite, got {t}"
+            )));
         }
     }
     if args.events == Some(0) {
-        return Err(
-            "--events: must be at least 1 (a run of no contacts has nothing to report)".into(),
-        );
+        return Err(Failure::bad_input(
+            "--events: must be at least 1 (a run of no contacts has nothing to report)",
+        ));
     }
     Ok(())
 }
 
 pub fn run_cmd(args: &Args) -> ExitCode {
-    if let Err(e) = check_limits(args) {
-        return super::fail(2, &e);
-    }
-    let scene = match Scene::from_file(&args.file) {
-        Ok(s) => s,
-        Err(e) => return super::fail(2, &e.to_string()),
-    };
-    match super::with_dim!(scene.dim, simulate(&scene, args)) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err((code, m)) => super::fail(code, &m),
-    }
+    exit::finish(check_limits(args).and_then(|()| {
+        let scene = Scene::from_file(&args.file).map_err(|e| Failure::bad_input(e.to_string()))?;
+        super::with_dim!(scene.dim, simulate(&scene, args)).map(|()| Exit::Success)
+    }))
 }

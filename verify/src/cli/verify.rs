@@ -1,11 +1,13 @@
 //! `noslip verify`: every exact check for the chosen dimensions, reports, golden copy.
 
-use super::{parse_dims, Dims};
-use indicatif::{ProgressBar, ProgressStyle};
-use noslip_verify::report::{diff, write_atomic, Report};
+use super::exit::{self, Exit, Failure};
+use super::out::outln;
+use super::progress::Progress;
+use super::{parse_dims, publish_failure, Dims};
+use noslip_verify::publish::{write_atomic, Staging};
+use noslip_verify::report::{golden, Report};
 use noslip_verify::run::{checks_per_dim, run, Options};
-use std::path::PathBuf;
-use std::process::ExitCode;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 const LONG_ABOUT: &str = "\
@@ -22,53 +24,107 @@ Structural checks: the decomposition T_qM = G_q + Ebar_q + R n_q is orthogonal i
 n_q is unit and outward, and the exact ranks are n-1, n, N-n, N. Inertia: lambda from
 polynomial and layered radial densities lies in [0, R^2/n]; negative densities are refused.
 
-Writes OUT/verify.md and OUT/verify.json atomically; exits 1 if any check fails.";
+Writes verify.md and verify.json into the directory --out, replaced as one set (see
+docs/verification.md); prints one summary line.";
 
 #[derive(clap::Args)]
-#[command(long_about = LONG_ABOUT)]
+#[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
     /// Dimensions, as a range `2..6` (inclusive) or a list `2,3,5`.
     #[arg(long, default_value = "2..6", value_parser = parse_dims)]
     dims: Dims,
-    /// Directory for verify.md and verify.json.
-    #[arg(long, default_value = "out")]
+    /// Output directory for verify.md and verify.json, replaced as a whole by each run
+    /// (refused if it exists, is not empty and was not made by noslip).
+    #[arg(long, default_value = "out/verify")]
     out: PathBuf,
     /// Random points per identity check.
     #[arg(long, default_value_t = Options::default().points)]
     points: usize,
-    /// Compare the results (without timings) with the golden copy and print a diff on change.
+    /// Compare the results (without timings) of the dimensions run with the golden copy;
+    /// print a unified diff and exit 1 on a difference.
     #[arg(long)]
     check_golden: bool,
-    /// Rewrite the golden copy from this run.
+    /// Rewrite the golden copy's results of the dimensions run from this run.
     #[arg(long)]
     update_golden: bool,
-    /// The golden copy.
-    #[arg(long, default_value = "docs/reports/verify.json")]
-    golden: PathBuf,
+    /// The golden copy [default: docs/reports/verify.json of the source tree this binary
+    /// was built from, wherever it runs].
+    #[arg(long)]
+    golden: Option<PathBuf>,
 }
 
-pub fn run_cmd(args: &Args) -> ExitCode {
+/// What `verify` can return.
+pub const CODES: &[Exit] = &[
+    Exit::Success,
+    Exit::CheckFailed,
+    Exit::OutputFailed,
+    Exit::BadInput,
+];
+
+/// The golden copy shipped in the source tree this binary was built from.
+fn shipped_golden() -> PathBuf {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    crate_dir
+        .parent()
+        .unwrap_or(crate_dir)
+        .join("docs/reports/verify.json")
+}
+
+pub fn run_cmd(args: &Args) -> Result<Exit, Failure> {
     let opts = Options {
         points: args.points,
         ..Options::default()
     };
+    if opts.points == 0 {
+        return Err(Failure::bad_input("--points must be at least 1"));
+    }
+    let golden_path = args.golden.clone().unwrap_or_else(shipped_golden);
+    // Read the golden copy first: a missing one is a usage error, found before the run.
+    let golden = if args.check_golden || args.update_golden {
+        match std::fs::read_to_string(&golden_path) {
+            Ok(text) => Some(text),
+            Err(e) if args.update_golden && e.kind() == std::io::ErrorKind::NotFound => None,
+            Err(e) => {
+                return Err(Failure::bad_input(format!(
+                    "cannot read the golden copy {}: {e}",
+                    golden_path.display()
+                )))
+            }
+        }
+    } else {
+        None
+    };
     let dims = &args.dims.0;
-    let bar = ProgressBar::new((dims.len() * checks_per_dim()) as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} checks  {msg}").expect("template"),
-    );
+    let mut staging = Staging::new(&args.out).map_err(|e| publish_failure(&e))?;
+    let progress = Progress::new((dims.len() * checks_per_dim()) as u64, "checks");
     let start = Instant::now();
+    let (mut done, mut failed_in_dim) = (0, 0);
     let results = run(dims, &opts, &mut |r| {
-        bar.set_message(format!("n = {} {}: {}", r.dim, r.variant, r.check));
-        bar.inc(1);
+        progress.set_message(format!("n = {} {}: {}", r.dim, r.variant, r.check));
         if !r.passed {
-            bar.println(format!(
+            failed_in_dim += 1;
+            progress.println(format!(
                 "FAIL n = {} {} {}: {}",
                 r.dim, r.variant, r.check, r.detail
             ));
         }
+        done += 1;
+        let dim_done = done % checks_per_dim() == 0;
+        progress.inc(dim_done.then(|| {
+            let line = format!(
+                "verify: n = {} done ({} of {} checks, {} failed in n = {}), {:.1} s",
+                r.dim,
+                done,
+                dims.len() * checks_per_dim(),
+                failed_in_dim,
+                r.dim,
+                start.elapsed().as_secs_f64()
+            );
+            failed_in_dim = 0;
+            line
+        }));
     });
-    bar.finish_and_clear();
+    progress.finish();
     let report = Report {
         tool: format!("noslip {}", env!("CARGO_PKG_VERSION")),
         seed: opts.seed,
@@ -80,11 +136,22 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         ("verify.md", report.to_markdown()),
         ("verify.json", report.to_json()),
     ] {
-        let path = args.out.join(name);
-        if let Err(e) = write_atomic(&path, &text) {
-            eprintln!("error: cannot write {}: {e}", path.display());
-            return ExitCode::from(1);
-        }
+        staging
+            .write(name, text.as_bytes())
+            .map_err(|e| publish_failure(&e))?;
+    }
+    staging.commit().map_err(|e| publish_failure(&e))?;
+    let mut outcome = if report.passed() {
+        Exit::Success
+    } else {
+        Exit::CheckFailed
+    };
+    if args.update_golden {
+        let updated = golden::update(golden.as_deref(), &report, dims).map_err(|e| {
+            Failure::bad_input(format!("--update-golden {}: {e}", golden_path.display()))
+        })?;
+        write_atomic(&golden_path, &updated.to_json())
+            .map_err(|e| Failure::output(format!("cannot write {}: {e}", golden_path.display())))?;
     }
     let failed = report.results.iter().filter(|r| !r.passed).count();
     let worst = report
@@ -95,7 +162,7 @@ pub fn run_cmd(args: &Args) -> ExitCode {
             _ => None,
         })
         .fold(0.0f64, f64::max);
-    println!(
+    outln!(
         "verify: {} checks for n = {:?}, {} failed, {:.1} s; largest Schwartz-Zippel bound {:.1e}; reports in {}",
         report.results.len(),
         dims,
@@ -103,39 +170,31 @@ pub fn run_cmd(args: &Args) -> ExitCode {
         report.seconds,
         worst,
         args.out.display()
-    );
-    let golden_text = report.without_timings().to_json();
+    )?;
     if args.update_golden {
-        if let Err(e) = write_atomic(&args.golden, &golden_text) {
-            eprintln!("error: cannot write {}: {e}", args.golden.display());
-            return ExitCode::from(1);
-        }
-        println!("golden copy written to {}", args.golden.display());
-    }
-    if args.check_golden {
-        match std::fs::read_to_string(&args.golden) {
-            Err(e) => {
-                eprintln!(
-                    "error: cannot read the golden copy {}: {e}",
-                    args.golden.display()
-                );
-                return ExitCode::from(1);
+        outln!(
+            "golden copy {}: results of n = {:?} written",
+            golden_path.display(),
+            dims
+        )?;
+    } else if let (true, Some(golden)) = (args.check_golden, &golden) {
+        match golden::compare(golden, &report, dims).map_err(|e| {
+            Failure::bad_input(format!("the golden copy {}: {e}", golden_path.display()))
+        })? {
+            None => outln!(
+                "golden copy {}: unchanged for n = {:?}",
+                golden_path.display(),
+                dims
+            )?,
+            Some(d) => {
+                outln!(
+                    "golden copy {}: the results of n = {:?} differ:\n{d}",
+                    golden_path.display(),
+                    dims
+                )?;
+                outcome = Exit::CheckFailed;
             }
-            Ok(golden) => match diff(&golden, &golden_text) {
-                None => println!("golden copy {}: unchanged", args.golden.display()),
-                Some(d) => {
-                    eprintln!(
-                        "the results differ from the golden copy {}:\n{d}",
-                        args.golden.display()
-                    );
-                    return ExitCode::from(1);
-                }
-            },
         }
     }
-    if failed > 0 {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    }
+    Ok(outcome)
 }

@@ -16,7 +16,7 @@ use collision_core::{
 use nalgebra::DVector;
 
 /// A body after the collision: the compact angular velocity (the entries `U_ij`, `i < j`, in
-/// the order of [`skew_pairs`](collision_core::skew_pairs)) and the velocity.
+/// the order of [`collision_core::skew_pairs`]) and the velocity.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyOutput<T> {
     pub spin: Vec<T>,

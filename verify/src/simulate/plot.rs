@@ -1,18 +1,16 @@
-//! SVG pictures of a run (plotters, written atomically): energy drift against events (any
+//! SVG pictures of a run (plotters; the caller publishes them with the run's other files): energy drift against events (any
 //! dimension), and for 2D scenes the traced trajectories and the contact points.
 
 use super::run::Trace;
 use super::trace::PICTURE;
-use crate::report::write_atomic;
 use plotters::prelude::*;
-use std::path::Path;
 
 fn io_err(e: impl std::fmt::Display) -> std::io::Error {
     std::io::Error::other(e.to_string())
 }
 
 /// `(E - E_0) / E_0` against the number of events.
-pub fn energy_svg(path: &Path, title: &str, trace: &Trace) -> std::io::Result<()> {
+pub fn energy_svg(title: &str, trace: &Trace) -> std::io::Result<String> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
@@ -41,7 +39,7 @@ pub fn energy_svg(path: &Path, title: &str, trace: &Trace) -> std::io::Result<()
             .map_err(io_err)?;
         root.present().map_err(io_err)?;
     }
-    write_atomic(path, &svg)
+    Ok(svg)
 }
 
 /// The most obstacles drawn (each a ring of up to 90 points, with its periodic images).
@@ -65,13 +63,12 @@ fn clip_ring(ring: &[(f64, f64)], size: [f64; 2]) -> Vec<Vec<(f64, f64)>> {
 /// The box, the obstacles (with their images on periodic axes), the traced balls' centre
 /// paths (cut at periodic wraps, thinned; see [`super::trace`]) and the contact points (2D).
 pub fn trajectories_svg(
-    path: &Path,
     title: &str,
     size: [f64; 2],
     periodic: [bool; 2],
     obstacles: &[([f64; 2], f64)],
     trace: &Trace,
-) -> std::io::Result<()> {
+) -> std::io::Result<String> {
     let mut svg = String::new();
     {
         let scale = PICTURE / size[0].max(size[1]);
@@ -139,5 +136,5 @@ pub fn trajectories_svg(
             .map_err(io_err)?;
         root.present().map_err(io_err)?;
     }
-    write_atomic(path, &svg)
+    Ok(svg)
 }
