@@ -375,12 +375,23 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
                 "[`{}`] with every single-use product fused into the addition that consumes it",
                 kernel.variant.name()
             ),
-            "(`T::mul_add`, `T::mul_sub`, `T::neg_mul_add`: one rounding for `a b + c` in floats;".into(),
+            "(`T::mul_add`, `T::mul_sub`, `T::neg_mul_add`: one rounding for `a b + c` in floats;"
+                .into(),
             "exact in rationals). Same formula, same operation order otherwise.".into(),
             String::new(),
-            "Call it where the target has FMA instructions (`#[target_feature(enable = \"fma\")]`);".into(),
-            "elsewhere `f64::mul_add` is a library call and much slower.".into(),
+            "Always inlined, so it is compiled with its caller's target features:".into(),
+            "`collision_core::collide_unchecked_fma` calls it from a function compiled with".into(),
+            "`#[target_feature(enable = \"fma\")]` when the CPU has FMA (run-time detection)."
+                .into(),
+            "Called from code compiled without FMA, `f64::mul_add` is a libm call: the same".into(),
+            "bits (both round once, correctly), several times slower.".into(),
         ],
+    };
+    // The FMA forms are inlined into the caller, whose target features decide whether
+    // `mul_add` is an instruction; the plain forms are left to LLVM's inliner.
+    let inline = match arith {
+        Arith::Plain => quote!(#[inline]),
+        Arith::Fma => quote!(#[inline(always)]),
     };
     doc.push(String::new());
     doc.push(format!("Ops: {ops}; {terms} intermediate terms."));
@@ -406,7 +417,7 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
 
     let tokens = quote! {
         #doc
-        #[inline]
+        #inline
         #[allow(non_snake_case, clippy::too_many_arguments)]
         pub fn #fn_name<T: Scalar>(#params) -> #ret_ty
         where

@@ -41,7 +41,9 @@ pub mod sim;
 mod state;
 
 pub use ball::{Ball, Inertia, Mass};
-pub use collide::{collide, collide_unchecked, collide_unchecked_fma, validate, validate_parts};
+pub use collide::{
+    collide, collide_unchecked, collide_unchecked_fma, fma_in_hardware, validate, validate_parts,
+};
 pub use error::{BodyField, Field, InputError};
 pub use kernels::{Generated, Kernel};
 pub use normal::stereographic_normal;

@@ -186,11 +186,14 @@ where
 /// (`T::mul_add`, `T::mul_sub`, `T::neg_mul_add`: one rounding for `a b + c` in floats;
 /// exact in rationals). Same formula, same operation order otherwise.
 ///
-/// Call it where the target has FMA instructions (`#[target_feature(enable = "fma")]`);
-/// elsewhere `f64::mul_add` is a library call and much slower.
+/// Always inlined, so it is compiled with its caller's target features:
+/// `collision_core::collide_unchecked_fma` calls it from a function compiled with
+/// `#[target_feature(enable = "fma")]` when the CPU has FMA (run-time detection).
+/// Called from code compiled without FMA, `f64::mul_add` is a libm call: the same
+/// bits (both round once, correctly), several times slower.
 ///
 /// Ops: 16 fma, 5 add, 15 mul, 4 div, 0 neg (40 total); 40 intermediate terms.
-#[inline]
+#[inline(always)]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn free_fma<T: Scalar>(
     nu: &[T; 2],
@@ -264,11 +267,14 @@ where
 /// (`T::mul_add`, `T::mul_sub`, `T::neg_mul_add`: one rounding for `a b + c` in floats;
 /// exact in rationals). Same formula, same operation order otherwise.
 ///
-/// Call it where the target has FMA instructions (`#[target_feature(enable = "fma")]`);
-/// elsewhere `f64::mul_add` is a library call and much slower.
+/// Always inlined, so it is compiled with its caller's target features:
+/// `collision_core::collide_unchecked_fma` calls it from a function compiled with
+/// `#[target_feature(enable = "fma")]` when the CPU has FMA (run-time detection).
+/// Called from code compiled without FMA, `f64::mul_add` is a libm call: the same
+/// bits (both round once, correctly), several times slower.
 ///
 /// Ops: 10 fma, 5 add, 6 mul, 2 div, 0 neg (23 total); 23 intermediate terms.
-#[inline]
+#[inline(always)]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed_fma<T: Scalar>(
     nu: &[T; 2],

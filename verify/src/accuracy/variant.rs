@@ -142,7 +142,13 @@ impl Variant {
         let run64 = |c: &Case<f64, N, S>| collide_unchecked(&c.nu, c.ball_refs(), c.state_refs());
         Some(match self {
             Variant::F64 => time(cases.len(), samples, || pass_over(cases, run64)),
-            Variant::F64Fma => time(cases.len(), samples, || fma_pass(cases)),
+            // The public entry point, with its run-time choice of FMA instructions: what a
+            // caller gets.
+            Variant::F64Fma => time(cases.len(), samples, || {
+                pass_over(cases, |c| {
+                    collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
+                })
+            }),
             Variant::F32 if cases32.is_empty() => return None,
             Variant::F32 => time(cases32.len(), samples, || {
                 pass_over(cases32, |c| {
@@ -205,42 +211,8 @@ fn free_batch<const N: usize, const S: usize>(cases: &[Case<f64, N, S>]) -> Free
         .collect()
 }
 
-/// Whether this CPU runs the FMA kernels with FMA instructions.
+/// Whether this CPU runs the FMA kernels with FMA instructions
+/// ([`collision_core::fma_in_hardware`]).
 pub fn has_fma() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("fma")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
-}
-
-/// One pass of the FMA kernels, compiled with FMA instructions where the CPU has them
-/// (elsewhere `f64::mul_add` is a library call).
-fn fma_pass<const N: usize, const S: usize>(cases: &[Case<f64, N, S>])
-where
-    Generated: Kernel<f64, N, S>,
-{
-    #[cfg(target_arch = "x86_64")]
-    if has_fma() {
-        // SAFETY: the CPU has FMA (checked at run time just above).
-        unsafe { fma_pass_x86(cases) };
-        return;
-    }
-    pass_over(cases, |c| {
-        collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
-    })
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "fma")]
-unsafe fn fma_pass_x86<const N: usize, const S: usize>(cases: &[Case<f64, N, S>])
-where
-    Generated: Kernel<f64, N, S>,
-{
-    pass_over(cases, |c| {
-        collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
-    })
+    collision_core::fma_in_hardware()
 }
