@@ -244,10 +244,13 @@ pub(crate) fn description(kernel: &Kernel) -> Vec<String> {
             String::new(),
             "```text".into(),
             "c = R_1 U_1 nu + R_2 U_2 nu,  du = u_2 - u_1,  dn = du . nu,  t = du - dn nu - c".into(),
-            "P = dn nu + (g_2 / (1 + g_2)) t".into(),
-            "u_2+ = u_2 - 2 P,  U_2+ = U_2 + (2 / (R_2 (1 + g_2))) nu ^ t".into(),
+            "rho_2 = 2 / (R_2 (1 + g_2)),  tau = rho_2 t".into(),
+            "u_2+ = u_2 - 2 (dn nu + t) + R_2 tau,  U_2+ = U_2 + nu ^ tau".into(),
             "```".into(),
             String::new(),
+            "(`2 - R_2 rho_2 = 2 g_2 / (1 + g_2)`.) With one rounded constant the float map is still".into(),
+            "an exact reflection (for `gamma2` within rounding of `g_2`), so repeated wall contacts".into(),
+            "do not drift the energy by the constants' rounding (`docs/scenes.md`).".into(),
             "Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).".into(),
         ],
     };
@@ -370,12 +373,23 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
                 "[`{}`] with every single-use product fused into the addition that consumes it",
                 kernel.variant.name()
             ),
-            "(`T::mul_add`, `T::mul_sub`, `T::neg_mul_add`: one rounding for `a b + c` in floats;".into(),
+            "(`T::mul_add`, `T::mul_sub`, `T::neg_mul_add`: one rounding for `a b + c` in floats;"
+                .into(),
             "exact in rationals). Same formula, same operation order otherwise.".into(),
             String::new(),
-            "Call it where the target has FMA instructions (`#[target_feature(enable = \"fma\")]`);".into(),
-            "elsewhere `f64::mul_add` is a library call and much slower.".into(),
+            "Always inlined, so it is compiled with its caller's target features:".into(),
+            "`collision_core::collide_unchecked_fma` calls it from a function compiled with".into(),
+            "`#[target_feature(enable = \"fma\")]` when the CPU has FMA (run-time detection)."
+                .into(),
+            "Called from code compiled without FMA, `f64::mul_add` is a libm call: the same".into(),
+            "bits (both round once, correctly), several times slower.".into(),
         ],
+    };
+    // The FMA forms are inlined into the caller, whose target features decide whether
+    // `mul_add` is an instruction; the plain forms are left to LLVM's inliner.
+    let inline = match arith {
+        Arith::Plain => quote!(#[inline]),
+        Arith::Fma => quote!(#[inline(always)]),
     };
     doc.push(String::new());
     doc.push(format!("Ops: {ops}; {terms} intermediate terms."));
@@ -401,7 +415,7 @@ pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
 
     let tokens = quote! {
         #doc
-        #[inline]
+        #inline
         #[allow(non_snake_case, clippy::too_many_arguments)]
         pub fn #fn_name<T: Scalar>(#params) -> #ret_ty
         where

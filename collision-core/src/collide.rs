@@ -7,6 +7,9 @@ use crate::reference;
 use crate::{Ball, BodyState, Scalar};
 use nalgebra::DVector;
 
+mod fma;
+pub use fma::{collide_unchecked_fma, fma_in_hardware};
+
 /// The post-collision states of two balls in contact at normal `nu` (unit, from body 1's
 /// centre to body 2's), after validating every input:
 ///
@@ -121,55 +124,82 @@ where
     T: Scalar,
     Generated: Kernel<T, N, S>,
 {
-    dispatch(nu, balls, states, Generated::free, Generated::fixed)
+    dispatch::<Plain, T, N, S>(nu, balls, states)
 }
 
-/// [`collide_unchecked`] with the FMA kernels (`free_fma`, `fixed_fma`). Fast only where
-/// the caller is compiled with FMA instructions (`#[target_feature(enable = "fma")]`).
-#[inline]
-pub fn collide_unchecked_fma<T, const N: usize, const S: usize>(
-    nu: &[T; N],
-    balls: [&Ball<T>; 2],
-    states: [&BodyState<T, N, S>; 2],
-) -> [BodyState<T, N, S>; 2]
+/// The two kernels [`dispatch`] picks from. A type, not `Fn` arguments: a kernel called
+/// through a `Fn` bound is compiled in its own shim function, which LLVM need not inline
+/// (and does not, for the larger `fixed` kernels called from two branches), and which
+/// would not inherit a caller's `#[target_feature]` (see `fma.rs`).
+trait Pair<T, const N: usize, const S: usize> {
+    fn free(
+        nu: &[T; N],
+        ball1: &Ball<T>,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> [BodyState<T, N, S>; 2];
+
+    fn fixed(
+        nu: &[T; N],
+        radius1: &T,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S>;
+}
+
+/// `free` and `fixed`.
+struct Plain;
+
+impl<T, const N: usize, const S: usize> Pair<T, N, S> for Plain
 where
-    T: Scalar,
     Generated: Kernel<T, N, S>,
 {
-    dispatch(nu, balls, states, Generated::free_fma, Generated::fixed_fma)
+    #[inline(always)]
+    fn free(
+        nu: &[T; N],
+        ball1: &Ball<T>,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> [BodyState<T, N, S>; 2] {
+        Generated::free(nu, ball1, ball2, state1, state2)
+    }
+
+    #[inline(always)]
+    fn fixed(
+        nu: &[T; N],
+        radius1: &T,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S> {
+        Generated::fixed(nu, radius1, ball2, state1, state2)
+    }
 }
 
 /// Body 1 immovable: `fixed`; body 2 immovable: `fixed` with the bodies swapped and `nu`
-/// negated; otherwise `free`.
+/// negated; otherwise `free` (kernels of `K`).
 #[inline(always)]
-fn dispatch<T, const N: usize, const S: usize, Free, Fixed>(
+fn dispatch<K, T, const N: usize, const S: usize>(
     nu: &[T; N],
     balls: [&Ball<T>; 2],
     states: [&BodyState<T, N, S>; 2],
-    free: Free,
-    fixed: Fixed,
 ) -> [BodyState<T, N, S>; 2]
 where
     T: Scalar,
-    Free: Fn(
-        &[T; N],
-        &Ball<T>,
-        &Ball<T>,
-        &BodyState<T, N, S>,
-        &BodyState<T, N, S>,
-    ) -> [BodyState<T, N, S>; 2],
-    Fixed:
-        Fn(&[T; N], &T, &Ball<T>, &BodyState<T, N, S>, &BodyState<T, N, S>) -> BodyState<T, N, S>,
+    K: Pair<T, N, S>,
 {
     let [b1, b2] = balls;
     let [s1, s2] = states;
     if b1.is_immovable() {
-        [s1.clone(), fixed(nu, &b1.radius, b2, s1, s2)]
+        [s1.clone(), K::fixed(nu, &b1.radius, b2, s1, s2)]
     } else if b2.is_immovable() {
         let minus_nu = nu.clone().map(|x| -x);
-        [fixed(&minus_nu, &b2.radius, b1, s2, s1), s2.clone()]
+        [K::fixed(&minus_nu, &b2.radius, b1, s2, s1), s2.clone()]
     } else {
-        free(nu, b1, b2, s1, s2)
+        K::free(nu, b1, b2, s1, s2)
     }
 }
 

@@ -12,6 +12,9 @@
 
 use crate::{Ball, BodyState, RefArith, Scalar};
 
+#[cfg(test)]
+mod energy_drift;
+
 macro_rules! generated {
     ($($module:ident $feature:literal $n:literal $s:literal $file:literal;)*) => {$(
         #[doc = concat!("Generated kernels for n = ", stringify!($n), ".")]

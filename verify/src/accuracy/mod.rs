@@ -4,9 +4,12 @@
 //! - [`regime`]: the sampled input distributions.
 //! - [`variant`]: the variants (generated f64, FMA, f32, exact; the nalgebra reference; the
 //!   notes' dense matrix, [`dense`]) and how each runs and is timed ([`timing`]).
+//! - [`batched`]: the batch variant's cases, split into `free` and `fixed` batches as
+//!   `collide` dispatches them.
 //! - [`measure`]: bits of error, normwise error in each body's energy norm, conditioning.
 //! - [`run`]: one report run; [`render`]: Markdown and JSON; [`plot`]: the SVG plot.
 
+pub mod batched;
 pub mod case;
 pub mod dense;
 pub mod measure;

@@ -52,8 +52,7 @@ pub fn time(batch: usize, samples: usize, mut pass: impl FnMut()) -> Timing {
     }
 }
 
-/// One pass of `kernel` over `cases`, results kept from the optimiser. Always inlined, so
-/// that a caller compiled with extra target features (the FMA pass) passes them on.
+/// One pass of `kernel` over `cases`, results kept from the optimiser.
 #[inline(always)]
 pub fn pass_over<C, R>(cases: &[C], kernel: impl Fn(&C) -> R) {
     for c in cases {

@@ -1,9 +1,10 @@
 //! The kernel variants the report compares: what each computes and how it is timed.
 
+use super::batched::Batched;
 use super::case::{flatten, Case};
 use super::dense;
 use super::timing::{pass_over, time, Timing};
-use collision_core::batch::{BatchKernel, Contact, Exec, FreeBatch, PairBatch};
+use collision_core::batch::{BatchKernel, Exec};
 use collision_core::{
     collide_unchecked, collide_unchecked_fma, literal, reference, BodyState, Exact, Generated,
     Kernel, Scalar,
@@ -28,9 +29,9 @@ pub enum Variant {
     /// MATH.md's closed form written literally (`k_i = w_i / gamma_i^2`), in `f64`: the
     /// form before the generator's reformulation.
     Literal,
-    /// The generated batch `free` kernel (blocks of 8 contacts) in `f64`, at the widest
-    /// instruction set the CPU has (`collision_core::batch::Exec::auto`). An immovable body
-    /// goes through `free` with `inv_mass = 0`, not through `fixed`.
+    /// The generated batch kernels (blocks of 8 contacts) in `f64`, at the widest
+    /// instruction set the CPU has (`collision_core::batch::Exec::auto`), dispatched like
+    /// `collide` ([`super::batched`]): the scalar kernels' results, bit for bit.
     Batch,
 }
 
@@ -115,11 +116,10 @@ impl Variant {
             Variant::Dense => done(&dense::collide(nu, balls, states)),
             Variant::Literal => done(&literal::free(nu, balls[0], balls[1], states[0], states[1])),
             Variant::Batch => {
-                let mut out = PairBatch::new();
-                Exec::auto()
-                    .serial()
-                    .free(&free_batch(std::slice::from_ref(case)), &mut out);
-                match out.get(0) {
+                let cases = std::slice::from_ref(case);
+                let mut batched = Batched::new(cases);
+                batched.run(&Exec::auto().serial());
+                match batched.result(0, cases) {
                     Some(r) => done(&r),
                     None => Outcome::Unsupported("empty batch".into()),
                 }
@@ -142,7 +142,13 @@ impl Variant {
         let run64 = |c: &Case<f64, N, S>| collide_unchecked(&c.nu, c.ball_refs(), c.state_refs());
         Some(match self {
             Variant::F64 => time(cases.len(), samples, || pass_over(cases, run64)),
-            Variant::F64Fma => time(cases.len(), samples, || fma_pass(cases)),
+            // The public entry point, with its run-time choice of FMA instructions: what a
+            // caller gets.
+            Variant::F64Fma => time(cases.len(), samples, || {
+                pass_over(cases, |c| {
+                    collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
+                })
+            }),
             Variant::F32 if cases32.is_empty() => return None,
             Variant::F32 => time(cases32.len(), samples, || {
                 pass_over(cases32, |c| {
@@ -165,11 +171,10 @@ impl Variant {
                 })
             }),
             Variant::Batch => {
-                let (exec, batch) = (Exec::auto().serial(), free_batch(cases));
-                let mut out = PairBatch::new();
+                let (exec, mut batched) = (Exec::auto().serial(), Batched::new(cases));
                 time(cases.len(), samples, || {
-                    exec.free(std::hint::black_box(&batch), &mut out);
-                    std::hint::black_box(&out);
+                    batched.run(std::hint::black_box(&exec));
+                    std::hint::black_box(&batched);
                 })
             }
             Variant::Literal => time(cases.len(), samples, || {
@@ -191,56 +196,49 @@ fn done<T: Scalar, const N: usize, const S: usize>(states: &[BodyState<T, N, S>;
     }
 }
 
-/// The cases as one per-contact batch.
-fn free_batch<const N: usize, const S: usize>(cases: &[Case<f64, N, S>]) -> FreeBatch<f64, N, S> {
-    cases
-        .iter()
-        .map(|c| {
-            let contact = Contact {
-                nu: c.nu,
-                states: c.states.clone(),
-            };
-            (contact, c.balls.clone())
-        })
-        .collect()
-}
-
-/// Whether this CPU runs the FMA kernels with FMA instructions.
+/// Whether this CPU runs the FMA kernels with FMA instructions
+/// ([`collision_core::fma_in_hardware`]).
 pub fn has_fma() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("fma")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    collision_core::fma_in_hardware()
 }
 
-/// One pass of the FMA kernels, compiled with FMA instructions where the CPU has them
-/// (elsewhere `f64::mul_add` is a library call).
-fn fma_pass<const N: usize, const S: usize>(cases: &[Case<f64, N, S>])
-where
-    Generated: Kernel<f64, N, S>,
-{
-    #[cfg(target_arch = "x86_64")]
-    if has_fma() {
-        // SAFETY: the CPU has FMA (checked at run time just above).
-        unsafe { fma_pass_x86(cases) };
-        return;
-    }
-    pass_over(cases, |c| {
-        collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
-    })
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accuracy::regime::Regime;
+    use crate::sample::Rng;
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "fma")]
-unsafe fn fma_pass_x86<const N: usize, const S: usize>(cases: &[Case<f64, N, S>])
-where
-    Generated: Kernel<f64, N, S>,
-{
-    pass_over(cases, |c| {
-        collide_unchecked_fma(&c.nu, c.ball_refs(), c.state_refs())
-    })
+    fn bits(outcome: Outcome) -> Option<Vec<u64>> {
+        match outcome {
+            Outcome::Done(v) => Some(v.iter().map(|x| x.to_bits()).collect()),
+            _ => None,
+        }
+    }
+
+    /// The batch variant's result is `collide_unchecked`'s (the `f64` variant), bit for bit,
+    /// on 40 cases of every regime: an immovable body goes through `fixed` there too.
+    fn batch_is_the_scalar_path<const N: usize, const S: usize>()
+    where
+        Generated: Kernel<f64, N, S> + Kernel<f32, N, S> + BatchKernel<f64, N, S>,
+    {
+        for regime in Regime::ALL {
+            let mut rng = Rng::new(0xba7c ^ N as u64);
+            for k in 0..40 {
+                let case = regime.sample::<N, S>(&mut rng);
+                let scalar = bits(Variant::F64.run(&case, Err("f32 not needed")));
+                let batch = bits(Variant::Batch.run(&case, Err("f32 not needed")));
+                assert!(scalar.is_some(), "n = {N}, {}, case {k}", regime.name());
+                assert_eq!(batch, scalar, "n = {N}, {}, case {k}", regime.name());
+            }
+        }
+    }
+
+    #[test]
+    fn the_batch_variant_gives_the_scalar_results_bit_for_bit() {
+        batch_is_the_scalar_path::<2, 1>();
+        batch_is_the_scalar_path::<3, 3>();
+        batch_is_the_scalar_path::<4, 6>();
+        batch_is_the_scalar_path::<5, 10>();
+        batch_is_the_scalar_path::<6, 15>();
+    }
 }
