@@ -29,7 +29,7 @@
 //! `m/2 4 g/(1+g)^2 (g e_p + e_rho) |t|^2`. Every figure is per contact, in eps of the
 //! initial energy.
 
-use collision_core::sim::{Body, Contact, FixedBall, GenericKernels, Setup, Simulation};
+use collision_core::sim::{Body, Contact, FixedBall, GenericKernels, Setup, Simulation, Step};
 use collision_core::{Ball, BodyState, Exact, Generated, Kernel};
 use num_traits::ToPrimitive;
 use rand::{Rng as _, SeedableRng};
@@ -235,7 +235,7 @@ fn main() {
     let mut unit_error = 0.0;
     let mut n = 0u64;
     while n < contacts {
-        let Some(event) = sim.step(f64::INFINITY) else {
+        let Step::Contact(event) = sim.step(f64::INFINITY) else {
             break;
         };
         if matches!(event.contact, Contact::Ball { .. }) {

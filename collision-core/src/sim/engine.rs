@@ -45,6 +45,7 @@
 
 use super::cells::Grid;
 use super::no_contact::{Flight, NoContact};
+use super::normal::unit;
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::predict::{contact_time, exit_time};
@@ -674,10 +675,4 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             post: balls.map(|b| self.state[b].clone()),
         }
     }
-}
-
-/// `d / |d|`.
-fn unit<const N: usize>(d: [f64; N]) -> [f64; N] {
-    let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-    d.map(|x| x / norm)
 }

@@ -17,6 +17,7 @@
 mod cells;
 pub mod engine;
 pub mod no_contact;
+mod normal;
 mod observe;
 mod orientation;
 pub mod predict;
