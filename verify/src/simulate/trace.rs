@@ -142,51 +142,65 @@ impl Tracer {
         }
     }
 
-    /// The next parameter `s` in `(after, 1)` at which `p + s (q - p)` crosses `x_k = j L_k`.
-    fn next_crossing(&self, k: usize, p: f64, q: f64, after: f64) -> Option<f64> {
-        if p == q {
-            return None;
-        }
-        let l = self.size[k];
-        let x = p + after * (q - p);
-        let j = if q > p {
-            (x / l).floor() + 1.0
-        } else {
-            (x / l).ceil() - 1.0
-        };
-        let s = (j * l - p) / (q - p);
-        (s > after && s < 1.0).then_some(s)
-    }
-
     /// Draw the straight flight from `p` (in the box) to `q` (unwrapped), which starts at
     /// `t0` and lasts `dt`.
+    ///
+    /// The copy of the box the flight is in is counted in whole box lengths per axis
+    /// (`copy`), starting at 0 and stepped by one at each face crossed: the next face along
+    /// axis `k` is `(copy_k + 1) L_k` moving up, `copy_k L_k` moving down, at parameter
+    /// `s = (face - p_k) / (q_k - p_k)`. Counting the copies, instead of recomputing them
+    /// from rounded positions, crosses every face exactly once (a crossing recomputed from
+    /// `p + s (q - p)` near a face could be missed, drawing a chord across the box). A flight
+    /// that does not start where the last one was drawn (its start was wrapped onto the
+    /// opposite face) starts a new piece.
     fn segment(&mut self, b: usize, p: [f64; 2], q: [f64; 2], t0: f64, dt: f64) {
         let at = |s: f64| [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])];
-        let mut offset = [0.0f64; 2];
+        let mut copy = [0i64; 2];
+        let size = self.size;
+        let into_box = |x: [f64; 2], copy: [i64; 2]| -> [f64; 2] {
+            // Clamped: the shift is exact only up to rounding.
+            std::array::from_fn(|k| (x[k] - copy[k] as f64 * size[k]).clamp(0.0, size[k]))
+        };
+        let last = *self.paths[b]
+            .last()
+            .and_then(|piece| piece.last())
+            .expect("a point");
+        if (0..2).any(|k| (last[k] - p[k]).abs() > 0.5 * self.size[k]) {
+            self.paths[b].push(vec![p]);
+            self.cost += PIECE_COST + 1;
+        }
         let mut s0 = 0.0;
-        while s0 < 1.0 {
-            let s1 = [0, 1]
-                .iter()
-                .filter_map(|&k| self.next_crossing(k, p[k], q[k], s0))
-                .fold(1.0, f64::min);
-            if s1 > s0 {
-                let mid = at(0.5 * (s0 + s1));
-                let o: [f64; 2] = std::array::from_fn(|k| (mid[k] / self.size[k]).floor());
-                // Back into the box (clamped: the shift is exact only up to rounding).
-                let shift = |x: [f64; 2]| -> [f64; 2] {
-                    std::array::from_fn(|k| (x[k] - o[k] * self.size[k]).clamp(0.0, self.size[k]))
+        loop {
+            let mut next: Option<(f64, usize, i64)> = None;
+            for k in 0..2 {
+                let d = q[k] - p[k];
+                if d == 0.0 {
+                    continue;
+                }
+                let (face, step) = if d > 0.0 {
+                    ((copy[k] + 1) as f64 * self.size[k], 1)
+                } else {
+                    (copy[k] as f64 * self.size[k], -1)
                 };
-                if o != offset {
-                    offset = o;
-                    self.paths[b].push(vec![shift(at(s0))]);
-                    self.cost += PIECE_COST + 1;
+                let s = ((face - p[k]) / d).max(s0);
+                if s < 1.0 && next.is_none_or(|(t, _, _)| s < t) {
+                    next = Some((s, k, step));
                 }
-                self.point(b, shift(at(s1)));
-                if self.cost >= PATH_BUDGET || self.ink >= INK {
-                    self.full = true;
-                    self.until = t0 + s1 * dt;
-                    return;
-                }
+            }
+            let s1 = next.map_or(1.0, |(s, _, _)| s);
+            self.point(b, into_box(at(s1), copy));
+            if let Some((_, k, step)) = next {
+                copy[k] += step;
+                self.paths[b].push(vec![into_box(at(s1), copy)]);
+                self.cost += PIECE_COST + 1;
+            }
+            if self.cost >= PATH_BUDGET || self.ink >= INK {
+                self.full = true;
+                self.until = t0 + s1 * dt;
+                return;
+            }
+            if next.is_none() {
+                return;
             }
             s0 = s1;
         }
@@ -231,6 +245,54 @@ impl Tracer {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Whether every segment of `pieces` runs along `v` (a chord across a wrap does not).
+    fn along(pieces: &[Vec<[f64; 2]>], v: [f64; 2]) -> bool {
+        pieces.iter().all(|piece| {
+            piece.windows(2).all(|w| {
+                let d = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
+                (d[0] * v[1] - d[1] * v[0]).abs() <= 1e-12 * d[0].hypot(d[1]) * v[0].hypot(v[1])
+            })
+        })
+    }
+
+    /// A flight crossing many faces, where the crossing parameter recomputed from the
+    /// rounded position `p + s (q - p)` lands just before the face already crossed (the
+    /// previous rule then found no next face and drew a chord across the box): a Sinai
+    /// flight of the shipped scene, from a failing run.
+    #[test]
+    fn every_face_of_a_long_flight_is_crossed_once() {
+        let (p, v, t0, t1) = (
+            [0.16196002475981514, 0.5907136987428863],
+            [-0.05821657120666317, 0.7547763269326635],
+            6.669279276005103,
+            12.929340250892938,
+        );
+        let end = [0.797520739257204, 0.31565952774323586];
+        let mut t = Tracer::new([1.0, 1.0], t0, &[(p, v)]);
+        t.flight(0, t1, end, [0.0, 0.0]);
+        // One x face and five y faces: seven pieces, each along the flight.
+        assert_eq!(t.paths[0].len(), 7, "{:?}", t.paths[0]);
+        assert!(along(&t.paths[0], v), "{:?}", t.paths[0]);
+        let last = *t.paths[0].last().unwrap().last().unwrap();
+        assert!((last[0] - end[0]).abs() < 1e-12 && (last[1] - end[1]).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_flight_starting_on_the_opposite_face_starts_a_new_piece() {
+        // The first flight ends on the face y = 0; the engine wrapped the ball, which starts
+        // its next flight from y = 1 (= 0): no segment may join (0.5, 0) to (0.5, 1).
+        let mut t = Tracer::new([1.0, 1.0], 0.0, &[([0.5, 0.5], [0.0, -1.0])]);
+        t.flight(0, 0.5, [0.5, 1.0], [0.25, -0.5]);
+        t.flight(0, 1.0, [0.625, 0.75], [0.0, 0.0]);
+        assert_eq!(
+            t.paths[0],
+            vec![
+                vec![[0.5, 0.5], [0.5, 0.0]],
+                vec![[0.5, 1.0], [0.625, 0.75]]
+            ]
+        );
+    }
 
     #[test]
     fn a_wrapping_flight_is_cut_at_the_faces() {
