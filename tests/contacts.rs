@@ -34,9 +34,12 @@ fn next<const N: usize, const S: usize>(
 where
     Generated: Kernel<f64, N, S>,
 {
-    match sim.step(f64::INFINITY) {
-        Step::Contact(e) => Some(e),
-        _ => None,
+    loop {
+        match sim.step(f64::INFINITY) {
+            Step::Contact(e) => return Some(e),
+            Step::Quiet { .. } => {}
+            _ => return None,
+        }
     }
 }
 

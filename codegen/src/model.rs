@@ -23,17 +23,8 @@
 //!
 //! The immovable variant (body 1 immovable) is the same builder with `w_1 = 0`; the map is
 //! homogeneous of degree 0 in `(w_1, w_2)`, so `w_2 = 1`, and with `w_1 = 0` it does not
-//! depend on `g_1`, so `g_1 = 1`. Constant folding then leaves `D = 1 + g_2`, and body 2's
-//! update is written with the single tangential constant `rho_2`:
-//!
-//! ```text
-//! rho_2 = 2 / (R_2 (1 + g_2)),   tau = rho_2 t
-//! u_2+ = u_2 - 2 (dn nu + t) + R_2 tau,   U_2+ = U_2 + nu ^ tau
-//! ```
-//!
-//! (`2 - R_2 rho_2 = 2 g_2 / (1 + g_2)`), so that a rounded `rho_2` still gives an exact
-//! reflection (see [`build_on`]'s helper `reflect_off_immovable`). The verifier checks
-//! exactly that it is the `w_1 -> 0` limit of the free map.
+//! depend on `g_1`, so `g_1 = 1`. Constant folding then leaves the reduced kernel; the
+//! verifier checks exactly that it is the `w_1 -> 0` limit of the free map.
 
 use crate::ir::{Graph, Id};
 
@@ -251,7 +242,7 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
         .collect();
     label_all(g, &t, "t");
 
-    // D = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2)
+    // P = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t
     let (w1, w2, g1, g2) = (b1.inv_mass, b2.inv_mass, b1.gamma2, b2.gamma2);
     let one = g.int(1);
     let two = g.int(2);
@@ -268,11 +259,6 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
         g.add(x, y)
     };
     g.label(d, "d");
-    if variant == Variant::Fixed {
-        return vec![reflect_off_immovable(g, b2, nu, dn, &t, d)];
-    }
-
-    // P = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t
     let g1g2 = g.mul(g1, g2);
     let p_t = g.div(g1g2, d);
     g.label(p_t, "p_t");
@@ -324,192 +310,17 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
             velocity,
         }
     };
-    vec![update(g, b1, g2, 1, 1), update(g, b2, g1, -1, 2)]
-}
-
-/// Body 2 after contact with an immovable body 1 (`d = 1 + g_2` here):
-///
-/// ```text
-/// rho_2 = 2 / (R_2 (1 + g_2)),   tau = rho_2 t
-/// u_2+ = u_2 - 2 (dn nu + t) + R_2 tau,   U_2+ = U_2 + nu ^ tau
-/// ```
-///
-/// the `w_1 -> 0` limit of the free map (`2 - R_2 rho_2 = 2 g_2 / (1 + g_2)`), written so
-/// that its one tangential constant is `rho_2`. With `rho_2` replaced by any `r > 0` (its
-/// rounding in floats) the map is still an exact reflection: the isometry of the kinetic
-/// energy of a ball with `gamma2 = 2 / (R_2 r) - 1`, within rounding of `g_2`. So the
-/// constant's rounding changes the conserved energy by a bounded amount and adds no drift
-/// over repeated contacts (`docs/scenes.md`); two separately rounded constants
-/// (`g_2 / (1 + g_2)` and `rho_2`) would not be an isometry of any energy.
-fn reflect_off_immovable(
-    g: &mut Graph,
-    b2: &BodyInputs,
-    nu: &[Id],
-    dn: Id,
-    t: &[Id],
-    d: Id,
-) -> BodyOutput {
-    let two = g.int(2);
-    let den = g.mul(b2.radius, d);
-    let rho = g.div(two, den);
-    g.label(rho, "rho2");
-    let tau: Vec<Id> = t.iter().map(|&x| g.mul(rho, x)).collect();
-    label_all(g, &tau, "tau");
-    let velocity = (0..nu.len())
-        .map(|k| {
-            let normal = g.mul(dn, nu[k]);
-            let s = g.add(normal, t[k]);
-            let s2 = g.mul(two, s);
-            let reflected = g.sub(b2.velocity[k], s2);
-            let turn = g.mul(b2.radius, tau[k]);
-            g.add(reflected, turn)
-        })
-        .collect();
-    let nu_tau = wedge(g, nu.len(), nu, &tau);
-    let spin = b2
-        .spin
-        .iter()
-        .zip(&nu_tau)
-        .map(|(&u, &x)| g.add(u, x))
-        .collect();
-    BodyOutput {
-        body: 2,
-        spin,
-        velocity,
+    let mut outputs = Vec::new();
+    if variant == Variant::Free {
+        outputs.push(update(g, b1, g2, 1, 1));
     }
+    outputs.push(update(g, b2, g1, -1, 2));
+    outputs
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_bigint::BigInt;
-    use num_rational::BigRational;
-    use num_traits::{One, Zero};
-    use std::collections::HashMap;
-
-    /// A deterministic stream of small rationals `p / q`, `|p| <= 40`, `1 <= q <= 12`
-    /// (SplitMix64).
-    struct Rationals(u64);
-
-    impl Rationals {
-        fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        }
-
-        fn next(&mut self) -> BigRational {
-            let p = (self.next_u64() % 81) as i64 - 40;
-            let q = (self.next_u64() % 12) as i64 + 1;
-            BigRational::new(p.into(), q.into())
-        }
-
-        /// In `(0, 1]`.
-        fn positive(&mut self) -> BigRational {
-            let p = (self.next_u64() % 12) as i64 + 1;
-            BigRational::new(p.into(), 12.into())
-        }
-
-        /// An exactly unit vector: the inverse stereographic projection
-        /// `(2 y, 1 - |y|^2) / (1 + |y|^2)` of a rational `y` in `Q^(n-1)`.
-        fn unit(&mut self, n: usize) -> Vec<BigRational> {
-            let y: Vec<BigRational> = (1..n).map(|_| self.next() / BigInt::from(8)).collect();
-            let y2 = y.iter().fold(BigRational::zero(), |s, x| s + x * x);
-            let den = BigRational::one() + &y2;
-            let two = BigRational::from_integer(2.into());
-            let mut v: Vec<BigRational> = y.iter().map(|x| &two * x / &den).collect();
-            v.push((BigRational::one() - &y2) / &den);
-            v
-        }
-    }
-
-    /// Twice the kinetic energy per unit mass: `|u|^2 + g R^2 sum_{i<j} U_ij^2`.
-    fn energy(
-        g: &BigRational,
-        r: &BigRational,
-        spin: &[BigRational],
-        velocity: &[BigRational],
-    ) -> BigRational {
-        let sum2 = |v: &[BigRational]| v.iter().fold(BigRational::zero(), |s, x| s + x * x);
-        sum2(velocity) + g * r * r * sum2(spin)
-    }
-
-    /// The claim of [`reflect_off_immovable`]: with its constant `rho_2` replaced by any
-    /// `r > 0` (as rounding does), body 2's map against a body 1 at rest is still an exact
-    /// reflection, the isometry of the energy with `gamma2 = 2 / (R_2 r) - 1`; checked in
-    /// exact rationals at exactly unit normals, n = 2..6, `r` off by a relative `k 2^-53`.
-    /// The true energy (`g_2`) is then not conserved, so the rewrite is seen. (The earlier
-    /// form, with `g_2 / (1 + g_2)` and `rho_2` rounded separately, fails this.)
-    #[test]
-    fn fixed_map_with_a_rounded_rho_is_an_exact_reflection() {
-        let mut q = Rationals(0x5eed);
-        for n in 2..=6 {
-            let kernel = build(n, Variant::Fixed);
-            let g = &kernel.graph;
-            let rho_id = (0..g.len() as u32)
-                .map(Id)
-                .find(|&id| g.label_of(id) == Some("rho2"))
-                .expect("fixed has a rho2 node");
-            let out = &kernel.outputs[0];
-            for k in [-3i64, -1, 1, 2] {
-                let nu = q.unit(n);
-                let (r2, g2) = (
-                    q.positive() * BigInt::from(2),
-                    q.positive() * BigInt::from(2) / BigInt::from(n),
-                );
-                let mut inputs: HashMap<String, BigRational> = HashMap::new();
-                for (k, x) in nu.iter().enumerate() {
-                    inputs.insert(names::nu(k), x.clone());
-                }
-                inputs.insert(names::radius(1), q.positive());
-                inputs.insert(names::radius(2), r2.clone());
-                inputs.insert(names::gamma2(2), g2.clone());
-                let pairs = skew_pairs(n);
-                let spin: Vec<BigRational> = pairs.iter().map(|_| q.next()).collect();
-                let velocity: Vec<BigRational> = (0..n).map(|_| q.next()).collect();
-                for (&(i, j), x) in pairs.iter().zip(&spin) {
-                    inputs.insert(names::spin(1, i, j), BigRational::zero());
-                    inputs.insert(names::spin(2, i, j), x.clone());
-                }
-                for (c, x) in velocity.iter().enumerate() {
-                    inputs.insert(names::velocity(1, c), BigRational::zero());
-                    inputs.insert(names::velocity(2, c), x.clone());
-                }
-                let rho = BigRational::from_integer(2.into()) / (&r2 * (BigRational::one() + &g2));
-                let scale = BigRational::new(k.into(), BigInt::from(1u64) << 53);
-                let rounded = &rho * (BigRational::one() + scale);
-                let values = g
-                    .eval_all(&|name| inputs.get(name).cloned(), &|id, _, _| {
-                        (id == rho_id).then(|| rounded.clone())
-                    })
-                    .expect("evaluates");
-                let spin_after: Vec<BigRational> = out
-                    .spin
-                    .iter()
-                    .map(|id| values[id.index()].clone())
-                    .collect();
-                let velocity_after: Vec<BigRational> = out
-                    .velocity
-                    .iter()
-                    .map(|id| values[id.index()].clone())
-                    .collect();
-                let g_rounded =
-                    BigRational::from_integer(2.into()) / (&r2 * &rounded) - BigRational::one();
-                assert_eq!(
-                    energy(&g_rounded, &r2, &spin_after, &velocity_after),
-                    energy(&g_rounded, &r2, &spin, &velocity),
-                    "n = {n}, k = {k}"
-                );
-                assert_ne!(
-                    energy(&g2, &r2, &spin_after, &velocity_after),
-                    energy(&g2, &r2, &spin, &velocity),
-                    "n = {n}, k = {k}: the rewrite of rho2 had no effect"
-                );
-            }
-        }
-    }
 
     #[test]
     fn skew_pairs_are_lexicographic() {

@@ -59,12 +59,12 @@ fn op_counts_of_every_kernel() {
 #[test]
 fn divisions_do_not_grow_with_the_dimension() {
     // 1/(w_1 + w_2), g_1 g_2 / D and one per angular update (free); the fixed variant keeps
-    // only rho_2 = 2 / (R_2 (1 + g_2)).
+    // only g_2 / (1 + g_2) and 2 / (R_2 (1 + g_2)).
     for dim in DIMS {
         for k in generate(dim, "crate").kernels {
             let expected = match k.variant {
                 Variant::Free => 4,
-                Variant::Fixed => 1,
+                Variant::Fixed => 2,
             };
             assert_eq!(k.ops.div, expected, "n = {dim}, {:?}", k.variant);
         }

@@ -678,3 +678,46 @@ fn the_output_directory_is_replaced_as_one_set_and_never_a_foreign_one() {
     assert_eq!(std::fs::read_dir(&foreign).unwrap().count(), 1);
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn a_long_flight_without_contact_is_noticed_and_the_run_goes_on() {
+    // Sinai's table with the disk moving almost along the corridor above the obstacle: its
+    // next contact comes after about 1350 box lengths. The run reports the quiet stretch on
+    // stderr and goes on to the contact (it used to stop at 1000 box lengths).
+    let dir = scratch("corridor");
+    let scene = dir.join("corridor.toml");
+    std::fs::write(
+        &scene,
+        "dim = 2\n[box]\nsize = [1, 1]\nboundary = [\"periodic\", \"periodic\"]\n\
+         [[species]]\nmass = 1\nradius = \"1/20\"\n\
+         [[ball]]\nspecies = 0\nposition = [\"0.49\", \"0.8501\"]\n\
+         velocity = [\"-0.99165\", \"2.2077e-4\"]\n\
+         [[obstacle]]\nposition = [\"1/2\", \"1/2\"]\nradius = \"3/10\"\n",
+    )
+    .unwrap();
+    let out = output_within(
+        noslip()
+            .args([
+                "simulate",
+                scene.to_str().unwrap(),
+                "--events",
+                "1",
+                "--quiet",
+                "--out",
+            ])
+            .arg(dir.join("out")),
+        60,
+    );
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stdout.starts_with("1 contacts"), "{stdout}");
+    assert!(!stdout.contains("stopped:"), "{stdout}");
+    assert!(
+        stderr.starts_with("notice: no contact while every moving ball travelled"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}

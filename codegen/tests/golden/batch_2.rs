@@ -2,9 +2,9 @@
 // batch form (codegen/src/batch.rs). Do not edit: it is rewritten by collision-core's build.rs.
 // No-slip collision batch kernels for n = 2, blocks of LANES contacts.
 // free: per contact 21 add, 31 mul, 4 div, 0 neg (56 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
-// fixed: per contact 17 add, 17 mul, 1 div, 0 neg (35 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
+// fixed: per contact 15 add, 16 mul, 2 div, 0 neg (33 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
 // free_shared: per contact 17 add, 20 mul, 1 div, 0 neg (38 total); per call 4 add, 11 mul, 3 div, 0 neg (18 total).
-// fixed_shared: per contact 16 add, 16 mul, 0 div, 0 neg (32 total); per call 1 add, 1 mul, 1 div, 0 neg (3 total).
+// fixed_shared: per contact 14 add, 15 mul, 0 div, 0 neg (29 total); per call 1 add, 1 mul, 2 div, 0 neg (4 total).
 
 use crate::batch::{
     prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance,
@@ -137,18 +137,15 @@ where
 ///
 /// ```text
 /// c = R_1 U_1 nu + R_2 U_2 nu,  du = u_2 - u_1,  dn = du . nu,  t = du - dn nu - c
-/// rho_2 = 2 / (R_2 (1 + g_2)),  tau = rho_2 t
-/// u_2+ = u_2 - 2 (dn nu + t) + R_2 tau,  U_2+ = U_2 + nu ^ tau
+/// P = dn nu + (g_2 / (1 + g_2)) t
+/// u_2+ = u_2 - 2 P,  U_2+ = U_2 + (2 / (R_2 (1 + g_2))) nu ^ t
 /// ```
 ///
-/// (`2 - R_2 rho_2 = 2 g_2 / (1 + g_2)`.) With one rounded constant the float map is still
-/// an exact reflection (for `gamma2` within rounding of `g_2`), so repeated wall contacts
-/// do not drift the energy by the constants' rounding (`docs/scenes.md`).
 /// Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
-/// Ops per contact: 17 add, 17 mul, 1 div, 0 neg (35 total).
+/// Ops per contact: 15 add, 16 mul, 2 div, 0 neg (33 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
 pub fn fixed<T: Scalar>(blocks: &[FixedLanes<T, 2, 1>], out: &mut [StateLanes<T, 2, 1>])
@@ -190,27 +187,25 @@ where
             let tmp9: T = &du_1 - &tmp8;
             let t_1: T = &tmp3 + &tmp9;
             let d: T = &lit_1 + gamma2_2;
-            let tmp10: T = radius2 * &d;
-            let rho2: T = &lit_2 / &tmp10;
-            let tau_0: T = &t_0 * &rho2;
-            let tau_1: T = &t_1 * &rho2;
-            let tmp11: T = &tmp6 + &t_0;
-            let tmp12: T = &lit_2 * &tmp11;
-            let tmp13: T = u2_0 - &tmp12;
-            let tmp14: T = radius2 * &tau_0;
-            let tmp15: T = &tmp13 + &tmp14;
-            let tmp16: T = &tmp8 + &t_1;
-            let tmp17: T = &lit_2 * &tmp16;
-            let tmp18: T = u2_1 - &tmp17;
-            let tmp19: T = radius2 * &tau_1;
-            let tmp20: T = &tmp18 + &tmp19;
-            let tmp21: T = nu_1 * &tau_0;
-            let tmp22: T = nu_0 * &tau_1;
-            let tmp23: T = &tmp21 - &tmp22;
-            let tmp24: T = U2_01 + &tmp23;
-            post.spin[0][l] = tmp24;
+            let p_t: T = gamma2_2 / &d;
+            let tmp10: T = &t_0 * &p_t;
+            let p_0: T = &tmp6 + &tmp10;
+            let tmp11: T = &t_1 * &p_t;
+            let p_1: T = &tmp8 + &tmp11;
+            let tmp12: T = nu_1 * &t_0;
+            let tmp13: T = nu_0 * &t_1;
+            let nu_t_01: T = &tmp12 - &tmp13;
+            let tmp14: T = &lit_2 * &p_0;
+            let tmp15: T = u2_0 - &tmp14;
+            let tmp16: T = &lit_2 * &p_1;
+            let tmp17: T = u2_1 - &tmp16;
+            let tmp18: T = radius2 * &d;
+            let rho2: T = &lit_2 / &tmp18;
+            let tmp19: T = &nu_t_01 * &rho2;
+            let tmp20: T = U2_01 + &tmp19;
+            post.spin[0][l] = tmp20;
             post.velocity[0][l] = tmp15;
-            post.velocity[1][l] = tmp20;
+            post.velocity[1][l] = tmp17;
         }
     }
 }
@@ -344,19 +339,16 @@ where
 ///
 /// ```text
 /// c = R_1 U_1 nu + R_2 U_2 nu,  du = u_2 - u_1,  dn = du . nu,  t = du - dn nu - c
-/// rho_2 = 2 / (R_2 (1 + g_2)),  tau = rho_2 t
-/// u_2+ = u_2 - 2 (dn nu + t) + R_2 tau,  U_2+ = U_2 + nu ^ tau
+/// P = dn nu + (g_2 / (1 + g_2)) t
+/// u_2+ = u_2 - 2 P,  U_2+ = U_2 + (2 / (R_2 (1 + g_2))) nu ^ t
 /// ```
 ///
-/// (`2 - R_2 rho_2 = 2 g_2 / (1 + g_2)`.) With one rounded constant the float map is still
-/// an exact reflection (for `gamma2` within rounding of `g_2`), so repeated wall contacts
-/// do not drift the energy by the constants' rounding (`docs/scenes.md`).
 /// Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
-/// Ops per contact: 16 add, 16 mul, 0 div, 0 neg (32 total).
-/// Ops per call, on the shared parameters: 1 add, 1 mul, 1 div, 0 neg (3 total).
+/// Ops per contact: 14 add, 15 mul, 0 div, 0 neg (29 total).
+/// Ops per call, on the shared parameters: 1 add, 1 mul, 2 div, 0 neg (4 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
 pub fn fixed_shared<T: Scalar>(
@@ -374,8 +366,9 @@ where
     let lit_1: T = T::from_ratio(1, 1);
     let lit_2: T = T::from_ratio(2, 1);
     let d: T = &lit_1 + gamma2_2;
-    let tmp10: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp10;
+    let p_t: T = gamma2_2 / &d;
+    let tmp18: T = radius2 * &d;
+    let rho2: T = &lit_2 / &tmp18;
     let ahead = prefetch_distance::<ContactLanes<T, 2, 1>>();
     for k in 0..blocks.len().min(out.len()) {
         prefetch(blocks.get(k + ahead));
@@ -405,25 +398,22 @@ where
             let tmp8: T = nu_1 * &dn;
             let tmp9: T = &du_1 - &tmp8;
             let t_1: T = &tmp3 + &tmp9;
-            let tau_0: T = &t_0 * &rho2;
-            let tau_1: T = &t_1 * &rho2;
-            let tmp11: T = &tmp6 + &t_0;
-            let tmp12: T = &lit_2 * &tmp11;
-            let tmp13: T = u2_0 - &tmp12;
-            let tmp14: T = radius2 * &tau_0;
-            let tmp15: T = &tmp13 + &tmp14;
-            let tmp16: T = &tmp8 + &t_1;
-            let tmp17: T = &lit_2 * &tmp16;
-            let tmp18: T = u2_1 - &tmp17;
-            let tmp19: T = radius2 * &tau_1;
-            let tmp20: T = &tmp18 + &tmp19;
-            let tmp21: T = nu_1 * &tau_0;
-            let tmp22: T = nu_0 * &tau_1;
-            let tmp23: T = &tmp21 - &tmp22;
-            let tmp24: T = U2_01 + &tmp23;
-            post.spin[0][l] = tmp24;
+            let tmp10: T = &t_0 * &p_t;
+            let p_0: T = &tmp6 + &tmp10;
+            let tmp11: T = &t_1 * &p_t;
+            let p_1: T = &tmp8 + &tmp11;
+            let tmp12: T = nu_1 * &t_0;
+            let tmp13: T = nu_0 * &t_1;
+            let nu_t_01: T = &tmp12 - &tmp13;
+            let tmp14: T = &lit_2 * &p_0;
+            let tmp15: T = u2_0 - &tmp14;
+            let tmp16: T = &lit_2 * &p_1;
+            let tmp17: T = u2_1 - &tmp16;
+            let tmp19: T = &nu_t_01 * &rho2;
+            let tmp20: T = U2_01 + &tmp19;
+            post.spin[0][l] = tmp20;
             post.velocity[0][l] = tmp15;
-            post.velocity[1][l] = tmp20;
+            post.velocity[1][l] = tmp17;
         }
     }
 }

@@ -2,9 +2,9 @@
 // Do not edit: it is rewritten by collision-core's build.rs.
 // No-slip collision kernels for n = 2.
 // free: 21 add, 31 mul, 4 div, 0 neg (56 total); 56 intermediate terms.
-// fixed: 17 add, 17 mul, 1 div, 0 neg (35 total); 35 intermediate terms.
+// fixed: 15 add, 16 mul, 2 div, 0 neg (33 total); 33 intermediate terms.
 // free_fma: 16 fma, 5 add, 15 mul, 4 div, 0 neg (40 total); 40 intermediate terms.
-// fixed_fma: 9 fma, 8 add, 8 mul, 1 div, 0 neg (26 total); 26 intermediate terms.
+// fixed_fma: 10 fma, 5 add, 6 mul, 2 div, 0 neg (23 total); 23 intermediate terms.
 
 use crate::{Ball, BodyState, RefArith, Scalar};
 /// No-slip collision of two free balls in R^2: returns `[body 1, body 2]` after contact.
@@ -116,19 +116,16 @@ where
 ///
 /// ```text
 /// c = R_1 U_1 nu + R_2 U_2 nu,  du = u_2 - u_1,  dn = du . nu,  t = du - dn nu - c
-/// rho_2 = 2 / (R_2 (1 + g_2)),  tau = rho_2 t
-/// u_2+ = u_2 - 2 (dn nu + t) + R_2 tau,  U_2+ = U_2 + nu ^ tau
+/// P = dn nu + (g_2 / (1 + g_2)) t
+/// u_2+ = u_2 - 2 P,  U_2+ = U_2 + (2 / (R_2 (1 + g_2))) nu ^ t
 /// ```
 ///
-/// (`2 - R_2 rho_2 = 2 g_2 / (1 + g_2)`.) With one rounded constant the float map is still
-/// an exact reflection (for `gamma2` within rounding of `g_2`), so repeated wall contacts
-/// do not drift the energy by the constants' rounding (`docs/scenes.md`).
 /// Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 /// Straight-line: no branches, loops or calls; all operations on references.
 ///
-/// Ops: 17 add, 17 mul, 1 div, 0 neg (35 total); 35 intermediate terms.
+/// Ops: 15 add, 16 mul, 2 div, 0 neg (33 total); 33 intermediate terms.
 #[inline]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed<T: Scalar>(
@@ -164,27 +161,25 @@ where
     let tmp9: T = &du_1 - &tmp8;
     let t_1: T = &tmp3 + &tmp9;
     let d: T = &lit_1 + gamma2_2;
-    let tmp10: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp10;
-    let tau_0: T = &t_0 * &rho2;
-    let tau_1: T = &t_1 * &rho2;
-    let tmp11: T = &tmp6 + &t_0;
-    let tmp12: T = &lit_2 * &tmp11;
-    let tmp13: T = u2_0 - &tmp12;
-    let tmp14: T = radius2 * &tau_0;
-    let tmp15: T = &tmp13 + &tmp14;
-    let tmp16: T = &tmp8 + &t_1;
-    let tmp17: T = &lit_2 * &tmp16;
-    let tmp18: T = u2_1 - &tmp17;
-    let tmp19: T = radius2 * &tau_1;
-    let tmp20: T = &tmp18 + &tmp19;
-    let tmp21: T = nu_1 * &tau_0;
-    let tmp22: T = nu_0 * &tau_1;
-    let tmp23: T = &tmp21 - &tmp22;
-    let tmp24: T = U2_01 + &tmp23;
+    let p_t: T = gamma2_2 / &d;
+    let tmp10: T = &t_0 * &p_t;
+    let p_0: T = &tmp6 + &tmp10;
+    let tmp11: T = &t_1 * &p_t;
+    let p_1: T = &tmp8 + &tmp11;
+    let tmp12: T = nu_1 * &t_0;
+    let tmp13: T = nu_0 * &t_1;
+    let nu_t_01: T = &tmp12 - &tmp13;
+    let tmp14: T = &lit_2 * &p_0;
+    let tmp15: T = u2_0 - &tmp14;
+    let tmp16: T = &lit_2 * &p_1;
+    let tmp17: T = u2_1 - &tmp16;
+    let tmp18: T = radius2 * &d;
+    let rho2: T = &lit_2 / &tmp18;
+    let tmp19: T = &nu_t_01 * &rho2;
+    let tmp20: T = U2_01 + &tmp19;
     BodyState {
-        spin: [tmp24],
-        velocity: [tmp15, tmp20],
+        spin: [tmp20],
+        velocity: [tmp15, tmp17],
     }
 }
 /// [`free`] with every single-use product fused into the addition that consumes it
@@ -278,7 +273,7 @@ where
 /// Called from code compiled without FMA, `f64::mul_add` is a libm call: the same
 /// bits (both round once, correctly), several times slower.
 ///
-/// Ops: 9 fma, 8 add, 8 mul, 1 div, 0 neg (26 total); 26 intermediate terms.
+/// Ops: 10 fma, 5 add, 6 mul, 2 div, 0 neg (23 total); 23 intermediate terms.
 #[inline(always)]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed_fma<T: Scalar>(
@@ -310,21 +305,18 @@ where
     let tmp6: T = &du_1 - &tmp5;
     let t_1: T = T::mul_add(nu_0, &tmp1, &tmp6);
     let d: T = &lit_1 + gamma2_2;
-    let tmp7: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp7;
-    let tau_0: T = &t_0 * &rho2;
-    let tau_1: T = &t_1 * &rho2;
-    let tmp8: T = &tmp3 + &t_0;
-    let tmp9: T = T::neg_mul_add(&lit_2, &tmp8, u2_0);
-    let tmp10: T = T::mul_add(radius2, &tau_0, &tmp9);
-    let tmp11: T = &tmp5 + &t_1;
-    let tmp12: T = T::neg_mul_add(&lit_2, &tmp11, u2_1);
-    let tmp13: T = T::mul_add(radius2, &tau_1, &tmp12);
-    let tmp14: T = nu_1 * &tau_0;
-    let tmp15: T = T::neg_mul_add(nu_0, &tau_1, &tmp14);
-    let tmp16: T = U2_01 + &tmp15;
+    let p_t: T = gamma2_2 / &d;
+    let p_0: T = T::mul_add(&t_0, &p_t, &tmp3);
+    let p_1: T = T::mul_add(&t_1, &p_t, &tmp5);
+    let tmp7: T = nu_1 * &t_0;
+    let nu_t_01: T = T::neg_mul_add(nu_0, &t_1, &tmp7);
+    let tmp8: T = T::neg_mul_add(&lit_2, &p_0, u2_0);
+    let tmp9: T = T::neg_mul_add(&lit_2, &p_1, u2_1);
+    let tmp10: T = radius2 * &d;
+    let rho2: T = &lit_2 / &tmp10;
+    let tmp11: T = T::mul_add(&nu_t_01, &rho2, U2_01);
     BodyState {
-        spin: [tmp16],
-        velocity: [tmp10, tmp13],
+        spin: [tmp11],
+        velocity: [tmp8, tmp9],
     }
 }

@@ -41,10 +41,12 @@
 //!
 //! **No further contact.** [`Simulation::step`] returns [`Step::Never`] when it can tell that
 //! no contact will ever happen again ([`NoContact`]): checked at the first step and then after
-//! `max(1024, 2 balls)`, twice, four times that many events without a contact.
+//! `max(1024, 2 balls)`, twice, four times that many events without a contact. At those checks
+//! it also returns [`Step::Quiet`], a notice, once the balls have travelled 1000, 2000, 4000
+//! ... box lengths without a contact; the caller decides whether to go on.
 
 use super::cells::Grid;
-use super::no_contact::{Flight, NoContact};
+use super::no_contact::{Flight, NoContact, QUIET_BOX_LENGTHS};
 use super::normal::unit;
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
@@ -86,6 +88,12 @@ pub enum Step<const N: usize, const S: usize> {
     /// No contact will happen again (the clock is at `until` if that is finite, else where it
     /// was found out).
     Never(NoContact),
+    /// A notice, not an end: no contact yet while every moving ball travelled `box_lengths`
+    /// times the longest box side since the last contact (first at
+    /// [`QUIET_BOX_LENGTHS`](super::no_contact::QUIET_BOX_LENGTHS), then at twice, four times
+    /// ... that). Contacts may still come (a flight nearly along a corridor of a periodic
+    /// table); stepping again goes on.
+    Quiet { box_lengths: f64 },
 }
 
 /// The local clock is re-based when the fastest ball could have moved this many widths of
@@ -138,6 +146,8 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// whether contacts can still happen.
     quiet: u64,
     next_check: u64,
+    /// The travel (box lengths) at which the next [`Step::Quiet`] notice is due.
+    next_notice: f64,
     contacts: u64,
     crossings: u64,
     rebases: u64,
@@ -213,6 +223,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             last_contact: 0.0,
             quiet: 0,
             next_check: 0,
+            next_notice: QUIET_BOX_LENGTHS,
             contacts: 0,
             crossings: 0,
             rebases: 0,
@@ -463,6 +474,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 if let Some(why) = self.no_contact() {
                     return self.never(why, until);
                 }
+                let box_lengths = self.quiet_travel();
+                if box_lengths >= self.next_notice {
+                    self.next_notice = 2.0 * box_lengths;
+                    return Step::Quiet { box_lengths };
+                }
             }
             let Some(top) = self.queue.peek() else {
                 return self.never(NoContact::AtRest, until);
@@ -534,17 +550,25 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             balls: self.len(),
             obstacles: &self.obstacles,
         };
-        let Some(slowest) = flight.least_speed() else {
+        if flight.least_speed().is_none() {
             return Some(NoContact::AtRest);
-        };
+        }
         let budget = usize::try_from(self.quiet.saturating_mul(16)).unwrap_or(usize::MAX);
-        if let Some(why) = flight.separated(budget.max(1 << 20)) {
-            return Some(why);
+        flight.separated(budget.max(1 << 20))
+    }
+
+    /// Box lengths (the longest side) the slowest moving ball travelled since the last
+    /// contact (0 if every ball is at rest).
+    fn quiet_travel(&self) -> f64 {
+        let slowest = (0..self.len())
+            .map(|i| self.speed2_of(i).sqrt())
+            .filter(|&v| v > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        if !slowest.is_finite() {
+            return 0.0;
         }
         let side = self.grid.size.iter().copied().fold(0.0, f64::max);
-        let box_lengths = (self.now - self.last_contact) * slowest / side;
-        (box_lengths >= super::no_contact::QUIET_BOX_LENGTHS)
-            .then_some(NoContact::Quiet { box_lengths })
+        (self.now - self.last_contact) * slowest / side
     }
 
     fn speed2_of(&self, i: usize) -> f64 {
@@ -666,6 +690,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.last_contact = self.now;
         self.quiet = 0;
         self.next_check = self.first_check();
+        self.next_notice = QUIET_BOX_LENGTHS;
         Event {
             time: self.absolute(self.now),
             contact,

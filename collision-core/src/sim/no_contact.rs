@@ -1,18 +1,26 @@
 //! Deciding that no contact will ever happen again, so that a run without a time limit stops
-//! instead of crossing cells forever.
+//! instead of crossing cells forever, and noticing long stretches without contact.
 //!
 //! With no further contact every velocity stays constant, so the question is about free
-//! flight alone. It is decided exactly in the cases that are cheap to decide
-//! ([`NoContact::AtRest`], [`NoContact::Separated`]); otherwise a stated criterion
-//! ([`NoContact::Quiet`]) stops runs in which the moving balls have travelled
-//! [`QUIET_BOX_LENGTHS`] box lengths since the last contact of the whole system.
+//! flight alone. It is decided exactly ([`NoContact::AtRest`], [`NoContact::Separated`])
+//! where the relative motion of every pair closes on itself after a few box lengths;
+//! otherwise the run goes on, and [`QUIET_BOX_LENGTHS`] box lengths without a contact are
+//! only reported ([`super::Step::Quiet`]): a flight nearly along a corridor of a periodic
+//! table can take thousands of box lengths to its next contact, and stopping it there would
+//! cut a valid run short.
 
 use super::FixedBall;
 use std::fmt;
 
-/// Box lengths (the longest side) that every moving ball must have travelled since the last
-/// contact before [`NoContact::Quiet`] stops a run.
+/// Box lengths (the longest side) that every moving ball travels without a contact before
+/// [`super::Step::Quiet`] reports it (then again at twice, four times ... that).
 pub const QUIET_BOX_LENGTHS: f64 = 1000.0;
+
+/// The most box traversals of a closed relative orbit that [`NoContact::Separated`] follows.
+const MAX_WINDINGS: u64 = 64;
+
+/// The most lattice images checked against one closed relative orbit.
+const MAX_IMAGES: u64 = 100_000;
 
 /// The relative margin by which a perpendicular distance must beat the contact distance
 /// for [`NoContact::Separated`] (rounding of the distances must not hide a grazing contact).
@@ -20,18 +28,17 @@ const MARGIN: f64 = 1e-9;
 
 /// Why no further contact happens.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum NoContact {
     /// Every ball is at rest.
     AtRest,
-    /// Exact: no ball moves along a walled axis (no wall contact), and every pair of bodies
-    /// (ball-ball, ball-obstacle) is at relative rest or moves along one periodic axis `k`
-    /// only, with a minimum-image distance across the other axes above the contact distance
-    /// `R_i + R_j` (by the relative margin 1e-9): the relative motion sweeps axis `k`, so the
-    /// least distance it ever reaches is that one.
+    /// Exact: no ball moves along a walled axis (no wall contact), and for every pair of
+    /// bodies (ball-ball, ball-obstacle) the relative motion on the periodic axes is at rest
+    /// or closes on itself after at most 64 box traversals (the ratios `dv_k / L_k` are
+    /// commensurate: `dv_k T = m_k L_k` with whole `m_k`, `sum |m_k| <= 64`), and that closed
+    /// orbit stays farther than the contact distance `R_i + R_j` (by the relative margin
+    /// 1e-9) from every periodic image of the partner.
     Separated,
-    /// The stated criterion: no contact since the last one (or the start) while every moving
-    /// ball travelled at least `box_lengths` times the longest box side.
-    Quiet { box_lengths: f64 },
 }
 
 impl fmt::Display for NoContact {
@@ -40,14 +47,8 @@ impl fmt::Display for NoContact {
             NoContact::AtRest => f.write_str("no contact can happen: every ball is at rest"),
             NoContact::Separated => f.write_str(
                 "no contact can happen: no ball moves along a walled axis, and every pair of \
-                 bodies is at relative rest or moves along one periodic axis, passing the other's \
-                 images at more than the contact distance",
-            ),
-            NoContact::Quiet { box_lengths } => write!(
-                f,
-                "no contact while every moving ball travelled {box_lengths:.0} box lengths \
-                 (the criterion is {QUIET_BOX_LENGTHS} box lengths; contacts may still be \
-                 possible, but not within any run of this length)"
+                 bodies is at relative rest or moves on a closed orbit of the periodic box that \
+                 passes the other's images at more than the contact distance",
             ),
         }
     }
@@ -101,33 +102,69 @@ impl<const N: usize> Flight<'_, N> {
         Some(NoContact::Separated)
     }
 
-    /// Whether bodies at `a` and `b` with relative velocity `dv` never come within `sigma`
-    /// (decided only for `dv = 0` or `dv` along one axis; `false` otherwise).
+    /// Whether bodies at `a` and `b` with relative velocity `dv` never come within `sigma`:
+    /// decided when `dv = 0`, or when the relative motion moves along periodic axes only and
+    /// closes after `sum |m_k| <= MAX_WINDINGS` box traversals ([`windings`]); `false` when
+    /// undecided. The closed orbit is the segment from `d` (the minimum image of `b - a`) to
+    /// `d + sum m_k L_k e_k`; every lattice image `L z` near it is checked.
     fn passes(&self, a: &[f64; N], b: &[f64; N], dv: &[f64; N], sigma: f64) -> bool {
-        let mut moving = None;
-        for (k, &x) in dv.iter().enumerate() {
-            if x != 0.0 {
-                if moving.is_some() {
-                    return false;
-                }
-                moving = Some(k);
-            }
+        if dv.iter().all(|&x| x == 0.0) {
+            return true;
         }
-        let Some(axis) = moving else { return true };
-        if !self.periodic[axis] {
+        if (0..N).any(|k| dv[k] != 0.0 && !self.periodic[k]) {
             return false;
         }
-        let perp2: f64 = (0..N)
-            .filter(|&k| k != axis)
-            .map(|k| {
-                let mut d = b[k] - a[k];
-                if self.periodic[k] {
-                    d -= self.size[k] * (d / self.size[k]).round();
+        let Some(m) = windings(dv, &self.size) else {
+            return false;
+        };
+        let d: [f64; N] = std::array::from_fn(|k| {
+            let x = b[k] - a[k];
+            if self.periodic[k] {
+                x - self.size[k] * (x / self.size[k]).round()
+            } else {
+                x
+            }
+        });
+        // Lattice images within reach of the segment, per axis.
+        let mut ranges = [(0i64, 0i64); N];
+        let mut images: u64 = 1;
+        for k in 0..N {
+            if !self.periodic[k] {
+                continue;
+            }
+            let reach = (sigma / self.size[k]).ceil() as i64 + 1;
+            ranges[k] = (m[k].min(0) - reach, m[k].max(0) + reach);
+            images = images.saturating_mul((ranges[k].1 - ranges[k].0 + 1) as u64);
+        }
+        if images > MAX_IMAGES {
+            return false;
+        }
+        let span: [f64; N] = std::array::from_fn(|k| m[k] as f64 * self.size[k]);
+        let span2: f64 = span.iter().map(|x| x * x).sum();
+        let limit = sigma * sigma * (1.0 + MARGIN);
+        let mut z: [i64; N] = std::array::from_fn(|k| ranges[k].0);
+        loop {
+            // Distance from the image L z to the segment d + s span, s in [0, 1].
+            let e: [f64; N] = std::array::from_fn(|k| z[k] as f64 * self.size[k] - d[k]);
+            let s = (e.iter().zip(&span).map(|(x, y)| x * y).sum::<f64>() / span2).clamp(0.0, 1.0);
+            let dist2: f64 = (0..N).map(|k| (e[k] - s * span[k]).powi(2)).sum();
+            if dist2 <= limit {
+                return false;
+            }
+            // The next z, odometer style.
+            let mut k = 0;
+            loop {
+                if k == N {
+                    return true;
                 }
-                d * d
-            })
-            .sum();
-        perp2 > sigma * sigma * (1.0 + MARGIN)
+                if z[k] < ranges[k].1 {
+                    z[k] += 1;
+                    break;
+                }
+                z[k] = ranges[k].0;
+                k += 1;
+            }
+        }
     }
 
     /// The least speed of the moving balls (`None` if all are at rest).
@@ -137,4 +174,39 @@ impl<const N: usize> Flight<'_, N> {
             .filter(|&s| s > 0.0)
             .min_by(f64::total_cmp)
     }
+}
+
+/// The windings `m` of a relative motion `dv` on a periodic box of sides `size`: the whole
+/// numbers, without a common factor, with `dv_k T = m_k L_k` for one period `T > 0`, if they
+/// exist with `sum |m_k| <` [`MAX_WINDINGS`]. Exact: `dv_k / L_k` are the rationals the
+/// floats spell, and `T` makes every one of them whole (`1 / T` is their greatest common
+/// divisor as rationals).
+fn windings<const N: usize>(dv: &[f64; N], size: &[f64; N]) -> Option<[i64; N]> {
+    use num_bigint::BigInt;
+    use num_integer::Integer;
+    use num_rational::BigRational;
+    use num_traits::{Signed, ToPrimitive, Zero};
+    let ratio: Vec<BigRational> = (0..N)
+        .map(|k| Some(BigRational::from_float(dv[k])? / BigRational::from_float(size[k])?))
+        .collect::<Option<_>>()?;
+    let (mut numer, mut denom) = (BigInt::zero(), BigInt::from(1));
+    for r in ratio.iter().filter(|r| !r.is_zero()) {
+        numer = numer.gcd(r.numer());
+        denom = denom.lcm(r.denom());
+    }
+    if numer.is_zero() {
+        return None;
+    }
+    let gcd = BigRational::new(numer, denom);
+    let mut m = [0i64; N];
+    let mut total: u64 = 0;
+    for k in 0..N {
+        let w = (&ratio[k] / &gcd).to_integer();
+        total = total.checked_add(w.abs().to_u64()?)?;
+        if total > MAX_WINDINGS {
+            return None;
+        }
+        m[k] = w.to_i64()?;
+    }
+    Some(m)
 }

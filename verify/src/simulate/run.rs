@@ -158,6 +158,17 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
                 stopped = Some(why.to_string());
                 break;
             }
+            Step::Quiet { box_lengths } => {
+                // A notice on stderr (never a panic if stderr is gone); the run goes on.
+                let _ = writeln!(
+                    io::stderr(),
+                    "notice: no contact while every moving ball travelled {box_lengths:.0} box \
+                     lengths (t = {:.6e}); contacts may be rare here: the run goes on (--time \
+                     bounds it)",
+                    sim.now()
+                );
+                continue;
+            }
         };
         done += 1;
         let (k, balls) = match e.contact {
