@@ -186,12 +186,16 @@ fn a_point_mass_keeps_its_velocity_accurate_against_a_fast_rim() {
     };
     let after = Generated::fixed(&nu, &1e6, &ball, &rim, &s);
     let dn: f64 = (0..3).map(|k| s.velocity[k] * nu[k]).sum();
-    for k in 0..3 {
-        let want = s.velocity[k] - 2.0 * dn * nu[k];
+    for (k, (got, (u, n))) in after
+        .velocity
+        .iter()
+        .zip(s.velocity.iter().zip(&nu))
+        .enumerate()
+    {
+        let want = u - 2.0 * dn * n;
         assert!(
-            (after.velocity[k] - want).abs() <= 8.0 * f64::EPSILON * 1.1,
-            "component {k}: {} against {want}",
-            after.velocity[k]
+            (got - want).abs() <= 8.0 * f64::EPSILON * 1.1,
+            "component {k}: {got} against {want}"
         );
     }
 }

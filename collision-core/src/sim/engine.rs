@@ -90,7 +90,7 @@ pub enum Step<const N: usize, const S: usize> {
     Never(NoContact),
     /// A notice, not an end: no contact yet while every moving ball travelled `box_lengths`
     /// times the longest box side since the last contact (first at
-    /// [`QUIET_BOX_LENGTHS`](super::no_contact::QUIET_BOX_LENGTHS), then at twice, four times
+    /// [`QUIET_BOX_LENGTHS`], then at twice, four times
     /// ... that). Contacts may still come (a flight nearly along a corridor of a periodic
     /// table); stepping again goes on.
     Quiet { box_lengths: f64 },
