@@ -21,7 +21,6 @@ pub mod fuse;
 pub mod ir;
 pub mod literal;
 pub mod model;
-pub mod scene;
 pub mod schedule;
 pub mod specialise;
 pub mod straight_line;

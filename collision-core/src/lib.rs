@@ -34,14 +34,15 @@ mod ball;
 pub mod batch;
 mod checked;
 mod collide;
+mod dims;
 mod error;
 pub mod kernels;
 pub mod linalg;
 pub mod literal;
 mod normal;
 pub mod reference;
+pub mod rng;
 mod scalar;
-pub mod sim;
 mod state;
 mod wide;
 
@@ -50,6 +51,7 @@ pub use collide::{
     collide, collide_general, collide_unchecked, collide_unchecked_fma, fma_in_hardware, validate,
     validate_parts,
 };
+pub use dims::DIMS;
 pub use error::{BodyField, Field, InputError};
 pub use kernels::{Generated, Kernel};
 pub use normal::stereographic_normal;

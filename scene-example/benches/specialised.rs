@@ -2,17 +2,18 @@
 //! kernels get the species' `Ball` parameters at run time; the specialised ones have them
 //! folded in (scenes/gas2d.toml: species 0 `small` and 1 `large`; scenes/sinai.toml).
 
-use collision_core::sim::{GenericKernels, PairKernels};
 use collision_core::{BodyState, State2};
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use noslip_codegen::scene::Scene;
-use noslip_scene_example::{gas2d, sinai, species_balls};
+use noslip_scene::Scene;
+use noslip_scene_example::{gas2d, sinai};
+use noslip_sim::setup::species_balls;
+use noslip_sim::{GenericKernels, PairKernels};
 use num_traits::ToPrimitive;
 
 fn generic(path: &str) -> GenericKernels<f64> {
     let scene = Scene::from_file(path.as_ref()).expect("shipped scene");
     GenericKernels {
-        species: species_balls(&scene, |x| x.to_f64().expect("finite")),
+        species: species_balls(&scene.species, |x| x.to_f64().expect("finite")),
     }
 }
 

@@ -1,5 +1,5 @@
 //! Kernels specialised to shipped scenes by `build.rs` (noslip-codegen's build-script API),
-//! and a 2D simulation setup ([`place`]).
+//! run by the simulator (`noslip-sim`, whose scene setup and placement it uses as they are).
 
 /// `scenes/disk_between_walls.toml`: ball-wall kernels for the two walls of axis 1.
 pub mod disk_between_walls {
@@ -16,26 +16,8 @@ pub mod sinai {
     include!(concat!(env!("OUT_DIR"), "/sinai.rs"));
 }
 
-pub mod place;
-
-pub use place::setup;
-
-use collision_core::Ball;
-use noslip_codegen::scene::{PairSet, Scene};
+use noslip_scene::PairSet;
 use num_rational::BigRational;
-
-/// The kernels' `Ball` parameters of the scene's species, each constant mapped by `map`.
-pub fn species_balls<T>(scene: &Scene, map: impl Fn(&BigRational) -> T) -> Vec<Ball<T>> {
-    scene
-        .species
-        .iter()
-        .map(|s| Ball {
-            inv_mass: map(&s.inv_mass),
-            radius: map(&s.radius),
-            gamma2: map(&s.gamma2),
-        })
-        .collect()
-}
 
 /// The shipped scene files whose kernels `build.rs` compiles, by module name.
 pub const COMPILED: [(&str, &str); 3] = [
@@ -77,6 +59,7 @@ pub fn kernels_fit(compiled: &PairSet, scene: &PairSet) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use noslip_scene::Scene;
 
     #[test]
     fn each_compiled_scene_fits_itself_and_not_another() {

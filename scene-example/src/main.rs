@@ -1,9 +1,10 @@
 //! Run a 2D scene on the kernels specialised to it by `build.rs`:
 //! `cargo run --release -p noslip-scene-example -- scenes/gas2d.toml 1000000`.
 
-use collision_core::sim::{PairKernels, Simulation, Step};
-use noslip_codegen::scene::Scene;
-use noslip_scene_example::{disk_between_walls, gas2d, kernels_fit, setup, sinai, COMPILED};
+use noslip_scene::Scene;
+use noslip_scene_example::{disk_between_walls, gas2d, kernels_fit, sinai, COMPILED};
+use noslip_sim::setup::setup;
+use noslip_sim::{PairKernels, Simulation, Step};
 use std::io::{ErrorKind, Write};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -25,7 +26,7 @@ fn run<K: PairKernels<f64, 2, 1>>(
     kernels: K,
     events: u64,
 ) -> Result<String, String> {
-    let mut sim = Simulation::new(setup(scene)?, kernels).map_err(|e| e.to_string())?;
+    let mut sim = Simulation::new(setup::<2, 1>(scene)?, kernels).map_err(|e| e.to_string())?;
     let e0 = sim.observables().energy;
     let clock = Instant::now();
     let mut done = 0;

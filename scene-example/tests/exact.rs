@@ -2,11 +2,12 @@
 //! kernels run with the same species constants, at random exact points (see
 //! `noslip gen --check` for the argument that this proves the identity).
 
-use collision_core::sim::{GenericKernels, PairKernels};
 use collision_core::{stereographic_normal, BodyState, Exact};
-use noslip_codegen::scene::{Scene, WallSide};
-use noslip_codegen::specialise::Pair;
-use noslip_scene_example::{disk_between_walls, gas2d, sinai, species_balls};
+use noslip_scene::Pair;
+use noslip_scene::{Scene, WallSide};
+use noslip_scene_example::{disk_between_walls, gas2d, sinai};
+use noslip_sim::setup::species_balls;
+use noslip_sim::{GenericKernels, PairKernels};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -14,7 +15,7 @@ fn check<K: PairKernels<Exact, 2, 1>>(scene: &str, kernels: K) {
     let path = format!("{}/../scenes/{scene}", env!("CARGO_MANIFEST_DIR"));
     let scene = Scene::from_file(path.as_ref()).unwrap();
     let generic = GenericKernels {
-        species: species_balls(&scene, Exact::clone),
+        species: species_balls(&scene.species, Exact::clone),
     };
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     let mut q = || {

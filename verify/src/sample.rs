@@ -9,43 +9,17 @@
 //! The identities are rational-function identities, so physical ranges (`gamma2 <= 2/n`,
 //! approaching bodies) do not matter to them.
 
+use collision_core::rng::Rng;
 use collision_core::{stereographic_normal, Ball, BodyState, Exact};
 use num_bigint::BigInt;
 use num_traits::Zero;
-use rand::{Rng as _, RngCore, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 
 /// `|S|`.
 pub const SET_SIZE: u64 = 1 << 20;
 
-/// A seeded ChaCha8 stream (reproducible across platforms and crate versions), so reports
-/// are reproducible.
-pub struct Rng(ChaCha8Rng);
-
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Rng(ChaCha8Rng::seed_from_u64(seed))
-    }
-
-    pub fn next_u64(&mut self) -> u64 {
-        self.0.next_u64()
-    }
-
-    /// Uniform in `[lo, hi)`, from 53 random bits.
-    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let unit = (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-        lo + (hi - lo) * unit
-    }
-
-    /// `true` with probability 1/2.
-    pub fn coin(&mut self) -> bool {
-        self.0.next_u64() >> 63 == 1
-    }
-
-    /// Uniform in `S`.
-    pub fn element(&mut self) -> Exact {
-        Exact::from_integer(BigInt::from(self.0.random_range(1..=SET_SIZE)))
-    }
+/// Uniform in `S`.
+pub fn element(rng: &mut Rng) -> Exact {
+    Exact::from_integer(BigInt::from(rng.integer(1..=SET_SIZE)))
 }
 
 /// One exact point: a normal and two bodies (body 1 immovable when `fixed`).
@@ -57,25 +31,21 @@ pub struct Point<const N: usize, const S: usize> {
 }
 
 pub fn normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
-    let y: Vec<Exact> = (0..N - 1).map(|_| rng.element()).collect();
+    let y: Vec<Exact> = (0..N - 1).map(|_| element(rng)).collect();
     stereographic_normal(&y).try_into().expect("N components")
 }
 
 pub fn point<const N: usize, const S: usize>(rng: &mut Rng, fixed: bool) -> Point<N, S> {
     let nu = normal::<N>(rng);
     let mut ball = |movable: bool| Ball {
-        inv_mass: if movable {
-            rng.element()
-        } else {
-            Exact::zero()
-        },
-        radius: rng.element(),
-        gamma2: rng.element(),
+        inv_mass: if movable { element(rng) } else { Exact::zero() },
+        radius: element(rng),
+        gamma2: element(rng),
     };
     let balls = [ball(!fixed), ball(true)];
     let mut state = || BodyState {
-        spin: std::array::from_fn(|_| rng.element()),
-        velocity: std::array::from_fn(|_| rng.element()),
+        spin: std::array::from_fn(|_| element(rng)),
+        velocity: std::array::from_fn(|_| element(rng)),
     };
     let states = [state(), state()];
     Point { nu, balls, states }

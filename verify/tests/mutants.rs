@@ -3,8 +3,8 @@
 //! by which checks. The uncorrupted DAG evaluation passes every check (the control).
 
 use noslip_codegen::model::Variant;
-use noslip_verify::kernel::{mutated, Mutation};
-use noslip_verify::run::{identity_checks, Options};
+use noslip_verify::suite::{identity_checks, Options};
+use noslip_verify::under_test::{mutated, Mutation};
 
 const OPTS: Options = Options {
     points: 2,

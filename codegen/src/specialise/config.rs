@@ -13,8 +13,8 @@
 //! `cargo:rerun-if-changed`.
 
 use super::{generate, SceneModule};
-use crate::scene::{PairSet, Scene};
 use crate::write_if_changed;
+use noslip_scene::{PairSet, Scene};
 use std::io;
 use std::path::{Path, PathBuf};
 
@@ -22,6 +22,7 @@ use std::path::{Path, PathBuf};
 #[derive(Clone, Debug)]
 pub struct Config {
     crate_path: String,
+    sim_path: String,
     out_dir: Option<PathBuf>,
     sets: Vec<PairSet>,
     announce: bool,
@@ -31,6 +32,7 @@ impl Default for Config {
     fn default() -> Self {
         Config {
             crate_path: "collision_core".into(),
+            sim_path: "noslip_sim".into(),
             out_dir: None,
             sets: Vec::new(),
             announce: true,
@@ -46,6 +48,12 @@ impl Config {
     /// The runtime crate's path where the files are included (default `collision_core`).
     pub fn crate_path(&mut self, path: impl Into<String>) -> &mut Self {
         self.crate_path = path.into();
+        self
+    }
+
+    /// The simulator crate's path where the files are included (default `noslip_sim`).
+    pub fn sim_path(&mut self, path: impl Into<String>) -> &mut Self {
+        self.sim_path = path.into();
         self
     }
 
@@ -93,7 +101,7 @@ impl Config {
         };
         sets.iter()
             .map(|set| {
-                let module = generate(set, &self.crate_path).map_err(|e| {
+                let module = generate(set, &self.crate_path, &self.sim_path).map_err(|e| {
                     io::Error::new(
                         io::ErrorKind::InvalidData,
                         format!("scene {}: {e}", set.name),

@@ -27,57 +27,17 @@ pub use range::{check_ranges, ConstantOutOfRange, GenerateError};
 use crate::emit::{self, array_pattern, doc_lines, ident, lit, state_pattern, EmittedBody};
 use crate::ir::{Graph, Id};
 use crate::model::{self, names, skew_pairs, BodyInputs, Kernel, KernelInputs, Variant};
-use crate::scene::{PairSet, Species, WallSide};
 use crate::schedule::OpCount;
+use noslip_scene::{Pair, PairSet, Species, WallSide};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// A contact kind of a [`PairSet`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Pair {
-    BallBall(usize, usize),
-    BallWall(usize, usize, WallSide),
-    BallObstacle(usize),
-}
-
-impl Pair {
-    /// The function name of the specialised kernel.
-    pub fn fn_name(self) -> String {
-        match self {
-            Pair::BallBall(a, b) => format!("ball_ball_{a}_{b}"),
-            Pair::BallWall(s, k, side) => format!("ball_wall_{s}_{k}_{}", side.name()),
-            Pair::BallObstacle(s) => format!("ball_obstacle_{s}"),
-        }
-    }
-
-    /// `ball-ball`, `ball-wall` or `ball-obstacle`.
-    pub fn kind(self) -> &'static str {
-        match self {
-            Pair::BallBall(..) => "ball-ball",
-            Pair::BallWall(..) => "ball-wall",
-            Pair::BallObstacle(..) => "ball-obstacle",
-        }
-    }
-
-    /// The generic kernel it replaces.
-    pub fn variant(self) -> Variant {
-        match self {
-            Pair::BallBall(..) => Variant::Free,
-            _ => Variant::Fixed,
-        }
-    }
-}
-
-impl PairSet {
-    /// Every pair kind, in emission order.
-    pub fn all(&self) -> Vec<Pair> {
-        let bb = self.ball_ball.iter().map(|&(a, b)| Pair::BallBall(a, b));
-        let bw = self
-            .ball_wall
-            .iter()
-            .map(|&(s, k, d)| Pair::BallWall(s, k, d));
-        let bo = self.ball_obstacle.iter().map(|&s| Pair::BallObstacle(s));
-        bb.chain(bw).chain(bo).collect()
+/// The generic kernel a specialised kernel for `pair` replaces: `free` for ball-ball,
+/// `fixed` for contacts with an immovable body.
+pub fn variant(pair: Pair) -> Variant {
+    match pair {
+        Pair::BallBall(..) => Variant::Free,
+        _ => Variant::Fixed,
     }
 }
 
@@ -171,10 +131,10 @@ pub fn build(set: &PairSet, pair: Pair) -> Kernel {
             ],
         },
     };
-    let outputs = model::build_on(&mut g, &inputs, pair.variant());
+    let outputs = model::build_on(&mut g, &inputs, variant(pair));
     Kernel {
         dim: n,
-        variant: pair.variant(),
+        variant: variant(pair),
         graph: g,
         outputs,
     }
@@ -223,7 +183,7 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
         ops,
         terms,
     } = emit::emit_body(&kernel);
-    let generic = emit::emit_body(&model::build(n, pair.variant()));
+    let generic = emit::emit_body(&model::build(n, variant(pair)));
     let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
     let state_ty = quote!(BodyState<T, #nl, #sl>);
     let nu_pattern = array_pattern((0..n).map(names::nu), &live);
@@ -253,7 +213,7 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
     doc.push(String::new());
     doc.push(format!(
         "Ops: {ops}; {terms} intermediate terms (generic `{}`: {}).",
-        pair.variant().name(),
+        variant(pair).name(),
         generic.ops
     ));
     let doc = doc_lines(&doc);
@@ -282,7 +242,7 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
 
 /// The `impl PairKernels` that dispatches by species (and wall) to the kernels. A pair that
 /// the scene cannot meet panics with the scene's name: the simulator never asks for one.
-fn dispatch(set: &PairSet, crate_path: &syn::Path) -> TokenStream {
+fn dispatch(set: &PairSet, sim_path: &syn::Path) -> TokenStream {
     let n = set.dim;
     let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
     let state_ty = quote!(BodyState<T, #nl, #sl>);
@@ -317,7 +277,7 @@ fn dispatch(set: &PairSet, crate_path: &syn::Path) -> TokenStream {
         pub struct Kernels;
 
         #[allow(unused_variables, clippy::match_single_binding)]
-        impl<T: Scalar> #crate_path::sim::PairKernels<T, #nl, #sl> for Kernels
+        impl<T: Scalar> #sim_path::PairKernels<T, #nl, #sl> for Kernels
         where
             for<'a> &'a T: RefArith<T>,
         {
@@ -344,14 +304,22 @@ fn dispatch(set: &PairSet, crate_path: &syn::Path) -> TokenStream {
 }
 
 /// Generate the module of `set`: its kernels and the dispatch. `crate_path` is the runtime
-/// crate as seen from where the file is included (`"collision_core"` in a user's crate).
-/// Refuses a `crate_path` that is not a Rust path, and a set whose constants overflow `f32`
-/// or `f64` ([`check_ranges`]).
+/// crate as seen from where the file is included (`"collision_core"` in a user's crate),
+/// `sim_path` the simulator's (`"noslip_sim"`), whose `PairKernels` the dispatch implements.
+/// Refuses a path that is not a Rust path, and a set whose constants overflow `f32` or `f64`
+/// ([`check_ranges`]).
 ///
 /// Panics if the kernels are not valid, straight-line Rust: a generator bug.
-pub fn generate(set: &PairSet, crate_path: &str) -> Result<SceneModule, GenerateError> {
-    let path: syn::Path =
-        syn::parse_str(crate_path).map_err(|_| GenerateError::CratePath(crate_path.to_string()))?;
+pub fn generate(
+    set: &PairSet,
+    crate_path: &str,
+    sim_path: &str,
+) -> Result<SceneModule, GenerateError> {
+    let rust_path = |p: &str| -> Result<syn::Path, GenerateError> {
+        syn::parse_str(p).map_err(|_| GenerateError::CratePath(p.to_string()))
+    };
+    let path = rust_path(crate_path)?;
+    let sim = rust_path(sim_path)?;
     check_ranges(set).map_err(GenerateError::OutOfRange)?;
     let (kernels, pairs): (Vec<TokenStream>, Vec<PairSummary>) =
         set.all().into_iter().map(|p| emit_pair(set, p)).unzip();
@@ -364,7 +332,7 @@ pub fn generate(set: &PairSet, crate_path: &str) -> Result<SceneModule, Generate
         set.name
     );
     let dim = lit(set.dim);
-    let dispatch = dispatch(set, &path);
+    let dispatch = dispatch(set, &sim);
     let file = emit::parse(quote! {
         #imports
         /// The dimension of this scene.
@@ -387,7 +355,7 @@ pub fn generate(set: &PairSet, crate_path: &str) -> Result<SceneModule, Generate
             p.pair.kind(),
             p.ops,
             p.terms,
-            p.pair.variant().name(),
+            variant(p.pair).name(),
             p.generic_ops
         ));
     }

@@ -2,9 +2,10 @@
 //! and `f64` literal (the kernels are generic over both; see [`crate::literal`]). A scene
 //! that breaks it is refused, naming the species field at fault.
 
-use super::{build, Pair};
-use crate::scene::PairSet;
+use super::build;
 use crate::schedule::schedule;
+use noslip_scene::Pair;
+use noslip_scene::PairSet;
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 use std::fmt;
@@ -154,7 +155,7 @@ pub fn check_ranges(set: &PairSet) -> Result<(), ConstantOutOfRange> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Scene;
+    use noslip_scene::Scene;
 
     /// A walled 2D box with one species of two balls.
     fn set(mass: &str, radius: &str) -> PairSet {
@@ -185,7 +186,7 @@ mod tests {
 
     #[test]
     fn approximations_read_like_the_input() {
-        let q = |s: &str| crate::scene::parse_exact(s).unwrap();
+        let q = |s: &str| noslip_scene::parse_exact(s).unwrap();
         assert_eq!(approx(&q("1e-39")), "1e-39");
         assert_eq!(approx(&q("2.5e7")), "2.5e7");
         assert_eq!(approx(&q("1e400")), "~1e400");

@@ -3,8 +3,9 @@
 //! the symbolic kernel gives the degree for the Schwartz-Zippel bound.
 
 use crate::identities::{self as id, StateIds};
-use crate::kernel::{generated, input_values, ExactKernel};
-use crate::sample::{point, Point, Rng};
+use crate::sample::{point, Point};
+use crate::under_test::{generated, input_values, ExactKernel};
+use collision_core::rng::Rng;
 use collision_core::{BodyState, Exact, Generated, Kernel};
 use noslip_codegen::ir::{Graph, Id, Node};
 use noslip_codegen::model::{build_on, symbolic_inputs, KernelInputs, Variant};

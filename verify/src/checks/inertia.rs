@@ -170,7 +170,7 @@ pub fn check(n: usize, seed: u64) -> Result<usize, String> {
     }
     // Random non-negative densities: polynomial (non-negative coefficients, and squares of
     // polynomials with sign changes) and layered; each lambda in [0, R^2/n].
-    let mut rng = crate::sample::Rng::new(seed);
+    let mut rng = collision_core::rng::Rng::new(seed);
     let mut small = |lo: i64, hi: i64| {
         q(
             lo + (rng.next_u64() % (hi - lo + 1) as u64) as i64,

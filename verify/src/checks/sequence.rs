@@ -4,8 +4,8 @@
 //! `w_1 = 1/m_1` (of `gamma2_1`), regular at 0, so the error is `c 10^-k + O(10^-2k)` and
 //! consecutive errors have ratio -> 10.
 
-use crate::kernel::generated;
-use crate::sample::Rng;
+use crate::under_test::generated;
+use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState, Exact, Generated, Kernel, Scalar};
 use noslip_codegen::model::Variant;
 use num_traits::{Signed, Zero};

@@ -9,13 +9,15 @@
 //! `noslip verify`; with it, every identity verified for the generic kernels holds for the
 //! specialised ones.
 
-use crate::kernel::input_values;
-use crate::sample::{normal, Rng};
-use crate::simulate::setup::species_balls;
-use collision_core::sim::{GenericKernels, PairKernels};
+use crate::sample::{element, normal};
+use crate::under_test::input_values;
+use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState, Exact, Generated, Kernel};
-use noslip_codegen::scene::{PairSet, WallSide};
-use noslip_codegen::specialise::{self, Pair};
+use noslip_codegen::specialise;
+use noslip_scene::Pair;
+use noslip_scene::{PairSet, WallSide};
+use noslip_sim::setup::species_balls;
+use noslip_sim::{GenericKernels, PairKernels};
 
 /// The outcome for one pair kind.
 #[derive(Clone, Debug)]
@@ -28,8 +30,8 @@ pub struct PairCheck {
 
 fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<Exact, N, S> {
     BodyState {
-        spin: std::array::from_fn(|_| rng.element()),
-        velocity: std::array::from_fn(|_| rng.element()),
+        spin: std::array::from_fn(|_| element(rng)),
+        velocity: std::array::from_fn(|_| element(rng)),
     }
 }
 

@@ -4,9 +4,10 @@
 //! velocity changes of impulses at `Q`, the kinetic metric `M`. For the fixed variant the
 //! space is the movable body's.
 
-use crate::sample::{point, Rng};
+use crate::sample::point;
 use collision_core::linalg::{nullspace, rank};
 use collision_core::reference::{impulse_basis, state_len};
+use collision_core::rng::Rng;
 use collision_core::{skew_pairs, Exact};
 use nalgebra::{DMatrix, DVector};
 use noslip_codegen::model::Variant;

@@ -1,0 +1,31 @@
+//! # noslip-accuracy
+//!
+//! Error against run time: every kernel variant measured against exact rational ground
+//! truth, in typical and extreme regimes (`noslip report`). It measures and renders (Markdown,
+//! JSON, SVG strings); it proves nothing (that is `noslip-verify`) and writes no files (that
+//! is the `noslip` command).
+//!
+//! - [`regime`]: the sampled input distributions.
+//! - [`method`]: the variants (generated f64, FMA, f32, exact; the nalgebra reference; the
+//!   notes' dense matrix, [`dense`]) and how each runs and is timed ([`timing`]).
+//! - [`batched`]: the batch variant's cases, split into `free` and `fixed` batches as
+//!   `collide` dispatches them.
+//! - [`measure`]: bits of error, normwise error in each body's energy norm, conditioning.
+//! - [`report`]: one report run; [`render`]: Markdown and JSON; [`plot`]: the SVG plot.
+
+pub mod batched;
+pub mod case;
+pub mod dense;
+pub mod measure;
+pub mod method;
+pub mod plot;
+pub mod regime;
+pub mod render;
+pub mod report;
+pub mod timing;
+
+pub use case::Case;
+pub use method::Method;
+pub use regime::Regime;
+pub use render::{AccuracyReport, Provenance};
+pub use report::{dim_result, Options};

@@ -1,0 +1,453 @@
+//! One report run: for each dimension and regime, sample, compute the exact results, run
+//! and time every variant, and gather the error figures.
+
+use crate::case::{component_names, Case};
+use crate::measure::{bits, conditioning, exact_result, lambda, normwise, Float, Truth};
+use crate::method::{Method, Outcome};
+use crate::regime::Regime;
+use crate::timing::Timing;
+use collision_core::rng::Rng;
+use collision_core::{validate, Exact, Generated, Kernel};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Options {
+    pub dims: Vec<usize>,
+    pub regimes: Vec<Regime>,
+    /// Sampled cases per dimension and regime.
+    pub samples: usize,
+    pub seed: u64,
+    /// Cases in the timed batch (in cache), and in the exact variant's batch.
+    pub batch: usize,
+    pub exact_batch: usize,
+    /// Timed samples per variant.
+    pub timing_samples: usize,
+    /// Cases per dimension and regime whose conditioning is estimated (besides every
+    /// body whose error exceeds the bound).
+    pub conditioned: usize,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            dims: (2..=6).collect(),
+            regimes: Regime::ALL.to_vec(),
+            samples: 1000,
+            seed: 2026,
+            batch: 256,
+            exact_batch: 32,
+            timing_samples: 21,
+            conditioned: 50,
+        }
+    }
+}
+
+/// Mean, 99th percentile and maximum.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Stats {
+    pub mean: f64,
+    pub p99: f64,
+    pub max: f64,
+}
+
+impl Stats {
+    pub fn of(values: &[f64]) -> Stats {
+        if values.is_empty() {
+            return Stats::default();
+        }
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        let p99 = v[((v.len() - 1) as f64 * 0.99).round() as usize];
+        Stats {
+            mean: v.iter().sum::<f64>() / v.len() as f64,
+            p99,
+            max: v[v.len() - 1],
+        }
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodResult {
+    pub variant: Method,
+    pub name: String,
+    /// Operation count of the generated kernel (the free one; `None` if not generated).
+    pub ops: Option<usize>,
+    pub timing: Option<Timing>,
+    /// Cases with a result; cases the variant refused, with the reason.
+    pub evaluated: usize,
+    pub unsupported: BTreeMap<String, usize>,
+    /// Results with a NaN or an infinity.
+    pub non_finite: usize,
+    /// Bits of error over every output component of every case.
+    pub bits: Stats,
+    /// The output component with the largest mean bits of error, and that mean.
+    pub dominant: Option<(String, f64)>,
+    /// Normwise error per movable body, in units of the format's epsilon.
+    pub normwise_eps: Stats,
+}
+
+/// How the generated `f64` kernel meets its bound in one regime.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stability {
+    pub bound_eps: f64,
+    pub max_normwise_eps: f64,
+    /// Bodies whose error exceeds the bound.
+    pub over_bound: usize,
+    /// Of those, bodies whose error also exceeds their conditioning (`error > kappa eps`):
+    /// a kernel weakness rather than an ill-conditioned problem. Must be 0.
+    pub over_conditioning: usize,
+    /// Largest `error / kappa` over the bodies above the bound (both in eps units).
+    pub worst_error_over_kappa: f64,
+    pub non_finite: usize,
+    pub passed: bool,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct RegimeResult {
+    pub regime: Regime,
+    pub name: String,
+    pub about: String,
+    pub sampled: usize,
+    /// Sampled cases refused by validation, with the reason (counted, then left out).
+    pub excluded: BTreeMap<String, usize>,
+    /// Estimated condition number per movable body (see `measure`).
+    pub conditioning: Stats,
+    pub variants: Vec<MethodResult>,
+    pub stability: Stability,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct DimResult {
+    pub dim: usize,
+    pub regimes: Vec<RegimeResult>,
+    pub continuity: Continuity,
+}
+
+/// Per-variant accumulators.
+#[derive(Default)]
+struct Acc {
+    bits: Vec<Vec<f64>>,
+    normwise: Vec<f64>,
+    non_finite: usize,
+    evaluated: usize,
+    unsupported: BTreeMap<String, usize>,
+}
+
+impl Acc {
+    /// Bits of every component, and the normwise error (in eps) of each movable body.
+    fn record<F: Float, const N: usize, const S: usize>(
+        &mut self,
+        computed: &[f64],
+        truth: &Truth,
+        case: &Case<Exact, N, S>,
+    ) -> [Option<f64>; 2] {
+        self.evaluated += 1;
+        if self.bits.is_empty() {
+            self.bits = vec![Vec::new(); computed.len()];
+        }
+        for (k, &c) in computed.iter().enumerate() {
+            // `computed` holds F-floats (widened exactly when F = f32).
+            let value = F::nearest(c, 0.0);
+            self.bits[k].push(bits(value, truth.hi[k], truth.lo[k]));
+        }
+        std::array::from_fn(|b| {
+            (!num_traits::Zero::is_zero(&case.balls[b].inv_mass)).then(|| {
+                let err = normwise(lambda(&case.balls[b]), S, N, b, computed, truth) / F::EPSILON;
+                self.normwise.push(err);
+                err
+            })
+        })
+    }
+
+    fn result(
+        self,
+        variant: Method,
+        names: &[String],
+        ops: Option<usize>,
+        timing: Option<Timing>,
+    ) -> MethodResult {
+        let all: Vec<f64> = self.bits.iter().flatten().copied().collect();
+        let dominant = self
+            .bits
+            .iter()
+            .enumerate()
+            .map(|(k, v)| (k, v.iter().sum::<f64>() / v.len().max(1) as f64))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .filter(|(_, m)| *m > 0.0)
+            .map(|(k, m)| (names[k].clone(), m));
+        MethodResult {
+            variant,
+            name: variant.name().into(),
+            ops,
+            timing,
+            evaluated: self.evaluated,
+            unsupported: self.unsupported,
+            non_finite: self.non_finite,
+            bits: Stats::of(&all),
+            dominant,
+            normwise_eps: Stats::of(&self.normwise),
+        }
+    }
+}
+
+/// Operation counts of the generated free kernels of `dim`, by arithmetic.
+fn free_ops(dim: usize) -> Vec<(noslip_codegen::Arith, usize)> {
+    noslip_codegen::generate(dim, "crate")
+        .kernels
+        .iter()
+        .filter(|k| k.variant == noslip_codegen::Variant::Free)
+        .map(|k| (k.arith, k.ops.total()))
+        .collect()
+}
+
+/// Every figure of one dimension and regime.
+pub fn regime_result<const N: usize, const S: usize>(
+    regime: Regime,
+    opts: &Options,
+    ops: &[(noslip_codegen::Arith, usize)],
+) -> RegimeResult
+where
+    Generated: Kernel<f64, N, S>
+        + Kernel<f32, N, S>
+        + Kernel<Exact, N, S>
+        + collision_core::batch::BatchKernel<f64, N, S>,
+{
+    let mut rng = Rng::new(opts.seed ^ ((N as u64) << 32) ^ regime as u64);
+    let names = component_names(N);
+    let mut excluded = BTreeMap::new();
+    let mut cases = Vec::new();
+    for _ in 0..opts.samples {
+        let case = regime.sample::<N, S>(&mut rng);
+        match validate(&case.nu, case.ball_refs(), case.state_refs()) {
+            Ok(()) => cases.push(case),
+            Err(e) => *excluded.entry(e.to_string()).or_insert(0) += 1,
+        }
+    }
+    let mut acc: BTreeMap<usize, Acc> = BTreeMap::new();
+    let mut kappas = Vec::new();
+    let mut stability = Stability {
+        bound_eps: regime.bound_eps(),
+        max_normwise_eps: 0.0,
+        over_bound: 0,
+        over_conditioning: 0,
+        worst_error_over_kappa: 0.0,
+        non_finite: 0,
+        passed: true,
+    };
+    let mut cases32 = Vec::new();
+    for (index, case) in cases.iter().enumerate() {
+        let exact_case = case.to_exact();
+        let exact = exact_result(&exact_case);
+        let truth = Truth::of(&exact);
+        let mut kappa = None;
+        let mut kappa_of = |rng: &mut Rng| {
+            *kappa.get_or_insert_with(|| conditioning(&exact_case, &exact, &truth, rng))
+        };
+        if index < opts.conditioned {
+            kappas.extend(kappa_of(&mut rng).iter().flatten());
+        }
+        let case32 = case.to_f32().map_err(String::from).and_then(|c| {
+            match validate(&c.nu, c.ball_refs(), c.state_refs()) {
+                Ok(()) => Ok(c),
+                Err(e) => Err(format!(
+                    "inputs rounded to f32 fail validation at {}",
+                    e.field
+                )),
+            }
+        });
+        let truth32 = case32.as_ref().map(|c| {
+            let exact = c.to_exact();
+            (Truth::of(&exact_result(&exact)), exact)
+        });
+        for (i, &variant) in Method::ALL.iter().enumerate() {
+            let a = acc.entry(i).or_default();
+            if variant == Method::Exact {
+                a.evaluated += 1;
+                continue;
+            }
+            match variant.run(case, case32.as_ref().map_err(String::as_str)) {
+                Outcome::NonFinite => {
+                    a.non_finite += 1;
+                    if variant == Method::F64 {
+                        stability.non_finite += 1;
+                    }
+                }
+                Outcome::Unsupported(why) => *a.unsupported.entry(why).or_insert(0) += 1,
+                Outcome::Done(r) if variant == Method::F32 => {
+                    let (t32, c32) = truth32.as_ref().expect("f32 ran on representable inputs");
+                    a.record::<f32, N, S>(&r, t32, c32);
+                }
+                Outcome::Done(r) => {
+                    let errs = a.record::<f64, N, S>(&r, &truth, &exact_case);
+                    if variant != Method::F64 {
+                        continue;
+                    }
+                    for (b, err) in errs.iter().enumerate() {
+                        let Some(err) = *err else { continue };
+                        stability.max_normwise_eps = stability.max_normwise_eps.max(err);
+                        if err > stability.bound_eps {
+                            stability.over_bound += 1;
+                            let k = kappa_of(&mut rng)[b].unwrap_or(0.0);
+                            let ratio = err / k.max(f64::MIN_POSITIVE);
+                            stability.worst_error_over_kappa =
+                                stability.worst_error_over_kappa.max(ratio);
+                            if err > k {
+                                stability.over_conditioning += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if let Ok(c) = case32 {
+            cases32.push(c);
+        }
+    }
+    stability.passed = stability.non_finite == 0 && stability.over_conditioning == 0;
+
+    let batch: Vec<Case<f64, N, S>> = cases.iter().take(opts.batch).cloned().collect();
+    let batch32: Vec<Case<f32, N, S>> = cases32.iter().take(opts.batch).cloned().collect();
+    let batch_exact: Vec<Case<Exact, N, S>> = cases
+        .iter()
+        .take(opts.exact_batch)
+        .map(Case::to_exact)
+        .collect();
+    let variants = Method::ALL
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            // A variant that refused every case has nothing worth timing.
+            let ran = acc.get(&i).is_some_and(|a| a.evaluated > 0);
+            let timing = if batch.is_empty() || !ran {
+                None
+            } else {
+                v.time(&batch, &batch32, &batch_exact, opts.timing_samples)
+            };
+            let ops = v
+                .generated()
+                .and_then(|a| ops.iter().find(|(b, _)| *b == a).map(|(_, n)| *n));
+            acc.remove(&i)
+                .unwrap_or_default()
+                .result(v, &names, ops, timing)
+        })
+        .collect();
+    RegimeResult {
+        regime,
+        name: regime.name().into(),
+        about: regime.about().into(),
+        sampled: opts.samples,
+        excluded,
+        conditioning: Stats::of(&kappas),
+        variants,
+        stability,
+    }
+}
+
+/// Agreement of the generated `f64` kernel across the limits it reaches without branches,
+/// `m_1 = 1e15 m_2` against an immovable body 1 (body 2's result) and `gamma2_1 = 1e-15`
+/// against `gamma2_1 = 0` (both bodies), over typical cases: the largest normwise
+/// difference of the two `f64` results, of the two exact results (the model's own
+/// difference at these parameters), and of the two (the rounding part, which must stay
+/// within the bound: no jump at the limit). In eps, in the body's energy norm.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Limit {
+    pub computed_eps: f64,
+    pub exact_eps: f64,
+    pub rounding_eps: f64,
+}
+
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Continuity {
+    pub cases: usize,
+    pub mass_1e15_vs_immovable: Limit,
+    pub gamma2_1e15_vs_zero: Limit,
+}
+
+/// [`Continuity`] over `cases` typical cases.
+pub fn continuity<const N: usize, const S: usize>(cases: usize, seed: u64) -> Continuity
+where
+    Generated: Kernel<f64, N, S> + Kernel<Exact, N, S>,
+{
+    use crate::measure::relative_norm;
+    let mut rng = Rng::new(seed ^ 0xC0 ^ ((N as u64) << 32));
+    let (mut mass, mut gamma) = (Limit::default(), Limit::default());
+    let compare = |a: &Case<f64, N, S>, b: &Case<f64, N, S>, body: usize, limit: &mut Limit| {
+        let run = |c: &Case<f64, N, S>| {
+            let computed = crate::case::flatten(&collision_core::collide_unchecked(
+                &c.nu,
+                c.ball_refs(),
+                c.state_refs(),
+            ));
+            let exact = crate::case::flatten(&exact_result(&c.to_exact()));
+            (computed, exact)
+        };
+        let ((ca, ea), (cb, eb)) = (run(a), run(b));
+        let to_f64 = |x: &Exact| num_traits::ToPrimitive::to_f64(x).unwrap_or(f64::INFINITY);
+        let computed: Vec<f64> = ca.iter().zip(&cb).map(|(x, y)| x - y).collect();
+        let exact: Vec<f64> = ea.iter().zip(&eb).map(|(x, y)| to_f64(&(x - y))).collect();
+        let rounding: Vec<f64> = ca
+            .iter()
+            .zip(&cb)
+            .zip(ea.iter().zip(&eb))
+            .map(|((x, y), (ex, ey))| {
+                let (dx, dy) = (Exact::from_float(*x), Exact::from_float(*y));
+                let (dx, dy) = (dx.expect("finite"), dy.expect("finite"));
+                to_f64(&((dx - ex) - (dy - ey)))
+            })
+            .collect();
+        let reference: Vec<f64> = eb.iter().map(to_f64).collect();
+        let lambda = b.balls[body].lambda();
+        let rel = |d: &[f64]| relative_norm(lambda, S, N, body, d, &reference) / f64::EPSILON;
+        limit.computed_eps = limit.computed_eps.max(rel(&computed));
+        limit.exact_eps = limit.exact_eps.max(rel(&exact));
+        limit.rounding_eps = limit.rounding_eps.max(rel(&rounding));
+    };
+    for _ in 0..cases {
+        let case = Regime::Typical.sample::<N, S>(&mut rng);
+        let mut heavy = case.clone();
+        heavy.balls[0].inv_mass = heavy.balls[1].inv_mass * 1e-15;
+        let mut wall = case.clone();
+        wall.balls[0].inv_mass = 0.0;
+        compare(&heavy, &wall, 1, &mut mass);
+        let (mut small, mut point) = (case.clone(), case);
+        small.balls[0].gamma2 = 1e-15;
+        point.balls[0].gamma2 = 0.0;
+        compare(&small, &point, 0, &mut gamma);
+        compare(&small, &point, 1, &mut gamma);
+    }
+    Continuity {
+        cases,
+        mass_1e15_vs_immovable: mass,
+        gamma2_1e15_vs_zero: gamma,
+    }
+}
+
+/// One dimension's results, `progress` called after each regime.
+pub fn dim_result(
+    dim: usize,
+    opts: &Options,
+    mut progress: impl FnMut(&RegimeResult),
+) -> DimResult {
+    let ops = free_ops(dim);
+    let (regimes, continuity) = collision_core::with_dim!(
+        dim,
+        |N, S| (
+            opts.regimes
+                .iter()
+                .map(|&r| {
+                    let result = regime_result::<N, S>(r, opts, &ops);
+                    progress(&result);
+                    result
+                })
+                .collect(),
+            continuity::<N, S>(opts.samples.min(200), opts.seed),
+        ),
+        panic!("no generated kernels for n = {dim}")
+    );
+    DimResult {
+        dim,
+        regimes,
+        continuity,
+    }
+}

@@ -1,0 +1,275 @@
+//! `noslip simulate FILE`: run a scene, event by event.
+
+use crate::exit::{self, Exit, Failure};
+use crate::out::outln;
+use crate::publish::Staging;
+use collision_core::Generated;
+use collision_core::Kernel;
+use indicatif::{ProgressBar, ProgressStyle};
+use noslip_scene::Scene;
+use noslip_sim::log::LogFile;
+use noslip_sim::plot::{energy_svg, trajectories_svg};
+use noslip_sim::run::{self, Limits, Progress, Summary};
+use noslip_sim::setup::{f, setup};
+use noslip_sim::{GenericKernels, Setup, Simulation};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+const LONG_ABOUT: &str = "\
+Run a scene (TOML, see docs/scenes.md): an event-driven simulation of rigid balls with
+no-slip collisions. Balls fly freely between events; at each ball-ball, ball-wall or
+ball-obstacle contact the pair's state jumps by the no-slip map (the generated f64 kernels).
+Contacts are found with a cell list and a priority queue; periodic axes use images.
+
+Stops after --events contacts (at least 1) or at --time (positive and finite; default: the
+scene's [simulation] values, else 100000 events). Prints a summary (events, events per
+second, kinetic energy and the drift of energy, linear and angular momentum relative to the
+start) and writes to --out, published as one set (the whole directory is replaced at once;
+a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
+drift over events) and, in 2D, trajectories.svg (a few balls' paths, cut at periodic wraps
+and thinned, and the contact points); a --log file inside --out belongs to the set. --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
+and post states; the log file appears complete at the end of the run or not at all (if it
+cannot be written, the run still ends, prints and writes its summary, and exits 1).
+
+A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, \"The
+scene in f64\") is refused with exit code 2, naming the field.";
+
+#[derive(clap::Args)]
+#[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
+pub struct Args {
+    /// The scene file.
+    file: PathBuf,
+    /// Stop after this many contacts (at least 1).
+    #[arg(long)]
+    events: Option<u64>,
+    /// Stop at this simulated time (positive and finite).
+    #[arg(long, allow_negative_numbers = true)]
+    time: Option<f64>,
+    /// Write every contact as a JSON line to this file.
+    #[arg(long)]
+    log: Option<PathBuf>,
+    /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// What `simulate` can return.
+pub const CODES: &[Exit] = &[Exit::Success, Exit::OutputFailed, Exit::BadInput];
+
+/// The summary on stdout (after the files are written: a failing stdout loses nothing).
+fn print_summary(s: &Summary) -> Result<(), Failure> {
+    outln!(
+        "{} contacts ({} ball-ball, {} ball-wall, {} ball-obstacle), {} cell crossings, t = {:.6}",
+        s.events,
+        s.ball_ball,
+        s.ball_wall,
+        s.ball_obstacle,
+        s.cell_crossings,
+        s.time
+    )?;
+    outln!(
+        "{:.3} s wall clock, {:.0} events/s, {} balls in R^{}",
+        s.seconds,
+        s.events_per_second,
+        s.balls,
+        s.dim
+    )?;
+    outln!(
+        "energy {:.17e} -> {:.17e}: drift {:.3e} (max over samples {:.3e})",
+        s.energy_start,
+        s.energy_end,
+        s.energy_drift,
+        s.energy_drift_max
+    )?;
+    outln!(
+        "momentum drift {:.3e}, angular momentum drift {:.3e} (relative; conserved only without walls/obstacles, angular also without periodic wrapping)",
+        s.momentum_drift, s.angular_momentum_drift
+    )?;
+    if let Some(why) = &s.stopped {
+        outln!("stopped: {why}")?;
+    }
+    Ok(())
+}
+
+fn simulate<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Result<(), Failure>
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let setup: Setup<N, S> =
+        setup::<N, S>(scene).map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
+    let species = setup.species.clone();
+    let obstacles: Vec<([f64; 2], f64)> = setup
+        .obstacles
+        .iter()
+        .map(|o| ([o.position[0], o.position[1]], o.radius))
+        .collect();
+    let (size, periodic) = (setup.size, setup.periodic);
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels)
+        .map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
+    let mut events = args.events.or(scene.simulation.events);
+    let time = args.time.or(scene.simulation.time.as_ref().map(f));
+    if events.is_none() && time.is_none() {
+        events = Some(100_000);
+    }
+    let limits = Limits {
+        events,
+        time,
+        samples: 2000,
+        traced: if N == 2 { 12 } else { 0 },
+        contact_points: if N == 2 { usize::MAX } else { 0 },
+    };
+    let out = args.out.clone().unwrap_or_else(|| {
+        let stem = Path::new(&scene.origin)
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+        PathBuf::from("out/simulate").join(stem)
+    });
+    // The output set is staged before the run, so that a refused --out costs no run, and a
+    // log asked for inside it (`--log OUT/events.jsonl`) is written into the set itself.
+    let mut set = Staging::new(&out).map_err(|e| crate::exit::publish_failure(&e))?;
+    let mut log = match &args.log {
+        Some(p) => {
+            let at = match p.file_name() {
+                Some(name) if same_dir(p.parent(), &out) => set.path(&name.to_string_lossy()),
+                _ => p.clone(),
+            };
+            Some(
+                LogFile::create(&at)
+                    .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
+            )
+        }
+        None => None,
+    };
+    let progress = (!args.quiet).then(|| {
+        let pb = ProgressBar::new(events.unwrap_or(0));
+        pb.set_style(
+            ProgressStyle::with_template("{bar:40} {pos}/{len} contacts, {per_sec}, eta {eta}")
+                .expect("valid template"),
+        );
+        pb
+    });
+    let mut report = |p: Progress| match p {
+        Progress::Events(done) => {
+            if let Some(pb) = &progress {
+                pb.set_position(done);
+            }
+        }
+        Progress::Quiet { box_lengths, time } => {
+            // A notice on stderr (never a panic if stderr is gone); the run goes on.
+            let _ = writeln!(
+                std::io::stderr(),
+                "notice: no contact while every moving ball travelled {box_lengths:.0} box \
+                 lengths (t = {time:.6e}); contacts may be rare here: the run goes on (--time \
+                 bounds it)"
+            );
+        }
+        _ => {}
+    };
+    let (summary, trace) = run::run(
+        &mut sim,
+        &species,
+        &limits,
+        log.as_mut().map(|w| w as &mut dyn Write),
+        &mut report,
+    )
+    .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
+    if let Some(pb) = progress {
+        pb.finish_and_clear();
+    }
+    // The log is complete or absent; its failure does not stop the summary and pictures.
+    let log_failed = match (log, &args.log) {
+        (Some(log), Some(p)) => log.finish().err().map(|e| {
+            Failure::output(format!(
+                "cannot write the events log {}: {e} (no log was left; the summary was written)",
+                p.display()
+            ))
+        }),
+        _ => None,
+    };
+    let staged = |r: std::io::Result<String>, name: &str| {
+        r.map_err(|e| Failure::output(format!("cannot draw {name}: {e}")))
+    };
+    let json = serde_json::to_string_pretty(&summary).expect("summary serialises") + "\n";
+    set.write("summary.json", json.as_bytes())
+        .map_err(|e| crate::exit::publish_failure(&e))?;
+    let title = Path::new(&scene.origin)
+        .file_name()
+        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+    let energy = staged(
+        energy_svg(&format!("{title}: energy drift"), &trace),
+        "energy.svg",
+    )?;
+    set.write("energy.svg", energy.as_bytes())
+        .map_err(|e| crate::exit::publish_failure(&e))?;
+    if N == 2 {
+        let balls = trace.paths.len();
+        let picture = staged(
+            trajectories_svg(
+                &format!(
+                    "{title}: {balls} ball{} up to t = {:.6}, {} contact points",
+                    if balls == 1 { "" } else { "s" },
+                    trace.paths_until,
+                    trace.contacts.len()
+                ),
+                [size[0], size[1]],
+                [periodic[0], periodic[1]],
+                &obstacles,
+                &trace,
+            ),
+            "trajectories.svg",
+        )?;
+        set.write("trajectories.svg", picture.as_bytes())
+            .map_err(|e| crate::exit::publish_failure(&e))?;
+    }
+    set.commit().map_err(|e| crate::exit::publish_failure(&e))?;
+    print_summary(&summary)?;
+    outln!("wrote {}", out.display())?;
+    log_failed.map_or(Ok(()), Err)
+}
+
+/// Whether `dir` (a log file's parent) is the output directory `out`, lexically (neither need
+/// exist yet): `OUT/events.jsonl` is then a file of the published set.
+fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
+    let clean = |p: &Path| -> PathBuf {
+        p.components()
+            .filter(|c| !matches!(c, std::path::Component::CurDir))
+            .collect()
+    };
+    dir.is_some_and(|d| clean(d) == clean(out))
+}
+
+/// `--time` and `--events` as the scene file has them: a positive finite time, at least one
+/// contact.
+fn check_limits(args: &Args) -> Result<(), Failure> {
+    if let Some(t) = args.time {
+        if !(t > 0.0 && t.is_finite()) {
+            return Err(Failure::bad_input(format!(
+                "--time: must be positive and finite, got {t}"
+            )));
+        }
+    }
+    if args.events == Some(0) {
+        return Err(Failure::bad_input(
+            "--events: must be at least 1 (a run of no contacts has nothing to report)",
+        ));
+    }
+    Ok(())
+}
+
+/// Check the limits, read the scene, run it and publish its outputs.
+pub fn run(args: &Args) -> Result<Exit, Failure> {
+    check_limits(args)?;
+    let scene = Scene::from_file(&args.file).map_err(|e| Failure::bad_input(e.to_string()))?;
+    collision_core::with_dim!(
+        scene.dim,
+        |N, S| simulate::<N, S>(&scene, args),
+        unreachable!("scene validation keeps dim in {:?}", collision_core::DIMS)
+    )?;
+    Ok(Exit::Success)
+}

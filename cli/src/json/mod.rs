@@ -1,0 +1,23 @@
+//! The JSON side of `noslip collide`: reading cases, running the collision, printing the
+//! result.
+//!
+//! - [`number`]: the number formats (decimals, rationals) and how `f64` and exact
+//!   rationals read and print them.
+//! - [`case`]: the input schema of a case.
+//! - [`keys`]: keys given twice (which `serde_json::Value` would drop silently).
+//! - [`solve`]: validation with readable messages, and the dispatch over `dim` to the
+//!   generated kernels (2..=6) or the general-n reference.
+//! - [`output`]: the output schema.
+//! - [`collide`]: a whole input (one case or an array), in and out.
+//! - [`error`]: the one-line error of a case, naming the field.
+
+pub mod case;
+pub mod collide;
+pub mod error;
+pub mod keys;
+pub mod number;
+pub mod output;
+pub mod solve;
+
+pub use collide::{collide_json, Mode, RunError};
+pub use error::CaseError;

@@ -1,0 +1,456 @@
+//! Numbers in the input, and how each scalar type reads and prints them.
+//!
+//! A number is a JSON number or a string holding a decimal (`1e-3`, `0.1`, `-2.5E+3`,
+//! `.5`, `+4`) or a rational `p/q` (`3/5`, `-7/2`; `p` and `q` unsigned integers, the sign
+//! in front). A JSON number is read from its literal text (serde_json's
+//! `arbitrary_precision`), so `0.1` is 1/10 however it is written.
+//!
+//! A number has at most [`MAX_DIGITS`] digits (a decimal's mantissa, or a rational's numerator
+//! and denominator together), in both modes, so that no input asks for a huge integer.
+//!
+//! - [`Exact`]: the number the text spells, exactly. The exponent of a decimal is limited
+//!   to `|e| <=` [`MAX_EXACT_EXPONENT`] so that a short input cannot ask for a huge integer.
+//! - `f64`: the nearest `f64` (round half to even): decimals by Rust's correctly rounded
+//!   parser, rationals as the exact rational rounded once (num-rational's `to_f64`).
+//!   Results beyond the `f64` range are errors; results below it round to (signed) zero.
+
+use crate::json::error::{kind, quote, CaseError};
+use collision_core::{Exact, Scalar};
+use num_bigint::BigInt;
+use num_traits::{ToPrimitive, Zero};
+use serde_json::Value;
+use std::str::FromStr;
+
+/// The most digits of one number (the scene grammar's limit, the same for both).
+pub use noslip_scene::MAX_DIGITS;
+
+/// The largest `|e|` accepted in the exponent of a decimal in exact mode: beyond the range
+/// of `f64` (`1e-324 .. 1.8e308`) with room, while keeping every case fast (a 3D case with
+/// exponents near 10000 took seconds).
+pub const MAX_EXACT_EXPONENT: u64 = 1000;
+
+/// How many characters of a bad number a message quotes.
+const QUOTE_CHARS: usize = 40;
+
+/// A scalar the `collide` command can read from and print to JSON.
+pub trait InputScalar: Scalar {
+    /// The number `text` spells (see the module documentation); the error is a message.
+    fn parse_number(text: &str) -> Result<Self, String>;
+    /// The value as JSON output; `None` if it is not finite.
+    fn to_json(&self) -> Option<Value>;
+}
+
+impl InputScalar for Exact {
+    fn parse_number(text: &str) -> Result<Self, String> {
+        exact(&scan(text)?, text)
+    }
+
+    /// A reduced rational as a string: `"-3/5"`, `"2"`.
+    fn to_json(&self) -> Option<Value> {
+        Some(Value::String(self.to_string()))
+    }
+}
+
+impl InputScalar for f64 {
+    fn parse_number(text: &str) -> Result<Self, String> {
+        let x = match scan(text)? {
+            Scanned::Decimal { .. } => text.parse::<f64>().map_err(|_| malformed(text))?,
+            ratio @ Scanned::Ratio { .. } => {
+                ToPrimitive::to_f64(&exact(&ratio, text)?).unwrap_or(f64::INFINITY)
+            }
+        };
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(format!(
+                "{} is out of the range of f64 (|x| < 1.8e308)",
+                quote(text, QUOTE_CHARS)
+            ))
+        }
+    }
+
+    /// Rust's shortest round-trip form (`{:?}`): `2.0`, `-0.0`, `0.1`, `1e-300`, `1.5e300`
+    /// (printed by serde_json as `1.5e+300`). Always a valid JSON number.
+    fn to_json(&self) -> Option<Value> {
+        if !self.is_finite() {
+            return None;
+        }
+        serde_json::Number::from_str(&format!("{self:?}"))
+            .ok()
+            .map(Value::Number)
+    }
+}
+
+/// Read the number at `field` of a case: a JSON number or a string.
+pub fn from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseError> {
+    let text = match value {
+        Value::Number(n) => n.as_str(),
+        Value::String(s) => s.as_str(),
+        other => {
+            return Err(CaseError::new(
+                field,
+                format!(
+                    "expected a number (a JSON number or a string such as \"3/5\"), got {}",
+                    kind(other)
+                ),
+            ))
+        }
+    };
+    T::parse_number(text).map_err(|m| CaseError::new(field, m))
+}
+
+/// The parts of a number's text, checked against the grammar.
+#[derive(Debug, PartialEq, Eq)]
+enum Scanned<'a> {
+    /// `[+-] int [. frac] [e exp]`: `int` and `frac` digits (one of them non-empty), `exp` a
+    /// signed integer.
+    Decimal {
+        negative: bool,
+        int: &'a str,
+        frac: &'a str,
+        exp: Option<&'a str>,
+    },
+    /// `[+-] numer / denom`, both non-empty digit strings.
+    Ratio {
+        negative: bool,
+        numer: &'a str,
+        denom: &'a str,
+    },
+}
+
+fn malformed(text: &str) -> String {
+    format!(
+        "malformed number {}: expected a decimal (0.1, -2.5e3) or a rational (-7/2)",
+        quote(text, QUOTE_CHARS)
+    )
+}
+
+fn digits(s: &str) -> bool {
+    !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit())
+}
+
+/// Refuse a number with more than [`MAX_DIGITS`] digits in `parts`.
+fn digit_limit(text: &str, parts: &[&str]) -> Result<(), String> {
+    let count: usize = parts.iter().map(|p| p.len()).sum();
+    if count > MAX_DIGITS {
+        return Err(format!(
+            "{} has {count} digits: at most {MAX_DIGITS} are accepted",
+            quote(text, QUOTE_CHARS)
+        ));
+    }
+    Ok(())
+}
+
+fn scan(text: &str) -> Result<Scanned<'_>, String> {
+    let (negative, body) = match text.as_bytes().first() {
+        Some(b'-') => (true, &text[1..]),
+        Some(b'+') => (false, &text[1..]),
+        _ => (false, text),
+    };
+    if ["inf", "infinity", "nan"]
+        .iter()
+        .any(|w| body.eq_ignore_ascii_case(w))
+    {
+        return Err(format!(
+            "{} is not a finite number (NaN and infinities are rejected; a mass may be \"inf\")",
+            quote(text, QUOTE_CHARS)
+        ));
+    }
+    if let Some((numer, denom)) = body.split_once('/') {
+        return if digits(numer) && digits(denom) {
+            digit_limit(text, &[numer, denom])?;
+            Ok(Scanned::Ratio {
+                negative,
+                numer,
+                denom,
+            })
+        } else {
+            Err(malformed(text))
+        };
+    }
+    let (mantissa, exp) = match body.find(['e', 'E']) {
+        Some(k) => (&body[..k], Some(&body[k + 1..])),
+        None => (body, None),
+    };
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let part = |s: &str| s.is_empty() || digits(s);
+    let exp_ok = match exp {
+        None => true,
+        Some(e) => digits(e.strip_prefix(['+', '-']).unwrap_or(e)),
+    };
+    if part(int) && part(frac) && !(int.is_empty() && frac.is_empty()) && exp_ok {
+        digit_limit(text, &[int, frac])?;
+        Ok(Scanned::Decimal {
+            negative,
+            int,
+            frac,
+            exp,
+        })
+    } else {
+        Err(malformed(text))
+    }
+}
+
+fn integer(digits: &str) -> BigInt {
+    // The scanner let only ASCII digits through.
+    BigInt::parse_bytes(digits.as_bytes(), 10).unwrap_or_default()
+}
+
+fn exact(scanned: &Scanned<'_>, text: &str) -> Result<Exact, String> {
+    let (negative, value) = match *scanned {
+        Scanned::Ratio {
+            negative,
+            numer,
+            denom,
+        } => {
+            let denom = integer(denom);
+            if denom.is_zero() {
+                return Err(format!("zero denominator in {}", quote(text, QUOTE_CHARS)));
+            }
+            (negative, Exact::new(integer(numer), denom))
+        }
+        Scanned::Decimal {
+            negative,
+            int,
+            frac,
+            exp,
+        } => {
+            let mantissa = integer(&format!("{int}{frac}"));
+            if mantissa.is_zero() {
+                return Ok(Exact::zero());
+            }
+            let out_of_range = || {
+                format!(
+                    "the exponent of {} is out of range: at most {MAX_EXACT_EXPONENT} in magnitude",
+                    quote(text, QUOTE_CHARS)
+                )
+            };
+            let e = match exp {
+                None => 0,
+                Some(e) => e.parse::<i64>().map_err(|_| out_of_range())?,
+            };
+            if e.unsigned_abs() > MAX_EXACT_EXPONENT {
+                return Err(out_of_range());
+            }
+            let shift = e - frac.len() as i64;
+            let power = num_traits::pow(BigInt::from(10), shift.unsigned_abs() as usize);
+            let value = if shift >= 0 {
+                Exact::from_integer(mantissa * power)
+            } else {
+                Exact::new(mantissa, power)
+            };
+            (negative, value)
+        }
+    };
+    Ok(if negative { -value } else { value })
+}
+
+/// `x` is a non-negative integer literal (for `dim`): its value, saturating at `usize::MAX`;
+/// `None` if `x` is not written as an integer.
+pub fn integer_literal(text: &str) -> Option<(bool, usize)> {
+    let (negative, body) = match text.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, text),
+    };
+    if !digits(body) {
+        return None;
+    }
+    let value = integer(body).to_usize().unwrap_or(usize::MAX);
+    Some((negative && value != 0, value))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> Exact {
+        Exact::from_ratio(n, d)
+    }
+
+    #[test]
+    fn exact_numbers_are_what_they_spell() {
+        let cases = [
+            ("0.1", q(1, 10)),
+            ("-2.5E+3", q(-2500, 1)),
+            ("1e-3", q(1, 1000)),
+            ("3/5", q(3, 5)),
+            ("-7/2", q(-7, 2)),
+            ("6/4", q(3, 2)),
+            ("+4", q(4, 1)),
+            (".5", q(1, 2)),
+            ("5.", q(5, 1)),
+            ("-0", q(0, 1)),
+            ("0e999999999999999999999", q(0, 1)),
+            ("12.50e-1", q(5, 4)),
+        ];
+        for (text, want) in cases {
+            assert_eq!(Exact::parse_number(text), Ok(want), "{text}");
+        }
+        let big = Exact::parse_number("1e1000").unwrap();
+        assert_eq!(big.numer().to_string().len(), 1001);
+        let small = Exact::parse_number("-1e-1000").unwrap();
+        assert_eq!(small.denom().to_string().len(), 1001);
+    }
+
+    #[test]
+    fn malformed_numbers_are_rejected_with_a_message() {
+        for text in [
+            "", "-", ".", "e5", "1e", "1e+", "1.2.3", "1..2", "abc", "1/", "/2", "1/-2", "1.5/2",
+            "1/2/3", " 1", "1 ", "0x10", "1_000", "--1", "١",
+        ] {
+            let e = Exact::parse_number(text).unwrap_err();
+            assert!(e.starts_with("malformed number"), "{text:?}: {e}");
+            assert!(f64::parse_number(text).is_err(), "{text:?}");
+        }
+        for text in ["inf", "-inf", "NaN", "Infinity", "+INF"] {
+            let e = f64::parse_number(text).unwrap_err();
+            assert!(e.contains("not a finite number"), "{text}: {e}");
+        }
+        assert!(Exact::parse_number("3/0")
+            .unwrap_err()
+            .contains("zero denominator"));
+        assert!(f64::parse_number("0/0")
+            .unwrap_err()
+            .contains("zero denominator"));
+        for text in [
+            "1e999999",
+            "1e1001",
+            "-1e-1001",
+            "1e-99999999999999999999999",
+        ] {
+            let e = Exact::parse_number(text).unwrap_err();
+            assert!(e.contains("exponent"), "{text}: {e}");
+        }
+        for text in ["1e999999", "1e99999999999999999999999", "-2e308"] {
+            let e = f64::parse_number(text).unwrap_err();
+            assert!(e.contains("out of the range of f64"), "{text}: {e}");
+        }
+        let long = "9".repeat(400) + "/1";
+        assert!(f64::parse_number(&long).unwrap_err().contains("..."));
+    }
+
+    #[test]
+    fn floats_are_correctly_rounded() {
+        assert_eq!(f64::parse_number("0.1"), Ok(0.1));
+        assert_eq!(f64::parse_number("1/3"), Ok(1.0 / 3.0));
+        assert_eq!(f64::parse_number("-7/2"), Ok(-3.5));
+        assert_eq!(f64::parse_number("1e-400"), Ok(0.0));
+        assert!(f64::parse_number("-1e-400").unwrap().is_sign_negative());
+        // Rationals beyond 2^53 go through the exact rational: compare with the correctly
+        // rounded decimal parser on the same values, including halfway cases, subnormals
+        // and the edge of the range.
+        let decimals = [
+            "9007199254740993",
+            "9007199254740995",
+            "18014398509481985",
+            "0.30000000000000001665",
+            "123456789012345678901234567890e-7",
+            "2.4703282292062327e-324",
+            "2.4703282292062328e-324",
+            "4.9406564584124654e-324",
+            "2.2250738585072011e-308",
+            "2.2250738585072014e-308",
+            "1.7976931348623157e308",
+            "1.7976931348623158e308",
+            "3.14159265358979323846264338327950288419716939937510",
+        ];
+        for d in decimals {
+            let r = Exact::parse_number(d).unwrap();
+            let ratio = format!("{}/{}", r.numer(), r.denom());
+            let want: f64 = d.parse().unwrap();
+            // The rational's rounding (what a rational input goes through)...
+            assert_eq!(ToPrimitive::to_f64(&r), Some(want), "{d} as {ratio}");
+            // ... reachable from the input when the ratio has at most MAX_DIGITS digits.
+            if ratio.len() - 1 <= MAX_DIGITS {
+                assert_eq!(f64::parse_number(&ratio), Ok(want), "{d} as {ratio}");
+            } else {
+                assert!(f64::parse_number(&ratio).unwrap_err().contains("digits"));
+            }
+            assert_eq!(f64::parse_number(d), Ok(want), "{d}");
+        }
+    }
+
+    #[test]
+    fn numbers_have_at_most_max_digits() {
+        let fits = "9".repeat(MAX_DIGITS);
+        assert!(Exact::parse_number(&fits).is_ok());
+        let half = "7".repeat(MAX_DIGITS / 2);
+        assert!(f64::parse_number(&format!("-{half}/{half}")).is_ok());
+        for text in [
+            "9".repeat(MAX_DIGITS + 1),
+            format!("0.{}", "0".repeat(MAX_DIGITS)),
+            format!("{half}/{half}7"),
+            format!("1.{}e5", "0".repeat(10 * MAX_DIGITS)),
+        ] {
+            for e in [
+                Exact::parse_number(&text).unwrap_err(),
+                f64::parse_number(&text).unwrap_err(),
+            ] {
+                assert!(
+                    e.contains(&format!("at most {MAX_DIGITS} are accepted")),
+                    "{e}"
+                );
+                assert!(e.len() < 120, "{e}");
+            }
+        }
+    }
+
+    #[test]
+    fn floats_print_as_json_numbers_that_round_trip() {
+        for x in [
+            0.0,
+            -0.0,
+            2.0,
+            -3.5,
+            0.1,
+            1e-300,
+            -1e300,
+            5e-324,
+            f64::MAX,
+            1e16,
+            123456789.123,
+        ] {
+            let v = x.to_json().unwrap();
+            let text = serde_json::to_string(&v).unwrap();
+            let back: f64 = text.parse().unwrap();
+            assert_eq!(back.to_bits(), x.to_bits(), "{x:?} printed as {text}");
+            assert!(serde_json::from_str::<Value>(&text).is_ok(), "{text}");
+        }
+        assert_eq!(serde_json::to_string(&2.0.to_json()).unwrap(), "2.0");
+        assert_eq!(f64::NAN.to_json(), None);
+        assert_eq!(f64::INFINITY.to_json(), None);
+        assert_eq!(q(-6, 10).to_json(), Some(Value::String("-3/5".into())));
+        assert_eq!(q(2, 1).to_json(), Some(Value::String("2".into())));
+    }
+
+    #[test]
+    fn json_number_literals_are_read_as_written() {
+        let v: Value = serde_json::from_str("[0.1, 1E2, -0, 1e999999]").unwrap();
+        let got: Vec<Result<Exact, CaseError>> = v
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| from_json(x, "f"))
+            .collect();
+        assert_eq!(got[0], Ok(q(1, 10)));
+        assert_eq!(got[1], Ok(q(100, 1)));
+        assert_eq!(got[2], Ok(q(0, 1)));
+        assert!(got[3].as_ref().unwrap_err().message.contains("exponent"));
+        let e = from_json::<f64>(&Value::Bool(true), "bodies[0].mass").unwrap_err();
+        assert_eq!(e.field, "bodies[0].mass");
+        assert!(e.message.contains("got a boolean"));
+    }
+
+    #[test]
+    fn integer_literals() {
+        assert_eq!(integer_literal("3"), Some((false, 3)));
+        assert_eq!(integer_literal("-3"), Some((true, 3)));
+        assert_eq!(integer_literal("-0"), Some((false, 0)));
+        assert_eq!(
+            integer_literal("99999999999999999999999"),
+            Some((false, usize::MAX))
+        );
+        assert_eq!(integer_literal("3.0"), None);
+        assert_eq!(integer_literal("3e0"), None);
+    }
+}

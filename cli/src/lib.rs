@@ -1,0 +1,71 @@
+//! # noslip
+//!
+//! The `noslip` command: collide two balls from a JSON case, prove the generated kernels
+//! exact, measure their error against run time, run scenes, and print the kernels
+//! specialised to a scene. It is thin: it parses arguments and the JSON case format
+//! ([`json`]), calls the library crates (`collision-core`, `noslip-verify`,
+//! `noslip-accuracy`, `noslip-sim`, `noslip-codegen`), and publishes their outputs atomically
+//! ([`publish`]) with one table of exit codes ([`exit`]). It holds no physics, no checks and
+//! no measurements of its own.
+//!
+//! One module per subcommand under [`command`]; a new subcommand is a variant of [`Command`],
+//! its `Args` and `run`, and a line in [`run`].
+
+#![warn(missing_docs, unreachable_pub)]
+
+pub mod command;
+pub mod dims;
+pub mod exit;
+pub mod json;
+pub mod out;
+pub mod progress;
+pub mod publish;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// The command line: `noslip <subcommand> [args]`.
+#[derive(Parser)]
+#[command(
+    name = "noslip",
+    version,
+    about = "No-slip collisions of two rigid balls in R^n",
+    long_about = "No-slip collisions of two rigid balls in R^n.\n\n\
+        At contact, the state of two balls (angular velocities U_i in so(n), centre \
+        velocities u_i) jumps to its reflection, in the kinetic-energy metric, across the \
+        no-slip subspace {V_1(Q) = V_2(Q)}: the map is linear, an involution, and conserves \
+        energy, linear momentum and each body's angular momentum about the contact point. \
+        The kernels for n = 2..6 are generated code, run in f64 or in exact rationals.",
+    after_long_help = exit::help(exit::ALL)
+)]
+pub struct Cli {
+    /// The subcommand and its arguments.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Subcommand)]
+pub enum Command {
+    /// Collide two balls: a JSON case in, the states after contact out.
+    Collide(command::collide::Args),
+    /// Prove the generated kernels exact: identities, decomposition, inertia; writes reports.
+    Verify(command::verify::Args),
+    /// Error against run time of every kernel variant, in typical and extreme regimes.
+    Report(command::report::Args),
+    /// Run a scene: event-driven no-slip billiard / rough-ball gas; summary, log, plots.
+    Simulate(command::simulate::Args),
+    /// Print the kernels specialised to a scene, with op counts (or check them exactly).
+    Gen(command::gen::Args),
+}
+
+/// Run the parsed command line; the exit code of its outcome ([`exit::finish`]).
+pub fn run(cli: Cli) -> ExitCode {
+    exit::finish(match cli.command {
+        Command::Collide(args) => command::collide::run(&args),
+        Command::Verify(args) => command::verify::run(&args),
+        Command::Report(args) => command::report::run(&args),
+        Command::Simulate(args) => command::simulate::run(&args),
+        Command::Gen(args) => command::gen::run(&args),
+    })
+}

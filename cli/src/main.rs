@@ -1,0 +1,9 @@
+//! `noslip`: collide two balls from JSON, verify and measure the kernels, run scenes. The
+//! command lives in the `noslip` library ([`noslip::Cli`], [`noslip::run`]).
+
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    noslip::run(noslip::Cli::parse())
+}

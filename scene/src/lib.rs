@@ -1,0 +1,173 @@
+//! # noslip-scene
+//!
+//! The scene format: a simulation setup read from TOML (see `docs/scenes.md`): a dimension, a
+//! box whose axes are walled or periodic, species of balls, explicit balls, fixed ball
+//! obstacles, seeded random placement and defaults for the run. The generator
+//! (`noslip-codegen`) reads a scene's pair sets from here, the simulator (`noslip-sim`) its
+//! placement. This crate parses and validates in exact rationals and nothing else: it knows
+//! no kernels, no floating point and no simulation.
+//!
+//! [`Scene::from_toml`] parses ([`raw`], unknown keys refused) and validates (`validate`)
+//! in exact rationals; every error names the place: a line and column for syntax and
+//! unknown keys, a key path such as `species[1].radius` or `ball[3].position` otherwise.
+//! The generator needs [`Scene::pairs`]; the simulator also needs the placement.
+
+mod number;
+mod pairs;
+pub mod raw;
+mod validate;
+
+pub use number::{parse_exact, Number, MAX_DIGITS};
+pub use pairs::{Pair, PairSet, WallSide};
+pub use raw::{Boundary, Distribution};
+
+use num_rational::BigRational;
+use std::fmt;
+use std::path::Path;
+
+/// One species: every ball of it shares these constants (exact).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Species {
+    pub name: String,
+    pub mass: BigRational,
+    /// `w = 1/m`.
+    pub inv_mass: BigRational,
+    pub radius: BigRational,
+    /// `gamma^2 = 2 lambda / R^2` in `[0, 2/n]`.
+    pub gamma2: BigRational,
+    /// The key that set `gamma2` (`"lambda"`, `"gamma2"` or `"distribution"`; `None`: the
+    /// default, a uniform ball), for messages.
+    pub gamma2_key: Option<&'static str>,
+    /// Balls of this species placed at random (besides the explicit ones).
+    pub count: usize,
+}
+
+/// The most balls a scene may hold, explicit and random together: `2^24`. The simulator keeps
+/// every ball in memory several times over (its setup, the engine's state, cell lists and
+/// queue: a few hundred bytes each, more in higher dimensions; see docs/scenes.md) and places
+/// the random ones one by one; the limit keeps both within an ordinary machine and is
+/// checked before anything is allocated, with sums that cannot overflow.
+pub const MAX_BALLS: usize = 1 << 24;
+
+/// An explicitly placed ball.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BallSpec {
+    pub species: usize,
+    pub position: Vec<BigRational>,
+    pub velocity: Vec<BigRational>,
+    /// Compact skew entries `U_ij`, `i < j`.
+    pub spin: Vec<BigRational>,
+}
+
+/// An immovable ball at rest.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Obstacle {
+    pub position: Vec<BigRational>,
+    pub radius: BigRational,
+}
+
+/// Seeded random placement of the species' `count` balls: positions uniform in the box, no
+/// overlaps (rejection sampling), velocity components uniform in `[-speed, speed]`, skew
+/// entries of `U` uniform in `[-spin, spin]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Random {
+    pub seed: u64,
+    pub speed: BigRational,
+    pub spin: BigRational,
+}
+
+/// Defaults of a run (the command line overrides them).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct RunDefaults {
+    pub events: Option<u64>,
+    pub time: Option<BigRational>,
+    /// Track each ball's orientation `A_i` in SO(n).
+    pub orientation: bool,
+}
+
+/// A validated scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Where it came from (a file name), for messages.
+    pub origin: String,
+    pub description: String,
+    pub dim: usize,
+    /// The box is `[0, size_0] x .. x [0, size_{n-1}]`.
+    pub size: Vec<BigRational>,
+    pub boundary: Vec<Boundary>,
+    pub species: Vec<Species>,
+    pub balls: Vec<BallSpec>,
+    pub obstacles: Vec<Obstacle>,
+    pub random: Random,
+    pub simulation: RunDefaults,
+}
+
+/// A bad scene: where (`file: place`) and what.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneError {
+    pub origin: String,
+    /// `line 4, column 1`, or a key path like `species[1].radius`.
+    pub place: String,
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        write!(f, "{}: {}: {}", self.origin, self.place, self.message)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+    (line, column)
+}
+
+impl Scene {
+    /// Parse and validate scene `text`; `origin` names it in errors.
+    pub fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        let raw: raw::RawScene = toml::from_str(text).map_err(|e| {
+            let place = match e.span() {
+                Some(span) => {
+                    let (l, c) = line_column(text, span.start);
+                    format!("line {l}, column {c}")
+                }
+                None => "scene".to_string(),
+            };
+            SceneError {
+                origin: origin.to_string(),
+                place,
+                message: e.message().trim().replace('\n', " "),
+            }
+        })?;
+        validate::validate(raw, origin)
+    }
+
+    /// Read, parse and validate a scene file.
+    pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+            origin: origin.clone(),
+            place: "file".into(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Scene::from_toml(&text, &origin)
+    }
+
+    /// Number of balls: explicit ones and those placed at random.
+    pub fn ball_count(&self) -> usize {
+        self.balls.len() + self.species.iter().map(|s| s.count).sum::<usize>()
+    }
+
+    /// Balls of each species (explicit and random).
+    pub fn balls_per_species(&self) -> Vec<usize> {
+        let mut n: Vec<usize> = self.species.iter().map(|s| s.count).collect();
+        for b in &self.balls {
+            n[b.species] += 1;
+        }
+        n
+    }
+}

@@ -1,0 +1,151 @@
+//! The contacts a scene can meet: which species pairs, which walls, whether obstacles.
+
+use crate::{Boundary, Scene, Species};
+
+/// The wall at `x_k = 0` (`Lower`, normal `+e_k` into the box) or at `x_k = L_k` (`Upper`,
+/// normal `-e_k`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum WallSide {
+    Lower,
+    Upper,
+}
+
+impl WallSide {
+    pub const BOTH: [WallSide; 2] = [WallSide::Lower, WallSide::Upper];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            WallSide::Lower => "lower",
+            WallSide::Upper => "upper",
+        }
+    }
+}
+
+/// What the generator must emit for one dimension: the species' constants and the pair
+/// kinds present. Build it from a scene ([`Scene::pairs`]) or by hand.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairSet {
+    /// The module name (a Rust identifier).
+    pub name: String,
+    pub dim: usize,
+    pub species: Vec<Species>,
+    /// Ball-ball pairs `(a, b)`, `a <= b`, species indices.
+    pub ball_ball: Vec<(usize, usize)>,
+    /// Ball-wall contacts `(species, axis, side)`.
+    pub ball_wall: Vec<(usize, usize, WallSide)>,
+    /// Species that can hit a fixed ball obstacle.
+    pub ball_obstacle: Vec<usize>,
+}
+
+/// A contact kind of a [`PairSet`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pair {
+    BallBall(usize, usize),
+    BallWall(usize, usize, WallSide),
+    BallObstacle(usize),
+}
+
+impl Pair {
+    /// The function name of the specialised kernel.
+    pub fn fn_name(self) -> String {
+        match self {
+            Pair::BallBall(a, b) => format!("ball_ball_{a}_{b}"),
+            Pair::BallWall(s, k, side) => format!("ball_wall_{s}_{k}_{}", side.name()),
+            Pair::BallObstacle(s) => format!("ball_obstacle_{s}"),
+        }
+    }
+
+    /// `ball-ball`, `ball-wall` or `ball-obstacle`.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Pair::BallBall(..) => "ball-ball",
+            Pair::BallWall(..) => "ball-wall",
+            Pair::BallObstacle(..) => "ball-obstacle",
+        }
+    }
+}
+
+impl PairSet {
+    /// Every pair kind, in emission order.
+    pub fn all(&self) -> Vec<Pair> {
+        let bb = self.ball_ball.iter().map(|&(a, b)| Pair::BallBall(a, b));
+        let bw = self
+            .ball_wall
+            .iter()
+            .map(|&(s, k, d)| Pair::BallWall(s, k, d));
+        let bo = self.ball_obstacle.iter().map(|&s| Pair::BallObstacle(s));
+        bb.chain(bw).chain(bo).collect()
+    }
+}
+
+/// A Rust identifier from a file stem: lower case, `_` for anything else.
+pub fn module_name(stem: &str) -> String {
+    let mut s: String = stem
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if !s.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        s.insert_str(0, "scene_");
+    }
+    s
+}
+
+impl Scene {
+    /// The pair kinds this scene can meet: ball-ball for every pair of species present
+    /// (a species with itself only if it has two balls), ball-wall for every present species
+    /// and walled axis side, ball-obstacle for every present species if there are obstacles.
+    pub fn pairs(&self) -> PairSet {
+        let stem = std::path::Path::new(&self.origin)
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+        let count = self.balls_per_species();
+        let present: Vec<usize> = (0..self.species.len()).filter(|&k| count[k] > 0).collect();
+        let mut ball_ball = Vec::new();
+        for (i, &a) in present.iter().enumerate() {
+            for &b in &present[i..] {
+                if a != b || count[a] >= 2 {
+                    ball_ball.push((a, b));
+                }
+            }
+        }
+        let walls: Vec<usize> = (0..self.dim)
+            .filter(|&k| self.boundary[k] == Boundary::Wall)
+            .collect();
+        let ball_wall = present
+            .iter()
+            .flat_map(|&s| {
+                walls
+                    .iter()
+                    .flat_map(move |&k| WallSide::BOTH.map(|side| (s, k, side)))
+            })
+            .collect();
+        let ball_obstacle = if self.obstacles.is_empty() {
+            Vec::new()
+        } else {
+            present.clone()
+        };
+        PairSet {
+            name: module_name(&stem),
+            dim: self.dim,
+            species: self.species.clone(),
+            ball_ball,
+            ball_wall,
+            ball_obstacle,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn module_names_are_identifiers() {
+        assert_eq!(super::module_name("gas-2d"), "gas_2d");
+        assert_eq!(super::module_name("3d gas"), "scene_3d_gas");
+    }
+}

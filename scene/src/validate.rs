@@ -1,0 +1,390 @@
+//! Semantic checks of a parsed scene, in exact rationals. Each error names its key path.
+
+use crate::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
+use crate::{
+    BallSpec, Boundary, Number, Obstacle, Random, RunDefaults, Scene, SceneError, Species,
+    MAX_BALLS,
+};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+
+type Q = BigRational;
+
+struct Ctx<'a> {
+    origin: &'a str,
+}
+
+impl Ctx<'_> {
+    fn err(&self, place: impl Into<String>, message: impl Into<String>) -> SceneError {
+        SceneError {
+            origin: self.origin.to_string(),
+            place: place.into(),
+            message: message.into(),
+        }
+    }
+
+    fn vector(&self, place: &str, v: &[Number], dim: usize) -> Result<Vec<Q>, SceneError> {
+        if v.len() != dim {
+            return Err(self.err(
+                place,
+                format!("has {} components, expected dim = {dim}", v.len()),
+            ));
+        }
+        Ok(v.iter().map(|x| x.0.clone()).collect())
+    }
+
+    fn positive(&self, place: &str, x: &Number) -> Result<Q, SceneError> {
+        if !x.0.is_positive() {
+            return Err(self.err(place, format!("must be positive, got {}", x.0)));
+        }
+        Ok(x.0.clone())
+    }
+}
+
+fn q(n: i64) -> Q {
+    Q::from_integer(n.into())
+}
+
+/// `gamma^2` from the species' inertia keys: `lambda` in `[0, R^2/n]` (`gamma^2 = 2 lambda /
+/// R^2`), `gamma2` in `[0, 2/n]`, `distribution` uniform (`2/(n+2)`) or shell (`2/n`); none
+/// means uniform. The bounds are those of `collision_core::Ball::new`, under the same rounding
+/// allowance (`collision_core::allowance`) with the epsilon of `f64`, the arithmetic scenes
+/// run in: a value within `8 eps` of its range (relative to the bound) is clamped to it
+/// exactly, so an `f64` printed in full (`lambda = "8.333333333333334"` for `R = 5` in 3D)
+/// is the shell `25/3` it stands for.
+fn gamma2(ctx: &Ctx, at: &str, s: &RawSpecies, radius: &Q, n: usize) -> Result<Q, SceneError> {
+    let nq = q(n as i64);
+    let shell = q(2) / &nq;
+    let given = [
+        s.lambda.is_some(),
+        s.gamma2.is_some(),
+        s.distribution.is_some(),
+    ];
+    if given.iter().filter(|&&g| g).count() > 1 {
+        return Err(ctx.err(at, "give at most one of lambda, gamma2 and distribution"));
+    }
+    let in_range = |x: &Q, bound: &Q, key: &str, what: &str| {
+        allowance::within(x, &Q::zero(), bound, &f64_allowance(bound)).ok_or_else(|| {
+            ctx.err(
+                format!("{at}.{key}"),
+                format!("must be in [0, {what}] = [0, {bound}], got {x}"),
+            )
+        })
+    };
+    Ok(match (&s.lambda, &s.gamma2, s.distribution) {
+        (Some(l), _, _) => {
+            let r2 = radius * radius;
+            let l = in_range(&l.0, &(&r2 / &nq), "lambda", "R^2/n")?;
+            q(2) * l / r2
+        }
+        (_, Some(g), _) => in_range(&g.0, &shell, "gamma2", "2/n")?,
+        (_, _, Some(Distribution::Shell)) => shell,
+        _ => q(2) / (nq + q(2)),
+    })
+}
+
+/// The rounding allowance of `f64` at scale `s`: `ULPS 2^-52 |s|`.
+fn f64_allowance(s: &Q) -> Q {
+    let eps = Q::new(BigInt::one(), BigInt::one() << 52);
+    Q::from_integer(allowance::ULPS.into()) * eps * s.abs()
+}
+
+/// The rule of collision-core's checked `collide`, compiled here from its one source file
+/// (collision-core builds with this crate, so this crate cannot depend on it).
+#[path = "../../collision-core/src/allowance.rs"]
+mod allowance;
+
+fn spin(ctx: &Ctx, at: &str, s: &Option<RawSpin>, n: usize) -> Result<Vec<Q>, SceneError> {
+    let len = n * (n - 1) / 2;
+    let Some(s) = s else {
+        return Ok(vec![Q::zero(); len]);
+    };
+    let place = format!("{at}.angular_velocity");
+    match s {
+        RawSpin::Scalar(c) if n == 2 => Ok(vec![-c.0.clone()]),
+        RawSpin::Vector(w) if n == 3 && w.len() == 3 => {
+            let (w1, w2, w3) = (&w[0].0, &w[1].0, &w[2].0);
+            Ok(vec![-w3.clone(), w2.clone(), -w1.clone()])
+        }
+        RawSpin::Matrix(m) if m.len() == n && m.iter().all(|r| r.len() == n) => {
+            let at = |i: usize, j: usize| &m[i][j].0;
+            for i in 0..n {
+                for j in i..n {
+                    if *at(i, j) != -at(j, i).clone() {
+                        return Err(ctx.err(
+                            place,
+                            format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
+                        ));
+                    }
+                }
+            }
+            Ok((0..n)
+                .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+                .map(|(i, j)| at(i, j).clone())
+                .collect())
+        }
+        _ => Err(ctx.err(
+            place,
+            format!(
+                "expected the {n} x {n} skew matrix{}",
+                match n {
+                    2 => " or a number c (U = c J)",
+                    3 => " or a 3-vector omega (U x = omega x x)",
+                    _ => "",
+                }
+            ),
+        )),
+    }
+}
+
+/// Squared distance of `a` and `b`, with the minimum image on periodic axes.
+pub(crate) fn distance2(a: &[Q], b: &[Q], size: &[Q], boundary: &[Boundary]) -> Q {
+    let mut d2 = Q::zero();
+    for k in 0..a.len() {
+        let mut d = (&a[k] - &b[k]).abs();
+        if boundary[k] == Boundary::Periodic {
+            let other = &size[k] - &d;
+            if other < d {
+                d = other;
+            }
+        }
+        d2 += &d * &d;
+    }
+    d2
+}
+
+/// The number of balls, explicit and random, summed in `u128` (no overflow), is at most
+/// [`MAX_BALLS`]; the error names the species whose `count` passes it.
+fn count_limit(ctx: &Ctx, raw: &RawScene) -> Result<(), SceneError> {
+    let mut total = raw.ball.len() as u128;
+    for (i, s) in raw.species.iter().enumerate() {
+        total += s.count as u128;
+        if total > MAX_BALLS as u128 {
+            return Err(ctx.err(
+                format!("species[{i}].count"),
+                format!(
+                    "{total} balls (with the explicit ones and the species before) exceed the \
+                     limit of 2^24 = {MAX_BALLS}: the simulator keeps a few hundred bytes per \
+                     ball and places the random ones one by one"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn ball(ctx: &Ctx, i: usize, b: &RawBall, scene: &Scene) -> Result<BallSpec, SceneError> {
+    let at = format!("ball[{i}]");
+    let n = scene.dim;
+    let species = scene.species.get(b.species).ok_or_else(|| {
+        ctx.err(
+            format!("{at}.species"),
+            format!(
+                "no species {} (the scene has {}, numbered from 0)",
+                b.species,
+                scene.species.len()
+            ),
+        )
+    })?;
+    let position = ctx.vector(&format!("{at}.position"), &b.position, n)?;
+    let r = &species.radius;
+    for (k, x) in position.iter().enumerate() {
+        let (lo, hi, what) = match scene.boundary[k] {
+            Boundary::Wall => (
+                r.clone(),
+                &scene.size[k] - r,
+                "[R, L - R] (inside the walls)",
+            ),
+            Boundary::Periodic => (Q::zero(), scene.size[k].clone(), "[0, L)"),
+        };
+        let outside = x < &lo || x > &hi || (scene.boundary[k] == Boundary::Periodic && x == &hi);
+        if outside {
+            return Err(ctx.err(
+                format!("{at}.position[{k}]"),
+                format!("the ball is outside the box: {x} is not in {what} = [{lo}, {hi}]"),
+            ));
+        }
+    }
+    let velocity = match &b.velocity {
+        Some(v) => ctx.vector(&format!("{at}.velocity"), v, n)?,
+        None => vec![Q::zero(); n],
+    };
+    Ok(BallSpec {
+        species: b.species,
+        position,
+        velocity,
+        spin: spin(ctx, &at, &b.angular_velocity, n)?,
+    })
+}
+
+pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError> {
+    let ctx = Ctx { origin };
+    let n = raw.dim;
+    if !(2..=6).contains(&n) {
+        return Err(ctx.err("dim", format!("must be in 2..=6, got {n}")));
+    }
+    let size = ctx.vector("box.size", &raw.domain.size, n)?;
+    for (k, l) in size.iter().enumerate() {
+        if !l.is_positive() {
+            return Err(ctx.err(
+                format!("box.size[{k}]"),
+                format!("must be positive, got {l}"),
+            ));
+        }
+    }
+    if raw.domain.boundary.len() != n {
+        return Err(ctx.err(
+            "box.boundary",
+            format!(
+                "has {} entries, expected dim = {n} (\"wall\" or \"periodic\" per axis)",
+                raw.domain.boundary.len()
+            ),
+        ));
+    }
+    if raw.species.is_empty() {
+        return Err(ctx.err("species", "a scene needs at least one species"));
+    }
+    let mut species = Vec::new();
+    for (i, s) in raw.species.iter().enumerate() {
+        let at = format!("species[{i}]");
+        let mass = ctx.positive(&format!("{at}.mass"), &s.mass)?;
+        let radius = ctx.positive(&format!("{at}.radius"), &s.radius)?;
+        for (k, l) in size.iter().enumerate() {
+            if *l <= q(2) * &radius {
+                return Err(ctx.err(
+                    format!("{at}.radius"),
+                    format!("a ball of radius {radius} does not fit: box.size[{k}] = {l} <= 2 R"),
+                ));
+            }
+        }
+        let gamma2 = gamma2(&ctx, &at, s, &radius, n)?;
+        let gamma2_key = match (&s.lambda, &s.gamma2, s.distribution) {
+            (Some(_), _, _) => Some("lambda"),
+            (_, Some(_), _) => Some("gamma2"),
+            (_, _, Some(_)) => Some("distribution"),
+            _ => None,
+        };
+        species.push(Species {
+            name: s.name.clone().unwrap_or_else(|| format!("species{i}")),
+            inv_mass: Q::one() / &mass,
+            mass,
+            radius,
+            gamma2,
+            gamma2_key,
+            count: s.count,
+        });
+    }
+    count_limit(&ctx, &raw)?;
+    let random = Random {
+        seed: raw.random.seed,
+        speed: raw
+            .random
+            .speed
+            .as_ref()
+            .map_or_else(Q::one, |x| x.0.clone()),
+        spin: raw
+            .random
+            .spin
+            .as_ref()
+            .map_or_else(Q::zero, |x| x.0.clone()),
+    };
+    for (key, x) in [
+        ("random.speed", &random.speed),
+        ("random.spin", &random.spin),
+    ] {
+        if x.is_negative() {
+            return Err(ctx.err(key, format!("must be >= 0, got {x}")));
+        }
+    }
+    if raw.simulation.events == Some(0) {
+        return Err(ctx.err(
+            "simulation.events",
+            "must be at least 1 (a run of no contacts has nothing to report)",
+        ));
+    }
+    let simulation = RunDefaults {
+        events: raw.simulation.events,
+        time: match &raw.simulation.time {
+            Some(t) => Some(ctx.positive("simulation.time", t)?),
+            None => None,
+        },
+        orientation: raw.simulation.orientation,
+    };
+    let mut scene = Scene {
+        origin: origin.to_string(),
+        description: raw.description.unwrap_or_default(),
+        dim: n,
+        size,
+        boundary: raw.domain.boundary,
+        species,
+        balls: Vec::new(),
+        obstacles: Vec::new(),
+        random,
+        simulation,
+    };
+    for (i, o) in raw.obstacle.iter().enumerate() {
+        let at = format!("obstacle[{i}]");
+        let position = ctx.vector(&format!("{at}.position"), &o.position, n)?;
+        let radius = ctx.positive(&format!("{at}.radius"), &o.radius)?;
+        if let Some(k) = (0..n).find(|&k| position[k].is_negative() || position[k] > scene.size[k])
+        {
+            return Err(ctx.err(
+                format!("{at}.position[{k}]"),
+                format!(
+                    "the centre {} is outside the box [0, {}]",
+                    position[k], scene.size[k]
+                ),
+            ));
+        }
+        scene.obstacles.push(Obstacle { position, radius });
+    }
+    for (i, b) in raw.ball.iter().enumerate() {
+        let spec = ball(&ctx, i, b, &scene)?;
+        let r = &scene.species[spec.species].radius;
+        let overlap = |p: &[Q], other_r: &Q| {
+            let s = r + other_r;
+            distance2(&spec.position, p, &scene.size, &scene.boundary) < &s * &s
+        };
+        if let Some(j) = scene
+            .balls
+            .iter()
+            .position(|o| overlap(&o.position, &scene.species[o.species].radius))
+        {
+            return Err(ctx.err(
+                format!("ball[{i}].position"),
+                format!("overlaps ball[{j}] (centre distance < R_{i} + R_{j})"),
+            ));
+        }
+        if let Some(j) = scene
+            .obstacles
+            .iter()
+            .position(|o| overlap(&o.position, &o.radius))
+        {
+            return Err(ctx.err(
+                format!("ball[{i}].position"),
+                format!("overlaps obstacle[{j}]"),
+            ));
+        }
+        scene.balls.push(spec);
+    }
+    let per_species = scene.balls_per_species();
+    let points: usize = (0..scene.species.len())
+        .filter(|&k| scene.species[k].gamma2.is_zero())
+        .map(|k| per_species[k])
+        .sum();
+    if points > 1 {
+        return Err(ctx.err(
+            "species",
+            "two point masses (lambda = 0) could collide, where the no-slip map is undefined: \
+             at most one ball may have lambda = 0",
+        ));
+    }
+    if scene.ball_count() == 0 {
+        return Err(ctx.err(
+            "species",
+            "the scene has no balls: give count or [[ball]] entries",
+        ));
+    }
+    Ok(scene)
+}

@@ -1,0 +1,171 @@
+//! Scene files: the shipped ones are valid; bad ones are refused with the place named.
+
+use noslip_scene::{Boundary, Scene, WallSide, MAX_BALLS};
+use std::path::Path;
+
+const BASE: &str = r#"
+dim = 2
+[box]
+size = [10, 10]
+boundary = ["wall", "periodic"]
+[[species]]
+mass = 1
+radius = "1/2"
+"#;
+
+fn error(extra: &str) -> String {
+    Scene::from_toml(&format!("{BASE}{extra}"), "t.toml")
+        .expect_err("a bad scene")
+        .to_string()
+}
+
+#[test]
+fn shipped_scenes_are_valid() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let scene = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert!(scene.ball_count() > 0);
+        names.push(scene.pairs().name);
+    }
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "disk_between_walls",
+            "gas2d",
+            "gas3d",
+            "gas4d",
+            "gas5d",
+            "gas6d",
+            "sinai"
+        ]
+    );
+}
+
+#[test]
+fn pairs_follow_the_scene() {
+    let s = Scene::from_toml(
+        &format!("{BASE}[[ball]]\nspecies = 0\nposition = [1, 1]\n"),
+        "one.toml",
+    )
+    .unwrap();
+    let p = s.pairs();
+    assert_eq!(s.boundary, [Boundary::Wall, Boundary::Periodic]);
+    // One ball: no ball-ball; walls on axis 0 only; no obstacles.
+    assert!(p.ball_ball.is_empty());
+    assert_eq!(
+        p.ball_wall,
+        [(0, 0, WallSide::Lower), (0, 0, WallSide::Upper)]
+    );
+    assert!(p.ball_obstacle.is_empty());
+}
+
+#[test]
+fn bad_scenes_name_the_place() {
+    let cases = [
+        ("[[ball]]\nspecies = 0\nposition = [1, 1]\nradius = 2\n", "t.toml: line 12, column 1: unknown field `radius`"),
+        ("[[ball]]\nspecies = 0\nposition = [1, 1]\n[[ball]]\nspecies = 0\nposition = [1.5, 1]\n", "t.toml: ball[1].position: overlaps ball[0]"),
+        ("[[ball]]\nspecies = 0\nposition = [0.25, 1]\n", "t.toml: ball[0].position[0]: the ball is outside the box"),
+        ("[[ball]]\nspecies = 0\nposition = [1, 10]\n", "t.toml: ball[0].position[1]: the ball is outside the box"),
+        ("[[ball]]\nspecies = 0\nposition = [1, 1, 1]\n", "t.toml: ball[0].position: has 3 components, expected dim = 2"),
+        ("[[ball]]\nspecies = 0\nposition = [1, 1]\nvelocity = [1]\n", "t.toml: ball[0].velocity: has 1 components"),
+        ("[[ball]]\nspecies = 3\nposition = [1, 1]\n", "t.toml: ball[0].species: no species 3"),
+        ("[[ball]]\nspecies = 0\nposition = [1, 1]\nangular_velocity = [[0, 1], [1, 0]]\n", "t.toml: ball[0].angular_velocity: not skew"),
+        ("[[species]]\nmass = 1\nradius = 1\nlambda = \"0.6\"\ncount = 1\n", "t.toml: species[1].lambda: must be in [0, R^2/n] = [0, 1/2], got 3/5"),
+        ("[[species]]\nmass = 0\nradius = 1\n", "t.toml: species[1].mass: must be positive"),
+        ("[[species]]\nmass = 1\nradius = 6\n", "t.toml: species[1].radius: a ball of radius 6 does not fit"),
+        ("[[obstacle]]\nposition = [5, 5]\nradius = 2\n[[ball]]\nspecies = 0\nposition = [5, 7]\n", "t.toml: ball[0].position: overlaps obstacle[0]"),
+        ("[random]\nspeed = -1\n", "t.toml: random.speed: must be >= 0"),
+        ("[[ball]]\nspecies = 0\nposition = [\"1/0\", 1]\n", "zero denominator"),
+    ];
+    for (extra, want) in cases {
+        let got = error(extra);
+        assert!(
+            got.starts_with(want) || got.contains(want),
+            "for {extra:?}:\n got  {got}\n want {want}"
+        );
+    }
+    // lambda = R^2/n (a shell) is in range.
+    Scene::from_toml(
+        &format!("{BASE}[[species]]\nmass = 1\nradius = 1\nlambda = \"1/2\"\ncount = 1\n"),
+        "t.toml",
+    )
+    .unwrap();
+    // Periodic minimum image: balls near opposite faces of the periodic axis overlap.
+    let wrap = error(
+        "[[ball]]\nspecies = 0\nposition = [5, 0.2]\n[[ball]]\nspecies = 0\nposition = [5, 9.6]\n",
+    );
+    assert!(
+        wrap.contains("ball[1].position: overlaps ball[0]"),
+        "{wrap}"
+    );
+    let dims = Scene::from_toml(
+        "dim = 7\n[box]\nsize=[1]\nboundary=[\"wall\"]\n[[species]]\nmass=1\nradius=1\n",
+        "d.toml",
+    );
+    assert_eq!(
+        dims.unwrap_err().to_string(),
+        "d.toml: dim: must be in 2..=6, got 7"
+    );
+}
+
+#[test]
+fn duplicate_keys_are_refused() {
+    let cases = [
+        (
+            "mass = 2\n",
+            "t.toml: line 9, column 1: duplicate key `mass`",
+        ),
+        (
+            "[[ball]]\nspecies = 0\nspecies = 0\nposition = [1, 1]\n",
+            "t.toml: line 11, column 1: duplicate key `species`",
+        ),
+        (
+            "[random]\nseed = 1\n[random]\nseed = 2\n",
+            "t.toml: line 11, column 1: invalid table header duplicate key `random`",
+        ),
+    ];
+    for (extra, want) in cases {
+        let got = error(extra);
+        assert!(
+            got.starts_with(want),
+            "for {extra:?}:\n got  {got}\n want {want}"
+        );
+    }
+}
+
+#[test]
+fn ball_counts_are_summed_without_overflow_and_limited() {
+    // Four species of 2^62 balls: the total 2^64 used to wrap to 0 ("the scene has no balls").
+    let big = "[[species]]\nmass = 1\nradius = \"1/2\"\ncount = 4611686018427387904\n".repeat(4);
+    let got = error(&big);
+    assert!(
+        got.starts_with("t.toml: species[1].count: 4611686018427387904 balls"),
+        "{got}"
+    );
+    // The limit itself is accepted, one more is not.
+    let at = |n: usize| format!("[[species]]\nmass = 1\nradius = \"1/2\"\ncount = {n}\n");
+    Scene::from_toml(&format!("{BASE}{}", at(MAX_BALLS)), "t.toml").unwrap();
+    let over = error(&format!(
+        "{}[[ball]]\nspecies = 0\nposition = [1, 1]\n",
+        at(MAX_BALLS)
+    ));
+    assert!(
+        over.starts_with(&format!(
+            "t.toml: species[1].count: {} balls",
+            MAX_BALLS + 1
+        )),
+        "{over}"
+    );
+}
+
+#[test]
+fn a_run_of_no_events_is_refused() {
+    let got = error("[simulation]\nevents = 0\n");
+    assert!(
+        got.starts_with("t.toml: simulation.events: must be at least 1"),
+        "{got}"
+    );
+}

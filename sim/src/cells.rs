@@ -1,0 +1,280 @@
+//! The cell list: the box cut into `n_k` cells of width `w_k = L_k / n_k` per axis.
+//!
+//! **Reach.** A ball in cell `c` and one in cell `c + delta` (unwrapped: `shift =
+//! floor((c + delta) / n)` box lengths on a periodic axis) have, along each axis, a centre
+//! offset in `((|delta| - 1) w, (|delta| + 1) w)` (up to the rounding `delta_x` by which a
+//! centre can stray out of its cell), so they can touch only if `(|delta| - 1) w - 2 delta_x <
+//! d_max`, the largest contact distance `R_i + R_j`. With `w_k > d_max + s_k`, the slack
+//! `s_k = 1e-9 d_max + 64 eps L_k` covering `2 delta_x` (a centre is computed from the crossing
+//! that put it in its cell within a few ulps of `L_k`), only `|delta| <= 1` can touch: the reach
+//! is 1 and `3^n` cells are scanned, each periodic image once. Every axis gets cells wider than
+//! `d_max + s_k` when its side allows (`n_k = 1` otherwise: a periodic side shorter than
+//! `d_max + s_k` then needs a reach `K = ceil((d_max + s_k) / L_k) <= 2`, more is refused).
+//!
+//! **Size.** The number of cells is capped at [`CELLS_PER_BODY`] times the number of bodies
+//! (balls and obstacles): when the finest reach-1 grid `m_k = max{n : L_k / n > d_max + s_k}`
+//! has more cells than that, the cells are widened to a common width `w` (the least for which
+//! `prod_k min(m_k, floor(L_k / w)) <= cap`, found by bisection), then the widest are split
+//! again one axis at a time while the cap allows; so memory is `O(bodies)` whatever the box,
+//! no cell count overflows, and the reach stays 1.
+
+use crate::SetupError;
+
+/// The cap on the number of cells per body (ball or obstacle); see the module docs.
+pub(crate) const CELLS_PER_BODY: usize = 4;
+
+#[derive(Debug)]
+pub(crate) struct Grid<const N: usize> {
+    pub n: [usize; N],
+    pub width: [f64; N],
+    pub size: [f64; N],
+    pub periodic: [bool; N],
+    /// The cell offsets scanned: `[-K_0, K_0] x .. x [-K_{n-1}, K_{n-1}]`, `K_k` the reach.
+    offsets: Vec<[i64; N]>,
+}
+
+/// A neighbouring cell: its flat index and the image shift of its contents.
+pub(crate) struct Neighbour<const N: usize> {
+    pub cell: usize,
+    pub shift: [i8; N],
+}
+
+/// The slack `s_k = 1e-9 d_max + 64 eps L_k` added to `d_max` in the width rule.
+fn slack(d_max: f64, side: f64) -> f64 {
+    1e-9 * d_max + 64.0 * f64::EPSILON * side
+}
+
+/// `prod_k n_k`, saturating.
+fn cells_of(n: &[usize]) -> u128 {
+    n.iter().fold(1u128, |p, &x| p.saturating_mul(x as u128))
+}
+
+impl<const N: usize> Grid<N> {
+    /// The grid for a box of sides `size` holding `bodies` balls and obstacles whose largest
+    /// contact distance is `d_max`; an error if a periodic side is shorter than
+    /// `(d_max + s_k) / 2` (a reach above 2).
+    pub fn new(
+        size: [f64; N],
+        periodic: [bool; N],
+        d_max: f64,
+        bodies: usize,
+    ) -> Result<Self, SetupError> {
+        let cap = CELLS_PER_BODY.saturating_mul(bodies.max(1));
+        let reach_width: [f64; N] = std::array::from_fn(|k| d_max + slack(d_max, size[k]));
+        // m_k: the most cells of width > d_max + s_k (at least 1), capped at the cell cap.
+        let most: [usize; N] = std::array::from_fn(|k| {
+            let q = (size[k] / reach_width[k]).floor().min(cap as f64);
+            let mut m = (q as usize).max(1);
+            if m > 1 && size[k] / m as f64 <= reach_width[k] {
+                m -= 1;
+            }
+            m
+        });
+        let n = if cells_of(&most) <= cap as u128 {
+            most
+        } else {
+            let fit = |w: f64| -> [usize; N] {
+                std::array::from_fn(|k| ((size[k] / w).floor() as usize).clamp(1, most[k]))
+            };
+            // cells_of(fit(w)) falls as w grows: > cap at the narrowest reach-1 width,
+            // 1 at the longest side. Bisect geometrically between them.
+            let mut lo = (0..N)
+                .map(|k| size[k] / most[k] as f64)
+                .fold(f64::INFINITY, f64::min);
+            let mut hi = size.iter().copied().fold(0.0, f64::max);
+            for _ in 0..200 {
+                let mid = (lo * hi).sqrt();
+                if !(mid > lo && mid < hi) {
+                    break;
+                }
+                if cells_of(&fit(mid)) <= cap as u128 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            // Then more cells where the cap still allows (on sides of equal length the
+            // common width leaves up to a factor 2^n unused), widest cells first.
+            let mut n = fit(hi);
+            let mut grown = true;
+            while grown {
+                grown = false;
+                let mut axes: [usize; N] = std::array::from_fn(|k| k);
+                axes.sort_by(|&a, &b| (size[b] / n[b] as f64).total_cmp(&(size[a] / n[a] as f64)));
+                for k in axes {
+                    let mut more = n;
+                    more[k] += 1;
+                    if more[k] <= most[k] && cells_of(&more) <= cap as u128 {
+                        n = more;
+                        grown = true;
+                    }
+                }
+            }
+            n
+        };
+        let width: [f64; N] = std::array::from_fn(|k| size[k] / n[k] as f64);
+        let mut reach = [0i64; N];
+        for k in 0..N {
+            reach[k] = if n[k] == 1 && !periodic[k] {
+                0
+            } else if width[k] > reach_width[k] {
+                1
+            } else {
+                // n_k = 1 on a periodic axis shorter than d_max + s_k.
+                let r = (reach_width[k] / width[k]).ceil();
+                if r > 2.0 {
+                    return Err(SetupError::ShortSide {
+                        axis: k,
+                        size: size[k],
+                        d_max,
+                    });
+                }
+                r as i64
+            };
+        }
+        let mut offsets = vec![[0i64; N]];
+        for k in 0..N {
+            offsets = offsets
+                .into_iter()
+                .flat_map(|o| {
+                    (-reach[k]..=reach[k]).map(move |d| {
+                        let mut o = o;
+                        o[k] = d;
+                        o
+                    })
+                })
+                .collect();
+        }
+        Ok(Grid {
+            n,
+            width,
+            size,
+            periodic,
+            offsets,
+        })
+    }
+
+    /// The reach `K_k` of each axis.
+    #[cfg(test)]
+    fn reach(&self) -> [i64; N] {
+        std::array::from_fn(|k| self.offsets.iter().map(|o| o[k]).max().unwrap_or(0))
+    }
+
+    pub fn cells(&self) -> usize {
+        self.n.iter().product()
+    }
+
+    pub fn flat(&self, c: &[usize; N]) -> usize {
+        (0..N).fold(0, |acc, k| acc * self.n[k] + c[k])
+    }
+
+    /// The cell of a point inside the box (clamped, for points on the far boundary).
+    pub fn cell_of(&self, x: &[f64; N]) -> [usize; N] {
+        std::array::from_fn(|k| {
+            ((x[k] / self.width[k]).floor().max(0.0) as usize).min(self.n[k] - 1)
+        })
+    }
+
+    /// Calls `f` for every cell within reach of cell `c` (with its image shift).
+    pub fn for_neighbours(&self, c: &[usize; N], mut f: impl FnMut(Neighbour<N>)) {
+        'offsets: for o in &self.offsets {
+            let mut cell = [0usize; N];
+            let mut shift = [0i8; N];
+            for k in 0..N {
+                let t = c[k] as i64 + o[k];
+                let n = self.n[k] as i64;
+                if self.periodic[k] {
+                    cell[k] = t.rem_euclid(n) as usize;
+                    shift[k] = t.div_euclid(n) as i8;
+                } else if (0..n).contains(&t) {
+                    cell[k] = t as usize;
+                } else {
+                    continue 'offsets;
+                }
+            }
+            f(Neighbour {
+                cell: self.flat(&cell),
+                shift,
+            });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sides_that_are_multiples_of_the_contact_distance_have_reach_one() {
+        // gas3d: side 16, d_max = 1. The old rule (w = 16 / 16 = d_max) needed reach 2.
+        let g = Grid::<3>::new([16.0; 3], [true; 3], 1.0, 1000).unwrap();
+        assert_eq!(g.reach(), [1; 3]);
+        assert_eq!(g.n, [15; 3]);
+        assert!(g.width.iter().all(|&w| w > 1.0 + slack(1.0, 16.0)));
+        assert_eq!(g.offsets.len(), 27);
+        // gas2d: side 60, d_max = 2; gas4d: side 8, d_max = 1 (200 bodies: capped at 800).
+        let g = Grid::<2>::new([60.0; 2], [false; 2], 2.0, 750).unwrap();
+        assert_eq!((g.reach(), g.n), ([1; 2], [29; 2]));
+        let g = Grid::<4>::new([8.0; 4], [false, true, true, true], 1.0, 200).unwrap();
+        assert_eq!(g.reach(), [1; 4]);
+        assert!(g.cells() <= CELLS_PER_BODY * 200, "{:?}", g.n);
+        assert!(g.width.iter().all(|&w| w > 1.0));
+    }
+
+    #[test]
+    fn every_width_beats_the_contact_distance_with_its_slack() {
+        for side in [1.0, 2.0, 2.5, 3.0, 10.0, 10.5, 16.0, 16.0001, 60.0, 1e3] {
+            for d_max in [0.1, 0.5, 1.0, 2.0] {
+                if side <= d_max {
+                    continue;
+                }
+                let g = Grid::<2>::new([side, side], [true, false], d_max, 1 << 30).unwrap();
+                for k in 0..2 {
+                    let w = g.width[k];
+                    assert!(w > d_max + slack(d_max, side), "{side} {d_max}");
+                    // And the cells are the most that allow it (or 1).
+                    let more = side / (g.n[k] + 1) as f64;
+                    assert!(more <= d_max + slack(d_max, side), "{side} {d_max}");
+                }
+                assert_eq!(g.reach(), [1, if g.n[1] == 1 { 0 } else { 1 }]);
+            }
+        }
+    }
+
+    #[test]
+    fn narrow_periodic_sides_reach_the_images_they_touch() {
+        // Periodic side 1 with d_max 1.5: images at -1, 0, +1 and +-2 may touch.
+        let g = Grid::<2>::new([1.0, 4.0], [true, true], 1.5, 4).unwrap();
+        assert_eq!((g.n[0], g.reach()[0]), (1, 2));
+        let mut shifts = Vec::new();
+        g.for_neighbours(&[0, 0], |nb| shifts.push(nb.shift[0]));
+        shifts.sort();
+        shifts.dedup();
+        assert_eq!(shifts, [-2, -1, 0, 1, 2]);
+        let err = Grid::<2>::new([0.5, 4.0], [true, true], 1.5, 4).unwrap_err();
+        assert!(
+            matches!(err, SetupError::ShortSide { axis: 0, .. }),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn huge_boxes_get_o_bodies_cells() {
+        // issue 16: 10 balls in a 6D periodic box of side 1e6 overflowed the cell count;
+        // 100 disks in a 1e5 x 1e5 box allocated 60 GB.
+        let g = Grid::<6>::new([1e6; 6], [true; 6], 1.0, 10).unwrap();
+        assert!(g.cells() <= CELLS_PER_BODY * 10, "{:?}", g.n);
+        assert_eq!(g.reach(), [1; 6]);
+        let g = Grid::<2>::new([1e5; 2], [false; 2], 1.0, 100).unwrap();
+        assert!(g.cells() <= CELLS_PER_BODY * 100, "{:?}", g.n);
+        // Balanced: the cells are as square as the cap allows (20 x 20 = 400).
+        assert_eq!(g.n, [20, 20]);
+        // 6D, 10 balls: a common width gives 1 cell per axis (2^6 > 40); 2^5 fit.
+        let g = Grid::<6>::new([1e6; 6], [true; 6], 1.0, 10).unwrap();
+        assert_eq!(g.cells(), 32, "{:?}", g.n);
+        // A long thin box keeps its cells along the long side.
+        let g = Grid::<2>::new([1e6, 3.0], [true, true], 1.0, 10).unwrap();
+        assert_eq!(g.n, [40, 1]);
+        assert_eq!(g.reach(), [1, 1]);
+    }
+}

@@ -1,0 +1,733 @@
+//! The event loop.
+//!
+//! State: per ball a centre `a_i` valid at its own time `t_i` (balls are advanced lazily, only
+//! when they take part in an event), its velocity state, species, cell, a collision counter
+//! `count_i` that increases whenever its velocity changes, and wrap counters `w_i` (per axis,
+//! modulo 256) that count its crossings of the periodic faces, so that its unwrapped centre is
+//! `a_i + w_i L`.
+//!
+//! Queue invariant: every moving ball has in the queue an entry for its earliest predicted
+//! event, made when it was last predicted, and nothing later than its true next event.
+//! Popping an entry:
+//! - if the owner's counter changed since, the entry is dropped (the owner was re-predicted);
+//! - a ball-ball entry whose partner's counter changed is no longer an event: the owner is
+//!   re-predicted from now (its own trajectory is unchanged, so no event of it was missed);
+//! - a cell crossing moves the ball to the next cell (wrapping on a periodic axis) and
+//!   re-predicts it against its new neighbours;
+//! - a contact advances the balls to now, applies the pair's no-slip map, bumps the counters
+//!   and re-predicts the balls involved.
+//!
+//! **Image rule.** A ball-ball entry stores its partner's image in unwrapped coordinates,
+//! `s - w_j + w_i` for the cell shift `s` it was predicted with: the partner may cross a
+//! periodic face (a cell crossing, which leaves its counter and so the entry valid) before
+//! the contact, and then `s` alone would name an image one box length away. At the contact
+//! the image is `s' + w_j - w_i`: exactly the image the contact time was solved for, with no
+//! minimum-image guess (which could be ambiguous on a periodic side shorter than two contact
+//! distances). The owner itself never wraps while its entry is pending (its crossings are its
+//! own entries), and obstacles never move, so obstacle entries keep the cell shift.
+//!
+//! **Clock.** Times are kept on a local clock `t` whose origin (an absolute time, kept as a
+//! compensated sum) is moved forward ("re-based") whenever `v_max t > 16 w_min`, `v_max` an
+//! upper bound of the speeds and `w_min` the narrowest cell: all centres are advanced to now
+//! (orientations only note the flight time, to be applied at their next update), the queue's
+//! times are shifted by `-t` (dropping dead entries) and the clock restarts at 0.
+//! Rounding a local time then moves any ball by at most 16 ulps of a cell width, whatever the
+//! absolute time, so contacts stay at contact distance in long runs and after long quiet
+//! stretches (a gas started almost at rest); the check runs at each popped entry and after each
+//! contact (before the new predictions), and a rebase costs `O(balls + queue)` once per 16 cell
+//! widths travelled by the fastest ball, while every ball crosses a cell or meets another each
+//! cell width or so: amortised over many events (per 10^5 contacts of the shipped gases 26
+//! rebases in gas2d, 22 in gas3d, 242 in gas4d).
+//!
+//! **No further contact.** [`Simulation::step`] returns [`Step::Never`] when it can tell that
+//! no contact will ever happen again ([`NoContact`]): checked at the first step and then after
+//! `max(1024, 2 balls)`, twice, four times that many events without a contact. At those checks
+//! it also returns [`Step::Quiet`], a notice, once the balls have travelled 1000, 2000, 4000
+//! ... box lengths without a contact; the caller decides whether to go on.
+
+use super::cells::Grid;
+use super::no_contact::{Flight, NoContact, QUIET_BOX_LENGTHS};
+use super::normal::unit;
+use super::observe::Observables;
+use super::orientation::{exp_skew, identity, mul, Matrix};
+use super::predict::{contact_time, exit_time};
+use super::queue::{Entry, What};
+use super::{Body, FixedBall, PairKernels, Setup};
+use collision_core::{Ball, BodyState};
+use std::collections::BinaryHeap;
+use std::fmt;
+
+/// A contact: ball-ball (`i` is body 1), ball-wall or ball-obstacle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Contact {
+    Ball { i: usize, j: usize },
+    Wall { i: usize, axis: usize, upper: bool },
+    Obstacle { i: usize, obstacle: usize },
+}
+
+/// One contact with the states around it. Index 0 is ball `i`, index 1 ball `j` of a
+/// ball-ball contact (for a wall or an obstacle, index 1 repeats index 0). `nu` is the unit
+/// normal from body 1 (ball `i`, the wall or the obstacle) to body 2 (ball `j`, or ball `i`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event<const N: usize, const S: usize> {
+    pub time: f64,
+    pub contact: Contact,
+    pub nu: [f64; N],
+    pub position: [[f64; N]; 2],
+    pub pre: [BodyState<f64, N, S>; 2],
+    pub post: [BodyState<f64, N, S>; 2],
+}
+
+/// What [`Simulation::step`] found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step<const N: usize, const S: usize> {
+    /// The next contact.
+    Contact(Event<N, S>),
+    /// No contact at or before `until`; the clock is at `until`.
+    Until,
+    /// No contact will happen again (the clock is at `until` if that is finite, else where it
+    /// was found out).
+    Never(NoContact),
+    /// A notice, not an end: no contact yet while every moving ball travelled `box_lengths`
+    /// times the longest box side since the last contact (first at
+    /// [`QUIET_BOX_LENGTHS`], then at twice, four times
+    /// ... that). Contacts may still come (a flight nearly along a corridor of a periodic
+    /// table); stepping again goes on.
+    Quiet { box_lengths: f64 },
+}
+
+/// The local clock is re-based when the fastest ball could have moved this many widths of
+/// the narrowest cell on it (module docs).
+const CLOCK_CELLS: f64 = 16.0;
+
+/// A setup the engine cannot run; each variant names the place.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SetupError {
+    /// Box side `axis` is not positive and finite.
+    BoxSize { axis: usize, size: f64 },
+    /// Ball `ball` names species `species`, which does not exist.
+    Species { ball: usize, species: usize },
+    /// Ball `ball` is outside the box along `axis`.
+    Outside { ball: usize, axis: usize },
+    /// Periodic box side `axis` is shorter than half the largest contact distance `d_max`:
+    /// a body would touch more than two images of another.
+    ShortSide { axis: usize, size: f64, d_max: f64 },
+}
+
+impl fmt::Display for SetupError {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            SetupError::BoxSize { axis, .. } => write!(f, "box size {axis} must be positive"),
+            SetupError::Species { ball, species } => {
+                write!(
+                    f,
+                    "ball {ball} names species {species}, which does not exist"
+                )
+            }
+            SetupError::Outside { ball, axis } => {
+                write!(f, "ball {ball} is outside the box along axis {axis}")
+            }
+            SetupError::ShortSide { axis, size, d_max } => write!(
+                f,
+                "box side {axis} ({size}) is shorter than half the largest contact distance \
+                 ({d_max}): a body would touch more than two images of another"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SetupError {}
+
+/// An event-driven simulation; see the module docs.
+pub struct Simulation<const N: usize, const S: usize, K> {
+    kernels: K,
+    species: Vec<Ball<f64>>,
+    obstacles: Vec<FixedBall<N>>,
+    grid: Grid<N>,
+    kind: Vec<usize>,
+    pos: Vec<[f64; N]>,
+    since: Vec<f64>,
+    state: Vec<BodyState<f64, N, S>>,
+    count: Vec<u32>,
+    wraps: Vec<[i8; N]>,
+    cell: Vec<[usize; N]>,
+    members: Vec<Vec<u32>>,
+    fixed_members: Vec<Vec<u32>>,
+    /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
+    /// applied to it yet, kept by rebases so that they need no matrix exponential.
+    orientation: Option<Vec<Matrix<N>>>,
+    unturned: Vec<f64>,
+    queue: BinaryHeap<Entry<N>>,
+    /// The local clock; the absolute time is `origin + origin_low + now`.
+    now: f64,
+    origin: f64,
+    origin_low: f64,
+    /// An upper bound of `|u_i|^2` (exact at the last rebase).
+    speed2: f64,
+    /// `(CLOCK_CELLS w_min)^2`.
+    span2: f64,
+    /// The local time of the last contact (or of the start).
+    last_contact: f64,
+    /// Events (crossings, re-predictions) since the last contact, and when to check next
+    /// whether contacts can still happen.
+    quiet: u64,
+    next_check: u64,
+    /// The travel (box lengths) at which the next [`Step::Quiet`] notice is due.
+    next_notice: f64,
+    contacts: u64,
+    crossings: u64,
+    rebases: u64,
+}
+
+impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
+    /// Checks that every ball is in the box and its species exists; overlaps are the
+    /// caller's business (scene validation and placement refuse them).
+    pub fn new(setup: Setup<N, S>, kernels: K) -> Result<Self, SetupError> {
+        let Setup {
+            size,
+            periodic,
+            species,
+            obstacles,
+            bodies,
+            orientation,
+        } = setup;
+        if let Some(k) = (0..N).find(|&k| !(size[k] > 0.0 && size[k].is_finite())) {
+            return Err(SetupError::BoxSize {
+                axis: k,
+                size: size[k],
+            });
+        }
+        let mut r_ball = 0.0f64;
+        for (i, b) in bodies.iter().enumerate() {
+            let s = species.get(b.species).ok_or(SetupError::Species {
+                ball: i,
+                species: b.species,
+            })?;
+            r_ball = r_ball.max(s.radius);
+        }
+        let r_obstacle = obstacles.iter().fold(0.0f64, |m, o| m.max(o.radius));
+        let d_max = (2.0 * r_ball)
+            .max(r_ball + r_obstacle)
+            .max(f64::MIN_POSITIVE);
+        let grid = Grid::new(size, periodic, d_max, bodies.len() + obstacles.len())?;
+        let mut members = vec![Vec::new(); grid.cells()];
+        let mut fixed_members = vec![Vec::new(); grid.cells()];
+        let mut cell = Vec::with_capacity(bodies.len());
+        for (i, b) in bodies.iter().enumerate() {
+            if let Some(k) = (0..N).find(|&k| !(0.0..=size[k]).contains(&b.position[k])) {
+                return Err(SetupError::Outside { ball: i, axis: k });
+            }
+            let c = grid.cell_of(&b.position);
+            members[grid.flat(&c)].push(i as u32);
+            cell.push(c);
+        }
+        for (o, f) in obstacles.iter().enumerate() {
+            let c = grid.cell_of(&f.position);
+            fixed_members[grid.flat(&c)].push(o as u32);
+        }
+        let n = bodies.len();
+        let w_min = grid.width.iter().copied().fold(f64::INFINITY, f64::min);
+        let mut sim = Simulation {
+            kernels,
+            species,
+            obstacles,
+            grid,
+            kind: bodies.iter().map(|b| b.species).collect(),
+            pos: bodies.iter().map(|b| b.position).collect(),
+            since: vec![0.0; n],
+            state: bodies.into_iter().map(|b: Body<N, S>| b.state).collect(),
+            count: vec![0; n],
+            wraps: vec![[0; N]; n],
+            cell,
+            members,
+            fixed_members,
+            orientation: orientation.then(|| vec![identity::<N>(); n]),
+            unturned: vec![0.0; if orientation { n } else { 0 }],
+            queue: BinaryHeap::new(),
+            now: 0.0,
+            origin: 0.0,
+            origin_low: 0.0,
+            speed2: 0.0,
+            span2: (CLOCK_CELLS * w_min).powi(2),
+            last_contact: 0.0,
+            quiet: 0,
+            next_check: 0,
+            next_notice: QUIET_BOX_LENGTHS,
+            contacts: 0,
+            crossings: 0,
+            rebases: 0,
+        };
+        sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
+        for i in 0..n {
+            sim.predict(i);
+        }
+        Ok(sim)
+    }
+
+    /// The absolute time now.
+    pub fn now(&self) -> f64 {
+        self.absolute(self.now)
+    }
+
+    fn absolute(&self, local: f64) -> f64 {
+        self.origin + (self.origin_low + local)
+    }
+
+    fn local(&self, absolute: f64) -> f64 {
+        (absolute - self.origin) - self.origin_low
+    }
+
+    /// The number of cells of the cell list (at most 4 per ball and obstacle).
+    pub fn cells(&self) -> usize {
+        self.grid.cells()
+    }
+
+    /// Times the local clock was re-based (module docs).
+    pub fn rebases(&self) -> u64 {
+        self.rebases
+    }
+
+    /// Contacts processed so far.
+    pub fn contacts(&self) -> u64 {
+        self.contacts
+    }
+
+    /// Cell crossings processed so far.
+    pub fn crossings(&self) -> u64 {
+        self.crossings
+    }
+
+    pub fn len(&self) -> usize {
+        self.pos.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pos.is_empty()
+    }
+
+    /// The box sides `L_k`.
+    pub fn box_size(&self) -> [f64; N] {
+        self.grid.size
+    }
+
+    pub fn species_of(&self, i: usize) -> usize {
+        self.kind[i]
+    }
+
+    pub fn state(&self, i: usize) -> &BodyState<f64, N, S> {
+        &self.state[i]
+    }
+
+    /// Ball `i`'s centre now (inside the box; wrapped on periodic axes up to the crossing
+    /// in progress).
+    pub fn position(&self, i: usize) -> [f64; N] {
+        let dt = self.now - self.since[i];
+        std::array::from_fn(|k| self.pos[i][k] + self.state[i].velocity[k] * dt)
+    }
+
+    /// Ball `i`'s orientation `A_i` now, if the setup tracks orientations.
+    pub fn orientation(&self, i: usize) -> Option<[[f64; N]; N]> {
+        let a = self.orientation.as_ref()?;
+        let dt = self.unturned[i] + (self.now - self.since[i]);
+        let r = exp_skew::<N>(&self.state[i].spin, dt);
+        Some(mul(&r, &a[i]))
+    }
+
+    /// Energy, momentum and angular momentum now.
+    pub fn observables(&self) -> Observables<N, S> {
+        let positions: Vec<[f64; N]> = (0..self.len()).map(|i| self.position(i)).collect();
+        Observables::of(
+            (0..self.len()).map(|i| (&self.species[self.kind[i]], &positions[i], &self.state[i])),
+        )
+    }
+
+    /// Move ball `i` (and its orientation) to now.
+    fn advance(&mut self, i: usize) {
+        self.fly(i);
+        if let Some(a) = &mut self.orientation {
+            let dt = std::mem::take(&mut self.unturned[i]);
+            if dt != 0.0 {
+                a[i] = mul(&exp_skew::<N>(&self.state[i].spin, dt), &a[i]);
+            }
+        }
+    }
+
+    /// Move ball `i`'s centre to now; the orientation's flight time is only noted.
+    fn fly(&mut self, i: usize) {
+        let dt = self.now - self.since[i];
+        if dt == 0.0 {
+            return;
+        }
+        for k in 0..N {
+            self.pos[i][k] += self.state[i].velocity[k] * dt;
+        }
+        if self.orientation.is_some() {
+            self.unturned[i] += dt;
+        }
+        self.since[i] = self.now;
+    }
+
+    /// Ball `j`'s centre now, shifted by `shift` box lengths.
+    fn image(&self, j: usize, shift: &[i8; N]) -> [f64; N] {
+        let p = self.position(j);
+        std::array::from_fn(|k| p[k] + f64::from(shift[k]) * self.grid.size[k])
+    }
+
+    fn obstacle_image(&self, o: usize, shift: &[i8; N]) -> [f64; N] {
+        let p = self.obstacles[o].position;
+        std::array::from_fn(|k| p[k] + f64::from(shift[k]) * self.grid.size[k])
+    }
+
+    /// Push ball `i`'s earliest event (ball `i` is advanced to now first).
+    fn predict(&mut self, i: usize) {
+        self.advance(i);
+        let (a, v) = (self.pos[i], self.state[i].velocity);
+        let r = self.species[self.kind[i]].radius;
+        let mut best: Option<(f64, What<N>)> = None;
+        let mut offer = |t: f64, what: What<N>| {
+            if best.is_none_or(|(b, _)| t < b) {
+                best = Some((t, what));
+            }
+        };
+        let c = self.cell[i];
+        self.grid.for_neighbours(&c, |nb| {
+            for &j in &self.members[nb.cell] {
+                let j = j as usize;
+                if j == i {
+                    continue;
+                }
+                let b = self.image(j, &nb.shift);
+                let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
+                let dv: [f64; N] = std::array::from_fn(|k| self.state[j].velocity[k] - v[k]);
+                let sigma = r + self.species[self.kind[j]].radius;
+                if let Some(t) = contact_time(&d, &dv, sigma) {
+                    let count = self.count[j];
+                    // The image in unwrapped coordinates: s - w_j + w_i (module docs).
+                    let shift = std::array::from_fn(|k| {
+                        nb.shift[k]
+                            .wrapping_sub(self.wraps[j][k])
+                            .wrapping_add(self.wraps[i][k])
+                    });
+                    offer(
+                        t,
+                        What::Ball {
+                            j: j as u32,
+                            count,
+                            shift,
+                        },
+                    );
+                }
+            }
+            for &o in &self.fixed_members[nb.cell] {
+                let b = self.obstacle_image(o as usize, &nb.shift);
+                let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
+                let dv: [f64; N] = std::array::from_fn(|k| -v[k]);
+                if let Some(t) = contact_time(&d, &dv, r + self.obstacles[o as usize].radius) {
+                    offer(t, What::Obstacle { o, shift: nb.shift });
+                }
+            }
+        });
+        for k in 0..N {
+            let w = self.grid.width[k];
+            if !self.grid.periodic[k] {
+                if let Some((t, upper)) = exit_time(a[k], v[k], r, self.grid.size[k] - r) {
+                    offer(
+                        t,
+                        What::Wall {
+                            axis: k as u8,
+                            upper,
+                        },
+                    );
+                }
+                if self.grid.n[k] == 1 {
+                    continue;
+                }
+            }
+            let lo = c[k] as f64 * w;
+            if let Some((t, up)) = exit_time(a[k], v[k], lo, lo + w) {
+                let last = c[k] + 1 == self.grid.n[k];
+                let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
+                if !blocked {
+                    offer(t, What::Cell { axis: k as u8, up });
+                }
+            }
+        }
+        if let Some((t, what)) = best {
+            self.queue.push(Entry {
+                time: self.now + t,
+                ball: i as u32,
+                count: self.count[i],
+                what,
+            });
+        }
+    }
+
+    fn cross(&mut self, i: usize, axis: usize, up: bool) {
+        self.advance(i);
+        let c = self.cell[i];
+        let flat = self.grid.flat(&c);
+        let at = self.members[flat]
+            .iter()
+            .position(|&x| x as usize == i)
+            .expect("ball in its cell");
+        self.members[flat].swap_remove(at);
+        let n = self.grid.n[axis];
+        let mut c2 = c;
+        if up {
+            c2[axis] = (c[axis] + 1) % n;
+            if c2[axis] == 0 {
+                self.pos[i][axis] -= self.grid.size[axis];
+                self.wraps[i][axis] = self.wraps[i][axis].wrapping_add(1);
+            }
+        } else {
+            c2[axis] = (c[axis] + n - 1) % n;
+            if c[axis] == 0 {
+                self.pos[i][axis] += self.grid.size[axis];
+                self.wraps[i][axis] = self.wraps[i][axis].wrapping_sub(1);
+            }
+        }
+        self.cell[i] = c2;
+        let flat2 = self.grid.flat(&c2);
+        self.members[flat2].push(i as u32);
+        self.crossings += 1;
+    }
+
+    /// Process queue entries until the next contact at or before the absolute time `until`,
+    /// and return it; [`Step::Until`] (with the clock at `until`) if there is none by then,
+    /// [`Step::Never`] if there will be none at all.
+    pub fn step(&mut self, until: f64) -> Step<N, S> {
+        loop {
+            let until = self.local(until);
+            if self.quiet >= self.next_check {
+                self.next_check = self.next_check.saturating_mul(2).max(self.first_check());
+                if let Some(why) = self.no_contact() {
+                    return self.never(why, until);
+                }
+                let box_lengths = self.quiet_travel();
+                if box_lengths >= self.next_notice {
+                    self.next_notice = 2.0 * box_lengths;
+                    return Step::Quiet { box_lengths };
+                }
+            }
+            let Some(top) = self.queue.peek() else {
+                return self.never(NoContact::AtRest, until);
+            };
+            if top.time > until {
+                if until.is_finite() {
+                    self.now = self.now.max(until);
+                }
+                return Step::Until;
+            }
+            let e = self.queue.pop().expect("peeked");
+            let i = e.ball as usize;
+            if e.count != self.count[i] {
+                continue;
+            }
+            self.now = self.now.max(e.time);
+            if self.clock_due() {
+                self.rebase();
+            }
+            match e.what {
+                What::Cell { axis, up } => {
+                    self.cross(i, axis as usize, up);
+                    self.predict(i);
+                    self.quiet += 1;
+                }
+                What::Ball { j, count, .. } if count != self.count[j as usize] => {
+                    self.predict(i);
+                    self.quiet += 1;
+                }
+                What::Ball { j, shift, .. } => {
+                    return Step::Contact(self.ball_ball(i, j as usize, &shift))
+                }
+                What::Wall { axis, upper } => {
+                    return Step::Contact(self.ball_wall(i, axis as usize, upper))
+                }
+                What::Obstacle { o, shift } => {
+                    return Step::Contact(self.ball_obstacle(i, o as usize, &shift))
+                }
+            }
+        }
+    }
+
+    /// [`Step::Never`], with the clock moved on to `until` (local) if that is finite: free
+    /// flight to it is all that happens.
+    fn never(&mut self, why: NoContact, until: f64) -> Step<N, S> {
+        if until.is_finite() {
+            self.now = self.now.max(until);
+        }
+        Step::Never(why)
+    }
+
+    /// Events without a contact before the first no-contact check after a contact.
+    fn first_check(&self) -> u64 {
+        (2 * self.len() as u64).max(1024)
+    }
+
+    /// Whether no contact can happen again ([`NoContact`]); the exact pair test is run when
+    /// its cost (balls x bodies) is at most `max(2^20, 16 quiet)`, so `O(1)` per event.
+    fn no_contact(&self) -> Option<NoContact> {
+        let position = |i: usize| self.position(i);
+        let velocity = |i: usize| self.state[i].velocity;
+        let radius = |i: usize| self.species[self.kind[i]].radius;
+        let flight = Flight {
+            size: self.grid.size,
+            periodic: self.grid.periodic,
+            position: &position,
+            velocity: &velocity,
+            radius: &radius,
+            balls: self.len(),
+            obstacles: &self.obstacles,
+        };
+        if flight.least_speed().is_none() {
+            return Some(NoContact::AtRest);
+        }
+        let budget = usize::try_from(self.quiet.saturating_mul(16)).unwrap_or(usize::MAX);
+        flight.separated(budget.max(1 << 20))
+    }
+
+    /// Box lengths (the longest side) the slowest moving ball travelled since the last
+    /// contact (0 if every ball is at rest).
+    fn quiet_travel(&self) -> f64 {
+        let slowest = (0..self.len())
+            .map(|i| self.speed2_of(i).sqrt())
+            .filter(|&v| v > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        if !slowest.is_finite() {
+            return 0.0;
+        }
+        let side = self.grid.size.iter().copied().fold(0.0, f64::max);
+        (self.now - self.last_contact) * slowest / side
+    }
+
+    fn speed2_of(&self, i: usize) -> f64 {
+        self.state[i].velocity.iter().map(|x| x * x).sum()
+    }
+
+    /// Whether the local clock must be re-based: `v_max^2 t^2 > (16 w_min)^2`.
+    fn clock_due(&self) -> bool {
+        self.speed2 * self.now * self.now > self.span2
+    }
+
+    /// Move the clock's origin to now: move every centre to now (orientations keep their
+    /// flight time for later), shift the queue's times by `-now` (dropping dead entries; no
+    /// allocation: the heap's buffer is reused) and restart the local clock at 0.
+    fn rebase(&mut self) {
+        let t = self.now;
+        let mut speed2: f64 = 0.0;
+        for i in 0..self.len() {
+            self.fly(i);
+            self.since[i] = 0.0;
+            speed2 = speed2.max(self.speed2_of(i));
+        }
+        let mut entries = std::mem::take(&mut self.queue).into_vec();
+        entries.retain(|e| e.count == self.count[e.ball as usize]);
+        for e in &mut entries {
+            e.time = (e.time - t).max(0.0);
+        }
+        self.queue = BinaryHeap::from(entries);
+        // origin + origin_low += t, compensated (Knuth's two-sum).
+        let sum = self.origin + t;
+        let b = sum - self.origin;
+        let error = (self.origin - (sum - b)) + (t - b);
+        self.origin = sum;
+        self.origin_low += error;
+        self.last_contact -= t;
+        self.now = 0.0;
+        self.speed2 = speed2;
+        self.rebases += 1;
+    }
+
+    /// After a contact changed the velocities of `balls`: raise the speed bound and re-base
+    /// the clock if it is due, before the new predictions.
+    fn after_contact(&mut self, balls: [usize; 2]) {
+        for b in balls {
+            self.speed2 = self.speed2.max(self.speed2_of(b));
+        }
+        if self.clock_due() {
+            self.rebase();
+        }
+        self.predict(balls[0]);
+        if balls[1] != balls[0] {
+            self.predict(balls[1]);
+        }
+    }
+
+    fn ball_ball(&mut self, i: usize, j: usize, unwrapped: &[i8; N]) -> Event<N, S> {
+        self.advance(i);
+        self.advance(j);
+        // The image the contact was predicted with: s' + w_j - w_i (module docs).
+        let shift = std::array::from_fn(|k| {
+            unwrapped[k]
+                .wrapping_add(self.wraps[j][k])
+                .wrapping_sub(self.wraps[i][k])
+        });
+        let b = self.image(j, &shift);
+        let nu = unit(std::array::from_fn(|k| b[k] - self.pos[i][k]));
+        let pre = [self.state[i].clone(), self.state[j].clone()];
+        let [si, sj] = self
+            .kernels
+            .ball_ball(self.kind[i], self.kind[j], &nu, &pre[0], &pre[1]);
+        self.state[i] = si;
+        self.state[j] = sj;
+        let event = self.finish(Contact::Ball { i, j }, nu, [i, j], pre);
+        self.after_contact([i, j]);
+        event
+    }
+
+    fn ball_wall(&mut self, i: usize, axis: usize, upper: bool) -> Event<N, S> {
+        self.advance(i);
+        let nu = std::array::from_fn(|k| {
+            if k != axis {
+                0.0
+            } else if upper {
+                -1.0
+            } else {
+                1.0
+            }
+        });
+        let pre = [self.state[i].clone(), self.state[i].clone()];
+        self.state[i] = self.kernels.ball_wall(self.kind[i], axis, upper, &pre[0]);
+        let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre);
+        self.after_contact([i, i]);
+        event
+    }
+
+    fn ball_obstacle(&mut self, i: usize, o: usize, shift: &[i8; N]) -> Event<N, S> {
+        self.advance(i);
+        let b = self.obstacle_image(o, shift);
+        let nu = unit(std::array::from_fn(|k| self.pos[i][k] - b[k]));
+        let pre = [self.state[i].clone(), self.state[i].clone()];
+        self.state[i] = self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]);
+        let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre);
+        self.after_contact([i, i]);
+        event
+    }
+
+    fn finish(
+        &mut self,
+        contact: Contact,
+        nu: [f64; N],
+        balls: [usize; 2],
+        pre: [BodyState<f64, N, S>; 2],
+    ) -> Event<N, S> {
+        self.count[balls[0]] += 1;
+        if balls[1] != balls[0] {
+            self.count[balls[1]] += 1;
+        }
+        self.contacts += 1;
+        self.last_contact = self.now;
+        self.quiet = 0;
+        self.next_check = self.first_check();
+        self.next_notice = QUIET_BOX_LENGTHS;
+        Event {
+            time: self.absolute(self.now),
+            contact,
+            nu,
+            position: balls.map(|b| self.pos[b]),
+            pre,
+            post: balls.map(|b| self.state[b].clone()),
+        }
+    }
+}

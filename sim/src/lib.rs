@@ -1,0 +1,163 @@
+//! # noslip-sim
+//!
+//! An event-driven simulation of rigid balls with no-slip collisions (a rough-ball gas, a
+//! no-slip billiard) in a box whose axes are walled or periodic, with fixed ball obstacles.
+//!
+//! Between events every ball flies freely: `a(t) = a + t u`, `U` constant, orientation
+//! `A(t) = exp(t U) A` (the mass distributions are radial, so the inertia is isotropic and the
+//! spatial angular velocity is constant). At a contact the state jumps by the no-slip map of
+//! the pair: [`PairKernels`], the generic generated kernels ([`GenericKernels`]) or a scene's
+//! specialised ones (noslip-codegen's `specialise`).
+//!
+//! Events are found with a cell list (cells wider than the largest contact distance, so only
+//! the `3^n` neighbouring cells are scanned, at most 4 cells per body whatever the box) and a
+//! priority queue that holds, per ball, its earliest predicted event ([`engine`] gives the
+//! invariants: the image rule across periodic faces, the local clock); contact times solve
+//! `|d + t dv|^2 = (R_i + R_j)^2` ([`predict`]). A run stops by itself when no contact can
+//! happen again ([`no_contact`]).
+//!
+//! Around the engine: [`setup`] turns a validated scene (`noslip-scene`) into a [`Setup`],
+//! checked in the f64 arithmetic the engine uses ([`range`]) and placed in O(N) ([`place`]);
+//! [`run`] runs it to its limits, writing the event log ([`log`], [`run::event_json`]) and
+//! keeping bounded traces ([`trace`]) for the pictures ([`plot`]). This crate must not
+//! parse command lines, print, or write files other than through the writers it is given:
+//! that is the `noslip` command's business.
+
+mod cells;
+pub mod engine;
+pub mod log;
+pub mod no_contact;
+mod normal;
+mod observe;
+mod orientation;
+pub mod place;
+pub mod plot;
+pub mod predict;
+mod queue;
+pub mod range;
+pub mod run;
+pub mod setup;
+#[cfg(test)]
+mod tests;
+pub mod trace;
+
+pub use engine::{Contact, Event, SetupError, Simulation, Step};
+pub use no_contact::NoContact;
+pub use observe::Observables;
+
+use collision_core::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};
+
+/// The no-slip maps of the pair kinds a simulation meets, by species index. Body 1 of
+/// `ball_ball` is species `a` and `nu` points from body 1 to body 2; walls and obstacles are
+/// at rest and immovable, `nu` from the obstacle's centre to the ball's, and a wall's normal
+/// is `+e_axis` (the wall at `x_axis = 0`) or `-e_axis` (`upper`, at `x_axis = L`).
+pub trait PairKernels<T, const N: usize, const S: usize> {
+    fn ball_ball(
+        &self,
+        a: usize,
+        b: usize,
+        nu: &[T; N],
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> [BodyState<T, N, S>; 2];
+    fn ball_wall(
+        &self,
+        species: usize,
+        axis: usize,
+        upper: bool,
+        state: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S>;
+    fn ball_obstacle(
+        &self,
+        species: usize,
+        nu: &[T; N],
+        state: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S>;
+}
+
+/// The generic generated kernels with each species' parameters passed at run time.
+#[derive(Clone, Debug)]
+pub struct GenericKernels<T> {
+    pub species: Vec<Ball<T>>,
+}
+
+impl<T: Scalar, const N: usize, const S: usize> PairKernels<T, N, S> for GenericKernels<T>
+where
+    for<'a> &'a T: RefArith<T>,
+    Generated: Kernel<T, N, S>,
+{
+    #[inline]
+    fn ball_ball(
+        &self,
+        a: usize,
+        b: usize,
+        nu: &[T; N],
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> [BodyState<T, N, S>; 2] {
+        Generated::free(nu, &self.species[a], &self.species[b], state1, state2)
+    }
+
+    #[inline]
+    fn ball_wall(
+        &self,
+        species: usize,
+        axis: usize,
+        upper: bool,
+        state: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S> {
+        let sign = if upper { -T::one() } else { T::one() };
+        let nu = std::array::from_fn(|k| if k == axis { sign.clone() } else { T::zero() });
+        Generated::fixed(
+            &nu,
+            &T::one(),
+            &self.species[species],
+            &BodyState::zero(),
+            state,
+        )
+    }
+
+    #[inline]
+    fn ball_obstacle(
+        &self,
+        species: usize,
+        nu: &[T; N],
+        state: &BodyState<T, N, S>,
+    ) -> BodyState<T, N, S> {
+        Generated::fixed(
+            nu,
+            &T::one(),
+            &self.species[species],
+            &BodyState::zero(),
+            state,
+        )
+    }
+}
+
+/// A ball of a simulation: its species, centre and velocity state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body<const N: usize, const S: usize> {
+    pub species: usize,
+    pub position: [f64; N],
+    pub state: BodyState<f64, N, S>,
+}
+
+/// A fixed ball obstacle, at rest.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FixedBall<const N: usize> {
+    pub position: [f64; N],
+    pub radius: f64,
+}
+
+/// What a simulation starts from. The box is `[0, size_0] x ..`; axis `k` is periodic when
+/// `periodic[k]`, else bounded by flat walls at `0` and `size_k`.
+#[derive(Clone, Debug)]
+pub struct Setup<const N: usize, const S: usize> {
+    pub size: [f64; N],
+    pub periodic: [bool; N],
+    pub species: Vec<Ball<f64>>,
+    pub obstacles: Vec<FixedBall<N>>,
+    pub bodies: Vec<Body<N, S>>,
+    /// Track orientations `A_i` (starting at the identity).
+    pub orientation: bool,
+}

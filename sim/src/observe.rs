@@ -1,0 +1,48 @@
+//! The conserved quantities of a set of balls.
+
+use collision_core::skew_pairs;
+use collision_core::{Ball, BodyState};
+
+/// Totals over all balls, with `m = 1/w`, `lambda = gamma^2 R^2 / 2`:
+///
+/// - kinetic energy `E = sum 1/2 m (|u|^2 + lambda Tr(U U^T)) = sum 1/2 m (|u|^2 + 2 lambda
+///   sum_{i<j} U_ij^2)` (half the metric norm);
+/// - linear momentum `p = sum m u`;
+/// - angular momentum about the origin `L = sum m (a ^ u) + 2 m lambda U`, compact entries
+///   `(a ^ u)_ij = u_i a_j - a_i u_j`.
+///
+/// Energy is conserved by every contact; `p` by ball-ball contacts and free flight (not by
+/// walls or obstacles); `L` also needs no walls, obstacles or periodic wrapping.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Observables<const N: usize, const S: usize> {
+    pub energy: f64,
+    pub momentum: [f64; N],
+    pub angular_momentum: [f64; S],
+}
+
+impl<const N: usize, const S: usize> Observables<N, S> {
+    pub fn of<'a>(
+        balls: impl IntoIterator<Item = (&'a Ball<f64>, &'a [f64; N], &'a BodyState<f64, N, S>)>,
+    ) -> Self {
+        let mut o = Observables {
+            energy: 0.0,
+            momentum: [0.0; N],
+            angular_momentum: [0.0; S],
+        };
+        for (ball, a, s) in balls {
+            let m = 1.0 / ball.inv_mass;
+            let lambda = ball.lambda();
+            let u2: f64 = s.velocity.iter().map(|x| x * x).sum();
+            let spin2: f64 = s.spin.iter().map(|x| x * x).sum();
+            o.energy += 0.5 * m * (u2 + 2.0 * lambda * spin2);
+            for k in 0..N {
+                o.momentum[k] += m * s.velocity[k];
+            }
+            for (e, (i, j)) in skew_pairs(N).enumerate() {
+                let wedge = s.velocity[i] * a[j] - a[i] * s.velocity[j];
+                o.angular_momentum[e] += m * wedge + 2.0 * m * lambda * s.spin[e];
+            }
+        }
+        o
+    }
+}

@@ -1,0 +1,260 @@
+//! The run loop of `noslip simulate`: steps the engine, writes the events log, samples the
+//! energy drift and (for the picture) a few trajectories and the contact points, and tells
+//! the caller how it goes ([`Progress`]).
+
+use crate::trace::{Tracer, CONTACT_DOTS};
+use crate::{Contact, Event, PairKernels, Simulation, Step};
+use collision_core::BodyState;
+use serde_json::{json, Value};
+use std::io::{self, Write};
+use std::time::Instant;
+
+/// What a run tells its caller as it goes (a progress bar, a notice).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Progress {
+    /// This many contacts are done (every 4096).
+    Events(u64),
+    /// No contact while every moving ball travelled `box_lengths` box lengths, at simulated
+    /// time `time` (the engine's [`Step::Quiet`]); the run goes on.
+    Quiet { box_lengths: f64, time: f64 },
+}
+
+/// When to stop, and how much to record.
+#[derive(Clone, Debug)]
+pub struct Limits {
+    /// Stop after this many contacts.
+    pub events: Option<u64>,
+    /// Stop at this simulated time.
+    pub time: Option<f64>,
+    /// Energy samples for the drift plot (at most).
+    pub samples: u64,
+    /// Balls whose trajectories are recorded (2D picture).
+    pub traced: usize,
+    /// Contact points recorded (2D picture), at most; the picture keeps one per pixel and at
+    /// most [`CONTACT_DOTS`].
+    pub contact_points: usize,
+}
+
+/// Totals of a run. Drifts are relative to the start: `|E - E_0| / E_0` for energy,
+/// `|p - p_0| / sum m |u|_0` for momentum, `|L - L_0| / sum m (|a| |u| + 2 lambda |U|)_0` for
+/// angular momentum.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Summary {
+    pub dim: usize,
+    pub balls: usize,
+    pub events: u64,
+    pub ball_ball: u64,
+    pub ball_wall: u64,
+    pub ball_obstacle: u64,
+    pub cell_crossings: u64,
+    pub time: f64,
+    pub seconds: f64,
+    pub events_per_second: f64,
+    pub energy_start: f64,
+    pub energy_end: f64,
+    pub energy_drift: f64,
+    /// The largest `|E - E_0| / E_0` over the samples.
+    pub energy_drift_max: f64,
+    pub momentum_drift: f64,
+    pub angular_momentum_drift: f64,
+    /// Why the run stopped before its limits: the engine found that no contact will happen
+    /// again ([`crate::NoContact`]).
+    pub stopped: Option<String>,
+}
+
+/// What the pictures need (bounded whatever the number of events; see [`crate::trace`]).
+#[derive(Clone, Debug, Default)]
+pub struct Trace {
+    /// `(events, (E - E_0) / E_0)`.
+    pub energy: Vec<(u64, f64)>,
+    /// Per traced ball, polylines of its centre (first two coordinates), cut at periodic
+    /// wraps and thinned to half a pixel.
+    pub paths: Vec<Vec<Vec<[f64; 2]>>>,
+    /// The time up to which the paths are drawn.
+    pub paths_until: f64,
+    /// Contact points (first two coordinates), one per picture pixel.
+    pub contacts: Vec<[f64; 2]>,
+}
+
+fn state_json<const N: usize, const S: usize>(s: &BodyState<f64, N, S>) -> Value {
+    json!({"spin": s.spin.to_vec(), "velocity": s.velocity.to_vec()})
+}
+
+/// One events-log line.
+pub fn event_json<const N: usize, const S: usize>(index: u64, e: &Event<N, S>) -> Value {
+    let (kind, who, n) = match e.contact {
+        Contact::Ball { i, j } => ("ball-ball", json!({"balls": [i, j]}), 2),
+        Contact::Wall { i, axis, upper } => (
+            "ball-wall",
+            json!({"balls": [i], "axis": axis, "side": if upper { "upper" } else { "lower" }}),
+            1,
+        ),
+        Contact::Obstacle { i, obstacle } => (
+            "ball-obstacle",
+            json!({"balls": [i], "obstacle": obstacle}),
+            1,
+        ),
+    };
+    let mut v = json!({
+        "event": index,
+        "time": e.time,
+        "kind": kind,
+        "nu": e.nu.to_vec(),
+        "positions": e.position[..n].iter().map(|p| p.to_vec()).collect::<Vec<_>>(),
+        "pre": e.pre[..n].iter().map(state_json).collect::<Vec<_>>(),
+        "post": e.post[..n].iter().map(state_json).collect::<Vec<_>>(),
+    });
+    if let (Value::Object(m), Value::Object(w)) = (&mut v, who) {
+        m.extend(w);
+    }
+    v
+}
+
+fn scales<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+) -> (f64, f64) {
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let (mut p, mut l) = (0.0, 0.0);
+    for i in 0..sim.len() {
+        let b = &species[sim.species_of(i)];
+        let m = 1.0 / b.inv_mass;
+        let s = sim.state(i);
+        p += m * norm(&s.velocity);
+        l += m * (norm(&sim.position(i)) * norm(&s.velocity) + 2.0 * b.lambda() * norm(&s.spin));
+    }
+    (p.max(f64::MIN_POSITIVE), l.max(f64::MIN_POSITIVE))
+}
+
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Run `sim` to the limits; log each contact to `log` (JSON lines) if given.
+pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &mut Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+    limits: &Limits,
+    mut log: Option<&mut dyn Write>,
+    progress: &mut dyn FnMut(Progress),
+) -> io::Result<(Summary, Trace)> {
+    let start = sim.observables();
+    let (p_scale, l_scale) = scales(sim, species);
+    let events = limits.events.unwrap_or(u64::MAX);
+    let until = limits.time.unwrap_or(f64::INFINITY);
+    let every = (events.min(1 << 40) / limits.samples.max(1)).max(1);
+    let traced = limits.traced.min(sim.len());
+    let size = sim.box_size();
+    let two = |x: &[f64; N]| [x[0], x[1]];
+    let start_points: Vec<([f64; 2], [f64; 2])> = (0..traced)
+        .map(|i| (two(&sim.position(i)), two(&sim.state(i).velocity)))
+        .collect();
+    let mut tracer = Tracer::new(two(&size), sim.now(), &start_points);
+    let mut samples = vec![(0, 0.0)];
+    let mut kinds = [0u64; 3];
+    let mut drift_max: f64 = 0.0;
+    let clock = Instant::now();
+    let mut done = 0u64;
+    let mut stopped = None;
+    while done < events {
+        let e = match sim.step(until) {
+            Step::Contact(e) => e,
+            Step::Until => break,
+            Step::Never(why) => {
+                stopped = Some(why.to_string());
+                break;
+            }
+            Step::Quiet { box_lengths } => {
+                progress(Progress::Quiet {
+                    box_lengths,
+                    time: sim.now(),
+                });
+                continue;
+            }
+        };
+        done += 1;
+        let (k, balls) = match e.contact {
+            Contact::Ball { i, j } => (0, [i, j]),
+            Contact::Wall { i, .. } => (1, [i, i]),
+            Contact::Obstacle { i, .. } => (2, [i, i]),
+        };
+        kinds[k] += 1;
+        if let Some(w) = log.as_deref_mut() {
+            writeln!(w, "{}", event_json(done, &e))?;
+        }
+        for (slot, &b) in balls.iter().enumerate() {
+            if b < traced && (slot == 0 || balls[1] != balls[0]) {
+                tracer.flight(
+                    b,
+                    e.time,
+                    two(&e.position[slot]),
+                    two(&e.post[slot].velocity),
+                );
+            }
+        }
+        if tracer.contacts.len() < limits.contact_points.min(CONTACT_DOTS) {
+            tracer.contact(two(&contact_point(&e, species, sim)));
+        }
+        if done % every == 0 {
+            let energy = sim.observables().energy;
+            let drift = (energy - start.energy) / start.energy;
+            drift_max = drift_max.max(drift.abs());
+            samples.push((done, drift));
+        }
+        if done % 4096 == 0 {
+            progress(Progress::Events(done));
+        }
+    }
+    let seconds = clock.elapsed().as_secs_f64();
+    let ends: Vec<[f64; 2]> = (0..traced).map(|i| two(&sim.position(i))).collect();
+    tracer.finish(sim.now(), &ends);
+    let trace = Trace {
+        energy: samples,
+        paths: tracer.paths,
+        paths_until: tracer.until,
+        contacts: tracer.contacts,
+    };
+    let end = sim.observables();
+    let drift = (end.energy - start.energy) / start.energy;
+    drift_max = drift_max.max(drift.abs());
+    let summary = Summary {
+        dim: N,
+        balls: sim.len(),
+        events: done,
+        ball_ball: kinds[0],
+        ball_wall: kinds[1],
+        ball_obstacle: kinds[2],
+        cell_crossings: sim.crossings(),
+        time: sim.now(),
+        seconds,
+        events_per_second: done as f64 / seconds.max(1e-9),
+        energy_start: start.energy,
+        energy_end: end.energy,
+        energy_drift: drift.abs(),
+        energy_drift_max: drift_max,
+        momentum_drift: distance(&end.momentum, &start.momentum) / p_scale,
+        angular_momentum_drift: distance(&end.angular_momentum, &start.angular_momentum) / l_scale,
+        stopped,
+    };
+    Ok((summary, trace))
+}
+
+/// The contact point `Q`: `a_i + R_i nu` for two balls, `a - R nu` for a ball on a wall or
+/// an obstacle (nu points from the wall or obstacle to the ball).
+fn contact_point<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    e: &Event<N, S>,
+    species: &[collision_core::Ball<f64>],
+    sim: &Simulation<N, S, K>,
+) -> [f64; N] {
+    let (i, sign) = match e.contact {
+        Contact::Ball { i, .. } => (i, 1.0),
+        Contact::Wall { i, .. } | Contact::Obstacle { i, .. } => (i, -1.0),
+    };
+    let r = species[sim.species_of(i)].radius;
+    std::array::from_fn(|k| e.position[0][k] + sign * r * e.nu[k])
+}

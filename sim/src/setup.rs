@@ -1,0 +1,330 @@
+//! From a validated scene (exact) to the engine's f64 setup: the range checks
+//! ([`crate::range`]), species, obstacles, the explicit balls and the seeded random placement
+//! ([`crate::place`]).
+
+use crate::place::Cells;
+use crate::range::{check_scene, check_start};
+use crate::{Body, FixedBall, Setup};
+use collision_core::rng::Rng;
+use collision_core::{Ball, BodyState};
+use noslip_scene::{Boundary, Scene};
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+/// The nearest f64 (scene numbers are validated finite rationals).
+pub fn f(x: &BigRational) -> f64 {
+    x.to_f64().unwrap_or(f64::NAN)
+}
+
+fn array<const M: usize>(v: &[BigRational]) -> [f64; M] {
+    std::array::from_fn(|k| f(&v[k]))
+}
+
+/// Uniform in `[0, 1)`: the top 53 bits of a ChaCha8 word.
+fn unit(rng: &mut Rng) -> f64 {
+    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// Squared distance with the minimum image on periodic axes.
+fn distance2<const N: usize>(
+    a: &[f64; N],
+    b: &[f64; N],
+    size: &[f64; N],
+    periodic: &[bool; N],
+) -> f64 {
+    (0..N)
+        .map(|k| {
+            let mut d = (a[k] - b[k]).abs();
+            if periodic[k] {
+                d = d.min(size[k] - d);
+            }
+            d * d
+        })
+        .sum()
+}
+
+/// The kernels' `Ball` parameters of the scene's species, each constant mapped by `f`
+/// (`f64` rounding for the simulator, `clone` for exact checks).
+pub fn species_balls<T>(
+    scene_species: &[noslip_scene::Species],
+    f: impl Fn(&BigRational) -> T,
+) -> Vec<Ball<T>> {
+    scene_species
+        .iter()
+        .map(|s| Ball {
+            inv_mass: f(&s.inv_mass),
+            radius: f(&s.radius),
+            gamma2: f(&s.gamma2),
+        })
+        .collect()
+}
+
+/// Attempts in a row for one randomly placed ball before the scene is declared too dense.
+pub const ATTEMPTS: usize = 10_000;
+
+/// Attempts per randomly placed ball on average (over all placed so far, plus [`ATTEMPTS`])
+/// before the scene is declared too dense: near the jamming packing every ball takes longer,
+/// and this bounds the whole placement to `O(N)` attempts.
+pub const AVERAGE_ATTEMPTS: usize = 1_000;
+
+/// The packing fraction at which random sequential placement of equal balls in R^n saturates,
+/// about `(0.202 + 0.974 n) / 2^n` (the fit of Torquato, Uche and Stillinger, Phys. Rev. E 74,
+/// 061308 (2006), for n = 2..6): 0.54, 0.39, 0.26, 0.16, 0.09. Placement slows down well
+/// before it.
+pub fn saturation(n: usize) -> f64 {
+    (0.202048 + 0.973872 * n as f64) / (1u64 << n) as f64
+}
+
+/// `log` of the volume of the unit ball in R^n, `pi^(n/2) / Gamma(n/2 + 1)`.
+fn log_unit_ball(n: usize) -> f64 {
+    // Gamma(n/2 + 1) by its recurrence from Gamma(1) = 1 or Gamma(3/2) = sqrt(pi)/2.
+    let pi = std::f64::consts::PI;
+    let mut gamma = if n % 2 == 0 { 1.0 } else { pi.sqrt() / 2.0 };
+    let mut x = if n % 2 == 0 { 1.0 } else { 1.5 };
+    while x < n as f64 / 2.0 + 1.0 {
+        gamma *= x;
+        x += 1.0;
+    }
+    n as f64 / 2.0 * pi.ln() - gamma.ln()
+}
+
+/// The fraction of the box's volume that the scene's balls fill (computed in logarithms, so
+/// it does not overflow).
+pub fn volume_fraction(scene: &Scene) -> f64 {
+    let n = scene.dim;
+    let log_box: f64 = scene.size.iter().map(|l| f(l).ln()).sum();
+    scene
+        .balls_per_species()
+        .iter()
+        .zip(&scene.species)
+        .filter(|(&count, _)| count > 0)
+        .map(|(&count, s)| {
+            ((count as f64).ln() + log_unit_ball(n) + n as f64 * f(&s.radius).ln() - log_box).exp()
+        })
+        .sum()
+}
+
+/// The engine's setup for `scene` (whose `dim` must be `N`), after the range checks of
+/// [`crate::range`]. Random balls: positions uniform in the box (inside the walls), rejected
+/// while they overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
+/// visits only the cells around the candidate), at most [`ATTEMPTS`] times in a row and
+/// [`AVERAGE_ATTEMPTS`] per ball overall; balls that would fill more than the box are refused
+/// before any attempt; velocity components uniform in `[-speed,
+/// speed]`, skew entries of `U` uniform in `[-spin, spin]`; one ChaCha8 stream seeded with
+/// `random.seed`, species in order. Errors are `field: message`.
+pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S>, String> {
+    assert_eq!(scene.dim, N, "scene dimension");
+    let scales = check_scene(scene)?;
+    let size: [f64; N] = array(&scene.size);
+    let periodic: [bool; N] = std::array::from_fn(|k| scene.boundary[k] == Boundary::Periodic);
+    let species = species_balls(&scene.species, f);
+    let obstacles: Vec<FixedBall<N>> = scene
+        .obstacles
+        .iter()
+        .map(|o| FixedBall {
+            position: array(&o.position),
+            radius: f(&o.radius),
+        })
+        .collect();
+    let mut bodies: Vec<Body<N, S>> = scene
+        .balls
+        .iter()
+        .map(|b| Body {
+            species: b.species,
+            position: array(&b.position),
+            state: BodyState {
+                spin: array(&b.spin),
+                velocity: array(&b.velocity),
+            },
+        })
+        .collect();
+    let fraction = volume_fraction(scene);
+    if fraction > 1.0 {
+        let k = (0..scene.species.len())
+            .rev()
+            .find(|&k| scene.species[k].count > 0)
+            .unwrap_or(0);
+        return Err(format!(
+            "species[{k}].count: the balls would fill {fraction:.3} times the box's volume: \
+             they cannot fit"
+        ));
+    }
+    let per_species = scene.balls_per_species();
+    let r_max = (0..species.len())
+        .filter(|&k| per_species[k] > 0)
+        .map(|k| species[k].radius)
+        .fold(0.0, f64::max);
+    let mut balls = Cells::new(size, periodic, 2.0 * r_max, scene.ball_count());
+    for b in &bodies {
+        balls.insert(&b.position);
+    }
+    let obstacle_max = obstacles.iter().map(|o| o.radius).fold(0.0, f64::max);
+    let mut fixed = Cells::new(size, periodic, r_max + obstacle_max, obstacles.len());
+    for o in &obstacles {
+        fixed.insert(&o.position);
+    }
+    let mut rng = Rng::new(scene.random.seed);
+    let (speed, spin) = (f(&scene.random.speed), f(&scene.random.spin));
+    let (mut attempts, mut placed_random) = (0usize, 0usize);
+    let too_full = |k: usize, placed: usize, why: String| {
+        format!(
+            "species[{k}].count: placed {placed} of {} balls, then {why}: the box is too full \
+             for random placement (the balls would fill {fraction:.3} of it; random sequential \
+             placement of equal balls saturates near {:.2} in {N}D)",
+            scene.species[k].count,
+            saturation(N)
+        )
+    };
+    for (k, sp) in scene.species.iter().enumerate() {
+        let r = species[k].radius;
+        for placed in 0..sp.count {
+            if attempts > AVERAGE_ATTEMPTS * placed_random + ATTEMPTS {
+                let why = format!("{attempts} attempts (over {AVERAGE_ATTEMPTS} per ball)");
+                return Err(too_full(k, placed, why));
+            }
+            let mut found = None;
+            for _ in 0..ATTEMPTS {
+                attempts += 1;
+                let p: [f64; N] = std::array::from_fn(|a| {
+                    let (lo, hi) = if periodic[a] {
+                        (0.0, size[a])
+                    } else {
+                        (r, size[a] - r)
+                    };
+                    lo + (hi - lo) * unit(&mut rng)
+                });
+                let clear_balls = balls.all_near(&p, |i| {
+                    let b = &bodies[i];
+                    let s = r + species[b.species].radius;
+                    distance2(&p, &b.position, &size, &periodic) >= s * s
+                });
+                let clear = clear_balls
+                    && fixed.all_near(&p, |o| {
+                        let o = &obstacles[o];
+                        let s = r + o.radius;
+                        distance2(&p, &o.position, &size, &periodic) >= s * s
+                    });
+                if clear {
+                    found = Some(p);
+                    break;
+                }
+            }
+            let Some(position) = found else {
+                let why = format!("{ATTEMPTS} random positions in a row overlapped");
+                return Err(too_full(k, placed, why));
+            };
+            placed_random += 1;
+            let mut uniform = |scale: f64| scale * (2.0 * unit(&mut rng) - 1.0);
+            let velocity = std::array::from_fn(|_| uniform(speed));
+            let spin = std::array::from_fn(|_| uniform(spin));
+            balls.insert(&position);
+            bodies.push(Body {
+                species: k,
+                position,
+                state: BodyState { spin, velocity },
+            });
+        }
+    }
+    let setup = Setup {
+        size,
+        periodic,
+        species,
+        obstacles,
+        bodies,
+        orientation: scene.simulation.orientation,
+    };
+    check_start(&scales, &setup)?;
+    Ok(setup)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The placement rule tested against every placed ball and obstacle (the `O(N^2)` form
+    /// the grid replaces), drawing from the same stream: the centres must be the same bits.
+    fn all_pairs<const N: usize>(scene: &Scene) -> Vec<[f64; N]> {
+        let size: [f64; N] = array(&scene.size);
+        let periodic: [bool; N] = std::array::from_fn(|k| scene.boundary[k] == Boundary::Periodic);
+        let radius: Vec<f64> = scene.species.iter().map(|s| f(&s.radius)).collect();
+        let obstacles: Vec<([f64; N], f64)> = scene
+            .obstacles
+            .iter()
+            .map(|o| (array(&o.position), f(&o.radius)))
+            .collect();
+        let mut placed: Vec<([f64; N], f64)> = scene
+            .balls
+            .iter()
+            .map(|b| (array(&b.position), radius[b.species]))
+            .collect();
+        let mut rng = Rng::new(scene.random.seed);
+        for (k, sp) in scene.species.iter().enumerate() {
+            let r = radius[k];
+            for _ in 0..sp.count {
+                let p = loop {
+                    let p: [f64; N] = std::array::from_fn(|a| {
+                        let (lo, hi) = if periodic[a] {
+                            (0.0, size[a])
+                        } else {
+                            (r, size[a] - r)
+                        };
+                        lo + (hi - lo) * unit(&mut rng)
+                    });
+                    let clear = placed.iter().chain(&obstacles).all(|(q, rq)| {
+                        let s = r + rq;
+                        distance2(&p, q, &size, &periodic) >= s * s
+                    });
+                    if clear {
+                        break p;
+                    }
+                };
+                for _ in 0..N + N * (N - 1) / 2 {
+                    unit(&mut rng);
+                }
+                placed.push((p, r));
+            }
+        }
+        placed.into_iter().map(|(p, _)| p).collect()
+    }
+
+    fn same_placement<const N: usize, const S: usize>(text: &str) {
+        let scene = Scene::from_toml(text, "t.toml").unwrap();
+        let grid: Vec<[f64; N]> = setup::<N, S>(&scene)
+            .unwrap()
+            .bodies
+            .iter()
+            .map(|b| b.position)
+            .collect();
+        assert_eq!(grid.len(), scene.ball_count());
+        assert_eq!(grid, all_pairs::<N>(&scene), "{text}");
+    }
+
+    #[test]
+    fn the_grid_places_exactly_as_the_all_pairs_test() {
+        // Two species, walls and a periodic axis, an obstacle and an explicit ball, at a
+        // packing of about 0.35 (many rejections).
+        same_placement::<2, 1>(
+            "dim = 2\n[box]\nsize = [30, 20]\nboundary = [\"wall\", \"periodic\"]\n\
+             [[species]]\nmass = 2\nradius = 1\ncount = 30\n\
+             [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 150\n\
+             [[obstacle]]\nposition = [15, 0]\nradius = 3\n\
+             [[ball]]\nspecies = 0\nposition = [2, 2]\nvelocity = [1, 0]\n[random]\nseed = 9\n",
+        );
+        // Sinai-like: small disks around a large obstacle (cells of the obstacle grid are
+        // wider than the balls').
+        same_placement::<2, 1>(
+            "dim = 2\n[box]\nsize = [1, 1]\nboundary = [\"periodic\", \"periodic\"]\n\
+             [[species]]\nmass = 1\nradius = \"1/100\"\ncount = 300\n\
+             [[obstacle]]\nposition = [\"1/2\", \"1/2\"]\nradius = \"3/10\"\n",
+        );
+        // An axis of 2 cells and one of 1 (each neighbour cell once).
+        same_placement::<3, 3>(
+            "dim = 3\n[box]\nsize = [\"2.2\", \"1.5\", 8]\nboundary = [\"periodic\", \"periodic\", \"wall\"]\n\
+             [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 12\n[random]\nseed = 2\n",
+        );
+        same_placement::<6, 15>(
+            "dim = 6\n[box]\nsize = [3, 3, 3, 3, 3, 4]\nboundary = [\"periodic\", \"periodic\", \"periodic\", \"periodic\", \"periodic\", \"wall\"]\n\
+             [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 60\n[random]\nseed = 4\nspin = 1\n",
+        );
+    }
+}

@@ -1,0 +1,220 @@
+//! Runs every check for the chosen dimensions and variants and collects the results.
+
+use crate::checks::identity::{self, Identity};
+use crate::checks::sequence::{self, Limit};
+use crate::checks::{inertia, structure};
+use crate::report::{CheckResult, Proof};
+use crate::sample::SET_SIZE;
+use crate::under_test::{generated, ExactKernel};
+use collision_core::rng::Rng;
+use collision_core::{Exact, Generated, Kernel};
+use noslip_codegen::model::Variant;
+use std::time::Instant;
+
+/// How much to sample.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Random points per identity check.
+    pub points: usize,
+    /// Random configurations per structural check.
+    pub configurations: usize,
+    pub seed: u64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            points: 16,
+            configurations: 2,
+            seed: 2026,
+        }
+    }
+}
+
+/// The Schwartz-Zippel bound `(degree / |S|)^points` on the probability that a false
+/// identity passed.
+pub fn sz_bound(degree: u64, points: usize) -> f64 {
+    ((degree as f64) / (SET_SIZE as f64))
+        .min(1.0)
+        .powi(points as i32)
+}
+
+/// The number of checks [`run_dim`] performs for one dimension (for progress bars).
+pub fn checks_per_dim() -> usize {
+    Variant::ALL
+        .iter()
+        .map(|&v| Identity::for_variant(v).len() + 2)
+        .sum::<usize>()
+        + 3
+}
+
+fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let start = Instant::now();
+    let out = f();
+    (out, start.elapsed().as_secs_f64())
+}
+
+/// The identity checks of one variant for a given kernel (the compiled one, or a corrupted
+/// one in the verifier's own tests).
+pub fn identity_checks<const N: usize, const S: usize>(
+    kernel: &ExactKernel<N, S>,
+    variant: Variant,
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+) -> Vec<CheckResult>
+where
+    Generated: Kernel<Exact, N, S>,
+{
+    Identity::for_variant(variant)
+        .iter()
+        .enumerate()
+        .map(|(k, &check)| {
+            let (outcome, seconds) = timed(|| {
+                identity::run::<N, S>(kernel, variant, check, opts.points, opts.seed + k as u64)
+            });
+            let degree = identity::degree(N, variant, check);
+            let r = CheckResult {
+                dim: N,
+                variant: variant.name().into(),
+                check: check.name().into(),
+                passed: outcome.is_ok(),
+                points: opts.points,
+                proof: Proof::Identity {
+                    degree,
+                    set_size: SET_SIZE,
+                    bound: sz_bound(degree, opts.points),
+                },
+                detail: outcome.err().unwrap_or_default(),
+                seconds,
+            };
+            progress(&r);
+            r
+        })
+        .collect()
+}
+
+/// Every check for dimension `N`.
+pub fn run_dim<const N: usize, const S: usize>(
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+) -> Vec<CheckResult>
+where
+    Generated: Kernel<Exact, N, S>,
+{
+    let mut out = Vec::new();
+    for variant in Variant::ALL {
+        out.extend(identity_checks::<N, S>(
+            generated::<N, S>(variant).as_ref(),
+            variant,
+            opts,
+            progress,
+        ));
+        let mut rng = Rng::new(opts.seed ^ (N as u64) << 8);
+        let mut decomposition = Ok(());
+        let mut dimensions = Ok(());
+        let ((), seconds) = timed(|| {
+            for _ in 0..opts.configurations {
+                match structure::check_at::<N, S>(variant, &mut rng) {
+                    Ok(s) => {
+                        if dimensions.is_ok() {
+                            dimensions = structure::dimensions_ok(N, variant, &s);
+                        }
+                    }
+                    Err(e) => decomposition = Err(e),
+                }
+            }
+        });
+        for (name, outcome) in [
+            (
+                "decomposition: G_q, Ebar_q, n_q orthogonal, n_q unit and outward",
+                decomposition,
+            ),
+            (
+                "dimensions: Ebar_q = n-1, E_q = n, G_q = N-n, span N",
+                dimensions,
+            ),
+        ] {
+            let r = CheckResult {
+                dim: N,
+                variant: variant.name().into(),
+                check: name.into(),
+                passed: outcome.is_ok(),
+                points: opts.configurations,
+                proof: Proof::ExactAtConfigurations,
+                detail: outcome.err().unwrap_or_default(),
+                seconds: seconds / 2.0,
+            };
+            progress(&r);
+            out.push(r);
+        }
+    }
+    for (variant, limit, name) in [
+        (
+            Variant::Fixed,
+            Limit::Mass,
+            "limit m_1 = 10^k -> inf: error ~ 1/m_1",
+        ),
+        (
+            Variant::Free,
+            Limit::PointMass,
+            "limit gamma2_1 = 10^-k -> 0: error ~ gamma2_1",
+        ),
+    ] {
+        let (outcome, seconds) = timed(|| sequence::check::<N, S>(limit, opts.seed));
+        let r = CheckResult {
+            dim: N,
+            variant: variant.name().into(),
+            check: name.into(),
+            passed: outcome.is_ok(),
+            points: 8,
+            proof: Proof::ExactComputation,
+            detail: match outcome {
+                Ok(e) => format!(
+                    "errors for k = 1..8: {}",
+                    e.iter()
+                        .map(|x| format!("{x:.2e}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                Err(e) => e,
+            },
+            seconds,
+        };
+        progress(&r);
+        out.push(r);
+    }
+    let (outcome, seconds) = timed(|| inertia::check(N, opts.seed));
+    let r = CheckResult {
+        dim: N,
+        variant: "any".into(),
+        check: "inertia: 0 <= lambda <= R^2/n from radial densities".into(),
+        passed: outcome.is_ok(),
+        points: *outcome.as_ref().unwrap_or(&0),
+        proof: Proof::ExactComputation,
+        detail: outcome.err().unwrap_or_default(),
+        seconds,
+    };
+    progress(&r);
+    out.push(r);
+    out
+}
+
+/// Every check for each dimension in `dims` (each in [`collision_core::DIMS`]).
+pub fn run(
+    dims: &[usize],
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+) -> Vec<CheckResult> {
+    dims.iter()
+        .flat_map(|&n| {
+            collision_core::with_dim!(
+                n,
+                |N, S| run_dim::<N, S>(opts, progress),
+                panic!(
+                    "dimension {n} has no generated kernels ({:?})",
+                    collision_core::DIMS
+                )
+            )
+        })
+        .collect()
+}
