@@ -93,7 +93,7 @@ where
 }
 
 macro_rules! per_dim {
-    ($($name:ident $n:literal $s:literal),*) => {$(
+    ($(($name:ident $n:literal $s:literal))*) => {$(
         mod $name {
             #[test]
             fn generated_kernels_equal_the_reference_exactly() {
@@ -107,7 +107,7 @@ macro_rules! per_dim {
     )*};
 }
 
-per_dim!(n2 2 1, n3 3 3, n4 4 6, n5 5 10, n6 6 15);
+collision_core::for_each_dim!(per_dim);
 
 /// 2D coordinates of a body: `(gamma R c, u . tau, u . nu)` with `U = c J`,
 /// `J = [[0, -1], [1, 0]]` and the tangent `tau = -J nu = (nu_2, -nu_1)`.

@@ -71,10 +71,25 @@ where
     Ok(())
 }
 
+/// 200 cases per dimension; failures are saved beside this crate, in
+/// `tests/proptest-regressions/`, and replayed first.
+fn config() -> ProptestConfig {
+    ProptestConfig {
+        cases: 200,
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::Direct(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/proptest-regressions/kernels_f64.txt"
+            )),
+        )),
+        ..ProptestConfig::default()
+    }
+}
+
 macro_rules! per_dim {
-    ($($name:ident $n:literal $s:literal),*) => {$(
+    ($(($name:ident $n:literal $s:literal))*) => {$(
         proptest! {
-            #![proptest_config(ProptestConfig::with_cases(200))]
+            #![proptest_config(config())]
             #[test]
             fn $name(
                 nu in proptest::collection::vec(-1.0f64..1.0, $n),
@@ -89,4 +104,4 @@ macro_rules! per_dim {
     )*};
 }
 
-per_dim!(n2 2 1, n3 3 3, n4 4 6, n5 5 10, n6 6 15);
+collision_core::for_each_dim!(per_dim);

@@ -13,6 +13,8 @@
 //! - [`measure`]: bits of error, normwise error in each body's energy norm, conditioning.
 //! - [`report`]: one report run; [`render`]: Markdown and JSON; [`plot`]: the SVG plot.
 
+#![warn(missing_docs, unreachable_pub)]
+
 pub mod batched;
 pub mod case;
 pub mod dense;

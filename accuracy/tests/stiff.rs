@@ -98,7 +98,7 @@ where
 }
 
 macro_rules! per_dim {
-    ($($name:ident $n:literal $s:literal),*) => {$(
+    ($(($name:ident $n:literal $s:literal))*) => {$(
         mod $name {
             #[test]
             fn every_regime_within_its_bound_or_its_conditioning() {
@@ -112,4 +112,4 @@ macro_rules! per_dim {
     )*};
 }
 
-per_dim!(n2 2 1, n3 3 3, n4 4 6, n5 5 10, n6 6 15);
+collision_core::for_each_dim!(per_dim);

@@ -15,6 +15,8 @@
 //! assert_eq!(module.kernels.len(), 4); // free, fixed, free_fma, fixed_fma
 //! ```
 
+#![warn(missing_docs, unreachable_pub)]
+
 pub mod batch;
 pub mod emit;
 pub mod fuse;

@@ -29,6 +29,8 @@
 //! assert_eq!(after.velocity[1], 1.0); // the normal velocity flips
 //! ```
 
+#![warn(missing_docs, unreachable_pub)]
+
 pub mod allowance;
 mod ball;
 pub mod batch;

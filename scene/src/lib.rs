@@ -12,6 +12,8 @@
 //! unknown keys, a key path such as `species[1].radius` or `ball[3].position` otherwise.
 //! The generator needs [`Scene::pairs`]; the simulator also needs the placement.
 
+#![warn(missing_docs, unreachable_pub)]
+
 mod number;
 mod pairs;
 pub mod raw;

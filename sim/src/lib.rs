@@ -23,6 +23,8 @@
 //! parse command lines, print, or write files other than through the writers it is given:
 //! that is the `noslip` command's business.
 
+#![warn(missing_docs, unreachable_pub)]
+
 mod cells;
 pub mod engine;
 pub mod log;

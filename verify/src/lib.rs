@@ -7,6 +7,8 @@
 //! measure speed or float error (that is `noslip-accuracy`) and writes no files (that is the
 //! `noslip` command).
 
+#![warn(missing_docs, unreachable_pub)]
+
 pub mod checks;
 pub mod degree;
 pub mod diff;

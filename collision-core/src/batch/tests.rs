@@ -201,35 +201,33 @@ fn check_empty<T, const N: usize, const S: usize>(
 }
 
 macro_rules! per_dim {
-    ($($f64:ident $f32:ident $exact:ident $n:literal $s:literal;)*) => {$(
-        #[test]
-        fn $f64() {
-            for (i, len) in LENGTHS.into_iter().enumerate() {
-                check::<f64, $n, $s>(&sample(0xb17 ^ (100 * $n + i as u64), len, float));
-            }
-        }
+    ($(($name:ident $n:literal $s:literal))*) => {$(
+        mod $name {
+            use super::*;
 
-        #[test]
-        fn $f32() {
-            for (i, len) in LENGTHS.into_iter().enumerate() {
-                check::<f32, $n, $s>(&sample(0xf32 ^ (100 * $n + i as u64), len, float));
+            #[test]
+            fn f64_bit_for_bit() {
+                for (i, len) in LENGTHS.into_iter().enumerate() {
+                    check::<f64, $n, $s>(&sample(0xb17 ^ (100 * $n + i as u64), len, float));
+                }
             }
-        }
 
-        #[test]
-        fn $exact() {
-            check::<Exact, $n, $s>(&sample(0xe ^ $n, 11, rational));
+            #[test]
+            fn f32_bit_for_bit() {
+                for (i, len) in LENGTHS.into_iter().enumerate() {
+                    check::<f32, $n, $s>(&sample(0xf32 ^ (100 * $n + i as u64), len, float));
+                }
+            }
+
+            #[test]
+            fn exact() {
+                check::<Exact, $n, $s>(&sample(0xe ^ $n, 11, rational));
+            }
         }
     )*};
 }
 
-per_dim! {
-    d2_f64_bit_for_bit d2_f32_bit_for_bit d2_exact 2 1;
-    d3_f64_bit_for_bit d3_f32_bit_for_bit d3_exact 3 3;
-    d4_f64_bit_for_bit d4_f32_bit_for_bit d4_exact 4 6;
-    d5_f64_bit_for_bit d5_f32_bit_for_bit d5_exact 5 10;
-    d6_f64_bit_for_bit d6_f32_bit_for_bit d6_exact 6 15;
-}
+crate::for_each_dim!(per_dim);
 
 fn to_exact(x: f64) -> Exact {
     Exact::from_float(x).expect("finite")
