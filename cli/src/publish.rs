@@ -39,6 +39,7 @@ const MARKER_TEXT: &str = "This directory is a noslip output set: each run repla
 
 /// Why a set could not be published.
 #[derive(Debug)]
+#[non_exhaustive]
 pub enum PublishError {
     /// The output directory exists, is not empty and has no [`MARKER`]; or it is a file.
     NotOurs(PathBuf),
@@ -60,7 +61,14 @@ impl fmt::Display for PublishError {
     }
 }
 
-impl std::error::Error for PublishError {}
+impl std::error::Error for PublishError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            PublishError::Io { source, .. } => Some(source),
+            PublishError::NotOurs(_) => None,
+        }
+    }
+}
 
 fn at(path: &Path) -> impl FnOnce(io::Error) -> PublishError + '_ {
     move |source| PublishError::Io {

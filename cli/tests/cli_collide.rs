@@ -737,7 +737,7 @@ fn extreme_magnitudes_are_computed_or_refused_naming_the_input_at_fault() {
         &disks("1e-300", "1", "1", ["-1", "1e10"], "0"),
         0,
         "bodies[0].radius",
-        "the results bodies[0].angular_velocity overflow f64",
+        "its angular velocity after contact would overflow f64",
     );
     // --exact computes it.
     collide(

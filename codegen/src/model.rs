@@ -6,14 +6,7 @@
 //! velocities `u_i`:
 //!
 //! ```text
-//! c    = (R_1 U_1 + R_2 U_2) nu
-//! du   = u_2 - u_1,            dn = du . nu
-//! t    = du - dn nu - c                                  (slip of the contact point)
-//! D    = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2)
-//! P    = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t           (half the impulse on body 1)
-//! u_1+ = u_1 + 2 w_1 P                u_2+ = u_2 - 2 w_2 P
-//! U_1+ = U_1 + (2 w_1 g_2 / (R_1 D)) nu ^ t
-//! U_2+ = U_2 + (2 w_2 g_1 / (R_2 D)) nu ^ t
+#![doc = include_str!("closed_form/free.txt")]
 //! ```
 //!
 //! This is MATH.md's closed form with `k_i = w_i / g_i` and the tangential denominator
@@ -24,9 +17,22 @@
 //! The immovable variant (body 1 immovable) is the same builder with `w_1 = 0`; the map is
 //! homogeneous of degree 0 in `(w_1, w_2)`, so `w_2 = 1`, and with `w_1 = 0` it does not
 //! depend on `g_1`, so `g_1 = 1`. Constant folding then leaves the reduced kernel; the
-//! verifier checks exactly that it is the `w_1 -> 0` limit of the free map.
+//! verifier checks exactly that it is the `w_1 -> 0` limit of the free map:
+//!
+//! ```text
+#![doc = include_str!("closed_form/fixed.txt")]
+//! ```
+//!
+//! These two text blocks ([`CLOSED_FORM_FREE`], [`CLOSED_FORM_FIXED`]) are written once, in
+//! `codegen/src/closed_form/`; the generated kernels' doc comments are made from them.
 
 use crate::ir::{Graph, Id};
+
+/// The free map as the kernels' docs state it (a text block, one formula a line).
+pub const CLOSED_FORM_FREE: &str = include_str!("closed_form/free.txt");
+
+/// The `fixed` map (body 1 immovable: `w_1 = 0`, `w_2 = 1`, `g_1 = 1`), likewise.
+pub const CLOSED_FORM_FIXED: &str = include_str!("closed_form/fixed.txt");
 
 /// Which bodies can move.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -3,6 +3,7 @@
 //! Regenerate with `UPDATE_GOLDEN=1 cargo test -p noslip-codegen --test golden`.
 
 use noslip_codegen::{generate, straight_line, Arith, Variant, DIMS};
+use noslip_verify::diff::unified;
 use std::path::PathBuf;
 
 fn golden(name: &str) -> PathBuf {
@@ -19,18 +20,12 @@ fn compare(name: &str, actual: &str) {
     }
     let expected = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("{}: {e}; run with UPDATE_GOLDEN=1", path.display()));
-    if expected != actual {
-        let first = expected
-            .lines()
-            .zip(actual.lines())
-            .position(|(a, b)| a != b)
-            .unwrap_or(expected.lines().count().min(actual.lines().count()));
+    let golden_name = format!("golden {name}");
+    let now_name = format!("generated {name}");
+    if let Some(diff) = unified(&golden_name, &now_name, &expected, actual, 3) {
         panic!(
-            "{name} differs from the golden copy at line {}:\n  golden: {:?}\n  now:    {:?}\n\
-             If the change is intended, run with UPDATE_GOLDEN=1 and review the diff.",
-            first + 1,
-            expected.lines().nth(first),
-            actual.lines().nth(first)
+            "{name} differs from the golden copy:\n{diff}\n\
+             If the change is intended, run with UPDATE_GOLDEN=1 and review the diff."
         );
     }
 }

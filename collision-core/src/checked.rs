@@ -177,7 +177,8 @@ fn speed_source<W: Scalar>(p: &Prepared<W>) -> (W, Field, String) {
                 spin,
                 Field::Body(b, BodyField::AngularVelocity),
                 format!(
-                    "with bodies[{b}].radius = {}, the contact-point speed R |U|",
+                    "with body {}'s radius R = {}, the contact-point speed R |U|",
+                    b + 1,
                     r.show()
                 ),
             ),
@@ -211,8 +212,9 @@ fn overflow<T: Scalar>(
         return InputError::new(
             field,
             format!(
-                "{what} up to {} makes the result bodies[{b}].velocity {tail}",
-                speed.show()
+                "{what} up to {} makes body {}'s velocity after contact {tail}",
+                speed.show(),
+                b + 1
             ),
         );
     }
@@ -223,7 +225,7 @@ fn overflow<T: Scalar>(
             Field::Body(b, BodyField::Radius),
             format!(
                 "{} is so small that the contact-point speed, up to {}, spins the body at up to \
-                 {}: the results bodies[{b}].angular_velocity {tail}",
+                 {}: its angular velocity after contact would {tail}",
                 radius.show(),
                 speed.show(),
                 rate.show()
@@ -233,11 +235,11 @@ fn overflow<T: Scalar>(
     InputError::new(
         field,
         format!(
-            "{what} up to {}, over bodies[{b}].radius = {}, spins body {} at up to {}: the \
-             results bodies[{b}].angular_velocity {tail}",
+            "{what} up to {}, over body {}'s radius {}, spins it at up to {}: its angular \
+             velocity after contact would {tail}",
             speed.show(),
-            radius.show(),
             b + 1,
+            radius.show(),
             rate.show()
         ),
     )
@@ -252,8 +254,9 @@ fn underflow<T: Scalar>(
     let other = p.balls[1 - b].inv_mass.clone();
     let own = p.balls[b].inv_mass.clone();
     let tail = format!(
-        "the result of bodies[{b}] (largest component about {}) is below the normal range of {} \
+        "the result of body {} (largest component about {}) is below the normal range of {} \
          and would lose precision; exact arithmetic computes it",
+        b + 1,
         largest.show(),
         T::NAME
     );
@@ -427,14 +430,17 @@ mod tests {
         let slip = State2::from_scalar_spin(0.0, [-1.0, 1e10]);
         let e = collide(&nu, [&tiny, &one], [&rest, &slip]).unwrap_err();
         assert_eq!(e.field, Field::Body(0, BodyField::Radius), "{e}");
-        assert!(e.message.contains("bodies[0].angular_velocity"), "{e}");
+        assert!(
+            e.message.contains("its angular velocity after contact"),
+            "{e}"
+        );
         // Speeds near the largest f64: the light body bounces back at ~3e308.
         let (light, heavy) = (ball(1.0, 1.0), ball(1e10, 1.0));
         let fast = State2::from_scalar_spin(0.0, [1e308, 0.0]);
         let back = State2::from_scalar_spin(0.0, [-1e308, 0.0]);
         let e = collide(&nu, [&light, &heavy], [&fast, &back]).unwrap_err();
         assert_eq!(e.field, Field::Body(0, BodyField::Velocity), "{e}");
-        assert!(e.message.contains("bodies[0].velocity"), "{e}");
+        assert!(e.message.contains("body 1's velocity after contact"), "{e}");
         // A body 1e600 times heavier, at rest: its whole change (~1e-600) is below f64.
         let (heavy, light) = (ball(1e300, 1.0), ball(1e-300, 1.0));
         let hit = State2::from_scalar_spin(0.0, [-1.0, 0.0]);

@@ -1,9 +1,12 @@
-//! Typed input errors that name the offending field.
+//! Typed input errors that name the offending field, by its place in this crate's API (a
+//! front end with a format of its own, such as the `noslip` command's JSON cases, maps
+//! [`Field`] to its own names).
 
 use std::fmt;
 
 /// A field of one body.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum BodyField {
     Mass,
     Radius,
@@ -15,15 +18,16 @@ pub enum BodyField {
 }
 
 impl BodyField {
-    /// The field's name in the JSON schema.
+    /// The field's name in this crate: the parameter of [`crate::Ball::new`] or the field
+    /// of [`crate::Ball`] and [`crate::BodyState`] it is.
     pub fn name(self) -> &'static str {
         match self {
             BodyField::Mass => "mass",
             BodyField::Radius => "radius",
             BodyField::Lambda => "lambda",
             BodyField::Gamma2 => "gamma2",
-            BodyField::Distribution => "distribution",
-            BodyField::AngularVelocity => "angular_velocity",
+            BodyField::Distribution => "inertia",
+            BodyField::AngularVelocity => "spin",
             BodyField::Velocity => "velocity",
         }
     }
@@ -31,10 +35,11 @@ impl BodyField {
 
 /// Where an input error is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Field {
     Dim,
     Normal,
-    /// A field of body `i` (0-based, as in the JSON array `bodies`).
+    /// A field of body `i` (0-based: body 1 is `Body(0, ..)`).
     Body(usize, BodyField),
     /// Both bodies together (both immovable, both point masses).
     Bodies,
@@ -46,10 +51,10 @@ impl fmt::Display for Field {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Field::Dim => f.write_str("dim"),
-            Field::Normal => f.write_str("normal"),
-            Field::Body(i, field) => write!(f, "bodies[{i}].{}", field.name()),
-            Field::Bodies => f.write_str("bodies"),
-            Field::RelativeVelocity => f.write_str("bodies[*].velocity"),
+            Field::Normal => f.write_str("nu"),
+            Field::Body(i, field) => write!(f, "body {} {}", i + 1, field.name()),
+            Field::Bodies => f.write_str("both bodies"),
+            Field::RelativeVelocity => f.write_str("relative velocity"),
         }
     }
 }

@@ -1,11 +1,21 @@
 //! # collision-core
 //!
+//! The runtime of the no-slip collision: the generated kernels, the scalar types they run in,
+//! balls and states, the checked `collide`, the batch kernels and the general-n reference.
+//! It simulates nothing (that is `noslip-sim`) and reads no files or formats (the `noslip`
+//! command and `noslip-scene` do).
+//!
 //! The no-slip collision of two rigid balls in R^n with radially symmetric mass
 //! distributions: at contact, the state `xi = (U_1, u_1, U_2, u_2)` (angular velocities
 //! `U_i` in so(n), centre velocities `u_i`) jumps to its reflection, in the kinetic-energy
 //! metric, across the no-slip subspace `G_q = { V_1(Q) = V_2(Q) }`:
 //!
-//! $$ \xi^+ = 2 P_{G_q} \xi^- - \xi^- . $$
+//! ```text
+//! xi+ = 2 P_G xi- - xi-        (P_G: the projection onto G_q, orthogonal in the energy metric)
+//! ```
+//!
+//! The closed form of the kernels is on each generated function (`kernels::d3::free`), made
+//! from the generator's model (`noslip_codegen::model`).
 //!
 //! - [`kernels`]: the generated, unrolled, branch-free kernels for n = 2..6 (`free`, both
 //!   bodies move; `fixed`, body 1 immovable), generic over [`Scalar`]: `f32`, `f64`, [`Exact`].
@@ -31,12 +41,14 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+// First, so that its macros are in textual scope in every module after it.
+#[macro_use]
+mod dims;
 pub mod allowance;
 mod ball;
 pub mod batch;
 mod checked;
 mod collide;
-mod dims;
 mod error;
 pub mod kernels;
 pub mod linalg;

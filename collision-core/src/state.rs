@@ -188,7 +188,7 @@ mod tests {
         let e = State3::<f64>::from_matrix(1, &bad, [0.0; 3]).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "bodies[1].angular_velocity: not skew: entries (0,1) and (1,0) are not opposite"
+            "body 2 spin: not skew: entries (0,1) and (1,0) are not opposite"
         );
         let diag = [[q(1, 10), q(0, 1)], [q(0, 1), q(0, 1)]];
         assert!(State2::from_matrix(0, &diag, [q(0, 1), q(0, 1)]).is_err());

@@ -21,6 +21,7 @@ pub enum Mode {
 
 /// Why an input was rejected. Every variant displays as one line.
 #[derive(Debug)]
+#[non_exhaustive]
 pub enum RunError {
     /// Not JSON (serde_json's message carries the line and column).
     Json(serde_json::Error),
@@ -40,7 +41,15 @@ impl fmt::Display for RunError {
     }
 }
 
-impl std::error::Error for RunError {}
+impl std::error::Error for RunError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            RunError::Json(e) => Some(e),
+            RunError::Case(_, e) => Some(e),
+            RunError::Shape(_) => None,
+        }
+    }
+}
 
 /// The error for a key given twice at `path`: its case (the first index of an array input)
 /// and its field.

@@ -1,6 +1,6 @@
 //! The error of one case: which field, and what is wrong with it.
 
-use collision_core::InputError;
+use collision_core::{BodyField, Field, InputError};
 use std::fmt;
 
 /// An error in one case of the input, naming the field by its path in the case
@@ -24,7 +24,33 @@ impl CaseError {
 
 impl From<InputError> for CaseError {
     fn from(e: InputError) -> Self {
-        CaseError::new(e.field.to_string(), e.message)
+        CaseError::new(path(e.field), e.message)
+    }
+}
+
+/// The path in a case of a field of collision-core's inputs: the JSON schema's names.
+pub fn path(field: Field) -> String {
+    match field {
+        Field::Dim => "dim".into(),
+        Field::Normal => "normal".into(),
+        Field::Body(i, f) => format!("bodies[{i}].{}", key(f)),
+        Field::Bodies => "bodies".into(),
+        Field::RelativeVelocity => "bodies[*].velocity".into(),
+        _ => field.to_string(),
+    }
+}
+
+/// The key of a body's field in a case.
+fn key(field: BodyField) -> &'static str {
+    match field {
+        BodyField::Mass => "mass",
+        BodyField::Radius => "radius",
+        BodyField::Lambda => "lambda",
+        BodyField::Gamma2 => "gamma2",
+        BodyField::Distribution => "distribution",
+        BodyField::AngularVelocity => "angular_velocity",
+        BodyField::Velocity => "velocity",
+        _ => field.name(),
     }
 }
 

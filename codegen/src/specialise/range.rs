@@ -64,7 +64,14 @@ impl fmt::Display for GenerateError {
     }
 }
 
-impl std::error::Error for GenerateError {}
+impl std::error::Error for GenerateError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            GenerateError::OutOfRange(e) => Some(e),
+            GenerateError::CratePath(_) => None,
+        }
+    }
+}
 
 /// `x` for a message: `2.5e-7`, or `~1e400` beyond the f64 range (from the digit counts).
 fn approx(x: &BigRational) -> String {

@@ -10,6 +10,7 @@ use std::fmt;
 
 /// Why an [`Exec`] could not be set up as asked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum BatchError {
     /// This CPU does not run the requested instruction set.
     UnavailableIsa(Isa),

@@ -4,7 +4,9 @@
 //!
 //! For every contact `k` of a batch,
 //!
-//! $$ \xi_k^+ = 2 P_{G_{q_k}} \xi_k^- - \xi_k^- , $$
+//! ```text
+//! xi_k+ = 2 P_G(q_k) xi_k- - xi_k-
+//! ```
 //!
 //! computed by the generated scalar kernel's operations in the scalar kernel's order (the
 //! batch kernels are emitted from the same DAG and schedule by `noslip_codegen::batch`), so
