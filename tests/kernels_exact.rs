@@ -1,5 +1,5 @@
 //! The generated kernels (plain and FMA), instantiated with exact rationals, against the
-//! general-n reference and the exact facts of MATH.md, for n = 2..6 and both variants.
+//! general-n reference and the exact facts of docs/derivation.md, for n = 2..6 and both variants.
 
 #![allow(clippy::needless_range_loop)] // matrix entries are indexed by (row, col) on purpose
 

@@ -28,7 +28,7 @@ pub enum Method {
     Reference,
     /// The notes' dense `N x N` matrix, built per collision, times the state, in `f64`.
     Dense,
-    /// MATH.md's closed form written literally (`k_i = w_i / gamma_i^2`), in `f64`: the
+    /// The closed form of `docs/derivation.md` §7 written literally (`k_i = w_i / gamma_i^2`), in `f64`: the
     /// form before the generator's reformulation.
     Literal,
     /// The generated batch kernels (blocks of 8 contacts) in `f64`, at the widest

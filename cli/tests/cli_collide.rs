@@ -1,6 +1,6 @@
 //! `noslip collide`, end to end: the built binary on JSON cases.
 //!
-//! The expected outputs are derived by hand from the closed form of MATH.md (derivations in
+//! The expected outputs are derived by hand from the closed form of docs/derivation.md (derivations in
 //! the comments), not copied from the program.
 
 use num_bigint::BigInt;
@@ -84,7 +84,7 @@ fn example(u1z: &str) -> Value {
     })
 }
 
-/// The post-collision state of `example("1/2")`, by hand from MATH.md's closed form.
+/// The post-collision state of `example("1/2")`, by hand from the closed form (docs/derivation.md §8).
 ///
 /// Body 1: m = 2, R = 1, lambda = 1/5, so gamma^2 = 2 lambda / R^2 = 2/5, w_1 = 1/2,
 /// k_1 = w_1 / gamma^2 = 5/4. Body 2 is immovable: w_2 = k_2 = 0, U_2 = 0, u_2 = 0.
@@ -228,7 +228,7 @@ fn the_3d_omega_form_comes_back_as_omega() {
 /// u_2+ = u_2 - 2 w_2 P = (1 - 8/5, -2 + 4) = (-3/5, 2);
 /// U_2+ = U_2 + (2 k_2 / R_2) nu ^ P, (nu ^ P)_01 = P_0 nu_1 - nu_0 P_1 = 4/5, so
 /// U_01 = -3 + 8 (4/5) = 17/5 and c+ = -U_01 = -17/5.
-/// The same from MATH.md's wall matrix with g = 1/2 on (g R c, u.tau, u.nu), tau = (1, 0):
+/// The same from the wall matrix of docs/derivation.md §11 with g = 1/2 on (g R c, u.tau, u.nu), tau = (1, 0):
 /// x = 3/2, y = 1: x+ = -3/5 x - 4/5 y = -17/10 (c+ = -17/5), y+ = -4/5 x + 3/5 y = -3/5.
 /// Energy (lambda = gamma^2 R^2 / 2 = 1/8): c^2/4 + |u|^2 = 9/4 + 5 = 29/4 before,
 /// 289/100 + 9/25 + 4 = 29/4 after.
@@ -816,7 +816,7 @@ fn rational(v: &Value) -> BigRational {
     BigRational::new(p.parse::<BigInt>().unwrap(), q.parse::<BigInt>().unwrap())
 }
 
-/// MATH.md's closed form, in exact rationals, for a case in the matrix form: inverse masses
+/// The closed form (docs/derivation.md §8), in exact rationals, for a case in the matrix form: inverse masses
 /// `w_i` (0 for "inf"), `k_i = w_i R_i^2 / (2 lambda_i)`,
 /// `c = R_1 U_1 nu + R_2 U_2 nu`, `dn = (u_2 - u_1) . nu`, `t = u_2 - u_1 - dn nu - c`,
 /// `P = dn/(w_1 + w_2) nu + t/(w_1 + w_2 + k_1 + k_2)`, `u_1+ = u_1 + 2 w_1 P`,
@@ -916,7 +916,7 @@ fn the_readmes_collide_command_runs_as_written() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{line}: {err}");
     let got: Value = serde_json::from_slice(&out.stdout).unwrap();
-    // The file is the README's JSON, and the answer MATH.md's closed form on it.
+    // The file is the README's JSON, and the answer the closed form (docs/derivation.md §8) on it.
     let file = args
         .iter()
         .find(|a| a.ends_with(".json"))

@@ -1,5 +1,5 @@
 //! The no-slip collision map of two balls in R^n, built component-wise from the general
-//! SO(n) formulas (see `docs/derivation.md` and `../shared/MATH.md`).
+//! SO(n) formulas (see `docs/derivation.md`).
 //!
 //! With inverse masses `w_i`, radii `R_i`, `gamma_i^2 = 2 lambda_i / R_i^2` (written `g_i`),
 //! unit normal `nu` from body 1 to body 2, angular velocities `U_i` (skew) and centre
@@ -9,7 +9,7 @@
 #![doc = include_str!("closed_form/free.txt")]
 //! ```
 //!
-//! This is MATH.md's closed form with `k_i = w_i / g_i` and the tangential denominator
+//! This is the closed form of `docs/derivation.md` §7 with `k_i = w_i / g_i` and the tangential denominator
 //! `w_1 + w_2 + k_1 + k_2` multiplied through by `g_1 g_2`, and `nu ^ P = nu ^ P_t`
 //! (`nu ^ nu = 0`). Every term of `D` is non-negative, and every coefficient stays finite
 //! for an immovable body (`w_i = 0`) and for one point mass (`g_i = 0`).

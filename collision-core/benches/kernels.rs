@@ -3,7 +3,7 @@
 //!
 //! - `generated`: `collision_core::kernels::dN::free::<f64>`, the generated straight-line
 //!   kernel, called directly (no dispatch, no validation);
-//! - `handwritten`: `collision_core::literal`, MATH.md's closed form written by hand in
+//! - `handwritten`: `collision_core::literal`, the closed form of docs/derivation.md §7 written by hand in
 //!   `f64` with fixed-size loops that LLVM unrolls completely (the baseline);
 //! - `reference`: `collision_core::reference::collide` in `f64`: nalgebra, heap-allocating,
 //!   Gram matrix and Gaussian elimination, and it validates its inputs (unit normal, ball

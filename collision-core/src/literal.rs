@@ -1,4 +1,4 @@
-//! MATH.md's closed form written literally, by hand, in `f64`, as a reader of that page
+//! The closed form of `docs/derivation.md` §7 written literally, by hand, in `f64`, as a reader
 //! would write it: the baseline the generated kernels are measured against (benchmarks,
 //! and the "before" of the error report). Use the generated kernels: this form divides by
 //! `gamma^2` (`k_i = w_i / g_i`), so a point mass (`gamma2 = 0`) gives NaN, and the literal

@@ -1,9 +1,9 @@
 //! The energy drift of the shipped one-disk tables, contact by contact, in exact rationals.
 //!
 //! ```sh
-//! cargo run --release -p collision-core --example energy_drift -- walls 100000
-//! cargo run --release -p collision-core --example energy_drift -- sinai 100000
-//! cargo run --release -p collision-core --example energy_drift -- random 4 0.3 4 100000
+//! cargo run --release -p noslip-sim --example energy_drift -- walls 100000
+//! cargo run --release -p noslip-sim --example energy_drift -- sinai 100000
+//! cargo run --release -p noslip-sim --example energy_drift -- random 4 0.3 4 100000
 //! ```
 //!
 //! `random N R SEEDS CONTACTS`: one ball in R^N (`gamma2 = 2/(N+2)`, radius `R`) bouncing off

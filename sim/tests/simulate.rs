@@ -1,5 +1,5 @@
 //! The simulator on the shipped scenes: energy conservation over 10^6 events, and the
-//! two-wall scene's events log against the disk-on-wall map of MATH.md, exactly.
+//! two-wall scene's events log against the disk-on-wall matrix of docs/derivation.md §11, exactly.
 
 use noslip_scene::Scene;
 use noslip_sim::run::{run, Limits, Summary, Trace};
@@ -109,7 +109,7 @@ fn q(p: i64, d: i64) -> BigRational {
     BigRational::new(p.into(), d.into())
 }
 
-/// MATH.md's disk on a wall (m_1 = inf) in coordinates `(g R c, u . tau, u . nu)` with
+/// The disk on a wall of docs/derivation.md §11 (m_1 = inf) in coordinates `(g R c, u . tau, u . nu)` with
 /// `U = c J`, `tau = -J nu`: `c+ = -(1-g^2)/(1+g^2) c - 2/(R (1+g^2)) u_tau`,
 /// `u_tau+ = -2 g^2 R/(1+g^2) c + (1-g^2)/(1+g^2) u_tau`, `u_nu+ = -u_nu`. Returns
 /// `(spin entry U_01 = -c, velocity)`.

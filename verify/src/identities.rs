@@ -242,7 +242,7 @@ pub fn angular_momentum_conserved(
     zero
 }
 
-/// MATH.md's point-mass limit of body 1 (`lambda_1 -> 0`): `P_t -> 0`, so the centre
+/// The point-mass limit of body 1 (docs/derivation.md §10) (`lambda_1 -> 0`): `P_t -> 0`, so the centre
 /// velocities change only along `nu`, by `-+2 w_i dn / (w_1 + w_2) nu`;
 /// `U_1+ = U_1 + (2/R_1) nu ^ t`; `U_2+ = U_2`.
 pub fn point_mass_limit(g: &mut Graph, inputs: &KernelInputs) -> [StateIds; 2] {

@@ -65,7 +65,7 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         return Err(Failure::bad_input("--samples must be at least 1"));
     }
     let command = format!(
-        "cargo run --release -p noslip-verify -- report --dims {} --samples {} --seed {} --out {}",
+        "cargo run --release -p noslip -- report --dims {} --samples {} --seed {} --out {}",
         opts.dims
             .iter()
             .map(|d| d.to_string())

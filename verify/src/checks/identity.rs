@@ -27,7 +27,7 @@ pub enum Identity {
     Involution,
     /// Fixed: the kernel is the free map at `w_1 = 0`, i.e. the limit `m_1 -> inf`.
     MassLimit,
-    /// Free: at `gamma2_1 = 0` the map is MATH.md's point-mass limit.
+    /// Free: at `gamma2_1 = 0` the map is the point-mass limit of docs/derivation.md §10.
     PointMassLimit,
 }
 
