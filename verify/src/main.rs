@@ -2,8 +2,11 @@
 //!
 //! One module per subcommand under `cli/`; a new subcommand is a variant of [`Command`],
 //! its `Args`, and a line in `main`.
+//!
+//! `Cli`, `Command` and `cli` are `pub(crate)` for the fuzz target `cli_args`
+//! (fuzz/fuzz_targets/cli_args.rs), which compiles this file as a module of its own crate.
 
-mod cli;
+pub(crate) mod cli;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -21,13 +24,13 @@ use std::process::ExitCode;
         The kernels for n = 2..6 are generated code, run in f64 or in exact rationals.",
     after_long_help = cli::exit::help(cli::exit::ALL)
 )]
-struct Cli {
+pub(crate) struct Cli {
     #[command(subcommand)]
-    command: Command,
+    pub(crate) command: Command,
 }
 
 #[derive(Subcommand)]
-enum Command {
+pub(crate) enum Command {
     Collide(cli::collide::Args),
     /// Prove the generated kernels exact: identities, decomposition, inertia; writes reports.
     Verify(cli::verify::Args),
