@@ -9,6 +9,13 @@ use serde_json::{json, Value};
 use std::io::{self, Write};
 use std::time::Instant;
 
+/// A contact-free stretch this long, in box lengths flown by every moving ball, ends the run
+/// (exit 0, [`Summary::stopped`] says why): stepping cell by cell cannot reach a contact that
+/// far, and a flight this long has probability about `1e-12` per contact even in an
+/// infinite-horizon (Sinai) table, whose free paths `L` have `P(> L) ~ 1/L^2`. It is the
+/// 11th quiet notice (1000, 2000, .. 1 024 000 box lengths).
+pub const MAX_QUIET_BOX_LENGTHS: f64 = 1.0e6;
+
 /// What a run tells its caller as it goes (a progress bar, a notice).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -59,7 +66,7 @@ pub struct Summary {
     pub momentum_drift: f64,
     pub angular_momentum_drift: f64,
     /// Why the run stopped before its limits: the engine found that no contact will happen
-    /// again ([`crate::NoContact`]).
+    /// again ([`crate::NoContact`]), or none came within [`MAX_QUIET_BOX_LENGTHS`].
     pub stopped: Option<String>,
 }
 
@@ -170,6 +177,15 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
                 break;
             }
             Step::Quiet { box_lengths } => {
+                if box_lengths >= MAX_QUIET_BOX_LENGTHS {
+                    stopped = Some(format!(
+                        "no contact while every moving ball travelled {box_lengths:.0} box \
+                         lengths (t = {:.6e}): a next contact, if there is one, is out of reach \
+                         of the run (--time bounds a run instead)",
+                        sim.now()
+                    ));
+                    break;
+                }
                 progress(Progress::Quiet {
                     box_lengths,
                     time: sim.now(),

@@ -2,7 +2,7 @@
 //! two-wall scene's events log against the disk-on-wall matrix of docs/derivation.md §11, exactly.
 
 use noslip_scene::Scene;
-use noslip_sim::run::{run, Limits, Summary, Trace};
+use noslip_sim::run::{run, Limits, Progress, Summary, Trace, MAX_QUIET_BOX_LENGTHS};
 use noslip_sim::setup::setup;
 use noslip_sim::trace::{CONTACT_DOTS, PATH_BUDGET, PICTURE, PIECE_COST};
 use noslip_sim::{GenericKernels, Simulation};
@@ -286,4 +286,45 @@ fn traces_stay_bounded_at_many_events() {
             trace.energy.len()
         );
     }
+}
+
+/// Found by the fuzz target `scene_toml` (fuzz/regressions/scene_toml/corridor-timeout.toml):
+/// one disk flying almost exactly along a corridor of a periodic Sinai-like table, its next
+/// contact some 1e49 time units away. With an event limit and no time limit the run crossed
+/// cells for ever; it must end by itself once no contact came within
+/// `MAX_QUIET_BOX_LENGTHS`, saying why, with the clock and energy intact.
+#[test]
+fn a_contact_out_of_reach_ends_the_run() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fuzz/regressions/scene_toml/corridor-timeout.toml");
+    let scene = Scene::from_file(&path).expect("a valid scene");
+    let setup = setup::<2, 1>(&scene).expect("placement succeeds");
+    let species = setup.species.clone();
+    let mut sim = Simulation::new(
+        setup,
+        GenericKernels {
+            species: species.clone(),
+        },
+    )
+    .unwrap();
+    let mut notices = 0;
+    let (summary, _) = run(&mut sim, &species, &limits(10), None, &mut |p| {
+        if let Progress::Quiet { .. } = p {
+            notices += 1;
+        }
+    })
+    .unwrap();
+    assert_eq!(summary.events, 0);
+    let why = summary.stopped.expect("the run says why it stopped");
+    assert!(why.contains("out of reach"), "{why}");
+    // The notices at 1000, 2000, .. 512 000 box lengths came first; the speed is 0.99165 and
+    // the longest side 2, so the clock stands at about 1.024e6 * 2 / 0.99165.
+    assert_eq!(notices, 10);
+    let expected = MAX_QUIET_BOX_LENGTHS * 2.0 / 0.99165;
+    assert!(
+        summary.time >= expected && summary.time < 1.1 * expected,
+        "t = {}",
+        summary.time
+    );
+    assert_eq!(summary.energy_end, summary.energy_start);
 }

@@ -23,16 +23,16 @@ kernel run with the same constants, and exits 1 on any difference.";
 pub struct Args {
     /// The scene file (TOML; see docs/scenes.md).
     #[arg(long)]
-    scene: PathBuf,
+    pub scene: PathBuf,
     /// The runtime crate's path where the module is included.
     #[arg(long, default_value = "collision_core")]
-    crate_path: String,
+    pub crate_path: String,
     /// Print only the op-count table (generic against specialised), not the module.
     #[arg(long)]
     ops: bool,
     /// Check the specialised kernels against the generic map at this many exact points.
     #[arg(long, value_name = "K")]
-    check: Option<usize>,
+    pub check: Option<usize>,
 }
 
 /// What `gen` can return.

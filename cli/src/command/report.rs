@@ -37,7 +37,7 @@ pub struct Args {
     /// Output directory for report.md, report.json and the plots, replaced as a whole by each
     /// run (refused if it exists, is not empty and was not made by noslip).
     #[arg(long, default_value = "out/report")]
-    out: PathBuf,
+    pub out: PathBuf,
     /// Sampled cases per dimension and regime.
     #[arg(long, default_value_t = Options::default().samples)]
     samples: usize,
@@ -54,7 +54,9 @@ pub const CODES: &[Exit] = &[
     Exit::BadInput,
 ];
 
-pub fn run(args: &Args) -> Result<Exit, Failure> {
+/// The run's options from `args`, or the usage error (`--samples 0`); nothing is run (the
+/// fuzz target `cli_args` calls it too).
+pub fn options(args: &Args) -> Result<Options, Failure> {
     let opts = Options {
         dims: args.dims.0.clone(),
         samples: args.samples,
@@ -64,6 +66,12 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
     if opts.samples == 0 {
         return Err(Failure::bad_input("--samples must be at least 1"));
     }
+    Ok(opts)
+}
+
+/// Run the command.
+pub fn run(args: &Args) -> Result<Exit, Failure> {
+    let opts = options(args)?;
     let command = format!(
         "cargo run --release -p noslip -- report --dims {} --samples {} --seed {} --out {}",
         opts.dims

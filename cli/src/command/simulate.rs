@@ -38,7 +38,7 @@ scene in f64\") is refused with exit code 2, naming the field.";
 #[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
     /// The scene file.
-    file: PathBuf,
+    pub file: PathBuf,
     /// Stop after this many contacts (at least 1).
     #[arg(long)]
     events: Option<u64>,
@@ -50,7 +50,7 @@ pub struct Args {
     log: Option<PathBuf>,
     /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
     #[arg(long)]
-    out: Option<PathBuf>,
+    pub out: Option<PathBuf>,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -245,8 +245,8 @@ fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
 }
 
 /// `--time` and `--events` as the scene file has them: a positive finite time, at least one
-/// contact.
-fn check_limits(args: &Args) -> Result<(), Failure> {
+/// contact (the fuzz target `cli_args` calls it too).
+pub fn check_limits(args: &Args) -> Result<(), Failure> {
     if let Some(t) = args.time {
         if !(t > 0.0 && t.is_finite()) {
             return Err(Failure::bad_input(format!(

@@ -37,7 +37,7 @@ pub struct Args {
     /// Output directory for verify.md and verify.json, replaced as a whole by each run
     /// (refused if it exists, is not empty and was not made by noslip).
     #[arg(long, default_value = "out/verify")]
-    out: PathBuf,
+    pub out: PathBuf,
     /// Random points per identity check.
     #[arg(long, default_value_t = Options::default().points)]
     points: usize,
@@ -71,7 +71,9 @@ fn shipped_golden() -> PathBuf {
         .join("docs/reports/verify.json")
 }
 
-pub fn run(args: &Args) -> Result<Exit, Failure> {
+/// The run's options from `args`, or the usage error (`--points 0`); nothing is run or
+/// read (the fuzz target `cli_args` calls it too).
+pub fn options(args: &Args) -> Result<Options, Failure> {
     let opts = Options {
         points: args.points,
         ..Options::default()
@@ -79,6 +81,12 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
     if opts.points == 0 {
         return Err(Failure::bad_input("--points must be at least 1"));
     }
+    Ok(opts)
+}
+
+/// Run the command.
+pub fn run(args: &Args) -> Result<Exit, Failure> {
+    let opts = options(args)?;
     let golden_path = args.golden.clone().unwrap_or_else(shipped_golden);
     // Read the golden copy first: a missing one is a usage error, found before the run.
     let golden = if args.check_golden || args.update_golden {
