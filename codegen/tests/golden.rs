@@ -89,3 +89,31 @@ fn emitted_text_of_the_2d_batch_kernels() {
         &noslip_codegen::batch::generate(2, "crate").source,
     );
 }
+
+/// docs/benchmarks.md quotes the free kernels' op counts next to its timings ("free op counts
+/// a, b, c, d, e for n = 2..6"); they must be the generator's.
+#[test]
+fn benchmarks_page_quotes_the_generated_op_counts() {
+    let page = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/benchmarks.md"),
+    )
+    .unwrap();
+    let start = page.find("free op counts ").expect("the sentence") + "free op counts ".len();
+    let end = start + page[start..].find(" for n = 2..6").expect("the sentence's end");
+    let quoted: Vec<usize> = page[start..end]
+        .split(", ")
+        .map(|x| x.trim().parse().expect("a count"))
+        .collect();
+    let generated: Vec<usize> = DIMS
+        .map(|dim| {
+            generate(dim, "crate")
+                .kernels
+                .iter()
+                .find(|k| k.variant == Variant::Free && k.arith == Arith::Plain)
+                .expect("the free kernel")
+                .ops
+                .total()
+        })
+        .collect();
+    assert_eq!(quoted, generated, "docs/benchmarks.md's op counts");
+}
