@@ -124,7 +124,7 @@ fn state2(gamma: &Exact, radius: &Exact, nu: &[Exact; 2], x: &[Exact]) -> State2
 }
 
 #[test]
-fn disk_on_a_wall_matrix_of_math_md() {
+fn disk_on_a_wall_matrix_of_the_derivation() {
     for gamma in [q(1, 2), q(2, 3), q(1, 1)] {
         let g2 = &gamma * &gamma;
         let nu = [q(3, 5), q(4, 5)];
@@ -229,7 +229,7 @@ fn the_example_case_of_the_issue_separates_and_its_mirror_collides() {
     assert_eq!(e.field, Field::RelativeVelocity);
     assert_eq!(
         e.to_string(),
-        "bodies[*].velocity: the bodies are separating: (u_2 - u_1) . nu = 2/5 > 0 (a collision needs them \
+        "relative velocity: the bodies are separating: (u_2 - u_1) . nu = 2/5 > 0 (a collision needs them \
          approaching or grazing; nu points from body 1 to body 2)");
     let toward = BodyState::from_matrix(0, &m, [q(1, 1), q(0, 1), q(1, 2)]).unwrap();
     let out = collide(&nu, [&b1, &b2], [&toward, &s2]).unwrap();

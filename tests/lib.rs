@@ -3,48 +3,39 @@
 
 use collision_core::{skew_pairs, stereographic_normal, Ball, BodyState, Exact, Scalar};
 use num_traits::{One, Zero};
-use rand::{Rng as _, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+/// The project's seeded stream, so that every exact test is reproducible.
+pub use collision_core::rng::Rng;
 
-/// A seeded ChaCha8 stream, so that every exact test is reproducible.
-pub struct Rng(ChaCha8Rng);
+/// Uniform integer in `lo..=hi`.
+pub fn int(rng: &mut Rng, lo: i64, hi: i64) -> i64 {
+    lo + rng.integer(0..=hi.abs_diff(lo)) as i64
+}
 
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Rng(ChaCha8Rng::seed_from_u64(seed))
-    }
-
-    /// Uniform integer in `lo..=hi`.
-    pub fn int(&mut self, lo: i64, hi: i64) -> i64 {
-        self.0.random_range(lo..=hi)
-    }
-
-    /// `p/q` with `p` in `lo..=hi`, `q` in `1..=den`.
-    pub fn ratio(&mut self, lo: i64, hi: i64, den: i64) -> Exact {
-        Exact::from_ratio(self.int(lo, hi), self.int(1, den))
-    }
+/// `p/q` with `p` in `lo..=hi`, `q` in `1..=den`.
+pub fn ratio(rng: &mut Rng, lo: i64, hi: i64, den: i64) -> Exact {
+    Exact::from_ratio(int(rng, lo, hi), int(rng, 1, den))
 }
 
 /// An exactly unit normal: the inverse stereographic projection of a rational point.
 pub fn unit_normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
-    let y: Vec<Exact> = (0..N - 1).map(|_| rng.ratio(-5, 5, 4)).collect();
+    let y: Vec<Exact> = (0..N - 1).map(|_| ratio(rng, -5, 5, 4)).collect();
     stereographic_normal(&y).try_into().expect("N components")
 }
 
 /// A valid movable ball: mass in [1/4, 4], radius in [1/3, 3], gamma2 in (0, 2/n].
 pub fn free_ball(rng: &mut Rng, n: usize) -> Ball<Exact> {
-    let gamma2 = Exact::from_ratio(2 * rng.int(1, 12), 12 * n as i64);
+    let gamma2 = Exact::from_ratio(2 * int(rng, 1, 12), 12 * n as i64);
     Ball {
-        inv_mass: Exact::from_ratio(rng.int(1, 16), 4),
-        radius: Exact::from_ratio(rng.int(1, 9), 3),
+        inv_mass: Exact::from_ratio(int(rng, 1, 16), 4),
+        radius: Exact::from_ratio(int(rng, 1, 9), 3),
         gamma2,
     }
 }
 
 pub fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<Exact, N, S> {
     BodyState {
-        spin: std::array::from_fn(|_| rng.ratio(-9, 9, 5)),
-        velocity: std::array::from_fn(|_| rng.ratio(-9, 9, 5)),
+        spin: std::array::from_fn(|_| ratio(rng, -9, 9, 5)),
+        velocity: std::array::from_fn(|_| ratio(rng, -9, 9, 5)),
     }
 }
 
