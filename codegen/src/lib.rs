@@ -1,6 +1,11 @@
 //! # noslip-codegen
 //!
-//! A build-time generator of the no-slip collision kernels: the general SO(n) formulas
+//! The build-time generator of the no-slip collision kernels (generic, FMA, batch and
+//! scene-specialised), run by build scripts. It emits and checks source text; it links no
+//! runtime, runs no kernel and simulates nothing (`collision-core` compiles what it emits;
+//! scenes come from `noslip-scene`).
+//!
+//! The general SO(n) formulas
 //! (`U nu`, the slip `t`, the impulse `P`, `nu ^ t`, the updates) are expanded component by
 //! component into a hash-consed expression DAG ([`ir`]), simplified and deduplicated as it is
 //! built, scheduled ([`schedule`]) and emitted as unrolled, branch-free Rust ([`emit`]),
