@@ -469,7 +469,10 @@ macro_rules! per_dim {
 }
 
 /// Float `collide` against exact at extreme inputs, n = N.
-fn float_agrees_with_exact<const N: usize, const S: usize>() {
+fn float_agrees_with_exact<const N: usize, const S: usize>()
+where
+    collision_core::Generated: collision_core::Kernel<Exact, N, S>,
+{
     // Fewer cases as n grows: each exact check costs about n^3 more.
     let cases = cases([60, 40, 24, 16, 12][N - 2]);
     let t = check_dim::<N, S>(cases);

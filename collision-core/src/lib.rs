@@ -31,12 +31,14 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+// First, so that its macros are in textual scope in every module after it.
+#[macro_use]
+mod dims;
 pub mod allowance;
 mod ball;
 pub mod batch;
 mod checked;
 mod collide;
-mod dims;
 mod error;
 pub mod kernels;
 pub mod linalg;

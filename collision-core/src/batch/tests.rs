@@ -227,7 +227,7 @@ macro_rules! per_dim {
     )*};
 }
 
-crate::for_each_dim!(per_dim);
+for_each_dim!(per_dim);
 
 fn to_exact(x: f64) -> Exact {
     Exact::from_float(x).expect("finite")
