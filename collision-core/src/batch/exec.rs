@@ -85,6 +85,7 @@ impl Exec {
         }
     }
 
+    /// The instruction set the batch kernels run on.
     pub fn isa(&self) -> Isa {
         self.isa
     }
