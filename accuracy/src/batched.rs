@@ -34,6 +34,8 @@ impl<const N: usize, const S: usize> Batched<N, S>
 where
     Generated: BatchKernel<f64, N, S>,
 {
+    /// The cases as batches: free contacts in one, contacts with an immovable body in the other
+    /// (swapped so that body 1 is the immovable one).
     pub fn new(cases: &[Case<f64, N, S>]) -> Self {
         let (mut free, mut fixed) = (FreeBatch::new(), FixedBatch::new());
         let slots = cases

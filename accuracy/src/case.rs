@@ -5,8 +5,11 @@ use collision_core::{Ball, BodyState, Exact, Scalar};
 /// The inputs of one collision: the normal, both balls, both states.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Case<T, const N: usize, const S: usize> {
+    /// The unit contact normal `nu`, from body 1 to body 2.
     pub nu: [T; N],
+    /// Body 1's and body 2's parameters.
     pub balls: [Ball<T>; 2],
+    /// Body 1's and body 2's states `(U, u)`.
     pub states: [BodyState<T, N, S>; 2],
 }
 
@@ -31,10 +34,12 @@ impl<T, const N: usize, const S: usize> Case<T, N, S> {
         }
     }
 
+    /// Both balls by reference, as `collide` takes them.
     pub fn ball_refs(&self) -> [&Ball<T>; 2] {
         [&self.balls[0], &self.balls[1]]
     }
 
+    /// Both states by reference, as `collide` takes them.
     pub fn state_refs(&self) -> [&BodyState<T, N, S>; 2] {
         [&self.states[0], &self.states[1]]
     }

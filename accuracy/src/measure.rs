@@ -79,11 +79,14 @@ fn f32_of_ordinal(o: i128) -> f32 {
 /// An exact result as `hi + lo` per component of [`crate::case::flatten`].
 #[derive(Clone, Debug)]
 pub struct Truth {
+    /// The nearest `f64` to each exact component `y`.
     pub hi: Vec<f64>,
+    /// The nearest `f64` to the rest, `y - hi`.
     pub lo: Vec<f64>,
 }
 
 impl Truth {
+    /// `exact` as `hi + lo`, component by component in [`crate::case::flatten`] order.
     pub fn of<const N: usize, const S: usize>(exact: &[BodyState<Exact, N, S>; 2]) -> Truth {
         let (hi, lo) = crate::case::flatten(exact)
             .iter()

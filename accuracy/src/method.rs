@@ -13,6 +13,7 @@ use collision_core::{
 };
 use serde::Serialize;
 
+/// A way of computing the collision that the report compares (a "variant" in the report).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Method {
@@ -48,6 +49,7 @@ pub enum Outcome {
 }
 
 impl Method {
+    /// Every method, in report order.
     pub const ALL: [Method; 8] = [
         Method::F64,
         Method::F64Fma,
@@ -59,6 +61,7 @@ impl Method {
         Method::Batch,
     ];
 
+    /// The method's name in the report.
     pub fn name(self) -> &'static str {
         match self {
             Method::F64 => "generated f64",

@@ -11,21 +11,32 @@ use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState};
 use serde::Serialize;
 
+/// A sampled input distribution: the typical one, or it with one thing changed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Regime {
+    /// O(1) inputs, as in the module docs.
     Typical,
+    /// `m_1/m_2 = 10^(+-k)`, `k` uniform in `[3, 15]`.
     MassRatio,
+    /// Body 1 or body 2 immovable: `inv_mass = 0`.
     Immovable,
+    /// `gamma^2 = (2/n) 10^-k` for both bodies, `k` uniform in `[0, 15]`.
     SmallGamma,
+    /// `gamma^2 = 0` exactly for one body.
     PointMass,
+    /// `R_1/R_2 = 10^k`, `k` uniform in `[-6, 6]`.
     RadiusRatio,
+    /// Velocities and angular velocities times independent `10^k`, `k` uniform in `[-100, 100]`.
     Scale,
+    /// Angular velocities times `10^k`, `k` uniform in `[3, 12]`: `|U| R >> |u|`.
     SpinDominated,
+    /// Normal relative speed `-1e-12 |t|`, `t` the slip at the contact point.
     Grazing,
 }
 
 impl Regime {
+    /// Every regime, in report order.
     pub const ALL: [Regime; 9] = [
         Regime::Typical,
         Regime::MassRatio,
@@ -38,6 +49,7 @@ impl Regime {
         Regime::Grazing,
     ];
 
+    /// The regime's name in the report.
     pub fn name(self) -> &'static str {
         match self {
             Regime::Typical => "typical",

@@ -12,13 +12,21 @@ pub const CONTINUITY_BOUND_EPS: f64 = 64.0;
 /// Where and how the numbers were made.
 #[derive(Clone, Debug, Serialize)]
 pub struct Provenance {
+    /// The command that reproduces the report.
     pub command: String,
+    /// The git commit (12 hex digits), marked when the checkout had uncommitted changes.
     pub commit: String,
+    /// `rustc --version` of the build.
     pub rustc: String,
+    /// The cargo profile of the build (`release`, `debug`).
     pub profile: String,
+    /// The target triple.
     pub target: String,
+    /// The SIMD target features enabled at build time (`sse*`, `avx*`, `fma`, `neon`).
     pub target_features: String,
+    /// The CPU's model name (from `/proc/cpuinfo`), or the architecture.
     pub cpu: String,
+    /// Whether this CPU runs the FMA kernels with FMA instructions.
     pub cpu_has_fma: bool,
     /// The instruction set the batch variant runs at (`Exec::auto`).
     pub batch_isa: String,
@@ -83,12 +91,18 @@ impl Provenance {
     }
 }
 
+/// An accuracy report: `report.json`, and `report.md` made from it.
 #[derive(Clone, Debug, Serialize)]
 pub struct AccuracyReport {
+    /// The program and its version (`noslip 0.1.0`).
     pub tool: String,
+    /// Where and how the numbers were made.
     pub provenance: Provenance,
+    /// What was sampled and timed.
     pub options: Options,
+    /// One result per dimension.
     pub dims: Vec<DimResult>,
+    /// Wall-clock seconds of the whole run.
     pub seconds: f64,
 }
 
@@ -103,10 +117,12 @@ impl AccuracyReport {
         })
     }
 
+    /// `report.json`: the report as indented JSON, ending in a newline.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("report serialises") + "\n"
     }
 
+    /// `report.md`: provenance, sampling, and per dimension and regime the table of every method.
     pub fn to_markdown(&self) -> String {
         let mut m = String::new();
         let p = &self.provenance;

@@ -11,15 +11,20 @@ use collision_core::{validate, Exact, Generated, Kernel};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
+/// What a report run samples and times.
 #[derive(Clone, Debug, Serialize)]
 pub struct Options {
+    /// The dimensions `n`.
     pub dims: Vec<usize>,
+    /// The regimes, in report order.
     pub regimes: Vec<Regime>,
     /// Sampled cases per dimension and regime.
     pub samples: usize,
+    /// The seed every random stream derives from (one per dimension and regime).
     pub seed: u64,
     /// Cases in the timed batch (in cache), and in the exact variant's batch.
     pub batch: usize,
+    /// Cases in the exact variant's timed batch.
     pub exact_batch: usize,
     /// Timed samples per variant.
     pub timing_samples: usize,
@@ -46,12 +51,16 @@ impl Default for Options {
 /// Mean, 99th percentile and maximum.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct Stats {
+    /// The arithmetic mean.
     pub mean: f64,
+    /// The 99th percentile: the sorted value at index `round(0.99 (len - 1))`.
     pub p99: f64,
+    /// The largest value.
     pub max: f64,
 }
 
 impl Stats {
+    /// The statistics of `values` (all zero when there are none).
     pub fn of(values: &[f64]) -> Stats {
         if values.is_empty() {
             return Stats::default();
@@ -67,15 +76,20 @@ impl Stats {
     }
 }
 
+/// One method's figures in one dimension and regime.
 #[derive(Clone, Debug, Serialize)]
 pub struct MethodResult {
+    /// The method.
     pub variant: Method,
+    /// Its name in the report ([`Method::name`]).
     pub name: String,
     /// Operation count of the generated kernel (the free one; `None` if not generated).
     pub ops: Option<usize>,
+    /// Nanoseconds per collision; `None` with nothing to time (no case, or it refused every one).
     pub timing: Option<Timing>,
     /// Cases with a result; cases the variant refused, with the reason.
     pub evaluated: usize,
+    /// The refused cases, counted by reason.
     pub unsupported: BTreeMap<String, usize>,
     /// Results with a NaN or an infinity.
     pub non_finite: usize,
@@ -90,7 +104,9 @@ pub struct MethodResult {
 /// How the generated `f64` kernel meets its bound in one regime.
 #[derive(Clone, Debug, Serialize)]
 pub struct Stability {
+    /// The regime's normwise error bound, in eps ([`Regime::bound_eps`]).
     pub bound_eps: f64,
+    /// The largest normwise error of a movable body, in eps.
     pub max_normwise_eps: f64,
     /// Bodies whose error exceeds the bound.
     pub over_bound: usize,
@@ -99,28 +115,41 @@ pub struct Stability {
     pub over_conditioning: usize,
     /// Largest `error / kappa` over the bodies above the bound (both in eps units).
     pub worst_error_over_kappa: f64,
+    /// Cases whose `f64` result has a NaN or an infinity.
     pub non_finite: usize,
+    /// No non-finite result and no body over its conditioning.
     pub passed: bool,
 }
 
+/// Every method's figures in one dimension and regime, and the `f64` kernel's stability.
 #[derive(Clone, Debug, Serialize)]
 pub struct RegimeResult {
+    /// The regime.
     pub regime: Regime,
+    /// Its name in the report ([`Regime::name`]).
     pub name: String,
+    /// How it departs from the typical distribution ([`Regime::about`]).
     pub about: String,
+    /// Cases sampled, before validation excluded any.
     pub sampled: usize,
     /// Sampled cases refused by validation, with the reason (counted, then left out).
     pub excluded: BTreeMap<String, usize>,
     /// Estimated condition number per movable body (see `measure`).
     pub conditioning: Stats,
+    /// One result per method, in [`Method::ALL`] order.
     pub variants: Vec<MethodResult>,
+    /// How the generated `f64` kernel meets its bound.
     pub stability: Stability,
 }
 
+/// The figures of one dimension.
 #[derive(Clone, Debug, Serialize)]
 pub struct DimResult {
+    /// The dimension `n`.
     pub dim: usize,
+    /// One result per regime, in [`Options::regimes`] order.
     pub regimes: Vec<RegimeResult>,
+    /// Agreement of the `f64` kernel across its branch-free limits.
     pub continuity: Continuity,
 }
 
@@ -352,15 +381,22 @@ where
 /// within the bound: no jump at the limit). In eps, in the body's energy norm.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct Limit {
+    /// The largest normwise difference of the two `f64` results.
     pub computed_eps: f64,
+    /// The largest normwise difference of the two exact results (the model's own).
     pub exact_eps: f64,
+    /// The largest normwise difference of the two rounding errors (`f64` minus exact).
     pub rounding_eps: f64,
 }
 
+/// The generated `f64` kernel across its two branch-free limits, over typical cases.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Continuity {
+    /// Typical cases compared.
     pub cases: usize,
+    /// `m_1 = 1e15 m_2` against an immovable body 1 (body 2's result).
     pub mass_1e15_vs_immovable: Limit,
+    /// `gamma2_1 = 1e-15` against `gamma2_1 = 0` (both bodies).
     pub gamma2_1e15_vs_zero: Limit,
 }
 

@@ -13,15 +13,20 @@ use std::time::{Duration, Instant};
 /// Shortest timed sample.
 pub const MIN_SAMPLE: Duration = Duration::from_micros(200);
 
+/// Nanoseconds per collision over timed passes of an in-cache batch (module docs).
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Timing {
     /// Median nanoseconds per collision.
     pub median_ns: f64,
+    /// 25th percentile of nanoseconds per collision over the samples.
     pub p25_ns: f64,
+    /// 75th percentile of nanoseconds per collision over the samples.
     pub p75_ns: f64,
     /// Timed samples, and passes over the batch in each.
     pub samples: usize,
+    /// Passes over the batch in each sample (as many as fill about [`MIN_SAMPLE`]).
     pub passes_per_sample: usize,
+    /// Cases in the batch.
     pub batch: usize,
 }
 

@@ -76,11 +76,14 @@ impl std::fmt::Display for Codes {
 /// A run that stopped early: the outcome and the one line that says why.
 #[derive(Debug)]
 pub struct Failure {
+    /// The outcome.
     pub exit: Exit,
+    /// Why, in one line.
     pub message: String,
 }
 
 impl Failure {
+    /// A failure with outcome `exit`.
     pub fn new(exit: Exit, message: impl Into<String>) -> Failure {
         Failure {
             exit,
@@ -88,10 +91,12 @@ impl Failure {
         }
     }
 
+    /// Bad input or usage ([`Exit::BadInput`], code 2).
     pub fn bad_input(message: impl Into<String>) -> Failure {
         Failure::new(Exit::BadInput, message)
     }
 
+    /// An output that could not be written ([`Exit::OutputFailed`], code 1).
     pub fn output(message: impl Into<String>) -> Failure {
         Failure::new(Exit::OutputFailed, message)
     }

@@ -5,6 +5,7 @@
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::{self, IsTerminal, Write};
 
+/// Progress of a long run on stderr: a bar on a terminal, a line now and then elsewhere.
 pub struct Progress {
     /// `Some` on a terminal.
     bar: Option<ProgressBar>,
@@ -46,6 +47,7 @@ impl Progress {
         }
     }
 
+    /// Clear the bar (nothing to do off a terminal).
     pub fn finish(self) {
         if let Some(bar) = self.bar {
             bar.finish_and_clear();

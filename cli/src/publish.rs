@@ -44,7 +44,12 @@ pub enum PublishError {
     /// The output directory exists, is not empty and has no [`MARKER`]; or it is a file.
     NotOurs(PathBuf),
     /// An I/O failure at `path`.
-    Io { path: PathBuf, source: io::Error },
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The failure.
+        source: io::Error,
+    },
 }
 
 impl fmt::Display for PublishError {

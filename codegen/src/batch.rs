@@ -49,6 +49,7 @@ pub enum Params {
 }
 
 impl Params {
+    /// Both, in emission order.
     pub const ALL: [Params; 2] = [Params::PerContact, Params::Shared];
 
     /// The batch kernel's function name: `free`, `fixed`, `free_shared`, `fixed_shared`.
@@ -64,18 +65,26 @@ impl Params {
 /// once per call (nonzero only with shared parameters). Their sum is the scalar kernel's.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BatchSummary {
+    /// The dimension `n`.
     pub dim: usize,
+    /// Which bodies move: the scalar kernel the batch kernel repeats.
     pub variant: Variant,
+    /// Where its ball parameters come from.
     pub params: Params,
+    /// Operations run for every contact.
     pub per_contact: OpCount,
+    /// Operations run once per call, on the shared parameters (zero for [`Params::PerContact`]).
     pub per_batch: OpCount,
 }
 
 /// The generated source of one dimension's batch module and the cost of its kernels.
 #[derive(Clone, Debug)]
 pub struct BatchModule {
+    /// The dimension `n`.
     pub dim: usize,
+    /// The formatted file: header (provenance and costs), then the batch kernels.
     pub source: String,
+    /// The cost of each batch kernel in the file, in emission order.
     pub kernels: Vec<BatchSummary>,
 }
 

@@ -28,6 +28,7 @@ pub enum Arith {
 }
 
 impl Arith {
+    /// Both, in emission order.
     pub const ALL: [Arith; 2] = [Arith::Plain, Arith::Fma];
 
     /// The function name of `variant` emitted this way.
@@ -42,12 +43,17 @@ impl Arith {
 /// One emitted kernel with its cost.
 #[derive(Debug)]
 pub struct EmittedKernel {
+    /// The dimension `n`.
     pub dim: usize,
+    /// Which bodies move.
     pub variant: Variant,
+    /// Plain or fused arithmetic.
     pub arith: Arith,
+    /// Its arithmetic operations (the `fma` count is nonzero only for [`Arith::Fma`]).
     pub ops: OpCount,
     /// Intermediate terms (`let` bindings of computed values).
     pub terms: usize,
+    /// The function item (doc comment, attributes, signature and body), not yet formatted.
     pub tokens: TokenStream,
 }
 
@@ -268,7 +274,9 @@ pub struct EmittedBody {
     pub statements: TokenStream,
     /// One `BodyState { .. }` expression per output body, in the kernel's output order.
     pub outputs: Vec<TokenStream>,
+    /// Its arithmetic operations.
     pub ops: OpCount,
+    /// Intermediate terms (`let` bindings of computed values).
     pub terms: usize,
 }
 

@@ -19,16 +19,38 @@ use std::collections::{HashMap, HashSet};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Fused {
     /// `a * b + c`.
-    MulAdd { a: Id, b: Id, c: Id },
+    MulAdd {
+        /// The product's first factor.
+        a: Id,
+        /// The product's second factor.
+        b: Id,
+        /// The term the product is added to.
+        c: Id,
+    },
     /// `a * b - c`.
-    MulSub { a: Id, b: Id, c: Id },
+    MulSub {
+        /// The product's first factor.
+        a: Id,
+        /// The product's second factor.
+        b: Id,
+        /// The term subtracted from the product.
+        c: Id,
+    },
     /// `c - a * b`.
-    NegMulAdd { a: Id, b: Id, c: Id },
+    NegMulAdd {
+        /// The product's first factor.
+        a: Id,
+        /// The product's second factor.
+        b: Id,
+        /// The term the product is subtracted from.
+        c: Id,
+    },
 }
 
 /// Which steps become fused operations, and which products they absorb.
 #[derive(Debug, Default)]
 pub struct Fusion {
+    /// The fused steps: the id of the addition or subtraction, and its fused form.
     pub fused: HashMap<Id, Fused>,
     /// Products folded into a fused step: not emitted on their own.
     pub absorbed: HashSet<Id>,

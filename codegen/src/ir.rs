@@ -35,12 +35,19 @@ pub struct Input(pub String);
 /// One node of the DAG.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Node {
+    /// A kernel input.
     Input(Input),
+    /// An exact rational constant.
     Const(BigRational),
+    /// `a + b`, operands in canonical order.
     Add(Id, Id),
+    /// `a - b`.
     Sub(Id, Id),
+    /// `a * b`, operands in canonical order (a constant first).
     Mul(Id, Id),
+    /// `a / b`.
     Div(Id, Id),
+    /// `-a`.
     Neg(Id),
 }
 
@@ -58,6 +65,7 @@ pub struct Graph {
 }
 
 impl Graph {
+    /// An empty graph (divisions by constants kept as divisions).
     pub fn new() -> Self {
         Self::default()
     }
@@ -70,14 +78,17 @@ impl Graph {
         self.reciprocal_constants = yes;
     }
 
+    /// The node `id`.
     pub fn node(&self, id: Id) -> &Node {
         &self.nodes[id.index()]
     }
 
+    /// The number of nodes.
     pub fn len(&self) -> usize {
         self.nodes.len()
     }
 
+    /// Whether the graph has no nodes.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
     }
@@ -91,6 +102,7 @@ impl Graph {
         self.labels.entry(id).or_insert_with(|| name.into());
     }
 
+    /// The label given to `id` by [`Graph::label`], if any.
     pub fn label_of(&self, id: Id) -> Option<&str> {
         self.labels.get(&id).map(String::as_str)
     }
@@ -105,14 +117,17 @@ impl Graph {
         id
     }
 
+    /// The input named `name` (the same node for the same name).
     pub fn input(&mut self, name: impl Into<String>) -> Id {
         self.intern(Node::Input(Input(name.into())))
     }
 
+    /// The constant `value`.
     pub fn constant(&mut self, value: BigRational) -> Id {
         self.intern(Node::Const(value))
     }
 
+    /// The integer constant `value`.
     pub fn int(&mut self, value: i64) -> Id {
         self.constant(BigRational::from_integer(value.into()))
     }
@@ -136,6 +151,7 @@ impl Graph {
         }
     }
 
+    /// `a + b`: folded when both are constant, `x + 0 = x`, negations pulled out, operands ordered.
     pub fn add(&mut self, a: Id, b: Id) -> Id {
         if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
             return self.constant(x + y);
@@ -159,6 +175,8 @@ impl Graph {
         self.intern(Node::Add(a, b))
     }
 
+    /// `a - b`: `x - x = 0`, folded when both are constant, `x - 0 = x`, `0 - x = -x`,
+    /// `x - (-y) = x + y`.
     pub fn sub(&mut self, a: Id, b: Id) -> Id {
         if a == b {
             return self.int(0);
@@ -178,6 +196,8 @@ impl Graph {
         self.intern(Node::Sub(a, b))
     }
 
+    /// `a * b`: folded when both are constant, `x * 0 = 0`, `x * 1 = x`, `x * (-1) = -x`,
+    /// negations pulled out, a constant first.
     pub fn mul(&mut self, a: Id, b: Id) -> Id {
         if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
             return self.constant(x * y);
@@ -243,6 +263,7 @@ impl Graph {
         self.intern(Node::Div(a, b))
     }
 
+    /// `-a`: folded for a constant, `-(-x) = x`.
     pub fn neg(&mut self, a: Id) -> Id {
         if let Some(x) = self.as_const(a) {
             return self.constant(-x);

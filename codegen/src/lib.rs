@@ -45,10 +45,15 @@ pub const DIMS: std::ops::RangeInclusive<usize> = 2..=6;
 /// Cost of one generated kernel.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct KernelSummary {
+    /// The dimension `n`.
     pub dim: usize,
+    /// Which bodies move.
     pub variant: Variant,
+    /// Plain or fused arithmetic.
     pub arith: Arith,
+    /// Its arithmetic operations.
     pub ops: OpCount,
+    /// Intermediate terms (`let` bindings of computed values).
     pub terms: usize,
 }
 
@@ -62,8 +67,11 @@ impl KernelSummary {
 /// The generated source of one dimension's module and the cost of each kernel in it.
 #[derive(Clone, Debug)]
 pub struct Module {
+    /// The dimension `n`.
     pub dim: usize,
+    /// The formatted file: header (provenance and costs), then the kernels.
     pub source: String,
+    /// The cost of each kernel in the file, in emission order.
     pub kernels: Vec<KernelSummary>,
 }
 

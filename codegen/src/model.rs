@@ -44,6 +44,7 @@ pub enum Variant {
 }
 
 impl Variant {
+    /// Both, in emission order.
     pub const ALL: [Variant; 2] = [Variant::Free, Variant::Fixed];
 
     /// The kernel's function name.
@@ -65,21 +66,27 @@ pub fn skew_pairs(n: usize) -> Vec<(usize, usize)> {
 
 /// Binding names of the kernel inputs. Body numbers are 1 and 2, as in the math.
 pub mod names {
+    /// `nu_k`: component `k` of the contact normal `nu`.
     pub fn nu(k: usize) -> String {
         format!("nu_{k}")
     }
+    /// `U{body}_{i}{j}`: entry `(i, j)`, `i < j`, of the body's skew angular velocity `U`.
     pub fn spin(body: usize, i: usize, j: usize) -> String {
         format!("U{body}_{i}{j}")
     }
+    /// `u{body}_{k}`: component `k` of the body's centre velocity `u`.
     pub fn velocity(body: usize, k: usize) -> String {
         format!("u{body}_{k}")
     }
+    /// `radius{body}`: the body's radius `R`.
     pub fn radius(body: usize) -> String {
         format!("radius{body}")
     }
+    /// `inv_mass{body}`: the body's inverse mass `w = 1/m`.
     pub fn inv_mass(body: usize) -> String {
         format!("inv_mass{body}")
     }
+    /// `gamma2_{body}`: the body's `gamma^2 = 2 lambda / R^2`.
     pub fn gamma2(body: usize) -> String {
         format!("gamma2_{body}")
     }
@@ -92,32 +99,46 @@ pub struct BodyOutput {
     pub body: usize,
     /// Compact skew entries, in [`skew_pairs`] order.
     pub spin: Vec<Id>,
+    /// Centre velocity `u+`, one node per component.
     pub velocity: Vec<Id>,
 }
 
 /// A built kernel: its DAG and the nodes of its outputs.
 #[derive(Debug)]
 pub struct Kernel {
+    /// The dimension `n`.
     pub dim: usize,
+    /// Which bodies move.
     pub variant: Variant,
+    /// The DAG, holding the inputs, every intermediate and the outputs.
     pub graph: Graph,
+    /// The bodies the kernel returns: both for [`Variant::Free`], body 2 for [`Variant::Fixed`].
     pub outputs: Vec<BodyOutput>,
 }
 
 /// The DAG nodes of one body's inputs.
 #[derive(Clone, Debug)]
 pub struct BodyInputs {
+    /// Compact skew entries of `U`, in [`skew_pairs`] order.
     pub spin: Vec<Id>,
+    /// Centre velocity `u`, one node per component.
     pub velocity: Vec<Id>,
+    /// Radius `R`.
     pub radius: Id,
+    /// Inverse mass `w = 1/m`: an input, or a constant where it is known (`fixed`,
+    /// specialised).
     pub inv_mass: Id,
+    /// `gamma^2 = 2 lambda / R^2`: an input, or a constant where it is known (`fixed`,
+    /// specialised).
     pub gamma2: Id,
 }
 
 /// The DAG nodes of a kernel's inputs: the normal and both bodies.
 #[derive(Clone, Debug)]
 pub struct KernelInputs {
+    /// The unit contact normal `nu`, from body 1 to body 2, one node per component.
     pub nu: Vec<Id>,
+    /// Body 1 and body 2.
     pub bodies: [BodyInputs; 2],
 }
 

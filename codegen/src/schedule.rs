@@ -10,14 +10,18 @@ use std::fmt;
 pub struct OpCount {
     /// Additions and subtractions.
     pub add: usize,
+    /// Multiplications.
     pub mul: usize,
+    /// Divisions.
     pub div: usize,
+    /// Negations.
     pub neg: usize,
     /// Fused multiply-adds (FMA kernels only): `a b + c` with one rounding.
     pub fma: usize,
 }
 
 impl OpCount {
+    /// All operations together (a fused multiply-add counts as one).
     pub fn total(&self) -> usize {
         self.add + self.mul + self.div + self.neg + self.fma
     }
@@ -49,6 +53,7 @@ pub struct Schedule {
     pub constants: Vec<Id>,
     /// Live inputs, by name.
     pub inputs: BTreeSet<String>,
+    /// The operations of the steps.
     pub ops: OpCount,
 }
 

@@ -15,6 +15,7 @@ use syn::{BinOp, Expr, Item, Pat, Stmt, UnOp};
 pub struct Violation {
     /// The function it is in (empty at the top level).
     pub function: String,
+    /// The offending construct, as a message (e.g. "`if`", "a loop").
     pub what: String,
 }
 

@@ -16,15 +16,20 @@ use num_traits::Signed;
 ///   a shell. In 3D `g = I / (m R^2)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ball<T> {
+    /// Inverse mass `w = 1/m >= 0` (0: immovable).
     pub inv_mass: T,
+    /// Radius `R > 0`.
     pub radius: T,
+    /// `gamma^2 = 2 lambda / R^2`, in `[0, 2/n]`.
     pub gamma2: T,
 }
 
 /// A mass, or an immovable body.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Mass<T> {
+    /// A mass `m > 0`; the ball's `inv_mass` is `1/m`.
     Finite(T),
+    /// An immovable body: `inv_mass = 0`.
     Infinite,
 }
 
@@ -141,6 +146,7 @@ impl<T: Scalar> Ball<T> {
         }
     }
 
+    /// Whether the ball is immovable: `inv_mass = 0`.
     pub fn is_immovable(&self) -> bool {
         self.inv_mass.is_zero()
     }

@@ -8,12 +8,19 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum BodyField {
+    /// The mass `m` (or the inverse mass `w = 1/m` of a [`Ball`](crate::Ball)).
     Mass,
+    /// The radius `R`.
     Radius,
+    /// The inertia parameter `lambda`, in `[0, R^2/n]`.
     Lambda,
+    /// `gamma^2 = 2 lambda / R^2`, in `[0, 2/n]`.
     Gamma2,
+    /// The named mass distribution (uniform or shell).
     Distribution,
+    /// The angular velocity `U` (skew).
     AngularVelocity,
+    /// The centre velocity `u`.
     Velocity,
 }
 
@@ -37,7 +44,9 @@ impl BodyField {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Field {
+    /// The dimension `n`.
     Dim,
+    /// The contact normal `nu` (unit, from body 1 to body 2).
     Normal,
     /// A field of body `i` (0-based: body 1 is `Body(0, ..)`).
     Body(usize, BodyField),
@@ -62,11 +71,14 @@ impl fmt::Display for Field {
 /// Invalid input to a checked operation: which field, and what is wrong with it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct InputError {
+    /// Where the error is.
     pub field: Field,
+    /// What is wrong with it (displayed after the field: `field: message`).
     pub message: String,
 }
 
 impl InputError {
+    /// The error `message` about `field`.
     pub fn new(field: Field, message: impl Into<String>) -> Self {
         Self {
             field,

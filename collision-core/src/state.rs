@@ -12,14 +12,21 @@ use num_traits::{Signed, Zero};
 /// The velocity of the body point `x` is `U (x - a) + u`, `a` the centre.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyState<T, const N: usize, const S: usize> {
+    /// Compact skew entries `U_ij`, `i < j`, of the angular velocity `U`.
     pub spin: [T; S],
+    /// The centre velocity `u`.
     pub velocity: [T; N],
 }
 
+/// A body's state in R^2 (`S = 1`).
 pub type State2<T> = BodyState<T, 2, 1>;
+/// A body's state in R^3 (`S = 3`).
 pub type State3<T> = BodyState<T, 3, 3>;
+/// A body's state in R^4 (`S = 6`).
 pub type State4<T> = BodyState<T, 4, 6>;
+/// A body's state in R^5 (`S = 10`).
 pub type State5<T> = BodyState<T, 5, 10>;
+/// A body's state in R^6 (`S = 15`).
 pub type State6<T> = BodyState<T, 6, 15>;
 
 /// The `(i, j)` index of each compact skew entry, for `n x n`.

@@ -30,10 +30,13 @@ use std::path::Path;
 /// One species: every ball of it shares these constants (exact).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Species {
+    /// The species' name (`species<i>` when the file gives none).
     pub name: String,
+    /// The mass `m > 0`.
     pub mass: BigRational,
     /// `w = 1/m`.
     pub inv_mass: BigRational,
+    /// The radius `R > 0`; `2 R` is below every side of the box.
     pub radius: BigRational,
     /// `gamma^2 = 2 lambda / R^2` in `[0, 2/n]`.
     pub gamma2: BigRational,
@@ -54,8 +57,11 @@ pub const MAX_BALLS: usize = 1 << 24;
 /// An explicitly placed ball.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BallSpec {
+    /// The index of its species in [`Scene::species`].
     pub species: usize,
+    /// The centre `a`: `R <= a_k <= L_k - R` on a walled axis, `0 <= a_k < L_k` on a periodic one.
     pub position: Vec<BigRational>,
+    /// The centre velocity `u` (0 when the file gives none).
     pub velocity: Vec<BigRational>,
     /// Compact skew entries `U_ij`, `i < j`.
     pub spin: Vec<BigRational>,
@@ -64,7 +70,9 @@ pub struct BallSpec {
 /// An immovable ball at rest.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Obstacle {
+    /// The centre, in `[0, L_k]` on every axis.
     pub position: Vec<BigRational>,
+    /// The radius, `> 0`.
     pub radius: BigRational,
 }
 
@@ -73,15 +81,20 @@ pub struct Obstacle {
 /// entries of `U` uniform in `[-spin, spin]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Random {
+    /// The seed of the placement's ChaCha8 stream (`random.seed`, default 0).
     pub seed: u64,
+    /// Velocity components are uniform in `[-speed, speed]`; `>= 0`, default 1.
     pub speed: BigRational,
+    /// Skew entries of `U` are uniform in `[-spin, spin]`; `>= 0`, default 0.
     pub spin: BigRational,
 }
 
 /// Defaults of a run (the command line overrides them).
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct RunDefaults {
+    /// Stop after this many contacts (at least 1).
     pub events: Option<u64>,
+    /// Stop at this simulated time (`> 0`).
     pub time: Option<BigRational>,
     /// Track each ball's orientation `A_i` in SO(n).
     pub orientation: bool,
@@ -92,24 +105,34 @@ pub struct RunDefaults {
 pub struct Scene {
     /// Where it came from (a file name), for messages.
     pub origin: String,
+    /// The scene's free-text `description` (empty when it has none).
     pub description: String,
+    /// The dimension `n`, in `2..=6`.
     pub dim: usize,
     /// The box is `[0, size_0] x .. x [0, size_{n-1}]`.
     pub size: Vec<BigRational>,
+    /// Per axis `k`: two flat walls (at 0 and `size_k`) or periodic.
     pub boundary: Vec<Boundary>,
+    /// The species, indexed as in the file (`species[i]`).
     pub species: Vec<Species>,
+    /// The explicitly placed balls (`[[ball]]`), in file order.
     pub balls: Vec<BallSpec>,
+    /// The fixed ball obstacles (`[[obstacle]]`).
     pub obstacles: Vec<Obstacle>,
+    /// How the species' `count` balls are placed (`[random]`).
     pub random: Random,
+    /// The run's defaults (`[simulation]`).
     pub simulation: RunDefaults,
 }
 
 /// A bad scene: where (`file: place`) and what.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SceneError {
+    /// Where the scene came from (a file name).
     pub origin: String,
     /// `line 4, column 1`, or a key path like `species[1].radius`.
     pub place: String,
+    /// What is wrong, in one line.
     pub message: String,
 }
 

@@ -13,7 +13,7 @@ use std::fmt;
 pub struct Number(pub BigRational);
 
 /// Largest decimal exponent accepted in a string (`1e400` would build a 400-digit integer).
-pub const MAX_EXPONENT: i64 = 400;
+pub(crate) const MAX_EXPONENT: i64 = 400;
 
 /// Most digits accepted in one number (the digits of a decimal's mantissa, or of a rational's
 /// numerator and denominator together), so that no input asks for huge integers, as the

@@ -6,13 +6,17 @@ use crate::{Boundary, Scene, Species};
 /// normal `-e_k`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum WallSide {
+    /// The wall at `x_k = 0`, normal `+e_k` into the box.
     Lower,
+    /// The wall at `x_k = L_k`, normal `-e_k` into the box.
     Upper,
 }
 
 impl WallSide {
+    /// Both sides, lower first (the emission order).
     pub const BOTH: [WallSide; 2] = [WallSide::Lower, WallSide::Upper];
 
+    /// `lower` or `upper`: the side's part of a kernel's function name.
     pub fn name(self) -> &'static str {
         match self {
             WallSide::Lower => "lower",
@@ -27,7 +31,9 @@ impl WallSide {
 pub struct PairSet {
     /// The module name (a Rust identifier).
     pub name: String,
+    /// The dimension `n`.
     pub dim: usize,
+    /// The species' exact constants, indexed as in the scene; the pairs refer to them by index.
     pub species: Vec<Species>,
     /// Ball-ball pairs `(a, b)`, `a <= b`, species indices.
     pub ball_ball: Vec<(usize, usize)>,
@@ -40,8 +46,11 @@ pub struct PairSet {
 /// A contact kind of a [`PairSet`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Pair {
+    /// Two balls, of species `a <= b`.
     BallBall(usize, usize),
+    /// A ball of species `s` against the wall on `side` of axis `k`: `(s, k, side)`.
     BallWall(usize, usize, WallSide),
+    /// A ball of species `s` against a fixed ball obstacle.
     BallObstacle(usize),
 }
 
@@ -79,7 +88,7 @@ impl PairSet {
 }
 
 /// A Rust identifier from a file stem: lower case, `_` for anything else.
-pub fn module_name(stem: &str) -> String {
+pub(crate) fn module_name(stem: &str) -> String {
     let mut s: String = stem
         .chars()
         .map(|c| {

@@ -3,21 +3,30 @@
 use crate::number::Number;
 use serde::Deserialize;
 
+/// A scene file's top level as written, before validation into a [`Scene`](crate::Scene).
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 pub struct RawScene {
+    /// `dim`: the dimension `n` (validation asks for `2..=6`).
     pub dim: usize,
+    /// `description`: free text.
     #[serde(default)]
     pub description: Option<String>,
+    /// The `[box]` table.
     #[serde(rename = "box")]
     pub domain: RawBox,
+    /// The `[[species]]` tables, in order.
     pub species: Vec<RawSpecies>,
+    /// The `[[ball]]` tables: explicitly placed balls.
     #[serde(default)]
     pub ball: Vec<RawBall>,
+    /// The `[[obstacle]]` tables: fixed balls at rest.
     #[serde(default)]
     pub obstacle: Vec<RawObstacle>,
+    /// The `[random]` table (its defaults when absent).
     #[serde(default)]
     pub random: RawRandom,
+    /// The `[simulation]` table (its defaults when absent).
     #[serde(default)]
     pub simulation: RawSimulation,
 }
@@ -26,37 +35,53 @@ pub struct RawScene {
 #[derive(Deserialize, Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[serde(rename_all = "lowercase")]
 pub enum Boundary {
+    /// `"wall"`: flat walls at `x_k = 0` and `x_k = L_k`.
     Wall,
+    /// `"periodic"`: `x_k` is taken modulo `L_k`.
     Periodic,
 }
 
+/// The `[box]` table: the box `[0, L_0] x .. x [0, L_{n-1}]`.
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 pub struct RawBox {
+    /// `size`: the side lengths `L_k`, one per axis.
     pub size: Vec<Number>,
+    /// `boundary`: `"wall"` or `"periodic"`, one per axis.
     pub boundary: Vec<Boundary>,
 }
 
+/// A species' mass distribution named instead of its `lambda` or `gamma2`.
 #[derive(Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum Distribution {
+    /// Uniform density: `lambda = R^2/(n+2)`, `gamma^2 = 2/(n+2)`.
     Uniform,
+    /// All mass on the sphere: `lambda = R^2/n`, `gamma^2 = 2/n`.
     Shell,
 }
 
+/// A `[[species]]` table. At most one of `lambda`, `gamma2` and `distribution`; none means uniform.
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 pub struct RawSpecies {
+    /// `name`: optional (`species<i>` by default).
     #[serde(default)]
     pub name: Option<String>,
+    /// `mass`: `m > 0`.
     pub mass: Number,
+    /// `radius`: `R > 0`.
     pub radius: Number,
+    /// `lambda = (1/(n m)) int |b|^2 dmu`, in `[0, R^2/n]`.
     #[serde(default)]
     pub lambda: Option<Number>,
+    /// `gamma2 = 2 lambda / R^2`, in `[0, 2/n]` (3D: `I/(m R^2)`).
     #[serde(default)]
     pub gamma2: Option<Number>,
+    /// `distribution`: `"uniform"` or `"shell"`.
     #[serde(default)]
     pub distribution: Option<Distribution>,
+    /// `count`: balls of this species placed at random (default 0).
     #[serde(default)]
     pub count: usize,
 }
@@ -66,47 +91,66 @@ pub struct RawSpecies {
 #[derive(Deserialize, Debug)]
 #[serde(untagged)]
 pub enum RawSpin {
+    /// 2D: `c`, with `U = c J`.
     Scalar(Number),
+    /// 3D: `omega`, with `U x = omega x x`.
     Vector(Vec<Number>),
+    /// Any `n`: the skew matrix `U`, row by row.
     Matrix(Vec<Vec<Number>>),
 }
 
+/// A `[[ball]]` table: one explicitly placed ball.
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 pub struct RawBall {
+    /// `species`: the index of its species.
     pub species: usize,
+    /// `position`: the centre, one coordinate per axis.
     pub position: Vec<Number>,
+    /// `velocity`: the centre velocity `u` (default 0).
     #[serde(default)]
     pub velocity: Option<Vec<Number>>,
+    /// `angular_velocity`: `U` (default 0).
     #[serde(default)]
     pub angular_velocity: Option<RawSpin>,
 }
 
+/// An `[[obstacle]]` table: a fixed ball at rest.
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 pub struct RawObstacle {
+    /// `position`: the centre.
     pub position: Vec<Number>,
+    /// `radius`: `> 0`.
     pub radius: Number,
 }
 
+/// The `[random]` table: the placement of the species' `count` balls.
 #[derive(Deserialize, Debug, Default)]
 #[serde(deny_unknown_fields)]
 pub struct RawRandom {
+    /// `seed`: of the ChaCha8 stream (default 0).
     #[serde(default)]
     pub seed: u64,
+    /// `speed`: velocity components uniform in `[-speed, speed]` (default 1).
     #[serde(default)]
     pub speed: Option<Number>,
+    /// `spin`: skew entries of `U` uniform in `[-spin, spin]` (default 0).
     #[serde(default)]
     pub spin: Option<Number>,
 }
 
+/// The `[simulation]` table: defaults for `noslip simulate`, which its flags override.
 #[derive(Deserialize, Debug, Default)]
 #[serde(deny_unknown_fields)]
 pub struct RawSimulation {
+    /// `events`: stop after this many contacts.
     #[serde(default)]
     pub events: Option<u64>,
+    /// `time`: stop at this simulated time.
     #[serde(default)]
     pub time: Option<Number>,
+    /// `orientation`: track each ball's orientation `A_i` in SO(n) (default false).
     #[serde(default)]
     pub orientation: bool,
 }

@@ -91,8 +91,10 @@ fn f64_allowance(s: &Q) -> Q {
 }
 
 /// The rule of collision-core's checked `collide`, compiled here from its one source file
-/// (collision-core builds with this crate, so this crate cannot depend on it).
+/// (collision-core builds with this crate, so this crate cannot depend on it). Its items are
+/// `pub` for collision-core's API and unreachable from this private module.
 #[path = "../../collision-core/src/allowance.rs"]
+#[allow(unreachable_pub)]
 mod allowance;
 
 fn spin(ctx: &Ctx, at: &str, s: &Option<RawSpin>, n: usize) -> Result<Vec<Q>, SceneError> {

@@ -53,7 +53,7 @@ impl<const N: usize> Grid<N> {
     /// The grid for a box of sides `size` holding `bodies` balls and obstacles whose largest
     /// contact distance is `d_max`; an error if a periodic side is shorter than
     /// `(d_max + s_k) / 2` (a reach above 2).
-    pub fn new(
+    pub(crate) fn new(
         size: [f64; N],
         periodic: [bool; N],
         d_max: f64,
@@ -160,23 +160,23 @@ impl<const N: usize> Grid<N> {
         std::array::from_fn(|k| self.offsets.iter().map(|o| o[k]).max().unwrap_or(0))
     }
 
-    pub fn cells(&self) -> usize {
+    pub(crate) fn cells(&self) -> usize {
         self.n.iter().product()
     }
 
-    pub fn flat(&self, c: &[usize; N]) -> usize {
+    pub(crate) fn flat(&self, c: &[usize; N]) -> usize {
         (0..N).fold(0, |acc, k| acc * self.n[k] + c[k])
     }
 
     /// The cell of a point inside the box (clamped, for points on the far boundary).
-    pub fn cell_of(&self, x: &[f64; N]) -> [usize; N] {
+    pub(crate) fn cell_of(&self, x: &[f64; N]) -> [usize; N] {
         std::array::from_fn(|k| {
             ((x[k] / self.width[k]).floor().max(0.0) as usize).min(self.n[k] - 1)
         })
     }
 
     /// Calls `f` for every cell within reach of cell `c` (with its image shift).
-    pub fn for_neighbours(&self, c: &[usize; N], mut f: impl FnMut(Neighbour<N>)) {
+    pub(crate) fn for_neighbours(&self, c: &[usize; N], mut f: impl FnMut(Neighbour<N>)) {
         'offsets: for o in &self.offsets {
             let mut cell = [0usize; N];
             let mut shift = [0i8; N];

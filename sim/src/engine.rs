@@ -60,9 +60,29 @@ use std::fmt;
 /// A contact: ball-ball (`i` is body 1), ball-wall or ball-obstacle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Contact {
-    Ball { i: usize, j: usize },
-    Wall { i: usize, axis: usize, upper: bool },
-    Obstacle { i: usize, obstacle: usize },
+    /// Two balls.
+    Ball {
+        /// Body 1's ball index.
+        i: usize,
+        /// Body 2's ball index.
+        j: usize,
+    },
+    /// A ball and a wall.
+    Wall {
+        /// The ball's index.
+        i: usize,
+        /// The wall's axis `k`.
+        axis: usize,
+        /// The wall at `x_k = L_k` if `true`, at `x_k = 0` if `false`.
+        upper: bool,
+    },
+    /// A ball and a fixed ball obstacle.
+    Obstacle {
+        /// The ball's index.
+        i: usize,
+        /// The obstacle's index in [`Setup::obstacles`].
+        obstacle: usize,
+    },
 }
 
 /// One contact with the states around it. Index 0 is ball `i`, index 1 ball `j` of a
@@ -70,11 +90,17 @@ pub enum Contact {
 /// normal from body 1 (ball `i`, the wall or the obstacle) to body 2 (ball `j`, or ball `i`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Event<const N: usize, const S: usize> {
+    /// The simulated time of the contact.
     pub time: f64,
+    /// Which bodies touch.
     pub contact: Contact,
+    /// The unit contact normal `nu`, from body 1 to body 2.
     pub nu: [f64; N],
+    /// The centres `a` of index 0 and index 1 at `time`.
     pub position: [[f64; N]; 2],
+    /// The states `(U, u)` of index 0 and index 1 before the contact.
     pub pre: [BodyState<f64, N, S>; 2],
+    /// The states `(U, u)` of index 0 and index 1 after the contact.
     pub post: [BodyState<f64, N, S>; 2],
 }
 
@@ -93,7 +119,11 @@ pub enum Step<const N: usize, const S: usize> {
     /// [`QUIET_BOX_LENGTHS`], then at twice, four times
     /// ... that). Contacts may still come (a flight nearly along a corridor of a periodic
     /// table); stepping again goes on.
-    Quiet { box_lengths: f64 },
+    Quiet {
+        /// The distance every moving ball travelled since the last contact, in longest box
+        /// sides.
+        box_lengths: f64,
+    },
 }
 
 /// The local clock is re-based when the fastest ball could have moved this many widths of
@@ -105,14 +135,36 @@ const CLOCK_CELLS: f64 = 16.0;
 #[non_exhaustive]
 pub enum SetupError {
     /// Box side `axis` is not positive and finite.
-    BoxSize { axis: usize, size: f64 },
+    BoxSize {
+        /// The axis `k`.
+        axis: usize,
+        /// The side `L_k` given.
+        size: f64,
+    },
     /// Ball `ball` names species `species`, which does not exist.
-    Species { ball: usize, species: usize },
+    Species {
+        /// The ball's index.
+        ball: usize,
+        /// The species index it names.
+        species: usize,
+    },
     /// Ball `ball` is outside the box along `axis`.
-    Outside { ball: usize, axis: usize },
+    Outside {
+        /// The ball's index.
+        ball: usize,
+        /// The axis `k` along which it is outside.
+        axis: usize,
+    },
     /// Periodic box side `axis` is shorter than half the largest contact distance `d_max`:
     /// a body would touch more than two images of another.
-    ShortSide { axis: usize, size: f64, d_max: f64 },
+    ShortSide {
+        /// The periodic axis `k`.
+        axis: usize,
+        /// The side `L_k`.
+        size: f64,
+        /// The largest contact distance, a sum of two radii (ball-ball or ball-obstacle).
+        d_max: f64,
+    },
 }
 
 impl fmt::Display for SetupError {
@@ -298,10 +350,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.crossings
     }
 
+    /// The number of balls.
     pub fn len(&self) -> usize {
         self.pos.len()
     }
 
+    /// Whether there are no balls.
     pub fn is_empty(&self) -> bool {
         self.pos.is_empty()
     }
@@ -311,10 +365,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.grid.size
     }
 
+    /// Ball `i`'s species index.
     pub fn species_of(&self, i: usize) -> usize {
         self.kind[i]
     }
 
+    /// Ball `i`'s state `(U, u)` (constant between contacts).
     pub fn state(&self, i: usize) -> &BodyState<f64, N, S> {
         &self.state[i]
     }

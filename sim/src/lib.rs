@@ -54,6 +54,7 @@ use collision_core::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};
 /// at rest and immovable, `nu` from the obstacle's centre to the ball's, and a wall's normal
 /// is `+e_axis` (the wall at `x_axis = 0`) or `-e_axis` (`upper`, at `x_axis = L`).
 pub trait PairKernels<T, const N: usize, const S: usize> {
+    /// The states of balls of species `a` (body 1) and `b` (body 2) after their contact.
     fn ball_ball(
         &self,
         a: usize,
@@ -62,6 +63,8 @@ pub trait PairKernels<T, const N: usize, const S: usize> {
         state1: &BodyState<T, N, S>,
         state2: &BodyState<T, N, S>,
     ) -> [BodyState<T, N, S>; 2];
+    /// The state of a ball of `species` after hitting the wall of `axis` (at `x_axis = L` if
+    /// `upper`, else at `x_axis = 0`).
     fn ball_wall(
         &self,
         species: usize,
@@ -69,6 +72,7 @@ pub trait PairKernels<T, const N: usize, const S: usize> {
         upper: bool,
         state: &BodyState<T, N, S>,
     ) -> BodyState<T, N, S>;
+    /// The state of a ball of `species` after hitting an obstacle.
     fn ball_obstacle(
         &self,
         species: usize,
@@ -80,6 +84,7 @@ pub trait PairKernels<T, const N: usize, const S: usize> {
 /// The generic generated kernels with each species' parameters passed at run time.
 #[derive(Clone, Debug)]
 pub struct GenericKernels<T> {
+    /// Each species' parameters, by species index.
     pub species: Vec<Ball<T>>,
 }
 
@@ -139,15 +144,20 @@ where
 /// A ball of a simulation: its species, centre and velocity state.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Body<const N: usize, const S: usize> {
+    /// The index of its species in [`Setup::species`].
     pub species: usize,
+    /// The centre `a`.
     pub position: [f64; N],
+    /// Angular velocity `U` and centre velocity `u`.
     pub state: BodyState<f64, N, S>,
 }
 
 /// A fixed ball obstacle, at rest.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FixedBall<const N: usize> {
+    /// The centre.
     pub position: [f64; N],
+    /// The radius `R`.
     pub radius: f64,
 }
 
@@ -155,10 +165,15 @@ pub struct FixedBall<const N: usize> {
 /// `periodic[k]`, else bounded by flat walls at `0` and `size_k`.
 #[derive(Clone, Debug)]
 pub struct Setup<const N: usize, const S: usize> {
+    /// The box sides `L_k`.
     pub size: [f64; N],
+    /// Per axis: periodic, or bounded by walls at `0` and `L_k`.
     pub periodic: [bool; N],
+    /// Each species' parameters, by species index.
     pub species: Vec<Ball<f64>>,
+    /// The fixed ball obstacles.
     pub obstacles: Vec<FixedBall<N>>,
+    /// The balls.
     pub bodies: Vec<Body<N, S>>,
     /// Track orientations `A_i` (starting at the identity).
     pub orientation: bool,

@@ -69,7 +69,7 @@ impl<const N: usize> Flight<'_, N> {
     /// [`NoContact::Separated`] if it holds; `None` if it does not, or if the pair test would
     /// cost more than `budget` pair checks (it stops at the first pair that may touch, so in a
     /// gas it costs O(1)).
-    pub fn separated(&self, budget: usize) -> Option<NoContact> {
+    pub(crate) fn separated(&self, budget: usize) -> Option<NoContact> {
         let walled = (0..N).filter(|&k| !self.periodic[k]);
         for i in 0..self.balls {
             let v = (self.velocity)(i);
@@ -168,7 +168,7 @@ impl<const N: usize> Flight<'_, N> {
     }
 
     /// The least speed of the moving balls (`None` if all are at rest).
-    pub fn least_speed(&self) -> Option<f64> {
+    pub(crate) fn least_speed(&self) -> Option<f64> {
         (0..self.balls)
             .map(|i| (self.velocity)(i).iter().map(|x| x * x).sum::<f64>().sqrt())
             .filter(|&s| s > 0.0)

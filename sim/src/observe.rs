@@ -15,12 +15,16 @@ use collision_core::{Ball, BodyState};
 /// walls or obstacles); `L` also needs no walls, obstacles or periodic wrapping.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Observables<const N: usize, const S: usize> {
+    /// Kinetic energy `E = sum 1/2 m (|u|^2 + 2 lambda sum_{i<j} U_ij^2)`.
     pub energy: f64,
+    /// Linear momentum `p = sum m u`.
     pub momentum: [f64; N],
+    /// Angular momentum `L` about the origin, compact skew entries `L_ij`, `i < j`.
     pub angular_momentum: [f64; S],
 }
 
 impl<const N: usize, const S: usize> Observables<N, S> {
+    /// The totals over `balls`, each given as (parameters, centre `a`, state).
     pub fn of<'a>(
         balls: impl IntoIterator<Item = (&'a Ball<f64>, &'a [f64; N], &'a BodyState<f64, N, S>)>,
     ) -> Self {

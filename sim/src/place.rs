@@ -74,10 +74,12 @@ impl<const N: usize> Cells<N> {
         self.head[cell] = self.next.len() as u32;
     }
 
+    /// The number of items inserted.
     pub fn len(&self) -> usize {
         self.next.len()
     }
 
+    /// Whether no item has been inserted.
     pub fn is_empty(&self) -> bool {
         self.next.is_empty()
     }

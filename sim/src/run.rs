@@ -24,7 +24,13 @@ pub enum Progress {
     Events(u64),
     /// No contact while every moving ball travelled `box_lengths` box lengths, at simulated
     /// time `time` (the engine's [`Step::Quiet`]); the run goes on.
-    Quiet { box_lengths: f64, time: f64 },
+    Quiet {
+        /// The distance every moving ball travelled since the last contact, in longest box
+        /// sides.
+        box_lengths: f64,
+        /// The simulated time of the notice.
+        time: f64,
+    },
 }
 
 /// When to stop, and how much to record.
@@ -48,22 +54,37 @@ pub struct Limits {
 /// angular momentum.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Summary {
+    /// The dimension `n`.
     pub dim: usize,
+    /// The number of balls.
     pub balls: usize,
+    /// Contacts processed.
     pub events: u64,
+    /// Ball-ball contacts among them.
     pub ball_ball: u64,
+    /// Ball-wall contacts among them.
     pub ball_wall: u64,
+    /// Ball-obstacle contacts among them.
     pub ball_obstacle: u64,
+    /// Cell crossings processed.
     pub cell_crossings: u64,
+    /// The simulated time at the end.
     pub time: f64,
+    /// Wall-clock seconds the run took.
     pub seconds: f64,
+    /// `events / seconds`.
     pub events_per_second: f64,
+    /// Kinetic energy `E_0` at the start.
     pub energy_start: f64,
+    /// Kinetic energy `E` at the end.
     pub energy_end: f64,
+    /// `|E - E_0| / E_0` at the end of the run.
     pub energy_drift: f64,
     /// The largest `|E - E_0| / E_0` over the samples.
     pub energy_drift_max: f64,
+    /// `|p - p_0| / sum m |u|_0` at the end of the run.
     pub momentum_drift: f64,
+    /// `|L - L_0| / sum m (|a| |u| + 2 lambda |U|)_0` at the end of the run.
     pub angular_momentum_drift: f64,
     /// Why the run stopped before its limits: the engine found that no contact will happen
     /// again ([`crate::NoContact`]), or none came within [`MAX_QUIET_BOX_LENGTHS`].

@@ -9,9 +9,12 @@
 
 use noslip_codegen::ir::{Graph, Id, Node};
 
+/// Bounds on the total degrees of a numerator and a denominator that represent a node.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Degree {
+    /// The numerator's degree, at most.
     pub num: u64,
+    /// The denominator's degree, at most.
     pub den: u64,
 }
 

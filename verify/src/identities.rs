@@ -12,7 +12,9 @@ use noslip_codegen::model::{skew_pairs, skew_times, wedge, BodyInputs, KernelInp
 /// A body's velocity state as DAG nodes.
 #[derive(Clone, Debug)]
 pub struct StateIds {
+    /// Compact skew entries of `U`, in `skew_pairs` order.
     pub spin: Vec<Id>,
+    /// Centre velocity `u`, one node per component.
     pub velocity: Vec<Id>,
 }
 
@@ -25,6 +27,7 @@ impl From<&BodyInputs> for StateIds {
     }
 }
 
+/// The states before the collision: the kernel inputs' `U` and `u` of bodies 1 and 2.
 pub fn before(inputs: &KernelInputs) -> [StateIds; 2] {
     [(&inputs.bodies[0]).into(), (&inputs.bodies[1]).into()]
 }
@@ -156,6 +159,8 @@ fn energy(g: &mut Graph, inputs: &KernelInputs, s: &[StateIds; 2], bodies: &[usi
     g.sum(terms)
 }
 
+/// `2 (E_after - E_before)` over the movable `bodies` (0-based): zero iff the kinetic energy
+/// is kept.
 pub fn energy_conserved(
     g: &mut Graph,
     inputs: &KernelInputs,

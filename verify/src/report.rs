@@ -9,8 +9,11 @@ pub enum Proof {
     /// A rational-function identity checked exactly at random points of `S^k`; a false one
     /// passes with probability at most `bound = (degree / set_size)^points`.
     Identity {
+        /// A bound on the degree of the identity's numerator.
         degree: u64,
+        /// `|S|`: every free input is drawn uniformly from `S = {1, .., set_size}`.
         set_size: u64,
+        /// `min(1, degree / set_size)^points`.
         bound: f64,
     },
     /// Exact facts at the sampled configurations (ranks, orthogonality).
@@ -19,28 +22,44 @@ pub enum Proof {
     ExactComputation,
 }
 
+/// One check's outcome: a row of the report.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CheckResult {
+    /// The dimension `n`.
     pub dim: usize,
+    /// `free`, `fixed`, or `any` for a check of no kernel.
     pub variant: String,
+    /// What is checked, in words (`conserved: kinetic energy`).
     pub check: String,
+    /// Whether it holds.
     pub passed: bool,
+    /// What it was checked at: random points, configurations, sequence terms or densities.
     pub points: usize,
+    /// What a pass establishes.
     pub proof: Proof,
+    /// Why it failed, or figures it computed; often empty.
     pub detail: String,
+    /// Wall-clock seconds it took (0 in the golden copy).
     pub seconds: f64,
 }
 
+/// The results of a verification run: `verify.json` and `verify.md`.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Report {
+    /// The program and its version (`noslip 0.1.0`).
     pub tool: String,
+    /// The seed the sample points are drawn from.
     pub seed: u64,
+    /// Random points per identity check.
     pub points: usize,
+    /// Every check's result, in the order run.
     pub results: Vec<CheckResult>,
+    /// Wall-clock seconds of the whole run (0 in the golden copy).
     pub seconds: f64,
 }
 
 impl Report {
+    /// Whether every check passed.
     pub fn passed(&self) -> bool {
         self.results.iter().all(|r| r.passed)
     }
@@ -53,10 +72,12 @@ impl Report {
         r
     }
 
+    /// `verify.json`: the report as indented JSON, ending in a newline.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("report serialises") + "\n"
     }
 
+    /// `verify.md`: a summary, then per dimension a table of the checks.
     pub fn to_markdown(&self) -> String {
         let mut md = format!(
             "# Exact verification of the generated kernels\n\n\

@@ -25,16 +25,21 @@ pub fn element(rng: &mut Rng) -> Exact {
 /// One exact point: a normal and two bodies (body 1 immovable when `fixed`).
 #[derive(Clone, Debug)]
 pub struct Point<const N: usize, const S: usize> {
+    /// The unit normal `nu`, from body 1 to body 2.
     pub nu: [Exact; N],
+    /// Body 1's and body 2's parameters.
     pub balls: [Ball<Exact>; 2],
+    /// Body 1's and body 2's states `(U, u)`.
     pub states: [BodyState<Exact, N, S>; 2],
 }
 
+/// An exact unit normal: `nu = (2 y, |y|^2 - 1) / (|y|^2 + 1)` with `y` uniform in `S^(n-1)`.
 pub fn normal<const N: usize>(rng: &mut Rng) -> [Exact; N] {
     let y: Vec<Exact> = (0..N - 1).map(|_| element(rng)).collect();
     stereographic_normal(&y).try_into().expect("N components")
 }
 
+/// A random point: every free input uniform in `S` (body 1's `inv_mass` 0 when `fixed`).
 pub fn point<const N: usize, const S: usize>(rng: &mut Rng, fixed: bool) -> Point<N, S> {
     let nu = normal::<N>(rng);
     let mut ball = |movable: bool| Ball {

@@ -18,6 +18,7 @@ pub struct Options {
     pub points: usize,
     /// Random configurations per structural check.
     pub configurations: usize,
+    /// The seed of every random stream (each check derives its own from it).
     pub seed: u64,
 }
 

@@ -43,12 +43,14 @@ pub enum Mutation {
 }
 
 impl Mutation {
+    /// Every mutation.
     pub const ALL: [Mutation; 3] = [
         Mutation::FlippedSign,
         Mutation::DroppedTerm,
         Mutation::WrongConstant,
     ];
 
+    /// A short name, for messages.
     pub fn name(self) -> &'static str {
         match self {
             Mutation::FlippedSign => "flipped sign",

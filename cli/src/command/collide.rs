@@ -98,6 +98,7 @@ Dimensions:
     )
 }
 
+/// The arguments of `noslip collide`.
 #[derive(clap::Args)]
 #[command(about = ABOUT, long_about = LONG_ABOUT, after_long_help = after_long_help())]
 pub struct Args {

@@ -18,6 +18,7 @@ writes from a build script.
 --check K compares every specialised kernel, exactly and at K random points, with the generic
 kernel run with the same constants, and exits 1 on any difference.";
 
+/// The arguments of `noslip gen`.
 #[derive(clap::Args)]
 #[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
@@ -43,6 +44,8 @@ pub const CODES: &[Exit] = &[
     Exit::BadInput,
 ];
 
+/// Print the scene's specialised kernels (or only their op counts), or with `--check` compare
+/// them exactly with the generic kernels.
 pub fn run(args: &Args) -> Result<Exit, Failure> {
     let scene = Scene::from_file(&args.scene).map_err(|e| Failure::bad_input(e.to_string()))?;
     let set = scene.pairs();

@@ -28,6 +28,7 @@ problem's conditioning; no NaN or infinity anywhere.
 Writes report.md, report.json and error-vs-time-nN.svg into the directory --out, replaced as
 one set; prints one summary line.";
 
+/// The arguments of `noslip report`.
 #[derive(clap::Args)]
 #[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
@@ -69,7 +70,7 @@ pub fn options(args: &Args) -> Result<Options, Failure> {
     Ok(opts)
 }
 
-/// Run the command.
+/// Run the accuracy report for `--dims` and publish it into `--out`.
 pub fn run(args: &Args) -> Result<Exit, Failure> {
     let opts = options(args)?;
     let command = format!(

@@ -34,6 +34,7 @@ cannot be written, the run still ends, prints and writes its summary, and exits 
 A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, \"The
 scene in f64\") is refused with exit code 2, naming the field.";
 
+/// The arguments of `noslip simulate`.
 #[derive(clap::Args)]
 #[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {

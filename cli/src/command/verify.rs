@@ -28,6 +28,7 @@ polynomial and layered radial densities lies in [0, R^2/n]; negative densities a
 Writes verify.md and verify.json into the directory --out, replaced as one set (see
 docs/verification.md); prints one summary line.";
 
+/// The arguments of `noslip verify`.
 #[derive(clap::Args)]
 #[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
 pub struct Args {
@@ -84,7 +85,8 @@ pub fn options(args: &Args) -> Result<Options, Failure> {
     Ok(opts)
 }
 
-/// Run the command.
+/// Run the exact checks for `--dims` and publish the reports into `--out`; compare them with
+/// the golden copy or rewrite it when asked.
 pub fn run(args: &Args) -> Result<Exit, Failure> {
     let opts = options(args)?;
     let golden_path = args.golden.clone().unwrap_or_else(shipped_golden);

@@ -54,10 +54,15 @@ pub enum Spin<T> {
 /// One body as given.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyInput<T> {
+    /// `mass`: a number, or `"inf"` for an immovable body.
     pub mass: Mass<T>,
+    /// `radius`: `R`.
     pub radius: T,
+    /// From `lambda`, `gamma2` or `distribution` (uniform when none is given).
     pub inertia: Inertia<T>,
+    /// `angular_velocity`: `U`, in the form given.
     pub spin: Spin<T>,
+    /// `velocity`: the centre velocity `u`.
     pub velocity: Vec<T>,
 }
 
@@ -65,8 +70,11 @@ pub struct BodyInput<T> {
 /// `dim x dim`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Case<T> {
+    /// `dim`: the dimension `n` (at most [`MAX_DIM`]).
     pub dim: usize,
+    /// `normal`: the unit contact normal `nu`, from body 1 to body 2.
     pub normal: Vec<T>,
+    /// `bodies`: body 1 and body 2.
     pub bodies: [BodyInput<T>; 2],
 }
 

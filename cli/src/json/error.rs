@@ -14,6 +14,7 @@ pub struct CaseError {
 }
 
 impl CaseError {
+    /// The error `message` (kept on one line) about the field at path `field`.
     pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
         Self {
             field: field.into(),

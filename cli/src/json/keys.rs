@@ -9,7 +9,9 @@ use std::fmt;
 /// One step of a path into a JSON value.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Step {
+    /// An index into an array.
     Index(usize),
+    /// A key of an object.
     Key(String),
 }
 

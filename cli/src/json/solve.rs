@@ -19,7 +19,9 @@ use nalgebra::DVector;
 /// the order of [`collision_core::skew_pairs`]) and the velocity.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyOutput<T> {
+    /// Compact entries `U_ij`, `i < j`, of the angular velocity after the collision.
     pub spin: Vec<T>,
+    /// The centre velocity `u` after the collision.
     pub velocity: Vec<T>,
 }
 

@@ -41,6 +41,7 @@ impl Default for Config {
 }
 
 impl Config {
+    /// The defaults: paths `collision_core` and `noslip_sim`, `$OUT_DIR`, no scenes yet.
     pub fn new() -> Self {
         Self::default()
     }

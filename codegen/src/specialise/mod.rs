@@ -44,18 +44,26 @@ pub fn variant(pair: Pair) -> Variant {
 /// The cost of one specialised kernel and of the generic kernel it replaces.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PairSummary {
+    /// The contact kind it serves.
     pub pair: Pair,
+    /// Its arithmetic operations, with the species constants folded in.
     pub ops: OpCount,
+    /// Intermediate terms (`let` bindings of computed values).
     pub terms: usize,
+    /// The operations of the generic kernel it replaces ([`variant`] of `pair`).
     pub generic_ops: OpCount,
 }
 
 /// A generated scene module and its costs.
 #[derive(Clone, Debug)]
 pub struct SceneModule {
+    /// The module name (a Rust identifier: [`PairSet::name`]).
     pub name: String,
+    /// The dimension `n`.
     pub dim: usize,
+    /// The formatted file: header (provenance and costs), the kernels and their dispatch.
     pub source: String,
+    /// The cost of each pair's kernel, in emission order.
     pub pairs: Vec<PairSummary>,
 }
 

@@ -21,6 +21,7 @@ impl<B> Default for Batch<B> {
 }
 
 impl<B: Lanewise> Batch<B> {
+    /// An empty batch.
     pub fn new() -> Self {
         Self::default()
     }
@@ -38,6 +39,7 @@ impl<B: Lanewise> Batch<B> {
         self.len
     }
 
+    /// Whether the batch holds no items.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }

@@ -86,6 +86,7 @@ impl Exec {
         }
     }
 
+    /// The instruction set the batch kernels run on.
     pub fn isa(&self) -> Isa {
         self.isa
     }

@@ -26,6 +26,7 @@ impl Lane {
         (0..LANES).map(Lane)
     }
 
+    /// The lane's index, `< LANES`.
     pub fn index(self) -> usize {
         self.0
     }
@@ -76,8 +77,11 @@ impl<B: Lanewise, const K: usize> Lanewise for [B; K] {
 /// The parameters of `LANES` balls ([`Ball`]'s fields, lane by lane).
 #[derive(Clone, Debug, PartialEq)]
 pub struct BallLanes<T> {
+    /// Inverse masses `w = 1/m`, one per lane.
     pub inv_mass: Lanes<T>,
+    /// Radii `R`, one per lane.
     pub radius: Lanes<T>,
+    /// `gamma^2 = 2 lambda / R^2`, one per lane.
     pub gamma2: Lanes<T>,
 }
 
@@ -109,7 +113,9 @@ impl<T: Clone> Lanewise for BallLanes<T> {
 /// The states of `LANES` bodies ([`BodyState`]'s fields, lane by lane).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StateLanes<T, const N: usize, const S: usize> {
+    /// Compact skew entries `U_ij`, `i < j`, each a lane array.
     pub spin: [Lanes<T>; S],
+    /// Centre velocity components `u_k`, each a lane array.
     pub velocity: [Lanes<T>; N],
 }
 
@@ -137,14 +143,18 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for StateLanes<T, N, S> 
 /// and both bodies' states before the collision.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Contact<T, const N: usize, const S: usize> {
+    /// The unit contact normal `nu`, from body 1 to body 2.
     pub nu: [T; N],
+    /// Body 1's and body 2's states before the collision.
     pub states: [BodyState<T, N, S>; 2],
 }
 
 /// [`Contact`]s of `LANES` contacts: the block of the shared-parameter kernels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactLanes<T, const N: usize, const S: usize> {
+    /// The components of `nu`, each a lane array.
     pub nu: [Lanes<T>; N],
+    /// Body 1's and body 2's states, lane by lane.
     pub states: [StateLanes<T, N, S>; 2],
 }
 
@@ -172,7 +182,9 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for ContactLanes<T, N, S
 /// per-contact `free` kernel. One lane is `(contact, [ball1, ball2])`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FreeLanes<T, const N: usize, const S: usize> {
+    /// The contacts' normals and states.
     pub contact: ContactLanes<T, N, S>,
+    /// Body 1's and body 2's parameters, lane by lane.
     pub balls: [BallLanes<T>; 2],
 }
 
@@ -198,8 +210,11 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for FreeLanes<T, N, S> {
 /// `(contact, radius1, ball2)`; the immovable body enters through its radius alone.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FixedLanes<T, const N: usize, const S: usize> {
+    /// The contacts' normals and states.
     pub contact: ContactLanes<T, N, S>,
+    /// The immovable body 1's radius `R_1`, one per lane.
     pub radius1: Lanes<T>,
+    /// The free body 2's parameters, lane by lane.
     pub ball2: BallLanes<T>,
 }
 

@@ -32,6 +32,8 @@ pub enum Identity {
 }
 
 impl Identity {
+    /// The identities checked for `variant`: linear momentum and the point-mass limit for `free`
+    /// only, the mass limit for `fixed` only.
     pub fn for_variant(variant: Variant) -> &'static [Identity] {
         use Identity::*;
         match variant {
@@ -47,6 +49,7 @@ impl Identity {
         }
     }
 
+    /// The check's name in the report (`conserved: kinetic energy`).
     pub fn name(self) -> &'static str {
         match self {
             Identity::Reflection => "map: reflection across G_q",

@@ -29,7 +29,9 @@ fn max_diff<const N: usize, const S: usize>(
 /// Which limit.
 #[derive(Clone, Copy, Debug)]
 pub enum Limit {
+    /// `m_1 -> inf`: the free map at `w_1 = 10^-k` against the `fixed` kernel.
     Mass,
+    /// `lambda_1 -> 0`: the free map at `gamma2_1 = 10^-k` against the free map at `gamma2_1 = 0`.
     PointMass,
 }
 

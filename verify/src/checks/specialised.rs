@@ -22,7 +22,9 @@ use noslip_sim::{GenericKernels, PairKernels};
 /// The outcome for one pair kind.
 #[derive(Clone, Debug)]
 pub struct PairCheck {
+    /// The pair kind compared.
     pub pair: Pair,
+    /// Random points compared.
     pub points: usize,
     /// Points where the two differ (0 when the check passes).
     pub mismatches: usize,

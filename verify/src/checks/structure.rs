@@ -16,10 +16,15 @@ use num_traits::{One, Zero};
 /// What the structural checks found at one configuration.
 #[derive(Debug)]
 pub struct Structure {
+    /// `dim G_q`: the rank of the no-slip subspace's basis.
     pub dim_g: usize,
+    /// `dim Ebar_q`: the rank of the tangential impulses' velocity changes.
     pub dim_ebar: usize,
+    /// `dim E_q`: the rank of all impulses' velocity changes.
     pub dim_e: usize,
+    /// The rank of `G_q`, `Ebar_q` and `n_q` together.
     pub span: usize,
+    /// The dimension of the movable bodies' state space (`n(n-1) + 2n` for two free bodies).
     pub space: usize,
 }
 
