@@ -47,15 +47,22 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Subcommand)]
 pub enum Command {
-    /// Collide two balls: a JSON case in, the states after contact out.
+    // A variant's doc comment is its `about` and would also replace the long help the
+    // command's own module writes; `long_about` here puts that back.
+    /// Collide two balls in contact: JSON cases in, post-collision states out.
+    #[command(long_about = command::collide::LONG_ABOUT)]
     Collide(command::collide::Args),
     /// Prove the generated kernels exact: identities, decomposition, inertia; writes reports.
+    #[command(long_about = command::verify::LONG_ABOUT)]
     Verify(command::verify::Args),
     /// Error against run time of every kernel variant, in typical and extreme regimes.
+    #[command(long_about = command::report::LONG_ABOUT)]
     Report(command::report::Args),
     /// Run a scene: event-driven no-slip billiard / rough-ball gas; summary, log, plots.
+    #[command(long_about = command::simulate::LONG_ABOUT)]
     Simulate(command::simulate::Args),
     /// Print the kernels specialised to a scene, with op counts (or check them exactly).
+    #[command(long_about = command::gen::LONG_ABOUT)]
     Gen(command::gen::Args),
 }
 
@@ -68,4 +75,33 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Simulate(args) => command::simulate::run(&args),
         Command::Gen(args) => command::gen::run(&args),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    /// Each subcommand's `--help` shows the long description its module writes, and its exit
+    /// codes.
+    #[test]
+    fn each_subcommand_long_help_is_its_own() {
+        let mut cli = Cli::command();
+        for (name, long) in [
+            ("collide", command::collide::LONG_ABOUT),
+            ("verify", command::verify::LONG_ABOUT),
+            ("report", command::report::LONG_ABOUT),
+            ("simulate", command::simulate::LONG_ABOUT),
+            ("gen", command::gen::LONG_ABOUT),
+        ] {
+            let help = cli
+                .find_subcommand_mut(name)
+                .expect("a subcommand")
+                .render_long_help()
+                .to_string();
+            let first = long.lines().next().expect("a first line").trim();
+            assert!(help.contains(first), "{name} --help lacks {first:?}:\n{help}");
+            assert!(help.contains("Exit codes:"), "{name} --help lacks its exit codes");
+        }
+    }
 }

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 const ABOUT: &str = "Collide two balls in contact: JSON cases in, post-collision states out";
 
-const LONG_ABOUT: &str = "\
+pub(crate) const LONG_ABOUT: &str = "\
 Collide two balls in contact. Reads a case (or a JSON array of cases) from FILE or stdin \
 and prints the post-collision states as JSON on one line, in the same order: an array \
 gives an array, a single case a single object. On the first invalid case nothing is \

@@ -7,7 +7,7 @@ use noslip_scene::Scene;
 use noslip_verify::checks::specialised::check;
 use std::path::PathBuf;
 
-const LONG_ABOUT: &str = "\
+pub(crate) const LONG_ABOUT: &str = "\
 Print the Rust module of kernels specialised to a scene: only its dimension, only the pair
 kinds it can meet (ball-ball per species pair, ball-wall per species and wall, ball-obstacle
 per species), each species' mass, radius and gamma2 folded into exact literals, so no

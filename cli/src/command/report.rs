@@ -11,7 +11,7 @@ use noslip_accuracy::{dim_result, AccuracyReport, Options, Provenance};
 use std::path::PathBuf;
 use std::time::Instant;
 
-const LONG_ABOUT: &str = "\
+pub(crate) const LONG_ABOUT: &str = "\
 Measure every kernel variant's error against exact rational ground truth, and its run time.
 
 Variants: the generated kernels in f64, in f64 with fused multiply-adds, in f32 and in exact

@@ -15,7 +15,7 @@ use noslip_sim::{GenericKernels, Setup, Simulation};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-const LONG_ABOUT: &str = "\
+pub(crate) const LONG_ABOUT: &str = "\
 Run a scene (TOML, see docs/scenes.md): an event-driven simulation of rigid balls with
 no-slip collisions. Balls fly freely between events; at each ball-ball, ball-wall or
 ball-obstacle contact the pair's state jumps by the no-slip map (the generated f64 kernels).

@@ -11,7 +11,7 @@ use noslip_verify::suite::{self, checks_per_dim, Options};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-const LONG_ABOUT: &str = "\
+pub(crate) const LONG_ABOUT: &str = "\
 Prove, in exact rational arithmetic, that the compiled generated kernels are the no-slip map.
 
 For each dimension and kernel variant (free: both bodies move; fixed: body 1 immovable) the
