@@ -1,10 +1,10 @@
 //! Shared helpers of the cross-crate tests: deterministic exact sampling of valid collision
 //! inputs, and the physical quantities the tests compare.
 
-use collision_core::{skew_pairs, stereographic_normal, Ball, BodyState, Exact, Scalar};
-use num_traits::{One, Zero};
 /// The project's seeded stream, so that every exact test is reproducible.
 pub use collision_core::rng::Rng;
+use collision_core::{skew_pairs, stereographic_normal, Ball, BodyState, Exact, Scalar};
+use num_traits::{One, Zero};
 
 /// Uniform integer in `lo..=hi`.
 pub fn int(rng: &mut Rng, lo: i64, hi: i64) -> i64 {

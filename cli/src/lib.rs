@@ -100,8 +100,14 @@ mod tests {
                 .render_long_help()
                 .to_string();
             let first = long.lines().next().expect("a first line").trim();
-            assert!(help.contains(first), "{name} --help lacks {first:?}:\n{help}");
-            assert!(help.contains("Exit codes:"), "{name} --help lacks its exit codes");
+            assert!(
+                help.contains(first),
+                "{name} --help lacks {first:?}:\n{help}"
+            );
+            assert!(
+                help.contains("Exit codes:"),
+                "{name} --help lacks its exit codes"
+            );
         }
     }
 }

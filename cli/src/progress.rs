@@ -6,21 +6,21 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::{self, IsTerminal, Write};
 
 /// Progress of a long run on stderr: a bar on a terminal, a line now and then elsewhere.
-pub struct Progress {
+pub struct ProgressDisplay {
     /// `Some` on a terminal.
     bar: Option<ProgressBar>,
 }
 
-impl Progress {
+impl ProgressDisplay {
     /// `len` steps; `unit` names them in the bar (`checks`, `regimes`).
-    pub fn new(len: u64, unit: &str) -> Progress {
+    pub fn new(len: u64, unit: &str) -> ProgressDisplay {
         let bar = io::stderr().is_terminal().then(|| {
             let bar = ProgressBar::new(len);
             let template = format!("{{bar:30}} {{pos}}/{{len}} {unit}  {{msg}}");
             bar.set_style(ProgressStyle::with_template(&template).expect("a valid template"));
             bar
         });
-        Progress { bar }
+        ProgressDisplay { bar }
     }
 
     /// What is running now (the bar's message; nothing off a terminal).

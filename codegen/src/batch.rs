@@ -33,7 +33,7 @@
 
 use crate::emit::{self, ident, lit, Namer};
 use crate::ir::{Graph, Id, Node};
-use crate::model::{self, names, skew_pairs, Kernel, Variant};
+use crate::model::{self, names, skew_pairs, KernelGraph, Variant};
 use crate::schedule::{schedule, OpCount, Schedule};
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -210,7 +210,12 @@ fn signature(n: usize, variant: Variant, params: Params) -> (TokenStream, TokenS
     (quote!(#shared blocks: &[#block], out: &mut [#post]), block)
 }
 
-fn docs(kernel: &Kernel, params: Params, per_contact: OpCount, per_batch: OpCount) -> TokenStream {
+fn docs(
+    kernel: &KernelGraph,
+    params: Params,
+    per_contact: OpCount,
+    per_batch: OpCount,
+) -> TokenStream {
     let scalar = kernel.variant.name();
     let mut lines = vec![
         format!(
@@ -247,7 +252,7 @@ fn docs(kernel: &Kernel, params: Params, per_contact: OpCount, per_batch: OpCoun
     emit::doc_lines(&lines)
 }
 
-fn emit_batch(kernel: &Kernel, params: Params) -> EmittedBatch {
+fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
     let (n, variant) = (kernel.dim, kernel.variant);
     let roots = kernel
         .outputs
@@ -389,7 +394,7 @@ fn header(dim: usize, kernels: &[BatchSummary]) -> String {
 ///
 /// Panics if the emission is not valid Rust: a generator bug.
 pub fn generate(dim: usize, crate_path: &str) -> BatchModule {
-    let built: Vec<Kernel> = Variant::ALL.iter().map(|&v| model::build(dim, v)).collect();
+    let built: Vec<KernelGraph> = Variant::ALL.iter().map(|&v| model::build(dim, v)).collect();
     let emitted: Vec<EmittedBatch> = Params::ALL
         .iter()
         .flat_map(|&p| built.iter().map(move |k| emit_batch(k, p)))

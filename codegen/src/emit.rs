@@ -8,7 +8,7 @@
 
 use crate::fuse::{fuse, Fused, Fusion};
 use crate::ir::{Id, Node};
-use crate::model::{self, names, skew_pairs, Kernel, Variant};
+use crate::model::{self, names, skew_pairs, KernelGraph, Variant};
 use crate::schedule::{schedule, OpCount, Schedule};
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -104,12 +104,12 @@ pub(crate) fn const_value(c: &BigRational) -> TokenStream {
 }
 
 pub(crate) struct Namer<'a> {
-    kernel: &'a Kernel,
+    kernel: &'a KernelGraph,
     names: HashMap<Id, String>,
 }
 
 impl<'a> Namer<'a> {
-    pub(crate) fn new(kernel: &'a Kernel, sched: &Schedule, steps: &[Id]) -> Self {
+    pub(crate) fn new(kernel: &'a KernelGraph, sched: &Schedule, steps: &[Id]) -> Self {
         let g = &kernel.graph;
         let mut names = HashMap::new();
         let mut used = BTreeSet::new();
@@ -231,7 +231,7 @@ fn text_block(formulas: &str) -> String {
     format!("```text\n{formulas}```")
 }
 
-pub(crate) fn description(kernel: &Kernel) -> Vec<String> {
+pub(crate) fn description(kernel: &KernelGraph) -> Vec<String> {
     let n = kernel.dim;
     let mut lines = match kernel.variant {
         Variant::Free => vec![
@@ -281,12 +281,12 @@ pub struct EmittedBody {
 }
 
 /// Schedule a kernel and emit its bindings and output expressions, plain arithmetic.
-pub fn emit_body(kernel: &Kernel) -> EmittedBody {
+pub fn emit_body(kernel: &KernelGraph) -> EmittedBody {
     emit_body_as(kernel, Arith::Plain)
 }
 
 /// Schedule a kernel and emit its bindings and output expressions with `arith`.
-pub fn emit_body_as(kernel: &Kernel, arith: Arith) -> EmittedBody {
+pub fn emit_body_as(kernel: &KernelGraph, arith: Arith) -> EmittedBody {
     let roots: Vec<Id> = kernel
         .outputs
         .iter()
@@ -344,12 +344,12 @@ pub fn emit_body_as(kernel: &Kernel, arith: Arith) -> EmittedBody {
 }
 
 /// Emit one kernel as a generic function with plain arithmetic.
-pub fn emit_kernel(kernel: &Kernel) -> EmittedKernel {
+pub fn emit_kernel(kernel: &KernelGraph) -> EmittedKernel {
     emit_kernel_as(kernel, Arith::Plain)
 }
 
 /// Emit one kernel as a generic function, with the arithmetic `arith`.
-pub fn emit_kernel_as(kernel: &Kernel, arith: Arith) -> EmittedKernel {
+pub fn emit_kernel_as(kernel: &KernelGraph, arith: Arith) -> EmittedKernel {
     let n = kernel.dim;
     let s = n * (n - 1) / 2;
     let EmittedBody {
@@ -470,7 +470,7 @@ pub(crate) fn step(namer: &Namer<'_>, id: Id) -> TokenStream {
 }
 
 /// How many output slots each node fills (a temporary used once is moved, not cloned).
-pub(crate) fn output_uses(kernel: &Kernel) -> HashMap<Id, usize> {
+pub(crate) fn output_uses(kernel: &KernelGraph) -> HashMap<Id, usize> {
     let mut uses: HashMap<Id, usize> = HashMap::new();
     for o in &kernel.outputs {
         for &id in o.spin.iter().chain(&o.velocity) {

@@ -105,7 +105,7 @@ pub struct BodyOutput {
 
 /// A built kernel: its DAG and the nodes of its outputs.
 #[derive(Debug)]
-pub struct Kernel {
+pub struct KernelGraph {
     /// The dimension `n`.
     pub dim: usize,
     /// Which bodies move.
@@ -218,11 +218,11 @@ fn label_all(g: &mut Graph, ids: &[Id], stem: &str) {
 }
 
 /// Build the collision kernel for dimension `n >= 2`.
-pub fn build(n: usize, variant: Variant) -> Kernel {
+pub fn build(n: usize, variant: Variant) -> KernelGraph {
     let mut graph = Graph::new();
     let inputs = symbolic_inputs(&mut graph, n, variant);
     let outputs = build_on(&mut graph, &inputs, variant);
-    Kernel {
+    KernelGraph {
         dim: n,
         variant,
         graph,

@@ -99,7 +99,10 @@ fn benchmarks_page_quotes_the_generated_op_counts() {
     )
     .unwrap();
     let start = page.find("free op counts ").expect("the sentence") + "free op counts ".len();
-    let end = start + page[start..].find(" for n = 2..6").expect("the sentence's end");
+    let end = start
+        + page[start..]
+            .find(" for n = 2..6")
+            .expect("the sentence's end");
     let quoted: Vec<usize> = page[start..end]
         .split(", ")
         .map(|x| x.trim().parse().expect("a count"))

@@ -27,7 +27,7 @@ use collision_core::{Generated, Kernel};
 use libfuzzer_sys::fuzz_target;
 use noslip_codegen::specialise::generate;
 use noslip_scene::Scene;
-use noslip_sim::plot::{energy_svg, trajectories_svg};
+use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
 use noslip_sim::run::{run, Limits};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
@@ -68,12 +68,8 @@ where
         return; // exit 2
     };
     let species = setup.species.clone();
-    let obstacles: Vec<([f64; 2], f64)> = setup
-        .obstacles
-        .iter()
-        .map(|o| ([o.position[0], o.position[1]], o.radius))
-        .collect();
-    let (size, periodic) = (setup.size, setup.periodic);
+    let table = Table2d::of(&setup);
+    let size = setup.size;
     let kernels = GenericKernels {
         species: species.clone(),
     };
@@ -124,13 +120,6 @@ where
     );
     energy_svg("fuzz.toml: energy drift", &trace).expect("a string cannot fail");
     if N == 2 {
-        trajectories_svg(
-            "fuzz.toml",
-            [size[0], size[1]],
-            [periodic[0], periodic[1]],
-            &obstacles,
-            &trace,
-        )
-        .expect("a string cannot fail");
+        trajectories_svg("fuzz.toml", &table, &trace).expect("a string cannot fail");
     }
 }

@@ -3,6 +3,7 @@
 
 use crate::run::Trace;
 use crate::trace::PICTURE;
+use crate::Setup;
 use plotters::prelude::*;
 
 fn io_err(e: impl std::fmt::Display) -> std::io::Error {
@@ -60,15 +61,41 @@ fn clip_ring(ring: &[(f64, f64)], size: [f64; 2]) -> Vec<Vec<(f64, f64)>> {
     runs
 }
 
+/// What the trajectory picture draws of a table: its first two sides, whether they are
+/// periodic, and each obstacle's centre (first two coordinates) and radius.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Table2d {
+    /// `[L_0, L_1]`.
+    pub size: [f64; 2],
+    /// Whether axes 0 and 1 are periodic.
+    pub periodic: [bool; 2],
+    /// `(centre, radius)` of each fixed obstacle.
+    pub obstacles: Vec<([f64; 2], f64)>,
+}
+
+impl Table2d {
+    /// The table of `setup` as the picture sees it (n >= 2).
+    pub fn of<const N: usize, const S: usize>(setup: &Setup<N, S>) -> Table2d {
+        Table2d {
+            size: [setup.size[0], setup.size[1]],
+            periodic: [setup.periodic[0], setup.periodic[1]],
+            obstacles: setup
+                .obstacles
+                .iter()
+                .map(|o| ([o.position[0], o.position[1]], o.radius))
+                .collect(),
+        }
+    }
+}
+
 /// The box, the obstacles (with their images on periodic axes), the traced balls' centre
 /// paths (cut at periodic wraps, thinned; see [`crate::trace`]) and the contact points (2D).
-pub fn trajectories_svg(
-    title: &str,
-    size: [f64; 2],
-    periodic: [bool; 2],
-    obstacles: &[([f64; 2], f64)],
-    trace: &Trace,
-) -> std::io::Result<String> {
+pub fn trajectories_svg(title: &str, table: &Table2d, trace: &Trace) -> std::io::Result<String> {
+    let Table2d {
+        size,
+        periodic,
+        obstacles,
+    } = table;
     let mut svg = String::new();
     {
         let scale = PICTURE / size[0].max(size[1]);
@@ -110,7 +137,7 @@ pub fn trajectories_svg(
                             (centre.0 + r * a.cos(), centre.1 + r * a.sin())
                         })
                         .collect();
-                    for run in clip_ring(&ring, size) {
+                    for run in clip_ring(&ring, *size) {
                         chart
                             .draw_series(LineSeries::new(run, &BLACK))
                             .map_err(io_err)?;

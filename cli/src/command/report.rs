@@ -4,7 +4,7 @@ use crate::dims::{parse_dims, Dims};
 use crate::exit::publish_failure;
 use crate::exit::{self, Exit, Failure};
 use crate::out::outln;
-use crate::progress::Progress;
+use crate::progress::ProgressDisplay;
 use crate::publish::Staging;
 use noslip_accuracy::plot::svg;
 use noslip_accuracy::{dim_result, AccuracyReport, Options, Provenance};
@@ -86,7 +86,7 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
     );
     let mut staging = Staging::new(&args.out).map_err(|e| publish_failure(&e))?;
     let regimes = opts.regimes.len();
-    let progress = Progress::new((opts.dims.len() * regimes) as u64, "regimes");
+    let progress = ProgressDisplay::new((opts.dims.len() * regimes) as u64, "regimes");
     let start = Instant::now();
     let mut done = 0;
     let dims = opts

@@ -8,7 +8,7 @@ use collision_core::Kernel;
 use indicatif::{ProgressBar, ProgressStyle};
 use noslip_scene::Scene;
 use noslip_sim::log::LogFile;
-use noslip_sim::plot::{energy_svg, trajectories_svg};
+use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
 use noslip_sim::run::{self, Limits, Progress, Summary};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
@@ -102,12 +102,7 @@ where
     let setup: Setup<N, S> =
         setup::<N, S>(scene).map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
     let species = setup.species.clone();
-    let obstacles: Vec<([f64; 2], f64)> = setup
-        .obstacles
-        .iter()
-        .map(|o| ([o.position[0], o.position[1]], o.radius))
-        .collect();
-    let (size, periodic) = (setup.size, setup.periodic);
+    let table = Table2d::of(&setup);
     let kernels = GenericKernels {
         species: species.clone(),
     };
@@ -218,9 +213,7 @@ where
                     trace.paths_until,
                     trace.contacts.len()
                 ),
-                [size[0], size[1]],
-                [periodic[0], periodic[1]],
-                &obstacles,
+                &table,
                 &trace,
             ),
             "trajectories.svg",

@@ -4,7 +4,7 @@ use crate::dims::{parse_dims, Dims};
 use crate::exit::publish_failure;
 use crate::exit::{self, Exit, Failure};
 use crate::out::outln;
-use crate::progress::Progress;
+use crate::progress::ProgressDisplay;
 use crate::publish::{write_atomic, Staging};
 use noslip_verify::report::{golden, Report};
 use noslip_verify::suite::{self, checks_per_dim, Options};
@@ -107,7 +107,7 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
     };
     let dims = &args.dims.0;
     let mut staging = Staging::new(&args.out).map_err(|e| publish_failure(&e))?;
-    let progress = Progress::new((dims.len() * checks_per_dim()) as u64, "checks");
+    let progress = ProgressDisplay::new((dims.len() * checks_per_dim()) as u64, "checks");
     let start = Instant::now();
     let (mut done, mut failed_in_dim) = (0, 0);
     let results = suite::run(dims, &opts, &mut |r| {

@@ -2,7 +2,7 @@
 
 use crate::json::case::{join, Case};
 use crate::json::error::{kind, CaseError};
-use crate::json::keys::{first_repeated_key, Step};
+use crate::json::keys::{first_repeated_key, PathStep};
 use crate::json::number::InputScalar;
 use crate::json::output::render;
 use crate::json::solve::solve;
@@ -53,14 +53,14 @@ impl std::error::Error for RunError {
 
 /// The error for a key given twice at `path`: its case (the first index of an array input)
 /// and its field.
-fn repeated_key(input: &Value, path: &[Step]) -> RunError {
+fn repeated_key(input: &Value, path: &[PathStep]) -> RunError {
     let (case, rest) = match (input, path.first()) {
-        (Value::Array(_), Some(Step::Index(i))) => (*i, &path[1..]),
+        (Value::Array(_), Some(PathStep::Index(i))) => (*i, &path[1..]),
         _ => (0, path),
     };
     let field = rest.iter().fold(String::new(), |field, step| match step {
-        Step::Index(i) => format!("{field}[{i}]"),
-        Step::Key(k) => join(&field, k),
+        PathStep::Index(i) => format!("{field}[{i}]"),
+        PathStep::Key(k) => join(&field, k),
     });
     RunError::Case(
         case,

@@ -8,7 +8,7 @@ use std::fmt;
 
 /// One step of a path into a JSON value.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Step {
+pub enum PathStep {
     /// An index into an array.
     Index(usize),
     /// A key of an object.
@@ -17,7 +17,7 @@ pub enum Step {
 
 /// The path of the first key that appears twice in one object of `text` (which must be
 /// valid JSON), ending with that key; `None` if every object's keys are distinct.
-pub fn first_repeated_key(text: &str) -> Option<Vec<Step>> {
+pub fn first_repeated_key(text: &str) -> Option<Vec<PathStep>> {
     let found = RefCell::new(None);
     let walk = Walk {
         path: Vec::new(),
@@ -30,12 +30,12 @@ pub fn first_repeated_key(text: &str) -> Option<Vec<Step>> {
 }
 
 struct Walk<'a> {
-    path: Vec<Step>,
-    found: &'a RefCell<Option<Vec<Step>>>,
+    path: Vec<PathStep>,
+    found: &'a RefCell<Option<Vec<PathStep>>>,
 }
 
 impl<'a> Walk<'a> {
-    fn child(&self, step: Step) -> Walk<'a> {
+    fn child(&self, step: PathStep) -> Walk<'a> {
         let mut path = self.path.clone();
         path.push(step);
         Walk {
@@ -80,7 +80,10 @@ impl<'de> Visitor<'de> for Walk<'_> {
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
         let mut i = 0;
-        while seq.next_element_seed(self.child(Step::Index(i)))?.is_some() {
+        while seq
+            .next_element_seed(self.child(PathStep::Index(i)))?
+            .is_some()
+        {
             i += 1;
         }
         Ok(())
@@ -92,11 +95,11 @@ impl<'de> Visitor<'de> for Walk<'_> {
         while let Some(key) = map.next_key::<String>()? {
             if !seen.insert(key.clone()) {
                 let mut path = self.path.clone();
-                path.push(Step::Key(key));
+                path.push(PathStep::Key(key));
                 *self.found.borrow_mut() = Some(path);
                 return Err(de::Error::custom("repeated key"));
             }
-            map.next_value_seed(self.child(Step::Key(key)))?;
+            map.next_value_seed(self.child(PathStep::Key(key)))?;
         }
         Ok(())
     }
@@ -106,8 +109,8 @@ impl<'de> Visitor<'de> for Walk<'_> {
 mod tests {
     use super::*;
 
-    fn key(k: &str) -> Step {
-        Step::Key(k.into())
+    fn key(k: &str) -> PathStep {
+        PathStep::Key(k.into())
     }
 
     #[test]
@@ -122,7 +125,12 @@ mod tests {
         );
         assert_eq!(
             first_repeated_key(r#"[{}, {"b": [{"m": 1, "r": 2, "m": 3}]}]"#),
-            Some(vec![Step::Index(1), key("b"), Step::Index(0), key("m")])
+            Some(vec![
+                PathStep::Index(1),
+                key("b"),
+                PathStep::Index(0),
+                key("m")
+            ])
         );
         // The same key in different objects is fine; numbers of any form are no keys.
         assert_eq!(

@@ -26,7 +26,7 @@ pub use range::{check_ranges, ConstantOutOfRange, GenerateError};
 
 use crate::emit::{self, array_pattern, doc_lines, ident, lit, state_pattern, EmittedBody};
 use crate::ir::{Graph, Id};
-use crate::model::{self, names, skew_pairs, BodyInputs, Kernel, KernelInputs, Variant};
+use crate::model::{self, names, skew_pairs, BodyInputs, KernelGraph, KernelInputs, Variant};
 use crate::schedule::OpCount;
 use noslip_scene::{Pair, PairSet, Species, WallSide};
 use proc_macro2::TokenStream;
@@ -105,7 +105,7 @@ fn species_body(g: &mut Graph, n: usize, b: usize, s: &Species, fixed: bool) -> 
 }
 
 /// The DAG of one specialised kernel.
-pub fn build(set: &PairSet, pair: Pair) -> Kernel {
+pub fn build(set: &PairSet, pair: Pair) -> KernelGraph {
     let n = set.dim;
     let mut g = Graph::new();
     g.fold_reciprocals(true);
@@ -140,7 +140,7 @@ pub fn build(set: &PairSet, pair: Pair) -> Kernel {
         },
     };
     let outputs = model::build_on(&mut g, &inputs, variant(pair));
-    Kernel {
+    KernelGraph {
         dim: n,
         variant: variant(pair),
         graph: g,
