@@ -135,8 +135,11 @@ fn validate(command: Command) {
         Command::Gen(a) => {
             if let Some(s) = scene(&a.scene) {
                 if a.check.is_none() {
-                    if let Err(e) = noslip_codegen::specialise::generate(&s.pairs(), &a.crate_path)
-                    {
+                    if let Err(e) = noslip_codegen::specialise::generate(
+                        &s.pairs(),
+                        &a.crate_path,
+                        "noslip_sim",
+                    ) {
                         refused(Failure::bad_input(e.to_string()), false);
                     }
                 }
