@@ -1,6 +1,7 @@
 //! The simulator on the shipped scenes: energy conservation over 10^6 events, and the
 //! two-wall scene's events log against the disk-on-wall matrix of docs/derivation.md §11, exactly.
 
+use collision_core::Ball;
 use noslip_scene::Scene;
 use noslip_sim::run::{run, Limits, Progress, Summary, Trace, MAX_QUIET_BOX_LENGTHS};
 use noslip_sim::setup::setup;
@@ -35,6 +36,22 @@ fn energy_bound(events: u64) -> f64 {
     8.0 * events as f64 * f64::EPSILON
 }
 
+/// The simulation of `scene` (placed as `noslip simulate` places it) on the generic kernels,
+/// and its species.
+fn simulation<const N: usize, const S: usize>(
+    scene: &Scene,
+) -> (Simulation<N, S, GenericKernels<f64>>, Vec<Ball<f64>>)
+where
+    collision_core::Generated: collision_core::Kernel<f64, N, S>,
+{
+    let setup = setup::<N, S>(scene).expect("placement succeeds");
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    (Simulation::new(setup, kernels).unwrap(), species)
+}
+
 /// Run the shipped scene `name` for `events` contacts on the generic kernels.
 fn simulate<const N: usize, const S: usize>(
     name: &str,
@@ -45,15 +62,7 @@ where
     collision_core::Generated: collision_core::Kernel<f64, N, S>,
 {
     let scene = scene(name);
-    let setup = setup::<N, S>(&scene).expect("placement succeeds");
-    let species = setup.species.clone();
-    let mut sim = Simulation::new(
-        setup,
-        GenericKernels {
-            species: species.clone(),
-        },
-    )
-    .unwrap();
+    let (mut sim, species) = simulation::<N, S>(&scene);
     let (summary, trace) = run(&mut sim, &species, &limits(events), log, &mut |_| {}).unwrap();
     (scene, summary, trace)
 }
@@ -186,15 +195,7 @@ fn two_wall_log_is_the_exact_disk_on_wall_map() {
 /// contact point the picture keeps.
 fn traced(name: &str, events: u64, traced: usize) -> Trace {
     let scene = scene(name);
-    let setup = setup::<2, 1>(&scene).expect("placement succeeds");
-    let species = setup.species.clone();
-    let mut sim = Simulation::new(
-        setup,
-        GenericKernels {
-            species: species.clone(),
-        },
-    )
-    .unwrap();
+    let (mut sim, species) = simulation::<2, 1>(&scene);
     let limits = Limits {
         events: Some(events),
         time: None,
@@ -298,15 +299,7 @@ fn a_contact_out_of_reach_ends_the_run() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../fuzz/regressions/scene_toml/corridor-timeout.toml");
     let scene = Scene::from_file(&path).expect("a valid scene");
-    let setup = setup::<2, 1>(&scene).expect("placement succeeds");
-    let species = setup.species.clone();
-    let mut sim = Simulation::new(
-        setup,
-        GenericKernels {
-            species: species.clone(),
-        },
-    )
-    .unwrap();
+    let (mut sim, species) = simulation::<2, 1>(&scene);
     let mut notices = 0;
     let (summary, _) = run(&mut sim, &species, &limits(10), None, &mut |p| {
         if let Progress::Quiet { .. } = p {
