@@ -943,3 +943,24 @@ fn the_readmes_collide_command_runs_as_written() {
         }
     }
 }
+
+/// An input larger than the 64 MiB limit (`/dev/zero` never ends) is refused with exit 2 and
+/// one line, after reading one byte past the limit, not read until memory runs out.
+#[cfg(target_os = "linux")]
+#[test]
+fn an_endless_input_is_refused_at_the_size_limit() {
+    let (code, out, err) = noslip(&["collide", "/dev/zero"], "");
+    assert_eq!(code, 2, "{err}");
+    assert!(out.is_empty(), "{out}");
+    assert_eq!(
+        err.trim(),
+        "error: /dev/zero: larger than 64 MiB, the limit of an input (split the cases into \
+         several files)"
+    );
+    let (code, _, err) = noslip(&["simulate", "/dev/zero", "--quiet"], "");
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("/dev/zero: file: larger than 16 MiB, the limit of a scene file"),
+        "{err}"
+    );
+}

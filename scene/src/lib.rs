@@ -27,6 +27,10 @@ use num_rational::BigRational;
 use std::fmt;
 use std::path::Path;
 
+/// The largest scene file read, 16 MiB (about 10^5 explicit balls; random ones cost a
+/// `count`): a larger file is refused before it is read whole.
+pub const MAX_SCENE_BYTES: u64 = 16 << 20;
+
 /// One species: every ball of it shares these constants (exact).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Species {
@@ -173,12 +177,25 @@ impl Scene {
 
     /// Read, parse and validate a scene file.
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
+        use std::io::Read;
         let origin = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let error = |message: String| SceneError {
             origin: origin.clone(),
             place: "file".into(),
-            message: format!("cannot read: {e}"),
-        })?;
+            message,
+        };
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(MAX_SCENE_BYTES + 1).read_to_end(&mut bytes))
+            .map_err(|e| error(format!("cannot read: {e}")))?;
+        if bytes.len() as u64 > MAX_SCENE_BYTES {
+            return Err(error(format!(
+                "larger than {} MiB, the limit of a scene file",
+                MAX_SCENE_BYTES >> 20
+            )));
+        }
+        let text = String::from_utf8(bytes)
+            .map_err(|_| error("cannot read: stream did not contain valid UTF-8".into()))?;
         Scene::from_toml(&text, &origin)
     }
 

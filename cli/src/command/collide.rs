@@ -110,18 +110,39 @@ pub struct Args {
     pub file: Option<PathBuf>,
 }
 
+/// The largest input `collide` reads (a case or an array of cases), 64 MiB: about 10^5
+/// cases; parsing holds a few times this in memory, so a larger input is refused before it is
+/// read whole rather than left to the operating system's memory limit.
+pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+
 fn read_input(file: Option<&PathBuf>) -> Result<String, String> {
     match file {
-        Some(path) if path.as_os_str() != "-" => std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display())),
-        _ => {
-            let mut text = String::new();
-            std::io::stdin()
-                .read_to_string(&mut text)
-                .map_err(|e| format!("cannot read stdin: {e}"))?;
-            Ok(text)
+        Some(path) if path.as_os_str() != "-" => {
+            let what = path.display().to_string();
+            let f = std::fs::File::open(path).map_err(|e| format!("cannot read {what}: {e}"))?;
+            read_limited(f, &what)
         }
+        _ => read_limited(std::io::stdin().lock(), "stdin"),
     }
+}
+
+/// All of `input` as text, refused beyond [`MAX_INPUT_BYTES`] (it reads one byte more to
+/// know).
+fn read_limited(input: impl Read, what: &str) -> Result<String, String> {
+    let mut bytes = Vec::new();
+    input
+        .take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read {what}: {e}"))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(format!(
+            "{what}: larger than {} MiB, the limit of an input (split the cases into several \
+             files)",
+            MAX_INPUT_BYTES >> 20
+        ));
+    }
+    String::from_utf8(bytes)
+        .map_err(|_| format!("cannot read {what}: stream did not contain valid UTF-8"))
 }
 
 /// Whether stdout was closed when the program started (`noslip collide case.json >&-`). The
