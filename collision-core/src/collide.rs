@@ -124,82 +124,47 @@ where
     T: Scalar,
     Generated: Kernel<T, N, S>,
 {
-    dispatch::<Plain, T, N, S>(nu, balls, states)
-}
-
-/// The two kernels [`dispatch`] picks from. A type, not `Fn` arguments: a kernel called
-/// through a `Fn` bound is compiled in its own shim function, which LLVM need not inline
-/// (and does not, for the larger `fixed` kernels called from two branches), and which
-/// would not inherit a caller's `#[target_feature]` (see `fma.rs`).
-trait Pair<T, const N: usize, const S: usize> {
-    fn free(
-        nu: &[T; N],
-        ball1: &Ball<T>,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> [BodyState<T, N, S>; 2];
-
-    fn fixed(
-        nu: &[T; N],
-        radius1: &T,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> BodyState<T, N, S>;
-}
-
-/// `free` and `fixed`.
-struct Plain;
-
-impl<T, const N: usize, const S: usize> Pair<T, N, S> for Plain
-where
-    Generated: Kernel<T, N, S>,
-{
-    #[inline(always)]
-    fn free(
-        nu: &[T; N],
-        ball1: &Ball<T>,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> [BodyState<T, N, S>; 2] {
-        Generated::free(nu, ball1, ball2, state1, state2)
-    }
-
-    #[inline(always)]
-    fn fixed(
-        nu: &[T; N],
-        radius1: &T,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> BodyState<T, N, S> {
-        Generated::fixed(nu, radius1, ball2, state1, state2)
-    }
+    dispatch::<false, T, N, S>(nu, balls, states)
 }
 
 /// Body 1 immovable: `fixed`; body 2 immovable: `fixed` with the bodies swapped and `nu`
-/// negated; otherwise `free` (kernels of `K`).
+/// negated; otherwise `free`: the FMA forms (`fixed_fma`, `free_fma`) when `FUSED`.
+///
+/// The kernels are called directly, not through `Fn` arguments or closures: those are compiled
+/// as functions of their own, which LLVM need not inline (and does not, for the larger
+/// `fixed` kernels called from two branches), and which would not inherit a caller's
+/// `#[target_feature]` (see `fma.rs`). `FUSED` is a constant, so its branches fold away.
 #[inline(always)]
-fn dispatch<K, T, const N: usize, const S: usize>(
+pub(crate) fn dispatch<const FUSED: bool, T, const N: usize, const S: usize>(
     nu: &[T; N],
     balls: [&Ball<T>; 2],
     states: [&BodyState<T, N, S>; 2],
 ) -> [BodyState<T, N, S>; 2]
 where
     T: Scalar,
-    K: Pair<T, N, S>,
+    Generated: Kernel<T, N, S>,
 {
     let [b1, b2] = balls;
     let [s1, s2] = states;
     if b1.is_immovable() {
-        [s1.clone(), K::fixed(nu, &b1.radius, b2, s1, s2)]
+        let after = if FUSED {
+            Generated::fixed_fma(nu, &b1.radius, b2, s1, s2)
+        } else {
+            Generated::fixed(nu, &b1.radius, b2, s1, s2)
+        };
+        [s1.clone(), after]
     } else if b2.is_immovable() {
         let minus_nu = nu.clone().map(|x| -x);
-        [K::fixed(&minus_nu, &b2.radius, b1, s2, s1), s2.clone()]
+        let after = if FUSED {
+            Generated::fixed_fma(&minus_nu, &b2.radius, b1, s2, s1)
+        } else {
+            Generated::fixed(&minus_nu, &b2.radius, b1, s2, s1)
+        };
+        [after, s2.clone()]
+    } else if FUSED {
+        Generated::free_fma(nu, b1, b2, s1, s2)
     } else {
-        K::free(nu, b1, b2, s1, s2)
+        Generated::free(nu, b1, b2, s1, s2)
     }
 }
 

@@ -1,6 +1,6 @@
 //! The FMA entry point: the FMA kernels on FMA instructions wherever the CPU has them.
 
-use super::{dispatch, Pair};
+use super::dispatch;
 use crate::kernels::{Generated, Kernel};
 use crate::{Ball, BodyState, Scalar};
 
@@ -46,37 +46,7 @@ where
     T: Scalar,
     Generated: Kernel<T, N, S>,
 {
-    dispatch::<Fused, T, N, S>(nu, balls, states)
-}
-
-/// `free_fma` and `fixed_fma`.
-struct Fused;
-
-impl<T, const N: usize, const S: usize> Pair<T, N, S> for Fused
-where
-    Generated: Kernel<T, N, S>,
-{
-    #[inline(always)]
-    fn free(
-        nu: &[T; N],
-        ball1: &Ball<T>,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> [BodyState<T, N, S>; 2] {
-        Generated::free_fma(nu, ball1, ball2, state1, state2)
-    }
-
-    #[inline(always)]
-    fn fixed(
-        nu: &[T; N],
-        radius1: &T,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> BodyState<T, N, S> {
-        Generated::fixed_fma(nu, radius1, ball2, state1, state2)
-    }
+    dispatch::<true, T, N, S>(nu, balls, states)
 }
 
 #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
