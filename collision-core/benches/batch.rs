@@ -244,13 +244,14 @@ where
     group.finish();
 }
 
-fn benches(c: &mut Criterion) {
-    bench_dim::<2, 1>(c);
-    bench_dim::<3, 3>(c);
-    bench_dim::<4, 6>(c);
-    bench_dim::<5, 10>(c);
-    bench_dim::<6, 15>(c);
+macro_rules! benches {
+    ($(($name:ident $n:literal $s:literal))*) => {
+        fn benches(c: &mut Criterion) {
+            $(bench_dim::<$n, $s>(c);)*
+        }
+    };
 }
+collision_core::for_each_dim!(benches);
 
 criterion_group!(batch_benches, benches);
 criterion_main!(batch_benches);

@@ -17,27 +17,17 @@
 
 #[path = "support/cases.rs"]
 mod cases;
+#[path = "support/timed.rs"]
+mod timed;
 
 use cases::{batch, Case};
 use collision_core::{collide_unchecked, collide_unchecked_fma, BodyState, Generated, Kernel};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use std::hint::black_box;
 use std::time::Duration;
+use timed::run_batch;
 
 const BATCH: usize = 256;
 const SEED: u64 = 0x6e6f_736c_6970; // "noslip"
-
-/// One collision at a time over the batch, each result kept live (see benches/kernels.rs).
-#[inline(never)]
-fn run_batch<const N: usize, const S: usize, R>(
-    cases: &[Case<N, S>],
-    f: impl Fn(&Case<N, S>) -> R,
-) {
-    for case in black_box(cases) {
-        let result = f(case);
-        black_box(&result);
-    }
-}
 
 fn plain<const N: usize, const S: usize>(c: &Case<N, S>) -> [BodyState<f64, N, S>; 2]
 where
@@ -117,13 +107,14 @@ where
     bench_kernel(c, "fixed", &fixed);
 }
 
-fn benches(c: &mut Criterion) {
-    bench_dim::<2, 1>(c);
-    bench_dim::<3, 3>(c);
-    bench_dim::<4, 6>(c);
-    bench_dim::<5, 10>(c);
-    bench_dim::<6, 15>(c);
+macro_rules! benches {
+    ($(($name:ident $n:literal $s:literal))*) => {
+        fn benches(c: &mut Criterion) {
+            $(bench_dim::<$n, $s>(c);)*
+        }
+    };
 }
+collision_core::for_each_dim!(benches);
 
 criterion_group!(fma_benches, benches);
 criterion_main!(fma_benches);

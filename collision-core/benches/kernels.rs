@@ -23,13 +23,15 @@
 
 #[path = "support/cases.rs"]
 mod cases;
+#[path = "support/timed.rs"]
+mod timed;
 use collision_core::literal as handwritten;
 
 use cases::{batch, Case};
 use collision_core::{kernels, reference, Ball, BodyState};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use std::hint::black_box;
 use std::time::Duration;
+use timed::run_batch;
 
 /// Cases per batch: `2 (N + S)` inputs of 8 bytes plus the balls, at most ~0.5 kB a case for
 /// n = 6, so about 120 kB of input for 256 cases: L2-resident on any current core, most of it
@@ -141,24 +143,6 @@ fn check<const N: usize, const S: usize>(cases: &[Case<N, S>], generated: impl F
         "n = {N}: {} cases checked; max difference to generated in units of eps (1 + A): handwritten {worst_h:.2} (limit {C_HANDWRITTEN}), reference {worst_r:.2} (limit {C_REFERENCE})",
         cases.len()
     );
-}
-
-/// The timed loop: one collision at a time over the batch. Not inlined, so that each
-/// variant's loop is one symbol in the assembly (`kernels::run_batch::<..>`); whether the
-/// kernel is inlined into it is LLVM's usual `#[inline]` decision, as in a caller's loop.
-/// Inputs are opaque through `black_box(cases)`; each result is consumed by
-/// `black_box(&result)`, which makes it live in memory (as a caller storing it would)
-/// without the extra copy of `black_box(result)` (a 336-byte `memcpy` call per collision
-/// for n = 6).
-#[inline(never)]
-fn run_batch<const N: usize, const S: usize, R>(
-    cases: &[Case<N, S>],
-    f: impl Fn(&Case<N, S>) -> R,
-) {
-    for case in black_box(cases) {
-        let result = f(case);
-        black_box(&result);
-    }
 }
 
 fn bench_dim<const N: usize, const S: usize>(c: &mut Criterion, generated: impl FreeKernel<N, S>) {
