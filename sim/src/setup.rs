@@ -20,9 +20,21 @@ fn array<const M: usize>(v: &[BigRational]) -> [f64; M] {
     std::array::from_fn(|k| f(&v[k]))
 }
 
-/// Uniform in `[0, 1)`: the top 53 bits of a ChaCha8 word.
-fn unit(rng: &mut Rng) -> f64 {
-    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+/// A random centre for a ball of radius `r`: each coordinate uniform in `[0, L_k)` on a
+/// periodic axis, in `[r, L_k - r)` between walls.
+fn random_position<const N: usize>(
+    rng: &mut Rng,
+    size: &[f64; N],
+    periodic: &[bool; N],
+    r: f64,
+) -> [f64; N] {
+    std::array::from_fn(|a| {
+        if periodic[a] {
+            rng.uniform(0.0, size[a])
+        } else {
+            rng.uniform(r, size[a] - r)
+        }
+    })
 }
 
 /// Squared distance with the minimum image on periodic axes.
@@ -185,14 +197,7 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
             let mut found = None;
             for _ in 0..ATTEMPTS {
                 attempts += 1;
-                let p: [f64; N] = std::array::from_fn(|a| {
-                    let (lo, hi) = if periodic[a] {
-                        (0.0, size[a])
-                    } else {
-                        (r, size[a] - r)
-                    };
-                    lo + (hi - lo) * unit(&mut rng)
-                });
+                let p = random_position(&mut rng, &size, &periodic, r);
                 let clear_balls = balls.all_near(&p, |i| {
                     let b = &bodies[i];
                     let s = r + species[b.species].radius;
@@ -214,7 +219,7 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                 return Err(too_full(k, placed, why));
             };
             placed_random += 1;
-            let mut uniform = |scale: f64| scale * (2.0 * unit(&mut rng) - 1.0);
+            let mut uniform = |scale: f64| scale * rng.uniform(-1.0, 1.0);
             let velocity = std::array::from_fn(|_| uniform(speed));
             let spin = std::array::from_fn(|_| uniform(spin));
             balls.insert(&position);
@@ -262,14 +267,7 @@ mod tests {
             let r = radius[k];
             for _ in 0..sp.count {
                 let p = loop {
-                    let p: [f64; N] = std::array::from_fn(|a| {
-                        let (lo, hi) = if periodic[a] {
-                            (0.0, size[a])
-                        } else {
-                            (r, size[a] - r)
-                        };
-                        lo + (hi - lo) * unit(&mut rng)
-                    });
+                    let p = random_position(&mut rng, &size, &periodic, r);
                     let clear = placed.iter().chain(&obstacles).all(|(q, rq)| {
                         let s = r + rq;
                         distance2(&p, q, &size, &periodic) >= s * s
@@ -279,7 +277,7 @@ mod tests {
                     }
                 };
                 for _ in 0..N + N * (N - 1) / 2 {
-                    unit(&mut rng);
+                    rng.next_u64();
                 }
                 placed.push((p, r));
             }
