@@ -28,6 +28,7 @@ pub mod fuse;
 pub mod ir;
 pub mod literal;
 pub mod model;
+pub mod program;
 pub mod schedule;
 pub mod specialise;
 pub mod straight_line;
