@@ -22,6 +22,7 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+pub mod backend;
 pub mod batch;
 pub mod emit;
 pub mod fuse;
