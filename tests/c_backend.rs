@@ -156,3 +156,84 @@ fn one_altered_operation_fails_the_comparison() {
     assert!(err.contains("components differ from Rust's"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The values `examples/c/collide.c` prints after `label`.
+fn printed(stdout: &str, label: &str) -> Vec<f64> {
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix(label))
+        .unwrap_or_else(|| panic!("no line {label:?} in:\n{stdout}"));
+    line.split_whitespace()
+        .map(|x| x.parse().unwrap())
+        .collect()
+}
+
+/// `examples/c/collide.c` builds with the one command of docs/backends.md (and as C++11), and
+/// prints the Rust kernels' results for its cases (17 significant digits read back exactly).
+#[test]
+fn the_c_example_builds_as_c_and_cpp_and_prints_the_rust_results() {
+    use collision_core::{kernels::d3, Ball, BodyState};
+    let dir = scratch("c-example");
+    std::fs::write(dir.join(file_name(Lang::C)), generate(Lang::C, &[3])).unwrap();
+    let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/c/collide.c");
+    let ball1 = Ball {
+        inv_mass: 0.5,
+        radius: 1.0,
+        gamma2: 0.4,
+    };
+    let ball2 = Ball {
+        inv_mass: 1.0,
+        radius: 1.5,
+        gamma2: 0.4,
+    };
+    let state1 = BodyState {
+        spin: [1.0, -2.0, 3.0],
+        velocity: [1.0, 0.0, 0.5],
+    };
+    let state2 = BodyState::zero();
+    let nu = [0.0, 0.6, 0.8];
+    let wall = d3::fixed(&[-0.0, -0.6, -0.8], &1.5, &ball1, &state2, &state1);
+    let [free1, free2] = d3::free(&nu, &ball1, &ball2, &state1, &state2);
+    let flat = |s: &BodyState<f64, 3, 3>| {
+        s.spin
+            .iter()
+            .chain(&s.velocity)
+            .map(|x| x.to_bits())
+            .collect::<Vec<_>>()
+    };
+    for (compiler, std) in [(cc(), "-std=c99"), ("c++".to_string(), "-std=c++11")] {
+        let exe = dir.join(format!("collide-{}", std.trim_start_matches("-std=")));
+        let mut cmd = Command::new(&compiler);
+        if compiler == "c++" {
+            cmd.args(["-x", "c++"]);
+        }
+        run(cmd
+            .args([
+                std,
+                "-O2",
+                "-ffp-contract=off",
+                "-Wall",
+                "-Wextra",
+                "-Werror",
+                "-I",
+            ])
+            .arg(&dir)
+            .arg(&example)
+            .arg("-o")
+            .arg(&exe)
+            .arg("-lm"));
+        let out = Command::new(&exe).output().unwrap();
+        assert!(out.status.success());
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        let bits = |label| {
+            printed(&stdout, label)
+                .iter()
+                .map(|x| x.to_bits())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits("wall: body 1+"), flat(&wall), "{compiler}");
+        assert_eq!(bits("free: body 1+"), flat(&free1), "{compiler}");
+        assert_eq!(bits("free: body 2+"), flat(&free2), "{compiler}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

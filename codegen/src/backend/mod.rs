@@ -160,29 +160,12 @@ pub trait Language {
     fn notes(&self) -> Vec<String>;
 }
 
-/// The exact hexadecimal C literal of a finite `f64` (`0x1.8p+1`, `-0x1p-1074`, `0.0`).
-pub fn hex_literal(x: f64) -> String {
-    assert!(x.is_finite(), "a literal must be finite: {x}");
-    if x == 0.0 {
-        return if x.is_sign_negative() { "-0.0" } else { "0.0" }.into();
-    }
-    let bits = x.to_bits();
-    let sign = if bits >> 63 == 1 { "-" } else { "" };
-    let exp = ((bits >> 52) & 0x7ff) as i64;
-    let mant = bits & ((1u64 << 52) - 1);
-    let (lead, e) = if exp == 0 {
-        (0, -1022)
-    } else {
-        (1, exp - 1023)
-    };
-    let digits = format!("{mant:013x}");
-    let digits = digits.trim_end_matches('0');
-    let frac = if digits.is_empty() {
-        String::new()
-    } else {
-        format!(".{digits}")
-    };
-    format!("{sign}0x{lead}{frac}p{e:+}")
+/// A C literal of a finite float: the shortest decimal that reads back as exactly `x` in
+/// its format (Rust's `{:e}`), so a correctly rounding compiler restores the same bits. Hex
+/// floats would be exact by construction but are not C++ before C++17.
+fn decimal_literal(x: impl std::fmt::LowerExp, finite: bool) -> String {
+    assert!(finite, "a literal must be finite");
+    format!("{x:e}")
 }
 
 /// The correctly rounded literal of an exact constant in precision `p`, exactly as the Rust
@@ -190,8 +173,8 @@ pub fn hex_literal(x: f64) -> String {
 pub fn constant_literal(value: &BigRational, p: Precision) -> String {
     let (x64, x32) = crate::literal::nearest_floats(value);
     match p {
-        Precision::F64 => hex_literal(x64),
-        Precision::F32 => format!("{}f", hex_literal(f64::from(x32))),
+        Precision::F64 => decimal_literal(x64, x64.is_finite()),
+        Precision::F32 => format!("{}f", decimal_literal(x32, x32.is_finite())),
     }
 }
 
@@ -569,20 +552,26 @@ mod tests {
     use super::*;
 
     #[test]
-    fn hex_literals_are_exact() {
-        assert_eq!(hex_literal(2.0), "0x1p+1");
-        assert_eq!(hex_literal(1.0), "0x1p+0");
-        assert_eq!(hex_literal(-0.5), "-0x1p-1");
-        assert_eq!(hex_literal(3.0), "0x1.8p+1");
-        assert_eq!(hex_literal(f64::from_bits(1)), "0x0.0000000000001p-1022");
-        assert_eq!(hex_literal(0.1), "0x1.999999999999ap-4");
-        assert_eq!(hex_literal(f64::MAX), "0x1.fffffffffffffp+1023");
-        let third = BigRational::new(1.into(), 3.into());
-        assert_eq!(constant_literal(&third, Precision::F32), "0x1.555556p-2f");
-        assert_eq!(
-            constant_literal(&third, Precision::F64),
-            "0x1.5555555555555p-2"
-        );
+    fn literals_read_back_exactly() {
+        let r = |p: i64, q: i64| BigRational::new(p.into(), q.into());
+        assert_eq!(constant_literal(&r(2, 1), Precision::F64), "2e0");
+        assert_eq!(constant_literal(&r(-1, 2), Precision::F32), "-5e-1f");
+        for x in [r(1, 3), r(1, 10), r(-7, 3), r(1, 1 << 40)] {
+            let (x64, x32) = crate::literal::nearest_floats(&x);
+            let l64 = constant_literal(&x, Precision::F64);
+            assert_eq!(
+                l64.parse::<f64>().unwrap().to_bits(),
+                x64.to_bits(),
+                "{l64}"
+            );
+            let l32 = constant_literal(&x, Precision::F32);
+            let l32 = l32.trim_end_matches('f');
+            assert_eq!(
+                l32.parse::<f32>().unwrap().to_bits(),
+                x32.to_bits(),
+                "{l32}"
+            );
+        }
     }
 
     #[test]
