@@ -29,6 +29,8 @@ pub trait Float: Scalar + Copy {
     fn bits(self) -> u64;
     /// Whether it is finite.
     fn finite(self) -> bool;
+    /// Whether it is a NaN.
+    fn nan(self) -> bool;
     /// Whether every result must be finite in `regime`: always in `f64` (the accuracy report
     /// fails the `f64` kernel on any NaN); in `f32` except at extreme scales, whose inputs up
     /// to `1e38` overflow `f32` products inside the kernel (Rust's `f32` kernel too: the
@@ -52,6 +54,9 @@ impl Float for f64 {
     fn finite(self) -> bool {
         self.is_finite()
     }
+    fn nan(self) -> bool {
+        self.is_nan()
+    }
     fn must_be_finite(_: Regime) -> bool {
         true
     }
@@ -72,6 +77,9 @@ impl Float for f32 {
     }
     fn finite(self) -> bool {
         self.is_finite()
+    }
+    fn nan(self) -> bool {
+        self.is_nan()
     }
     fn must_be_finite(regime: Regime) -> bool {
         regime != Regime::Scale
@@ -172,7 +180,7 @@ where
 /// and payload of a NaN an operation returns unspecified; they arise only where `f32`
 /// overflows, see [`Float::must_be_finite`]).
 pub fn same<T: Float>(a: T, b: T) -> bool {
-    a.bits() == b.bits() || (a != a && b != b)
+    a.bits() == b.bits() || (a.nan() && b.nan())
 }
 
 /// Compare a foreign kernel's results with Rust's bit for bit ([`same`]); each foreign result
