@@ -6,10 +6,10 @@
 //! rationals), with every operation on references (`&a * &b`), so the same source serves
 //! `Copy` floats and heap-allocated rationals.
 
-use crate::fuse::{fuse, Fused, Fusion};
 use crate::ir::{Id, Node};
 use crate::model::{self, names, skew_pairs, KernelGraph, Variant};
-use crate::schedule::{schedule, OpCount, Schedule};
+use crate::program::{Op, Operand, Program};
+use crate::schedule::{OpCount, Schedule};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive};
@@ -151,6 +151,11 @@ impl<'a> Namer<'a> {
         ident(&self.names[&id])
     }
 
+    /// The binding name of a constant or computed node.
+    pub(crate) fn name(&self, id: Id) -> &str {
+        &self.names[&id]
+    }
+
     /// An output as an owned `T`, moving a temporary when this is its only output use.
     pub(crate) fn output(&self, id: Id, output_uses: &HashMap<Id, usize>) -> TokenStream {
         match self.kernel.graph.node(id) {
@@ -285,61 +290,78 @@ pub fn emit_body(kernel: &KernelGraph) -> EmittedBody {
     emit_body_as(kernel, Arith::Plain)
 }
 
-/// Schedule a kernel and emit its bindings and output expressions with `arith`.
+/// Schedule a kernel and emit its bindings and output expressions with `arith`: the
+/// [`Program`] every back end emits from, spelled in Rust.
 pub fn emit_body_as(kernel: &KernelGraph, arith: Arith) -> EmittedBody {
-    let roots: Vec<Id> = kernel
-        .outputs
-        .iter()
-        .flat_map(|o| o.spin.iter().chain(&o.velocity).copied())
-        .collect();
-    let sched = schedule(&kernel.graph, roots.iter().copied());
-    let fusion = match arith {
-        Arith::Plain => Fusion::default(),
-        Arith::Fma => fuse(&kernel.graph, &sched.steps, roots.iter().copied()),
+    let program = Program::lower(kernel, arith);
+    let operand = |x: &Operand| {
+        let i = ident(program.name(x));
+        match x {
+            Operand::Input(_) => quote!(#i),
+            _ => quote!(&#i),
+        }
     };
-    let steps: Vec<Id> = sched
-        .steps
-        .iter()
-        .copied()
-        .filter(|id| !fusion.absorbed.contains(id))
-        .collect();
-    let mut ops = sched.ops;
-    ops.fma = fusion.fused.len();
-    ops.mul -= fusion.absorbed.len();
-    ops.add -= fusion.fused.len();
-    let namer = Namer::new(kernel, &sched, &steps);
-
-    let constants = sched.constants.iter().map(|&id| {
-        let name = namer.binding(id);
-        let value = const_value(kernel.graph.as_const(id).expect("constant"));
+    let constants = program.constants.iter().map(|c| {
+        let name = ident(&c.name);
+        let value = const_value(&c.value);
         quote!(let #name: T = #value;)
     });
-    let step_tokens = steps.iter().map(|&id| match fusion.fused.get(&id) {
-        Some(fused) => {
-            let name = namer.binding(id);
-            let expr = fused_call(&namer, *fused);
-            quote!(let #name: T = #expr;)
-        }
-        None => step(&namer, id),
+    let step_tokens = program.steps.iter().map(|s| {
+        let name = ident(&s.name);
+        let expr = match &s.op {
+            Op::Add(a, b) => {
+                let (a, b) = (operand(a), operand(b));
+                quote!(#a + #b)
+            }
+            Op::Sub(a, b) => {
+                let (a, b) = (operand(a), operand(b));
+                quote!(#a - #b)
+            }
+            Op::Mul(a, b) => {
+                let (a, b) = (operand(a), operand(b));
+                quote!(#a * #b)
+            }
+            Op::Div(a, b) => {
+                let (a, b) = (operand(a), operand(b));
+                quote!(#a / #b)
+            }
+            Op::Neg(a) => {
+                let a = operand(a);
+                quote!(-#a)
+            }
+            Op::MulAdd(a, b, c) => fused_call(quote!(mul_add), [a, b, c].map(operand)),
+            Op::MulSub(a, b, c) => fused_call(quote!(mul_sub), [a, b, c].map(operand)),
+            Op::NegMulAdd(a, b, c) => fused_call(quote!(neg_mul_add), [a, b, c].map(operand)),
+        };
+        quote!(let #name: T = #expr;)
     });
     let statements = quote!(#(#constants)* #(#step_tokens)*);
 
-    let output_uses = output_uses(kernel);
-    let outputs = kernel
+    let output_uses = program.output_uses();
+    let output = |x: &Operand| {
+        let i = ident(program.name(x));
+        match x {
+            Operand::Input(_) => quote!(#i.clone()),
+            Operand::Const(k) => const_value(&program.constants[*k].value),
+            Operand::Step(_) if output_uses[x] > 1 => quote!(#i.clone()),
+            Operand::Step(_) => quote!(#i),
+        }
+    };
+    let outputs = program
         .outputs
         .iter()
         .map(|o| {
-            let spin = o.spin.iter().map(|&id| namer.output(id, &output_uses));
-            let velocity = o.velocity.iter().map(|&id| namer.output(id, &output_uses));
+            let spin = o.spin.iter().map(output);
+            let velocity = o.velocity.iter().map(output);
             quote!(BodyState { spin: [#(#spin),*], velocity: [#(#velocity),*] })
         })
         .collect();
     EmittedBody {
-        live: sched.inputs.clone(),
+        live: program.inputs.clone(),
         statements,
         outputs,
-        ops,
-        terms: steps.len(),
+        ops: program.ops,
+        terms: program.terms(),
     }
 }
 
@@ -442,13 +464,7 @@ pub fn emit_kernel_as(kernel: &KernelGraph, arith: Arith) -> EmittedKernel {
     }
 }
 
-fn fused_call(namer: &Namer<'_>, fused: Fused) -> TokenStream {
-    let (f, a, b, c) = match fused {
-        Fused::MulAdd { a, b, c } => (quote!(mul_add), a, b, c),
-        Fused::MulSub { a, b, c } => (quote!(mul_sub), a, b, c),
-        Fused::NegMulAdd { a, b, c } => (quote!(neg_mul_add), a, b, c),
-    };
-    let (a, b, c) = (namer.operand(a), namer.operand(b), namer.operand(c));
+fn fused_call(f: TokenStream, [a, b, c]: [TokenStream; 3]) -> TokenStream {
     quote!(T::#f(#a, #b, #c))
 }
 

@@ -22,12 +22,14 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+pub mod backend;
 pub mod batch;
 pub mod emit;
 pub mod fuse;
 pub mod ir;
 pub mod literal;
 pub mod model;
+pub mod program;
 pub mod schedule;
 pub mod specialise;
 pub mod straight_line;

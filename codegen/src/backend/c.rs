@@ -1,0 +1,197 @@
+//! The C99 and OpenCL C back ends: the hooks of [`Language`] for each.
+
+use super::{Language, Param, Precision, Unit};
+use std::fmt::Write;
+
+/// C99, as a self-contained header of `static inline` functions, usable from C++ as is.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct C;
+
+impl Language for C {
+    fn title(&self) -> &'static str {
+        "C99"
+    }
+
+    fn extension(&self) -> &'static str {
+        "h"
+    }
+
+    fn qualifiers(&self) -> &'static str {
+        "static inline"
+    }
+
+    fn fma(&self, p: Precision) -> &'static str {
+        match p {
+            Precision::F64 => "fma",
+            Precision::F32 => "fmaf",
+        }
+    }
+
+    fn body_prologue(&self) -> &'static str {
+        "NOSLIP_FP_CONTRACT_OFF"
+    }
+
+    fn prelude(&self, guard: &str) -> String {
+        format!(
+            "#ifndef {guard}_H\n\
+             #define {guard}_H\n\
+             \n\
+             #include <float.h>\n\
+             #include <math.h>\n\
+             \n\
+             #if defined(__FAST_MATH__)\n\
+             #error \"noslip kernels: -ffast-math reorders and contracts floating-point operations; compile without it\"\n\
+             #endif\n\
+             #if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD != 0\n\
+             #error \"noslip kernels need FLT_EVAL_METHOD == 0: each operation rounded to its type (SSE2 on x86, not x87)\"\n\
+             #endif\n\
+             \n\
+             /* No contraction of a * b + c into an FMA: clang honours the standard pragma at the\n\
+             \x20* start of each body; GCC needs -ffp-contract=off (its default only in ISO modes). */\n\
+             #ifndef NOSLIP_FP_CONTRACT_OFF\n\
+             #if defined(__clang__)\n\
+             #define NOSLIP_FP_CONTRACT_OFF _Pragma(\"STDC FP_CONTRACT OFF\")\n\
+             #else\n\
+             #define NOSLIP_FP_CONTRACT_OFF\n\
+             #endif\n\
+             #endif\n"
+        )
+    }
+
+    fn epilogue(&self, guard: &str) -> String {
+        format!("#endif /* {guard}_H */\n")
+    }
+
+    fn begin(&self, _: Precision) -> String {
+        String::new()
+    }
+
+    fn end(&self, _: Precision) -> String {
+        String::new()
+    }
+
+    fn after_function(&self, _: &Unit, _: Precision) -> String {
+        String::new()
+    }
+
+    fn notes(&self) -> Vec<String> {
+        vec![
+            "Compile with -ffp-contract=off and without -ffast-math (GCC in GNU modes contracts by".into(),
+            "default); the FMA forms call fma/fmaf from <math.h> (link -lm where libm is separate).".into(),
+        ]
+    }
+}
+
+/// OpenCL C (1.2): the kernels as device functions, and for each a batch `__kernel`
+/// `NAME_batch(count, arrays..)` over arrays of structures, one contact per work item.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct OpenCl;
+
+impl Language for OpenCl {
+    fn title(&self) -> &'static str {
+        "OpenCL C"
+    }
+
+    fn extension(&self) -> &'static str {
+        "cl"
+    }
+
+    fn qualifiers(&self) -> &'static str {
+        "static inline"
+    }
+
+    fn fma(&self, _: Precision) -> &'static str {
+        "fma"
+    }
+
+    fn body_prologue(&self) -> &'static str {
+        ""
+    }
+
+    fn prelude(&self, guard: &str) -> String {
+        format!(
+            "#ifndef {guard}_CL\n\
+             #define {guard}_CL\n\
+             \n\
+             /* No contraction of a * b + c into an FMA (OpenCL C allows it by default). */\n\
+             #pragma OPENCL FP_CONTRACT OFF\n"
+        )
+    }
+
+    fn epilogue(&self, guard: &str) -> String {
+        format!("#endif /* {guard}_CL */\n")
+    }
+
+    fn begin(&self, p: Precision) -> String {
+        match p {
+            Precision::F64 => {
+                "#if defined(cl_khr_fp64)\n#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n".into()
+            }
+            Precision::F32 => String::new(),
+        }
+    }
+
+    fn end(&self, p: Precision) -> String {
+        match p {
+            Precision::F64 => "\n#endif /* cl_khr_fp64 */\n".into(),
+            Precision::F32 => String::new(),
+        }
+    }
+
+    fn after_function(&self, unit: &Unit, p: Precision) -> String {
+        let ty = p.c_type();
+        let n = unit.program.dim;
+        let state = n * (n - 1) / 2 + n;
+        let name = unit.function_name(p);
+        let params: Vec<String> = std::iter::once("const uint count".to_string())
+            .chain(unit.params.iter().map(|param| match param {
+                Param::Array(a, _) => format!("__global const {ty} *{a}"),
+                Param::Scalar(a) => format!("__global const {ty} *{a}"),
+                Param::Out(a, _) => format!("__global {ty} *{a}"),
+            }))
+            .collect();
+        let mut k = format!(
+            "\n// {name} on contact i = get_global_id(0) < count: each parameter an array of\n\
+             // count records of the scalar kernel's parameter (arrays of structures).\n\
+             __kernel void {name}_batch({})\n{{\n    const size_t i = get_global_id(0);\n    if (i >= count) return;\n",
+            params.join(", ")
+        );
+        let mut args = Vec::new();
+        for param in &unit.params {
+            match param {
+                Param::Array(a, elems) => {
+                    let len = elems.len();
+                    let _ = writeln!(k, "    {ty} {a}_i[{len}];");
+                    for e in 0..len {
+                        let _ = writeln!(k, "    {a}_i[{e}] = {a}[i * {len} + {e}];");
+                    }
+                    args.push(format!("{a}_i"));
+                }
+                Param::Scalar(a) => args.push(format!("{a}[i]")),
+                Param::Out(a, _) => {
+                    let _ = writeln!(k, "    {ty} {a}_i[{state}];");
+                    args.push(format!("{a}_i"));
+                }
+            }
+        }
+        let _ = writeln!(k, "    {name}({});", args.join(", "));
+        for param in &unit.params {
+            if let Param::Out(a, _) = param {
+                for e in 0..state {
+                    let _ = writeln!(k, "    {a}[i * {state} + {e}] = {a}_i[{e}];");
+                }
+            }
+        }
+        k.push_str("}\n");
+        k
+    }
+
+    fn notes(&self) -> Vec<String> {
+        vec![
+            "Build with -cl-fp32-correctly-rounded-divide-sqrt (OpenCL allows float `/` an error of".into(),
+            "2.5 ulp otherwise) on a device whose float config has CL_FP_DENORM (else float subnormals".into(),
+            "may flush to zero); the double kernels need cl_khr_fp64 (double `/` is correctly rounded).".into(),
+            "Batch kernels NAME_batch(count, arrays..): one contact per work item, arrays of structures.".into(),
+        ]
+    }
+}

@@ -1,0 +1,98 @@
+/* The faithfulness harness of the C back end (tests/c_backend.rs): runs one generated kernel
+ * on every record of an input file and writes its outputs.
+ *
+ *   harness N KERNEL PRECISION IN OUT
+ *
+ * KERNEL is free, fixed, free_fma or fixed_fma; PRECISION f64 or f32. IN holds records of
+ * the precision's type, native byte order: nu[N], ball1[3], ball2[3], state1[S+N],
+ * state2[S+N] (ball = inv_mass, radius, gamma2; state = spin, velocity). OUT receives per
+ * record out1[S+N] and out2[S+N] (free) or out2[S+N] (fixed; its radius1 is ball1[1]).
+ * Each kernel is called directly in the loop, so the compiler may inline and vectorise it. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "noslip_kernels.h"
+
+#define LOOP_FREE(T, FN, N, S)                                                    \
+    do {                                                                          \
+        const size_t rec = (N) + 6 + 2 * ((S) + (N)), out_rec = 2 * ((S) + (N)); \
+        const T *x = (const T *)in;                                               \
+        T *y = (T *)out;                                                          \
+        for (size_t c = 0; c < count; c++, x += rec, y += out_rec)                \
+            FN(x, x + (N), x + (N) + 3, x + (N) + 6, x + (N) + 6 + (S) + (N), y,  \
+               y + (S) + (N));                                                    \
+        out_len = count * out_rec * sizeof(T);                                    \
+    } while (0)
+
+#define LOOP_FIXED(T, FN, N, S)                                                   \
+    do {                                                                          \
+        const size_t rec = (N) + 6 + 2 * ((S) + (N)), out_rec = (S) + (N);       \
+        const T *x = (const T *)in;                                               \
+        T *y = (T *)out;                                                          \
+        for (size_t c = 0; c < count; c++, x += rec, y += out_rec)                \
+            FN(x, x[(N) + 1], x + (N) + 3, x + (N) + 6, x + (N) + 6 + (S) + (N), \
+               y);                                                                \
+        out_len = count * out_rec * sizeof(T);                                    \
+    } while (0)
+
+#define DIM(N, S)                                                                        \
+    if (n == (N)) {                                                                      \
+        const size_t rec = (N) + 6 + 2 * ((S) + (N));                                   \
+        count = in_len / (rec * size);                                                  \
+        if (f64 && !strcmp(kernel, "free")) LOOP_FREE(double, noslip_d##N##_free_f64, N, S);         \
+        if (f64 && !strcmp(kernel, "fixed")) LOOP_FIXED(double, noslip_d##N##_fixed_f64, N, S);      \
+        if (f64 && !strcmp(kernel, "free_fma")) LOOP_FREE(double, noslip_d##N##_free_fma_f64, N, S); \
+        if (f64 && !strcmp(kernel, "fixed_fma")) LOOP_FIXED(double, noslip_d##N##_fixed_fma_f64, N, S); \
+        if (!f64 && !strcmp(kernel, "free")) LOOP_FREE(float, noslip_d##N##_free_f32, N, S);         \
+        if (!f64 && !strcmp(kernel, "fixed")) LOOP_FIXED(float, noslip_d##N##_fixed_f32, N, S);      \
+        if (!f64 && !strcmp(kernel, "free_fma")) LOOP_FREE(float, noslip_d##N##_free_fma_f32, N, S); \
+        if (!f64 && !strcmp(kernel, "fixed_fma")) LOOP_FIXED(float, noslip_d##N##_fixed_fma_f32, N, S); \
+    }
+
+static void *read_all(const char *path, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    void *buf = malloc(size > 0 ? (size_t)size : 1);
+    *len = fread(buf, 1, (size_t)size, f);
+    fclose(f);
+    return buf;
+}
+
+int main(int argc, char **argv) {
+    if (argc != 6) {
+        fprintf(stderr, "usage: harness N KERNEL PRECISION IN OUT\n");
+        return 2;
+    }
+    const int n = atoi(argv[1]);
+    const char *kernel = argv[2];
+    const int f64 = !strcmp(argv[3], "f64");
+    const size_t size = f64 ? sizeof(double) : sizeof(float);
+    size_t in_len = 0, count = 0, out_len = 0;
+    void *in = read_all(argv[4], &in_len);
+    if (!in) {
+        fprintf(stderr, "harness: cannot read %s\n", argv[4]);
+        return 2;
+    }
+    void *out = malloc(in_len);
+    DIM(2, 1)
+    DIM(3, 3)
+    DIM(4, 6)
+    DIM(5, 10)
+    DIM(6, 15)
+    if (out_len == 0) {
+        fprintf(stderr, "harness: no kernel %s for n = %d in %s, or no records\n", kernel, n, argv[3]);
+        return 2;
+    }
+    FILE *f = fopen(argv[5], "wb");
+    if (!f || fwrite(out, 1, out_len, f) != out_len || fclose(f) != 0) {
+        fprintf(stderr, "harness: cannot write %s\n", argv[5]);
+        return 1;
+    }
+    free(in);
+    free(out);
+    return 0;
+}

@@ -1,0 +1,239 @@
+//! The C back end is faithful: the emitted header, compiled by the system C compiler at
+//! `-O2 -ffp-contract=off` and at `-O3 -march=native -ffp-contract=off`, returns bit for bit
+//! the Rust kernels' results (`collision_core::kernels`, through `Generated`) on 10^5 cases
+//! per dimension (n = 2..6), kernel (`free`, `fixed`, `free_fma`, `fixed_fma`) and format
+//! (`f64`, `f32`), drawn from every regime of the accuracy report (its own samplers, so the
+//! extremes included: mass ratios to 1e15, immovable bodies, gamma^2 to 1e-15 and 0, radius
+//! ratios to 1e6, scales 1e-100..1e100, spin-dominated, near-grazing), and every result is
+//! finite. A mutation check shows the comparison catches one altered operation.
+
+mod backend;
+
+use backend::{c_source, cc, compare, draw, records, run, rust_results, scratch, Float, KERNELS};
+use collision_core::{Generated, Kernel, Scalar};
+use noslip_accuracy::case::Case;
+use noslip_accuracy::regime::Regime;
+use noslip_codegen::backend::{file_name, generate, Lang};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Cases per dimension, kernel and format.
+const CASES: usize = 100_000;
+
+/// The compiler configurations the issue names.
+const CONFIGS: [(&str, &[&str]); 2] = [
+    ("-O2", &["-O2", "-ffp-contract=off"]),
+    (
+        "-O3 -march=native",
+        &["-O3", "-march=native", "-ffp-contract=off"],
+    ),
+];
+
+/// Write `header` into `dir` and compile the harness against it with `flags`; warnings are
+/// errors, so the emitted C must compile cleanly.
+fn build(dir: &Path, header: &str, flags: &[&str], exe: &str) -> PathBuf {
+    std::fs::write(dir.join(file_name(Lang::C)), header).unwrap();
+    let exe = dir.join(exe);
+    run(Command::new(cc())
+        .args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
+        .args(flags)
+        .arg("-I")
+        .arg(dir)
+        .arg(c_source("harness.c"))
+        .arg("-o")
+        .arg(&exe)
+        .arg("-lm"));
+    exe
+}
+
+/// Run `kernel` of dimension `n` in format `T` on the records in `input`.
+fn run_c<T: Float>(exe: &Path, n: usize, kernel: &str, input: &Path) -> Vec<T> {
+    let output = input.with_extension(format!("{kernel}.out"));
+    run(Command::new(exe)
+        .arg(n.to_string())
+        .arg(kernel)
+        .arg(<T as Scalar>::NAME)
+        .arg(input)
+        .arg(&output));
+    let values = T::from_bytes(&std::fs::read(&output).unwrap());
+    std::fs::remove_file(&output).unwrap();
+    values
+}
+
+/// Compare every kernel in format `T` on `cases` for each compiled harness; the failures.
+fn check_format<T: Float, const N: usize, const S: usize>(
+    dir: &Path,
+    exes: &[(&str, PathBuf)],
+    cases: &[(Regime, Case<T, N, S>)],
+) -> Vec<String>
+where
+    Generated: Kernel<T, N, S>,
+{
+    let input = dir.join(format!("cases_{N}_{}.bin", <T as Scalar>::NAME));
+    std::fs::write(&input, records(cases)).unwrap();
+    let mut failures = Vec::new();
+    for kernel in KERNELS {
+        let rust = rust_results(kernel, cases);
+        for (config, exe) in exes {
+            let c = run_c::<T>(exe, N, kernel, &input);
+            let what = format!("n = {N}, {kernel} {} (cc {config})", <T as Scalar>::NAME);
+            if let Err(e) = compare(&what, cases, &rust, &c) {
+                failures.push(e);
+            }
+        }
+    }
+    std::fs::remove_file(&input).unwrap();
+    failures
+}
+
+fn check_dim<const N: usize, const S: usize>(dir: &Path, exes: &[(&str, PathBuf)]) -> Vec<String>
+where
+    Generated: Kernel<f64, N, S> + Kernel<f32, N, S>,
+{
+    let cases = draw::<N, S>(CASES, 14 + N as u64);
+    let mut failures = check_format(dir, exes, &cases.f64);
+    failures.extend(check_format(dir, exes, &cases.f32));
+    failures
+}
+
+#[test]
+fn c_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
+    let dir = scratch("c-backend");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+    let exes: Vec<(&str, PathBuf)> = CONFIGS
+        .iter()
+        .enumerate()
+        .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("harness{k}"))))
+        .collect();
+    let mut failures = Vec::new();
+    for n in collision_core::DIMS.iter().copied() {
+        failures.extend(collision_core::with_dim!(
+            n,
+            |N, S| check_dim::<N, S>(&dir, &exes),
+            unreachable!("DIMS lists the compiled dimensions")
+        ));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The line of the first `+` step in `function`'s body, with the `+` made a `-`.
+fn mutate_first_addition(header: &str, function: &str) -> (String, String) {
+    let start = header
+        .find(&format!("void {function}("))
+        .expect("the function is in the header");
+    let body = &header[start..];
+    let line = body
+        .lines()
+        .find(|l| l.trim_start().starts_with("const double ") && l.contains(" + "))
+        .expect("an addition step");
+    let mutated = line.replacen(" + ", " - ", 1);
+    let at = start + body.find(line).unwrap();
+    let mut out = header.to_string();
+    out.replace_range(at..at + line.len(), &mutated);
+    (out, mutated)
+}
+
+/// One emitted operation altered (`+` made `-`) makes the comparison fail: the test above can
+/// fail, and only for the alteration (the same cases pass unaltered).
+#[test]
+fn one_altered_operation_fails_the_comparison() {
+    let dir = scratch("c-mutation");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+    let (mutated, line) = mutate_first_addition(&header, "noslip_d3_free_f64");
+    let cases = draw::<3, 3>(10_000, 3).f64;
+    let input = dir.join("cases.bin");
+    std::fs::write(&input, records(&cases)).unwrap();
+    let rust = rust_results("free", &cases);
+    let flags = CONFIGS[0].1;
+    let good = build(&dir, &header, flags, "good");
+    let c = run_c::<f64>(&good, 3, "free", &input);
+    assert_eq!(compare("unaltered", &cases, &rust, &c), Ok(()));
+    let bad = build(&dir, &mutated, flags, "bad");
+    let c = run_c::<f64>(&bad, 3, "free", &input);
+    let err = compare("altered", &cases, &rust, &c)
+        .expect_err(&format!("altering `{}` went unnoticed", line.trim()));
+    assert!(err.contains("components differ from Rust's"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The values `examples/c/collide.c` prints after `label`.
+fn printed(stdout: &str, label: &str) -> Vec<f64> {
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix(label))
+        .unwrap_or_else(|| panic!("no line {label:?} in:\n{stdout}"));
+    line.split_whitespace()
+        .map(|x| x.parse().unwrap())
+        .collect()
+}
+
+/// `examples/c/collide.c` builds with the one command of docs/backends.md (and as C++11), and
+/// prints the Rust kernels' results for its cases (17 significant digits read back exactly).
+#[test]
+fn the_c_example_builds_as_c_and_cpp_and_prints_the_rust_results() {
+    use collision_core::{kernels::d3, Ball, BodyState};
+    let dir = scratch("c-example");
+    std::fs::write(dir.join(file_name(Lang::C)), generate(Lang::C, &[3])).unwrap();
+    let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/c/collide.c");
+    let ball1 = Ball {
+        inv_mass: 0.5,
+        radius: 1.0,
+        gamma2: 0.4,
+    };
+    let ball2 = Ball {
+        inv_mass: 1.0,
+        radius: 1.5,
+        gamma2: 0.4,
+    };
+    let state1 = BodyState {
+        spin: [1.0, -2.0, 3.0],
+        velocity: [1.0, 0.0, 0.5],
+    };
+    let state2 = BodyState::zero();
+    let nu = [0.0, 0.6, 0.8];
+    let wall = d3::fixed(&[-0.0, -0.6, -0.8], &1.5, &ball1, &state2, &state1);
+    let [free1, free2] = d3::free(&nu, &ball1, &ball2, &state1, &state2);
+    let flat = |s: &BodyState<f64, 3, 3>| {
+        s.spin
+            .iter()
+            .chain(&s.velocity)
+            .map(|x| x.to_bits())
+            .collect::<Vec<_>>()
+    };
+    for (compiler, std) in [(cc(), "-std=c99"), ("c++".to_string(), "-std=c++11")] {
+        let exe = dir.join(format!("collide-{}", std.trim_start_matches("-std=")));
+        let mut cmd = Command::new(&compiler);
+        if compiler == "c++" {
+            cmd.args(["-x", "c++"]);
+        }
+        run(cmd
+            .args([
+                std,
+                "-O2",
+                "-ffp-contract=off",
+                "-Wall",
+                "-Wextra",
+                "-Werror",
+                "-I",
+            ])
+            .arg(&dir)
+            .arg(&example)
+            .arg("-o")
+            .arg(&exe)
+            .arg("-lm"));
+        let out = Command::new(&exe).output().unwrap();
+        assert!(out.status.success());
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        let bits = |label| {
+            printed(&stdout, label)
+                .iter()
+                .map(|x| x.to_bits())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits("wall: body 1+"), flat(&wall), "{compiler}");
+        assert_eq!(bits("free: body 1+"), flat(&free1), "{compiler}");
+        assert_eq!(bits("free: body 2+"), flat(&free2), "{compiler}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,154 @@
+//! The generated C kernels against the Rust kernels on the same cases, in one run:
+//! `cargo run --release -p noslip-tests --example c_vs_rust` (figures in docs/backends.md).
+//!
+//! For n = 2..6 it draws 4096 cases of the accuracy report's typical regime, writes them as
+//! records, runs `examples/c/bench.c` (compiled against the generated header with `cc -O2
+//! -ffp-contract=off`, the baseline target as the Rust release build, and with `-O3
+//! -march=native`) and times the Rust kernels (`Generated::free`, `fixed`, f64) on the same
+//! cases with `noslip_accuracy::timing`: the median nanoseconds per collision over 21 samples
+//! each, and the ratio C / Rust.
+
+use collision_core::rng::Rng;
+use collision_core::{Generated, Kernel};
+use noslip_accuracy::regime::Regime;
+use noslip_accuracy::timing::{pass_over, time};
+use noslip_codegen::backend::{file_name, generate, Lang};
+use std::path::Path;
+use std::process::Command;
+
+const BATCH: usize = 4096;
+const SAMPLES: usize = 21;
+
+fn run_c(exe: &Path, n: usize, cases: &Path) -> (f64, f64) {
+    let out = Command::new(exe)
+        .arg(n.to_string())
+        .arg(cases)
+        .arg(SAMPLES.to_string())
+        .output()
+        .expect("run the C benchmark");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let get = |name: &str| -> f64 {
+        text.lines()
+            .find_map(|l| l.strip_prefix(name)?.trim().parse().ok())
+            .unwrap_or_else(|| panic!("no {name} in {text}"))
+    };
+    (get("free "), get("fixed "))
+}
+
+fn rust<const N: usize, const S: usize>(dir: &Path) -> (std::path::PathBuf, f64, f64)
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let mut rng = Rng::new(2026);
+    let cases: Vec<_> = (0..BATCH)
+        .map(|_| (Regime::Typical, Regime::Typical.sample::<N, S>(&mut rng)))
+        .collect();
+    let path = dir.join(format!("cases_{N}.bin"));
+    let mut bytes = Vec::new();
+    for (_, c) in &cases {
+        let values =
+            c.nu.iter()
+                .chain(
+                    c.balls
+                        .iter()
+                        .flat_map(|b| [&b.inv_mass, &b.radius, &b.gamma2]),
+                )
+                .chain(
+                    c.states
+                        .iter()
+                        .flat_map(|s| s.spin.iter().chain(&s.velocity)),
+                );
+        for v in values {
+            bytes.extend(v.to_ne_bytes());
+        }
+    }
+    std::fs::write(&path, bytes).unwrap();
+    let cases: Vec<_> = cases.into_iter().map(|(_, c)| c).collect();
+    let free = time(BATCH, SAMPLES, || {
+        pass_over(&cases, |c| {
+            Generated::free(&c.nu, &c.balls[0], &c.balls[1], &c.states[0], &c.states[1])
+        })
+    });
+    let fixed = time(BATCH, SAMPLES, || {
+        pass_over(&cases, |c| {
+            Generated::fixed(
+                &c.nu,
+                &c.balls[0].radius,
+                &c.balls[1],
+                &c.states[0],
+                &c.states[1],
+            )
+        })
+    });
+    (path, free.median_ns, fixed.median_ns)
+}
+
+fn main() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/c-bench");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join(file_name(Lang::C)),
+        generate(Lang::C, &[2, 3, 4, 5, 6]),
+    )
+    .unwrap();
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/c/bench.c");
+    let configs: [(&str, &[&str]); 2] = [
+        ("cc -O2", &["-O2", "-ffp-contract=off"]),
+        (
+            "cc -O3 -march=native",
+            &["-O3", "-march=native", "-ffp-contract=off"],
+        ),
+    ];
+    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
+    let exes: Vec<_> = configs
+        .iter()
+        .enumerate()
+        .map(|(k, (_, flags))| {
+            let exe = dir.join(format!("bench{k}"));
+            let status = Command::new(&cc)
+                .arg("-std=c99")
+                .args(*flags)
+                .arg("-I")
+                .arg(&dir)
+                .arg(&source)
+                .arg("-o")
+                .arg(&exe)
+                .arg("-lm")
+                .status()
+                .expect("run the C compiler");
+            assert!(status.success(), "compiling {}", source.display());
+            exe
+        })
+        .collect();
+    println!(
+        "median ns per collision, f64, {BATCH} typical cases, {SAMPLES} samples; ratio = C / Rust"
+    );
+    println!(
+        "| n | kernel | Rust (release) | {} | ratio | {} | ratio |",
+        configs[0].0, configs[1].0
+    );
+    println!("|---|---|---:|---:|---:|---:|---:|");
+    for n in collision_core::DIMS.iter().copied() {
+        let (path, rust_free, rust_fixed) = collision_core::with_dim!(
+            n,
+            |N, S| rust::<N, S>(&dir),
+            unreachable!("a compiled dimension")
+        );
+        let c: Vec<(f64, f64)> = exes.iter().map(|exe| run_c(exe, n, &path)).collect();
+        for (kernel, r, pick) in [("free", rust_free, 0), ("fixed", rust_fixed, 1)] {
+            let at = |k: usize| if pick == 0 { c[k].0 } else { c[k].1 };
+            println!(
+                "| {n} | {kernel} | {r:.1} | {:.1} | {:.2} | {:.1} | {:.2} |",
+                at(0),
+                at(0) / r,
+                at(1),
+                at(1) / r
+            );
+        }
+    }
+}
