@@ -63,8 +63,10 @@ def _read_store(store: Path):
     parts = sorted(store.glob("part-*.csv"))
     if not parts:
         return None
-    frames = [pd.read_csv(p, float_precision="round_trip", keep_default_na=False,
-                          na_values=[""]) for p in parts]
+    # Floats are written by repr and must read back as the same float: pandas before 3
+    # rounds unless asked for "round_trip" (pandas 3 reads round-trip by default).
+    exact = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
+    frames = [pd.read_csv(p, keep_default_na=False, na_values=[""], **exact) for p in parts]
     return pd.concat(frames, ignore_index=True).drop_duplicates(POINT, keep="first")
 
 

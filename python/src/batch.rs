@@ -15,13 +15,16 @@
 //! included), and the first bad row is an error naming the row and the field.
 
 use crate::error::input_error;
-use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
-use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Kernel, Scalar};
 use collision_core::batch::BatchKernel;
+use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
 use collision_core::RefArith;
+use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Kernel, Scalar};
 use noslip_case::CaseError;
 use numpy::ndarray::{ArrayView1, ArrayView2, ArrayView3};
-use numpy::{Element, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
+use numpy::{
+    Element, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+    PyReadonlyArray3,
+};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -38,6 +41,15 @@ struct BodyArrays<'a, T> {
     radius: ArrayView1<'a, T>,
     gamma2: ArrayView1<'a, T>,
 }
+
+/// One body's arrays as views: angular velocity, velocity, `inv_mass`, `radius`, `gamma2`.
+type BodyViews<'a, T> = (
+    ArrayView3<'a, T>,
+    ArrayView2<'a, T>,
+    ArrayView1<'a, T>,
+    ArrayView1<'a, T>,
+    ArrayView1<'a, T>,
+);
 
 /// Every input of a batch, shapes checked.
 struct Inputs<'a, T> {
@@ -59,16 +71,7 @@ fn shape_error(field: &str, expected: String, got: &[usize]) -> PyErr {
 }
 
 impl<'a, T: Copy> Inputs<'a, T> {
-    fn new(
-        nu: ArrayView2<'a, T>,
-        bodies: [(
-            ArrayView3<'a, T>,
-            ArrayView2<'a, T>,
-            ArrayView1<'a, T>,
-            ArrayView1<'a, T>,
-            ArrayView1<'a, T>,
-        ); 2],
-    ) -> PyResult<Self> {
+    fn new(nu: ArrayView2<'a, T>, bodies: [BodyViews<'a, T>; 2]) -> PyResult<Self> {
         let (rows, dim) = nu.dim();
         if !collision_core::DIMS.contains(&dim) {
             return Err(input_error(format!(
@@ -94,7 +97,11 @@ impl<'a, T: Copy> Inputs<'a, T> {
                     velocity.shape(),
                 ));
             }
-            for (name, p) in [("inv_mass", &inv_mass), ("radius", &radius), ("gamma2", &gamma2)] {
+            for (name, p) in [
+                ("inv_mass", &inv_mass),
+                ("radius", &radius),
+                ("gamma2", &gamma2),
+            ] {
                 if p.len() != rows && p.len() != 1 {
                     return Err(shape_error(
                         &field(name),
@@ -143,6 +150,18 @@ impl<T: Scalar + Copy> BodyArrays<'_, T> {
         i: usize,
         pairs: &[(usize, usize); S],
     ) -> BodyState<T, N, S> {
+        // Row-major arrays (the usual case) are read as slices, without ndarray's
+        // per-element index arithmetic and bounds checks.
+        if let (Some(spin), Some(velocity)) = (self.spin.as_slice(), self.velocity.as_slice()) {
+            let (spin, velocity) = (
+                &spin[i * N * N..(i + 1) * N * N],
+                &velocity[i * N..(i + 1) * N],
+            );
+            return BodyState {
+                spin: pairs.map(|(r, c)| spin[r * N + c]),
+                velocity: std::array::from_fn(|k| velocity[k]),
+            };
+        }
         BodyState {
             spin: pairs.map(|(r, c)| self.spin[[i, r, c]]),
             velocity: std::array::from_fn(|k| self.velocity[[i, k]]),
@@ -191,14 +210,15 @@ struct Scratch<T, const N: usize, const S: usize> {
 }
 
 impl<T: Scalar, const N: usize, const S: usize> Scratch<T, N, S> {
-    fn new() -> Self {
+    /// Room for `rows` contacts (a chunk, or a shorter batch).
+    fn new(rows: usize) -> Self {
         Scratch {
-            free: FreeBatch::with_capacity(CHUNK),
-            fixed: FixedBatch::with_capacity(CHUNK),
-            pairs: PairBatch::with_capacity(CHUNK),
-            moved: StateBatch::with_capacity(CHUNK),
-            free_rows: Vec::with_capacity(CHUNK),
-            fixed_rows: Vec::with_capacity(CHUNK),
+            free: FreeBatch::with_capacity(rows),
+            fixed: FixedBatch::with_capacity(rows),
+            pairs: PairBatch::with_capacity(rows),
+            moved: StateBatch::with_capacity(rows),
+            free_rows: Vec::with_capacity(rows),
+            fixed_rows: Vec::with_capacity(rows),
         }
     }
 }
@@ -207,7 +227,6 @@ impl<T: Scalar, const N: usize, const S: usize> Scratch<T, N, S> {
 type RowError = (usize, String);
 
 /// Rows `start..start + out.velocity[0].len() / N` of the batch.
-#[allow(clippy::too_many_arguments)]
 fn run_chunk<T, const N: usize, const S: usize>(
     exec: &Exec,
     input: &Inputs<'_, T>,
@@ -231,7 +250,10 @@ where
     let [a, b] = &input.bodies;
     for j in 0..rows {
         let i = start + j;
-        let nu: [T; N] = std::array::from_fn(|k| input.nu[[i, k]]);
+        let nu: [T; N] = match input.nu.as_slice() {
+            Some(nu) => std::array::from_fn(|k| nu[i * N + k]),
+            None => std::array::from_fn(|k| input.nu[[i, k]]),
+        };
         let balls = [a.ball(i), b.ball(i)];
         let states: [BodyState<T, N, S>; 2] = [a.state(i, pairs), b.state(i, pairs)];
         if validate {
@@ -252,7 +274,14 @@ where
         let [b1, b2] = balls;
         let [s1, s2] = states;
         if b1.is_immovable() {
-            sc.fixed.push((Contact { nu, states: [s1, s2] }, b1.radius, b2));
+            sc.fixed.push((
+                Contact {
+                    nu,
+                    states: [s1, s2],
+                },
+                b1.radius,
+                b2,
+            ));
             sc.fixed_rows.push((j, false));
         } else if b2.is_immovable() {
             let minus_nu = nu.map(|x| -x);
@@ -266,7 +295,13 @@ where
             ));
             sc.fixed_rows.push((j, true));
         } else {
-            sc.free.push((Contact { nu, states: [s1, s2] }, [b1, b2]));
+            sc.free.push((
+                Contact {
+                    nu,
+                    states: [s1, s2],
+                },
+                [b1, b2],
+            ));
             sc.free_rows.push(j);
         }
     }
@@ -328,38 +363,46 @@ where
         spin: [s1, s2],
         velocity: [v1, v2],
     } = out;
-    let outputs = |c: usize, s1, s2, v1, v2| {
-        (
-            c * CHUNK,
-            Outputs {
-                spin: [s1, s2],
-                velocity: [v1, v2],
-            },
-        )
-    };
-    let one = |scratch: &mut Scratch<T, N, S>, (start, out): (usize, Outputs<'_, T>)| {
-        run_chunk(&exec, input, validate, start, out, scratch, &pairs)
-    };
-    let (spin_len, vel_len) = (CHUNK * N * N, CHUNK * N);
-    let first_error = if parallel && input.rows > CHUNK {
-        s1.par_chunks_mut(spin_len)
-            .zip(s2.par_chunks_mut(spin_len))
-            .zip(v1.par_chunks_mut(vel_len))
-            .zip(v2.par_chunks_mut(vel_len))
-            .enumerate()
-            .map(|(c, (((s1, s2), v1), v2))| outputs(c, s1, s2, v1, v2))
-            .map_init(Scratch::new, one)
-            .filter_map(Result::err)
-            .min_by_key(|e: &RowError| e.0)
-    } else {
-        let mut scratch = Scratch::new();
+    // A piece: consecutive chunks run on one thread with one scratch (allocated once per
+    // piece, a few pieces per thread: rayon's per-split `map_init` allocated it per chunk).
+    let piece = |start: usize, s1: &mut [T], s2: &mut [T], v1: &mut [T], v2: &mut [T]| {
+        let mut scratch = Scratch::<T, N, S>::new((v1.len() / N).min(CHUNK));
+        let (spin_len, vel_len) = (CHUNK * N * N, CHUNK * N);
         s1.chunks_mut(spin_len)
             .zip(s2.chunks_mut(spin_len))
             .zip(v1.chunks_mut(vel_len))
             .zip(v2.chunks_mut(vel_len))
             .enumerate()
-            .map(|(c, (((s1, s2), v1), v2))| one(&mut scratch, outputs(c, s1, s2, v1, v2)))
-            .find_map(Result::err)
+            .try_for_each(|(c, (((s1, s2), v1), v2))| {
+                let out = Outputs {
+                    spin: [s1, s2],
+                    velocity: [v1, v2],
+                };
+                run_chunk(
+                    &exec,
+                    input,
+                    validate,
+                    start + c * CHUNK,
+                    out,
+                    &mut scratch,
+                    &pairs,
+                )
+            })
+    };
+    let chunks = input.rows.div_ceil(CHUNK);
+    let first_error = if parallel && chunks > 1 {
+        let pieces = (4 * rayon::current_num_threads()).min(chunks);
+        let rows = chunks.div_ceil(pieces) * CHUNK;
+        s1.par_chunks_mut(rows * N * N)
+            .zip(s2.par_chunks_mut(rows * N * N))
+            .zip(v1.par_chunks_mut(rows * N))
+            .zip(v2.par_chunks_mut(rows * N))
+            .enumerate()
+            .map(|(p, (((s1, s2), v1), v2))| piece(p * rows, s1, s2, v1, v2))
+            .filter_map(Result::err)
+            .min_by_key(|e: &RowError| e.0)
+    } else {
+        piece(0, s1, s2, v1, v2).err()
     };
     first_error.map_or(Ok(()), |(_, m)| Err(m))
 }
@@ -382,15 +425,7 @@ type BatchOut<'py, T> = (
     Bound<'py, PyArray2<T>>,
 );
 
-fn views<'a, T: Element>(
-    b: &'a BodyIn<'_, T>,
-) -> (
-    ArrayView3<'a, T>,
-    ArrayView2<'a, T>,
-    ArrayView1<'a, T>,
-    ArrayView1<'a, T>,
-    ArrayView1<'a, T>,
-) {
+fn views<'a, T: Element>(b: &'a BodyIn<'_, T>) -> BodyViews<'a, T> {
     (
         b.0.as_array(),
         b.1.as_array(),
@@ -423,8 +458,14 @@ where
     let [v1, v2] = &velocity;
     let out = unsafe {
         Outputs {
-            spin: [s1.as_slice_mut().map_err(slice)?, s2.as_slice_mut().map_err(slice)?],
-            velocity: [v1.as_slice_mut().map_err(slice)?, v2.as_slice_mut().map_err(slice)?],
+            spin: [
+                s1.as_slice_mut().map_err(slice)?,
+                s2.as_slice_mut().map_err(slice)?,
+            ],
+            velocity: [
+                v1.as_slice_mut().map_err(slice)?,
+                v2.as_slice_mut().map_err(slice)?,
+            ],
         }
     };
     let done = py.detach(|| {
@@ -506,7 +547,9 @@ where
     for i in 0..input.rows {
         let balls = [a.ball(i), b.ball(i)];
         if balls.iter().any(Ball::is_immovable) {
-            return Err(format!("row {i}: the reference times `free`: both bodies must move"));
+            return Err(format!(
+                "row {i}: the reference times `free`: both bodies must move"
+            ));
         }
         let nu: [f64; N] = std::array::from_fn(|k| input.nu[[i, k]]);
         batch.push((

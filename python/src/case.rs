@@ -6,9 +6,9 @@
 //! from the command line, bit for bit.
 
 use crate::error::input_error;
+use collision_core::Exact;
 use noslip_case::collide::collide_case as solve_case;
 use noslip_case::CaseError;
-use collision_core::Exact;
 use pyo3::prelude::*;
 use serde_json::Value;
 

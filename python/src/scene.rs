@@ -27,10 +27,17 @@ fn to_toml(value: &Bound<'_, PyAny>, place: &str) -> PyResult<toml::Value> {
     if let Ok(d) = value.cast::<PyDict>() {
         let mut table = toml::Table::new();
         for (k, v) in d.iter() {
-            let key: String = k
-                .extract()
-                .map_err(|_| bad(format!("keys must be strings, got {}", k.repr().map_or("?".into(), |r| r.to_string()))))?;
-            let inner = if place.is_empty() { key.clone() } else { format!("{place}.{key}") };
+            let key: String = k.extract().map_err(|_| {
+                bad(format!(
+                    "keys must be strings, got {}",
+                    k.repr().map_or("?".into(), |r| r.to_string())
+                ))
+            })?;
+            let inner = if place.is_empty() {
+                key.clone()
+            } else {
+                format!("{place}.{key}")
+            };
             table.insert(key, to_toml(&v, &inner)?);
         }
         return Ok(toml::Value::Table(table));
@@ -156,4 +163,3 @@ impl Scene {
         )
     }
 }
-

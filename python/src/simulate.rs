@@ -85,8 +85,10 @@ impl Columns {
             .as_array()
             .map(|a| a.iter().filter_map(Value::as_i64).collect())
             .unwrap_or_default();
-        self.balls
-            .extend([balls.first().copied().unwrap_or(-1), balls.get(1).copied().unwrap_or(-1)]);
+        self.balls.extend([
+            balls.first().copied().unwrap_or(-1),
+            balls.get(1).copied().unwrap_or(-1),
+        ]);
         self.wall_axis.push(e["axis"].as_i64().unwrap_or(-1));
         self.wall_upper.push(e["side"].as_str() == Some("upper"));
         self.obstacle.push(e["obstacle"].as_i64().unwrap_or(-1));
@@ -97,10 +99,26 @@ impl Columns {
                 None => out.extend(std::iter::repeat_n(f64::NAN, len)),
             };
             fill(&mut self.positions, e["positions"].get(slot), n);
-            fill(&mut self.pre_spin, e["pre"].get(slot).map(|p| &p["spin"]), s);
-            fill(&mut self.pre_velocity, e["pre"].get(slot).map(|p| &p["velocity"]), n);
-            fill(&mut self.post_spin, e["post"].get(slot).map(|p| &p["spin"]), s);
-            fill(&mut self.post_velocity, e["post"].get(slot).map(|p| &p["velocity"]), n);
+            fill(
+                &mut self.pre_spin,
+                e["pre"].get(slot).map(|p| &p["spin"]),
+                s,
+            );
+            fill(
+                &mut self.pre_velocity,
+                e["pre"].get(slot).map(|p| &p["velocity"]),
+                n,
+            );
+            fill(
+                &mut self.post_spin,
+                e["post"].get(slot).map(|p| &p["spin"]),
+                s,
+            );
+            fill(
+                &mut self.post_velocity,
+                e["post"].get(slot).map(|p| &p["velocity"]),
+                n,
+            );
         }
     }
 }
@@ -128,7 +146,9 @@ pub fn simulate<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     if let Some(t) = time {
         if !(t > 0.0 && t.is_finite()) {
-            return Err(input_error(format!("time: must be positive and finite, got {t}")));
+            return Err(input_error(format!(
+                "time: must be positive and finite, got {t}"
+            )));
         }
     }
     if events == Some(0) {
@@ -176,9 +196,15 @@ pub fn simulate<'py>(
     ev.set_item("nu", array(py, cols.nu, &[count, n])?)?;
     ev.set_item("positions", array(py, cols.positions, &[count, 2, n])?)?;
     ev.set_item("pre_spin", array(py, cols.pre_spin, &[count, 2, s])?)?;
-    ev.set_item("pre_velocity", array(py, cols.pre_velocity, &[count, 2, n])?)?;
+    ev.set_item(
+        "pre_velocity",
+        array(py, cols.pre_velocity, &[count, 2, n])?,
+    )?;
     ev.set_item("post_spin", array(py, cols.post_spin, &[count, 2, s])?)?;
-    ev.set_item("post_velocity", array(py, cols.post_velocity, &[count, 2, n])?)?;
+    ev.set_item(
+        "post_velocity",
+        array(py, cols.post_velocity, &[count, 2, n])?,
+    )?;
     let (sample_events, drift): (Vec<u64>, Vec<f64>) = done.trace.energy.iter().copied().unzip();
     let samples = sample_events.len();
     let energy = PyDict::new(py);
