@@ -2,8 +2,8 @@
 //!
 //! The `noslip` command: collide two balls from a JSON case, prove the generated kernels
 //! exact, measure their error against run time, run scenes, and print the kernels
-//! specialised to a scene. It is thin: it parses arguments and the JSON case format
-//! ([`json`]), calls the library crates (`collision-core`, `noslip-verify`,
+//! specialised to a scene. It is thin: it parses arguments, reads the JSON case format
+//! ([`json`], the `noslip-case` crate), calls the library crates (`collision-core`, `noslip-verify`,
 //! `noslip-accuracy`, `noslip-sim`, `noslip-codegen`), and publishes their outputs atomically
 //! ([`publish`]) with one table of exit codes ([`exit`]). It holds no physics, no checks and
 //! no measurements of its own.
@@ -16,7 +16,8 @@
 pub mod command;
 pub mod dims;
 pub mod exit;
-pub mod json;
+/// The JSON case format (the `noslip-case` crate, shared with the Python package).
+pub use noslip_case as json;
 pub mod out;
 pub mod progress;
 pub mod publish;

@@ -54,6 +54,13 @@ impl<B: Lanewise> Batch<B> {
         &mut self.blocks
     }
 
+    /// Empty the batch, keeping its allocation (a scratch batch refilled chunk by chunk
+    /// allocates nothing after its first fill).
+    pub fn clear(&mut self) {
+        self.blocks.clear();
+        self.len = 0;
+    }
+
     /// Append one item.
     pub fn push(&mut self, item: B::Item) {
         let l = self.len % LANES;

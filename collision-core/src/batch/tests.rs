@@ -341,6 +341,12 @@ fn batches_round_trip_the_per_collision_types() {
             assert_eq!(batch.get(i).as_ref(), Some(item));
         }
         assert_eq!(batch.get(len), None);
+        // Cleared and refilled (a reused scratch batch), it is the fresh batch again.
+        let mut refilled = batch.clone();
+        refilled.clear();
+        assert!(refilled.is_empty() && refilled.blocks().is_empty());
+        refilled.extend(items.iter().cloned());
+        assert_eq!(refilled, batch);
         // Padding lanes repeat the last block's first contact.
         if let Some(last) = batch.blocks().last() {
             let first = &items[(len - 1) / LANES * LANES];

@@ -1,5 +1,9 @@
-//! The JSON side of `noslip collide`: reading cases, running the collision, printing the
-//! result.
+//! # noslip-case
+//!
+//! The JSON case format of `noslip collide` (and of the Python package's `noslip.collide`):
+//! reading cases, validating them with messages that name the field, running the collision,
+//! printing the result. One place for both front ends, so they cannot disagree on what a
+//! case means.
 //!
 //! - [`number`]: the number formats (decimals, rationals) and how `f64` and exact
 //!   rationals read and print them.
@@ -10,6 +14,8 @@
 //! - [`output`]: the output schema.
 //! - [`collide`]: a whole input (one case or an array), in and out.
 //! - [`error`]: the one-line error of a case, naming the field.
+
+#![warn(missing_docs, unreachable_pub)]
 
 pub mod case;
 pub mod collide;

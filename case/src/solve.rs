@@ -5,9 +5,9 @@
 //! collision-core does every check and writes every message; this module only shapes the
 //! case into its types.
 
-use crate::json::case::{BodyInput, Case, Spin};
-use crate::json::error::CaseError;
-use crate::json::number::InputScalar;
+use crate::case::{BodyInput, Case, Spin};
+use crate::error::CaseError;
+use crate::number::InputScalar;
 use collision_core::reference::state_len;
 use collision_core::{
     collide, collide_general, skew_entries, Ball, BodyState, Generated, Kernel, RefArith, State2,

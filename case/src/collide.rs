@@ -1,11 +1,11 @@
 //! The whole input: one case or an array of cases, in, and the same shape out.
 
-use crate::json::case::{join, Case};
-use crate::json::error::{kind, CaseError};
-use crate::json::keys::{first_repeated_key, PathStep};
-use crate::json::number::InputScalar;
-use crate::json::output::render;
-use crate::json::solve::solve;
+use crate::case::{join, Case};
+use crate::error::{kind, CaseError};
+use crate::keys::{first_repeated_key, PathStep};
+use crate::number::InputScalar;
+use crate::output::render;
+use crate::solve::solve;
 use collision_core::{Exact, RefArith};
 use serde_json::Value;
 use std::fmt;

@@ -1,10 +1,10 @@
 //! The output of one case: `{"bodies": [{"angular_velocity": .., "velocity": [..]}, ..]}`,
 //! each body's angular velocity in the form it was given (matrix, 2D scalar, 3D omega).
 
-use crate::json::case::{Case, Spin};
-use crate::json::error::CaseError;
-use crate::json::number::InputScalar;
-use crate::json::solve::BodyOutput;
+use crate::case::{Case, Spin};
+use crate::error::CaseError;
+use crate::number::InputScalar;
+use crate::solve::BodyOutput;
 use collision_core::{skew_pairs, State2, State3};
 use serde_json::{Map, Value};
 

@@ -14,7 +14,7 @@
 //!   parser, rationals as the exact rational rounded once (num-rational's `to_f64`).
 //!   Results beyond the `f64` range are errors; results below it round to (signed) zero.
 
-use crate::json::error::{kind, quote, CaseError};
+use crate::error::{kind, quote, CaseError};
 use collision_core::{Exact, Scalar};
 use num_bigint::BigInt;
 use num_traits::{ToPrimitive, Zero};

@@ -14,8 +14,8 @@
 //! Sizes are checked against `dim` before any number is read, and `dim` is bounded by
 //! [`MAX_DIM`], so nothing of size `dim` is built from a short input.
 
-use crate::json::error::{clip, kind, quote, CaseError};
-use crate::json::number::{from_json, integer_literal, InputScalar};
+use crate::error::{clip, kind, quote, CaseError};
+use crate::number::{from_json, integer_literal, InputScalar};
 use collision_core::{Inertia, Mass};
 use serde_json::{Map, Value};
 

@@ -1,0 +1,128 @@
+"""collide_batch against the Rust batch kernel and a vectorised NumPy peer.
+
+    python python/benches/batch.py [--rows 1000000] [--dims 3] [--repeats 5]
+
+Prints median-free figures: the best of `repeats` runs, in ns per contact, for
+- `rust`: the Rust batch kernel alone (`Exec::auto().free`, rayon threads) on the same rows,
+  already laid out in its blocked batch (noslip.batch.batch_kernel_seconds);
+- `collide_batch`: noslip.collide_batch on the NumPy arrays, without and with validation;
+- `numpy`: the closed form of docs/derivation.md section 8 written with NumPy array
+  operations (checked against the package first);
+and the speed-up of two Python threads running serial batches (the GIL released).
+"""
+
+from __future__ import annotations
+
+import argparse
+import threading
+import time
+
+import numpy as np
+
+import noslip
+from noslip.batch import batch_kernel_seconds
+
+
+def contacts(rng, rows, n):
+    nu = rng.normal(size=(rows, n))
+    nu /= np.linalg.norm(nu, axis=1, keepdims=True)
+    bodies = []
+    for _ in range(2):
+        a = rng.uniform(-1, 1, size=(rows, n, n))
+        bodies.append({
+            "angular_velocity": a - a.transpose(0, 2, 1),
+            "velocity": rng.uniform(-1, 1, size=(rows, n)),
+            "inv_mass": rng.uniform(0.25, 4.0, size=rows),
+            "radius": rng.uniform(0.5, 2.0, size=rows),
+            "gamma2": rng.uniform(0.01, 2.0 / n, size=rows),
+        })
+    dn = np.einsum("ij,ij->i", bodies[1]["velocity"] - bodies[0]["velocity"], nu)
+    nu[dn > 0] *= -1
+    return nu, bodies
+
+
+def numpy_peer(nu, bodies):
+    """The closed form (docs/derivation.md section 8), vectorised over rows:
+    c = R1 U1 nu + R2 U2 nu, d_n = (u2 - u1).nu, t = u2 - u1 - d_n nu - c,
+    D = w1 g2 (1 + g1) + w2 g1 (1 + g2), P = d_n/(w1 + w2) nu + g1 g2/D t,
+    u1+ = u1 + 2 w1 P, u2+ = u2 - 2 w2 P,
+    U1+ = U1 + 2 w1 g2/(R1 D) nu^t, U2+ = U2 + 2 w2 g1/(R2 D) nu^t, with a^b = b a^T - a b^T (section 2)."""
+    b1, b2 = bodies
+    U1, U2 = b1["angular_velocity"], b2["angular_velocity"]
+    u1, u2 = b1["velocity"], b2["velocity"]
+    w1, w2 = b1["inv_mass"][:, None], b2["inv_mass"][:, None]
+    R1, R2 = b1["radius"][:, None], b2["radius"][:, None]
+    g1, g2 = b1["gamma2"][:, None], b2["gamma2"][:, None]
+    c = R1 * np.einsum("rij,rj->ri", U1, nu) + R2 * np.einsum("rij,rj->ri", U2, nu)
+    du = u2 - u1
+    dn = np.einsum("ri,ri->r", du, nu)[:, None]
+    t = du - dn * nu - c
+    D = w1 * g2 * (1 + g1) + w2 * g1 * (1 + g2)
+    P = dn / (w1 + w2) * nu + g1 * g2 / D * t
+    wedge = t[:, :, None] * nu[:, None, :] - nu[:, :, None] * t[:, None, :]
+    return (
+        {"angular_velocity": U1 + (2 * w1 * g2 / (R1 * D))[:, :, None] * wedge,
+         "velocity": u1 + 2 * w1 * P},
+        {"angular_velocity": U2 + (2 * w2 * g1 / (R2 * D))[:, :, None] * wedge,
+         "velocity": u2 - 2 * w2 * P},
+    )
+
+
+def best(f, repeats):
+    times = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        f()
+        times.append(time.perf_counter() - t)
+    return min(times)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rows", type=int, default=1_000_000)
+    ap.add_argument("--dims", type=int, nargs="+", default=[3])
+    ap.add_argument("--repeats", type=int, default=5)
+    args = ap.parse_args()
+    print(f"isa {noslip.isa()}, {args.rows} contacts, best of {args.repeats}, ns per contact")
+    print("| n | rust kernel | collide_batch | ratio | collide_batch, validated | numpy peer "
+          "| numpy / collide_batch | 2 threads / sequential |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for n in args.dims:
+        rng = np.random.default_rng(n)
+        nu, bodies = contacts(rng, args.rows, n)
+        # The peer is checked against the package first: both compute the same map, in other
+        # operation orders, so they agree to rounding (values O(1): 1e-12 is ~5000 eps).
+        k = min(args.rows, 10_000)
+        sub = [{key: v[:k] for key, v in b.items()} for b in bodies]
+        ours, peer = noslip.collide_batch(nu[:k], sub), numpy_peer(nu[:k], sub)
+        for b in range(2):
+            for key in ("angular_velocity", "velocity"):
+                err = np.abs(ours[b][key] - peer[b][key]).max()
+                assert err < 1e-12, (n, b, key, err)
+        ns = 1e9 / args.rows
+        rust = min(batch_kernel_seconds(nu, bodies, args.repeats)) * ns
+        fast = best(lambda: noslip.collide_batch(nu, bodies, validate=False), args.repeats) * ns
+        checked = best(lambda: noslip.collide_batch(nu, bodies), args.repeats) * ns
+        numpy_t = best(lambda: numpy_peer(nu, bodies), max(1, args.repeats // 2)) * ns
+        half = [{key: v[: args.rows // 2] for key, v in b.items()} for b in bodies]
+        run = lambda: noslip.collide_batch(nu[: args.rows // 2], half, validate=False,  # noqa
+                                           parallel=False)
+
+        def sequential():
+            run()
+            run()
+
+        def threaded():
+            ts = [threading.Thread(target=run) for _ in range(2)]
+            for th in ts:
+                th.start()
+            for th in ts:
+                th.join()
+
+        ratio_threads = best(threaded, args.repeats) / best(sequential, args.repeats)
+        print(f"| {n} | {rust:.1f} | {fast:.1f} | {fast / rust:.2f} | {checked:.1f} "
+              f"| {numpy_t:.1f} | {numpy_t / fast:.0f} | {ratio_threads:.2f} |")
+
+
+if __name__ == "__main__":
+    main()

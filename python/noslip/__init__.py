@@ -1,0 +1,40 @@
+"""noslip: no-slip collisions of rigid balls in R^n, from Python.
+
+At contact, two balls' angular velocities ``U_i`` (skew ``n x n`` matrices) and centre
+velocities ``u_i`` jump by the reflection, in the kinetic-energy metric, across the velocities
+with no slip at the contact point (the model: ``docs/derivation.md``). The kernels are the
+generated, exactly verified Rust kernels of the ``noslip`` workspace.
+
+- :func:`collide`: one collision, floats or exact ``Fraction``\\ s (the JSON case format of
+  ``noslip collide``).
+- :func:`collide_batch`: a batch on NumPy arrays (float64 or float32), GIL released, threads.
+- :class:`Scene`, :func:`simulate`: scenes (TOML) and the event-driven simulator.
+- :func:`verify`, :func:`report`: the exact verification and the accuracy report.
+- :func:`sweep`: a function over a parameter grid as Dask tasks, streamed to a store.
+- :class:`InputError`: bad input (a ``ValueError`` naming the field).
+
+See ``docs/python.md``.
+"""
+
+from noslip._native import DIMS, InputError, Scene
+from noslip.batch import collide_batch, isa
+from noslip.case import collide
+from noslip.checks import report, verify
+from noslip.simulate import SimulationResult, simulate
+from noslip.sweep import sweep
+from noslip import tables
+
+__all__ = [
+    "DIMS",
+    "InputError",
+    "Scene",
+    "SimulationResult",
+    "collide",
+    "collide_batch",
+    "isa",
+    "report",
+    "simulate",
+    "sweep",
+    "tables",
+    "verify",
+]

@@ -1,0 +1,63 @@
+"""Type stubs of the native module (the Rust crate in python/src)."""
+
+from os import PathLike
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+DIMS: list[int]
+
+class InputError(ValueError):
+    """Bad input: the message names the field (``bodies[1].gamma2: ...``)."""
+
+def collide_case(case: str, exact: bool) -> str: ...
+
+_BodyArrays = tuple[
+    npt.NDArray[Any], npt.NDArray[Any], npt.NDArray[Any], npt.NDArray[Any], npt.NDArray[Any]
+]
+_BatchOut = tuple[npt.NDArray[Any], npt.NDArray[Any], npt.NDArray[Any], npt.NDArray[Any]]
+
+def collide_batch_f64(
+    normal: npt.NDArray[np.float64],
+    body1: _BodyArrays,
+    body2: _BodyArrays,
+    validate: bool,
+    parallel: bool,
+) -> _BatchOut: ...
+def collide_batch_f32(
+    normal: npt.NDArray[np.float32],
+    body1: _BodyArrays,
+    body2: _BodyArrays,
+    validate: bool,
+    parallel: bool,
+) -> _BatchOut: ...
+def batch_kernel_seconds(
+    normal: npt.NDArray[np.float64], body1: _BodyArrays, body2: _BodyArrays, repeats: int
+) -> list[float]: ...
+def isa() -> str: ...
+
+class Scene:
+    """A validated scene (the TOML format of ``noslip simulate``); pickles as its text."""
+
+    def __init__(self, text: str, origin: str = "<string>") -> None: ...
+    @staticmethod
+    def from_file(path: str | PathLike[str]) -> Scene: ...
+    @staticmethod
+    def from_dict(scene: dict[str, Any], origin: str = "<dict>") -> Scene: ...
+    @property
+    def toml(self) -> str: ...
+    @property
+    def origin(self) -> str: ...
+    @property
+    def dim(self) -> int: ...
+    @property
+    def description(self) -> str: ...
+    @property
+    def balls(self) -> int: ...
+
+def simulate(
+    scene: Scene, events: int | None, time: float | None, log: bool
+) -> dict[str, Any]: ...
+def verify(dims: list[int], points: int) -> str: ...
+def report(dims: list[int], samples: int, seed: int) -> str: ...

@@ -1,0 +1,126 @@
+"""A batch of collisions on NumPy arrays: :func:`collide_batch`."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from noslip import _native
+from noslip._native import InputError
+
+__all__ = ["collide_batch", "isa", "BODY_KEYS"]
+
+#: The keys of a body in :func:`collide_batch`: its states and the kernel's parameters.
+BODY_KEYS = ("angular_velocity", "velocity", "inv_mass", "radius", "gamma2")
+
+
+def _body(body: Mapping[str, Any], b: int, dtype: np.dtype) -> tuple:
+    if not isinstance(body, Mapping):
+        raise InputError(f"bodies[{b}]: expected a mapping with keys {', '.join(BODY_KEYS)}")
+    unknown = [k for k in body if k not in BODY_KEYS]
+    if unknown:
+        raise InputError(
+            f"bodies[{b}].{unknown[0]}: unknown key (the keys are: {', '.join(BODY_KEYS)})"
+        )
+    arrays = []
+    for key in BODY_KEYS:
+        if key not in body:
+            raise InputError(f"bodies[{b}].{key}: missing (required)")
+        x = body[key]
+        if isinstance(x, np.ndarray) and x.ndim > 0:
+            a = x
+        else:
+            a = np.asarray(x)
+            if a.ndim == 0:
+                # A scalar parameter, shared by every row: rounded once to the batch's dtype.
+                a = a.astype(dtype).reshape(1)
+        if a.dtype != dtype:
+            raise InputError(
+                f"bodies[{b}].{key}: dtype {a.dtype}, expected {dtype} (the dtype of normal; "
+                "arrays are read in place, never converted)"
+            )
+        arrays.append(a)
+    return tuple(arrays)
+
+
+def collide_batch(
+    normal: np.ndarray,
+    bodies: Sequence[Mapping[str, Any]],
+    *,
+    validate: bool = True,
+    parallel: bool = True,
+) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """The no-slip collision map on every row of a batch.
+
+    Row ``k`` is one contact: ``xi_k+ = 2 P_G(q_k) xi_k - xi_k`` (see :func:`noslip.collide`),
+    computed by the generated batch kernels (blocks of 8 contacts, vectorised with the
+    instruction set chosen at run time, :func:`isa`) in the kernel's own operations: each row
+    is bit for bit the scalar kernel's result, which is :func:`noslip.collide`'s whenever the
+    row needs no rounding allowance (``|nu|^2 = 1`` in the batch's float type, ``gamma2`` in
+    ``[0, 2/n]``, not grazing within 8 eps) and its result is in range. A row with an
+    immovable body (``inv_mass = 0``) runs the ``fixed`` kernel, as ``collide`` does; that
+    body comes back unchanged.
+
+    The arrays are read in place (any strides; no copy, no per-row Python object), the GIL
+    is released, and with ``parallel`` the rows are split across rayon's threads in chunks of
+    1024. Memory beyond the new output arrays is a scratch of one chunk per running thread.
+
+    Parameters
+    ----------
+    normal : ndarray, shape (N, n), float64 or float32
+        The unit normals ``nu``, from body 1's centre to body 2's; n in 2..6.
+    bodies : two mappings of arrays of ``normal``'s dtype
+        ``angular_velocity``: ``(N, n, n)`` skew matrices ``U``; ``velocity``: ``(N, n)``;
+        the kernel's parameters ``inv_mass`` (``1/m``, 0 for an immovable body), ``radius``
+        ``R > 0`` and ``gamma2 = 2 lambda / R^2`` in ``[0, 2/n]`` (``2/(n+2)`` uniform,
+        ``2/n`` a shell; ``I/(m R^2)`` in 3D), each ``(N,)`` or a scalar shared by all rows.
+    validate : bool
+        Check every row as :func:`noslip.collide` does (finite; unit normal; valid balls;
+        skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``), within the rounding allowance.
+        Without it, a bad row gives NaN or infinities in its own outputs only.
+    parallel : bool
+        Split the rows across rayon's threads (``False``: the calling thread only; the GIL
+        is released either way).
+
+    Returns
+    -------
+    (dict, dict)
+        Per body, new arrays ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)``.
+
+    Raises
+    ------
+    InputError
+        A wrong shape or dtype (naming the field), or with ``validate`` the first bad row:
+        ``row 17: bodies[1].gamma2: ...``.
+    """
+    normal = np.asarray(normal)
+    if normal.dtype not in (np.float64, np.float32):
+        raise InputError(f"normal: dtype must be float64 or float32, got {normal.dtype}")
+    if normal.ndim != 2:
+        raise InputError(f"normal: expected shape (N, n), got {normal.shape}")
+    if not isinstance(bodies, Sequence) or len(bodies) != 2:
+        raise InputError("bodies: expected two bodies (a sequence of two mappings)")
+    b1, b2 = (_body(bodies[b], b, normal.dtype) for b in range(2))
+    run = _native.collide_batch_f64 if normal.dtype == np.float64 else _native.collide_batch_f32
+    s1, v1, s2, v2 = run(normal, b1, b2, validate, parallel)
+    return (
+        {"angular_velocity": s1, "velocity": v1},
+        {"angular_velocity": s2, "velocity": v2},
+    )
+
+
+def isa() -> str:
+    """The instruction set the batch kernels run on here: ``sse2``, ``avx2`` or ``avx512``."""
+    return _native.isa()
+
+
+def batch_kernel_seconds(
+    normal: np.ndarray, bodies: Sequence[Mapping[str, Any]], repeats: int = 5
+) -> list[float]:
+    """The Rust batch kernel alone on the same float64 rows (the benchmark's reference): the
+    rows are laid out into its blocked batch once, untimed, then ``Exec::auto().free`` runs
+    ``repeats`` times; the seconds of each run. Every body must move (``inv_mass > 0``)."""
+    normal = np.asarray(normal)
+    b1, b2 = (_body(bodies[b], b, np.dtype(np.float64)) for b in range(2))
+    return _native.batch_kernel_seconds(normal, b1, b2, repeats)

@@ -1,0 +1,121 @@
+"""One collision: :func:`collide`, in floats or in exact rationals."""
+
+from __future__ import annotations
+
+import json
+import numbers
+from decimal import Decimal
+from fractions import Fraction
+from typing import Any, Mapping, Sequence
+
+from noslip._native import InputError, collide_case
+
+__all__ = ["collide"]
+
+
+def _number_text(x: Any, path: str, exact: bool) -> Any:
+    """A number as the JSON case format spells it: floats as their shortest round-trip
+    decimal (so the f64 read back is the same float), ``Fraction`` as ``"p/q"``."""
+    if isinstance(x, Fraction):
+        return f"{x.numerator}/{x.denominator}"
+    if isinstance(x, numbers.Integral):
+        return int(x)
+    if isinstance(x, Decimal):
+        return str(x)
+    if isinstance(x, numbers.Real):
+        x = float(x)
+        if exact and not (path.endswith(".mass") and x == float("inf")):
+            raise InputError(
+                f"{path}: a float in exact mode (its decimal text is not its value): give an "
+                "int, a Fraction or a string such as \"3/5\" (Fraction(x) is the float's "
+                "exact binary value)"
+            )
+        return "inf" if x == float("inf") else repr(x)
+    raise InputError(f"{path}: expected a number, got {type(x).__name__}")
+
+
+def _to_json(x: Any, path: str, exact: bool) -> Any:
+    """Python values as the JSON case format: dicts, sequences (lists, tuples, NumPy
+    arrays), numbers, strings (kept as written: ``"3/5"``, ``"inf"``)."""
+    if isinstance(x, (str, bool)) or x is None:
+        return x
+    if isinstance(x, Mapping):
+        out = {}
+        for k, v in x.items():
+            if not isinstance(k, str):
+                raise InputError(f"{path or 'case'}: keys must be strings, got {k!r}")
+            out[k] = _to_json(v, f"{path}.{k}" if path else k, exact)
+        return out
+    if hasattr(x, "tolist") and not isinstance(x, numbers.Number):
+        x = x.tolist()
+    if isinstance(x, (list, tuple)):
+        return [_to_json(v, f"{path}[{i}]", exact) for i, v in enumerate(x)]
+    return _number_text(x, path, exact)
+
+
+def _from_json(x: Any, exact: bool) -> Any:
+    if isinstance(x, list):
+        return [_from_json(v, exact) for v in x]
+    if isinstance(x, dict):
+        return {k: _from_json(v, exact) for k, v in x.items()}
+    if exact and isinstance(x, str):
+        return Fraction(x)
+    return x
+
+
+def collide(
+    normal: Sequence[Any],
+    bodies: Sequence[Mapping[str, Any]],
+    *,
+    dim: int | None = None,
+    exact: bool = False,
+) -> list[dict[str, Any]]:
+    """The post-collision states of two balls in contact.
+
+    The no-slip collision map: the state ``xi = (U_1, u_1, U_2, u_2)`` jumps to
+    ``xi+ = 2 P_G xi - xi``, its reflection in the kinetic-energy metric across the
+    subspace ``G`` of velocities with no slip at the contact point
+    ``V_1(Q) = U_1 (R_1 nu) + u_1 = U_2 (-R_2 nu) + u_2``. It conserves the kinetic energy
+    ``sum_i m_i (|u_i|^2 + lambda_i |U_i|_F^2) / 2``, the linear momentum and each body's
+    angular momentum about the contact point.
+
+    Parameters
+    ----------
+    normal : sequence of n numbers
+        The unit contact normal ``nu``, from body 1's centre to body 2's (``|nu|^2 = 1``).
+    bodies : two mappings
+        As in the JSON case format of ``noslip collide``: ``mass`` (a number ``> 0``, or
+        ``"inf"`` / ``float("inf")`` for an immovable body), ``radius`` ``R > 0``, at most one
+        of ``lambda`` (``(1/(n m)) int |b|^2 dmu`` in ``[0, R^2/n]``), ``gamma2``
+        (``2 lambda / R^2`` in ``[0, 2/n]``) or ``distribution`` (``"uniform"``, the default,
+        or ``"shell"``), ``angular_velocity`` (an ``n x n`` skew matrix; in 2D also a number
+        ``c`` for ``U = c J``, in 3D also a vector ``omega`` for ``U x = omega x x``) and
+        ``velocity`` (``u``, n numbers). Units: any consistent set (velocities in length per
+        time, angular velocities in radians per time).
+    dim : int, optional
+        ``n``; by default ``len(normal)``.
+    exact : bool
+        Compute in exact rationals: numbers must be ints, ``Fraction``\\ s or strings
+        (``"3/5"``, ``"0.1"`` = 1/10); results are ``Fraction``\\ s. Otherwise ``float64``:
+        bit for bit what ``noslip collide`` prints for the same case.
+
+    Returns
+    -------
+    list of two dicts
+        Each body's ``angular_velocity`` (in the form given) and ``velocity`` after the
+        collision: floats, or ``Fraction``\\ s with ``exact=True``.
+
+    Raises
+    ------
+    InputError
+        A bad case; the message names the field (``bodies[1].gamma2: ...``): the bodies must
+        approach or graze, ``(u_2 - u_1) . nu <= 0``.
+    """
+    case = {
+        "dim": len(normal) if dim is None else dim,
+        "normal": normal,
+        "bodies": bodies,
+    }
+    text = json.dumps(_to_json(case, "", exact), allow_nan=False)
+    out = json.loads(collide_case(text, exact))
+    return _from_json(out["bodies"], exact)

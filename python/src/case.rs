@@ -1,0 +1,31 @@
+//! One collision from a case in the JSON case format (the `noslip-case` crate: the same
+//! parsing, validation and messages as `noslip collide`), in `f64` or exact rationals.
+//!
+//! The Python layer turns its arguments into that format's JSON (floats as their shortest
+//! round-trip text, `Fraction`s as `"p/q"`), so a case means the same thing from Python and
+//! from the command line, bit for bit.
+
+use crate::error::input_error;
+use collision_core::Exact;
+use noslip_case::collide::collide_case as solve_case;
+use noslip_case::CaseError;
+use pyo3::prelude::*;
+use serde_json::Value;
+
+/// Collide one case given as JSON text; return the output JSON text (the `noslip collide`
+/// output of that case). `exact`: exact rationals (output numbers are `"p/q"` strings).
+#[pyfunction]
+#[pyo3(signature = (case, exact))]
+pub fn collide_case(py: Python<'_>, case: &str, exact: bool) -> PyResult<String> {
+    let value: Value =
+        serde_json::from_str(case).map_err(|e| input_error(format!("malformed case: {e}")))?;
+    let out: Result<Value, CaseError> = py.detach(|| {
+        if exact {
+            solve_case::<Exact>(&value)
+        } else {
+            solve_case::<f64>(&value)
+        }
+    });
+    let out = out.map_err(|e| input_error(e.to_string()))?;
+    serde_json::to_string(&out).map_err(|e| input_error(format!("internal error: {e}")))
+}

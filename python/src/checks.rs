@@ -1,0 +1,85 @@
+//! `noslip.verify` and `noslip.report`: the exact verification (`noslip-verify`) and the
+//! accuracy report (`noslip-accuracy`), run as `noslip verify` / `noslip report` run them,
+//! their reports returned as the JSON text those commands write (the Python layer parses it).
+
+use crate::error::input_error;
+use noslip_accuracy::{dim_result, AccuracyReport, Options as ReportOptions, Provenance};
+use noslip_verify::report::Report;
+use noslip_verify::suite::{self, Options as VerifyOptions};
+use pyo3::prelude::*;
+use std::time::Instant;
+
+fn check_dims(dims: &[usize]) -> PyResult<Vec<usize>> {
+    if dims.is_empty() {
+        return Err(input_error("dims: give at least one dimension"));
+    }
+    if let Some(d) = dims.iter().find(|d| !collision_core::DIMS.contains(d)) {
+        return Err(input_error(format!(
+            "dims: {d} has no generated kernels (the dimensions are {:?})",
+            collision_core::DIMS
+        )));
+    }
+    let mut dims = dims.to_vec();
+    dims.sort_unstable();
+    dims.dedup();
+    Ok(dims)
+}
+
+/// The exact verification of the generated kernels of `dims`, `points` random points per
+/// identity: `verify.json`'s text.
+#[pyfunction]
+#[pyo3(signature = (dims, points))]
+pub fn verify(py: Python<'_>, dims: Vec<usize>, points: usize) -> PyResult<String> {
+    let dims = check_dims(&dims)?;
+    if points == 0 {
+        return Err(input_error("points: must be at least 1"));
+    }
+    let opts = VerifyOptions {
+        points,
+        ..VerifyOptions::default()
+    };
+    Ok(py.detach(|| {
+        let start = Instant::now();
+        let results = suite::run(&dims, &opts, &mut |_| {});
+        Report {
+            tool: format!("noslip-python {}", env!("CARGO_PKG_VERSION")),
+            seed: opts.seed,
+            points: opts.points,
+            results,
+            seconds: start.elapsed().as_secs_f64(),
+        }
+        .to_json()
+    }))
+}
+
+/// The accuracy report of `dims`, `samples` cases per dimension and regime, seed `seed`:
+/// `report.json`'s text.
+#[pyfunction]
+#[pyo3(signature = (dims, samples, seed))]
+pub fn report(py: Python<'_>, dims: Vec<usize>, samples: usize, seed: u64) -> PyResult<String> {
+    let dims = check_dims(&dims)?;
+    if samples == 0 {
+        return Err(input_error("samples: must be at least 1"));
+    }
+    let opts = ReportOptions {
+        dims: dims.clone(),
+        samples,
+        seed,
+        ..ReportOptions::default()
+    };
+    Ok(py.detach(|| {
+        let start = Instant::now();
+        let results = dims.iter().map(|&d| dim_result(d, &opts, |_| {})).collect();
+        AccuracyReport {
+            tool: format!("noslip-python {}", env!("CARGO_PKG_VERSION")),
+            provenance: Provenance::collect(
+                format!("noslip.report(dims={dims:?}, samples={samples}, seed={seed})"),
+                std::path::Path::new("."),
+            ),
+            options: opts,
+            dims: results,
+            seconds: start.elapsed().as_secs_f64(),
+        }
+        .to_json()
+    }))
+}

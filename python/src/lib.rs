@@ -1,0 +1,42 @@
+//! # noslip-python
+//!
+//! The native module `noslip._native` of the Python package `noslip` (PyO3 + rust-numpy,
+//! an abi3 wheel built by maturin). It is thin: every check, message and computation is the
+//! Rust crates' own; this crate only moves values between Python and them.
+//!
+//! - [`case`]: one collision from a case (`noslip-case`, the JSON front end's parsing and
+//!   validation), in `f64` or exact rationals.
+//! - [`batch`]: a batch of collisions on NumPy arrays, the GIL released, rayon threads, the
+//!   batch kernels' run-time ISA dispatch.
+//! - [`scene`]: the `Scene` class (TOML text, file or dict; picklable).
+//! - [`simulate`]: a run of a scene, its events log and energy samples as NumPy arrays.
+//! - [`checks`]: `verify` and `report`, their reports as JSON text.
+//! - [`error`]: `InputError`, a `ValueError` whose message names the field.
+
+#![warn(missing_docs, unreachable_pub)]
+
+pub mod batch;
+pub mod case;
+pub mod checks;
+pub mod error;
+pub mod scene;
+pub mod simulate;
+
+use pyo3::prelude::*;
+
+/// The native module: the Python package `noslip` re-exports and documents it.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("InputError", m.py().get_type::<error::InputError>())?;
+    m.add_function(wrap_pyfunction!(case::collide_case, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::collide_batch_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::collide_batch_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_kernel_seconds, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::isa, m)?)?;
+    m.add_class::<scene::Scene>()?;
+    m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(checks::verify, m)?)?;
+    m.add_function(wrap_pyfunction!(checks::report, m)?)?;
+    m.add("DIMS", collision_core::DIMS.to_vec())?;
+    Ok(())
+}

@@ -1,0 +1,222 @@
+//! `noslip.simulate`: a run of a scene by the simulator (`noslip_sim::run::run`, as
+//! `noslip simulate` runs it), its events log and energy samples as NumPy arrays.
+//!
+//! The events log is the simulator's own JSON-lines log (`noslip_sim::run::event_json`),
+//! read back into columns: the same numbers, bit for bit (shortest round-trip text).
+
+use crate::error::input_error;
+use crate::scene::Scene;
+use collision_core::{Generated, Kernel};
+use noslip_sim::run::{run, Limits, Summary, Trace};
+use noslip_sim::setup::{f, setup};
+use noslip_sim::{GenericKernels, Simulation};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde_json::Value;
+
+/// A finished run: the summary, the energy samples and the events log (JSON lines, empty
+/// without `log`).
+struct Run {
+    summary: Summary,
+    trace: Trace,
+    log: Vec<u8>,
+}
+
+fn run_dim<const N: usize, const S: usize>(
+    scene: &noslip_scene::Scene,
+    limits: &Limits,
+    log: bool,
+) -> Result<Run, String>
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let setup = setup::<N, S>(scene).map_err(|e| format!("{}: {e}", scene.origin))?;
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).map_err(|e| format!("{}: {e}", scene.origin))?;
+    let mut lines = Vec::new();
+    let writer: Option<&mut dyn std::io::Write> = if log { Some(&mut lines) } else { None };
+    let (summary, trace) = run(&mut sim, &species, limits, writer, &mut |_| {})
+        .map_err(|e| format!("internal error: the log in memory failed: {e}"))?;
+    Ok(Run {
+        summary,
+        trace,
+        log: lines,
+    })
+}
+
+/// The columns of the events log.
+#[derive(Default)]
+struct Columns {
+    time: Vec<f64>,
+    kind: Vec<i64>,
+    balls: Vec<i64>,
+    wall_axis: Vec<i64>,
+    wall_upper: Vec<bool>,
+    obstacle: Vec<i64>,
+    nu: Vec<f64>,
+    positions: Vec<f64>,
+    pre_spin: Vec<f64>,
+    pre_velocity: Vec<f64>,
+    post_spin: Vec<f64>,
+    post_velocity: Vec<f64>,
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect())
+        .unwrap_or_default()
+}
+
+impl Columns {
+    /// Append one log line; a one-ball contact's second slot is NaN (ball index -1).
+    fn push(&mut self, e: &Value, n: usize, s: usize) {
+        self.time.push(e["time"].as_f64().unwrap_or(f64::NAN));
+        let kind = match e["kind"].as_str() {
+            Some("ball-ball") => 0,
+            Some("ball-wall") => 1,
+            _ => 2,
+        };
+        self.kind.push(kind);
+        let balls: Vec<i64> = e["balls"]
+            .as_array()
+            .map(|a| a.iter().filter_map(Value::as_i64).collect())
+            .unwrap_or_default();
+        self.balls.extend([
+            balls.first().copied().unwrap_or(-1),
+            balls.get(1).copied().unwrap_or(-1),
+        ]);
+        self.wall_axis.push(e["axis"].as_i64().unwrap_or(-1));
+        self.wall_upper.push(e["side"].as_str() == Some("upper"));
+        self.obstacle.push(e["obstacle"].as_i64().unwrap_or(-1));
+        self.nu.extend(numbers(&e["nu"]));
+        for slot in 0..2 {
+            let fill = |out: &mut Vec<f64>, v: Option<&Value>, len: usize| match v {
+                Some(v) => out.extend(numbers(v)),
+                None => out.extend(std::iter::repeat_n(f64::NAN, len)),
+            };
+            fill(&mut self.positions, e["positions"].get(slot), n);
+            fill(
+                &mut self.pre_spin,
+                e["pre"].get(slot).map(|p| &p["spin"]),
+                s,
+            );
+            fill(
+                &mut self.pre_velocity,
+                e["pre"].get(slot).map(|p| &p["velocity"]),
+                n,
+            );
+            fill(
+                &mut self.post_spin,
+                e["post"].get(slot).map(|p| &p["spin"]),
+                s,
+            );
+            fill(
+                &mut self.post_velocity,
+                e["post"].get(slot).map(|p| &p["velocity"]),
+                n,
+            );
+        }
+    }
+}
+
+fn array<'py, T: numpy::Element>(
+    py: Python<'py>,
+    v: Vec<T>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_vec(py, v).reshape(shape)?.into_any())
+}
+
+/// Run `scene` to `events` contacts or simulated `time` (the scene's `[simulation]`
+/// defaults, else 100000 contacts); keep the events log when `log`. Returns a dict:
+/// `summary` (JSON text of the simulator's summary), `energy` (event counts and relative
+/// drifts of the samples), `events` (the log's columns as arrays).
+#[pyfunction]
+#[pyo3(signature = (scene, events, time, log))]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    scene: &Bound<'py, Scene>,
+    events: Option<u64>,
+    time: Option<f64>,
+    log: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    if let Some(t) = time {
+        if !(t > 0.0 && t.is_finite()) {
+            return Err(input_error(format!(
+                "time: must be positive and finite, got {t}"
+            )));
+        }
+    }
+    if events == Some(0) {
+        return Err(input_error(
+            "events: must be at least 1 (a run of no contacts has nothing to report)",
+        ));
+    }
+    let scene = &scene.get().inner;
+    let mut events = events.or(scene.simulation.events);
+    let time = time.or(scene.simulation.time.as_ref().map(f));
+    if events.is_none() && time.is_none() {
+        events = Some(100_000);
+    }
+    let limits = Limits {
+        events,
+        time,
+        samples: 2000,
+        traced: 0,
+        contact_points: 0,
+    };
+    let n = scene.dim;
+    let done = py.detach(|| {
+        collision_core::with_dim!(
+            n,
+            |N, S| run_dim::<N, S>(scene, &limits, log),
+            Err(format!("{}: dimension {n} has no kernels", scene.origin))
+        )
+    });
+    let done = done.map_err(input_error)?;
+    let s = n * (n - 1) / 2;
+    let mut cols = Columns::default();
+    for line in done.log.split(|&b| b == b'\n').filter(|l| !l.is_empty()) {
+        let e: Value = serde_json::from_slice(line)
+            .map_err(|e| input_error(format!("internal error: a log line: {e}")))?;
+        cols.push(&e, n, s);
+    }
+    let count = cols.time.len();
+    let ev = PyDict::new(py);
+    ev.set_item("time", array(py, cols.time, &[count])?)?;
+    ev.set_item("kind", array(py, cols.kind, &[count])?)?;
+    ev.set_item("balls", array(py, cols.balls, &[count, 2])?)?;
+    ev.set_item("wall_axis", array(py, cols.wall_axis, &[count])?)?;
+    ev.set_item("wall_upper", array(py, cols.wall_upper, &[count])?)?;
+    ev.set_item("obstacle", array(py, cols.obstacle, &[count])?)?;
+    ev.set_item("nu", array(py, cols.nu, &[count, n])?)?;
+    ev.set_item("positions", array(py, cols.positions, &[count, 2, n])?)?;
+    ev.set_item("pre_spin", array(py, cols.pre_spin, &[count, 2, s])?)?;
+    ev.set_item(
+        "pre_velocity",
+        array(py, cols.pre_velocity, &[count, 2, n])?,
+    )?;
+    ev.set_item("post_spin", array(py, cols.post_spin, &[count, 2, s])?)?;
+    ev.set_item(
+        "post_velocity",
+        array(py, cols.post_velocity, &[count, 2, n])?,
+    )?;
+    let (sample_events, drift): (Vec<u64>, Vec<f64>) = done.trace.energy.iter().copied().unzip();
+    let samples = sample_events.len();
+    let energy = PyDict::new(py);
+    energy.set_item("events", array(py, sample_events, &[samples])?)?;
+    energy.set_item("drift", array(py, drift, &[samples])?)?;
+    let out = PyDict::new(py);
+    out.set_item(
+        "summary",
+        serde_json::to_string(&done.summary)
+            .map_err(|e| input_error(format!("internal error: {e}")))?,
+    )?;
+    out.set_item("energy", energy)?;
+    out.set_item("events", ev)?;
+    Ok(out)
+}

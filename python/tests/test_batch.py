@@ -1,0 +1,218 @@
+"""noslip.collide_batch: bit for bit the single calls, validation naming the row and field,
+only the outputs allocated, and the GIL released."""
+
+import threading
+import time
+import tracemalloc
+
+import numpy as np
+import pytest
+
+import noslip
+
+
+def random_batch(rng, rows, n, dtype=np.float64, immovable=True, unit_exactly=True):
+    """Rows of approaching contacts in R^n; a sixth of them with body 1 immovable and a sixth
+    with body 2 immovable. With `unit_exactly`, only normals whose |nu|^2 is 1 exactly in
+    f64 (so `collide` renormalises nothing and its result is the kernel's: a normal off by
+    an ulp is renormalised by `collide` and not by the batch, docs/python.md)."""
+    nu = rng.normal(size=(rows * 3, n))
+    nu /= np.linalg.norm(nu, axis=1, keepdims=True)
+    if unit_exactly:
+        # |nu|^2 summed left to right, as collide's check does (einsum may pair terms).
+        nu = nu[[sum(x * x for x in row.tolist()) == 1.0 for row in nu]]
+    nu = nu[:rows]
+    assert len(nu) == rows
+    bodies = []
+    for _ in range(2):
+        a = rng.uniform(-1, 1, size=(rows, n, n))
+        bodies.append(
+            {
+                "angular_velocity": a - a.transpose(0, 2, 1),
+                "velocity": rng.uniform(-1, 1, size=(rows, n)),
+                "inv_mass": rng.uniform(0.25, 4.0, size=rows),
+                "radius": rng.uniform(0.5, 2.0, size=rows),
+                "gamma2": rng.uniform(0.01, 2.0 / n, size=rows),
+            }
+        )
+    dn = np.einsum("ij,ij->i", bodies[1]["velocity"] - bodies[0]["velocity"], nu)
+    nu[dn > 0] *= -1
+    if immovable:
+        who = rng.integers(0, 6, size=rows)
+        for b in range(2):
+            bodies[b]["inv_mass"][who == b] = 0.0
+    out_bodies = [{k: v.astype(dtype) for k, v in b.items()} for b in bodies]
+    return nu.astype(dtype), out_bodies
+
+
+def single(nu, bodies, i):
+    case_bodies = []
+    for b in bodies:
+        w = float(b["inv_mass"][i])
+        case_bodies.append(
+            {
+                "mass": "inf" if w == 0 else 1.0 / w,
+                "radius": float(b["radius"][i]),
+                "gamma2": float(b["gamma2"][i]),
+                "angular_velocity": b["angular_velocity"][i].tolist(),
+                "velocity": b["velocity"][i].tolist(),
+            }
+        )
+    return noslip.collide(nu[i].tolist(), case_bodies)
+
+
+def same_bits(a, b):
+    a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    return a.shape == b.shape and np.array_equal(a.view(np.uint64), b.view(np.uint64))
+
+
+@pytest.mark.parametrize("n", [2, 3, 4, 5, 6])
+def test_batch_equals_single_calls_bit_for_bit(n):
+    """`collide` takes the mass and computes inv_mass = 1/m; the batch takes inv_mass. The
+    rows use inv_mass whose 1/(1/w) round trips to w, so both run on the same parameters."""
+    rng = np.random.default_rng(n)
+    nu, bodies = random_batch(rng, 203, n)
+    for b in bodies:
+        w = b["inv_mass"]
+        ok = (w == 0) | (1.0 / (1.0 / np.where(w == 0, 1, w)) == w)
+        b["inv_mass"] = np.where(ok, w, 1.0)
+    after = noslip.collide_batch(nu, bodies)
+    for i in range(len(nu)):
+        want = single(nu, bodies, i)
+        for b in range(2):
+            assert same_bits(after[b]["angular_velocity"][i], want[b]["angular_velocity"]), (n, i, b)
+            assert same_bits(after[b]["velocity"][i], want[b]["velocity"]), (n, i, b)
+
+
+def test_shared_parameters_and_strided_inputs_give_the_same_rows():
+    rng = np.random.default_rng(7)
+    nu, bodies = random_batch(rng, 300, 3, immovable=False)
+    for b in bodies:
+        b["radius"][:] = 0.75
+        b["gamma2"][:] = 0.4
+    shared = [dict(b, radius=0.75, gamma2=0.4) for b in bodies]
+    # A Fortran-ordered copy and a strided view: read in place, same results.
+    strided = [dict(b, velocity=np.asfortranarray(b["velocity"])) for b in shared]
+    nu_view = np.repeat(nu, 2, axis=0)[::2]
+    a = noslip.collide_batch(nu, bodies)
+    for other in (noslip.collide_batch(nu, shared), noslip.collide_batch(nu_view, strided)):
+        for b in range(2):
+            for k in ("angular_velocity", "velocity"):
+                assert same_bits(a[b][k], other[b][k])
+
+
+def test_serial_and_threaded_batches_are_identical():
+    rng = np.random.default_rng(11)
+    nu, bodies = random_batch(rng, 5000, 4, unit_exactly=False)
+    a = noslip.collide_batch(nu, bodies, parallel=True)
+    b = noslip.collide_batch(nu, bodies, parallel=False)
+    for body in range(2):
+        for k in ("angular_velocity", "velocity"):
+            assert same_bits(a[body][k], b[body][k])
+
+
+def test_float32_is_the_float64_map_up_to_f32_rounding():
+    """The same f32 inputs, computed in f32 and in f64: the kernel's error is a few eps per
+    body in its energy norm for typical inputs (docs/accuracy.md bounds it by 16 eps), and
+    these states and results are O(1) with masses within 16x, so 1e-5 (84 eps of f32) per
+    component is a bound with room, and 1e-7 would not hold for f32 rounding alone."""
+    rng = np.random.default_rng(3)
+    nu32, bodies32 = random_batch(rng, 1000, 3, dtype=np.float32, unit_exactly=False)
+    nu32 /= np.linalg.norm(nu32.astype(np.float64), axis=1, keepdims=True).astype(np.float32)
+    bodies64 = [{k: v.astype(np.float64) for k, v in b.items()} for b in bodies32]
+    a = noslip.collide_batch(nu32, bodies32)
+    b = noslip.collide_batch(nu32.astype(np.float64), bodies64, validate=False)
+    assert a[0]["velocity"].dtype == np.float32
+    for body in range(2):
+        for k in ("angular_velocity", "velocity"):
+            err = np.abs(a[body][k].astype(np.float64) - b[body][k]).max()
+            assert 1e-9 < err < 1e-5, (body, k, err)
+
+
+def test_a_bad_row_is_named_with_its_field():
+    rng = np.random.default_rng(5)
+    nu, bodies = random_batch(rng, 3000, 2, immovable=False)
+    bodies[1]["gamma2"][2049] = 1.5  # above 2/n = 1
+    bodies[0]["radius"][2500] = -1.0
+    with pytest.raises(noslip.InputError, match=r"^row 2049: bodies\[1\]\.gamma2"):
+        noslip.collide_batch(nu, bodies)
+    bodies[1]["gamma2"][2049] = 0.5
+    bodies[0]["angular_velocity"][17, 0, 1] += 1.0  # no longer skew
+    with pytest.raises(noslip.InputError, match=r"^row 17: bodies\[0\]\.angular_velocity"):
+        noslip.collide_batch(nu, bodies)
+    bodies[0]["angular_velocity"][17, 0, 1] -= 1.0
+    nu[9] *= 1.001
+    with pytest.raises(noslip.InputError, match=r"^row 9: normal: must be a unit vector"):
+        noslip.collide_batch(nu, bodies)
+
+
+def test_without_validation_a_bad_row_spoils_only_itself():
+    rng = np.random.default_rng(6)
+    nu, bodies = random_batch(rng, 40, 3, immovable=False)
+    good = noslip.collide_batch(nu, bodies)
+    bodies[0]["velocity"][13, 0] = np.nan
+    bad = noslip.collide_batch(nu, bodies, validate=False)
+    rows = np.isnan(bad[0]["velocity"]).any(axis=1) | np.isnan(bad[1]["velocity"]).any(axis=1)
+    assert rows.tolist() == [i == 13 for i in range(40)]
+    keep = ~rows
+    assert same_bits(bad[1]["velocity"][keep], good[1]["velocity"][keep])
+
+
+def test_shapes_and_dtypes_are_checked_naming_the_field():
+    rng = np.random.default_rng(8)
+    nu, bodies = random_batch(rng, 10, 3)
+    wrong = [dict(bodies[0]), dict(bodies[1], velocity=bodies[1]["velocity"][:, :2])]
+    with pytest.raises(noslip.InputError, match=r"^bodies\[1\]\.velocity: expected shape \(10, 3\)"):
+        noslip.collide_batch(nu, wrong)
+    wrong = [dict(bodies[0], radius=bodies[0]["radius"].astype(np.float32)), bodies[1]]
+    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.radius: dtype float32"):
+        noslip.collide_batch(nu, wrong)
+    with pytest.raises(noslip.InputError, match=r"^normal: dtype"):
+        noslip.collide_batch(nu.astype(int), bodies)
+    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.mass: unknown key"):
+        noslip.collide_batch(nu, [dict(bodies[0], mass=1.0), bodies[1]])
+    with pytest.raises(noslip.InputError, match=r"normal: expected shape \(N, n\) with n in"):
+        noslip.collide_batch(np.zeros((4, 7)), bodies)
+
+
+def test_only_the_outputs_are_allocated():
+    """NumPy reports its allocations to tracemalloc: the peak during the call is the output
+    arrays (2 bodies x (n^2 + n) float64 per row) and nothing per row besides."""
+    rng = np.random.default_rng(9)
+    rows, n = 200_000, 3
+    nu, bodies = random_batch(rng, rows, n, immovable=False, unit_exactly=False)
+    outputs = 2 * rows * (n * n + n) * 8
+    tracemalloc.start()
+    try:
+        tracemalloc.reset_peak()
+        base = tracemalloc.get_traced_memory()[0]
+        after = noslip.collide_batch(nu, bodies)
+        peak = tracemalloc.get_traced_memory()[1] - base
+    finally:
+        tracemalloc.stop()
+    assert after[0]["velocity"].shape == (rows, n)
+    assert outputs <= peak < outputs + 64 * 1024, (peak, outputs)
+
+
+def test_the_gil_is_released_during_a_batch():
+    """While a serial batch runs in one thread, this thread keeps running Python: with the
+    GIL held it could not advance at all during the call."""
+    rng = np.random.default_rng(10)
+    nu, bodies = random_batch(rng, 400_000, 4, immovable=False, unit_exactly=False)
+    done = threading.Event()
+    started = threading.Event()
+
+    def work():
+        started.set()
+        noslip.collide_batch(nu, bodies, parallel=False)
+        done.set()
+
+    t = threading.Thread(target=work)
+    t.start()
+    started.wait()
+    ticks = 0
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0)
+    t.join()
+    assert ticks > 100, ticks

@@ -1,0 +1,96 @@
+"""noslip.Scene and noslip.simulate against `noslip simulate` (the same events log, bit for
+bit), scenes from text, files and dicts, pickling, and errors naming the place."""
+
+import json
+import pickle
+
+import numpy as np
+import pytest
+
+import noslip
+from conftest import run_cli
+
+
+def test_scene_from_file_text_and_dict_agree(root):
+    path = root / "scenes" / "sinai.toml"
+    a = noslip.Scene.from_file(path)
+    b = noslip.Scene(path.read_text())
+    c = noslip.Scene.from_dict(
+        {
+            "dim": 2,
+            "box": {"size": [1, 1], "boundary": ["periodic", "periodic"]},
+            "species": [{"name": "disk", "mass": 1, "radius": "1/20"}],
+            "ball": [{"species": 0, "position": ["1/10", "1/10"],
+                      "velocity": ["0.6", "0.8"], "angular_velocity": 0}],
+            "obstacle": [{"position": ["1/2", "1/2"], "radius": "3/10"}],
+            "simulation": {"events": 100000, "orientation": True},
+        }
+    )
+    assert (a.dim, a.balls, b.dim, c.dim) == (2, 1, 2, 2)
+    runs = [noslip.simulate(s, events=300) for s in (a, b, c)]
+    for r in runs[1:]:
+        assert np.array_equal(
+                r.events["post_velocity"], runs[0].events["post_velocity"], equal_nan=True
+            )
+
+
+def test_a_scene_pickles_as_its_text(root):
+    scene = noslip.Scene.from_file(root / "scenes" / "gas2d.toml")
+    back = pickle.loads(pickle.dumps(scene))
+    assert back.toml == scene.toml and back.origin == scene.origin
+    a = noslip.simulate(scene, events=500)
+    b = noslip.simulate(back, events=500)
+    assert a.summary["energy_end"] == b.summary["energy_end"]
+
+
+def test_simulate_gives_the_cli_events_log_bit_for_bit(root, cli, tmp_path):
+    path = root / "scenes" / "sinai.toml"
+    out = tmp_path / "run"
+    run_cli(cli, "simulate", str(path), "--events", "1500", "--quiet",
+            "--out", str(out), "--log", str(out / "events.jsonl"))
+    lines = [json.loads(line) for line in (out / "events.jsonl").read_text().splitlines()]
+    summary = json.loads((out / "summary.json").read_text())
+    got = noslip.simulate(noslip.Scene.from_file(path), events=1500)
+    ev = got.events
+    assert len(lines) == len(ev["time"]) == 1500
+    assert ev["time"].tolist() == [e["time"] for e in lines]
+    assert ev["nu"].tolist() == [e["nu"] for e in lines]
+    assert ev["kind"].tolist() == [
+        ["ball-ball", "ball-wall", "ball-obstacle"].index(e["kind"]) for e in lines
+    ]
+    assert ev["post_velocity"][:, 0].tolist() == [e["post"][0]["velocity"] for e in lines]
+    assert ev["pre_spin"][:, 0].tolist() == [e["pre"][0]["spin"] for e in lines]
+    assert ev["obstacle"].tolist() == [e.get("obstacle", -1) for e in lines]
+    for key in ("events", "ball_obstacle", "time", "energy_start", "energy_end", "energy_drift"):
+        assert got.summary[key] == summary[key], key
+
+
+def test_energy_is_conserved_event_by_event():
+    """Each contact of a ball with the fixed obstacle keeps the ball's energy
+    m (|u|^2 + lambda U_12^2 * 2) / 2 up to f64 rounding (a few eps of the energy)."""
+    run = noslip.simulate(noslip.tables.sinai(0.5, 0.3), events=2000)
+    ev = run.events
+    lam = 0.5 * (1 / 20) ** 2 / 2  # gamma2 R^2 / 2
+
+    def energy(spin, velocity):
+        return 0.5 * ((velocity**2).sum(axis=1) + lam * 2 * (spin**2).sum(axis=1))
+
+    e_pre = energy(ev["pre_spin"][:, 0], ev["pre_velocity"][:, 0])
+    e_post = energy(ev["post_spin"][:, 0], ev["post_velocity"][:, 0])
+    assert np.abs(e_post - e_pre).max() < 16 * np.finfo(float).eps * e_pre.max()
+    assert run.energy["drift"].shape == run.energy["events"].shape
+    assert abs(run.summary["energy_drift"]) < 1e-12
+
+
+def test_bad_scenes_and_limits_name_the_place():
+    with pytest.raises(noslip.InputError, match="line 1"):
+        noslip.Scene("dim = ")
+    with pytest.raises(noslip.InputError, match=r"species\[0\]"):
+        noslip.Scene.from_dict({
+            "dim": 2, "box": {"size": [1, 1], "boundary": ["periodic", "periodic"]},
+            "species": [{"mass": -1, "radius": 0.1}],
+        })
+    with pytest.raises(noslip.InputError, match=r"^time: must be positive"):
+        noslip.simulate(noslip.tables.sinai(0.5, 0.3), time=-1.0)
+    with pytest.raises(noslip.InputError, match=r"^events: must be at least 1"):
+        noslip.simulate(noslip.tables.sinai(0.5, 0.3), events=0)
