@@ -9,6 +9,8 @@
 //!   velocity map ([`Law`]: no-slip or smooth); a new boundary kind is one variant of each
 //!   that applies.
 //! - [`tangent`]: the free-flight and contact tangent maps.
+//! - [`lyapunov`]: Lyapunov spectra along the engine's trajectory (tangent space with QR,
+//!   and two trajectories as the independent check).
 //!
 //! It must not parse command lines, print or write files (that is the `noslip` command), nor
 //! change how the engine (`noslip-sim`) finds or resolves contacts: it follows the engine's
@@ -19,6 +21,7 @@
 pub mod dual;
 pub mod geometry;
 pub mod law;
+pub mod lyapunov;
 pub mod root;
 pub mod table;
 pub mod tangent;
