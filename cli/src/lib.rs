@@ -64,6 +64,9 @@ pub enum Command {
     /// Print the kernels specialised to a scene, with op counts (or check them exactly).
     #[command(long_about = command::gen::LONG_ABOUT)]
     Gen(command::gen::Args),
+    /// Lyapunov exponents of a scene: tangent space with QR, or two trajectories.
+    #[command(long_about = command::lyapunov::LONG_ABOUT)]
+    Lyapunov(command::lyapunov::Args),
 }
 
 /// Run the parsed command line; the exit code of its outcome ([`exit::finish`]).
@@ -74,6 +77,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Report(args) => command::report::run(&args),
         Command::Simulate(args) => command::simulate::run(&args),
         Command::Gen(args) => command::gen::run(&args),
+        Command::Lyapunov(args) => command::lyapunov::run(&args),
     })
 }
 
@@ -93,6 +97,7 @@ mod tests {
             ("report", command::report::LONG_ABOUT),
             ("simulate", command::simulate::LONG_ABOUT),
             ("gen", command::gen::LONG_ABOUT),
+            ("lyapunov", command::lyapunov::LONG_ABOUT),
         ] {
             let help = cli
                 .find_subcommand_mut(name)

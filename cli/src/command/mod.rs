@@ -3,6 +3,7 @@
 
 pub mod collide;
 pub mod gen;
+pub mod lyapunov;
 pub mod report;
 pub mod simulate;
 pub mod verify;
