@@ -22,6 +22,7 @@ pub mod dual;
 pub mod geometry;
 pub mod law;
 pub mod lyapunov;
+pub mod orbits;
 pub mod root;
 pub mod table;
 pub mod tangent;
