@@ -67,6 +67,9 @@ pub enum Command {
     /// Lyapunov exponents of a scene: tangent space with QR, or two trajectories.
     #[command(long_about = command::lyapunov::LONG_ABOUT)]
     Lyapunov(command::lyapunov::Args),
+    /// Periodic orbits of a one-ball table's boundary map, with their linear stability.
+    #[command(long_about = command::orbits::LONG_ABOUT)]
+    Orbits(command::orbits::Args),
 }
 
 /// Run the parsed command line; the exit code of its outcome ([`exit::finish`]).
@@ -78,6 +81,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Simulate(args) => command::simulate::run(&args),
         Command::Gen(args) => command::gen::run(&args),
         Command::Lyapunov(args) => command::lyapunov::run(&args),
+        Command::Orbits(args) => command::orbits::run(&args),
     })
 }
 
@@ -98,6 +102,7 @@ mod tests {
             ("simulate", command::simulate::LONG_ABOUT),
             ("gen", command::gen::LONG_ABOUT),
             ("lyapunov", command::lyapunov::LONG_ABOUT),
+            ("orbits", command::orbits::LONG_ABOUT),
         ] {
             let help = cli
                 .find_subcommand_mut(name)

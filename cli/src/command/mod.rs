@@ -4,6 +4,7 @@
 pub mod collide;
 pub mod gen;
 pub mod lyapunov;
+pub mod orbits;
 pub mod report;
 pub mod simulate;
 pub mod verify;

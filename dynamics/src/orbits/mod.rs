@@ -178,8 +178,89 @@ fn residual_vector<const N: usize>(table: &Table<f64, N>, end: &[f64], z: &[f64]
         .collect()
 }
 
+/// A start put on boundary `b`'s contact surface with its energy reset to `energy0`, its
+/// `k`-step return and its relative residual `|P^K(z) - z| / (1 + |z|)`.
+#[allow(clippy::type_complexity)]
+fn evaluate<const N: usize, const S: usize>(
+    table: &Table<f64, N>,
+    b: usize,
+    energy0: f64,
+    z: &[f64],
+    k: usize,
+) -> Result<(Vec<f64>, section::Return<f64, N, S>, Vec<f64>, f64), Miss>
+where
+    Generated: Kernel<f64, N, S> + Kernel<Dual<f64>, N, S>,
+{
+    let mut z = z.to_vec();
+    let x: [f64; N] = std::array::from_fn(|i| z[i]);
+    let (y, nu) = project(table, b, &x);
+    z[..N].copy_from_slice(&y);
+    let scale = (energy0 / energy(table, &z)).sqrt();
+    for v in &mut z[N..] {
+        *v *= scale;
+    }
+    if !(dot(&z[N..2 * N], &nu) > 0.0) {
+        return Err(Miss::LeftSection);
+    }
+    let r = return_map(table, &Section::<f64, N, S>::from_slice(&z), k).map_err(Miss::NoHit)?;
+    let f = residual_vector(table, &r.states[k - 1].to_vec(), &z);
+    let res = norm(&f) / (1.0 + norm(&z));
+    Ok((z, r, f, res))
+}
+
+/// The least-squares Newton step of least norm for `(DP^K - I) dz = -F`, constrained to the
+/// energy surface (`grad E . dz = 0`) and to the section (`nu . dx = 0`): without these two
+/// rows the velocity scaling `(0, u, U)`, along which `(DP^K - I)` maps to the velocity part
+/// of `F` itself off the orbit, would be used to shrink `F` by shrinking the velocity.
+fn newton_step<const N: usize>(
+    table: &Table<f64, N>,
+    b0: usize,
+    z: &[f64],
+    columns: &[Vec<f64>],
+    f: &[f64],
+) -> Vec<f64> {
+    let len = z.len();
+    let x: [f64; N] = std::array::from_fn(|i| z[i]);
+    let (_, nu) = project(table, b0, &x);
+    let g = table.ball.gamma2 * table.ball.radius * table.ball.radius;
+    let mut grad_e: Vec<f64> = (0..len)
+        .map(|i| {
+            if i < N {
+                0.0
+            } else if i < 2 * N {
+                z[i]
+            } else {
+                g * z[i]
+            }
+        })
+        .collect();
+    let scale = norm(&grad_e);
+    grad_e.iter_mut().for_each(|v| *v /= scale);
+    let j = DMatrix::from_fn(len + 2, len, |a, b| {
+        if a < len {
+            columns[b][a] - f64::from(u8::from(a == b))
+        } else if a == len {
+            grad_e[b]
+        } else if b < N {
+            nu[b]
+        } else {
+            0.0
+        }
+    });
+    let rhs = DVector::from_iterator(len + 2, f.iter().map(|v| -v).chain([0.0, 0.0]));
+    let svd = j.svd(true, true);
+    let cut = 1e-9 * svd.singular_values.max();
+    svd.solve(&rhs, cut)
+        .expect("u and v were computed")
+        .iter()
+        .copied()
+        .collect()
+}
+
 /// Newton's method from `start` (moved onto its nearest boundary first) for a period-`k`
-/// orbit.
+/// orbit. Far from an orbit the full step may overshoot (leave the section, or grow the
+/// residual): it is halved until it does neither (at most 30 times); near an orbit the full
+/// step is taken, so the convergence is quadratic.
 pub fn newton<const N: usize, const S: usize>(
     table: &Table<f64, N>,
     start: &[f64],
@@ -188,29 +269,12 @@ pub fn newton<const N: usize, const S: usize>(
 where
     Generated: Kernel<f64, N, S> + Kernel<Dual<f64>, N, S>,
 {
-    let len = block_len(N, S);
-    let mut z = start.to_vec();
-    let x: [f64; N] = std::array::from_fn(|i| z[i]);
+    let x: [f64; N] = std::array::from_fn(|i| start[i]);
     let (b0, _) = nearest(table, &x);
-    let energy0 = energy(table, &z);
-    let mut residuals = Vec::new();
+    let energy0 = energy(table, start);
+    let (mut z, mut r, mut f, mut res) = evaluate::<N, S>(table, b0, energy0, start, k)?;
+    let mut residuals = vec![res];
     for iteration in 0..=MAX_ITERATIONS {
-        let x: [f64; N] = std::array::from_fn(|i| z[i]);
-        let (y, nu) = project(table, b0, &x);
-        z[..N].copy_from_slice(&y);
-        let scale = (energy0 / energy(table, &z)).sqrt();
-        for v in &mut z[N..] {
-            *v *= scale;
-        }
-        if dot(&z[N..2 * N], &nu) <= 0.0 {
-            return Err(Miss::LeftSection);
-        }
-        let r = return_map(table, &Section::<f64, N, S>::from_slice(&z), k).map_err(Miss::NoHit)?;
-        let end = r.states[k - 1].to_vec();
-        let f = residual_vector(table, &end, &z);
-        let size = 1.0 + norm(&z);
-        let res = norm(&f) / size;
-        residuals.push(res);
         if res < CONVERGED {
             let eigenvalues = section_eigenvalues(&r.columns);
             return Ok(Orbit {
@@ -224,24 +288,27 @@ where
                 found_from: 1,
             });
         }
-        if iteration == MAX_ITERATIONS || !res.is_finite() {
+        if iteration == MAX_ITERATIONS {
             break;
         }
-        let j = DMatrix::from_fn(len, len, |a, b| {
-            r.columns[b][a] - f64::from(u8::from(a == b))
-        });
-        let svd = j.svd(true, true);
-        let cut = 1e-9 * svd.singular_values.max();
-        let step = svd
-            .solve(&DVector::from_iterator(len, f.iter().map(|v| -v)), cut)
-            .expect("u and v were computed");
-        for (v, s) in z.iter_mut().zip(step.iter()) {
-            *v += s;
+        let step = newton_step(table, b0, &z, &r.columns, &f);
+        let mut accepted = None;
+        let mut s = 1.0;
+        for _ in 0..30 {
+            let candidate: Vec<f64> = z.iter().zip(&step).map(|(v, d)| v + s * d).collect();
+            if let Ok(next) = evaluate::<N, S>(table, b0, energy0, &candidate, k) {
+                if next.3 < res {
+                    accepted = Some(next);
+                    break;
+                }
+            }
+            s /= 2.0;
         }
+        let Some(next) = accepted else { break };
+        (z, r, f, res) = next;
+        residuals.push(res);
     }
-    Err(Miss::NoConvergence {
-        residual: residuals.last().copied().unwrap_or(f64::NAN),
-    })
+    Err(Miss::NoConvergence { residual: res })
 }
 
 /// The section map's eigenvalues: those of `DP^K` without the one nearest 0 (the flow
@@ -341,16 +408,24 @@ where
     })
 }
 
-/// Starts on a grid for a 2D table: on each boundary, `m` points (along a wall within the
-/// `bounds` of the centre, or around a sphere), `m` outgoing directions (angles to the
-/// normal in `(-pi/2, pi/2)`) and `m` spins (`gamma R c / |u|` in `(-1, 1)`), at unit speed.
-pub fn grid(table: &Table<f64, 2>, bounds: &[(f64, f64); 2], m: usize) -> Vec<Vec<f64>> {
+/// Starts on a grid for a 2D table (`None` in other dimensions): on each boundary, `m`
+/// points (along a wall within the `bounds` of the centre, or around a sphere), `m` outgoing
+/// directions (angles to the normal in `(-pi/2, pi/2)`) and `m` spins (`gamma R c / |u|` in
+/// `(-1, 1)`, `U = c J`), at unit speed.
+pub fn grid<const N: usize>(
+    table: &Table<f64, N>,
+    bounds: &[(f64, f64); N],
+    m: usize,
+) -> Option<Vec<Vec<f64>>> {
+    if N != 2 {
+        return None;
+    }
     let mid = |i: usize| (i as f64 + 0.5) / m as f64;
     let r = table.ball.radius;
     let gr = table.ball.gamma2.sqrt() * r;
     let mut out = Vec::new();
     for b in 0..table.boundaries.len() {
-        let mut points: Vec<([f64; 2], [f64; 2])> = Vec::new();
+        let mut points: Vec<([f64; N], [f64; N])> = Vec::new();
         match &table.boundaries[b] {
             Boundary::Wall { point, normal } => {
                 let tau = [-normal[1], normal[0]];
@@ -358,10 +433,8 @@ pub fn grid(table: &Table<f64, 2>, bounds: &[(f64, f64); 2], m: usize) -> Vec<Ve
                 let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
                 for k in 0..2 {
                     if tau[k].abs() > 1e-12 {
-                        let (a, c) = (
-                            (bounds[k].0 - base[k]) / tau[k],
-                            (bounds[k].1 - base[k]) / tau[k],
-                        );
+                        let a = (bounds[k].0 - base[k]) / tau[k];
+                        let c = (bounds[k].1 - base[k]) / tau[k];
                         lo = lo.max(a.min(c));
                         hi = hi.min(a.max(c));
                     }
@@ -369,14 +442,16 @@ pub fn grid(table: &Table<f64, 2>, bounds: &[(f64, f64); 2], m: usize) -> Vec<Ve
                 if lo.is_finite() && hi.is_finite() && lo < hi {
                     for i in 0..m {
                         let s = lo + (hi - lo) * mid(i);
-                        points.push(([base[0] + s * tau[0], base[1] + s * tau[1]], *normal));
+                        let x = std::array::from_fn(|k| base[k] + s * tau[k]);
+                        points.push((x, normal.clone()));
                     }
                 }
             }
             Boundary::Sphere { centre, .. } | Boundary::Container { centre, .. } => {
                 for i in 0..m {
                     let a = std::f64::consts::TAU * mid(i);
-                    let guess = [centre[0] + a.cos(), centre[1] + a.sin()];
+                    let dir = [a.cos(), a.sin()];
+                    let guess = std::array::from_fn(|k| centre[k] + dir[k]);
                     points.push(project(table, b, &guess));
                 }
             }
@@ -396,5 +471,73 @@ pub fn grid(table: &Table<f64, 2>, bounds: &[(f64, f64); 2], m: usize) -> Vec<Ve
             }
         }
     }
-    out
+    Some(out)
+}
+
+/// A rational start `[x, u, U]` put exactly on its nearest boundary (found in f64): along a
+/// wall's rational normal, which is exact; on a sphere only if it lies on it already. `None`
+/// if that is not possible in rationals, or the velocity does not point into the table.
+pub fn exact_start<const N: usize, const S: usize>(
+    table: &Table<Exact, N>,
+    z: &[Exact],
+) -> Option<Section<Exact, N, S>> {
+    let f = table.map(Scalar::to_f64);
+    let xf: [f64; N] = std::array::from_fn(|k| z[k].to_f64());
+    let (b, _) = nearest(&f, &xf);
+    let mut s = Section::<Exact, N, S>::from_slice(z);
+    let r = table.ball.radius.clone();
+    let nu: [Exact; N] = match &table.boundaries[b] {
+        Boundary::Wall { point, normal } => {
+            let d: [Exact; N] = std::array::from_fn(|k| s.x[k].clone() - point[k].clone());
+            let g = dot(&d, normal) - r;
+            for k in 0..N {
+                s.x[k] = s.x[k].clone() - g.clone() * normal[k].clone();
+            }
+            normal.clone()
+        }
+        Boundary::Sphere { centre, radius } | Boundary::Container { centre, radius } => {
+            let inside = matches!(table.boundaries[b], Boundary::Container { .. });
+            let shift: [Exact; N] = std::array::from_fn(|k| {
+                let l = f.period[k].unwrap_or(0.0);
+                let d = xf[k] - centre[k].to_f64();
+                let n = if l > 0.0 { (d / l).round() as i64 } else { 0 };
+                Exact::from_integer(n.into()) * table.period[k].clone().unwrap_or_default()
+            });
+            let d: [Exact; N] =
+                std::array::from_fn(|k| s.x[k].clone() - centre[k].clone() - shift[k].clone());
+            let r_eff = if inside {
+                radius.clone() - r
+            } else {
+                radius.clone() + r
+            };
+            if dot(&d, &d) != r_eff.clone() * r_eff.clone() {
+                return None;
+            }
+            let sign = if inside {
+                -Exact::from_integer(1.into())
+            } else {
+                Exact::from_integer(1.into())
+            };
+            std::array::from_fn(|k| sign.clone() * d[k].clone() / r_eff.clone())
+        }
+    };
+    (dot(&s.state.velocity, &nu) > Exact::from_integer(0.into())).then_some(s)
+}
+
+/// The section state just after the first contact of a ball at `x` with `state` (the scene's
+/// start as a start of the return map).
+pub fn first_contact<const N: usize, const S: usize>(
+    table: &Table<f64, N>,
+    x: &[f64; N],
+    state: &collision_core::BodyState<f64, N, S>,
+) -> Result<Vec<f64>, NoHit>
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let (hit, after) = table.step(x, state)?;
+    Ok(Section {
+        x: hit.position,
+        state: after,
+    }
+    .to_vec())
 }
