@@ -424,3 +424,140 @@ fn pair_tangent_map_matches_the_full_two_ball_map() {
         }
     }
 }
+
+/// The contact tangent map on `(x, u, U)` as columns (2D).
+fn contact_matrix(
+    geometry: &Geometry<Exact>,
+    law: Law,
+    ball: &Ball<Exact>,
+    nu: &[Exact; 2],
+    pre: &State2<Exact>,
+) -> Vec<Vec<Exact>> {
+    (0..5)
+        .map(|col| {
+            let mut block: Vec<Exact> = (0..5).map(|k| q(i64::from(k == col), 1)).collect();
+            boundary_contact(geometry, law, ball, nu, pre, &mut block);
+            block
+        })
+        .collect()
+}
+
+fn contact_cases() -> Vec<(Geometry<Exact>, [Exact; 2], State2<Exact>)> {
+    vec![
+        (
+            Geometry::Flat,
+            [q(3, 5), q(4, 5)],
+            State2::from_scalar_spin(q(2, 3), [q(-1, 1), q(-1, 2)]),
+        ),
+        (
+            Geometry::Convex { r_eff: q(5, 1) },
+            [q(-4, 5), q(3, 5)],
+            State2::from_scalar_spin(q(-1, 5), [q(1, 1), q(-1, 3)]),
+        ),
+        (
+            Geometry::Concave { r_eff: q(5, 2) },
+            [q(0, 1), q(-1, 1)],
+            State2::from_scalar_spin(q(3, 2), [q(1, 7), q(2, 1)]),
+        ),
+    ]
+}
+
+/// Volume: the contact tangent map has determinant `+-1`, exactly, for both laws and every
+/// geometry (the flight has determinant 1), so the exponents sum to 0. The sign: the centres
+/// are reflected (`dx' = (I - 2 nu nu^T) dx` at a flat wall: -1) and the velocities by an
+/// involution that negates the impulse space (no-slip: dimension n, sign `(-1)^n`; smooth:
+/// only the normal, -1): in 2D `-1` for no-slip, `+1` for smooth.
+#[test]
+fn contact_tangent_maps_preserve_volume_exactly() {
+    let ball = Ball {
+        inv_mass: q(1, 2),
+        radius: q(1, 1),
+        gamma2: q(1, 2),
+    };
+    for law in [Law::NoSlip, Law::Smooth] {
+        for (geometry, nu, pre) in &contact_cases() {
+            let p = crate::orbits::poly::charpoly(&contact_matrix(geometry, law, &ball, nu, pre));
+            // det A = (-1)^5 c_0.
+            let det = if law == Law::NoSlip {
+                q(-1, 1)
+            } else {
+                q(1, 1)
+            };
+            assert_eq!(-p[0].clone(), det, "{geometry:?} {law:?}");
+        }
+    }
+}
+
+/// With the orientation angle `theta` put back (2D: `U = omega J`, `omega = -U_01`; it flies as
+/// `theta += t omega`, so at a contact `dtheta' = dtheta + (omega - omega') dt_c`, like a
+/// centre), the smooth contact's tangent map on `(x, theta, u, omega)` preserves the canonical
+/// symplectic form `Omega = [[0, G], [-G, 0]]`, `G = diag(m, m, I)`, `I = m gamma^2 R^2`:
+/// `A^T Omega A = Omega`, exactly, for every geometry (the classical billiard is Hamiltonian).
+/// The no-slip contact's does not (here at a flat wall the `(x_0, u_0)` entry is `26/25`,
+/// not `m = 2`): the pairing of the no-slip spectra does not come from a symplectic structure of
+/// this kind (docs/dynamics.md: it comes from time reversibility).
+#[test]
+fn smooth_contacts_are_symplectic_and_no_slip_ones_are_not() {
+    let ball = Ball {
+        inv_mass: q(1, 2),
+        radius: q(1, 1),
+        gamma2: q(1, 2),
+    };
+    let m = q(2, 1);
+    let inertia = m.clone() * ball.gamma2.clone() * ball.radius.clone() * ball.radius.clone();
+    let g = [m.clone(), m.clone(), inertia];
+    let omega = |i: usize, j: usize| -> Exact {
+        if i < 3 && j == i + 3 {
+            g[i].clone()
+        } else if j < 3 && i == j + 3 {
+            -g[j].clone()
+        } else {
+            q(0, 1)
+        }
+    };
+    for law in [Law::Smooth, Law::NoSlip] {
+        for (geometry, nu, pre) in &contact_cases() {
+            // Columns of A on (x0, x1, theta, u0, u1, omega); our blocks are (x, u, U_01).
+            let mut a = vec![vec![q(0, 1); 6]; 6];
+            for col in 0..6 {
+                let mut block = vec![q(0, 1); 5];
+                let mut dtheta = q(0, 1);
+                match col {
+                    0 | 1 => block[col] = q(1, 1),
+                    2 => dtheta = q(1, 1),
+                    3 | 4 => block[col - 1] = q(1, 1),
+                    _ => block[4] = q(-1, 1), // d omega = 1 is d U_01 = -1
+                }
+                let dx = [block[0].clone(), block[1].clone()];
+                let dt_c = -dot(nu, &dx) / dot(nu, &pre.velocity);
+                let after = boundary_contact(geometry, law, &ball, nu, pre, &mut block);
+                let jump = after.spin[0].clone() - pre.spin[0].clone(); // omega - omega'
+                let out = [
+                    block[0].clone(),
+                    block[1].clone(),
+                    dtheta + jump * dt_c,
+                    block[2].clone(),
+                    block[3].clone(),
+                    -block[4].clone(),
+                ];
+                for (row, v) in out.into_iter().enumerate() {
+                    a[row][col] = v;
+                }
+            }
+            let form = |i: usize, j: usize| -> Exact {
+                let mut s = q(0, 1);
+                for k in 0..6 {
+                    for l in 0..6 {
+                        s += a[k][i].clone() * omega(k, l) * a[l][j].clone();
+                    }
+                }
+                s
+            };
+            let preserved = (0..6).all(|i| (0..6).all(|j| form(i, j) == omega(i, j)));
+            assert_eq!(preserved, law == Law::Smooth, "{geometry:?} {law:?}");
+            if law == Law::NoSlip && *geometry == Geometry::Flat {
+                assert_eq!(form(0, 3), q(26, 25));
+            }
+        }
+    }
+}
