@@ -253,7 +253,7 @@ impl<T: Root, const N: usize> Table<T, N> {
                     }
                     let l = self.period[k].clone().expect("periodic axis");
                     x[k] = if u[k] > T::zero() { T::zero() } else { l };
-                    elapsed = elapsed + t;
+                    elapsed += t;
                 }
                 _ => return Err(NoHit::Escapes),
             }

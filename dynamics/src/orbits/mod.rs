@@ -26,7 +26,6 @@ pub mod section;
 use crate::dual::Dual;
 use crate::geometry::dot;
 use crate::table::{Boundary, NoHit, Table};
-use crate::tangent::block_len;
 use collision_core::{Exact, Generated, Kernel, RefArith, Scalar};
 use nalgebra::{DMatrix, DVector};
 use section::{return_map, Section};
@@ -139,7 +138,7 @@ pub fn project<const N: usize>(
             let g = dot(&d, normal) - r;
             (
                 std::array::from_fn(|k| x[k] - g * normal[k]),
-                normal.clone(),
+                *normal,
             )
         }
         Boundary::Sphere { centre, radius } | Boundary::Container { centre, radius } => {
@@ -199,7 +198,8 @@ where
     for v in &mut z[N..] {
         *v *= scale;
     }
-    if !(dot(&z[N..2 * N], &nu) > 0.0) {
+    let un = dot(&z[N..2 * N], &nu);
+    if un.is_nan() || un <= 0.0 {
         return Err(Miss::LeftSection);
     }
     let r = return_map(table, &Section::<f64, N, S>::from_slice(&z), k).map_err(Miss::NoHit)?;
@@ -346,7 +346,7 @@ pub fn verdict(eigenvalues: &[(f64, f64)]) -> Verdict {
 /// Whether `z` is one of `orbit`'s section states (within `1e-7 (1 + |z|)`, positions by the
 /// minimum image).
 pub fn same_orbit<const N: usize>(table: &Table<f64, N>, orbit: &Orbit, z: &[f64]) -> bool {
-    orbit.boundaries.len() >= 1
+    !orbit.boundaries.is_empty()
         && orbit
             .states
             .iter()
@@ -443,7 +443,7 @@ pub fn grid<const N: usize>(
                     for i in 0..m {
                         let s = lo + (hi - lo) * mid(i);
                         let x = std::array::from_fn(|k| base[k] + s * tau[k]);
-                        points.push((x, normal.clone()));
+                        points.push((x, *normal));
                     }
                 }
             }
@@ -477,6 +477,7 @@ pub fn grid<const N: usize>(
 /// A rational start `[x, u, U]` put exactly on its nearest boundary (found in f64): along a
 /// wall's rational normal, which is exact; on a sphere only if it lies on it already. `None`
 /// if that is not possible in rationals, or the velocity does not point into the table.
+#[allow(clippy::needless_range_loop)]
 pub fn exact_start<const N: usize, const S: usize>(
     table: &Table<Exact, N>,
     z: &[Exact],

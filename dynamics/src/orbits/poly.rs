@@ -7,6 +7,7 @@ use nalgebra::DMatrix;
 /// coefficients from the constant term up (`c_0, .., c_n = 1`), by Faddeev-LeVerrier:
 /// `M_0 = 0`, `M_k = A M_{k-1} + c_{n-k+1} I`, `c_{n-k} = -tr(A M_k) / k`. Exact in
 /// rationals (it divides only by `k`).
+#[allow(clippy::needless_range_loop)]
 pub fn charpoly<T: Scalar>(columns: &[Vec<T>]) -> Vec<T> {
     let n = columns.len();
     let a = |i: usize, j: usize| columns[j][i].clone();

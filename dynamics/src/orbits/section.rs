@@ -97,8 +97,8 @@ where
             boundary_contact(&geometry, table.law, &table.ball, &hit.nu, &z.state, c);
             let dx: [T; N] = std::array::from_fn(|i| c[i].clone());
             let dt = -dot(&hit.nu, &dx) / dot(&hit.nu, &after.velocity);
-            for i in 0..N {
-                c[i] = c[i].clone() + after.velocity[i].clone() * dt.clone();
+            for (ci, ui) in c.iter_mut().zip(&after.velocity) {
+                *ci = ci.clone() + ui.clone() * dt.clone();
             }
         }
         z = Section {
