@@ -9,6 +9,8 @@
 //! sphere obstacles are tried at their images one box side away on each periodic axis, which
 //! covers every flight up to the next face crossing (the centre stays in the box meanwhile).
 //! Ties (a corner: two boundaries touched at the same time) go to the first boundary listed.
+//! A grazing flight, tangent to a sphere's contact surface, is not a contact (it has measure
+//! zero, and the tangent map divides by `u . nu = 0` there).
 
 use crate::geometry::{dot, Geometry};
 use crate::law::Law;
@@ -108,16 +110,18 @@ impl<T: Root, const N: usize> Boundary<T, N> {
                     return Ok(None);
                 }
                 let disc = b.clone() * b.clone() - a.clone() * c.clone();
+                // A grazing flight (disc = 0: tangent to the contact surface, u . nu = 0 there)
+                // is not a contact: it has measure zero, and the tangent map is singular at it.
+                if disc <= T::zero() {
+                    return Ok(None);
+                }
                 if inside {
                     // The later root of |d + t u| = R_eff, from inside (c <= 0).
-                    if disc < T::zero() {
-                        return Ok(None);
-                    }
                     let s = disc.root().ok_or(NoHit::Irrational)?;
                     let t = (s - b) / a;
                     Ok((t > T::zero()).then_some(t))
                 } else {
-                    if b >= T::zero() || disc < T::zero() {
+                    if b >= T::zero() {
                         return Ok(None);
                     }
                     if c <= T::zero() {

@@ -100,3 +100,34 @@ fn container_chord_and_step() {
     assert_eq!(hit.nu, [q(0, 1), q(-1, 1)]);
     assert_eq!(after.velocity, [q(0, 1), q(-2, 1)]);
 }
+
+/// A flight tangent to a sphere's contact surface (R_eff = 4 + 1 = 5, passing at distance 5)
+/// is not a contact, in exact arithmetic (no division by `u . nu = 0` follows); one passing
+/// at 49/10 is.
+#[test]
+fn grazing_flights_are_not_contacts() {
+    let table = Table {
+        boundaries: vec![Boundary::Sphere {
+            centre: [q(0, 1), q(0, 1)],
+            radius: q(4, 1),
+        }],
+        period: [None, None],
+        ball: Ball {
+            radius: q(1, 1),
+            ..disk()
+        },
+        law: Law::NoSlip,
+    };
+    assert_eq!(
+        table.next_hit(&[q(-10, 1), q(5, 1)], &[q(1, 1), q(0, 1)]),
+        Err(NoHit::Escapes)
+    );
+    // At height 3 the contact is at (-4, 3), t = 6 (a rational root).
+    assert_eq!(
+        table
+            .next_hit(&[q(-10, 1), q(3, 1)], &[q(1, 1), q(0, 1)])
+            .unwrap()
+            .time,
+        q(6, 1)
+    );
+}

@@ -104,6 +104,12 @@ pub enum LyapunovError {
     },
     /// The run ran out of contacts.
     NoContact(String),
+    /// A growth was not finite: a grazing contact (`nu . v_rel = 0`), where the tangent map
+    /// is singular, or a collapse of the perturbation.
+    Singular {
+        /// The contact at which it was found.
+        at: u64,
+    },
     /// The two trajectories of the two-trajectory method met different contacts.
     Diverged {
         /// The contact at which it was found.
@@ -125,6 +131,11 @@ impl fmt::Display for LyapunovError {
                 (*blocks as u64 + 1) * 2
             ),
             LyapunovError::NoContact(why) => write!(f, "the run stopped: {why}"),
+            LyapunovError::Singular { at } => write!(
+                f,
+                "the tangent dynamics became singular near contact {at} (a grazing contact, \
+                 nu . v_rel = 0): a run of another length or scene avoids it"
+            ),
             LyapunovError::Diverged { at } => write!(
                 f,
                 "the two trajectories met different contacts near contact {at}: renormalise more \

@@ -135,6 +135,9 @@ where
                 *s = e.time;
             }
             let logs = gram_schmidt(&mut vectors);
+            if logs.iter().any(|l| !l.is_finite()) {
+                return Err(LyapunovError::Singular { at: c });
+            }
             if let Some(b) = plan.block(c) {
                 let dt = e.time - last_time;
                 blocks.add(b, &logs, dt, c - last_contact);

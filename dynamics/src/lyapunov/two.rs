@@ -104,6 +104,9 @@ where
             .collect();
         let d = diff.iter().map(|x| x * x).sum::<f64>().sqrt();
         let log = (d / D0).ln();
+        if !log.is_finite() {
+            return Err(LyapunovError::Singular { at: c });
+        }
         let restart: Vec<f64> = z1.iter().zip(&diff).map(|(p, x)| p + x * D0 / d).collect();
         second = rebuild(&template, &restart, &kernels)?;
         offset = t;

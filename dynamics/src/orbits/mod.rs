@@ -136,10 +136,7 @@ pub fn project<const N: usize>(
         Boundary::Wall { point, normal } => {
             let d: [f64; N] = std::array::from_fn(|k| x[k] - point[k]);
             let g = dot(&d, normal) - r;
-            (
-                std::array::from_fn(|k| x[k] - g * normal[k]),
-                *normal,
-            )
+            (std::array::from_fn(|k| x[k] - g * normal[k]), *normal)
         }
         Boundary::Sphere { centre, radius } | Boundary::Container { centre, radius } => {
             let inside = matches!(table.boundaries[b], Boundary::Container { .. });
