@@ -10,7 +10,13 @@
 //!   that applies.
 //! - [`tangent`]: the free-flight and contact tangent maps.
 //! - [`lyapunov`]: Lyapunov spectra along the engine's trajectory (tangent space with QR,
-//!   and two trajectories as the independent check).
+//!   and two trajectories as the independent check); [`lyapunov::touch`] maps the engine's
+//!   contacts to geometries.
+//! - [`table`] and [`orbits`]: a one-ball table in any scalar (exact for flat walls), its
+//!   boundary map and periodic orbits (Newton with the exact derivative, exact characteristic
+//!   polynomials). [`root`]: square roots where the scalar has them.
+//!
+//! The derivation and the measured figures: `docs/dynamics.md`.
 //!
 //! It must not parse command lines, print or write files (that is the `noslip` command), nor
 //! change how the engine (`noslip-sim`) finds or resolves contacts: it follows the engine's
