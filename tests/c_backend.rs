@@ -5,7 +5,9 @@
 //! (`f64`, `f32`), drawn from every regime of the accuracy report (its own samplers, so the
 //! extremes included: mass ratios to 1e15, immovable bodies, gamma^2 to 1e-15 and 0, radius
 //! ratios to 1e6, scales 1e-100..1e100, spin-dominated, near-grazing), and every result is
-//! finite. A mutation check shows the comparison catches one altered operation.
+//! finite. A mutation check shows the comparison catches one altered operation. Without
+//! `-ffp-contract=off` (GCC in GNU C modes and C++, clang) the header's own guards keep the
+//! results identical; a control shows GCC contracts, and differs, without them.
 
 mod backend;
 
@@ -29,13 +31,20 @@ const CONFIGS: [(&str, &[&str]); 2] = [
     ),
 ];
 
-/// Write `header` into `dir` and compile the harness against it with `flags`; warnings are
-/// errors, so the emitted C must compile cleanly.
+/// Write `header` into `dir` and compile the harness against it as C99 with `flags`.
 fn build(dir: &Path, header: &str, flags: &[&str], exe: &str) -> PathBuf {
+    let mut all = vec!["-std=c99"];
+    all.extend(flags);
+    build_with(dir, header, &cc(), &all, exe)
+}
+
+/// Write `header` into `dir` and compile the harness against it with `compiler` and `flags`;
+/// warnings are errors, so the emitted C must compile cleanly.
+fn build_with(dir: &Path, header: &str, compiler: &str, flags: &[&str], exe: &str) -> PathBuf {
     std::fs::write(dir.join(file_name(Lang::C)), header).unwrap();
     let exe = dir.join(exe);
-    run(Command::new(cc())
-        .args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
+    run(Command::new(compiler)
+        .args(["-Wall", "-Wextra", "-Werror"])
         .args(flags)
         .arg("-I")
         .arg(dir)
@@ -86,11 +95,15 @@ where
     failures
 }
 
-fn check_dim<const N: usize, const S: usize>(dir: &Path, exes: &[(&str, PathBuf)]) -> Vec<String>
+fn check_dim<const N: usize, const S: usize>(
+    dir: &Path,
+    exes: &[(&str, PathBuf)],
+    count: usize,
+) -> Vec<String>
 where
     Generated: Kernel<f64, N, S> + Kernel<f32, N, S>,
 {
-    let cases = draw::<N, S>(CASES, 14 + N as u64);
+    let cases = draw::<N, S>(count, 14 + N as u64);
     let mut failures = check_format(dir, exes, &cases.f64);
     failures.extend(check_format(dir, exes, &cases.f32));
     failures
@@ -109,12 +122,132 @@ fn c_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
     for n in collision_core::DIMS.iter().copied() {
         failures.extend(collision_core::with_dim!(
             n,
-            |N, S| check_dim::<N, S>(&dir, &exes),
+            |N, S| check_dim::<N, S>(&dir, &exes, CASES),
             unreachable!("DIMS lists the compiled dimensions")
         ));
     }
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every kernel of every dimension in both formats on `count` cases per harness: the failures.
+fn check_all(dir: &Path, exes: &[(&str, PathBuf)], count: usize) -> Vec<String> {
+    let mut failures = Vec::new();
+    for n in collision_core::DIMS.iter().copied() {
+        failures.extend(collision_core::with_dim!(
+            n,
+            |N, S| check_dim::<N, S>(dir, exes, count),
+            unreachable!("DIMS lists the compiled dimensions")
+        ));
+    }
+    failures
+}
+
+/// Whether this CPU has FMA instructions (x86 `/proc/cpuinfo` flag `fma`), so that a compiler
+/// targeting it (`-march=native`) can contract `a * b + c`.
+fn cpu_has_fma() -> bool {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .map(|s| {
+            s.lines()
+                .filter(|l| l.starts_with("flags"))
+                .any(|l| l.split_whitespace().any(|f| f == "fma"))
+        })
+        .unwrap_or(false)
+}
+
+/// Cases per dimension, kernel and format in the contraction tests.
+const CONTRACTION_CASES: usize = 20_000;
+
+/// The header is faithful without `-ffp-contract=off`: GCC in a GNU C mode and as C++ (both
+/// contract by default) and clang in a GNU C mode, each at `-O3 -march=native` and no
+/// contraction flag, return the Rust kernels' bits. The header's own guards do it: GCC's
+/// `optimize("fp-contract=off")` attribute on each function, clang's `STDC FP_CONTRACT OFF`.
+/// The control below shows GCC does contract here when the attribute is disabled.
+#[test]
+fn gnu_modes_without_a_contraction_flag_are_bit_identical() {
+    let dir = scratch("c-no-flag");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+    let native = ["-O3", "-march=native"];
+    let mut exes = vec![
+        (
+            "gcc -std=gnu99 -O3 -march=native",
+            build_with(
+                &dir,
+                &header,
+                "gcc",
+                &[&["-std=gnu99"][..], &native].concat(),
+                "gcc",
+            ),
+        ),
+        (
+            "g++ -x c++ -std=c++11 -O3 -march=native",
+            build_with(
+                &dir,
+                &header,
+                "g++",
+                &[&["-x", "c++", "-std=c++11"][..], &native].concat(),
+                "gxx",
+            ),
+        ),
+    ];
+    if Command::new("clang").arg("--version").output().is_ok() {
+        exes.push((
+            "clang -std=gnu99 -O3 -march=native",
+            build_with(
+                &dir,
+                &header,
+                "clang",
+                &[&["-std=gnu99"][..], &native].concat(),
+                "clang",
+            ),
+        ));
+    } else {
+        eprintln!("clang not installed: only GCC checked without a contraction flag");
+    }
+    let failures = check_all(&dir, &exes, CONTRACTION_CASES);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The control of the test above: with the attribute disabled (`-DNOSLIP_NO_CONTRACT=`), GCC
+/// in a GNU mode at `-O3 -march=native` contracts products into FMAs on this CPU and the
+/// plain kernels' results differ from Rust's, so the test above checks something, and the
+/// requirement docs/backends.md states for other compilers (no contraction) is real.
+#[test]
+fn without_the_attribute_gcc_contracts_and_differs() {
+    if !cpu_has_fma() {
+        eprintln!("SKIPPED: this CPU has no FMA instructions, so nothing can be contracted");
+        return;
+    }
+    let dir = scratch("c-contracted");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+    let flags = [
+        "-std=gnu99",
+        "-O3",
+        "-march=native",
+        "-DNOSLIP_NO_CONTRACT=",
+    ];
+    let exes = vec![(
+        "gcc -std=gnu99 -O3 -march=native -DNOSLIP_NO_CONTRACT=",
+        build_with(&dir, &header, "gcc", &flags, "contracted"),
+    )];
+    let failures = check_all(&dir, &exes, CONTRACTION_CASES);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let plain = |f: &&String| f.contains(" free f") || f.contains(" fixed f");
+    let differ = failures.iter().filter(plain).count();
+    assert!(
+        differ > 0,
+        "GCC without the attribute gave the Rust bits on every plain kernel: contraction untested"
+    );
+    assert!(
+        failures.iter().all(|f| f.contains("components differ")),
+        "{}",
+        failures.join("\n")
+    );
+    eprintln!(
+        "{differ} of 20 plain kernels (n, format) differ when contracted; the first:\n{}",
+        failures[0]
+    );
 }
 
 /// The line of the first `+` step in `function`'s body, with the `+` made a `-`.

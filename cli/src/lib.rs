@@ -65,6 +65,12 @@ pub enum Command {
     /// Print the kernels specialised to a scene, with op counts (or check them exactly).
     #[command(long_about = command::gen::LONG_ABOUT)]
     Gen(command::gen::Args),
+    /// Lyapunov exponents of a scene: tangent space with QR, or two trajectories.
+    #[command(long_about = command::lyapunov::LONG_ABOUT)]
+    Lyapunov(command::lyapunov::Args),
+    /// Periodic orbits of a one-ball table's boundary map, with their linear stability.
+    #[command(long_about = command::orbits::LONG_ABOUT)]
+    Orbits(command::orbits::Args),
 }
 
 /// Run the parsed command line; the exit code of its outcome ([`exit::finish`]).
@@ -75,6 +81,8 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Report(args) => command::report::run(&args),
         Command::Simulate(args) => command::simulate::run(&args),
         Command::Gen(args) => command::gen::run(&args),
+        Command::Lyapunov(args) => command::lyapunov::run(&args),
+        Command::Orbits(args) => command::orbits::run(&args),
     })
 }
 
@@ -94,6 +102,8 @@ mod tests {
             ("report", command::report::LONG_ABOUT),
             ("simulate", command::simulate::LONG_ABOUT),
             ("gen", command::gen::LONG_ABOUT),
+            ("lyapunov", command::lyapunov::LONG_ABOUT),
+            ("orbits", command::orbits::LONG_ABOUT),
         ] {
             let help = cli
                 .find_subcommand_mut(name)

@@ -31,6 +31,8 @@ pub trait Float: Scalar + Copy {
     fn finite(self) -> bool;
     /// Whether it is a NaN.
     fn nan(self) -> bool;
+    /// The value of this format nearest to `x`.
+    fn from_f64(x: f64) -> Self;
     /// Whether every result must be finite in `regime`: always in `f64` (the accuracy report
     /// fails the `f64` kernel on any NaN); in `f32` except at extreme scales, whose inputs up
     /// to `1e38` overflow `f32` products inside the kernel (Rust's `f32` kernel too: the
@@ -57,6 +59,9 @@ impl Float for f64 {
     fn nan(self) -> bool {
         self.is_nan()
     }
+    fn from_f64(x: f64) -> Self {
+        x
+    }
     fn must_be_finite(_: Regime) -> bool {
         true
     }
@@ -80,6 +85,9 @@ impl Float for f32 {
     }
     fn nan(self) -> bool {
         self.is_nan()
+    }
+    fn from_f64(x: f64) -> Self {
+        x as f32
     }
     fn must_be_finite(regime: Regime) -> bool {
         regime != Regime::Scale

@@ -3,6 +3,8 @@
 
 pub mod collide;
 pub mod gen;
+pub mod lyapunov;
+pub mod orbits;
 pub mod report;
 pub mod simulate;
 pub mod verify;

@@ -17,7 +17,7 @@ impl Language for C {
     }
 
     fn qualifiers(&self) -> &'static str {
-        "static inline"
+        "static inline NOSLIP_NO_CONTRACT"
     }
 
     fn fma(&self, p: Precision) -> &'static str {
@@ -46,8 +46,19 @@ impl Language for C {
              #error \"noslip kernels need FLT_EVAL_METHOD == 0: each operation rounded to its type (SSE2 on x86, not x87)\"\n\
              #endif\n\
              \n\
-             /* No contraction of a * b + c into an FMA: clang honours the standard pragma at the\n\
-             \x20* start of each body; GCC needs -ffp-contract=off (its default only in ISO modes). */\n\
+             /* No contraction of a * b + c into an FMA. clang honours the standard pragma at the\n\
+             \x20* start of each body (unless given -ffp-contract=fast). GCC ignores it, contracts by\n\
+             \x20* default in GNU C modes and in C++, and its vectorisers form FMAs (vfmaddsub) even under\n\
+             \x20* -ffp-contract=off (GCC 12, x86-64, -O3 -march=native; tests/scene_backends.rs): so\n\
+             \x20* under GCC each function is compiled with contraction and vectorisation off (GCC then\n\
+             \x20* inlines it only into callers compiled with the same three options). */\n\
+             #ifndef NOSLIP_NO_CONTRACT\n\
+             #if defined(__GNUC__) && !defined(__clang__)\n\
+             #define NOSLIP_NO_CONTRACT __attribute__((optimize(\"fp-contract=off\", \"no-tree-slp-vectorize\", \"no-tree-loop-vectorize\")))\n\
+             #else\n\
+             #define NOSLIP_NO_CONTRACT\n\
+             #endif\n\
+             #endif\n\
              #ifndef NOSLIP_FP_CONTRACT_OFF\n\
              #if defined(__clang__)\n\
              #define NOSLIP_FP_CONTRACT_OFF _Pragma(\"STDC FP_CONTRACT OFF\")\n\
@@ -76,8 +87,9 @@ impl Language for C {
 
     fn notes(&self) -> Vec<String> {
         vec![
-            "Compile with -ffp-contract=off and without -ffast-math (GCC in GNU modes contracts by".into(),
-            "default); the FMA forms call fma/fmaf from <math.h> (link -lm where libm is separate).".into(),
+            "Compile without -ffast-math and (clang) -ffp-contract=fast; otherwise the header itself".into(),
+            "keeps GCC and clang from contracting (NOSLIP_NO_CONTRACT, NOSLIP_FP_CONTRACT_OFF), in C and C++.".into(),
+            "The FMA forms call fma/fmaf from <math.h> (link -lm where libm is separate).".into(),
         ]
     }
 }

@@ -1,0 +1,255 @@
+//! `noslip orbits FILE --period K`: periodic orbits of a one-ball table's boundary map.
+
+use crate::command::lyapunov::parse_law;
+use crate::exit::{self, Exit, Failure};
+use crate::out::outln;
+use crate::publish::Staging;
+use collision_core::{Exact, Generated, Kernel, Scalar};
+use noslip_dynamics::orbits::{
+    self, exact, exact_start, first_contact, merge, newton, Miss, Orbit,
+};
+use noslip_dynamics::Dual;
+use noslip_scene::{parse_exact, Scene};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+pub(crate) const LONG_ABOUT: &str = "\
+Periodic orbits of the K-th return map of the boundary map of a one-ball table (a scene with
+one [[ball]]: walls of the box, fixed ball obstacles, periodic axes). The section is the state
+just after a contact: the centre on a boundary, the velocity and the spin, [x, u, U] (2n + S
+numbers).
+
+Orbits are found by Newton's method on P^K(z) - z with the exact derivative (the flight and
+contact tangent maps, projected onto the section), a least-norm step (the velocity scaling
+and translations are neutral) and the energy fixed at the start's. Starts: each --from STATE
+(2n + S numbers separated by commas: rationals such as 1/2 or decimals, moved along the
+normal onto the nearest boundary), or --grid M (2D: M points on each boundary x M outgoing
+angles x M spins, at unit speed), or by default the scene's ball after its first contact.
+
+Each orbit is reported once (orbits found from several starts are merged): its contact
+sequence (boundary indices: walls 2k and 2k+1 at x_k = 0 and L_k for each walled axis k in
+order, then the obstacles), its start, the eigenvalues of the linearised return map on the
+section and the verdict: elliptic (all on the unit circle, some non-real), parabolic (all at
++-1) or hyperbolic (some off the unit circle), with tolerance 1e-6. For a rational --from on
+a table whose contact times are rational (flat walls), the return map at that start and the
+characteristic polynomial of its linearisation are also computed in exact rationals.
+Writes orbits.json to --out (default out/orbits/SCENE), published as one set.";
+
+/// The arguments of `noslip orbits`.
+#[derive(clap::Args)]
+#[command(long_about = LONG_ABOUT, after_long_help = exit::help(CODES))]
+pub struct Args {
+    /// The scene file.
+    pub file: PathBuf,
+    /// The period K (contacts per orbit).
+    #[arg(long)]
+    period: usize,
+    /// A start `[x, u, U]`, 2n + S numbers separated by commas (repeatable).
+    #[arg(long, allow_negative_numbers = true)]
+    from: Vec<String>,
+    /// 2D: M^3 starts per boundary (positions x angles x spins).
+    #[arg(long)]
+    grid: Option<usize>,
+    /// The contact law: `no-slip` or `smooth`.
+    #[arg(long, default_value = "no-slip")]
+    contact: String,
+    /// The output directory (default out/orbits/SCENE).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// What `orbits` can return.
+pub const CODES: &[Exit] = &[Exit::Success, Exit::OutputFailed, Exit::BadInput];
+
+/// The most starts a grid may make, and the longest period.
+const MAX_STARTS: usize = 100_000;
+const MAX_PERIOD: usize = 1000;
+
+#[derive(Serialize)]
+struct Report {
+    period: usize,
+    starts: usize,
+    misses: usize,
+    orbits: Vec<Orbit>,
+    exact: Vec<Option<orbits::ExactReturn>>,
+}
+
+fn parse_start(i: usize, text: &str, len: usize) -> Result<Vec<Exact>, Failure> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != len {
+        return Err(Failure::bad_input(format!(
+            "--from[{i}]: has {} numbers, expected 2n + S = {len} (x, u, then the spin entries U_ij, i < j)",
+            parts.len()
+        )));
+    }
+    parts
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            parse_exact(p).map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))
+        })
+        .collect()
+}
+
+fn search<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Result<Report, Failure>
+where
+    Generated: Kernel<f64, N, S>
+        + Kernel<Dual<f64>, N, S>
+        + Kernel<Exact, N, S>
+        + Kernel<Dual<Exact>, N, S>,
+{
+    let law = parse_law(&args.contact)?;
+    let (table, x, state) = orbits::scene::table::<N, S>(scene, law).map_err(Failure::bad_input)?;
+    let f = table.map(Scalar::to_f64);
+    let len = 2 * N + S;
+    let mut starts: Vec<Vec<f64>> = Vec::new();
+    let mut exact_reports = Vec::new();
+    for (i, text) in args.from.iter().enumerate() {
+        let z = parse_start(i, text, len)?;
+        let zf: Vec<f64> = z.iter().map(Scalar::to_f64).collect();
+        let xf: [f64; N] = std::array::from_fn(|k| zf[k]);
+        let (b, _) = orbits::nearest(&f, &xf);
+        let (_, nu) = orbits::project(&f, b, &xf);
+        if zf[N..2 * N]
+            .iter()
+            .zip(&nu)
+            .map(|(u, n)| u * n)
+            .sum::<f64>()
+            <= 0.0
+        {
+            return Err(Failure::bad_input(format!(
+                "--from[{i}]: the velocity must point into the table (u . nu > 0) at its nearest boundary {b}"
+            )));
+        }
+        starts.push(zf);
+        exact_reports.push(
+            exact_start::<N, S>(&table, &z).and_then(|s| exact(&table, &s, args.period).ok()),
+        );
+    }
+    if let Some(m) = args.grid {
+        let per = f.boundaries.len().saturating_mul(m.saturating_pow(3));
+        if m == 0 || per > MAX_STARTS {
+            return Err(Failure::bad_input(format!(
+                "--grid: must be at least 1 and make at most {MAX_STARTS} starts (M^3 per boundary), got {m}"
+            )));
+        }
+        let bounds: [(f64, f64); N] = std::array::from_fn(|k| match f.period[k] {
+            Some(l) => (0.0, l),
+            None => (f.ball.radius, x_size(scene, k) - f.ball.radius),
+        });
+        starts.extend(orbits::grid(&f, &bounds, m).ok_or_else(|| {
+            Failure::bad_input("--grid: starts on a grid are made in 2D only; give --from")
+        })?);
+    }
+    if args.from.is_empty() && args.grid.is_none() {
+        let xf = x.map(|v| v.to_f64());
+        let sf = collision_core::BodyState {
+            velocity: state.velocity.map(|v| v.to_f64()),
+            spin: state.spin.map(|v| v.to_f64()),
+        };
+        starts.push(first_contact(&f, &xf, &sf).map_err(|e| {
+            Failure::bad_input(format!(
+                "{}: the ball never touches the table ({e:?})",
+                scene.origin
+            ))
+        })?);
+    }
+    let mut found: Vec<Orbit> = Vec::new();
+    let mut misses = 0;
+    for z in &starts {
+        match newton::<N, S>(&f, z, args.period) {
+            Ok(o) => merge(&f, &mut found, o),
+            Err(Miss::NoHit(_) | Miss::NoConvergence { .. } | Miss::LeftSection) => misses += 1,
+        }
+    }
+    Ok(Report {
+        period: args.period,
+        starts: starts.len(),
+        misses,
+        orbits: found,
+        exact: exact_reports,
+    })
+}
+
+fn x_size(scene: &Scene, k: usize) -> f64 {
+    scene.size[k].to_f64()
+}
+
+fn show(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{x:.12}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Check the arguments, search, publish and print.
+pub fn run(args: &Args) -> Result<Exit, Failure> {
+    if !(1..=MAX_PERIOD).contains(&args.period) {
+        return Err(Failure::bad_input(format!(
+            "--period: must be in 1..={MAX_PERIOD}, got {}",
+            args.period
+        )));
+    }
+    parse_law(&args.contact)?;
+    let scene = Scene::from_file(&args.file).map_err(|e| Failure::bad_input(e.to_string()))?;
+    let report = collision_core::with_dim!(
+        scene.dim,
+        |N, S| search::<N, S>(&scene, args),
+        unreachable!("scene validation keeps dim in {:?}", collision_core::DIMS)
+    )?;
+    let out = args.out.clone().unwrap_or_else(|| {
+        let stem = Path::new(&scene.origin)
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+        PathBuf::from("out/orbits").join(stem)
+    });
+    let mut set = Staging::new(&out).map_err(|e| exit::publish_failure(&e))?;
+    let json = serde_json::to_string_pretty(&report).expect("serialises") + "\n";
+    set.write("orbits.json", json.as_bytes())
+        .map_err(|e| exit::publish_failure(&e))?;
+    set.commit().map_err(|e| exit::publish_failure(&e))?;
+    outln!(
+        "{}: period {}, {} start{}, {} orbit{} ({} start{} did not converge)",
+        scene.origin,
+        report.period,
+        report.starts,
+        if report.starts == 1 { "" } else { "s" },
+        report.orbits.len(),
+        if report.orbits.len() == 1 { "" } else { "s" },
+        report.misses,
+        if report.misses == 1 { "" } else { "s" }
+    )?;
+    for (i, o) in report.orbits.iter().enumerate() {
+        outln!(
+            "orbit {}: {:?}, contacts {:?}, found from {} start{}, residual {:.1e}",
+            i + 1,
+            o.verdict,
+            o.boundaries,
+            o.found_from,
+            if o.found_from == 1 { "" } else { "s" },
+            o.residual
+        )?;
+        outln!("  start [x, u, U] = [{}]", show(&o.start))?;
+        let e: Vec<String> = o
+            .eigenvalues
+            .iter()
+            .map(|(re, im)| format!("{re:+.9}{im:+.9}i"))
+            .collect();
+        outln!("  eigenvalues: {}", e.join(", "))?;
+    }
+    for (i, e) in report.exact.iter().enumerate() {
+        match e {
+            Some(r) => {
+                outln!(
+                    "exact, --from[{i}]: contacts {:?}, {}periodic; characteristic polynomial of the section map: {}",
+                    r.boundaries,
+                    if r.periodic { "" } else { "not " },
+                    r.charpoly
+                )?;
+            }
+            None => outln!("exact, --from[{i}]: not computed (a contact time or the start's projection is irrational)")?,
+        }
+    }
+    outln!("wrote {}", out.display())?;
+    Ok(Exit::Success)
+}

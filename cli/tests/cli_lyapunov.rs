@@ -1,0 +1,144 @@
+//! `noslip lyapunov` from the outside: a run's outputs, and bad input (exit 2, one line
+//! naming the place).
+
+use std::process::Command;
+
+fn noslip() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_noslip"));
+    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
+    c
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
+}
+
+#[test]
+fn sinai_spectrum_is_printed_and_published() {
+    let dir = temp("lyapunov-sinai");
+    let out = noslip()
+        .args(["lyapunov", "scenes/sinai.toml", "--events", "5000", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.starts_with("scenes/sinai.toml: 5 exponents by qr (no-slip contacts)"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("3 below 1% of the largest"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("spectrum.json")).unwrap()).unwrap();
+    assert_eq!(json["dimension"], 5);
+    assert_eq!(json["per_time"].as_array().unwrap().len(), 5);
+    let l1 = json["per_time"][0]["value"].as_f64().unwrap();
+    assert!(l1 > 0.5 && l1 < 2.0, "{l1}");
+    let csv = std::fs::read_to_string(dir.join("running.csv")).unwrap();
+    assert!(csv.starts_with("contacts,time,lambda_1,lambda_2,lambda_3,lambda_4,lambda_5\n"));
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(last[0], 5000.0);
+    // The same sums in another order (per block, or running): equal to rounding.
+    assert!(
+        (last[2] - l1).abs() < 1e-12 * l1,
+        "the running estimate ends at the estimate"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn two_trajectory_and_smooth_run() {
+    let dir = temp("lyapunov-two");
+    let out = noslip()
+        .args([
+            "lyapunov",
+            "scenes/sinai.toml",
+            "--events",
+            "500",
+            "--method",
+            "two-trajectory",
+        ])
+        .args(["--contact", "smooth", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains("1 exponent by two-trajectory (smooth contacts)"),
+        "{stdout}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_place() {
+    let dir = temp("lyapunov-bad");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "dim = 2\n[box]\nsize = [1, 1]\nboundary = [\"wall\", \"wall\"]\n[[species]]\nmass = 0\nradius = \"1/4\"\ncount = 1\n").unwrap();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["scenes/sinai.toml", "--k", "6"],
+            "--k: must be in 1..=5",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--k", "0"],
+            "--k: must be in 1..=5",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--method", "svd"],
+            "--method: must be qr or two-trajectory",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--contact", "rough"],
+            "--contact: must be no-slip or smooth",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--events", "10"],
+            "--events: 10 contacts cannot make",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--blocks", "0"],
+            "--events: 100000 contacts cannot make a warm-up and 0 blocks",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--every", "0"],
+            "--every: must be at least 1",
+        ),
+        (
+            vec![
+                "scenes/sinai.toml",
+                "--method",
+                "two-trajectory",
+                "--k",
+                "2",
+            ],
+            "--k: two-trajectory",
+        ),
+        (vec!["scenes/missing.toml"], "scenes/missing.toml"),
+        (vec![bad.to_str().unwrap()], "species[0].mass"),
+    ];
+    for (args, message) in cases {
+        let out = noslip().arg("lyapunov").args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(message), "{args:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

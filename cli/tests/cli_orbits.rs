@@ -1,0 +1,129 @@
+//! `noslip orbits` from the outside: the bouncing orbit between two walls found and computed
+//! exactly, a grid search, and bad input (exit 2, one line naming the place).
+
+use std::process::Command;
+
+fn noslip() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_noslip"));
+    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
+    c
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
+}
+
+#[test]
+fn bouncing_orbit_is_found_and_its_polynomial_is_exact() {
+    let dir = temp("orbits-walls");
+    let out = noslip()
+        .args(["orbits", "scenes/disk_between_walls.toml", "--period", "2"])
+        .args(["--from", "1,1/2,0,1,0", "--from", "1,0.5,0,1,0", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    // The two starts are the same orbit: merged.
+    assert!(stdout.starts_with("scenes/disk_between_walls.toml: period 2, 2 starts, 1 orbit (0 starts did not converge)"), "{stdout}");
+    assert!(
+        stdout.contains("orbit 1: Elliptic, contacts [1, 0], found from 2 starts"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("exact, --from[0]: contacts [1, 0], periodic; characteristic polynomial of the section map: l^4 - 4/9 l^3 - 10/9 l^2 - 4/9 l + 1"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("orbits.json")).unwrap()).unwrap();
+    assert_eq!(json["orbits"][0]["verdict"], "elliptic");
+    assert_eq!(json["exact"][0]["coefficients"][1], "-4/9");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_grid_search_on_the_sinai_table_finds_elliptic_orbits() {
+    let dir = temp("orbits-sinai");
+    let out = noslip()
+        .args([
+            "orbits",
+            "scenes/sinai.toml",
+            "--period",
+            "2",
+            "--grid",
+            "3",
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.starts_with("scenes/sinai.toml: period 2, 27 starts"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("orbit 1: Elliptic, contacts [0, 0]"),
+        "{stdout}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_place() {
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["scenes/sinai.toml", "--period", "0"],
+            "--period: must be in 1..=1000",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--period", "2", "--from", "1,2,3"],
+            "--from[0]: has 3 numbers, expected 2n + S = 5",
+        ),
+        (
+            vec![
+                "scenes/sinai.toml",
+                "--period",
+                "2",
+                "--from",
+                "0.85,0.5,1,0,x",
+            ],
+            "--from[0][4]",
+        ),
+        (
+            vec![
+                "scenes/sinai.toml",
+                "--period",
+                "2",
+                "--from",
+                "0.85,0.5,-1,0,0",
+            ],
+            "--from[0]: the velocity must point into the table",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--period", "2", "--grid", "0"],
+            "--grid: must be at least 1",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--period", "2", "--contact", "rough"],
+            "--contact: must be no-slip or smooth",
+        ),
+        (
+            vec!["scenes/gas2d.toml", "--period", "2"],
+            "scenes/gas2d.toml: a one-ball table is needed",
+        ),
+    ];
+    for (args, message) in cases {
+        let out = noslip().arg("orbits").args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(message), "{args:?}: {err}");
+    }
+}

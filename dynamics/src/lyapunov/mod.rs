@@ -1,0 +1,214 @@
+//! Lyapunov exponents of a scene run by the engine (`noslip-sim`), whose events give the
+//! reference trajectory:
+//!
+//! - [`qr`]: the spectrum (or its `k` largest exponents) from `k` tangent vectors carried by
+//!   the tangent maps ([`crate::tangent`]) and re-orthonormalised by Gram-Schmidt every few
+//!   contacts; exponent `i` is the mean growth rate of the `i`-th diagonal entry of `R`.
+//! - [`two_trajectory`]: the largest exponent from a second run started `d0` away and pulled
+//!   back to distance `d0` every few contacts (Benettin's method): an independent check, with
+//!   no tangent map at all.
+//!
+//! Both report per unit time and per contact (all contacts of the scene), with the standard
+//! error over blocks ([`stats`]) after a warm-up block that is not measured.
+
+mod qr;
+pub mod stats;
+pub mod touch;
+mod two;
+
+pub use qr::qr;
+pub use two::{two_trajectory, D0};
+
+use crate::law::Law;
+use collision_core::{BodyState, Generated, Kernel};
+use noslip_sim::{Event, SetupError, Simulation, Step};
+use serde::Serialize;
+use stats::Estimate;
+use std::fmt;
+
+/// What a Lyapunov run is asked for.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Contacts to run (warm-up included).
+    pub events: u64,
+    /// How many exponents (the largest); `None`: all.
+    pub k: Option<usize>,
+    /// Measured blocks (after one warm-up block of the same length).
+    pub blocks: usize,
+    /// Seed of the initial tangent vectors or perturbation.
+    pub seed: u64,
+    /// The contact law.
+    pub law: Law,
+    /// Contacts between re-orthonormalisations (or renormalisations); `None`: the method's
+    /// default.
+    pub every: Option<u64>,
+}
+
+/// One row of the running estimate.
+#[derive(Clone, Debug, Serialize)]
+pub struct Running {
+    /// Contacts so far (warm-up included).
+    pub contacts: u64,
+    /// Time so far.
+    pub time: f64,
+    /// The exponents per unit time over the measured part so far.
+    pub exponents: Vec<f64>,
+}
+
+/// The result of a Lyapunov run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Spectrum {
+    /// `"qr"` or `"two-trajectory"`.
+    pub method: &'static str,
+    /// The contact law.
+    pub law: Law,
+    /// The phase-space dimension `balls (2n + S)`.
+    pub dimension: usize,
+    /// Contacts run, and of them the warm-up.
+    pub contacts: u64,
+    /// Warm-up contacts (not measured).
+    pub warmup: u64,
+    /// Contacts between re-orthonormalisations.
+    pub every: u64,
+    /// Time of the measured part.
+    pub time: f64,
+    /// Exponents per unit time, largest first, with their errors.
+    pub per_time: Vec<Estimate>,
+    /// Exponents per contact.
+    pub per_contact: Vec<Estimate>,
+    /// The sum of the exponents computed, per unit time.
+    pub sum: Estimate,
+    /// The running estimate.
+    pub running: Vec<Running>,
+}
+
+/// Why a Lyapunov run could not be made.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum LyapunovError {
+    /// The engine refused the setup.
+    Setup(SetupError),
+    /// `k` is not in `1..=dimension`.
+    K {
+        /// The `k` asked for.
+        k: usize,
+        /// The phase-space dimension.
+        dimension: usize,
+    },
+    /// Fewer contacts than blocks + 1, or no blocks.
+    Events {
+        /// The contacts asked for.
+        events: u64,
+        /// The blocks asked for.
+        blocks: usize,
+    },
+    /// The run ran out of contacts.
+    NoContact(String),
+    /// A growth was not finite: a grazing contact (`nu . v_rel = 0`), where the tangent map
+    /// is singular, or a collapse of the perturbation.
+    Singular {
+        /// The contact at which it was found.
+        at: u64,
+    },
+    /// The two trajectories of the two-trajectory method met different contacts.
+    Diverged {
+        /// The contact at which it was found.
+        at: u64,
+    },
+}
+
+impl fmt::Display for LyapunovError {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            LyapunovError::Setup(e) => write!(f, "{e}"),
+            LyapunovError::K { k, dimension } => {
+                write!(f, "--k: must be in 1..={dimension} (the phase-space dimension), got {k}")
+            }
+            LyapunovError::Events { events, blocks } => write!(
+                f,
+                "--events: {events} contacts cannot make a warm-up and {blocks} blocks: at least {} \
+                 are needed",
+                (*blocks as u64 + 1) * 2
+            ),
+            LyapunovError::NoContact(why) => write!(f, "the run stopped: {why}"),
+            LyapunovError::Singular { at } => write!(
+                f,
+                "the tangent dynamics became singular near contact {at} (a grazing contact, \
+                 nu . v_rel = 0): a run of another length or scene avoids it"
+            ),
+            LyapunovError::Diverged { at } => write!(
+                f,
+                "the two trajectories met different contacts near contact {at}: renormalise more \
+                 often (--every)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for LyapunovError {}
+
+/// The next contact of the engine (quiet notices are passed over).
+fn next_contact<const N: usize, const S: usize, K: noslip_sim::PairKernels<f64, N, S>>(
+    sim: &mut Simulation<N, S, K>,
+) -> Result<Event<N, S>, LyapunovError> {
+    loop {
+        match sim.step(f64::INFINITY) {
+            Step::Contact(e) => return Ok(e),
+            Step::Never(why) => return Err(LyapunovError::NoContact(why.to_string())),
+            Step::Quiet { .. } | Step::Until => {}
+        }
+    }
+}
+
+/// The measured plan: the warm-up and the block of each contact.
+#[derive(Clone, Copy, Debug)]
+struct Plan {
+    events: u64,
+    warmup: u64,
+    blocks: usize,
+}
+
+impl Plan {
+    fn new(o: &Options) -> Result<Self, LyapunovError> {
+        if o.blocks == 0 || o.events < 2 * (o.blocks as u64 + 1) {
+            return Err(LyapunovError::Events {
+                events: o.events,
+                blocks: o.blocks,
+            });
+        }
+        Ok(Plan {
+            events: o.events,
+            warmup: o.events / (o.blocks as u64 + 1),
+            blocks: o.blocks,
+        })
+    }
+
+    /// The block of contact `c` (1-based), `None` in the warm-up.
+    fn block(&self, c: u64) -> Option<usize> {
+        (c > self.warmup).then(|| {
+            let measured = self.events - self.warmup;
+            (((c - self.warmup - 1) * self.blocks as u64) / measured) as usize
+        })
+    }
+}
+
+/// The kernels a run needs: the f64 ones for the engine, the dual ones for the tangent map.
+pub trait Dim<const N: usize, const S: usize>:
+    Kernel<f64, N, S> + Kernel<crate::Dual<f64>, N, S>
+{
+}
+impl<const N: usize, const S: usize> Dim<N, S> for Generated where
+    Generated: Kernel<f64, N, S> + Kernel<crate::Dual<f64>, N, S>
+{
+}
+
+/// A body's phase-space coordinates `[x, u, U]` appended to `out`.
+fn push_state<const N: usize, const S: usize>(
+    out: &mut Vec<f64>,
+    x: &[f64; N],
+    s: &BodyState<f64, N, S>,
+) {
+    out.extend_from_slice(x);
+    out.extend_from_slice(&s.velocity);
+    out.extend_from_slice(&s.spin);
+}

@@ -1,0 +1,133 @@
+//! The table's next contact, checked by hand-computed flights.
+
+use super::*;
+use collision_core::{Exact, Scalar, State2};
+
+fn q(n: i64, d: i64) -> Exact {
+    Exact::from_ratio(n, d)
+}
+
+fn disk() -> Ball<Exact> {
+    Ball {
+        inv_mass: q(1, 1),
+        radius: q(1, 2),
+        gamma2: q(1, 2),
+    }
+}
+
+/// A wall tilted to nu = (3/5, 4/5) through the origin: from (3, 4) (distance 5) moving with
+/// (-3, -4)/5 at unit speed, the centre touches at distance r = 1/2 after t = 9/2.
+#[test]
+fn tilted_wall_contact_is_exact() {
+    let table = Table {
+        boundaries: vec![Boundary::Wall {
+            point: [q(0, 1), q(0, 1)],
+            normal: [q(3, 5), q(4, 5)],
+        }],
+        period: [None, None],
+        ball: disk(),
+        law: Law::NoSlip,
+    };
+    let hit = table
+        .next_hit(&[q(3, 1), q(4, 1)], &[q(-3, 5), q(-4, 5)])
+        .unwrap();
+    assert_eq!(hit.time, q(9, 2));
+    assert_eq!(hit.position, [q(3, 10), q(2, 5)]);
+    assert_eq!(hit.nu, [q(3, 5), q(4, 5)]);
+    // Moving away: never.
+    assert_eq!(
+        table.next_hit(&[q(3, 1), q(4, 1)], &[q(1, 1), q(0, 1)]),
+        Err(NoHit::Escapes)
+    );
+}
+
+/// A periodic unit square with a disk obstacle (the Sinai table): a flight that wraps across
+/// the face x = 1 meets the obstacle's image... here the obstacle itself after one wrap: from
+/// (9/10, 1/2) moving +x, the centre wraps to x = 0 at t = 1/10 and touches the obstacle
+/// (centre (1/2, 1/2), R_eff = 3/10 + 1/20 = 7/20) at x = 1/2 - 7/20 = 3/20: t = 1/10 + 3/20.
+#[test]
+fn periodic_flight_wraps_and_meets_the_obstacle() {
+    let table = Table {
+        boundaries: vec![Boundary::Sphere {
+            centre: [q(1, 2), q(1, 2)],
+            radius: q(3, 10),
+        }],
+        period: [Some(q(1, 1)), Some(q(1, 1))],
+        ball: Ball {
+            radius: q(1, 20),
+            ..disk()
+        },
+        law: Law::NoSlip,
+    };
+    let hit = table
+        .next_hit(&[q(9, 10), q(1, 2)], &[q(1, 1), q(0, 1)])
+        .unwrap();
+    assert_eq!(hit.time, q(1, 4));
+    assert_eq!(hit.position, [q(3, 20), q(1, 2)]);
+    assert_eq!(hit.nu, [q(-1, 1), q(0, 1)]);
+    // A grazing-free flight along y = 0 misses every image: it escapes (in the budget).
+    let f = table.map(|x| x.to_f64());
+    assert_eq!(f.next_hit(&[0.0, 0.0], &[1.0, 0.0]), Err(NoHit::Escapes));
+    // An irrational contact time cannot be found exactly.
+    assert_eq!(
+        table
+            .next_hit(&[q(0, 1), q(1, 2)], &[q(1, 1), q(1, 3)])
+            .map(|h| h.time),
+        Err(NoHit::Irrational)
+    );
+    assert!(f.next_hit(&[0.0, 0.5], &[1.0, 1.0 / 3.0]).is_ok());
+}
+
+/// Inside a circle of radius 3 (R_eff = 5/2), a chord from the centre along (0, 1) ends at
+/// y = 5/2; the no-slip step then reverses the normal velocity.
+#[test]
+fn container_chord_and_step() {
+    let table = Table {
+        boundaries: vec![Boundary::Container {
+            centre: [q(0, 1), q(0, 1)],
+            radius: q(3, 1),
+        }],
+        period: [None, None],
+        ball: disk(),
+        law: Law::NoSlip,
+    };
+    let s = State2::from_scalar_spin(q(0, 1), [q(0, 1), q(2, 1)]);
+    let (hit, after) = table.step(&[q(0, 1), q(0, 1)], &s).unwrap();
+    assert_eq!(
+        (hit.time, hit.position.clone()),
+        (q(5, 4), [q(0, 1), q(5, 2)])
+    );
+    assert_eq!(hit.nu, [q(0, 1), q(-1, 1)]);
+    assert_eq!(after.velocity, [q(0, 1), q(-2, 1)]);
+}
+
+/// A flight tangent to a sphere's contact surface (R_eff = 4 + 1 = 5, passing at distance 5)
+/// is not a contact, in exact arithmetic (no division by `u . nu = 0` follows); one passing
+/// at 49/10 is.
+#[test]
+fn grazing_flights_are_not_contacts() {
+    let table = Table {
+        boundaries: vec![Boundary::Sphere {
+            centre: [q(0, 1), q(0, 1)],
+            radius: q(4, 1),
+        }],
+        period: [None, None],
+        ball: Ball {
+            radius: q(1, 1),
+            ..disk()
+        },
+        law: Law::NoSlip,
+    };
+    assert_eq!(
+        table.next_hit(&[q(-10, 1), q(5, 1)], &[q(1, 1), q(0, 1)]),
+        Err(NoHit::Escapes)
+    );
+    // At height 3 the contact is at (-4, 3), t = 6 (a rational root).
+    assert_eq!(
+        table
+            .next_hit(&[q(-10, 1), q(3, 1)], &[q(1, 1), q(0, 1)])
+            .unwrap()
+            .time,
+        q(6, 1)
+    );
+}

@@ -1,0 +1,119 @@
+//! Lyapunov spectra of a one-ball table and a small gas: the symmetries the dynamics must
+//! have, and the two methods (tangent space with QR; two trajectories) against each other.
+//!
+//! - **Sum 0**: every contact's tangent map and every flight have determinant 1 (the no-slip
+//!   map is a linear isometry of the energy metric; the flight is a shear), so the sum of all
+//!   exponents is a sum of `log |det| = 0` up to rounding: bounded by 1e-10 per unit time.
+//! - **Pairing** `lambda_i = -lambda_{d+1-i}`: for the smooth table (Hamiltonian) a theorem;
+//!   for the no-slip ones measured, within 4 standard errors plus the bias of the neutral
+//!   directions (their growth is linear in time, so they converge like `log T / T`, not like
+//!   the block error: 1% of `lambda_1` after these runs).
+//! - **Zero exponents**: one ball in 2D has 3 (time shift, velocity scaling, and the middle of
+//!   an odd-dimensional symmetric spectrum); a periodic gas in 2D has 6 (time shift, velocity
+//!   scaling, 2 translations, 2 momenta).
+
+use noslip_dynamics::lyapunov::{qr, two_trajectory, Options, Spectrum};
+use noslip_dynamics::Law;
+use noslip_scene::Scene;
+
+const SINAI: &str = include_str!("../../scenes/sinai.toml");
+
+const GAS: &str = r#"
+dim = 2
+[box]
+size = [6, 6]
+boundary = ["periodic", "periodic"]
+[[species]]
+mass = 1
+radius = "1/2"
+count = 8
+[random]
+seed = 2
+speed = 1
+spin = 1
+"#;
+
+fn run(text: &str, events: u64, law: Law, two: bool) -> Spectrum {
+    let scene = Scene::from_toml(text, "test.toml").unwrap();
+    let setup = noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
+    let options = Options {
+        events,
+        k: None,
+        blocks: 10,
+        seed: 7,
+        law,
+        every: None,
+    };
+    if two {
+        two_trajectory(
+            setup,
+            &Options {
+                k: Some(1),
+                ..options
+            },
+        )
+        .unwrap()
+    } else {
+        qr(setup, &options).unwrap()
+    }
+}
+
+/// Exponents below `fraction` of the largest in magnitude.
+fn near_zero(s: &Spectrum, fraction: f64) -> usize {
+    let top = s.per_time[0].value;
+    s.per_time
+        .iter()
+        .filter(|e| e.value.abs() < fraction * top)
+        .count()
+}
+
+/// `zero_below`: the fraction of `lambda_1` that separates the neutral exponents from the
+/// rest. The Sinai table's spectrum is `lambda_1`, three exponents near 0 and `-lambda_1`
+/// (any fraction up to 1/2 separates them: 1/100). The gas has small genuine exponents: its
+/// measured spectrum has six of magnitude 2e-4 lambda_1 and the next at 5e-3 lambda_1 (0.0057
+/// and -0.0038, at 6 standard errors), so the cut is 2e-3 lambda_1, a factor 10 from both.
+fn check_symmetries(s: &Spectrum, zeros: usize, zero_below: f64) {
+    let d = s.per_time.len();
+    assert_eq!(d, s.dimension);
+    assert!(s.sum.value.abs() < 1e-10, "sum {:?}", s.sum);
+    let top = s.per_time[0].value;
+    assert!(top > 0.1, "chaotic: {top}");
+    for i in 0..d / 2 {
+        let (a, b) = (s.per_time[i], s.per_time[d - 1 - i]);
+        let slack = 4.0 * (a.error + b.error) + 0.01 * top;
+        assert!((a.value + b.value).abs() < slack, "pair {i}: {a:?} {b:?}");
+    }
+    assert_eq!(near_zero(s, zero_below), zeros, "{:?}", s.per_time);
+}
+
+#[test]
+fn sinai_spectra_are_symmetric_with_three_zeros() {
+    for law in [Law::NoSlip, Law::Smooth] {
+        let s = run(SINAI, 40_000, law, false);
+        check_symmetries(&s, 3, 0.01);
+    }
+}
+
+#[test]
+fn periodic_gas_spectrum_is_symmetric_with_six_zeros() {
+    let s = run(GAS, 40_000, Law::NoSlip, false);
+    check_symmetries(&s, 6, 0.002);
+}
+
+/// The largest exponent by both methods: the difference within 3 combined standard errors.
+#[test]
+fn the_two_methods_agree_on_the_sinai_table_and_the_gas() {
+    for (text, events) in [(SINAI, 20_000), (GAS, 20_000)] {
+        let a = run(text, events, Law::NoSlip, false).per_time[0];
+        let b = run(text, events, Law::NoSlip, true).per_time[0];
+        let sigma = (a.error.powi(2) + b.error.powi(2)).sqrt();
+        assert!(
+            (a.value - b.value).abs() < 3.0 * sigma,
+            "qr {a:?}, two-trajectory {b:?}"
+        );
+        assert!(
+            a.value > 10.0 * sigma,
+            "a measured, positive exponent: {a:?}"
+        );
+    }
+}

@@ -1,0 +1,200 @@
+//! Periodic orbits of the boundary map: a hand-derived orbit found exactly, the exact return
+//! map against the f64 one, Newton's quadratic convergence.
+
+use collision_core::{Exact, Scalar, State2};
+use noslip_dynamics::orbits::section::{return_map, Section};
+use noslip_dynamics::orbits::{exact, newton, scene::table, Verdict};
+use noslip_dynamics::table::{Boundary, Table};
+use noslip_dynamics::Law;
+use noslip_scene::Scene;
+
+fn q(n: i64, d: i64) -> Exact {
+    Exact::from_ratio(n, d)
+}
+
+fn walls() -> Table<Exact, 2> {
+    let scene = Scene::from_toml(
+        include_str!("../../scenes/disk_between_walls.toml"),
+        "walls",
+    )
+    .unwrap();
+    table::<2, 1>(&scene, Law::NoSlip).unwrap().0
+}
+
+/// The period-2 orbit of a disk bouncing between the walls `y = 0` and `y = 4` (radius 1/2,
+/// uniform: g = gamma^2 = 1/2), `u = (0, v)`, no spin. By hand: at the bottom wall the no-slip
+/// map acts on `(u_x, R s)` (`s = U_01`) as `[[a, b], [c, -a]]`, at the top as
+/// `[[a, -b], [-c, -a]]`, with `a = (1 - g)/(1 + g)`, `b = 2g/(1 + g)`, `c = 2/(1 + g)`; `u_y`
+/// flips twice and the flight time `h/v` (`h = 3`) only shears `x` by `u_x`. On the section
+/// (`dx, du_x, du_y, R ds`; `dy = 0`) the return map is block triangular: `dx -> dx + ...`
+/// (eigenvalue 1), `du_y -> du_y` (1), and the product `[[a^2 - bc, -2ab], [2ac, a^2 - bc]]`
+/// with determinant 1 and trace `2 (a^2 - bc) = 2 ((1 - g)^2 - 4g) / (1 + g)^2 = -14/9`:
+/// `p(l) = (l - 1)^2 (l^2 + 14/9 l + 1) = l^4 - 4/9 l^3 - 10/9 l^2 - 4/9 l + 1`, elliptic
+/// (`l = -7/9 +- i sqrt(32)/9`).
+#[test]
+fn bouncing_orbit_has_the_hand_derived_characteristic_polynomial() {
+    let t = walls();
+    let z = Section {
+        x: [q(1, 1), q(1, 2)],
+        state: State2::from_scalar_spin(q(0, 1), [q(0, 1), q(1, 1)]),
+    };
+    let r = exact::<2, 1>(&t, &z, 2).unwrap();
+    assert!(r.periodic);
+    assert_eq!(r.boundaries, vec![1, 0]);
+    assert_eq!(r.coefficients, ["1", "-4/9", "-10/9", "-4/9", "1"]);
+    assert_eq!(r.charpoly, "l^4 - 4/9 l^3 - 10/9 l^2 - 4/9 l + 1");
+    // Newton in f64 from a start with slip and spin finds it, with the same eigenvalues.
+    let f = t.map(|x| x.to_f64());
+    let orbit = newton::<2, 1>(&f, &[3.0, 0.5, 0.2, 1.0, 0.3], 2).unwrap();
+    assert_eq!(orbit.verdict, Verdict::Elliptic);
+    assert!(
+        orbit.start[2].abs() < 1e-12 && orbit.start[4].abs() < 1e-12,
+        "{:?}",
+        orbit.start
+    );
+    let want = [
+        (-7.0 / 9.0, 32f64.sqrt() / 9.0),
+        (-7.0 / 9.0, -(32f64.sqrt()) / 9.0),
+        (1.0, 0.0),
+        (1.0, 0.0),
+    ];
+    for (re, im) in want {
+        assert!(
+            orbit
+                .eigenvalues
+                .iter()
+                .any(|e| (e.0 - re).abs() < 1e-7 && (e.1 - im).abs() < 1e-7),
+            "{:?}",
+            orbit.eigenvalues
+        );
+    }
+}
+
+/// A 3-4-5 right triangle (walls with unit rational normals, one tilted): ten steps of the
+/// return map from a rational start in exact rationals, against the same steps in f64: states
+/// within 1e-12 and derivatives within 1e-9 relative (ten contacts amplify rounding by at
+/// most the norm of the derivative, printed by the failure).
+#[test]
+fn exact_return_map_equals_the_f64_one_to_rounding() {
+    let ball = collision_core::Ball {
+        inv_mass: q(1, 1),
+        radius: q(1, 4),
+        gamma2: q(1, 2),
+    };
+    let t = Table {
+        boundaries: vec![
+            Boundary::Wall {
+                point: [q(0, 1), q(0, 1)],
+                normal: [q(0, 1), q(1, 1)],
+            },
+            Boundary::Wall {
+                point: [q(0, 1), q(0, 1)],
+                normal: [q(1, 1), q(0, 1)],
+            },
+            Boundary::Wall {
+                point: [q(4, 1), q(0, 1)],
+                normal: [q(-3, 5), q(-4, 5)],
+            },
+        ],
+        period: [None, None],
+        ball,
+        law: Law::NoSlip,
+    };
+    let z = Section {
+        x: [q(1, 1), q(1, 4)],
+        state: State2::from_scalar_spin(q(1, 3), [q(2, 7), q(1, 1)]),
+    };
+    let e = return_map(&t, &z, 10).unwrap();
+    let f = return_map(
+        &t.map(|x| x.to_f64()),
+        &Section::from_slice(&z.to_vec().iter().map(Scalar::to_f64).collect::<Vec<_>>()),
+        10,
+    )
+    .unwrap();
+    assert_eq!(e.boundaries, f.boundaries);
+    for (a, b) in e.states.iter().zip(&f.states) {
+        for (x, y) in a.to_vec().iter().zip(b.to_vec()) {
+            assert!(
+                (x.to_f64() - y).abs() < 1e-12 * (1.0 + y.abs()),
+                "{x} vs {y}"
+            );
+        }
+    }
+    let big = f
+        .columns
+        .iter()
+        .flatten()
+        .fold(1.0f64, |m, x| m.max(x.abs()));
+    for (a, b) in e.columns.iter().zip(&f.columns) {
+        for (x, y) in a.iter().zip(b) {
+            assert!(
+                (x.to_f64() - y).abs() < 1e-9 * big,
+                "{x} vs {y} (max {big})"
+            );
+        }
+    }
+}
+
+/// Newton's method on the Sinai table (curved: the return map is nonlinear) converges
+/// quadratically: each residual is at most 10 times the square of the one before, until
+/// rounding (1e-12) is reached.
+#[test]
+fn newton_converges_quadratically_on_the_sinai_table() {
+    let scene = Scene::from_toml(include_str!("../../scenes/sinai.toml"), "sinai").unwrap();
+    let t = table::<2, 1>(&scene, Law::NoSlip)
+        .unwrap()
+        .0
+        .map(|x| x.to_f64());
+    // Near the horizontal period-2 orbit through the periodic face: contacts at x = 0.85 and
+    // (the obstacle's image) x = 0.15, y = 1/2.
+    let orbit = newton::<2, 1>(&t, &[0.85, 0.51, 1.0, 0.02, 0.05], 2).unwrap();
+    let r = &orbit.residuals;
+    assert!(r.len() >= 3, "{r:?}");
+    for w in r.windows(2) {
+        if w[0] > 1e-6 {
+            continue;
+        }
+        assert!(w[1] <= 10.0 * w[0] * w[0] + 1e-13, "{r:?}");
+    }
+    println!("{orbit:?}");
+}
+
+/// The classical control: in the smooth Sinai table the horizontal period-2 orbit through the
+/// periodic face bounces between the obstacle and its image at normal incidence; a flight of
+/// `l = 1 - 2 R_eff = 3/10` between circles of radius `R_eff = 7/20` gives per bounce the
+/// matrix `[[1, l], [2/R, 1 + 2l/R]]` of trace `2 + 2l/R = 26/7`, so over the period
+/// `lambda + 1/lambda = (26/7)^2 - 2 = 578/49` (hyperbolic); with the scaling and the
+/// (conserved) spin: `p(l) = (l - 1)^2 (l^2 - 578/49 l + 1)`, exactly. Newton finds it in
+/// f64 from a start 1e-3 off, with the same eigenvalues.
+#[test]
+fn smooth_sinai_bouncing_orbit_is_the_classical_hyperbolic_one() {
+    let scene = Scene::from_toml(include_str!("../../scenes/sinai.toml"), "sinai").unwrap();
+    let t = table::<2, 1>(&scene, Law::Smooth).unwrap().0;
+    let z = Section {
+        x: [q(17, 20), q(1, 2)],
+        state: State2::from_scalar_spin(q(0, 1), [q(1, 1), q(0, 1)]),
+    };
+    let r = exact::<2, 1>(&t, &z, 2).unwrap();
+    assert!(r.periodic);
+    // (l^2 - 2 l + 1)(l^2 - 578/49 l + 1)
+    let (a, b) = (q(-578, 49), q(-2, 1));
+    let want = [
+        q(1, 1),
+        a.clone() + b.clone(),
+        q(2, 1) + a.clone() * b.clone(),
+        a + b,
+        q(1, 1),
+    ];
+    assert_eq!(
+        r.coefficients,
+        want.iter().map(|c| c.to_string()).collect::<Vec<_>>()
+    );
+    let orbit = newton::<2, 1>(&t.map(|x| x.to_f64()), &[0.85, 0.501, 1.0, 0.001, 0.0], 2).unwrap();
+    assert_eq!(orbit.verdict, Verdict::Hyperbolic);
+    let top = orbit.eigenvalues[0];
+    assert!(
+        (top.0 + 1.0 / top.0 - 578.0 / 49.0).abs() < 1e-9 && top.1 == 0.0,
+        "{:?}",
+        orbit.eigenvalues
+    );
+}
