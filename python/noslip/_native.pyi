@@ -36,6 +36,16 @@ def reference_seconds(
     normal: npt.NDArray[np.float64], body1: _BodyArrays, body2: _BodyArrays, repeats: int
 ) -> tuple[list[float], list[float]]: ...
 def isa() -> str: ...
+def lyapunov(
+    scene: Scene,
+    events: int,
+    k: int | None,
+    method: str,
+    seed: int,
+    blocks: int,
+    every: int | None,
+    contact: str,
+) -> dict[str, Any]: ...
 
 class Scene:
     """A validated scene (the TOML format of ``noslip simulate``); pickles as its text."""
