@@ -3,8 +3,10 @@
 //!
 //! For n = 2..6 it draws 4096 cases of the accuracy report's typical regime, writes them as
 //! records, runs `examples/c/bench.c` (compiled against the generated header with `cc -O2
-//! -ffp-contract=off`, the baseline target as the Rust release build, and with `-O3
-//! -march=native`) and times the Rust kernels (`Generated::free`, `fixed`, f64) on the same
+//! -ffp-contract=off`, the baseline target as the Rust release build; with `-O3
+//! -march=native`; with `-O3 -march=native -fno-tree-slp-vectorize -fno-tree-loop-vectorize`,
+//! the options under which GCC inlines the kernels (`NOSLIP_NO_CONTRACT`); and, when `clang`
+//! is installed, with `clang -O2` and `clang -O3 -march=native`) and times the Rust kernels (`Generated::free`, `fixed`, f64) on the same
 //! cases with `noslip_accuracy::timing`: the median nanoseconds per collision over 21 samples
 //! each, and the ratio C / Rust.
 
@@ -97,20 +99,46 @@ fn main() {
     )
     .unwrap();
     let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/c/bench.c");
-    let configs: [(&str, &[&str]); 2] = [
-        ("cc -O2", &["-O2", "-ffp-contract=off"]),
+    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
+    let mut configs: Vec<(String, &str, &[&str])> = vec![
         (
-            "cc -O3 -march=native",
+            format!("{cc} -O2"),
+            cc.as_str(),
+            &["-O2", "-ffp-contract=off"],
+        ),
+        (
+            format!("{cc} -O3 -march=native"),
+            cc.as_str(),
             &["-O3", "-march=native", "-ffp-contract=off"],
         ),
+        (
+            format!("{cc} -O3 -march=native, no vectorising"),
+            cc.as_str(),
+            &[
+                "-O3",
+                "-march=native",
+                "-ffp-contract=off",
+                "-fno-tree-slp-vectorize",
+                "-fno-tree-loop-vectorize",
+            ],
+        ),
     ];
-    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
+    if Command::new("clang").arg("--version").output().is_ok() {
+        configs.push(("clang -O2".into(), "clang", &["-O2", "-ffp-contract=off"]));
+        configs.push((
+            "clang -O3 -march=native".into(),
+            "clang",
+            &["-O3", "-march=native", "-ffp-contract=off"],
+        ));
+    } else {
+        eprintln!("no clang: its columns are left out");
+    }
     let exes: Vec<_> = configs
         .iter()
         .enumerate()
-        .map(|(k, (_, flags))| {
+        .map(|(k, (_, compiler, flags))| {
             let exe = dir.join(format!("bench{k}"));
-            let status = Command::new(&cc)
+            let status = Command::new(compiler)
                 .arg("-std=c99")
                 .args(*flags)
                 .arg("-I")
@@ -125,14 +153,10 @@ fn main() {
             exe
         })
         .collect();
-    println!(
-        "median ns per collision, f64, {BATCH} typical cases, {SAMPLES} samples; ratio = C / Rust"
-    );
-    println!(
-        "| n | kernel | Rust (release) | {} | ratio | {} | ratio |",
-        configs[0].0, configs[1].0
-    );
-    println!("|---|---|---:|---:|---:|---:|---:|");
+    println!("median ns per collision, f64, {BATCH} typical cases, {SAMPLES} samples; (C / Rust)");
+    let names: Vec<&str> = configs.iter().map(|(name, ..)| name.as_str()).collect();
+    println!("| n | kernel | Rust (release) | {} |", names.join(" | "));
+    println!("|---|---|---:|{}", "---:|".repeat(names.len()));
     for n in collision_core::DIMS.iter().copied() {
         let (path, rust_free, rust_fixed) = collision_core::with_dim!(
             n,
@@ -141,14 +165,14 @@ fn main() {
         );
         let c: Vec<(f64, f64)> = exes.iter().map(|exe| run_c(exe, n, &path)).collect();
         for (kernel, r, pick) in [("free", rust_free, 0), ("fixed", rust_fixed, 1)] {
-            let at = |k: usize| if pick == 0 { c[k].0 } else { c[k].1 };
-            println!(
-                "| {n} | {kernel} | {r:.1} | {:.1} | {:.2} | {:.1} | {:.2} |",
-                at(0),
-                at(0) / r,
-                at(1),
-                at(1) / r
-            );
+            let cells: Vec<String> = c
+                .iter()
+                .map(|&(free, fixed)| {
+                    let t = if pick == 0 { free } else { fixed };
+                    format!("{t:.1} ({:.2})", t / r)
+                })
+                .collect();
+            println!("| {n} | {kernel} | {r:.1} | {} |", cells.join(" | "));
         }
     }
 }

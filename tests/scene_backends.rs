@@ -5,6 +5,12 @@
 //! `build.rs`, as `scene-example` generates its scenes) on [`CASES`] cases per pair kind and
 //! format, and every result is finite where `c_backend.rs` requires it.
 //!
+//! The scene-specialised OpenCL kernels (`--lang opencl --scene`) likewise: every shipped
+//! scene's source, built once by the OpenCL implementation (PoCL on the CPU in CI) through
+//! `tests/c/cl_host.c`, its batch kernels run on [`CL_CASES`] cases per pair kind and format
+//! and compared with the same Rust kernels, with the skip rule of `opencl_backend.rs`
+//! (`NOSLIP_REQUIRE_OPENCL`).
+//!
 //! The cases are the accuracy report's draws (`backend::draw`, every regime); the species'
 //! parameters are baked into the kernels, so a draw supplies `nu` and the states only:
 //! ball-ball takes them as drawn; ball-wall takes body 2's state with its velocity along the
@@ -19,7 +25,7 @@ mod scenes {
     include!(concat!(env!("OUT_DIR"), "/scenes.rs"));
 }
 
-use backend::{c_source, cc, compare, draw, run, scratch, Float};
+use backend::{c_source, cc, compare, draw, opencl, run, scratch, Float};
 use collision_core::{BodyState, Scalar};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
@@ -30,8 +36,13 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Cases per scene kernel and format.
+/// Cases per scene kernel and format (C).
 const CASES: usize = 20_000;
+
+/// Cases per scene kernel and format (OpenCL): fewer than C's, as the generic OpenCL kernels
+/// (`opencl_backend.rs`) already run on 10^5 cases per kernel, every regime included; these
+/// show that the scene kernels' specialisation and batch wrappers are spelled faithfully.
+const CL_CASES: usize = 4_000;
 
 /// The compiler configurations of `c_backend.rs`.
 const CONFIGS: [(&str, &[&str]); 2] = [
@@ -198,10 +209,22 @@ fn rust_results<T: Float, const N: usize, const S: usize, K: PairKernels<T, N, S
     out
 }
 
+/// What a [`Check`] does with each scene kernel and format.
+enum Pass {
+    /// Run the C harness of each configuration on the cases and compare with Rust.
+    C(Vec<(&'static str, PathBuf)>),
+    /// Write the cases and a line of the OpenCL host's list (`cl_host.c`).
+    ClWrite(String),
+    /// Compare the OpenCL host's results with Rust.
+    ClCompare,
+}
+
 /// Compare every kernel of every scene with Rust; collect the failures.
 struct Check {
     dir: PathBuf,
-    exes: Vec<(&'static str, PathBuf)>,
+    pass: Pass,
+    /// Cases per kernel and format.
+    cases: usize,
     failures: Vec<String>,
     /// Kernels compared (scene kernel, format, configuration).
     compared: usize,
@@ -228,23 +251,48 @@ impl Check {
                 drawn.len()
             );
             let input = self.dir.join(format!("{}_{name}.bin", c_name(set, pair)));
-            std::fs::write(&input, records(pair, &cases)).unwrap();
-            let rust = rust_results(kernels, pair, &cases);
-            for (config, exe) in &self.exes {
-                let output = input.with_extension("out");
-                run(Command::new(exe)
-                    .arg(c_name(set, pair))
-                    .arg(name)
-                    .arg(&input)
-                    .arg(&output));
-                let c = T::from_bytes(&std::fs::read(&output).unwrap());
-                let what = format!("{} {name} (cc {config})", c_name(set, pair));
-                if let Err(e) = compare(&what, &cases, &rust, &c) {
-                    self.failures.push(e);
+            let output = input.with_extension("out");
+            match &mut self.pass {
+                Pass::C(exes) => {
+                    std::fs::write(&input, records(pair, &cases)).unwrap();
+                    let rust = rust_results(kernels, pair, &cases);
+                    for (config, exe) in exes.iter() {
+                        run(Command::new(exe)
+                            .arg(c_name(set, pair))
+                            .arg(name)
+                            .arg(&input)
+                            .arg(&output));
+                        let c = T::from_bytes(&std::fs::read(&output).unwrap());
+                        let what = format!("{} {name} (cc {config})", c_name(set, pair));
+                        if let Err(e) = compare(&what, &cases, &rust, &c) {
+                            self.failures.push(e);
+                        }
+                        self.compared += 1;
+                    }
+                    std::fs::remove_file(&input).unwrap();
                 }
-                self.compared += 1;
+                Pass::ClWrite(list) => {
+                    std::fs::write(&input, records(pair, &cases)).unwrap();
+                    let (nu, state) = (N.to_string(), (S + N).to_string());
+                    let (ins, outs) = match pair {
+                        Pair::BallBall(..) => {
+                            (format!("{nu},{state},{state}"), format!("{state},{state}"))
+                        }
+                        Pair::BallWall(..) => (state.clone(), state),
+                        Pair::BallObstacle(_) => (format!("{nu},{state}"), state),
+                    };
+                    let _ = writeln!(list, "{name} {}_{name} {ins} {outs}", c_name(set, pair));
+                }
+                Pass::ClCompare => {
+                    let rust = rust_results(kernels, pair, &cases);
+                    let cl = T::from_bytes(&std::fs::read(&output).unwrap());
+                    let what = format!("{} {name} (OpenCL)", c_name(set, pair));
+                    if let Err(e) = compare(&what, &cases, &rust, &cl) {
+                        self.failures.push(e);
+                    }
+                    self.compared += 1;
+                }
             }
-            std::fs::remove_file(&input).unwrap();
         }
     }
 }
@@ -255,15 +303,14 @@ impl SceneVisitor for Check {
         K: PairKernels<f64, N, S> + PairKernels<f32, N, S>,
     {
         let set = pair_set(path);
-        let drawn = draw::<N, S>(CASES, 1400 + N as u64);
+        let drawn = draw::<N, S>(self.cases, 1400 + N as u64);
         self.format(&set, &kernels, &drawn.f64);
         self.format(&set, &kernels, &drawn.f32);
     }
 }
 
-#[test]
-fn scene_c_kernels_are_bit_identical_to_the_rust_scene_kernels() {
-    let dir = scratch("scene-backends");
+/// Every shipped scene's pair set, checked to be all of `scenes/*.toml`, and their kernel count.
+fn shipped_sets() -> (Vec<PairSet>, usize) {
     let mut sets = Collect(Vec::new());
     scenes::each_scene(&mut sets);
     let shipped = std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes"))
@@ -274,11 +321,19 @@ fn scene_c_kernels_are_bit_identical_to_the_rust_scene_kernels() {
         })
         .count();
     assert_eq!(sets.0.len(), shipped, "every shipped scene is checked");
-    let kernels: usize = sets.0.iter().map(|s| s.all().len()).sum();
-    let exes = build(&dir, &sets.0);
+    let kernels = sets.0.iter().map(|s| s.all().len()).sum();
+    (sets.0, kernels)
+}
+
+#[test]
+fn scene_c_kernels_are_bit_identical_to_the_rust_scene_kernels() {
+    let dir = scratch("scene-backends");
+    let (sets, kernels) = shipped_sets();
+    let exes = build(&dir, &sets);
     let mut check = Check {
         dir: dir.clone(),
-        exes,
+        pass: Pass::C(exes),
+        cases: CASES,
         failures: Vec::new(),
         compared: 0,
     };
@@ -286,4 +341,53 @@ fn scene_c_kernels_are_bit_identical_to_the_rust_scene_kernels() {
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(check.failures.is_empty(), "{}", check.failures.join("\n"));
     assert_eq!(check.compared, kernels * 2 * CONFIGS.len());
+}
+
+#[test]
+fn scene_opencl_kernels_are_bit_identical_to_the_rust_scene_kernels() {
+    const TEST: &str = "OpenCL scene faithfulness test";
+    let dir = scratch("scene-opencl");
+    let (sets, kernels) = shipped_sets();
+    // Every scene's source in one program (distinct guards and names), built once.
+    let mut source = String::new();
+    for set in &sets {
+        let file = dir.join(scene_file_name(Lang::OpenCl, set));
+        let text = generate_scene(Lang::OpenCl, set).expect("the shipped scenes are in range");
+        std::fs::write(&file, &text).unwrap();
+        if let Err(why) = opencl::clang_check(&file) {
+            return opencl::skip(TEST, &why);
+        }
+        source.push_str(&text);
+    }
+    let all = dir.join("noslip_scenes.cl");
+    std::fs::write(&all, source).unwrap();
+    let host = match opencl::build_host(&dir) {
+        Ok(host) => host,
+        Err(why) => return opencl::skip(TEST, &why),
+    };
+    let mut check = Check {
+        dir: dir.clone(),
+        pass: Pass::ClWrite(String::new()),
+        cases: CL_CASES,
+        failures: Vec::new(),
+        compared: 0,
+    };
+    scenes::each_scene(&mut check);
+    let Pass::ClWrite(list) = std::mem::replace(&mut check.pass, Pass::ClCompare) else {
+        unreachable!("the write pass")
+    };
+    assert_eq!(
+        list.lines().count(),
+        kernels * 2,
+        "one line per kernel and format"
+    );
+    let list_file = dir.join("kernels.txt");
+    std::fs::write(&list_file, list).unwrap();
+    if let Err(why) = opencl::run_host(&host, &all, &dir, Some(&list_file)) {
+        return opencl::skip(TEST, &why);
+    }
+    scenes::each_scene(&mut check);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(check.failures.is_empty(), "{}", check.failures.join("\n"));
+    assert_eq!(check.compared, kernels * 2);
 }

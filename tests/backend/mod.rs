@@ -1,4 +1,5 @@
-//! Shared by the back-end faithfulness tests (`c_backend.rs`, `opencl_backend.rs`): cases
+//! Shared by the back-end faithfulness tests (`c_backend.rs`, `opencl_backend.rs`,
+//! `scene_backends.rs`): cases
 //! drawn from the accuracy report's regimes, their binary records, the Rust kernels' results,
 //! and the bitwise comparison.
 //!
@@ -8,6 +9,8 @@
 //! `out1[S+N], out2[S+N]` (free) or `out2[S+N]` (fixed).
 
 #![allow(dead_code)]
+
+pub mod opencl;
 
 use collision_core::rng::Rng;
 use collision_core::{BodyState, Generated, Kernel, Scalar};
