@@ -46,6 +46,9 @@ def lyapunov(
     every: int | None,
     contact: str,
 ) -> dict[str, Any]: ...
+def orbits(
+    scene: Scene, period: int, starts: list[list[str]], grid: int | None, contact: str
+) -> str: ...
 
 class Scene:
     """A validated scene (the TOML format of ``noslip simulate``); pickles as its text."""

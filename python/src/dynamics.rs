@@ -1,12 +1,17 @@
 //! `noslip.lyapunov`: Lyapunov exponents of a scene (`noslip_dynamics::lyapunov`, as
-//! `noslip lyapunov` runs them), the spectrum and its running estimate as NumPy arrays.
+//! `noslip lyapunov` runs them), the spectrum and its running estimate as NumPy arrays;
+//! `noslip.orbits`: the periodic orbits of a one-ball table
+//! (`noslip_dynamics::orbits::search`, as `noslip orbits` runs it), as the JSON text of
+//! `orbits.json`.
 
 use crate::error::input_error;
 use crate::scene::Scene;
 use collision_core::Generated;
 use noslip_dynamics::lyapunov::stats::Estimate;
 use noslip_dynamics::lyapunov::{qr, two_trajectory, Dim, Options, Spectrum};
+use noslip_dynamics::orbits::search::{search, Search, SearchError};
 use noslip_dynamics::Law;
+use noslip_scene::parse_exact;
 use noslip_sim::setup::setup;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -35,6 +40,17 @@ where
             None => format!("{}: {text}", scene.origin),
         }
     })
+}
+
+/// The contact law named by `contact`.
+fn parse_law(contact: &str) -> PyResult<Law> {
+    match contact {
+        "no-slip" => Ok(Law::NoSlip),
+        "smooth" => Ok(Law::Smooth),
+        c => Err(input_error(format!(
+            "contact: must be \"no-slip\" or \"smooth\", got {c:?}"
+        ))),
+    }
 }
 
 /// Values and standard errors as two arrays.
@@ -72,15 +88,7 @@ pub fn lyapunov<'py>(
             )))
         }
     };
-    let law = match contact {
-        "no-slip" => Law::NoSlip,
-        "smooth" => Law::Smooth,
-        c => {
-            return Err(input_error(format!(
-                "contact: must be \"no-slip\" or \"smooth\", got {c:?}"
-            )))
-        }
-    };
+    let law = parse_law(contact)?;
     if every == Some(0) {
         return Err(input_error("every: must be at least 1"));
     }
@@ -136,4 +144,55 @@ pub fn lyapunov<'py>(
     )?;
     out.set_item("running_exponents", running)?;
     Ok(out)
+}
+
+/// The periodic orbits of period `period` of a one-ball table (see the Python docstring of
+/// `noslip.orbits`): `orbits.json`'s text. `starts` are rationals or decimals as text.
+#[pyfunction]
+#[pyo3(signature = (scene, period, starts, grid, contact))]
+pub fn orbits(
+    py: Python<'_>,
+    scene: &Bound<'_, Scene>,
+    period: usize,
+    starts: Vec<Vec<String>>,
+    grid: Option<usize>,
+    contact: &str,
+) -> PyResult<String> {
+    let law = parse_law(contact)?;
+    let mut from = Vec::with_capacity(starts.len());
+    for (i, start) in starts.iter().enumerate() {
+        let z = start
+            .iter()
+            .enumerate()
+            .map(|(k, x)| parse_exact(x).map_err(|e| input_error(format!("starts[{i}][{k}]: {e}"))))
+            .collect::<PyResult<Vec<_>>>()?;
+        from.push(z);
+    }
+    let ask = Search {
+        period,
+        from,
+        grid,
+        law,
+    };
+    let scene = &scene.get().inner;
+    let n = scene.dim;
+    let report = py
+        .detach(|| {
+            collision_core::with_dim!(
+                n,
+                |N, S| search::<N, S>(scene, &ask).map_err(|e| message(&e)),
+                Err(format!("{}: dimension {n} has no kernels", scene.origin))
+            )
+        })
+        .map_err(input_error)?;
+    serde_json::to_string(&report).map_err(|e| input_error(format!("internal error: {e}")))
+}
+
+/// The search's error naming the keyword argument (`starts[i]` for the search's `from[i]`).
+fn message(e: &SearchError) -> String {
+    match (e, e.field()) {
+        (SearchError::From { index, message }, _) => format!("starts[{index}]: {message}"),
+        (_, Some(field)) => format!("{field}: {}", e.message()),
+        (_, None) => e.message().to_string(),
+    }
 }

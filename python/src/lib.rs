@@ -11,7 +11,8 @@
 //! - [`reference`]: the benchmark's Rust references for `collide_batch`, timed in Rust.
 //! - [`scene`]: the `Scene` class (TOML text, file or dict; picklable).
 //! - [`simulate`]: a run of a scene, its events log and energy samples as NumPy arrays.
-//! - [`dynamics`]: `lyapunov`, the exponents of a scene and their running estimate.
+//! - [`dynamics`]: `lyapunov` (the exponents of a scene and their running estimate) and
+//!   `orbits` (the periodic orbits of a one-ball table).
 //! - [`checks`]: `verify` and `report`, their reports as JSON text.
 //! - [`error`]: `InputError`, a `ValueError` whose message names the field.
 
@@ -40,6 +41,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::lyapunov, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::orbits, m)?)?;
     m.add_function(wrap_pyfunction!(checks::verify, m)?)?;
     m.add_function(wrap_pyfunction!(checks::report, m)?)?;
     m.add("DIMS", collision_core::DIMS.to_vec())?;
