@@ -5,9 +5,11 @@
 On the same random contacts (both bodies free, float64, C-contiguous), in ns per contact,
 the median of `repeats` rounds, each round running every contender once in turn (so that a
 change of the machine's load hits them alike):
-- `rust rows`: the reference, the Rust batch kernel from the same row-major arrays to new
-  ones through collision-core's batch API (fill_from_rows, Exec::free, write_rows; chunks
-  on rayon's threads), timed in Rust (noslip.batch.reference_seconds);
+- `rust rows`: the reference, the Rust batch kernel from the same row-major arrays into
+  row-major outputs through collision-core's batch API (fill_from_rows, Exec::free,
+  write_rows; chunks on rayon's threads), timed in Rust (noslip.batch.reference_seconds);
+  its outputs are allocated once and reused, so it does not pay the first touch of new
+  arrays that collide_batch pays;
 - `rust kernel`: Exec::auto().free alone on the rows already in its blocked layout (the
   floor: the row-major arrays neither read nor written);
 - `collide_batch`: noslip.collide_batch on the NumPy arrays, without and with validation

@@ -121,11 +121,12 @@ def reference_seconds(
     """The benchmark's Rust references on the same float64 rows (C-contiguous, every body
     moving: ``inv_mass > 0``), timed in Rust; the seconds of each of ``repeats`` runs.
 
-    - ``"rows"``: collision-core's batch API from the same row-major arrays to new ones:
-      chunks of rows on rayon's threads, each gathered into a ``FreeBatch``
+    - ``"rows"``: collision-core's batch API from the same row-major arrays into row-major
+      outputs: chunks of rows on rayon's threads, each gathered into a ``FreeBatch``
       (``fill_from_rows``), run by ``Exec::free`` (run-time ISA) and scattered into the
-      outputs (``PairBatch::write_rows``); no validation. The work of
-      ``collide_batch(..., validate=False)`` without Python.
+      outputs (``PairBatch::write_rows``); no validation. The outputs are allocated and
+      touched once before the timed runs and reused (``collide_batch`` returns new arrays
+      and pays their first touch).
     - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in its
       blocked batch: the kernel's floor, the row-major arrays neither read nor written.
     """

@@ -4,9 +4,11 @@
 //! - `rows`: what a Rust program with the same row-major arrays does with
 //!   `collision_core::batch` at its best: chunks of rows split across rayon's threads, each
 //!   gathered into a `FreeBatch` (`fill_from_rows`), run by `Exec::free` (run-time ISA) and
-//!   scattered into new row-major output arrays (`PairBatch::write_rows`); no validation.
-//!   The same work as `collide_batch(..., validate=False)` minus Python: the ratio to it is
-//!   the target's.
+//!   scattered into row-major output arrays (`PairBatch::write_rows`); no validation. The
+//!   output arrays are allocated and touched once, before the timed runs, and reused: a
+//!   Rust program can keep them, while `collide_batch` must return new arrays, whose first
+//!   touch (the kernel's page faults and zeroing, about 200 bytes a contact in 3D) it pays
+//!   and this reference does not. The ratio to it is the target's.
 //! - `kernel`: `Exec::auto().free` alone (rayon threads) on the rows laid out once, untimed,
 //!   in its blocked batch, into a reused output batch: the kernel's floor, without reading
 //!   or writing the row-major arrays.
@@ -70,10 +72,18 @@ where
         f();
         t.elapsed().as_secs_f64()
     };
+    let mut outputs = [
+        vec![0.0; len * N * N],
+        vec![0.0; len * N],
+        vec![0.0; len * N * N],
+        vec![0.0; len * N],
+    ];
+    rows_to_rows::<N, S>(rows, &mut outputs);
     let mut rows_seconds = Vec::with_capacity(repeats);
     for _ in 0..repeats {
         rows_seconds.push(time(&mut || {
-            std::hint::black_box(rows_to_rows::<N, S>(rows, len));
+            rows_to_rows::<N, S>(rows, &mut outputs);
+            std::hint::black_box(&outputs);
         }));
     }
     let exec = Exec::auto();
@@ -92,17 +102,14 @@ where
     Ok((rows_seconds, kernel_seconds))
 }
 
-/// The `rows` reference: new row-major outputs `[spin_1, velocity_1, spin_2, velocity_2]`.
-fn rows_to_rows<const N: usize, const S: usize>(
-    rows: &FreeRows<'_, f64>,
-    len: usize,
-) -> [Vec<f64>; 4]
+/// The `rows` reference, into the row-major outputs `[spin_1, velocity_1, spin_2,
+/// velocity_2]`.
+fn rows_to_rows<const N: usize, const S: usize>(rows: &FreeRows<'_, f64>, out: &mut [Vec<f64>; 4])
 where
     Generated: BatchKernel<f64, N, S>,
 {
     let exec = Exec::auto().serial();
-    let (mut s1, mut s2) = (vec![0.0; len * N * N], vec![0.0; len * N * N]);
-    let (mut v1, mut v2) = (vec![0.0; len * N], vec![0.0; len * N]);
+    let [s1, v1, s2, v2] = out;
     s1.par_chunks_mut(CHUNK * N * N)
         .zip(s2.par_chunks_mut(CHUNK * N * N))
         .zip(v1.par_chunks_mut(CHUNK * N))
@@ -126,5 +133,4 @@ where
                 ]);
             },
         );
-    [s1, v1, s2, v2]
 }
