@@ -251,7 +251,8 @@ fn clearly_valid<T: Float, const N: usize>(rows: &FreeRows<'_, T>, i: usize) -> 
         }
         norm2 = norm2 + x * x;
     }
-    if !((norm2 - T::one()).abs() <= four * eps) {
+    // Every |nu_k| passed `<= huge`, so norm2 is not NaN (it may be infinite: refused).
+    if (norm2 - T::one()).abs() > four * eps {
         return false;
     }
     let mut w = [T::zero(); 2];

@@ -60,11 +60,7 @@ where
     Generated: BatchKernel<f64, N, S>,
 {
     let len = rows.len::<N>();
-    if rows
-        .balls
-        .iter()
-        .any(|b| b.inv_mass.iter().any(|&w| w == 0.0))
-    {
+    if rows.balls.iter().any(|b| b.inv_mass.contains(&0.0)) {
         return Err("the references time `free`: every body must move".into());
     }
     let time = |f: &mut dyn FnMut()| {
