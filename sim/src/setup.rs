@@ -4,10 +4,12 @@
 
 use crate::place::Cells;
 use crate::range::{check_scene, check_start};
+use crate::normal::unit;
+use crate::table::{Boundary as TableBoundary, Shape, Table};
 use crate::{Body, FixedBall, Setup};
 use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState};
-use noslip_scene::{Boundary, Scene};
+use noslip_scene::{Boundary, ContactKind, Scene};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
@@ -53,6 +55,125 @@ fn distance2<const N: usize>(
             d * d
         })
         .sum()
+}
+
+/// A unit normal from the scene's nonzero `normal`: its components rounded once when it is
+/// already a unit vector in exact rationals, else `n / |n|` in f64 (each component one
+/// rounding of the quotient by the accurate norm).
+fn unit_normal<const N: usize>(normal: &[BigRational]) -> [f64; N] {
+    let n2: BigRational = normal.iter().map(|x| x * x).sum();
+    if n2 == BigRational::from_integer(1.into()) {
+        array(normal)
+    } else {
+        unit(array(normal))
+    }
+}
+
+fn length(a: &[BigRational], b: &[BigRational]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| f(&(x - y)).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The table's boundaries in f64 (boundary ids as in the scene), the obstacles' contact kinds
+/// and the box's presence.
+pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
+    let boundaries = scene
+        .boundaries
+        .iter()
+        .map(|b| {
+            let shape = match &b.shape {
+                noslip_scene::Shape::Wall { point, normal } => Shape::Wall {
+                    point: array(point),
+                    normal: unit_normal(normal),
+                },
+                noslip_scene::Shape::Container { centre, radius } => Shape::Container {
+                    centre: array(centre),
+                    radius: f(radius),
+                },
+                noslip_scene::Shape::Edge { from, to, normal } => Shape::Edge {
+                    from: array(from),
+                    to: array(to),
+                    normal: unit_normal(normal),
+                },
+                noslip_scene::Shape::Vertex { point } => Shape::Sphere {
+                    centre: array(point),
+                    radius: 0.0,
+                },
+            };
+            // The arc length of the polygon up to the piece's start vertex.
+            let arc = b.polygon.map_or(0.0, |(g, k)| {
+                let v = &scene.polygons[g];
+                (0..k).map(|j| length(&v[j], &v[j + 1])).sum()
+            });
+            TableBoundary {
+                shape,
+                contact: b.contact,
+                arc,
+            }
+        })
+        .collect();
+    Table {
+        boxed: !scene.size.is_empty(),
+        boundaries,
+        obstacle_contact: scene.obstacles.iter().map(|o| o.contact).collect(),
+        ball_contact: scene.ball_contact,
+        box_contact: ContactKind::NoSlip,
+        origin: extent::<N>(scene).0,
+    }
+}
+
+/// The region a table without a box is drawn in and measured by: the bounding box of its
+/// defining points (wall points, containers, polygon vertices, obstacles, balls with their
+/// radii), widened by a tenth of its largest side on each end: `(lower corner, sides)`. With a
+/// box: `([0; N], box sides)`.
+pub fn extent<const N: usize>(scene: &Scene) -> ([f64; N], [f64; N]) {
+    let (lo, size) = extent_dyn(scene);
+    (std::array::from_fn(|k| lo[k]), std::array::from_fn(|k| size[k]))
+}
+
+/// [`extent`] for any dimension (`scene.dim` components).
+pub fn extent_dyn(scene: &Scene) -> (Vec<f64>, Vec<f64>) {
+    let n = scene.dim;
+    if !scene.size.is_empty() {
+        return (vec![0.0; n], scene.size.iter().map(f).collect());
+    }
+    let mut lo = vec![f64::INFINITY; n];
+    let mut hi = vec![f64::NEG_INFINITY; n];
+    let mut add = |p: &[BigRational], r: f64| {
+        for k in 0..n {
+            let x = f(&p[k]);
+            lo[k] = lo[k].min(x - r);
+            hi[k] = hi[k].max(x + r);
+        }
+    };
+    for b in &scene.boundaries {
+        match &b.shape {
+            noslip_scene::Shape::Wall { point, .. } | noslip_scene::Shape::Vertex { point } => {
+                add(point, 0.0)
+            }
+            noslip_scene::Shape::Container { centre, radius } => add(centre, f(radius)),
+            noslip_scene::Shape::Edge { from, to, .. } => {
+                add(from, 0.0);
+                add(to, 0.0);
+            }
+        }
+    }
+    for o in &scene.obstacles {
+        add(&o.position, f(&o.radius));
+    }
+    for b in &scene.balls {
+        add(&b.position, f(&scene.species[b.species].radius));
+    }
+    let side = (0..n).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let margin = 0.1 * side;
+    let lo: Vec<f64> = (0..n).map(|k| lo[k] - margin).collect();
+    let size = (0..n)
+        .map(|k| (hi[k] + margin - lo[k]).max(0.2 * side))
+        .collect();
+    (lo, size)
 }
 
 /// The kernels' `Ball` parameters of the scene's species, each constant mapped by `f`
@@ -127,8 +248,10 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S>, String> {
     assert_eq!(scene.dim, N, "scene dimension");
     let scales = check_scene(scene)?;
-    let size: [f64; N] = array(&scene.size);
-    let periodic: [bool; N] = std::array::from_fn(|k| scene.boundary[k] == Boundary::Periodic);
+    let (_, size) = extent::<N>(scene);
+    let periodic: [bool; N] =
+        std::array::from_fn(|k| scene.boundary.get(k) == Some(&Boundary::Periodic));
+    let table = table::<N>(scene);
     let species = species_balls(&scene.species, f);
     let obstacles: Vec<FixedBall<N>> = scene
         .obstacles
@@ -204,6 +327,10 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                     distance2(&p, &b.position, &size, &periodic) >= s * s
                 });
                 let clear = clear_balls
+                    && table
+                        .boundaries
+                        .iter()
+                        .all(|b| b.shape.gap(&p, r) >= 0.0)
                     && fixed.all_near(&p, |o| {
                         let o = &obstacles[o];
                         let s = r + o.radius;
@@ -237,6 +364,7 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
         obstacles,
         bodies,
         orientation: scene.simulation.orientation,
+        table,
     };
     check_start(&scales, &setup)?;
     Ok(setup)

@@ -209,6 +209,7 @@ fn a_contact_across_a_periodic_face_after_the_partner_wrapped() {
             body([10.43, 5.5], [1.0, 0.0], 1.0),
         ],
         orientation: false,
+        table: noslip_sim::Table::boxed(),
     };
     let mut sim = simulation(setup);
     let e = next(&mut sim).expect("the disks meet");

@@ -63,11 +63,12 @@ pub const CODES: &[Exit] = &[Exit::Success, Exit::OutputFailed, Exit::BadInput];
 /// The summary on stdout (after the files are written: a failing stdout loses nothing).
 fn print_summary(s: &Summary) -> Result<(), Failure> {
     outln!(
-        "{} contacts ({} ball-ball, {} ball-wall, {} ball-obstacle), {} cell crossings, t = {:.6}",
+        "{} contacts ({} ball-ball, {} ball-wall, {} ball-obstacle, {} ball-boundary), {} cell crossings, t = {:.6}",
         s.events,
         s.ball_ball,
         s.ball_wall,
         s.ball_obstacle,
+        s.ball_boundary,
         s.cell_crossings,
         s.time
     )?;
