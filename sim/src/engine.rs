@@ -220,8 +220,9 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     species: Vec<Ball<f64>>,
     obstacles: Vec<FixedBall<N>>,
     table: Table<N>,
-    /// Per ball: `b + 1` if its last contact was with boundary `b` and that boundary is
-    /// convex seen from the ball (it cannot be touched again before another contact), else 0.
+    /// Per ball: `b + 1` if its last contact was with boundary `b`, else 0. A boundary convex
+    /// seen from the ball cannot be touched again before another contact; a container not
+    /// at the same instant ([`crate::table`], "Grazing").
     last: Vec<u32>,
     grid: Grid<N>,
     kind: Vec<usize>,
@@ -539,11 +540,16 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         });
         for (b, boundary) in self.table.boundaries.iter().enumerate() {
-            if self.last[i] == b as u32 + 1 {
+            // Right after a contact with b: a convex b cannot be met again, a container not at
+            // the same instant (a graze within rounding would repeat forever at t = 0).
+            let repeat = self.last[i] == b as u32 + 1;
+            if repeat && boundary.shape.convex_from_outside() {
                 continue;
             }
             if let Some(t) = boundary.shape.contact_time(&a, &v, r) {
-                offer(t, What::Boundary { b: b as u32 });
+                if !(repeat && t == 0.0) {
+                    offer(t, What::Boundary { b: b as u32 });
+                }
             }
         }
         for k in 0..N {
@@ -873,11 +879,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
             ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
         };
-        self.last[i] = if boundary.shape.convex_from_outside() {
-            b as u32 + 1
-        } else {
-            0
-        };
+        self.last[i] = b as u32 + 1;
         let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre);
         self.after_contact([i, i]);
         event
