@@ -122,7 +122,8 @@ fn convex(ctx: &Ctx, place: &str, raw: &[Vec<Number>]) -> Result<Vec<Vec<Q>>, Sc
         return Err(ctx.err(place, "the polygon has no area"));
     }
     if area2.is_negative() {
-        v.reverse();
+        // Counterclockwise from the same first vertex.
+        v[1..].reverse();
     }
     for k in 0..m {
         let (a, b) = (&v[k], &v[(k + 1) % m]);
@@ -399,4 +400,18 @@ pub(crate) fn misfit(b: &TableBoundary, a: &[Q], r: &Q) -> Option<String> {
 pub(crate) fn inside_polygon(v: &[Vec<Q>], a: &[Q]) -> bool {
     let m = v.len();
     (0..m).all(|k| !cross(&sub(&v[(k + 1) % m], &v[k]), &sub(a, &v[k])).is_negative())
+}
+
+/// Whether a ball of radius `r` at `a` with velocity `u` touches container `b` from inside and
+/// moves along it (`|a - c| = radius - r`, `(a - c) . u = 0`, `u != 0`): its straight flight
+/// leaves the container at second order, a degenerate graze. Exact.
+pub(crate) fn grazes_inside(b: &TableBoundary, a: &[Q], r: &Q, u: &[Q]) -> bool {
+    match &b.shape {
+        Shape::Container { centre, radius } => {
+            let d = sub(a, centre);
+            let room = radius - r;
+            dot(&d, &d) == &room * &room && dot(&d, u).is_zero() && u.iter().any(|x| !x.is_zero())
+        }
+        _ => false,
+    }
 }

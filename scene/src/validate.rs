@@ -417,6 +417,21 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         {
             return Err(ctx.err(format!("ball[{i}].position"), why));
         }
+        if let Some(b) = scene
+            .boundaries
+            .iter()
+            .find(|b| table::grazes_inside(b, &spec.position, r, &spec.velocity))
+        {
+            return Err(ctx.err(
+                format!("ball[{i}].velocity"),
+                format!(
+                    "the ball touches {} from inside moving along it (velocity tangent): a \
+                     degenerate graze whose straight flight leaves the container; move it \
+                     inside or turn its velocity",
+                    b.place
+                ),
+            ));
+        }
         if let Some(g) = scene
             .boundaries
             .iter()
