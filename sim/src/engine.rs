@@ -401,6 +401,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.grid.size
     }
 
+    /// The fixed ball obstacles.
+    pub fn obstacles(&self) -> &[FixedBall<N>] {
+        &self.obstacles
+    }
+
     /// The table: its boundaries and contact kinds.
     pub fn table(&self) -> &Table<N> {
         &self.table

@@ -27,6 +27,7 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+pub mod boundary_map;
 mod cells;
 pub mod engine;
 pub mod log;
@@ -36,6 +37,8 @@ mod observe;
 mod orientation;
 pub mod place;
 pub mod plot;
+mod png;
+pub mod portrait;
 pub mod predict;
 mod queue;
 pub mod range;

@@ -175,8 +175,21 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &mut Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
     limits: &Limits,
+    log: Option<&mut dyn Write>,
+    progress: &mut dyn FnMut(Progress),
+) -> io::Result<(Summary, Trace)> {
+    run_observed(sim, species, limits, log, progress, &mut |_, _, _| Ok(()))
+}
+
+/// [`run`], calling `observe(index, event, sim)` after each contact (the boundary map's
+/// writer, [`crate::boundary_map`]); its error ends the run.
+pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &mut Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+    limits: &Limits,
     mut log: Option<&mut dyn Write>,
     progress: &mut dyn FnMut(Progress),
+    observe: &mut dyn FnMut(u64, &Event<N, S>, &Simulation<N, S, K>) -> io::Result<()>,
 ) -> io::Result<(Summary, Trace)> {
     let start = sim.observables();
     let (p_scale, l_scale) = scales(sim, species);
@@ -235,6 +248,7 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         if let Some(w) = log.as_deref_mut() {
             writeln!(w, "{}", event_json(done, &e))?;
         }
+        observe(done, &e, sim)?;
         for (slot, &b) in balls.iter().enumerate() {
             if b < traced && (slot == 0 || balls[1] != balls[0]) {
                 tracer.flight(

@@ -392,3 +392,42 @@ fn reversal(name: &str, k: u64) {
     eprintln!("{name}: reversal error {error:.3e}, twin {divergence:.3e}, bound {bound:.3e}");
     assert!(divergence <= 1e-3 && error <= bound);
 }
+
+/// The portraits docs/tables.md shows are what the code draws now: each shipped table's
+/// pictures regenerated (the same run as `examples/table_portraits.rs`) equal the files in
+/// docs/tables/ byte for byte, and there is no other file there.
+#[test]
+fn the_docs_portraits_are_what_the_code_draws() {
+    use noslip_sim::boundary_map::portrait_points;
+    use noslip_sim::portrait::{portrait_png, DOCS_EVENTS, DOCS_TABLES};
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/tables");
+    let mut expected = Vec::new();
+    for name in DOCS_TABLES {
+        let scene = scene(&format!("{name}.toml"));
+        let points = collision_core::with_dim!(
+            scene.dim,
+            |N, S| portrait_points::<N, S>(setup::<N, S>(&scene).unwrap(), DOCS_EVENTS).unwrap(),
+            unreachable!()
+        );
+        for (body, points) in points {
+            let (kind, id) = body.kind_id();
+            let file = format!("{name}-{kind}-{id}.png");
+            let shipped = std::fs::read(dir.join(&file)).unwrap_or_else(|e| {
+                panic!("{file}: {e} (cargo run --release -p noslip-sim --example table_portraits)")
+            });
+            assert!(
+                shipped == portrait_png(&points, scene.dim == 2),
+                "{file} is stale: cargo run --release -p noslip-sim --example table_portraits"
+            );
+            expected.push(file);
+        }
+    }
+    let mut present: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".png"))
+        .collect();
+    present.sort();
+    expected.sort();
+    assert_eq!(present, expected);
+}
