@@ -256,7 +256,10 @@ pub(crate) fn boundaries(
     }
     if let Some(t) = &raw.table {
         if n != 2 {
-            return Err(ctx.err("table", format!("a polygon or wedge table is 2D; dim = {n}")));
+            return Err(ctx.err(
+                "table",
+                format!("a polygon or wedge table is 2D; dim = {n}"),
+            ));
         }
         match (&t.polygon, &t.wedge) {
             (Some(p), None) => {

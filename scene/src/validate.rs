@@ -348,9 +348,11 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
     }
     for b in &scene.boundaries {
         if let Shape::Container { radius, .. } = &b.shape {
-            if let Some(k) = scene.species.iter().position(|s| {
-                s.count > 0 && &s.radius >= radius
-            }) {
+            if let Some(k) = scene
+                .species
+                .iter()
+                .position(|s| s.count > 0 && &s.radius >= radius)
+            {
                 return Err(ctx.err(
                     format!("{}.radius", b.place),
                     format!(

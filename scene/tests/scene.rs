@@ -233,7 +233,10 @@ fn bad_tables_name_the_place() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.starts_with("t.toml: table: a polygon or wedge table is 2D"), "{e}");
+    assert!(
+        e.starts_with("t.toml: table: a polygon or wedge table is 2D"),
+        "{e}"
+    );
     let e = error("[[wall]]\npoint = [0, 0]\nnormal = [1, 0]\n");
     assert!(e.starts_with("t.toml: wall[0]: walls, containers, polygons and [table] need a box without periodic axes"), "{e}");
 }
@@ -268,8 +271,15 @@ fn tables_number_their_boundaries_and_orient_polygons() {
         ]
     );
     // The table's polygon is turned counterclockwise; its walls' normals point inside.
-    assert_eq!(s.polygons[0][1], [4.into(), 0.into()].map(num_rational::BigRational::from_integer).to_vec());
-    assert!(s.boundaries[1..4].iter().all(|b| b.contact == ContactKind::Smooth));
+    assert_eq!(
+        s.polygons[0][1],
+        [4.into(), 0.into()]
+            .map(num_rational::BigRational::from_integer)
+            .to_vec()
+    );
+    assert!(s.boundaries[1..4]
+        .iter()
+        .all(|b| b.contact == ContactKind::Smooth));
     assert_eq!(s.ball_contact, ContactKind::Smooth);
     // Balls meet only boundaries with no-slip: the ball-obstacle kernel; smooth ball pairs need none.
     let p = s.pairs();

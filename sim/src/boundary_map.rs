@@ -210,7 +210,10 @@ pub fn row<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             s.iter().map(|x| x * x).sum::<f64>().sqrt()
         }
     };
-    let (ut, ut_post) = (tangential(&pre.velocity, un), tangential(&post.velocity, un_post));
+    let (ut, ut_post) = (
+        tangential(&pre.velocity, un),
+        tangential(&post.velocity, un_post),
+    );
     let angle = |ut: f64, un: f64, u: &[f64; N]| {
         if N == 2 {
             ut.atan2(un)

@@ -66,7 +66,11 @@ pub(crate) fn crc32(data: &[u8]) -> u32 {
     for &b in data {
         c ^= u32::from(b);
         for _ in 0..8 {
-            c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
         }
     }
     !c
@@ -117,8 +121,8 @@ impl Bits {
 }
 
 pub(crate) const LENGTH_BASE: [u32; 29] = [
-    3, 4, 5, 6, 7, 8, 9, 10, 11, 13, 15, 17, 19, 23, 27, 31, 35, 43, 51, 59, 67, 83, 99, 115,
-    131, 163, 195, 227, 258,
+    3, 4, 5, 6, 7, 8, 9, 10, 11, 13, 15, 17, 19, 23, 27, 31, 35, 43, 51, 59, 67, 83, 99, 115, 131,
+    163, 195, 227, 258,
 ];
 pub(crate) const LENGTH_EXTRA: [u32; 29] = [
     0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0,
@@ -128,8 +132,8 @@ pub(crate) const DIST_BASE: [u32; 30] = [
     2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577,
 ];
 pub(crate) const DIST_EXTRA: [u32; 30] = [
-    0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12,
-    13, 13,
+    0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13,
+    13,
 ];
 
 /// The zlib stream of `data`: one final fixed-Huffman block whose matches are at distance 1
@@ -162,7 +166,10 @@ fn zlib(data: &[u8], stride: usize) -> Vec<u8> {
             continue;
         }
         let len32 = len as u32;
-        let k = LENGTH_BASE.iter().rposition(|&b| b <= len32).expect("len >= 3");
+        let k = LENGTH_BASE
+            .iter()
+            .rposition(|&b| b <= len32)
+            .expect("len >= 3");
         bits.symbol(257 + k as u32);
         bits.put(len32 - LENGTH_BASE[k], LENGTH_EXTRA[k]);
         let d = dist as u32;

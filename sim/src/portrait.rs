@@ -81,9 +81,7 @@ pub fn portrait_svg(title: &str, points: &[[f64; 4]], two_d: bool) -> std::io::R
     {
         let root = SVGBackend::with_string(&mut svg, (960, 500)).into_drawing_area();
         root.fill(&WHITE).map_err(io_err)?;
-        let root = root
-            .titled(title, ("sans-serif", 18))
-            .map_err(io_err)?;
+        let root = root.titled(title, ("sans-serif", 18)).map_err(io_err)?;
         let panels = root.split_evenly((1, 2));
         let labels = [
             ["boundary coordinate", "angle of reflection (rad)"],

@@ -2,9 +2,9 @@
 //! ([`crate::range`]), species, obstacles, the explicit balls and the seeded random placement
 //! ([`crate::place`]).
 
+use crate::normal::unit;
 use crate::place::Cells;
 use crate::range::{check_scene, check_start};
-use crate::normal::unit;
 use crate::table::{Boundary as TableBoundary, Shape, Table};
 use crate::{Body, FixedBall, Setup};
 use collision_core::rng::Rng;
@@ -131,7 +131,10 @@ pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
 /// box: `([0; N], box sides)`.
 pub fn extent<const N: usize>(scene: &Scene) -> ([f64; N], [f64; N]) {
     let (lo, size) = extent_dyn(scene);
-    (std::array::from_fn(|k| lo[k]), std::array::from_fn(|k| size[k]))
+    (
+        std::array::from_fn(|k| lo[k]),
+        std::array::from_fn(|k| size[k]),
+    )
 }
 
 /// [`extent`] for any dimension (`scene.dim` components).
@@ -174,6 +177,15 @@ pub fn extent_dyn(scene: &Scene) -> (Vec<f64>, Vec<f64>) {
         .map(|k| (hi[k] + margin - lo[k]).max(0.2 * side))
         .collect();
     (lo, size)
+}
+
+/// Whether `p` (its first two coordinates) is inside the counterclockwise convex polygon `v`.
+fn inside_polygon<const N: usize>(v: &[[f64; 2]], p: &[f64; N]) -> bool {
+    let m = v.len();
+    (0..m).all(|k| {
+        let (a, b) = (v[k], v[(k + 1) % m]);
+        (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0.0
+    })
 }
 
 /// The kernels' `Ball` parameters of the scene's species, each constant mapped by `f`
@@ -239,7 +251,9 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 
 /// The engine's setup for `scene` (whose `dim` must be `N`), after the range checks of
 /// [`crate::range`]. Random balls: positions uniform in the box (inside the walls), rejected
-/// while they overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
+/// while they are not inside the table's other boundaries (a gap below 0, or a centre inside a
+/// polygon obstacle; checked against every boundary)
+/// or overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
 /// visits only the cells around the candidate), at most [`ATTEMPTS`] times in a row and
 /// [`AVERAGE_ATTEMPTS`] per ball overall; balls that would fill more than the box are refused
 /// before any attempt; velocity components uniform in `[-speed,
@@ -298,6 +312,22 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     for o in &obstacles {
         fixed.insert(&o.position);
     }
+    // The polygon obstacles (their edges' gaps say nothing of a centre deep inside).
+    let mut polygons: Vec<Vec<[f64; 2]>> = Vec::new();
+    let mut seen = Vec::new();
+    for b in &scene.boundaries {
+        if let (noslip_scene::Shape::Edge { .. }, Some((g, _))) = (&b.shape, b.polygon) {
+            if !seen.contains(&g) {
+                seen.push(g);
+                polygons.push(
+                    scene.polygons[g]
+                        .iter()
+                        .map(|v| [f(&v[0]), f(&v[1])])
+                        .collect(),
+                );
+            }
+        }
+    }
     let mut rng = Rng::new(scene.random.seed);
     let (speed, spin) = (f(&scene.random.speed), f(&scene.random.spin));
     let (mut attempts, mut placed_random) = (0usize, 0usize);
@@ -327,10 +357,8 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                     distance2(&p, &b.position, &size, &periodic) >= s * s
                 });
                 let clear = clear_balls
-                    && table
-                        .boundaries
-                        .iter()
-                        .all(|b| b.shape.gap(&p, r) >= 0.0)
+                    && table.boundaries.iter().all(|b| b.shape.gap(&p, r) >= 0.0)
+                    && !polygons.iter().any(|v| inside_polygon(v, &p))
                     && fixed.all_near(&p, |o| {
                         let o = &obstacles[o];
                         let s = r + o.radius;
@@ -390,6 +418,22 @@ mod tests {
             .iter()
             .map(|b| (array(&b.position), radius[b.species]))
             .collect();
+        // The polygon obstacles (their edges' gaps say nothing of a centre deep inside).
+        let mut polygons: Vec<Vec<[f64; 2]>> = Vec::new();
+        let mut seen = Vec::new();
+        for b in &scene.boundaries {
+            if let (noslip_scene::Shape::Edge { .. }, Some((g, _))) = (&b.shape, b.polygon) {
+                if !seen.contains(&g) {
+                    seen.push(g);
+                    polygons.push(
+                        scene.polygons[g]
+                            .iter()
+                            .map(|v| [f(&v[0]), f(&v[1])])
+                            .collect(),
+                    );
+                }
+            }
+        }
         let mut rng = Rng::new(scene.random.seed);
         for (k, sp) in scene.species.iter().enumerate() {
             let r = radius[k];

@@ -102,7 +102,10 @@ mod tests {
                 dot(&d, &nu)
             };
             assert_eq!(rel(&p1, &p2), -rel(&s1, &s2));
-            assert_eq!((p1.spin.clone(), p2.spin.clone()), (s1.spin.clone(), s2.spin.clone()));
+            assert_eq!(
+                (p1.spin.clone(), p2.spin.clone()),
+                (s1.spin.clone(), s2.spin.clone())
+            );
             // Energy and momentum, weighted by the masses 1/w (an immovable body: unchanged).
             for (pre, post, w) in [(&s1, &p1, &w1), (&s2, &p2, &w2)] {
                 if w == &q(0, 1) {

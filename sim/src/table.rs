@@ -170,7 +170,8 @@ impl<const N: usize> Shape<N> {
     /// moving in is touching now (`t = 0`).
     ///
     /// - wall / edge: `(a + t v - p) . n = r`: `t = s / (-v . n)`, `s = (a - p) . n - r`, for
-    ///   `v . n < 0` (an edge: only if the centre's foot at `t` is on the segment);
+    ///   `v . n < 0` (an edge: only from in front of its line, `(a - p) . n >= 0`, and if the
+    ///   centre's foot at `t` is on the segment);
     /// - sphere from outside: [`contact_time`] with `sigma = r + radius`;
     /// - container: the later root of `|a + t v - c|^2 = (radius - r)^2`, `t = -c' / (b +
     ///   sqrt(b^2 - |v|^2 c'))` for `b = (a - c) . v > 0` and `(-b + sqrt(..)) / |v|^2`
@@ -183,10 +184,13 @@ impl<const N: usize> Shape<N> {
             }
             Shape::Edge { from, to, normal } => {
                 let vn = dot(v, normal);
-                if vn >= 0.0 {
+                let depth = dot(&sub(a, from), normal);
+                // Behind the edge's line the centre is in front of another edge of the convex
+                // obstacle (or inside it), and cannot reach this edge's face.
+                if vn >= 0.0 || depth < 0.0 {
                     return None;
                 }
-                let t = ((dot(&sub(a, from), normal) - r) / -vn).max(0.0);
+                let t = ((depth - r) / -vn).max(0.0);
                 let e = sub(to, from);
                 let q: [f64; N] = std::array::from_fn(|k| a[k] + t * v[k] - from[k]);
                 let s = dot(&q, &e) / dot(&e, &e);

@@ -123,7 +123,10 @@ where
             Generated::fixed(&local, &Exact::one(), &ball, &zero, &pre)
         })
         .collect();
-    assert!(post.iter().all(|p| p == &post[0]), "the same map at every shape");
+    assert!(
+        post.iter().all(|p| p == &post[0]),
+        "the same map at every shape"
+    );
     let post = &post[0];
     // The mean state has no slip at Q: v_Q(post) = -v_Q(pre), every component.
     let (before, after) = (
@@ -155,7 +158,12 @@ const DISK: Ball<f64> = Ball {
 };
 
 /// One disk at `a` with velocity `v` and spin 1, and one boundary; its first contact.
-fn first_contact(shape: Shape<2>, contact: ContactKind, a: [f64; 2], v: [f64; 2]) -> crate::Event<2, 1> {
+fn first_contact(
+    shape: Shape<2>,
+    contact: ContactKind,
+    a: [f64; 2],
+    v: [f64; 2],
+) -> crate::Event<2, 1> {
     let table = Table {
         boxed: false,
         boundaries: vec![Boundary {
@@ -181,7 +189,13 @@ fn first_contact(shape: Shape<2>, contact: ContactKind, a: [f64; 2], v: [f64; 2]
         orientation: false,
         table,
     };
-    let mut sim = Simulation::new(setup, GenericKernels { species: vec![DISK] }).unwrap();
+    let mut sim = Simulation::new(
+        setup,
+        GenericKernels {
+            species: vec![DISK],
+        },
+    )
+    .unwrap();
     match sim.step(f64::INFINITY) {
         Step::Contact(e) => {
             assert_eq!(e.contact, Contact::Boundary { i: 0, boundary: 0 });
@@ -230,7 +244,10 @@ fn the_engine_applies_the_fixed_map_at_the_normal_of_the_geometry() {
         for contact in [ContactKind::NoSlip, ContactKind::Smooth] {
             let e = first_contact(shape.clone(), contact, [0.0, 0.0], v);
             // The contact is at the contact distance, and nu is the geometry's unit normal.
-            assert!(shape.gap(&e.position[0], DISK.radius).abs() < 1e-15, "{shape:?}");
+            assert!(
+                shape.gap(&e.position[0], DISK.radius).abs() < 1e-15,
+                "{shape:?}"
+            );
             assert_eq!(e.nu, shape.normal(&e.position[0]));
             let expected = match contact {
                 ContactKind::NoSlip => {

@@ -9,8 +9,8 @@
 
 use collision_core::{Generated, Kernel};
 use noslip_scene::Scene;
-use noslip_sim::table::Shape;
 use noslip_sim::setup::setup;
+use noslip_sim::table::Shape;
 use noslip_sim::{Body, Event, GenericKernels, Setup, Simulation, Step};
 use std::path::Path;
 

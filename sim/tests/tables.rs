@@ -202,7 +202,10 @@ fn square(contact: ContactKind) -> Vec<Boundary<2>> {
 
 /// Up to `events` contacts; every one at a time no earlier than the last, the ball inside
 /// within `64 eps`; the contacts, and how the run ended.
-fn contacts_of(setup: Setup<2, 1>, events: u64) -> (Vec<noslip_sim::Event<2, 1>>, Option<NoContact>) {
+fn contacts_of(
+    setup: Setup<2, 1>,
+    events: u64,
+) -> (Vec<noslip_sim::Event<2, 1>>, Option<NoContact>) {
     let mut sim = simulation(setup.clone());
     let mut out: Vec<noslip_sim::Event<2, 1>> = Vec::new();
     while (out.len() as u64) < events {
@@ -236,8 +239,14 @@ fn a_disk_aimed_into_a_corner_touches_both_walls_and_leaves() {
     assert_eq!(events[0].time, events[1].time);
     assert_eq!(events[0].time, 0.375);
     let walls = [events[0].contact, events[1].contact];
-    assert!(walls.contains(&Contact::Boundary { i: 0, boundary: 1 }), "{walls:?}");
-    assert!(walls.contains(&Contact::Boundary { i: 0, boundary: 2 }), "{walls:?}");
+    assert!(
+        walls.contains(&Contact::Boundary { i: 0, boundary: 1 }),
+        "{walls:?}"
+    );
+    assert!(
+        walls.contains(&Contact::Boundary { i: 0, boundary: 2 }),
+        "{walls:?}"
+    );
     assert_eq!(events[1].post[0].velocity, [-1.0, -1.0]);
     // Then the opposite corner, 0.75 later.
     assert_eq!(events[2].time, 1.125);
@@ -271,7 +280,11 @@ fn a_disk_aimed_at_a_wedge_apex_escapes() {
         let (events, end) = contacts_of(one_disk(walls(ContactKind::Smooth), start, v, 0.0), 1000);
         assert_eq!(end, Some(NoContact::Escaped), "{degrees}");
         let bound = (std::f64::consts::PI / theta - 1e-9).ceil() as usize;
-        assert!(events.len() <= bound, "{degrees}: {} > {bound}", events.len());
+        assert!(
+            events.len() <= bound,
+            "{degrees}: {} > {bound}",
+            events.len()
+        );
         assert!(!events.is_empty());
         let (events, end) = contacts_of(one_disk(walls(ContactKind::NoSlip), start, v, 2.0), 1000);
         assert_eq!(end, Some(NoContact::Escaped), "{degrees}: {}", events.len());
@@ -430,4 +443,58 @@ fn the_docs_portraits_are_what_the_code_draws() {
     present.sort();
     expected.sort();
     assert_eq!(present, expected);
+}
+
+/// Random placement inside a table (a box with a circular container and a triangular
+/// obstacle inside it): every ball inside the container, outside the triangle (also deep
+/// inside it, where the edges' gaps alone would not see it) and the other balls; then a
+/// smooth gas there: ball-ball contacts keep the spins, energy is kept (`8 k eps`), and every
+/// ball stays in the table after every contact.
+#[test]
+fn random_balls_are_placed_inside_the_table_and_a_smooth_gas_keeps_it() {
+    let text = "dim = 2\n[box]\nsize = [4, 4]\nboundary = [\"wall\", \"wall\"]\n\
+                [[container]]\ncentre = [2, 2]\nradius = 2\n\
+                [[polygon]]\nvertices = [[1, 1], [3, 1], [2, 3]]\n\
+                [[species]]\nmass = 1\nradius = \"1/10\"\ncount = 100\n\
+                [contact]\nballs = \"smooth\"\n[random]\nseed = 5\nspin = 1\n";
+    let scene = Scene::from_toml(text, "t.toml").unwrap();
+    let start: Setup<2, 1> = setup(&scene).unwrap();
+    let inside_triangle = |p: &[f64; 2]| {
+        let v = [[1.0, 1.0], [3.0, 1.0], [2.0, 3.0]];
+        (0..3).all(|k| {
+            let (a, b): ([f64; 2], [f64; 2]) = (v[k], v[(k + 1) % 3]);
+            (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0.0
+        })
+    };
+    for b in &start.bodies {
+        let d = ((b.position[0] - 2.0).powi(2) + (b.position[1] - 2.0).powi(2)).sqrt();
+        assert!(d <= 2.0 - 0.1, "{:?}", b.position);
+        assert!(!inside_triangle(&b.position), "{:?}", b.position);
+    }
+    let mut sim = simulation(start.clone());
+    let e0 = sim.observables().energy;
+    let (mut pairs, mut k) = (0, 0u64);
+    while k < 20_000 {
+        let Step::Contact(e) = sim.step(f64::INFINITY) else {
+            panic!("the gas keeps colliding")
+        };
+        k += 1;
+        if let Contact::Ball { .. } = e.contact {
+            pairs += 1;
+            assert_eq!(
+                [&e.post[0].spin, &e.post[1].spin],
+                [&e.pre[0].spin, &e.pre[1].spin]
+            );
+        }
+        for i in 0..sim.len() {
+            let gap = least_gap(&sim, &start, i);
+            assert!(gap >= -64.0 * f64::EPSILON * 8.0, "ball {i}: {gap}");
+            assert!(!inside_triangle(&[sim.position(i)[0], sim.position(i)[1]]));
+        }
+    }
+    assert!(pairs > 1000, "{pairs} ball-ball contacts");
+    // Time moves on (a ball behind one polygon edge's line once took it at t = 0, forever).
+    assert!(sim.now() > 1.0, "the clock stalls at {}", sim.now());
+    let drift = (sim.observables().energy - e0) / e0;
+    assert!(drift.abs() <= 8.0 * k as f64 * f64::EPSILON, "{drift}");
 }

@@ -9,8 +9,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use noslip_scene::Scene;
 use noslip_sim::boundary_map::{self, BoundaryMap};
 use noslip_sim::log::LogFile;
-use noslip_sim::portrait::{portrait_png, portrait_svg};
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
+use noslip_sim::portrait::{portrait_png, portrait_svg};
 use noslip_sim::run::{self, Limits, Progress, Summary};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
@@ -148,7 +148,8 @@ where
             Some(name) if same_dir(p.parent(), &out) => set.path(&name.to_string_lossy()),
             _ => p.clone(),
         };
-        LogFile::create(&at).map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))
+        LogFile::create(&at)
+            .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))
     };
     let mut log = match &args.log {
         Some(p) => Some(open(p, &set)?),
@@ -217,7 +218,11 @@ where
     let mut portraits = Vec::new();
     let map_failed = match (map, &args.boundary_map) {
         (Some(map), Some(p)) => {
-            portraits = map.points.iter().map(|(b, pts)| (*b, pts.clone())).collect();
+            portraits = map
+                .points
+                .iter()
+                .map(|(b, pts)| (*b, pts.clone()))
+                .collect();
             map.finish().and_then(|file| file.finish()).err().map(|e| {
                 Failure::output(format!(
                     "cannot write the boundary map {}: {e} (none was left; the summary was \
@@ -266,7 +271,10 @@ where
         let name = format!("portrait-{kind}-{id}");
         let svg = staged(
             portrait_svg(
-                &format!("{title}: {kind} {id}, {} contacts (after each)", points.len()),
+                &format!(
+                    "{title}: {kind} {id}, {} contacts (after each)",
+                    points.len()
+                ),
                 points,
                 N == 2,
             ),
