@@ -15,6 +15,15 @@ use num_traits::{Signed, ToPrimitive, Zero};
 
 type Q = BigRational;
 
+/// A point or vector, exact.
+type Point = Vec<Q>;
+
+/// A wall as `(point, normal, place)`.
+type WallSpec = (Point, Point, String);
+
+/// A polygon's vertices, counterclockwise.
+type Polygon = Vec<Point>;
+
 /// The geometry of one boundary, exact.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
@@ -157,7 +166,7 @@ fn nonzero(ctx: &Ctx, place: &str, v: &[Q]) -> Result<(), SceneError> {
 }
 
 /// The two walls of a wedge: `(point, normal, place)`.
-fn wedge(ctx: &Ctx, w: &RawWedge) -> Result<Vec<(Vec<Q>, Vec<Q>, String)>, SceneError> {
+fn wedge(ctx: &Ctx, w: &RawWedge) -> Result<Vec<WallSpec>, SceneError> {
     let corner = ctx.vector("table.wedge.corner", &w.corner, 2)?;
     let (d1, d2) = match (&w.directions, &w.angle_degrees) {
         (Some(d), None) => {
@@ -219,7 +228,7 @@ pub(crate) fn boundaries(
     raw: &RawScene,
     origin: &str,
     boxed_periodic: bool,
-) -> Result<(Vec<TableBoundary>, Vec<Vec<Vec<Q>>>), SceneError> {
+) -> Result<(Vec<TableBoundary>, Vec<Polygon>), SceneError> {
     let ctx = Ctx { origin };
     let n = raw.dim;
     let mut out = Vec::new();

@@ -215,7 +215,7 @@ fn bad_tables_name_the_place() {
         (format!("[[polygon]]\nvertices = [[\"0.55\", \"0.5\"], [2, 0], [2, 2]]\n{BALL}"), "t.toml: ball[0].position: overlaps the polygon edge polygon[0].vertices[0]"),
         (format!("[[wall]]\npoint = [0, nan]\nnormal = [0, 1]\n{BALL}"), "must be finite"),
         (format!("[[wall]]\npoint = [0, 0]\nnormal = [inf, 1]\n{BALL}"), "must be finite"),
-        (format!("[[container]]\ncentre = [0, 0]\nradius = \"0.6\"\n[[ball]]\nspecies = 0\nposition = [\"1/2\", 0]\nvelocity = [0, 1]\n"), "t.toml: ball[0].velocity: the ball touches container[0] from inside moving along it"),
+        ("[[container]]\ncentre = [0, 0]\nradius = \"0.6\"\n[[ball]]\nspecies = 0\nposition = [\"1/2\", 0]\nvelocity = [0, 1]\n".to_string(), "t.toml: ball[0].velocity: the ball touches container[0] from inside moving along it"),
         ("[[species]]\nmass = 1\nradius = 1\ncount = 3\n[[wall]]\npoint = [0, 0]\nnormal = [0, 1]\n".to_string(), "t.toml: species[1].count: random placement needs a [box]"),
     ];
     for (extra, want) in &cases {

@@ -39,6 +39,22 @@
 //! cell width or so: amortised over many events (per 10^5 contacts of the shipped gases 26
 //! rebases in gas2d, 22 in gas3d, 242 in gas4d).
 //!
+//! **Boundaries.** Besides the box walls and the obstacles, every ball is predicted against
+//! every boundary of the table ([`crate::table`]: walls, containers, polygon edges and
+//! vertices; few, and fixed), and a contact with one applies the `fixed` kernel (or the
+//! specular map) at its local normal. After a contact with boundary `b` (kept per ball until
+//! its next contact), `b` is not predicted again if it is convex seen from the ball (a flat
+//! wall, an edge, a sphere or point from outside: the straight flight moves away from it and
+//! cannot return), and a container not at the same instant: so a corner (two walls touched at
+//! once) takes its two contacts at one time and moves on, and no graze within rounding repeats
+//! at `t = 0` forever (docs/tables.md, "Corners and grazing contacts").
+//!
+//! **No box.** A table without a box ([`crate::Table::boxed`] false) has one cell: every pair
+//! of balls is a neighbour, there are no box walls and no cell crossings, and `Setup::size` is
+//! the table's length scale `L` (for the clock's `w_min` and the quiet notices). Each ball is
+//! then predicted against every ball and boundary, so an empty queue means no contact can
+//! come: [`NoContact::Escaped`] (or [`NoContact::AtRest`]).
+//!
 //! **No further contact.** [`Simulation::step`] returns [`Step::Never`] when it can tell that
 //! no contact will ever happen again ([`NoContact`]): checked at the first step and then after
 //! `max(1024, 2 balls)`, twice, four times that many events without a contact. At those checks
@@ -222,7 +238,7 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     table: Table<N>,
     /// Per ball: `b + 1` if its last contact was with boundary `b`, else 0. A boundary convex
     /// seen from the ball cannot be touched again before another contact; a container not
-    /// at the same instant ([`crate::table`], "Grazing").
+    /// at the same instant (module docs, "Boundaries").
     last: Vec<u32>,
     grid: Grid<N>,
     kind: Vec<usize>,

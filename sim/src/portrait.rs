@@ -1,7 +1,7 @@
 //! Phase portraits of the boundary map, per boundary: the boundary coordinate against the
 //! angle of reflection, and the tangential velocity against the scaled spin `gamma R c` after
 //! each contact ([`crate::boundary_map`]). SVG (plotters, with axes and labels) and PNG (the
-//! same two panels as dots in frames, no text: [`crate::png`]).
+//! same two panels as dots in frames, no text: `sim/src/png.rs`).
 
 use crate::png::Raster;
 use plotters::prelude::*;
@@ -37,8 +37,8 @@ fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
             (a.min(x), b.max(x))
         });
-    if !(lo <= hi) {
-        return (-1.0, 1.0);
+    if lo > hi {
+        return (-1.0, 1.0); // no finite value
     }
     let pad = 0.02 * (hi - lo).max(1e-12 * hi.abs().max(1.0));
     (lo - pad, hi + pad)

@@ -181,6 +181,10 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     run_observed(sim, species, limits, log, progress, &mut |_, _, _| Ok(()))
 }
 
+/// What [`run_observed`] calls after each contact: `(index, event, simulation)`.
+pub type Observer<'a, const N: usize, const S: usize, K> =
+    dyn FnMut(u64, &Event<N, S>, &Simulation<N, S, K>) -> io::Result<()> + 'a;
+
 /// [`run`], calling `observe(index, event, sim)` after each contact (the boundary map's
 /// writer, [`crate::boundary_map`]); its error ends the run.
 pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
@@ -189,7 +193,7 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     limits: &Limits,
     mut log: Option<&mut dyn Write>,
     progress: &mut dyn FnMut(Progress),
-    observe: &mut dyn FnMut(u64, &Event<N, S>, &Simulation<N, S, K>) -> io::Result<()>,
+    observe: &mut Observer<'_, N, S, K>,
 ) -> io::Result<(Summary, Trace)> {
     let start = sim.observables();
     let (p_scale, l_scale) = scales(sim, species);

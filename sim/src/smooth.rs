@@ -19,7 +19,7 @@ where
 {
     let mut s = T::zero();
     for k in 0..N {
-        s = s + &a[k] * &b[k];
+        s += &a[k] * &b[k];
     }
     s
 }

@@ -28,16 +28,18 @@ fn dot<const N: usize>(a: &[Exact; N], b: &[Exact; N]) -> Exact {
 
 /// The compact skew entries `U_ij`, `i < j`, as a matrix.
 fn skew<const N: usize>(spin: &[Exact]) -> [[Exact; N]; N] {
-    let mut u: [[Exact; N]; N] = std::array::from_fn(|_| std::array::from_fn(|_| Exact::zero()));
-    let mut k = 0;
-    for i in 0..N {
-        for j in i + 1..N {
-            u[i][j] = spin[k].clone();
-            u[j][i] = -spin[k].clone();
-            k += 1;
-        }
-    }
-    u
+    let pairs: Vec<(usize, usize)> = (0..N)
+        .flat_map(|i| (i + 1..N).map(move |j| (i, j)))
+        .collect();
+    std::array::from_fn(|i| {
+        std::array::from_fn(
+            |j| match pairs.iter().position(|&p| p == (i.min(j), i.max(j))) {
+                Some(k) if i < j => spin[k].clone(),
+                Some(k) => -spin[k].clone(),
+                None => Exact::zero(),
+            },
+        )
+    })
 }
 
 /// The velocity of the ball's material point at `Q = a - R nu`: `u + U (Q - a)`.
