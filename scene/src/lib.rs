@@ -1,8 +1,10 @@
 //! # noslip-scene
 //!
 //! The scene format: a simulation setup read from TOML (see `docs/scenes.md`): a dimension, a
-//! box whose axes are walled or periodic, species of balls, explicit balls, fixed ball
-//! obstacles, seeded random placement and defaults for the run. The generator
+//! box whose axes are walled or periodic (optional), the table's other boundaries (walls,
+//! containers, 2D polygons and wedges, polygon obstacles: [`table`], `docs/tables.md`) and
+//! contact kinds, species of balls, explicit balls, fixed ball obstacles, seeded random
+//! placement and defaults for the run. The generator
 //! (`noslip-codegen`) reads a scene's pair sets from here, the simulator (`noslip-sim`) its
 //! placement. This crate parses and validates in exact rationals and nothing else: it knows
 //! no kernels, no floating point and no simulation.
