@@ -319,3 +319,149 @@ where
     )?;
     Ok(map.points)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::{Boundary, ContactKind, Shape};
+    use crate::{GenericKernels, Setup, Step};
+    use collision_core::{Ball, BodyState};
+
+    const DISK: Ball<f64> = Ball {
+        inv_mass: 1.0,
+        radius: 0.25,
+        gamma2: 0.5,
+    };
+
+    /// The rows of the first `k` contacts of one disk (spin `c`) in a table of `boundaries`.
+    fn rows(boundaries: Vec<Boundary<2>>, a: [f64; 2], u: [f64; 2], c: f64, k: usize) -> Vec<Row> {
+        let setup = Setup {
+            size: [4.0, 4.0],
+            periodic: [false; 2],
+            species: vec![DISK],
+            obstacles: vec![],
+            bodies: vec![crate::Body {
+                species: 0,
+                position: a,
+                state: BodyState {
+                    spin: [-c],
+                    velocity: u,
+                },
+            }],
+            orientation: false,
+            table: Table {
+                boxed: false,
+                boundaries,
+                ..Table::boxed()
+            },
+        };
+        let species = vec![DISK];
+        let mut sim = Simulation::new(
+            setup,
+            GenericKernels {
+                species: species.clone(),
+            },
+        )
+        .unwrap();
+        (1..=k as u64)
+            .map(|index| match sim.step(f64::INFINITY) {
+                Step::Contact(e) => row(index, &e, &sim, &species).unwrap(),
+                other => panic!("{other:?}"),
+            })
+            .collect()
+    }
+
+    fn floor(contact: ContactKind) -> Boundary<2> {
+        Boundary {
+            shape: Shape::Wall {
+                point: [1.0, 0.0],
+                normal: [0.0, 1.0],
+            },
+            contact,
+            arc: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_floor_contact_in_the_map_coordinates() {
+        // From (0, 1) with u = (1, -3): the centre reaches y = R at t = 0.25, x = 0.25, the
+        // contact point (0.25, 0); coordinate (Q - p) . t = 0.25 - 1 along t = (1, 0).
+        for contact in [ContactKind::Smooth, ContactKind::NoSlip] {
+            let r = &rows(vec![floor(contact)], [0.0, 1.0], [1.0, -3.0], 2.0, 1)[0];
+            assert_eq!((r.event, r.time, r.body), (1, 0.25, Body::Boundary(0)));
+            assert_eq!(r.point, [0.25, 0.0]);
+            assert_eq!(r.coordinate, -0.75);
+            assert_eq!(r.normal_velocity, -3.0);
+            assert_eq!(r.incidence, 1f64.atan2(3.0));
+            assert_eq!((r.tangential[0], r.spin[0]), (1.0, 2.0));
+            // gamma R = sqrt(2 lambda) = sqrt(1/2) / 4.
+            let scale = (2.0 * DISK.lambda()).sqrt();
+            assert_eq!(r.scaled_spin[0], scale * 2.0);
+            // The invariant circle: u_t^2 + (gamma R c)^2 is kept by both maps (energy, with
+            // u_n only reversed), up to rounding.
+            let circle = |k: usize| r.tangential[k].powi(2) + r.scaled_spin[k].powi(2);
+            assert!((circle(1) - circle(0)).abs() <= 4.0 * f64::EPSILON * circle(0));
+            match contact {
+                // Specular: the angle of reflection is the angle of incidence, spin kept.
+                ContactKind::Smooth => {
+                    assert_eq!(r.reflection, r.incidence);
+                    assert_eq!(r.spin[1], r.spin[0]);
+                }
+                // No-slip: the contact point's tangential velocity reverses (the mean state
+                // rolls). It is u_t + R c: U (Q - a) = c J (-R nu) = R c t.
+                ContactKind::NoSlip => {
+                    let slip = |k: usize| r.tangential[k] + DISK.radius * r.spin[k];
+                    assert!((slip(1) + slip(0)).abs() <= 8.0 * f64::EPSILON);
+                    assert_ne!(r.reflection, r.incidence);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn polygon_and_circle_coordinates() {
+        // A unit square table as four walls with their polygon arcs: a disk sent to the
+        // right wall (arc 1) meets it at height 0.5: coordinate 1.5.
+        let wall = |point: [f64; 2], normal: [f64; 2], arc: f64| Boundary {
+            shape: Shape::Wall { point, normal },
+            contact: ContactKind::Smooth,
+            arc,
+        };
+        let square = vec![
+            wall([0.0, 0.0], [0.0, 1.0], 0.0),
+            wall([1.0, 0.0], [-1.0, 0.0], 1.0),
+            wall([1.0, 1.0], [0.0, -1.0], 2.0),
+            wall([0.0, 1.0], [1.0, 0.0], 3.0),
+        ];
+        let r = rows(square, [0.5, 0.5], [1.0, 0.0], 0.0, 2);
+        assert_eq!((r[0].body, r[0].coordinate), (Body::Boundary(1), 1.5));
+        // Back to the left wall, at height 0.5 going down from (0, 1): 3 + 0.5.
+        assert_eq!((r[1].body, r[1].coordinate), (Body::Boundary(3), 3.5));
+        // A container of radius 1 about (0, 0): sent up the y axis, the contact point is at
+        // angle pi/2.
+        let circle = vec![Boundary {
+            shape: Shape::Container {
+                centre: [0.0, 0.0],
+                radius: 1.0,
+            },
+            contact: ContactKind::NoSlip,
+            arc: 0.0,
+        }];
+        let r = &rows(circle, [0.0, 0.0], [0.0, 1.0], 0.0, 1)[0];
+        assert_eq!(r.coordinate, std::f64::consts::FRAC_PI_2);
+        assert_eq!((r.normal_velocity, r.incidence), (-1.0, 0.0));
+    }
+
+    #[test]
+    fn the_csv_has_one_field_per_header_column() {
+        let r = &rows(
+            vec![floor(ContactKind::NoSlip)],
+            [0.0, 1.0],
+            [1.0, -3.0],
+            2.0,
+            1,
+        )[0];
+        assert_eq!(line(r).split(',').count(), header(2).split(',').count());
+        assert!(line(r).starts_with("1,2.5e-1,0,boundary,0,2.5e-1,0e0,-7.5e-1,"));
+    }
+}
