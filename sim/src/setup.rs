@@ -470,6 +470,34 @@ mod tests {
     }
 
     #[test]
+    fn wall_normals_are_unit_and_exact_when_given_unit() {
+        let scene = Scene::from_toml(
+            "dim = 2\n[[wall]]\npoint = [0, 0]\nnormal = [\"3/5\", \"4/5\"]\n\
+             [[wall]]\npoint = [0, 5]\nnormal = [0, -2]\n[[wall]]\npoint = [9, 0]\nnormal = [-1, -1]\n\
+             [[species]]\nmass = 1\nradius = \"1/10\"\n[[ball]]\nspecies = 0\nposition = [2, 2]\n\
+             velocity = [1, 0]\n",
+            "t.toml",
+        )
+        .unwrap();
+        let normals: Vec<[f64; 2]> = table::<2>(&scene)
+            .boundaries
+            .iter()
+            .map(|b| match b.shape {
+                Shape::Wall { normal, .. } => normal,
+                _ => unreachable!(),
+            })
+            .collect();
+        // A unit rational normal: each component rounded once; others divided by the norm.
+        assert_eq!(normals[0], [0.6, 0.8]);
+        assert_eq!(normals[1], [0.0, -1.0]);
+        // 1 / fl(sqrt 2), one rounding of the quotient by the (correctly rounded) norm; within
+        // an ulp of 1/sqrt(2).
+        let h = 1.0 / 2f64.sqrt();
+        assert_eq!(normals[2], [-h, -h]);
+        assert!((h - std::f64::consts::FRAC_1_SQRT_2).abs() <= f64::EPSILON / 2.0);
+    }
+
+    #[test]
     fn the_grid_places_exactly_as_the_all_pairs_test() {
         // Two species, walls and a periodic axis, an obstacle and an explicit ball, at a
         // packing of about 0.35 (many rejections).
