@@ -56,7 +56,9 @@ fn sinai_runs_and_writes_its_pictures() {
     );
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
-        stdout.starts_with("300 contacts (0 ball-ball, 0 ball-wall, 300 ball-obstacle)"),
+        stdout.starts_with(
+            "300 contacts (0 ball-ball, 0 ball-wall, 300 ball-obstacle, 0 ball-boundary)"
+        ),
         "{stdout}"
     );
     assert_eq!(std::fs::read_to_string(&log).unwrap().lines().count(), 300);

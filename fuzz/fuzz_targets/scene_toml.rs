@@ -7,7 +7,8 @@
 //! - `simulate`: the f64 range checks, placement and setup (`simulate::setup::setup`), the
 //!   engine's own setup checks (`Simulation::new`), and a short run through the CLI's run loop
 //!   (`simulate::run::run`, at most [`EVENTS`] contacts, the scene's time limit if any, the
-//!   events log written to a sink) and the pictures (`energy_svg`, `trajectories_svg` in 2D).
+//!   events log and the boundary map written to sinks) and the pictures (`energy_svg`,
+//!   `trajectories_svg` in 2D, each body's phase portraits).
 //!
 //! Bounded run: a scene with more than [`MAX_RUN_BALLS`] balls is validated and generated but
 //! not placed or run (placement is O(N) and is exercised by smaller scenes; the fuzzer's
@@ -28,7 +29,9 @@ use libfuzzer_sys::fuzz_target;
 use noslip_codegen::specialise::generate;
 use noslip_scene::Scene;
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
-use noslip_sim::run::{run, Limits};
+use noslip_sim::boundary_map::{self, BoundaryMap};
+use noslip_sim::portrait::{portrait_png, portrait_svg};
+use noslip_sim::run::{run_observed, Limits};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
 
@@ -100,8 +103,23 @@ where
         contact_points: if N == 2 { usize::MAX } else { 0 },
     };
     let mut log = std::io::sink();
-    let (summary, trace) =
-        run(&mut sim, &species, &limits, Some(&mut log), &mut |_| {}).expect("a sink cannot fail");
+    let mut map = BoundaryMap::new(std::io::sink(), N).expect("a sink cannot fail");
+    let (summary, trace) = run_observed(
+        &mut sim,
+        &species,
+        &limits,
+        Some(&mut log),
+        &mut |_| {},
+        &mut |index, e, sim| match boundary_map::row(index, e, sim, &species) {
+            Some(row) => map.push(&row),
+            None => Ok(()),
+        },
+    )
+    .expect("a sink cannot fail");
+    for points in map.points.values() {
+        portrait_svg("fuzz.toml", points, N == 2).expect("a string cannot fail");
+        portrait_png(points, N == 2);
+    }
     for (name, x) in [
         ("energy_start", summary.energy_start),
         ("energy_end", summary.energy_end),

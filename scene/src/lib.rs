@@ -1,8 +1,10 @@
 //! # noslip-scene
 //!
 //! The scene format: a simulation setup read from TOML (see `docs/scenes.md`): a dimension, a
-//! box whose axes are walled or periodic, species of balls, explicit balls, fixed ball
-//! obstacles, seeded random placement and defaults for the run. The generator
+//! box whose axes are walled or periodic (optional), the table's other boundaries (walls,
+//! containers, 2D polygons and wedges, polygon obstacles: [`table`], `docs/tables.md`) and
+//! contact kinds, species of balls, explicit balls, fixed ball obstacles, seeded random
+//! placement and defaults for the run. The generator
 //! (`noslip-codegen`) reads a scene's pair sets from here, the simulator (`noslip-sim`) its
 //! placement. This crate parses and validates in exact rationals and nothing else: it knows
 //! no kernels, no floating point and no simulation.
@@ -17,11 +19,13 @@
 mod number;
 mod pairs;
 pub mod raw;
+pub mod table;
 mod validate;
 
 pub use number::{parse_exact, Number, MAX_DIGITS};
 pub use pairs::{Pair, PairSet, WallSide};
-pub use raw::{Boundary, Distribution};
+pub use raw::{Boundary, ContactKind, Distribution};
+pub use table::{Shape, TableBoundary};
 
 use num_rational::BigRational;
 use std::fmt;
@@ -78,6 +82,8 @@ pub struct Obstacle {
     pub position: Vec<BigRational>,
     /// The radius, `> 0`.
     pub radius: BigRational,
+    /// No-slip or smooth.
+    pub contact: ContactKind,
 }
 
 /// Seeded random placement of the species' `count` balls: positions uniform in the box, no
@@ -113,10 +119,19 @@ pub struct Scene {
     pub description: String,
     /// The dimension `n`, in `2..=6`.
     pub dim: usize,
-    /// The box is `[0, size_0] x .. x [0, size_{n-1}]`.
+    /// The box is `[0, size_0] x .. x [0, size_{n-1}]`; empty when the scene has no `[box]`
+    /// (the table is then bounded by [`Scene::boundaries`] alone, or unbounded).
     pub size: Vec<BigRational>,
-    /// Per axis `k`: two flat walls (at 0 and `size_k`) or periodic.
+    /// Per axis `k`: two flat walls (at 0 and `size_k`) or periodic; empty without a box.
     pub boundary: Vec<Boundary>,
+    /// The table's other boundaries (walls, containers, polygon pieces), in the order of
+    /// [`table`]: the index is the boundary id. Never with a periodic axis.
+    pub boundaries: Vec<TableBoundary>,
+    /// The polygons (the table's and the obstacles'), counterclockwise, that polygon pieces
+    /// of [`Scene::boundaries`] refer to.
+    pub polygons: Vec<Vec<Vec<BigRational>>>,
+    /// The contact kind of every ball-ball pair (`[contact] balls`).
+    pub ball_contact: ContactKind,
     /// The species, indexed as in the file (`species[i]`).
     pub species: Vec<Species>,
     /// The explicitly placed balls (`[[ball]]`), in file order.

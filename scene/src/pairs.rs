@@ -1,6 +1,6 @@
 //! The contacts a scene can meet: which species pairs, which walls, whether obstacles.
 
-use crate::{Boundary, Scene, Species};
+use crate::{Boundary, ContactKind, Scene, Species};
 
 /// The wall at `x_k = 0` (`Lower`, normal `+e_k` into the box) or at `x_k = L_k` (`Upper`,
 /// normal `-e_k`).
@@ -107,8 +107,11 @@ pub(crate) fn module_name(stem: &str) -> String {
 
 impl Scene {
     /// The pair kinds this scene can meet: ball-ball for every pair of species present
-    /// (a species with itself only if it has two balls), ball-wall for every present species
-    /// and walled axis side, ball-obstacle for every present species if there are obstacles.
+    /// (a species with itself only if it has two balls) unless ball-ball contacts are smooth,
+    /// ball-wall for every present species and walled axis side of the box, ball-obstacle for
+    /// every present species if there are obstacles or other boundaries ([`Scene::boundaries`])
+    /// with no-slip contact: the ball-obstacle kernel is the `fixed` map with the local normal
+    /// that every immovable boundary uses.
     pub fn pairs(&self) -> PairSet {
         let stem = std::path::Path::new(&self.origin)
             .file_stem()
@@ -123,7 +126,7 @@ impl Scene {
                 }
             }
         }
-        let walls: Vec<usize> = (0..self.dim)
+        let walls: Vec<usize> = (0..self.boundary.len())
             .filter(|&k| self.boundary[k] == Boundary::Wall)
             .collect();
         let ball_wall = present
@@ -134,11 +137,15 @@ impl Scene {
                     .flat_map(move |&k| WallSide::BOTH.map(|side| (s, k, side)))
             })
             .collect();
-        let ball_obstacle = if self.obstacles.is_empty() {
-            Vec::new()
-        } else {
-            present.clone()
-        };
+        // Every other immovable boundary with no-slip contact uses the ball-obstacle kernel
+        // (the `fixed` map with the local normal); smooth contacts use no kernel.
+        let no_slip = |c: &ContactKind| *c == ContactKind::NoSlip;
+        let fixed = self.obstacles.iter().any(|o| no_slip(&o.contact))
+            || self.boundaries.iter().any(|b| no_slip(&b.contact));
+        let ball_obstacle = if fixed { present.clone() } else { Vec::new() };
+        if !no_slip(&self.ball_contact) {
+            ball_ball.clear();
+        }
         PairSet {
             name: module_name(&stem),
             dim: self.dim,

@@ -12,9 +12,10 @@ pub struct RawScene {
     /// `description`: free text.
     #[serde(default)]
     pub description: Option<String>,
-    /// The `[box]` table.
-    #[serde(rename = "box")]
-    pub domain: RawBox,
+    /// The `[box]` table; a scene without one is bounded only by its other boundaries
+    /// (`[[wall]]`, `[[container]]`, `[table]`) and may be unbounded (a strip, a wedge).
+    #[serde(rename = "box", default)]
+    pub domain: Option<RawBox>,
     /// The `[[species]]` tables, in order.
     pub species: Vec<RawSpecies>,
     /// The `[[ball]]` tables: explicitly placed balls.
@@ -23,6 +24,21 @@ pub struct RawScene {
     /// The `[[obstacle]]` tables: fixed balls at rest.
     #[serde(default)]
     pub obstacle: Vec<RawObstacle>,
+    /// The `[[wall]]` tables: flat walls `(x - point) . normal = 0`.
+    #[serde(default)]
+    pub wall: Vec<RawWall>,
+    /// The `[[container]]` tables: spheres the balls move inside.
+    #[serde(default)]
+    pub container: Vec<RawContainer>,
+    /// The `[[polygon]]` tables: 2D convex polygon obstacles.
+    #[serde(default)]
+    pub polygon: Vec<RawPolygon>,
+    /// The `[table]` table: a 2D convex polygon or a wedge, expanded to walls.
+    #[serde(default)]
+    pub table: Option<RawTable>,
+    /// The `[contact]` table: the contact kind of ball-ball pairs.
+    #[serde(default)]
+    pub contact: RawContact,
     /// The `[random]` table (its defaults when absent).
     #[serde(default)]
     pub random: RawRandom,
@@ -123,6 +139,101 @@ pub struct RawObstacle {
     pub position: Vec<Number>,
     /// `radius`: `> 0`.
     pub radius: Number,
+    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    #[serde(default)]
+    pub contact: ContactKind,
+}
+
+/// How a ball and what it meets exchange momentum at a contact.
+#[derive(Deserialize, Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ContactKind {
+    /// `"no-slip"`: the no-slip map (the generated kernels); the default.
+    #[default]
+    #[serde(rename = "no-slip")]
+    NoSlip,
+    /// `"smooth"`: specular, spins untouched (`u' = u - 2 (u . nu) nu` on an immovable
+    /// body; the elastic smooth-sphere map between balls).
+    #[serde(rename = "smooth")]
+    Smooth,
+}
+
+/// A `[[wall]]` table: the flat wall `(x - point) . normal = 0`, the table on the side
+/// `normal` points to.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawWall {
+    /// `point`: a point of the wall.
+    pub point: Vec<Number>,
+    /// `normal`: any nonzero vector into the table.
+    pub normal: Vec<Number>,
+    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    #[serde(default)]
+    pub contact: ContactKind,
+}
+
+/// A `[[container]]` table: the balls move inside the sphere `|x - centre| = radius`.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawContainer {
+    /// `centre`.
+    pub centre: Vec<Number>,
+    /// `radius`: `> 0`.
+    pub radius: Number,
+    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    #[serde(default)]
+    pub contact: ContactKind,
+}
+
+/// A `[[polygon]]` table: a 2D convex polygon obstacle from its vertices (either order).
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawPolygon {
+    /// `vertices`: at least 3 points, strictly convex.
+    pub vertices: Vec<Vec<Number>>,
+    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    #[serde(default)]
+    pub contact: ContactKind,
+}
+
+/// The `[table]` table: exactly one of `polygon` (a 2D convex polygon table, its vertices in
+/// either order) and `wedge`.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawTable {
+    /// `polygon`: the table's vertices.
+    #[serde(default)]
+    pub polygon: Option<Vec<Vec<Number>>>,
+    /// `[table.wedge]`: a 2D wedge.
+    #[serde(default)]
+    pub wedge: Option<RawWedge>,
+    /// `contact`: `"no-slip"` (default) or `"smooth"`, for every wall of the table.
+    #[serde(default)]
+    pub contact: ContactKind,
+}
+
+/// `[table.wedge]`: the 2D wedge with its corner at `corner`, between two edges: from the
+/// first direction counterclockwise to the second (`directions`), or from `+x`
+/// counterclockwise by `angle_degrees` (in `(0, 180)`).
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawWedge {
+    /// `corner`: the apex.
+    pub corner: Vec<Number>,
+    /// `directions`: the two edge directions, the table counterclockwise from the first.
+    #[serde(default)]
+    pub directions: Option<Vec<Vec<Number>>>,
+    /// `angle_degrees`: the opening angle, the first edge along `+x`.
+    #[serde(default)]
+    pub angle_degrees: Option<Number>,
+}
+
+/// The `[contact]` table.
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+pub struct RawContact {
+    /// `balls`: the contact kind of every ball-ball pair (default `"no-slip"`).
+    #[serde(default)]
+    pub balls: ContactKind,
 }
 
 /// The `[random]` table: the placement of the species' `count` balls.

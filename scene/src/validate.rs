@@ -1,6 +1,7 @@
 //! Semantic checks of a parsed scene, in exact rationals. Each error names its key path.
 
-use crate::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
+use crate::raw::{ContactKind, Distribution, RawBall, RawScene, RawSpecies, RawSpin};
+use crate::table::{self, Shape};
 use crate::{
     BallSpec, Boundary, Number, Obstacle, Random, RunDefaults, Scene, SceneError, Species,
     MAX_BALLS,
@@ -145,7 +146,7 @@ pub(crate) fn distance2(a: &[Q], b: &[Q], size: &[Q], boundary: &[Boundary]) -> 
     let mut d2 = Q::zero();
     for k in 0..a.len() {
         let mut d = (&a[k] - &b[k]).abs();
-        if boundary[k] == Boundary::Periodic {
+        if boundary.get(k) == Some(&Boundary::Periodic) {
             let other = &size[k] - &d;
             if other < d {
                 d = other;
@@ -191,7 +192,7 @@ fn ball(ctx: &Ctx, i: usize, b: &RawBall, scene: &Scene) -> Result<BallSpec, Sce
     })?;
     let position = ctx.vector(&format!("{at}.position"), &b.position, n)?;
     let r = &species.radius;
-    for (k, x) in position.iter().enumerate() {
+    for (k, x) in position.iter().enumerate().take(scene.boundary.len()) {
         let (lo, hi, what) = match scene.boundary[k] {
             Boundary::Wall => (
                 r.clone(),
@@ -226,24 +227,32 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
     if !(2..=6).contains(&n) {
         return Err(ctx.err("dim", format!("must be in 2..=6, got {n}")));
     }
-    let size = ctx.vector("box.size", &raw.domain.size, n)?;
-    for (k, l) in size.iter().enumerate() {
-        if !l.is_positive() {
-            return Err(ctx.err(
-                format!("box.size[{k}]"),
-                format!("must be positive, got {l}"),
-            ));
+    let (size, boundary) = match &raw.domain {
+        Some(domain) => {
+            let size = ctx.vector("box.size", &domain.size, n)?;
+            for (k, l) in size.iter().enumerate() {
+                if !l.is_positive() {
+                    return Err(ctx.err(
+                        format!("box.size[{k}]"),
+                        format!("must be positive, got {l}"),
+                    ));
+                }
+            }
+            if domain.boundary.len() != n {
+                return Err(ctx.err(
+                    "box.boundary",
+                    format!(
+                        "has {} entries, expected dim = {n} (\"wall\" or \"periodic\" per axis)",
+                        domain.boundary.len()
+                    ),
+                ));
+            }
+            (size, domain.boundary.clone())
         }
-    }
-    if raw.domain.boundary.len() != n {
-        return Err(ctx.err(
-            "box.boundary",
-            format!(
-                "has {} entries, expected dim = {n} (\"wall\" or \"periodic\" per axis)",
-                raw.domain.boundary.len()
-            ),
-        ));
-    }
+        None => (Vec::new(), Vec::new()),
+    };
+    let periodic = boundary.contains(&Boundary::Periodic);
+    let (boundaries, polygons) = table::boundaries(&raw, origin, periodic)?;
     if raw.species.is_empty() {
         return Err(ctx.err("species", "a scene needs at least one species"));
     }
@@ -318,18 +327,49 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         description: raw.description.unwrap_or_default(),
         dim: n,
         size,
-        boundary: raw.domain.boundary,
+        boundary,
         species,
         balls: Vec::new(),
         obstacles: Vec::new(),
         random,
         simulation,
+        boundaries,
+        polygons,
+        ball_contact: raw.contact.balls,
     };
+    if scene.size.is_empty() {
+        if let Some(k) = scene.species.iter().position(|s| s.count > 0) {
+            return Err(ctx.err(
+                format!("species[{k}].count"),
+                "random placement needs a [box] to place in: without one, place the balls \
+                 with [[ball]]",
+            ));
+        }
+    }
+    for b in &scene.boundaries {
+        if let Shape::Container { radius, .. } = &b.shape {
+            if let Some(k) = scene
+                .species
+                .iter()
+                .position(|s| s.count > 0 && &s.radius >= radius)
+            {
+                return Err(ctx.err(
+                    format!("{}.radius", b.place),
+                    format!(
+                        "too small: the radius {radius} is not larger than species[{k}]'s \
+                         radius {}",
+                        scene.species[k].radius
+                    ),
+                ));
+            }
+        }
+    }
     for (i, o) in raw.obstacle.iter().enumerate() {
         let at = format!("obstacle[{i}]");
         let position = ctx.vector(&format!("{at}.position"), &o.position, n)?;
         let radius = ctx.positive(&format!("{at}.radius"), &o.radius)?;
-        if let Some(k) = (0..n).find(|&k| position[k].is_negative() || position[k] > scene.size[k])
+        if let Some(k) = (0..scene.size.len())
+            .find(|&k| position[k].is_negative() || position[k] > scene.size[k])
         {
             return Err(ctx.err(
                 format!("{at}.position[{k}]"),
@@ -339,7 +379,11 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
                 ),
             ));
         }
-        scene.obstacles.push(Obstacle { position, radius });
+        scene.obstacles.push(Obstacle {
+            position,
+            radius,
+            contact: o.contact,
+        });
     }
     for (i, b) in raw.ball.iter().enumerate() {
         let spec = ball(&ctx, i, b, &scene)?;
@@ -368,6 +412,48 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
                 format!("overlaps obstacle[{j}]"),
             ));
         }
+        if let Some(why) = scene
+            .boundaries
+            .iter()
+            .find_map(|b| table::misfit(b, &spec.position, r))
+        {
+            return Err(ctx.err(format!("ball[{i}].position"), why));
+        }
+        if let Some(b) = scene
+            .boundaries
+            .iter()
+            .find(|b| table::grazes_inside(b, &spec.position, r, &spec.velocity))
+        {
+            return Err(ctx.err(
+                format!("ball[{i}].velocity"),
+                format!(
+                    "the ball touches {} from inside moving along it (velocity tangent): a \
+                     degenerate graze whose straight flight leaves the container; move it \
+                     inside or turn its velocity",
+                    b.place
+                ),
+            ));
+        }
+        if let Some(g) = scene
+            .boundaries
+            .iter()
+            .filter_map(|b| match b.shape {
+                Shape::Edge { .. } => b.polygon.map(|(g, _)| g),
+                _ => None,
+            })
+            .find(|&g| table::inside_polygon(&scene.polygons[g], &spec.position))
+        {
+            let place = &scene.boundaries[scene
+                .boundaries
+                .iter()
+                .position(|b| b.polygon.is_some_and(|(h, _)| h == g))
+                .expect("a polygon's pieces")]
+            .place;
+            return Err(ctx.err(
+                format!("ball[{i}].position"),
+                format!("inside the polygon obstacle of {place}"),
+            ));
+        }
         scene.balls.push(spec);
     }
     let per_species = scene.balls_per_species();
@@ -375,7 +461,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         .filter(|&k| scene.species[k].gamma2.is_zero())
         .map(|k| per_species[k])
         .sum();
-    if points > 1 {
+    if points > 1 && scene.ball_contact == ContactKind::NoSlip {
         return Err(ctx.err(
             "species",
             "two point masses (lambda = 0) could collide, where the no-slip map is undefined: \

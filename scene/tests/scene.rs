@@ -1,6 +1,6 @@
 //! Scene files: the shipped ones are valid; bad ones are refused with the place named.
 
-use noslip_scene::{Boundary, Scene, WallSide, MAX_BALLS};
+use noslip_scene::{Boundary, ContactKind, Scene, WallSide, MAX_BALLS};
 use std::path::Path;
 
 const BASE: &str = r#"
@@ -33,13 +33,21 @@ fn shipped_scenes_are_valid() {
     assert_eq!(
         names,
         [
+            "circle",
+            "cube3d",
             "disk_between_walls",
             "gas2d",
             "gas3d",
             "gas4d",
             "gas5d",
             "gas6d",
-            "sinai"
+            "sector",
+            "sinai",
+            "sinai_square",
+            "sphere3d",
+            "strip",
+            "triangle",
+            "wedge"
         ]
     );
 }
@@ -168,4 +176,113 @@ fn a_run_of_no_events_is_refused() {
         got.starts_with("t.toml: simulation.events: must be at least 1"),
         "{got}"
     );
+}
+
+const NO_BOX: &str = r#"
+dim = 2
+[[species]]
+mass = 1
+radius = "1/10"
+"#;
+
+fn table_error(extra: &str) -> String {
+    Scene::from_toml(&format!("{NO_BOX}{extra}"), "t.toml")
+        .expect_err("a bad scene")
+        .to_string()
+}
+
+const BALL: &str = "[[ball]]\nspecies = 0\nposition = [\"1/2\", \"1/2\"]\nvelocity = [1, 0]\n";
+
+#[test]
+fn bad_tables_name_the_place() {
+    let cases = [
+        (format!("[[wall]]\npoint = [0, 0]\nnormal = [0, 0]\n{BALL}"), "t.toml: wall[0].normal: must be a nonzero vector"),
+        (format!("[[wall]]\npoint = [0, 0]\nnormal = [0, 1, 0]\n{BALL}"), "t.toml: wall[0].normal: has 3 components"),
+        (format!("[[wall]]\npoint = [0, 1]\nnormal = [0, 1]\n{BALL}"), "t.toml: ball[0].position: outside the table: behind wall[0]"),
+        (format!("[[wall]]\npoint = [0, \"0.55\"]\nnormal = [0, -3]\n{BALL}"), "t.toml: ball[0].position: cut by wall[0]"),
+        (format!("[[container]]\ncentre = [0, 0]\nradius = \"1/20\"\n{BALL}"), "t.toml: ball[0].position: container[0] is too small"),
+        (format!("[[container]]\ncentre = [0, 0]\nradius = \"1/2\"\n{BALL}"), "t.toml: ball[0].position: outside the table or cut by container[0]"),
+        (format!("[[container]]\ncentre = [0, 0]\nradius = 0\n{BALL}"), "t.toml: container[0].radius: must be positive"),
+        (format!("[table]\npolygon = [[0, 0], [1, 0], [1, 1], [\"0.9\", \"0.1\"]]\n{BALL}"), "t.toml: table.polygon: not strictly convex"),
+        (format!("[table]\npolygon = [[0, 0], [1, 0], [2, 0]]\n{BALL}"), "t.toml: table.polygon: the polygon has no area"),
+        (format!("[table]\npolygon = [[0, 0], [1, 0]]\n{BALL}"), "t.toml: table.polygon: a polygon needs at least 3 vertices"),
+        // A pentagram: every turn the same way, but it winds twice.
+        (format!("[table]\npolygon = [[0, 0], [2, 1], [-1, 1], [1, 0], [0, 2]]\n{BALL}"), "t.toml: table.polygon: not strictly convex"),
+        (format!("[table]\npolygon = [[0, 0], [1, 0], [0, 1]]\n[table.wedge]\ncorner = [0, 0]\nangle_degrees = 30\n{BALL}"), "t.toml: table: give exactly one of polygon and [table.wedge]"),
+        (format!("[table.wedge]\ncorner = [0, 0]\nangle_degrees = 180\n{BALL}"), "t.toml: table.wedge.angle_degrees: must be in (0, 180)"),
+        (format!("[table.wedge]\ncorner = [0, 0]\ndirections = [[0, 1], [1, 0]]\n{BALL}"), "t.toml: table.wedge.directions: the second direction must be strictly counterclockwise"),
+        (format!("[[polygon]]\nvertices = [[0, 0], [3, 0], [0, 3]]\n{BALL}"), "t.toml: ball[0].position: inside the polygon obstacle"),
+        (format!("[[polygon]]\nvertices = [[\"0.55\", \"0.5\"], [2, 0], [2, 2]]\n{BALL}"), "t.toml: ball[0].position: overlaps the polygon edge polygon[0].vertices[0]"),
+        (format!("[[wall]]\npoint = [0, nan]\nnormal = [0, 1]\n{BALL}"), "must be finite"),
+        (format!("[[wall]]\npoint = [0, 0]\nnormal = [inf, 1]\n{BALL}"), "must be finite"),
+        ("[[container]]\ncentre = [0, 0]\nradius = \"0.6\"\n[[ball]]\nspecies = 0\nposition = [\"1/2\", 0]\nvelocity = [0, 1]\n".to_string(), "t.toml: ball[0].velocity: the ball touches container[0] from inside moving along it"),
+        ("[[species]]\nmass = 1\nradius = 1\ncount = 3\n[[wall]]\npoint = [0, 0]\nnormal = [0, 1]\n".to_string(), "t.toml: species[1].count: random placement needs a [box]"),
+    ];
+    for (extra, want) in &cases {
+        let got = table_error(extra);
+        assert!(
+            got.starts_with(want) || got.contains(want),
+            "for {extra:?}:\n got  {got}\n want {want}"
+        );
+        assert!(!got.contains('\n'), "one line: {got}");
+    }
+    // 3D: a polygon is 2D; with a periodic box, no walls.
+    let e = Scene::from_toml(
+        "dim = 3\n[[species]]\nmass = 1\nradius = 1\n[table]\npolygon = [[0, 0], [1, 0], [0, 1]]\n",
+        "t.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("t.toml: table: a polygon or wedge table is 2D"),
+        "{e}"
+    );
+    let e = error("[[wall]]\npoint = [0, 0]\nnormal = [1, 0]\n");
+    assert!(e.starts_with("t.toml: wall[0]: walls, containers, polygons and [table] need a box without periodic axes"), "{e}");
+}
+
+#[test]
+fn tables_number_their_boundaries_and_orient_polygons() {
+    // A clockwise triangle table, a wall, a container and a polygon obstacle.
+    let s = Scene::from_toml(
+        &format!(
+            "{NO_BOX}[[wall]]\npoint = [0, -1]\nnormal = [0, 2]\n[table]\npolygon = [[0, 0], [0, 4], [4, 0]]\ncontact = \"smooth\"\n\
+             [[container]]\ncentre = [1, 1]\nradius = 5\n[[polygon]]\nvertices = [[2, \"1/2\"], [3, \"1/2\"], [2, \"3/2\"]]\n\
+             [contact]\nballs = \"smooth\"\n{BALL}"
+        ),
+        "t.toml",
+    )
+    .unwrap();
+    let places: Vec<&str> = s.boundaries.iter().map(|b| b.place.as_str()).collect();
+    assert_eq!(
+        places,
+        [
+            "wall[0]",
+            "table.polygon[0]",
+            "table.polygon[1]",
+            "table.polygon[2]",
+            "container[0]",
+            "polygon[0].vertices[0]",
+            "polygon[0].vertices[1]",
+            "polygon[0].vertices[2]",
+            "polygon[0].vertices[0]",
+            "polygon[0].vertices[1]",
+            "polygon[0].vertices[2]",
+        ]
+    );
+    // The table's polygon is turned counterclockwise; its walls' normals point inside.
+    assert_eq!(
+        s.polygons[0][1],
+        [4.into(), 0.into()]
+            .map(num_rational::BigRational::from_integer)
+            .to_vec()
+    );
+    assert!(s.boundaries[1..4]
+        .iter()
+        .all(|b| b.contact == ContactKind::Smooth));
+    assert_eq!(s.ball_contact, ContactKind::Smooth);
+    // Balls meet only boundaries with no-slip: the ball-obstacle kernel; smooth ball pairs need none.
+    let p = s.pairs();
+    assert_eq!(p.ball_obstacle, [0]);
+    assert!(p.ball_wall.is_empty() && p.ball_ball.is_empty());
 }

@@ -72,6 +72,7 @@ fn scene(name: &str) -> (Ball<f64>, Setup<2, 1>) {
                     state: State::from_scalar_spin(2.0, [0.3, 1.0]),
                 }],
                 orientation: false,
+                table: noslip_sim::Table::boxed(),
             };
             (ball, setup)
         }
@@ -91,6 +92,7 @@ fn scene(name: &str) -> (Ball<f64>, Setup<2, 1>) {
                     state: State::from_scalar_spin(0.0, [0.6, 0.8]),
                 }],
                 orientation: false,
+                table: noslip_sim::Table::boxed(),
             };
             (ball, setup)
         }

@@ -154,6 +154,18 @@ impl<const N: usize> Grid<N> {
         })
     }
 
+    /// One cell of sides `size`, neither walled nor periodic (a table without a box: every
+    /// pair is a neighbour; the cell's bounds are never crossed or checked).
+    pub(crate) fn single(size: [f64; N]) -> Self {
+        Grid {
+            n: [1; N],
+            width: size,
+            size,
+            periodic: [false; N],
+            offsets: vec![[0; N]],
+        }
+    }
+
     /// The reach `K_k` of each axis.
     #[cfg(test)]
     fn reach(&self) -> [i64; N] {

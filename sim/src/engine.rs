@@ -39,6 +39,22 @@
 //! cell width or so: amortised over many events (per 10^5 contacts of the shipped gases 26
 //! rebases in gas2d, 22 in gas3d, 242 in gas4d).
 //!
+//! **Boundaries.** Besides the box walls and the obstacles, every ball is predicted against
+//! every boundary of the table ([`crate::table`]: walls, containers, polygon edges and
+//! vertices; few, and fixed), and a contact with one applies the `fixed` kernel (or the
+//! specular map) at its local normal. After a contact with boundary `b` (kept per ball until
+//! its next contact), `b` is not predicted again if it is convex seen from the ball (a flat
+//! wall, an edge, a sphere or point from outside: the straight flight moves away from it and
+//! cannot return), and a container not at the same instant: so a corner (two walls touched at
+//! once) takes its two contacts at one time and moves on, and no graze within rounding repeats
+//! at `t = 0` forever (docs/tables.md, "Corners and grazing contacts").
+//!
+//! **No box.** A table without a box ([`crate::Table::boxed`] false) has one cell: every pair
+//! of balls is a neighbour, there are no box walls and no cell crossings, and `Setup::size` is
+//! the table's length scale `L` (for the clock's `w_min` and the quiet notices). Each ball is
+//! then predicted against every ball and boundary, so an empty queue means no contact can
+//! come: [`NoContact::Escaped`] (or [`NoContact::AtRest`]).
+//!
 //! **No further contact.** [`Simulation::step`] returns [`Step::Never`] when it can tell that
 //! no contact will ever happen again ([`NoContact`]): checked at the first step and then after
 //! `max(1024, 2 balls)`, twice, four times that many events without a contact. At those checks
@@ -52,6 +68,8 @@ use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::predict::{contact_time, exit_time};
 use super::queue::{Entry, What};
+use super::smooth;
+use super::table::{ContactKind, Geometry, Table};
 use super::{Body, FixedBall, PairKernels, Setup};
 use collision_core::{Ball, BodyState};
 use std::collections::BinaryHeap;
@@ -83,6 +101,27 @@ pub enum Contact {
         /// The obstacle's index in [`Setup::obstacles`].
         obstacle: usize,
     },
+    /// A ball and a boundary of the table besides the box and the obstacles: a wall, a
+    /// container, a polygon obstacle's edge or vertex ([`crate::table`]).
+    Boundary {
+        /// The ball's index.
+        i: usize,
+        /// The boundary's id, its index in [`crate::Table::boundaries`].
+        boundary: usize,
+    },
+}
+
+impl Contact {
+    /// The ball of a contact with an immovable body (box wall, obstacle, boundary); `None` for
+    /// two balls.
+    pub fn lone_ball(&self) -> Option<usize> {
+        match *self {
+            Contact::Ball { .. } => None,
+            Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
+                Some(i)
+            }
+        }
+    }
 }
 
 /// One contact with the states around it. Index 0 is ball `i`, index 1 ball `j` of a
@@ -196,6 +235,11 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     kernels: K,
     species: Vec<Ball<f64>>,
     obstacles: Vec<FixedBall<N>>,
+    table: Table<N>,
+    /// Per ball: `b + 1` if its last contact was with boundary `b`, else 0. A boundary convex
+    /// seen from the ball cannot be touched again before another contact; a container not
+    /// at the same instant (module docs, "Boundaries").
+    last: Vec<u32>,
     grid: Grid<N>,
     kind: Vec<usize>,
     pos: Vec<[f64; N]>,
@@ -243,6 +287,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             obstacles,
             bodies,
             orientation,
+            table,
         } = setup;
         if let Some(k) = (0..N).find(|&k| !(size[k] > 0.0 && size[k].is_finite())) {
             return Err(SetupError::BoxSize {
@@ -262,12 +307,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let d_max = (2.0 * r_ball)
             .max(r_ball + r_obstacle)
             .max(f64::MIN_POSITIVE);
-        let grid = Grid::new(size, periodic, d_max, bodies.len() + obstacles.len())?;
+        let grid = if table.boxed {
+            Grid::new(size, periodic, d_max, bodies.len() + obstacles.len())?
+        } else {
+            Grid::single(size)
+        };
         let mut members = vec![Vec::new(); grid.cells()];
         let mut fixed_members = vec![Vec::new(); grid.cells()];
         let mut cell = Vec::with_capacity(bodies.len());
         for (i, b) in bodies.iter().enumerate() {
-            if let Some(k) = (0..N).find(|&k| !(0.0..=size[k]).contains(&b.position[k])) {
+            let outside = (0..N).find(|&k| !(0.0..=size[k]).contains(&b.position[k]));
+            if let (Some(k), true) = (outside, table.boxed) {
                 return Err(SetupError::Outside { ball: i, axis: k });
             }
             let c = grid.cell_of(&b.position);
@@ -284,6 +334,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             kernels,
             species,
             obstacles,
+            table,
+            last: vec![0; n],
             grid,
             kind: bodies.iter().map(|b| b.species).collect(),
             pos: bodies.iter().map(|b| b.position).collect(),
@@ -360,9 +412,33 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.pos.is_empty()
     }
 
-    /// The box sides `L_k`.
+    /// The box sides `L_k` (without a box: the table's length scale on every axis).
     pub fn box_size(&self) -> [f64; N] {
         self.grid.size
+    }
+
+    /// The fixed ball obstacles.
+    pub fn obstacles(&self) -> &[FixedBall<N>] {
+        &self.obstacles
+    }
+
+    /// The table: its boundaries and contact kinds.
+    pub fn table(&self) -> &Table<N> {
+        &self.table
+    }
+
+    /// The local geometry of `contact` (what the derivative of the flight needs): a box wall
+    /// or a wall is [`Geometry::Flat`], an obstacle [`Geometry::Outside`] of its radius, two
+    /// balls [`Geometry::Pair`], a boundary that of its shape ([`crate::table::Shape::geometry`]).
+    pub fn geometry(&self, contact: &Contact) -> Geometry {
+        match *contact {
+            Contact::Ball { .. } => Geometry::Pair,
+            Contact::Wall { .. } => Geometry::Flat,
+            Contact::Obstacle { obstacle, .. } => Geometry::Outside {
+                radius: self.obstacles[obstacle].radius,
+            },
+            Contact::Boundary { boundary, .. } => self.table.boundaries[boundary].shape.geometry(),
+        }
     }
 
     /// Ball `i`'s species index.
@@ -484,10 +560,28 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 }
             }
         });
+        for (b, boundary) in self.table.boundaries.iter().enumerate() {
+            // Right after a contact with b: a convex b cannot be met again, a container not at
+            // the same instant (a graze within rounding would repeat forever at t = 0).
+            let repeat = self.last[i] == b as u32 + 1;
+            if repeat && boundary.shape.convex_from_outside() {
+                continue;
+            }
+            if let Some(t) = boundary.shape.contact_time(&a, &v, r) {
+                if !(repeat && t == 0.0) {
+                    offer(t, What::Boundary { b: b as u32 });
+                }
+            }
+        }
         for k in 0..N {
             let w = self.grid.width[k];
             if !self.grid.periodic[k] {
-                if let Some((t, upper)) = exit_time(a[k], v[k], r, self.grid.size[k] - r) {
+                let wall = if self.table.boxed {
+                    exit_time(a[k], v[k], r, self.grid.size[k] - r)
+                } else {
+                    None
+                };
+                if let Some((t, upper)) = wall {
                     offer(
                         t,
                         What::Wall {
@@ -567,7 +661,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 }
             }
             let Some(top) = self.queue.peek() else {
-                return self.never(NoContact::AtRest, until);
+                // Every moving ball has an entry in a box (a crossing or a wall at least);
+                // without one, an empty queue means no ball has a contact ahead.
+                let moving = (0..self.len()).any(|i| self.speed2_of(i) > 0.0);
+                let why = if moving && !self.table.boxed {
+                    NoContact::Escaped
+                } else {
+                    NoContact::AtRest
+                };
+                return self.never(why, until);
             };
             if top.time > until {
                 if until.is_finite() {
@@ -603,6 +705,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 What::Obstacle { o, shift } => {
                     return Step::Contact(self.ball_obstacle(i, o as usize, &shift))
                 }
+                What::Boundary { b } => return Step::Contact(self.ball_boundary(i, b as usize)),
             }
         }
     }
@@ -638,6 +741,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         };
         if flight.least_speed().is_none() {
             return Some(NoContact::AtRest);
+        }
+        if !self.table.boxed || !self.table.boundaries.is_empty() {
+            // Without a box the empty queue decides (step); with boundaries every axis is
+            // walled, and a moving ball may still meet them.
+            return None;
         }
         let budget = usize::try_from(self.quiet.saturating_mul(16)).unwrap_or(usize::MAX);
         flight.separated(budget.max(1 << 20))
@@ -722,9 +830,21 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let b = self.image(j, &shift);
         let nu = unit(std::array::from_fn(|k| b[k] - self.pos[i][k]));
         let pre = [self.state[i].clone(), self.state[j].clone()];
-        let [si, sj] = self
-            .kernels
-            .ball_ball(self.kind[i], self.kind[j], &nu, &pre[0], &pre[1]);
+        let [si, sj] = match self.table.ball_contact {
+            ContactKind::NoSlip => {
+                self.kernels
+                    .ball_ball(self.kind[i], self.kind[j], &nu, &pre[0], &pre[1])
+            }
+            ContactKind::Smooth => {
+                let (w1, w2) = (
+                    self.species[self.kind[i]].inv_mass,
+                    self.species[self.kind[j]].inv_mass,
+                );
+                smooth::pair(&nu, &w1, &w2, &pre[0], &pre[1])
+            }
+        };
+        self.last[i] = 0;
+        self.last[j] = 0;
         self.state[i] = si;
         self.state[j] = sj;
         let event = self.finish(Contact::Ball { i, j }, nu, [i, j], pre);
@@ -744,7 +864,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         });
         let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = self.kernels.ball_wall(self.kind[i], axis, upper, &pre[0]);
+        self.state[i] = match self.table.box_contact {
+            ContactKind::NoSlip => self.kernels.ball_wall(self.kind[i], axis, upper, &pre[0]),
+            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
+        };
+        self.last[i] = 0;
         let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre);
         self.after_contact([i, i]);
         event
@@ -755,8 +879,29 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let b = self.obstacle_image(o, shift);
         let nu = unit(std::array::from_fn(|k| self.pos[i][k] - b[k]));
         let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]);
+        self.state[i] = match self.table.obstacle(o) {
+            ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
+            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
+        };
+        self.last[i] = 0;
         let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre);
+        self.after_contact([i, i]);
+        event
+    }
+
+    /// A contact with boundary `b`: the `fixed` kernel (no-slip) or the specular map
+    /// (smooth) at the boundary's local normal (see [`crate::table`]).
+    fn ball_boundary(&mut self, i: usize, b: usize) -> Event<N, S> {
+        self.advance(i);
+        let boundary = &self.table.boundaries[b];
+        let nu = boundary.shape.normal(&self.pos[i]);
+        let pre = [self.state[i].clone(), self.state[i].clone()];
+        self.state[i] = match boundary.contact {
+            ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
+            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
+        };
+        self.last[i] = b as u32 + 1;
+        let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre);
         self.after_contact([i, i]);
         event
     }

@@ -1,7 +1,9 @@
 //! # noslip-sim
 //!
 //! An event-driven simulation of rigid balls with no-slip collisions (a rough-ball gas, a
-//! no-slip billiard) in a box whose axes are walled or periodic, with fixed ball obstacles.
+//! no-slip billiard) in a box whose axes are walled or periodic, with fixed ball obstacles, and
+//! tables of other shapes ([`table`]: walls, containers, polygons; bounded or not), each
+//! contact no-slip or smooth.
 //!
 //! Between events every ball flies freely: `a(t) = a + t u`, `U` constant, orientation
 //! `A(t) = exp(t U) A` (the mass distributions are radial, so the inertia is isotropic and the
@@ -25,6 +27,7 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+pub mod boundary_map;
 mod cells;
 pub mod engine;
 pub mod log;
@@ -34,11 +37,17 @@ mod observe;
 mod orientation;
 pub mod place;
 pub mod plot;
+mod png;
+pub mod portrait;
 pub mod predict;
 mod queue;
 pub mod range;
 pub mod run;
 pub mod setup;
+pub mod smooth;
+pub mod table;
+#[cfg(test)]
+mod table_tests;
 #[cfg(test)]
 mod tests;
 pub mod trace;
@@ -46,6 +55,7 @@ pub mod trace;
 pub use engine::{Contact, Event, SetupError, Simulation, Step};
 pub use no_contact::NoContact;
 pub use observe::Observables;
+pub use table::{Boundary, ContactKind, Geometry, Shape, Table};
 
 use collision_core::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};
 
@@ -72,7 +82,10 @@ pub trait PairKernels<T, const N: usize, const S: usize> {
         upper: bool,
         state: &BodyState<T, N, S>,
     ) -> BodyState<T, N, S>;
-    /// The state of a ball of `species` after hitting an obstacle.
+    /// The state of a ball of `species` after hitting an immovable body at rest with the
+    /// local unit normal `nu` (from the body to the ball): a fixed ball obstacle, and every
+    /// other boundary of the table (walls, containers, polygon edges and vertices): the
+    /// `fixed` map, which depends on the body only through `nu` ([`table`]).
     fn ball_obstacle(
         &self,
         species: usize,
@@ -177,4 +190,7 @@ pub struct Setup<const N: usize, const S: usize> {
     pub bodies: Vec<Body<N, S>>,
     /// Track orientations `A_i` (starting at the identity).
     pub orientation: bool,
+    /// The table's other boundaries and the contact kinds ([`Table::boxed`] for the box
+    /// alone, every contact no-slip).
+    pub table: Table<N>,
 }

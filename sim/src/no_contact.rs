@@ -39,6 +39,10 @@ pub enum NoContact {
     /// orbit stays farther than the contact distance `R_i + R_j` (by the relative margin
     /// 1e-9) from every periodic image of the partner.
     Separated,
+    /// Exact: a table without a box, and no ball has a contact ahead (every pair of balls
+    /// and every ball and boundary were predicted against each other and none meets): every
+    /// ball flies off to infinity.
+    Escaped,
 }
 
 impl fmt::Display for NoContact {
@@ -49,6 +53,10 @@ impl fmt::Display for NoContact {
                 "no contact can happen: no ball moves along a walled axis, and every pair of \
                  bodies is at relative rest or moves on a closed orbit of the periodic box that \
                  passes the other's images at more than the contact distance",
+            ),
+            NoContact::Escaped => f.write_str(
+                "no contact can happen: the table is unbounded and every ball flies off \
+                 without meeting a boundary or another ball",
             ),
         }
     }

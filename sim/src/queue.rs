@@ -22,6 +22,10 @@ pub(crate) enum What<const N: usize> {
         axis: u8,
         upper: bool,
     },
+    /// Boundary `b` of the table (it never moves).
+    Boundary {
+        b: u32,
+    },
     /// The boundary of its cell along `axis`, moving `up` or down.
     Cell {
         axis: u8,

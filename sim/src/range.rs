@@ -189,6 +189,23 @@ pub fn check_scene(scene: &Scene) -> Result<Scales, String> {
         }
     }
     let mut side_max = (0.0f64, 0);
+    if scene.size.is_empty() {
+        // No box: the table's extent (setup::extent) plays the box's part.
+        let (lo, size) = crate::setup::extent_dyn(scene);
+        let side = size.iter().copied().fold(0.0, f64::max);
+        let corner = lo.iter().map(|x| x.abs()).fold(0.0, f64::max);
+        side_max.0 = side.max(corner);
+        if !(side_max.0.is_finite() && (side_max.0 * side_max.0).is_finite()) {
+            return Err(format!(
+                "{}: the table's extent {:e} overflows f64 when squared",
+                scene
+                    .boundaries
+                    .first()
+                    .map_or("ball[0].position", |b| &b.place),
+                side_max.0
+            ));
+        }
+    }
     for (k, l) in scene.size.iter().enumerate() {
         let v = f(l);
         if !v.is_normal() {
@@ -209,7 +226,9 @@ pub fn check_scene(scene: &Scene) -> Result<Scales, String> {
         }
     }
     let d_max = (2.0 * r_max).max(r_max + obstacle_max.0);
-    let box_field = if side_max.0 >= d_max {
+    let box_field = if scene.size.is_empty() {
+        "the table's extent".to_string()
+    } else if side_max.0 >= d_max {
         format!("box.size[{}]", side_max.1)
     } else {
         format!("obstacle[{}].radius", obstacle_max.1)

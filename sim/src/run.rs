@@ -66,6 +66,8 @@ pub struct Summary {
     pub ball_wall: u64,
     /// Ball-obstacle contacts among them.
     pub ball_obstacle: u64,
+    /// Contacts with the table's other boundaries ([`crate::table`]) among them.
+    pub ball_boundary: u64,
     /// Cell crossings processed.
     pub cell_crossings: u64,
     /// The simulated time at the end.
@@ -96,8 +98,8 @@ pub struct Summary {
 pub struct Trace {
     /// `(events, (E - E_0) / E_0)`.
     pub energy: Vec<(u64, f64)>,
-    /// Per traced ball, polylines of its centre (first two coordinates), cut at periodic
-    /// wraps and thinned to half a pixel.
+    /// Per traced ball, polylines of its centre (first two coordinates, from the table's
+    /// [`crate::Table::origin`]), cut at periodic wraps and thinned to half a pixel.
     pub paths: Vec<Vec<Vec<[f64; 2]>>>,
     /// The time up to which the paths are drawn.
     pub paths_until: f64,
@@ -121,6 +123,11 @@ pub fn event_json<const N: usize, const S: usize>(index: u64, e: &Event<N, S>) -
         Contact::Obstacle { i, obstacle } => (
             "ball-obstacle",
             json!({"balls": [i], "obstacle": obstacle}),
+            1,
+        ),
+        Contact::Boundary { i, boundary } => (
+            "ball-boundary",
+            json!({"balls": [i], "boundary": boundary}),
             1,
         ),
     };
@@ -168,8 +175,25 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &mut Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
     limits: &Limits,
+    log: Option<&mut dyn Write>,
+    progress: &mut dyn FnMut(Progress),
+) -> io::Result<(Summary, Trace)> {
+    run_observed(sim, species, limits, log, progress, &mut |_, _, _| Ok(()))
+}
+
+/// What [`run_observed`] calls after each contact: `(index, event, simulation)`.
+pub type Observer<'a, const N: usize, const S: usize, K> =
+    dyn FnMut(u64, &Event<N, S>, &Simulation<N, S, K>) -> io::Result<()> + 'a;
+
+/// [`run`], calling `observe(index, event, sim)` after each contact (the boundary map's
+/// writer, [`crate::boundary_map`]); its error ends the run.
+pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &mut Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+    limits: &Limits,
     mut log: Option<&mut dyn Write>,
     progress: &mut dyn FnMut(Progress),
+    observe: &mut Observer<'_, N, S, K>,
 ) -> io::Result<(Summary, Trace)> {
     let start = sim.observables();
     let (p_scale, l_scale) = scales(sim, species);
@@ -179,12 +203,15 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let traced = limits.traced.min(sim.len());
     let size = sim.box_size();
     let two = |x: &[f64; N]| [x[0], x[1]];
+    // Points in the picture's frame: from the table's origin (0 with a box).
+    let origin = sim.table().origin;
+    let at = |x: &[f64; N]| [x[0] - origin[0], x[1] - origin[1]];
     let start_points: Vec<([f64; 2], [f64; 2])> = (0..traced)
-        .map(|i| (two(&sim.position(i)), two(&sim.state(i).velocity)))
+        .map(|i| (at(&sim.position(i)), two(&sim.state(i).velocity)))
         .collect();
     let mut tracer = Tracer::new(two(&size), sim.now(), &start_points);
     let mut samples = vec![(0, 0.0)];
-    let mut kinds = [0u64; 3];
+    let mut kinds = [0u64; 4];
     let mut drift_max: f64 = 0.0;
     let clock = Instant::now();
     let mut done = 0u64;
@@ -219,23 +246,25 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             Contact::Ball { i, j } => (0, [i, j]),
             Contact::Wall { i, .. } => (1, [i, i]),
             Contact::Obstacle { i, .. } => (2, [i, i]),
+            Contact::Boundary { i, .. } => (3, [i, i]),
         };
         kinds[k] += 1;
         if let Some(w) = log.as_deref_mut() {
             writeln!(w, "{}", event_json(done, &e))?;
         }
+        observe(done, &e, sim)?;
         for (slot, &b) in balls.iter().enumerate() {
             if b < traced && (slot == 0 || balls[1] != balls[0]) {
                 tracer.flight(
                     b,
                     e.time,
-                    two(&e.position[slot]),
+                    at(&e.position[slot]),
                     two(&e.post[slot].velocity),
                 );
             }
         }
         if tracer.contacts.len() < limits.contact_points.min(CONTACT_DOTS) {
-            tracer.contact(two(&contact_point(&e, species, sim)));
+            tracer.contact(at(&contact_point(&e, species, sim)));
         }
         if done % every == 0 {
             let energy = sim.observables().energy;
@@ -248,7 +277,7 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         }
     }
     let seconds = clock.elapsed().as_secs_f64();
-    let ends: Vec<[f64; 2]> = (0..traced).map(|i| two(&sim.position(i))).collect();
+    let ends: Vec<[f64; 2]> = (0..traced).map(|i| at(&sim.position(i))).collect();
     tracer.finish(sim.now(), &ends);
     let trace = Trace {
         energy: samples,
@@ -266,6 +295,7 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         ball_ball: kinds[0],
         ball_wall: kinds[1],
         ball_obstacle: kinds[2],
+        ball_boundary: kinds[3],
         cell_crossings: sim.crossings(),
         time: sim.now(),
         seconds,
@@ -281,16 +311,18 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     Ok((summary, trace))
 }
 
-/// The contact point `Q`: `a_i + R_i nu` for two balls, `a - R nu` for a ball on a wall or
-/// an obstacle (nu points from the wall or obstacle to the ball).
-fn contact_point<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+/// The contact point `Q`: `a_i + R_i nu` for two balls, `a - R nu` for a ball on a wall, an
+/// obstacle or a boundary (nu points from it to the ball).
+pub fn contact_point<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     e: &Event<N, S>,
     species: &[collision_core::Ball<f64>],
     sim: &Simulation<N, S, K>,
 ) -> [f64; N] {
     let (i, sign) = match e.contact {
         Contact::Ball { i, .. } => (i, 1.0),
-        Contact::Wall { i, .. } | Contact::Obstacle { i, .. } => (i, -1.0),
+        Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
+            (i, -1.0)
+        }
     };
     let r = species[sim.species_of(i)].radius;
     std::array::from_fn(|k| e.position[0][k] + sign * r * e.nu[k])

@@ -2,12 +2,14 @@
 //! ([`crate::range`]), species, obstacles, the explicit balls and the seeded random placement
 //! ([`crate::place`]).
 
+use crate::normal::unit;
 use crate::place::Cells;
 use crate::range::{check_scene, check_start};
+use crate::table::{Boundary as TableBoundary, Shape, Table};
 use crate::{Body, FixedBall, Setup};
 use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState};
-use noslip_scene::{Boundary, Scene};
+use noslip_scene::{Boundary, ContactKind, Scene};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
@@ -53,6 +55,137 @@ fn distance2<const N: usize>(
             d * d
         })
         .sum()
+}
+
+/// A unit normal from the scene's nonzero `normal`: its components rounded once when it is
+/// already a unit vector in exact rationals, else `n / |n|` in f64 (each component one
+/// rounding of the quotient by the accurate norm).
+fn unit_normal<const N: usize>(normal: &[BigRational]) -> [f64; N] {
+    let n2: BigRational = normal.iter().map(|x| x * x).sum();
+    if n2 == BigRational::from_integer(1.into()) {
+        array(normal)
+    } else {
+        unit(array(normal))
+    }
+}
+
+fn length(a: &[BigRational], b: &[BigRational]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| f(&(x - y)).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The table's boundaries in f64 (boundary ids as in the scene), the obstacles' contact kinds
+/// and the box's presence.
+pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
+    let boundaries = scene
+        .boundaries
+        .iter()
+        .map(|b| {
+            let shape = match &b.shape {
+                noslip_scene::Shape::Wall { point, normal } => Shape::Wall {
+                    point: array(point),
+                    normal: unit_normal(normal),
+                },
+                noslip_scene::Shape::Container { centre, radius } => Shape::Container {
+                    centre: array(centre),
+                    radius: f(radius),
+                },
+                noslip_scene::Shape::Edge { from, to, normal } => Shape::Edge {
+                    from: array(from),
+                    to: array(to),
+                    normal: unit_normal(normal),
+                },
+                noslip_scene::Shape::Vertex { point } => Shape::Sphere {
+                    centre: array(point),
+                    radius: 0.0,
+                },
+            };
+            // The arc length of the polygon up to the piece's start vertex.
+            let arc = b.polygon.map_or(0.0, |(g, k)| {
+                let v = &scene.polygons[g];
+                (0..k).map(|j| length(&v[j], &v[j + 1])).sum()
+            });
+            TableBoundary {
+                shape,
+                contact: b.contact,
+                arc,
+            }
+        })
+        .collect();
+    Table {
+        boxed: !scene.size.is_empty(),
+        boundaries,
+        obstacle_contact: scene.obstacles.iter().map(|o| o.contact).collect(),
+        ball_contact: scene.ball_contact,
+        box_contact: ContactKind::NoSlip,
+        origin: extent::<N>(scene).0,
+    }
+}
+
+/// The region a table without a box is drawn in and measured by: the bounding box of its
+/// defining points (wall points, containers, polygon vertices, obstacles, balls with their
+/// radii), widened by a tenth of its largest side on each end: `(lower corner, sides)`. With a
+/// box: `([0; N], box sides)`.
+pub fn extent<const N: usize>(scene: &Scene) -> ([f64; N], [f64; N]) {
+    let (lo, size) = extent_dyn(scene);
+    (
+        std::array::from_fn(|k| lo[k]),
+        std::array::from_fn(|k| size[k]),
+    )
+}
+
+/// [`extent`] for any dimension (`scene.dim` components).
+pub fn extent_dyn(scene: &Scene) -> (Vec<f64>, Vec<f64>) {
+    let n = scene.dim;
+    if !scene.size.is_empty() {
+        return (vec![0.0; n], scene.size.iter().map(f).collect());
+    }
+    let mut lo = vec![f64::INFINITY; n];
+    let mut hi = vec![f64::NEG_INFINITY; n];
+    let mut add = |p: &[BigRational], r: f64| {
+        for k in 0..n {
+            let x = f(&p[k]);
+            lo[k] = lo[k].min(x - r);
+            hi[k] = hi[k].max(x + r);
+        }
+    };
+    for b in &scene.boundaries {
+        match &b.shape {
+            noslip_scene::Shape::Wall { point, .. } | noslip_scene::Shape::Vertex { point } => {
+                add(point, 0.0)
+            }
+            noslip_scene::Shape::Container { centre, radius } => add(centre, f(radius)),
+            noslip_scene::Shape::Edge { from, to, .. } => {
+                add(from, 0.0);
+                add(to, 0.0);
+            }
+        }
+    }
+    for o in &scene.obstacles {
+        add(&o.position, f(&o.radius));
+    }
+    for b in &scene.balls {
+        add(&b.position, f(&scene.species[b.species].radius));
+    }
+    let side = (0..n).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let margin = 0.1 * side;
+    let lo: Vec<f64> = (0..n).map(|k| lo[k] - margin).collect();
+    let size = (0..n)
+        .map(|k| (hi[k] + margin - lo[k]).max(0.2 * side))
+        .collect();
+    (lo, size)
+}
+
+/// Whether `p` (its first two coordinates) is inside the counterclockwise convex polygon `v`.
+fn inside_polygon<const N: usize>(v: &[[f64; 2]], p: &[f64; N]) -> bool {
+    let m = v.len();
+    (0..m).all(|k| {
+        let (a, b) = (v[k], v[(k + 1) % m]);
+        (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0.0
+    })
 }
 
 /// The kernels' `Ball` parameters of the scene's species, each constant mapped by `f`
@@ -118,7 +251,9 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 
 /// The engine's setup for `scene` (whose `dim` must be `N`), after the range checks of
 /// [`crate::range`]. Random balls: positions uniform in the box (inside the walls), rejected
-/// while they overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
+/// while they are not inside the table's other boundaries (a gap below 0, or a centre inside a
+/// polygon obstacle; checked against every boundary)
+/// or overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
 /// visits only the cells around the candidate), at most [`ATTEMPTS`] times in a row and
 /// [`AVERAGE_ATTEMPTS`] per ball overall; balls that would fill more than the box are refused
 /// before any attempt; velocity components uniform in `[-speed,
@@ -127,8 +262,10 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S>, String> {
     assert_eq!(scene.dim, N, "scene dimension");
     let scales = check_scene(scene)?;
-    let size: [f64; N] = array(&scene.size);
-    let periodic: [bool; N] = std::array::from_fn(|k| scene.boundary[k] == Boundary::Periodic);
+    let (_, size) = extent::<N>(scene);
+    let periodic: [bool; N] =
+        std::array::from_fn(|k| scene.boundary.get(k) == Some(&Boundary::Periodic));
+    let table = table::<N>(scene);
     let species = species_balls(&scene.species, f);
     let obstacles: Vec<FixedBall<N>> = scene
         .obstacles
@@ -175,6 +312,22 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     for o in &obstacles {
         fixed.insert(&o.position);
     }
+    // The polygon obstacles (their edges' gaps say nothing of a centre deep inside).
+    let mut polygons: Vec<Vec<[f64; 2]>> = Vec::new();
+    let mut seen = Vec::new();
+    for b in &scene.boundaries {
+        if let (noslip_scene::Shape::Edge { .. }, Some((g, _))) = (&b.shape, b.polygon) {
+            if !seen.contains(&g) {
+                seen.push(g);
+                polygons.push(
+                    scene.polygons[g]
+                        .iter()
+                        .map(|v| [f(&v[0]), f(&v[1])])
+                        .collect(),
+                );
+            }
+        }
+    }
     let mut rng = Rng::new(scene.random.seed);
     let (speed, spin) = (f(&scene.random.speed), f(&scene.random.spin));
     let (mut attempts, mut placed_random) = (0usize, 0usize);
@@ -204,6 +357,8 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                     distance2(&p, &b.position, &size, &periodic) >= s * s
                 });
                 let clear = clear_balls
+                    && table.boundaries.iter().all(|b| b.shape.gap(&p, r) >= 0.0)
+                    && !polygons.iter().any(|v| inside_polygon(v, &p))
                     && fixed.all_near(&p, |o| {
                         let o = &obstacles[o];
                         let s = r + o.radius;
@@ -237,6 +392,7 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
         obstacles,
         bodies,
         orientation: scene.simulation.orientation,
+        table,
     };
     check_start(&scales, &setup)?;
     Ok(setup)
@@ -262,6 +418,22 @@ mod tests {
             .iter()
             .map(|b| (array(&b.position), radius[b.species]))
             .collect();
+        // The polygon obstacles (their edges' gaps say nothing of a centre deep inside).
+        let mut polygons: Vec<Vec<[f64; 2]>> = Vec::new();
+        let mut seen = Vec::new();
+        for b in &scene.boundaries {
+            if let (noslip_scene::Shape::Edge { .. }, Some((g, _))) = (&b.shape, b.polygon) {
+                if !seen.contains(&g) {
+                    seen.push(g);
+                    polygons.push(
+                        scene.polygons[g]
+                            .iter()
+                            .map(|v| [f(&v[0]), f(&v[1])])
+                            .collect(),
+                    );
+                }
+            }
+        }
         let mut rng = Rng::new(scene.random.seed);
         for (k, sp) in scene.species.iter().enumerate() {
             let r = radius[k];
@@ -295,6 +467,34 @@ mod tests {
             .collect();
         assert_eq!(grid.len(), scene.ball_count());
         assert_eq!(grid, all_pairs::<N>(&scene), "{text}");
+    }
+
+    #[test]
+    fn wall_normals_are_unit_and_exact_when_given_unit() {
+        let scene = Scene::from_toml(
+            "dim = 2\n[[wall]]\npoint = [0, 0]\nnormal = [\"3/5\", \"4/5\"]\n\
+             [[wall]]\npoint = [0, 5]\nnormal = [0, -2]\n[[wall]]\npoint = [9, 0]\nnormal = [-1, -1]\n\
+             [[species]]\nmass = 1\nradius = \"1/10\"\n[[ball]]\nspecies = 0\nposition = [2, 2]\n\
+             velocity = [1, 0]\n",
+            "t.toml",
+        )
+        .unwrap();
+        let normals: Vec<[f64; 2]> = table::<2>(&scene)
+            .boundaries
+            .iter()
+            .map(|b| match b.shape {
+                Shape::Wall { normal, .. } => normal,
+                _ => unreachable!(),
+            })
+            .collect();
+        // A unit rational normal: each component rounded once; others divided by the norm.
+        assert_eq!(normals[0], [0.6, 0.8]);
+        assert_eq!(normals[1], [0.0, -1.0]);
+        // 1 / fl(sqrt 2), one rounding of the quotient by the (correctly rounded) norm; within
+        // an ulp of 1/sqrt(2).
+        let h = 1.0 / 2f64.sqrt();
+        assert_eq!(normals[2], [-h, -h]);
+        assert!((h - std::f64::consts::FRAC_1_SQRT_2).abs() <= f64::EPSILON / 2.0);
     }
 
     #[test]

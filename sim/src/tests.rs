@@ -34,6 +34,7 @@ fn sim2(
         obstacles,
         bodies,
         orientation: false,
+        table: crate::Table::boxed(),
     };
     Simulation::new(
         setup,
@@ -155,6 +156,7 @@ fn a_flight_along_a_corridor_is_noticed_and_goes_on_to_its_contact() {
         }],
         bodies: vec![disk([0.49, 0.8501], [-0.99165, 2.2077e-4])],
         orientation: false,
+        table: crate::Table::boxed(),
     };
     let mut sim = Simulation::new(
         setup,
@@ -219,6 +221,7 @@ fn huge_boxes_need_memory_for_the_balls_only() {
         obstacles: vec![],
         bodies,
         orientation: false,
+        table: crate::Table::boxed(),
     };
     let mut sim = Simulation::new(
         setup,
@@ -268,6 +271,7 @@ fn orientations_follow_the_spin_across_crossings_and_rebasings() {
         obstacles: vec![obstacle],
         bodies: vec![body],
         orientation: true,
+        table: crate::Table::boxed(),
     };
     let kernels = GenericKernels {
         species: vec![DISK],

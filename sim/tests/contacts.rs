@@ -10,6 +10,7 @@
 use collision_core::{Generated, Kernel};
 use noslip_scene::Scene;
 use noslip_sim::setup::setup;
+use noslip_sim::table::Shape;
 use noslip_sim::{Body, Event, GenericKernels, Setup, Simulation, Step};
 use std::path::Path;
 
@@ -90,7 +91,8 @@ where
         let r_i = radius[sim.species_of(match e.contact {
             noslip_sim::Contact::Ball { i, .. }
             | noslip_sim::Contact::Wall { i, .. }
-            | noslip_sim::Contact::Obstacle { i, .. } => i,
+            | noslip_sim::Contact::Obstacle { i, .. }
+            | noslip_sim::Contact::Boundary { i, .. } => i,
         })];
         // The centre line from body 1 to body 2 and the contact distance.
         let (d, sigma) = match e.contact {
@@ -112,6 +114,29 @@ where
                 let mut d = [0.0; N];
                 d[axis] = if upper { -gap } else { gap };
                 (d, r_i)
+            }
+            noslip_sim::Contact::Boundary { boundary, .. } => {
+                // The line from the nearest point of the boundary (or a sphere's centre) to
+                // the ball's centre, and its length at contact.
+                let a = e.position[0];
+                let sub = |x: &[f64; N], y: &[f64; N]| -> [f64; N] {
+                    std::array::from_fn(|k| x[k] - y[k])
+                };
+                let dot = |x: &[f64; N], y: &[f64; N]| (0..N).map(|k| x[k] * y[k]).sum::<f64>();
+                match &sim.table().boundaries[boundary].shape {
+                    Shape::Wall { point, normal } => {
+                        let h = dot(&sub(&a, point), normal);
+                        (normal.map(|x| h * x), r_i)
+                    }
+                    Shape::Edge { from, to, .. } => {
+                        let edge = sub(to, from);
+                        let s = dot(&sub(&a, from), &edge) / dot(&edge, &edge);
+                        let foot: [f64; N] = std::array::from_fn(|k| from[k] + s * edge[k]);
+                        (sub(&a, &foot), r_i)
+                    }
+                    Shape::Sphere { centre, radius } => (sub(&a, centre), r_i + radius),
+                    Shape::Container { centre, radius } => (sub(centre, &a), radius - r_i),
+                }
             }
         };
         let length = norm(&d);
@@ -209,6 +234,7 @@ fn a_contact_across_a_periodic_face_after_the_partner_wrapped() {
             body([10.43, 5.5], [1.0, 0.0], 1.0),
         ],
         orientation: false,
+        table: noslip_sim::Table::boxed(),
     };
     let mut sim = simulation(setup);
     let e = next(&mut sim).expect("the disks meet");

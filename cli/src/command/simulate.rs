@@ -7,8 +7,10 @@ use collision_core::Generated;
 use collision_core::Kernel;
 use indicatif::{ProgressBar, ProgressStyle};
 use noslip_scene::Scene;
+use noslip_sim::boundary_map::{self, BoundaryMap};
 use noslip_sim::log::LogFile;
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
+use noslip_sim::portrait::{portrait_png, portrait_svg};
 use noslip_sim::run::{self, Limits, Progress, Summary};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
@@ -27,7 +29,13 @@ second, kinetic energy and the drift of energy, linear and angular momentum rela
 start) and writes to --out, published as one set (the whole directory is replaced at once;
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
 drift over events) and, in 2D, trajectories.svg (a few balls' paths, cut at periodic wraps
-and thinned, and the contact points); a --log file inside --out belongs to the set. --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
+and thinned, and the contact points); a --log file inside --out belongs to the set.
+--boundary-map FILE writes the boundary map as CSV (one row per contact with an immovable
+body: event, time, ball, kind, id, contact point, boundary coordinate, angles of incidence
+and reflection, normal velocity, tangential velocity and spin before and after, scaled spin;
+see docs/tables.md), complete or absent like the log, and into --out each body's phase
+portraits, portrait-KIND-ID.svg and .png (coordinate against angle of reflection, tangential
+velocity against scaled spin gamma R c, after each contact). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
 and post states; the log file appears complete at the end of the run or not at all (if it
 cannot be written, the run still ends, prints and writes its summary, and exits 1).
 
@@ -49,6 +57,11 @@ pub struct Args {
     /// Write every contact as a JSON line to this file.
     #[arg(long)]
     log: Option<PathBuf>,
+    /// Write the boundary map to this CSV file (one row per contact with a wall, container,
+    /// obstacle or other boundary; docs/tables.md), and each boundary's phase portraits to
+    /// --out as portrait-KIND-ID.svg and .png.
+    #[arg(long, value_name = "FILE")]
+    boundary_map: Option<PathBuf>,
     /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -63,11 +76,12 @@ pub const CODES: &[Exit] = &[Exit::Success, Exit::OutputFailed, Exit::BadInput];
 /// The summary on stdout (after the files are written: a failing stdout loses nothing).
 fn print_summary(s: &Summary) -> Result<(), Failure> {
     outln!(
-        "{} contacts ({} ball-ball, {} ball-wall, {} ball-obstacle), {} cell crossings, t = {:.6}",
+        "{} contacts ({} ball-ball, {} ball-wall, {} ball-obstacle, {} ball-boundary), {} cell crossings, t = {:.6}",
         s.events,
         s.ball_ball,
         s.ball_wall,
         s.ball_obstacle,
+        s.ball_boundary,
         s.cell_crossings,
         s.time
     )?;
@@ -129,17 +143,23 @@ where
     // The output set is staged before the run, so that a refused --out costs no run, and a
     // log asked for inside it (`--log OUT/events.jsonl`) is written into the set itself.
     let mut set = Staging::new(&out).map_err(|e| crate::exit::publish_failure(&e))?;
+    let open = |p: &PathBuf, set: &Staging| {
+        let at = match p.file_name() {
+            Some(name) if same_dir(p.parent(), &out) => set.path(&name.to_string_lossy()),
+            _ => p.clone(),
+        };
+        LogFile::create(&at)
+            .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))
+    };
     let mut log = match &args.log {
-        Some(p) => {
-            let at = match p.file_name() {
-                Some(name) if same_dir(p.parent(), &out) => set.path(&name.to_string_lossy()),
-                _ => p.clone(),
-            };
-            Some(
-                LogFile::create(&at)
-                    .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
-            )
-        }
+        Some(p) => Some(open(p, &set)?),
+        None => None,
+    };
+    let mut map = match &args.boundary_map {
+        Some(p) => Some(
+            BoundaryMap::new(open(p, &set)?, N)
+                .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
+        ),
         None => None,
     };
     let progress = (!args.quiet).then(|| {
@@ -167,12 +187,19 @@ where
         }
         _ => {}
     };
-    let (summary, trace) = run::run(
+    let (summary, trace) = run::run_observed(
         &mut sim,
         &species,
         &limits,
         log.as_mut().map(|w| w as &mut dyn Write),
         &mut report,
+        &mut |index, e, sim| match &mut map {
+            Some(m) => match boundary_map::row(index, e, sim, &species) {
+                Some(row) => m.push(&row),
+                None => Ok(()),
+            },
+            None => Ok(()),
+        },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
     if let Some(pb) = progress {
@@ -186,6 +213,24 @@ where
                 p.display()
             ))
         }),
+        _ => None,
+    };
+    let mut portraits = Vec::new();
+    let map_failed = match (map, &args.boundary_map) {
+        (Some(map), Some(p)) => {
+            portraits = map
+                .points
+                .iter()
+                .map(|(b, pts)| (*b, pts.clone()))
+                .collect();
+            map.finish().and_then(|file| file.finish()).err().map(|e| {
+                Failure::output(format!(
+                    "cannot write the boundary map {}: {e} (none was left; the summary was \
+                     written)",
+                    p.display()
+                ))
+            })
+        }
         _ => None,
     };
     let staged = |r: std::io::Result<String>, name: &str| {
@@ -221,10 +266,29 @@ where
         set.write("trajectories.svg", picture.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
     }
+    for (body, points) in &portraits {
+        let (kind, id) = body.kind_id();
+        let name = format!("portrait-{kind}-{id}");
+        let svg = staged(
+            portrait_svg(
+                &format!(
+                    "{title}: {kind} {id}, {} contacts (after each)",
+                    points.len()
+                ),
+                points,
+                N == 2,
+            ),
+            &format!("{name}.svg"),
+        )?;
+        set.write(&format!("{name}.svg"), svg.as_bytes())
+            .map_err(|e| crate::exit::publish_failure(&e))?;
+        set.write(&format!("{name}.png"), &portrait_png(points, N == 2))
+            .map_err(|e| crate::exit::publish_failure(&e))?;
+    }
     set.commit().map_err(|e| crate::exit::publish_failure(&e))?;
     print_summary(&summary)?;
     outln!("wrote {}", out.display())?;
-    log_failed.map_or(Ok(()), Err)
+    log_failed.or(map_failed).map_or(Ok(()), Err)
 }
 
 /// Whether `dir` (a log file's parent) is the output directory `out`, lexically (neither need

@@ -59,7 +59,6 @@ where
 {
     let plan = Plan::new(options)?;
     let species = setup.species.clone();
-    let obstacles = setup.obstacles.clone();
     let kinds: Vec<usize> = setup.bodies.iter().map(|b| b.species).collect();
     let balls = kinds.len();
     let len = block_len(N, S);
@@ -91,7 +90,7 @@ where
         |v: &mut [f64], b: usize, dt: f64| flight::<f64, N>(&mut v[b * len..(b + 1) * len], &dt);
     for c in 1..=plan.events {
         let e = next_contact(&mut sim)?;
-        match touch(&e.contact, radius, &obstacles) {
+        match touch(&e.contact, sim.geometry(&e.contact), radius) {
             Touch::Boundary { ball, geometry } => {
                 let dt = e.time - since[ball];
                 for v in vectors.iter_mut() {

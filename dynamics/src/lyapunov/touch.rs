@@ -4,7 +4,7 @@
 //! [`crate::law`].
 
 use crate::geometry::Geometry;
-use noslip_sim::{Contact, FixedBall};
+use noslip_sim::Contact;
 
 /// A contact of the engine, for the tangent map.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,12 +27,29 @@ pub enum Touch {
     },
 }
 
-/// The [`Touch`] of an engine contact; `radius(i)` is ball `i`'s radius.
-pub fn touch<const N: usize>(
+/// The [`Touch`] of an engine contact whose surface the engine reports as `surface`
+/// ([`noslip_sim::Simulation::geometry`]); `radius(i)` is ball `i`'s radius. The centre of a
+/// ball of radius `r` touching a sphere of radius `R` moves on a sphere of radius `R + r`
+/// (from outside) or `R - r` (from inside): that is the radius whose curvature turns `nu`.
+pub fn touch(
     contact: &Contact,
+    surface: noslip_sim::Geometry,
     radius: impl Fn(usize) -> f64,
-    obstacles: &[FixedBall<N>],
 ) -> Touch {
+    use noslip_sim::Geometry as Surface;
+    let boundary = |ball: usize| {
+        let geometry = match surface {
+            Surface::Flat => Geometry::Flat,
+            Surface::Outside { radius: r } => Geometry::Convex {
+                r_eff: r + radius(ball),
+            },
+            Surface::Inside { radius: r } => Geometry::Concave {
+                r_eff: r - radius(ball),
+            },
+            Surface::Pair => unreachable!("a ball-ball contact has two balls"),
+        };
+        Touch::Boundary { ball, geometry }
+    };
     match *contact {
         Contact::Ball { i, j } => Touch::Pair {
             i,
@@ -41,16 +58,9 @@ pub fn touch<const N: usize>(
                 sigma: radius(i) + radius(j),
             },
         },
-        Contact::Wall { i, .. } => Touch::Boundary {
-            ball: i,
-            geometry: Geometry::Flat,
-        },
-        Contact::Obstacle { i, obstacle } => Touch::Boundary {
-            ball: i,
-            geometry: Geometry::Convex {
-                r_eff: obstacles[obstacle].radius + radius(i),
-            },
-        },
+        Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
+            boundary(i)
+        }
     }
 }
 

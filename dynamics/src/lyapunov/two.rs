@@ -148,6 +148,7 @@ fn same_set(a: &[Contact], b: &[Contact]) -> bool {
         Contact::Ball { i, j } => (0, i, j, 0),
         Contact::Wall { i, axis, upper } => (1, i, axis, usize::from(upper)),
         Contact::Obstacle { i, obstacle } => (2, i, obstacle, 0),
+        Contact::Boundary { i, boundary } => (3, i, boundary, 0),
     };
     let mut x: Vec<_> = a.iter().map(key).collect();
     let mut y: Vec<_> = b.iter().map(key).collect();

@@ -1,0 +1,129 @@
+//! The smooth (specular) contact maps: the normal component of the relative velocity reverses,
+//! tangential velocities and spins are untouched (no friction, no torque).
+//!
+//! - on an immovable body at rest: `u' = u - 2 (u . nu) nu`, `U' = U`;
+//! - between balls of inverse masses `w_1`, `w_2` (`nu` from body 1 to body 2, `dv = u_2 -
+//!   u_1`): the impulse `J = -2 (dv . nu) / (w_1 + w_2)` along `nu` on body 2, so
+//!   `u_1' = u_1 + 2 w_1 / (w_1 + w_2) (dv . nu) nu`, `u_2' = u_2 - 2 w_2 / (w_1 + w_2) (dv .
+//!   nu) nu`; an immovable ball (`w = 0`) keeps its velocity. At least one of `w_1`, `w_2`
+//!   must be positive.
+//!
+//! Both conserve the energy `1/2 m |u|^2` exactly in exact arithmetic (tests below, exact
+//! rationals), and the ball-ball map conserves linear momentum.
+
+use collision_core::{BodyState, RefArith, Scalar};
+
+fn dot<T: Scalar, const N: usize>(a: &[T; N], b: &[T; N]) -> T
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    let mut s = T::zero();
+    for k in 0..N {
+        s += &a[k] * &b[k];
+    }
+    s
+}
+
+/// A ball's state after a smooth contact with an immovable body: `u' = u - 2 (u . nu) nu`.
+pub fn fixed<T: Scalar, const N: usize, const S: usize>(
+    nu: &[T; N],
+    state: &BodyState<T, N, S>,
+) -> BodyState<T, N, S>
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    let un = dot(&state.velocity, nu);
+    let twice = &un + &un;
+    BodyState {
+        spin: state.spin.clone(),
+        velocity: std::array::from_fn(|k| &state.velocity[k] - &(&twice * &nu[k])),
+    }
+}
+
+/// Two balls' states after a smooth contact (module docs); `nu` from body 1 to body 2.
+pub fn pair<T: Scalar, const N: usize, const S: usize>(
+    nu: &[T; N],
+    w1: &T,
+    w2: &T,
+    state1: &BodyState<T, N, S>,
+    state2: &BodyState<T, N, S>,
+) -> [BodyState<T, N, S>; 2]
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    let dv: [T; N] = std::array::from_fn(|k| &state2.velocity[k] - &state1.velocity[k]);
+    let dn = dot(&dv, nu);
+    let j = &(&dn + &dn) / &(w1 + w2);
+    let (j1, j2) = (w1 * &j, w2 * &j);
+    [
+        BodyState {
+            spin: state1.spin.clone(),
+            velocity: std::array::from_fn(|k| &state1.velocity[k] + &(&j1 * &nu[k])),
+        },
+        BodyState {
+            spin: state2.spin.clone(),
+            velocity: std::array::from_fn(|k| &state2.velocity[k] - &(&j2 * &nu[k])),
+        },
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use collision_core::Exact;
+
+    fn q(p: i64, d: i64) -> Exact {
+        Exact::new(p.into(), d.into())
+    }
+
+    #[test]
+    fn smooth_maps_reverse_the_normal_velocity_and_keep_energy_exactly() {
+        // 3D, nu = (2/7, 3/7, 6/7) (unit), spins arbitrary.
+        let nu = [q(2, 7), q(3, 7), q(6, 7)];
+        let s1 = BodyState::<Exact, 3, 3> {
+            spin: [q(1, 2), q(-3, 1), q(5, 4)],
+            velocity: [q(1, 1), q(-2, 3), q(7, 5)],
+        };
+        let s2 = BodyState::<Exact, 3, 3> {
+            spin: [q(2, 1), q(0, 1), q(-1, 9)],
+            velocity: [q(-3, 2), q(1, 4), q(-2, 1)],
+        };
+        let post = fixed(&nu, &s1);
+        assert_eq!(post.spin, s1.spin);
+        assert_eq!(dot(&post.velocity, &nu), -dot(&s1.velocity, &nu));
+        assert_eq!(
+            dot(&post.velocity, &post.velocity),
+            dot(&s1.velocity, &s1.velocity)
+        );
+        for (w1, w2) in [(q(1, 3), q(2, 1)), (q(0, 1), q(5, 2)), (q(3, 1), q(0, 1))] {
+            let [p1, p2] = pair(&nu, &w1, &w2, &s1, &s2);
+            let rel = |a: &BodyState<Exact, 3, 3>, b: &BodyState<Exact, 3, 3>| {
+                let d: [Exact; 3] = std::array::from_fn(|k| &b.velocity[k] - &a.velocity[k]);
+                dot(&d, &nu)
+            };
+            assert_eq!(rel(&p1, &p2), -rel(&s1, &s2));
+            assert_eq!(
+                (p1.spin.clone(), p2.spin.clone()),
+                (s1.spin.clone(), s2.spin.clone())
+            );
+            // Energy and momentum, weighted by the masses 1/w (an immovable body: unchanged).
+            for (pre, post, w) in [(&s1, &p1, &w1), (&s2, &p2, &w2)] {
+                if w == &q(0, 1) {
+                    assert_eq!(post.velocity, pre.velocity);
+                }
+            }
+            if w1 != q(0, 1) && w2 != q(0, 1) {
+                let energy = |a: &BodyState<Exact, 3, 3>, b: &BodyState<Exact, 3, 3>| {
+                    &dot(&a.velocity, &a.velocity) / &w1 + &dot(&b.velocity, &b.velocity) / &w2
+                };
+                assert_eq!(energy(&p1, &p2), energy(&s1, &s2));
+                for k in 0..3 {
+                    let m = |a: &BodyState<Exact, 3, 3>, b: &BodyState<Exact, 3, 3>| {
+                        &a.velocity[k] / &w1 + &b.velocity[k] / &w2
+                    };
+                    assert_eq!(m(&p1, &p2), m(&s1, &s2));
+                }
+            }
+        }
+    }
+}
