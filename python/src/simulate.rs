@@ -154,14 +154,14 @@ fn array<'py, T: numpy::Element>(
 }
 
 /// One float column of the boundary map, read from a row.
-type Field = dyn Fn(&Row) -> f64;
+type Field<'a> = dyn Fn(&Row) -> f64 + 'a;
 
 /// The boundary map's rows as arrays under the CSV's column names
 /// (`noslip_sim::boundary_map::header`): `kind` as text, the contact point as `q0`, `q1`, ...
 fn map_columns<'py>(py: Python<'py>, rows: &[Row], n: usize) -> PyResult<Bound<'py, PyDict>> {
     let len = rows.len();
     let out = PyDict::new(py);
-    let col = |f: &Field| rows.iter().map(f).collect::<Vec<f64>>();
+    let col = |f: &Field<'_>| rows.iter().map(f).collect::<Vec<f64>>();
     out.set_item(
         "event",
         array(py, rows.iter().map(|r| r.event).collect(), &[len])?,
@@ -178,7 +178,7 @@ fn map_columns<'py>(py: Python<'py>, rows: &[Row], n: usize) -> PyResult<Bound<'
     for k in 0..n {
         out.set_item(format!("q{k}"), array(py, col(&|r| r.point[k]), &[len])?)?;
     }
-    let columns: [(&str, &Field); 10] = [
+    let columns: [(&str, &Field<'_>); 10] = [
         ("coordinate", &|r| r.coordinate),
         ("incidence", &|r| r.incidence),
         ("reflection", &|r| r.reflection),
