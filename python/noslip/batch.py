@@ -63,8 +63,10 @@ def collide_batch(
     body comes back unchanged.
 
     The arrays are read in place (any strides; no copy, no per-row Python object), the GIL
-    is released, and with ``parallel`` the rows are split across rayon's threads in chunks of
-    1024. Memory beyond the new output arrays is a scratch of one chunk per running thread.
+    is released, and with ``parallel`` the rows are split across rayon's threads. C-contiguous
+    arrays (NumPy's default) are gathered straight into the kernels' lane arrays and the
+    results scattered straight into the outputs, in chunks of 512 rows; other strides go row
+    by row. Memory beyond the new output arrays is a scratch of one chunk per running thread.
 
     Parameters
     ----------
@@ -77,7 +79,8 @@ def collide_batch(
         ``2/n`` a shell; ``I/(m R^2)`` in 3D), each ``(N,)`` or a scalar shared by all rows.
     validate : bool
         Check every row as :func:`noslip.collide` does (finite; unit normal; valid balls;
-        skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``), within the rounding allowance.
+        skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``), within the rounding allowance:
+        a cheap test accepts the clearly valid rows, ``collide``'s own checks decide the rest.
         Without it, a bad row gives NaN or infinities in its own outputs only.
     parallel : bool
         Split the rows across rayon's threads (``False``: the calling thread only; the GIL
