@@ -63,8 +63,10 @@ def collide_batch(
     body comes back unchanged.
 
     The arrays are read in place (any strides; no copy, no per-row Python object), the GIL
-    is released, and with ``parallel`` the rows are split across rayon's threads in chunks of
-    1024. Memory beyond the new output arrays is a scratch of one chunk per running thread.
+    is released, and with ``parallel`` the rows are split across rayon's threads. C-contiguous
+    arrays (NumPy's default) are gathered straight into the kernels' lane arrays and the
+    results scattered straight into the outputs, in chunks of 512 rows; other strides go row
+    by row. Memory beyond the new output arrays is a scratch of one chunk per running thread.
 
     Parameters
     ----------
@@ -77,7 +79,8 @@ def collide_batch(
         ``2/n`` a shell; ``I/(m R^2)`` in 3D), each ``(N,)`` or a scalar shared by all rows.
     validate : bool
         Check every row as :func:`noslip.collide` does (finite; unit normal; valid balls;
-        skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``), within the rounding allowance.
+        skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``), within the rounding allowance:
+        a cheap test accepts the clearly valid rows, ``collide``'s own checks decide the rest.
         Without it, a bad row gives NaN or infinities in its own outputs only.
     parallel : bool
         Split the rows across rayon's threads (``False``: the calling thread only; the GIL
@@ -115,12 +118,22 @@ def isa() -> str:
     return _native.isa()
 
 
-def batch_kernel_seconds(
+def reference_seconds(
     normal: np.ndarray, bodies: Sequence[Mapping[str, Any]], repeats: int = 5
-) -> list[float]:
-    """The Rust batch kernel alone on the same float64 rows (the benchmark's reference): the
-    rows are laid out into its blocked batch once, untimed, then ``Exec::auto().free`` runs
-    ``repeats`` times; the seconds of each run. Every body must move (``inv_mass > 0``)."""
+) -> dict[str, list[float]]:
+    """The benchmark's Rust references on the same float64 rows (C-contiguous, every body
+    moving: ``inv_mass > 0``), timed in Rust; the seconds of each of ``repeats`` runs.
+
+    - ``"rows"``: collision-core's batch API from the same row-major arrays into row-major
+      outputs: chunks of rows on rayon's threads, each gathered into a ``FreeBatch``
+      (``fill_from_rows``), run by ``Exec::free`` (run-time ISA) and scattered into the
+      outputs (``PairBatch::write_rows``); no validation. The outputs are allocated and
+      touched once before the timed runs and reused (``collide_batch`` returns new arrays
+      and pays their first touch).
+    - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in its
+      blocked batch: the kernel's floor, the row-major arrays neither read nor written.
+    """
     normal = np.asarray(normal)
     b1, b2 = (_body(bodies[b], b, np.dtype(np.float64)) for b in range(2))
-    return _native.batch_kernel_seconds(normal, b1, b2, repeats)
+    rows, kernel = _native.reference_seconds(normal, b1, b2, repeats)
+    return {"rows": rows, "kernel": kernel}

@@ -14,7 +14,7 @@ from noslip._native import InputError, Scene
 __all__ = ["SimulationResult", "simulate", "KINDS"]
 
 #: The contact kinds of :attr:`SimulationResult.events` ``["kind"]``, by code.
-KINDS = ("ball-ball", "ball-wall", "ball-obstacle")
+KINDS = ("ball-ball", "ball-wall", "ball-obstacle", "ball-boundary")
 
 
 @dataclass(frozen=True)
@@ -34,17 +34,32 @@ class SimulationResult:
         ``E = sum_i m_i (|u_i|^2 + lambda_i |U_i|_F^2) / 2``.
     events : dict of ndarray
         The events log, one row per contact (empty without ``log``): ``time`` (E,),
-        ``kind`` (E,) (codes into :data:`KINDS`), ``balls`` (E, 2) (-1 for a wall or
-        obstacle), ``wall_axis`` (E,) (-1 if none), ``wall_upper`` (E,), ``obstacle`` (E,)
-        (-1 if none), ``nu`` (E, n) (from the first ball to the other body), ``positions``
+        ``kind`` (E,) (codes into :data:`KINDS`), ``balls`` (E, 2) (-1 for a wall,
+        obstacle or boundary), ``wall_axis`` (E,) (-1 if none), ``wall_upper`` (E,),
+        ``obstacle`` (E,) (-1 if none), ``boundary`` (E,) (the table's boundary, -1 if none), ``nu`` (E, n) (from the first ball to the other body), ``positions``
         (E, 2, n), and per slot the states before and after: ``pre_spin``, ``post_spin``
         (E, 2, n(n-1)/2) (the compact entries ``U_ij``, ``i < j``), ``pre_velocity``,
         ``post_velocity`` (E, 2, n). A one-ball contact's second slot is NaN.
+    boundary_map : dict of ndarray
+        The boundary map, one row per contact of a ball with an immovable body (box wall,
+        obstacle, table boundary), under the columns of ``noslip simulate --boundary-map``'s
+        CSV (the same numbers, bit for bit; ``docs/tables.md``): ``event`` (1-based),
+        ``time``, ``ball``, ``kind`` (``"box-wall"``, ``"obstacle"``, ``"boundary"``),
+        ``id``, the contact point ``q0`` .. ``q{n-1}``, ``coordinate`` (2D: arc length along
+        a flat boundary, the angle about a circle's centre; nD: the distance from a wall's
+        point, the angle from ``e_0`` on a sphere), ``incidence`` and ``reflection`` (2D the
+        signed angles from the normal, ``atan2(u . t, -u . nu)`` and
+        ``atan2(u' . t, u' . nu)``; nD their sizes), ``normal_velocity`` ``u . nu``,
+        ``tangential_velocity`` and ``_post`` (2D ``u . t``, ``t = (nu_1, -nu_0)``; nD
+        ``|u - (u . nu) nu|``), ``spin`` and ``spin_post`` (2D ``c`` of ``U = c J``; nD
+        the norm of the entries ``U_ij``, ``i < j``), ``scaled_spin`` and ``_post``
+        ``sqrt(2 lambda)`` times the spin. Empty without ``boundary_map``.
     """
 
     summary: dict[str, Any]
     energy: dict[str, np.ndarray]
     events: dict[str, np.ndarray] = field(repr=False)
+    boundary_map: dict[str, np.ndarray] = field(repr=False, default_factory=dict)
 
 
 def simulate(
@@ -53,11 +68,14 @@ def simulate(
     time: float | None = None,
     *,
     log: bool = True,
+    boundary_map: bool = True,
 ) -> SimulationResult:
     """Run a scene with the event-driven simulator of ``noslip simulate``.
 
-    Balls fly freely between events; at each ball-ball, ball-wall or ball-obstacle contact
-    the pair's state jumps by the no-slip map (the generated f64 kernels). The run is
+    Balls fly freely between events; at each contact (ball-ball, ball-wall, ball-obstacle,
+    ball-boundary of a table) the pair's state jumps by the contact map (the no-slip map of
+    the generated f64 kernels, or a specular reflection where the scene makes a contact
+    smooth). The run is
     deterministic: the same scene gives the same events, bit for bit.
 
     Parameters
@@ -72,6 +90,9 @@ def simulate(
     log : bool
         Keep every contact in :attr:`SimulationResult.events` (about 0.5 kB per contact
         while it runs).
+    boundary_map : bool
+        Keep the boundary map, :attr:`SimulationResult.boundary_map` (about 0.2 kB per
+        contact with an immovable body).
 
     Raises
     ------
@@ -84,8 +105,11 @@ def simulate(
         scene = Scene.from_dict(scene)
     elif not isinstance(scene, Scene):
         raise InputError(f"scene: expected a Scene, TOML text or a dict, got {type(scene).__name__}")
-    out = _native.simulate(scene, events, time, log)
+    out = _native.simulate(scene, events, time, log, boundary_map)
     summary = json.loads(out["summary"])
     energy = dict(out["energy"])
     energy["energy"] = summary["energy_start"] * (1.0 + energy["drift"])
-    return SimulationResult(summary=summary, energy=energy, events=dict(out["events"]))
+    bmap = {k: np.asarray(v) for k, v in out["boundary_map"].items()}
+    return SimulationResult(
+        summary=summary, energy=energy, events=dict(out["events"]), boundary_map=bmap
+    )

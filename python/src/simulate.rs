@@ -2,12 +2,15 @@
 //! `noslip simulate` runs it), its events log and energy samples as NumPy arrays.
 //!
 //! The events log is the simulator's own JSON-lines log (`noslip_sim::run::event_json`),
-//! read back into columns: the same numbers, bit for bit (shortest round-trip text).
+//! read back into columns: the same numbers, bit for bit (shortest round-trip text). The
+//! boundary map is `noslip_sim::boundary_map::row` of each contact with an immovable body,
+//! as `noslip simulate --boundary-map` writes it, in the CSV's columns.
 
 use crate::error::input_error;
 use crate::scene::Scene;
 use collision_core::{Generated, Kernel};
-use noslip_sim::run::{run, Limits, Summary, Trace};
+use noslip_sim::boundary_map::{self, Row};
+use noslip_sim::run::{run_observed, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Simulation};
 use numpy::{PyArray1, PyArrayMethods};
@@ -15,18 +18,20 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde_json::Value;
 
-/// A finished run: the summary, the energy samples and the events log (JSON lines, empty
-/// without `log`).
+/// A finished run: the summary, the energy samples, the events log (JSON lines, empty
+/// without `log`) and the boundary map's rows (empty without `map`).
 struct Run {
     summary: Summary,
     trace: Trace,
     log: Vec<u8>,
+    rows: Vec<Row>,
 }
 
 fn run_dim<const N: usize, const S: usize>(
     scene: &noslip_scene::Scene,
     limits: &Limits,
     log: bool,
+    map: bool,
 ) -> Result<Run, String>
 where
     Generated: Kernel<f64, N, S>,
@@ -39,12 +44,26 @@ where
     let mut sim = Simulation::new(setup, kernels).map_err(|e| format!("{}: {e}", scene.origin))?;
     let mut lines = Vec::new();
     let writer: Option<&mut dyn std::io::Write> = if log { Some(&mut lines) } else { None };
-    let (summary, trace) = run(&mut sim, &species, limits, writer, &mut |_| {})
-        .map_err(|e| format!("internal error: the log in memory failed: {e}"))?;
+    let mut rows = Vec::new();
+    let (summary, trace) = run_observed(
+        &mut sim,
+        &species,
+        limits,
+        writer,
+        &mut |_| {},
+        &mut |index, e, sim| {
+            if map {
+                rows.extend(boundary_map::row(index, e, sim, &species));
+            }
+            Ok(())
+        },
+    )
+    .map_err(|e| format!("internal error: the log in memory failed: {e}"))?;
     Ok(Run {
         summary,
         trace,
         log: lines,
+        rows,
     })
 }
 
@@ -57,6 +76,7 @@ struct Columns {
     wall_axis: Vec<i64>,
     wall_upper: Vec<bool>,
     obstacle: Vec<i64>,
+    boundary: Vec<i64>,
     nu: Vec<f64>,
     positions: Vec<f64>,
     pre_spin: Vec<f64>,
@@ -78,7 +98,8 @@ impl Columns {
         let kind = match e["kind"].as_str() {
             Some("ball-ball") => 0,
             Some("ball-wall") => 1,
-            _ => 2,
+            Some("ball-obstacle") => 2,
+            _ => 3,
         };
         self.kind.push(kind);
         let balls: Vec<i64> = e["balls"]
@@ -92,6 +113,7 @@ impl Columns {
         self.wall_axis.push(e["axis"].as_i64().unwrap_or(-1));
         self.wall_upper.push(e["side"].as_str() == Some("upper"));
         self.obstacle.push(e["obstacle"].as_i64().unwrap_or(-1));
+        self.boundary.push(e["boundary"].as_i64().unwrap_or(-1));
         self.nu.extend(numbers(&e["nu"]));
         for slot in 0..2 {
             let fill = |out: &mut Vec<f64>, v: Option<&Value>, len: usize| match v {
@@ -131,18 +153,62 @@ fn array<'py, T: numpy::Element>(
     Ok(PyArray1::from_vec(py, v).reshape(shape)?.into_any())
 }
 
+/// One float column of the boundary map, read from a row.
+type Field<'a> = dyn Fn(&Row) -> f64 + 'a;
+
+/// The boundary map's rows as arrays under the CSV's column names
+/// (`noslip_sim::boundary_map::header`): `kind` as text, the contact point as `q0`, `q1`, ...
+fn map_columns<'py>(py: Python<'py>, rows: &[Row], n: usize) -> PyResult<Bound<'py, PyDict>> {
+    let len = rows.len();
+    let out = PyDict::new(py);
+    let col = |f: &Field<'_>| rows.iter().map(f).collect::<Vec<f64>>();
+    out.set_item(
+        "event",
+        array(py, rows.iter().map(|r| r.event).collect(), &[len])?,
+    )?;
+    out.set_item("time", array(py, col(&|r| r.time), &[len])?)?;
+    out.set_item(
+        "ball",
+        array(py, rows.iter().map(|r| r.ball as i64).collect(), &[len])?,
+    )?;
+    let kinds: Vec<&str> = rows.iter().map(|r| r.body.kind_id().0).collect();
+    out.set_item("kind", kinds)?;
+    let ids: Vec<i64> = rows.iter().map(|r| r.body.kind_id().1 as i64).collect();
+    out.set_item("id", array(py, ids, &[len])?)?;
+    for k in 0..n {
+        out.set_item(format!("q{k}"), array(py, col(&|r| r.point[k]), &[len])?)?;
+    }
+    let columns: [(&str, &Field<'_>); 10] = [
+        ("coordinate", &|r| r.coordinate),
+        ("incidence", &|r| r.incidence),
+        ("reflection", &|r| r.reflection),
+        ("normal_velocity", &|r| r.normal_velocity),
+        ("tangential_velocity", &|r| r.tangential[0]),
+        ("tangential_velocity_post", &|r| r.tangential[1]),
+        ("spin", &|r| r.spin[0]),
+        ("spin_post", &|r| r.spin[1]),
+        ("scaled_spin", &|r| r.scaled_spin[0]),
+        ("scaled_spin_post", &|r| r.scaled_spin[1]),
+    ];
+    for (name, f) in columns {
+        out.set_item(name, array(py, col(f), &[len])?)?;
+    }
+    Ok(out)
+}
+
 /// Run `scene` to `events` contacts or simulated `time` (the scene's `[simulation]`
 /// defaults, else 100000 contacts); keep the events log when `log`. Returns a dict:
 /// `summary` (JSON text of the simulator's summary), `energy` (event counts and relative
 /// drifts of the samples), `events` (the log's columns as arrays).
 #[pyfunction]
-#[pyo3(signature = (scene, events, time, log))]
+#[pyo3(signature = (scene, events, time, log, boundary_map))]
 pub fn simulate<'py>(
     py: Python<'py>,
     scene: &Bound<'py, Scene>,
     events: Option<u64>,
     time: Option<f64>,
     log: bool,
+    boundary_map: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     if let Some(t) = time {
         if !(t > 0.0 && t.is_finite()) {
@@ -173,7 +239,7 @@ pub fn simulate<'py>(
     let done = py.detach(|| {
         collision_core::with_dim!(
             n,
-            |N, S| run_dim::<N, S>(scene, &limits, log),
+            |N, S| run_dim::<N, S>(scene, &limits, log, boundary_map),
             Err(format!("{}: dimension {n} has no kernels", scene.origin))
         )
     });
@@ -193,6 +259,7 @@ pub fn simulate<'py>(
     ev.set_item("wall_axis", array(py, cols.wall_axis, &[count])?)?;
     ev.set_item("wall_upper", array(py, cols.wall_upper, &[count])?)?;
     ev.set_item("obstacle", array(py, cols.obstacle, &[count])?)?;
+    ev.set_item("boundary", array(py, cols.boundary, &[count])?)?;
     ev.set_item("nu", array(py, cols.nu, &[count, n])?)?;
     ev.set_item("positions", array(py, cols.positions, &[count, 2, n])?)?;
     ev.set_item("pre_spin", array(py, cols.pre_spin, &[count, 2, s])?)?;
@@ -218,5 +285,6 @@ pub fn simulate<'py>(
     )?;
     out.set_item("energy", energy)?;
     out.set_item("events", ev)?;
+    out.set_item("boundary_map", map_columns(py, &done.rows, n)?)?;
     Ok(out)
 }
