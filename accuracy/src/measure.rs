@@ -193,7 +193,7 @@ where
 {
     const TRIALS: usize = 2;
     let unit = || Exact::from_integer(1.into());
-    let u = Exact::new(1.into(), num_bigint::BigInt::from(1u64 << 53));
+    let u = Exact::pow2(-53);
     let exact = crate::case::flatten(exact);
     let mut kappa = [0.0f64; 2];
     for _ in 0..TRIALS {
@@ -261,7 +261,7 @@ mod tests {
     fn f32_rounding_is_correct_at_double_rounding_traps() {
         // 1 + 2^-24 + 2^-60 is above the f32 midpoint 1 + 2^-24 and rounds up in f32;
         // its f64 rounding is the midpoint itself, which `as f32` ties to even (down).
-        let two = |k: u32| Exact::new(1.into(), num_bigint::BigInt::from(1u64) << k);
+        let two = |k: u32| Exact::pow2(-(k as i32));
         let above = q(1, 1) + two(24) + two(60);
         assert_eq!(split(&above).0 as f32, 1.0);
         assert_eq!(bits_to(1.0 + f32::EPSILON, &above), 0.0);

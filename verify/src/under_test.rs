@@ -95,11 +95,10 @@ pub fn mutated<const N: usize, const S: usize>(
     Box::new(move |nu, balls, states| {
         let inputs = input_values(nu, balls, states);
         let g = &kernel.graph;
-        let two = Exact::from_integer(2.into());
         let corrupt = |id: Id, node: &Node, values: &[Exact]| -> Option<Exact> {
             let label = g.label_of(id);
             match (mutation?, node) {
-                (Mutation::WrongConstant, Node::Const(c)) if *c == two => {
+                (Mutation::WrongConstant, Node::Const(c)) if c.to_string() == "2" => {
                     Some(Exact::from_integer(3.into()))
                 }
                 (Mutation::FlippedSign, Node::Add(a, b)) if label == Some("dn") => {

@@ -86,7 +86,9 @@ fn parse_start(i: usize, text: &str, len: usize) -> Result<Vec<Exact>, Failure> 
         .iter()
         .enumerate()
         .map(|(k, p)| {
-            parse_exact(p).map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))
+            parse_exact(p)
+                .map(|x| Exact::from_fraction(&x))
+                .map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))
         })
         .collect()
 }
@@ -172,7 +174,7 @@ where
 }
 
 fn x_size(scene: &Scene, k: usize) -> f64 {
-    scene.size[k].to_f64()
+    Exact::from_fraction(&scene.size[k]).to_f64()
 }
 
 fn show(v: &[f64]) -> String {

@@ -47,7 +47,7 @@ where
     Generated: Kernel<Exact, N, S>,
 {
     assert_eq!(set.dim, N);
-    let balls: Vec<Ball<Exact>> = species_balls(&set.species, Exact::clone);
+    let balls: Vec<Ball<Exact>> = species_balls(&set.species, Exact::from_fraction);
     let generic = GenericKernels {
         species: balls.clone(),
     };
