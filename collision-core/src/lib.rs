@@ -70,7 +70,7 @@ pub use dims::DIMS;
 pub use error::{BodyField, Field, InputError};
 #[cfg(feature = "num-rational")]
 pub use exact::ExactNumRational;
-pub use exact::{Exact, ExactRelaxed};
+pub use exact::{collide_exact, Exact, ExactRelaxed, Relaxing};
 pub use kernels::{Generated, Kernel};
 pub use normal::stereographic_normal;
 pub use scalar::{RefArith, Scalar};

@@ -7,14 +7,17 @@
 //! that no other crate names the bignum crate. [`Exact`] is `Rational` over dashu's reduced
 //! rationals (`RBig`), chosen by measurement (docs/benchmarks.md, "Exact arithmetic").
 //! [`ExactRelaxed`] keeps common factors between operations and is reduced only when it is
-//! shown or converted back ([`Rational::reduced`]).
+//! shown or converted back ([`Rational::reduced`]): the kernels' exact fast path
+//! ([`Relaxing`], [`collide_exact`]).
 
 mod backend;
+mod kernel;
 mod ops;
 #[cfg(test)]
 mod tests;
 
 pub use backend::Backend;
+pub use kernel::{collide_exact, Relaxing};
 
 use std::cmp::Ordering;
 use std::fmt;
