@@ -193,7 +193,7 @@ where
     Generated: Kernel<ExactRelaxed, N, S>,
 {
     const TRIALS: usize = 2;
-    let unit = || Exact::from_integer(1.into());
+    let unit = || Exact::from_integer(1);
     let u = Exact::pow2(-53);
     let exact = crate::case::flatten(exact);
     let mut kappa = [0.0f64; 2];

@@ -252,7 +252,7 @@ fn exact_case(nu: &[Exact], bodies: &[Body; 2]) -> ExactCase {
         let radius = q(body.radius);
         let gamma2 = match body.inertia {
             Ok(g) => q(g),
-            Err(l) => Exact::from_integer(2.into()) * q(l) / (radius.clone() * radius.clone()),
+            Err(l) => Exact::from_integer(2) * q(l) / (radius.clone() * radius.clone()),
         };
         Ball {
             inv_mass: body.mass.map_or(Exact::zero(), |m| Exact::one() / q(m)),
@@ -378,7 +378,7 @@ where
                     );
                     let err_eps = ((log2(&err2) - log2(&norm2)) / 2.0 + 52.0).exp2();
                     tally.worst_eps = tally.worst_eps.max(err_eps);
-                    let bound = Exact::from_integer(64.into()) * &eps;
+                    let bound = Exact::from_integer(64) * &eps;
                     if err2 <= &bound * &bound * &norm2 {
                         tally.within_bound += 1;
                         continue;

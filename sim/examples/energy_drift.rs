@@ -47,7 +47,7 @@ fn exact_state(s: &State) -> ExactState {
 }
 
 fn int(k: i64) -> Exact {
-    Exact::from_integer(k.into())
+    Exact::from_integer(k)
 }
 
 /// The disk and the setup of a shipped one-disk scene.
@@ -213,7 +213,7 @@ fn main() {
 
     let e0 = energy(&exact_state(sim.state(0)));
     let zero = ExactState::zero();
-    let sum = || Exact::from_integer(0.into());
+    let sum = || Exact::from_integer(0);
     let (mut normal, mut constants, mut arithmetic) = (sum(), sum(), sum());
     let (mut predicted_normal, mut predicted_constants) = (0.0, 0.0);
     let mut unit_error = 0.0;

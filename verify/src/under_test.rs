@@ -100,7 +100,7 @@ pub fn mutated<const N: usize, const S: usize>(
             let label = g.label_of(id);
             match (mutation?, node) {
                 (Mutation::WrongConstant, Node::Const(c)) if c.to_string() == "2" => {
-                    Some(Exact::from_integer(3.into()))
+                    Some(Exact::from_integer(3))
                 }
                 (Mutation::FlippedSign, Node::Add(a, b)) if label == Some("dn") => {
                     Some(&values[a.0 as usize] - &values[b.0 as usize])

@@ -26,7 +26,7 @@ pub fn table<const N: usize, const S: usize>(
             let e = |s: i64| -> [Exact; N] {
                 std::array::from_fn(|a| {
                     if a == k {
-                        Exact::from_integer(s.into())
+                        Exact::from_integer(s)
                     } else {
                         Exact::zero()
                     }
