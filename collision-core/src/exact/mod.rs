@@ -1,5 +1,6 @@
-//! Exact rational numbers, [`Exact`]: the type the kernels run in for the proof-style checks,
-//! the exact truth of the accuracy report, `collide --exact` and the scene checks.
+//! Exact rational numbers, [`Exact`]: the type the kernels run in for the proof-style checks
+//! (including those of the scene-specialised kernels), the exact truth of the accuracy
+//! report, `collide --exact` and the exact tangent dynamics.
 //!
 //! [`Rational`] wraps a big-rational representation ([`Backend`]) and gives the workspace the
 //! small API it needs (construction from integers, ratios, floats and decimal digits; the
