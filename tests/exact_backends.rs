@@ -2,11 +2,12 @@
 //! kernels in [`Exact`] (dashu's reduced rationals) and through the fast path
 //! ([`collide_exact`]: relaxed inside, reduced at the end) give, on every regime of the
 //! accuracy report, the same reduced fractions, the same `p/q` text and the same nearest
-//! `f64` as in the former exact type, num-rational's `BigRational` ([`ExactNumRational`]).
+//! `f64` as in the former exact type, num-rational's `BigRational` ([`ExactNumRational`]);
+//! and [`Relaxing`]'s `free` and `fixed` (the verifier's kernels) equal the kernels in `Exact`.
 
 use collision_core::{
     collide_exact, collide_unchecked, BodyState, Exact, ExactNumRational, ExactRelaxed, Generated,
-    Kernel, Scalar,
+    Kernel, Relaxing, Scalar,
 };
 use noslip_accuracy::{case::Case, Regime};
 
@@ -52,6 +53,16 @@ where
                 view(&fast, Exact::parts),
                 want,
                 "n = {N}, {regime:?}: fast path"
+            );
+            // The verifier's entry points, `Relaxing::free` and `::fixed`, called directly.
+            let (nu, [b1, b2], [s1, s2]) = (&new.nu, &new.balls, &new.states);
+            assert_eq!(
+                Relaxing::free(nu, b1, b2, s1, s2),
+                <Generated as Kernel<Exact, N, S>>::free(nu, b1, b2, s1, s2),
+            );
+            assert_eq!(
+                Relaxing::fixed(nu, &b1.radius, b2, s1, s2),
+                <Generated as Kernel<Exact, N, S>>::fixed(nu, &b1.radius, b2, s1, s2),
             );
         }
     }
