@@ -141,8 +141,11 @@ impl Method {
         samples: usize,
     ) -> Option<Timing>
     where
-        Generated:
-            Kernel<f64, N, S> + Kernel<f32, N, S> + Kernel<Exact, N, S> + BatchKernel<f64, N, S>,
+        Generated: Kernel<f64, N, S>
+            + Kernel<f32, N, S>
+            + Kernel<Exact, N, S>
+            + Kernel<collision_core::ExactRelaxed, N, S>
+            + BatchKernel<f64, N, S>,
     {
         let run64 = |c: &Case<f64, N, S>| collide_unchecked(&c.nu, c.ball_refs(), c.state_refs());
         Some(match self {

@@ -240,6 +240,7 @@ where
     Generated: Kernel<f64, N, S>
         + Kernel<f32, N, S>
         + Kernel<Exact, N, S>
+        + Kernel<collision_core::ExactRelaxed, N, S>
         + collision_core::batch::BatchKernel<f64, N, S>,
 {
     let mut rng = Rng::new(opts.seed ^ ((N as u64) << 32) ^ regime as u64);
@@ -403,7 +404,7 @@ pub struct Continuity {
 /// [`Continuity`] over `cases` typical cases.
 pub fn continuity<const N: usize, const S: usize>(cases: usize, seed: u64) -> Continuity
 where
-    Generated: Kernel<f64, N, S> + Kernel<Exact, N, S>,
+    Generated: Kernel<f64, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     use crate::measure::relative_norm;
     let mut rng = Rng::new(seed ^ 0xC0 ^ ((N as u64) << 32));

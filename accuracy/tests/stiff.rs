@@ -31,7 +31,7 @@ type Kern<const N: usize, const S: usize> = fn(
 
 fn regimes_within_bounds<const N: usize, const S: usize>()
 where
-    Generated: Kernel<f64, N, S> + Kernel<Exact, N, S>,
+    Generated: Kernel<f64, N, S> + Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     let kernels: [(&str, Kern<N, S>); 2] = [
         ("f64", collide_unchecked::<f64, N, S>),
@@ -77,7 +77,7 @@ where
 
 fn limits_are_continuous<const N: usize, const S: usize>()
 where
-    Generated: Kernel<f64, N, S> + Kernel<Exact, N, S>,
+    Generated: Kernel<f64, N, S> + Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     let c = continuity::<N, S>(CASES, 11);
     for (name, limit) in [

@@ -24,7 +24,6 @@
 use collision_core::rng::Rng;
 use collision_core::{collide_unchecked, stereographic_normal, Ball, BodyState, Exact, Scalar};
 use noslip::json::collide::collide_case;
-use num_bigint::BigInt;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use serde_json::{json, Value};
 
@@ -232,13 +231,11 @@ fn energy2(spin_weight: &Exact, s: usize, x: &[Exact]) -> Exact {
 
 /// `log2(x)` of a positive rational, to f64 precision.
 fn log2(x: &Exact) -> f64 {
-    let k = x.numer().bits() as i64 - x.denom().bits() as i64;
-    let shifted = if k >= 0 {
-        Exact::new(x.numer().clone(), x.denom().clone() << k as usize)
-    } else {
-        Exact::new(x.numer().clone() << (-k) as usize, x.denom().clone())
-    };
-    ToPrimitive::to_f64(&shifted).expect("in [1/2, 2]").log2() + k as f64
+    // 2^-k x is within a factor of about 20 of 1 (k from the decimal lengths of p and q),
+    // well inside f64's range, so its f64 loses only rounding.
+    let (p, q) = x.parts();
+    let k = ((p.len() as f64 - q.len() as f64) * std::f64::consts::LOG2_10) as i32;
+    (x * &Exact::pow2(-k)).to_f64().log2() + f64::from(k)
 }
 
 /// The exact case as collision-core's kernel inputs.
@@ -255,7 +252,7 @@ fn exact_case(nu: &[Exact], bodies: &[Body; 2]) -> ExactCase {
         let radius = q(body.radius);
         let gamma2 = match body.inertia {
             Ok(g) => q(g),
-            Err(l) => Exact::from_integer(2.into()) * q(l) / (radius.clone() * radius.clone()),
+            Err(l) => Exact::from_integer(2) * q(l) / (radius.clone() * radius.clone()),
         };
         Ball {
             inv_mass: body.mass.map_or(Exact::zero(), |m| Exact::one() / q(m)),
@@ -299,7 +296,7 @@ fn perturbed<const N: usize, const S: usize>(c: &ExactCase, rng: &mut Rng) -> [V
 where
     collision_core::Generated: collision_core::Kernel<Exact, N, S>,
 {
-    let u = Exact::new(1.into(), BigInt::from(1u64 << 53));
+    let u = Exact::pow2(-53);
     let mut p = |x: &Exact| {
         let d = if rng.coin() { u.clone() } else { -u.clone() };
         x * (Exact::one() + d)
@@ -335,7 +332,7 @@ where
     let s = S;
     let mut rng = Rng::new(0x1616 + N as u64);
     let mut tally = Tally::default();
-    let eps = Exact::new(1.into(), BigInt::from(1u64 << 52));
+    let eps = Exact::pow2(-52);
     for case_index in 0..cases {
         let (sc, regime) = scales(&mut rng);
         let immovable = match rng.next_u64() % 6 {
@@ -381,7 +378,7 @@ where
                     );
                     let err_eps = ((log2(&err2) - log2(&norm2)) / 2.0 + 52.0).exp2();
                     tally.worst_eps = tally.worst_eps.max(err_eps);
-                    let bound = Exact::from_integer(64.into()) * &eps;
+                    let bound = Exact::from_integer(64) * &eps;
                     if err2 <= &bound * &bound * &norm2 {
                         tally.within_bound += 1;
                         continue;
@@ -392,8 +389,7 @@ where
                         let moved = perturbed::<N, S>(&ec, &mut rng);
                         let change: Vec<Exact> =
                             moved[b].iter().zip(&exact[b]).map(|(x, y)| x - y).collect();
-                        let rel2 = energy2(&w, s, &change) / &norm2
-                            * Exact::from(num_traits::pow(BigInt::from(2), 106));
+                        let rel2 = energy2(&w, s, &change) / &norm2 * Exact::pow2(106);
                         if rel2 > kappa2 {
                             kappa2 = rel2;
                         }
@@ -423,8 +419,7 @@ where
                 .any(|k| field == format!("bodies[0].{k}") || field == format!("bodies[1].{k}"));
                 assert!(input, "the refusal names no input field: {e}; {what}");
                 let two = |k: i64| {
-                    let p =
-                        Exact::from(num_traits::pow(BigInt::from(2), k.unsigned_abs() as usize));
+                    let p = Exact::pow2(k.unsigned_abs() as i32);
                     if k >= 0 {
                         p
                     } else {

@@ -16,6 +16,8 @@
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use std::collections::HashMap;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+use std::str::FromStr;
 
 /// Index of a node in its [`Graph`]. Operands always have smaller ids than the node
 /// itself, so increasing id order is a topological order.
@@ -53,7 +55,7 @@ pub enum Node {
 
 /// A hook of [`Graph::eval_all`]: a replacement value for node `id`, given the values of the
 /// nodes before it, or `None` to evaluate the node as built.
-pub type Rewrite<'a> = dyn Fn(Id, &Node, &[BigRational]) -> Option<BigRational> + 'a;
+pub type Rewrite<'a, T = BigRational> = dyn Fn(Id, &Node, &[T]) -> Option<T> + 'a;
 
 /// The expression DAG. Nodes are append-only; see the module docs for the rewrites.
 #[derive(Default, Debug)]
@@ -291,12 +293,23 @@ impl Graph {
     /// may replace a node's value, given the values of the nodes before it (the verifier
     /// corrupts kernels with it on purpose; `|_, _, _| None` evaluates the DAG as built).
     /// Errors name a missing input or a division by zero.
-    pub fn eval_all(
+    ///
+    /// `T` is any exact field whose values parse from `p/q` (the DAG's constants are written
+    /// so): `BigRational`, `collision_core::Exact`.
+    pub fn eval_all<T>(
         &self,
-        input: &dyn Fn(&str) -> Option<BigRational>,
-        rewrite: &Rewrite<'_>,
-    ) -> Result<Vec<BigRational>, String> {
-        let mut values: Vec<BigRational> = Vec::with_capacity(self.nodes.len());
+        input: &dyn Fn(&str) -> Option<T>,
+        rewrite: &Rewrite<'_, T>,
+    ) -> Result<Vec<T>, String>
+    where
+        T: Clone + Zero + FromStr,
+        for<'a> &'a T: Add<&'a T, Output = T>
+            + Sub<&'a T, Output = T>
+            + Mul<&'a T, Output = T>
+            + Div<&'a T, Output = T>
+            + Neg<Output = T>,
+    {
+        let mut values: Vec<T> = Vec::with_capacity(self.nodes.len());
         for (i, node) in self.nodes.iter().enumerate() {
             let id = Id(i as u32);
             let v = match rewrite(id, node, &values) {
@@ -307,7 +320,10 @@ impl Graph {
                         Node::Input(Input(name)) => {
                             input(name).ok_or_else(|| format!("no value for input {name}"))?
                         }
-                        Node::Const(c) => c.clone(),
+                        Node::Const(c) => c
+                            .to_string()
+                            .parse()
+                            .map_err(|_| format!("constant {c} does not parse"))?,
                         Node::Add(a, b) => at(a) + at(b),
                         Node::Sub(a, b) => at(a) - at(b),
                         Node::Mul(a, b) => at(a) * at(b),
@@ -392,7 +408,7 @@ mod tests {
             Err("division by zero".into())
         );
         assert_eq!(
-            g.eval_all(&|_| None, &|_, _, _| None),
+            g.eval_all::<BigRational>(&|_| None, &|_, _, _| None),
             Err("no value for input x".into())
         );
     }

@@ -50,6 +50,7 @@ pub mod batch;
 mod checked;
 mod collide;
 mod error;
+pub mod exact;
 pub mod kernels;
 pub mod linalg;
 pub mod literal;
@@ -67,8 +68,11 @@ pub use collide::{
 };
 pub use dims::DIMS;
 pub use error::{BodyField, Field, InputError};
+#[cfg(feature = "num-rational")]
+pub use exact::ExactNumRational;
+pub use exact::{collide_exact, Exact, ExactRelaxed, Relaxing};
 pub use kernels::{Generated, Kernel};
 pub use normal::stereographic_normal;
-pub use scalar::{Exact, RefArith, Scalar};
+pub use scalar::{RefArith, Scalar};
 pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};
 pub use wide::{Binary, Wide};

@@ -2,15 +2,9 @@
 
 use crate::allowance::ULPS;
 use crate::wide::Wide;
-use num_bigint::BigInt;
-use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, Zero};
 use std::fmt::{Debug, Display};
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
-
-/// Exact rational numbers: the kernels instantiated with this type compute the collision
-/// map with no rounding at all.
-pub type Exact = BigRational;
 
 /// Arithmetic on references, `&a + &b -> T`, which the generated kernels use so that the
 /// same code serves `Copy` floats and heap-allocated rationals. Implemented for every `&T`
@@ -173,41 +167,6 @@ impl Scalar for f32 {
     }
 }
 
-impl Scalar for Exact {
-    const NAME: &'static str = "exact";
-    fn show(&self) -> String {
-        self.to_string()
-    }
-    const EXACT: bool = true;
-    fn from_ratio(num: i64, den: i64) -> Self {
-        BigRational::new(BigInt::from(num), BigInt::from(den))
-    }
-    fn is_finite(&self) -> bool {
-        true
-    }
-    fn to_f64(&self) -> f64 {
-        ToPrimitive::to_f64(self).unwrap_or(f64::NAN)
-    }
-    fn rounding_slack() -> Self {
-        Self::zero()
-    }
-    type Unbounded = Exact;
-    fn unbounded(&self) -> Exact {
-        self.clone()
-    }
-    fn from_unbounded(x: &Exact) -> Self {
-        x.clone()
-    }
-    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
-        a * b + c
-    }
-    #[inline(always)]
-    fn from_literal(_: f64, _: f32, num: &str, den: &str) -> Self {
-        let parse = |d: &str| d.parse::<BigInt>().expect("generated literal digits");
-        BigRational::new(parse(num), parse(den))
-    }
-}
-
 /// The rounding allowance of a quantity of scale `s`: `rounding_slack() |s|`.
 pub(crate) fn allowance<T: Scalar>(s: &T) -> T {
     T::rounding_slack() * s.abs()
@@ -221,12 +180,16 @@ pub(crate) fn two<T: Scalar>() -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Exact;
 
     #[test]
     fn ratios_are_exact_or_correctly_rounded() {
         assert_eq!(<f64 as Scalar>::from_ratio(1, 3), 1.0 / 3.0);
         assert_eq!(<f32 as Scalar>::from_ratio(-2, 1), -2.0);
-        assert_eq!(Exact::from_ratio(2, 6), Exact::new(1.into(), 3.into()));
+        assert_eq!(
+            Exact::from_ratio(2, 6),
+            Exact::from_decimal("1", "3").unwrap()
+        );
     }
 
     #[test]

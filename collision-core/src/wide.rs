@@ -494,7 +494,7 @@ mod tests {
     /// `m 2^e` exactly.
     fn exact(x: W) -> Exact {
         let m = Exact::from_float(x.m).unwrap();
-        let p = num_traits::pow(Exact::from_integer(2.into()), x.e.unsigned_abs() as usize);
+        let p = num_traits::pow(Exact::from_integer(2), x.e.unsigned_abs() as usize);
         if x.e >= 0 {
             m * p
         } else {

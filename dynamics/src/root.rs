@@ -24,9 +24,7 @@ impl Root for Exact {
         if self.is_negative() {
             return None;
         }
-        let (p, q) = (self.numer(), self.denom());
-        let (sp, sq) = (p.sqrt(), q.sqrt());
-        (&sp * &sp == *p && &sq * &sq == *q).then(|| Exact::new(sp, sq))
+        self.exact_sqrt()
     }
 }
 

@@ -15,12 +15,12 @@ fn check<K: PairKernels<Exact, 2, 1>>(scene: &str, kernels: K) {
     let path = format!("{}/../scenes/{scene}", env!("CARGO_MANIFEST_DIR"));
     let scene = Scene::from_file(path.as_ref()).unwrap();
     let generic = GenericKernels {
-        species: species_balls(&scene.species, Exact::clone),
+        species: species_balls(&scene.species, Exact::from_fraction),
     };
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     let mut q = || {
-        Exact::from_integer(rng.random_range(-1000..=1000).into())
-            / Exact::from_integer(rng.random_range(1..=97).into())
+        Exact::from_integer(rng.random_range(-1000..=1000))
+            / Exact::from_integer(rng.random_range(1..=97))
     };
     let set = scene.pairs();
     assert!(!set.all().is_empty());

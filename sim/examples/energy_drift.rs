@@ -29,7 +29,6 @@
 
 use collision_core::{Ball, BodyState, Exact, Generated, Kernel};
 use noslip_sim::{Body, Contact, FixedBall, GenericKernels, Setup, Simulation, Step};
-use num_traits::ToPrimitive;
 use rand::{Rng as _, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -48,7 +47,7 @@ fn exact_state(s: &State) -> ExactState {
 }
 
 fn int(k: i64) -> Exact {
-    Exact::from_integer(k.into())
+    Exact::from_integer(k)
 }
 
 /// The disk and the setup of a shipped one-disk scene.
@@ -148,7 +147,7 @@ where
             spin: std::array::from_fn(|_| rng.random_range(-1.0..1.0)),
             velocity: std::array::from_fn(|_| rng.random_range(-1.0..1.0)),
         };
-        let e0 = energy(&s).to_f64().unwrap();
+        let e0 = energy(&s).to_f64();
         let mut before = energy(&s);
         let (mut sum, mut sum2) = (0.0, 0.0);
         for _ in 0..contacts {
@@ -157,7 +156,7 @@ where
             let nu: [f64; N] = std::array::from_fn(|k| if k == axis { side } else { 0.0 });
             s = Generated::fixed(&nu, &1.0, &ball, &BodyState::zero(), &s);
             let after = energy(&s);
-            let change = (&after - &before).to_f64().unwrap() / e0 / f64::EPSILON;
+            let change = (&after - &before).to_f64() / e0 / f64::EPSILON;
             before = after;
             sum += change;
             sum2 += change * change;
@@ -197,7 +196,7 @@ fn main() {
     let mut sim = Simulation::new(setup, kernels).expect("valid setup");
 
     let (g, r) = (exact(ball.gamma2), exact(ball.radius));
-    let half = Exact::new(1.into(), 2.into());
+    let half = Exact::pow2(-1);
     let energy = |s: &ExactState| {
         let u2 = &s.velocity[0] * &s.velocity[0] + &s.velocity[1] * &s.velocity[1];
         &half * (u2 + &g * &r * &r * &s.spin[0] * &s.spin[0])
@@ -212,13 +211,11 @@ fn main() {
     let (rho, p) = (exact(2.0 / (ball.radius * d)), exact(ball.gamma2 / d));
     let p_true = &g / (int(1) + &g);
     let rho_true = int(2) / (&r * (int(1) + &g));
-    let bias = (&g * (&p - &p_true) / &p_true + (&rho - &rho_true) / &rho_true)
-        .to_f64()
-        .unwrap();
+    let bias = (&g * (&p - &p_true) / &p_true + (&rho - &rho_true) / &rho_true).to_f64();
 
     let e0 = energy(&exact_state(sim.state(0)));
     let zero = ExactState::zero();
-    let sum = || Exact::from_integer(0.into());
+    let sum = || Exact::from_integer(0);
     let (mut normal, mut constants, mut arithmetic) = (sum(), sum(), sum());
     let (mut predicted_normal, mut predicted_constants) = (0.0, 0.0);
     let mut unit_error = 0.0;
@@ -243,24 +240,22 @@ fn main() {
         constants += energy(&rounded) - energy(&exact_map);
         arithmetic += energy(&exact_state(&event.post[0])) - energy(&rounded);
         let (t, dn) = slip(&nu, &r, &pre);
-        let t2 = (&t[0] * &t[0] + &t[1] * &t[1]).to_f64().unwrap();
-        let dn = dn.to_f64().unwrap();
-        let e = (&nu[0] * &nu[0] + &nu[1] * &nu[1] - int(1))
-            .to_f64()
-            .unwrap();
+        let t2 = (&t[0] * &t[0] + &t[1] * &t[1]).to_f64();
+        let dn = dn.to_f64();
+        let e = (&nu[0] * &nu[0] + &nu[1] * &nu[1] - int(1)).to_f64();
         unit_error += e;
         let gf = ball.gamma2;
         predicted_normal += 2.0 * e * (dn * dn / (1.0 + gf) + gf * t2 / ((1.0 + gf) * (1.0 + gf)));
         predicted_constants += 0.5 * 4.0 * gf / ((1.0 + gf) * (1.0 + gf)) * bias * t2;
     }
-    let e0f = e0.to_f64().unwrap();
+    let e0f = e0.to_f64();
     let per = |x: f64| x / e0f / n as f64 / f64::EPSILON;
-    let per_x = |x: &Exact| per(x.to_f64().unwrap());
+    let per_x = |x: &Exact| per(x.to_f64());
     let e1 = energy(&exact_state(sim.state(0)));
-    let drift = ((&e1 - &e0) / &e0).to_f64().unwrap();
+    let drift = ((&e1 - &e0) / &e0).to_f64();
     println!(
         "{name}: {n} contacts, relative drift {drift:.3e} ({:.4} eps per contact)",
-        per(e1.to_f64().unwrap() - e0f)
+        per(e1.to_f64() - e0f)
     );
     println!(
         "  normal      {:.4}  (first order: {:.4}; mean |nu|^2 - 1 = {:.4} eps)",

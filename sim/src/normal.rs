@@ -79,8 +79,7 @@ mod tests {
     fn nearly_correctly_rounded(d: &[f64], r: f64) -> bool {
         let s: Exact = d.iter().map(|x| q(*x) * q(*x)).sum();
         let ulp = q(f64::from_bits(r.to_bits() + 1) - r);
-        let slack =
-            ulp * (Exact::new(1.into(), 2.into()) + Exact::new(1.into(), (1u64 << 30).into()));
+        let slack = ulp * (Exact::pow2(-1) + Exact::pow2(-30));
         let (below, above) = (q(r) - &slack, q(r) + &slack);
         &below * &below <= s && s <= &above * &above
     }

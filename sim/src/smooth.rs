@@ -73,7 +73,7 @@ mod tests {
     use collision_core::Exact;
 
     fn q(p: i64, d: i64) -> Exact {
-        Exact::new(p.into(), d.into())
+        Exact::checked_ratio(p, d).expect("nonzero denominator")
     }
 
     #[test]

@@ -11,15 +11,12 @@ use collision_core::{Ball, BodyState, Exact, Generated, Kernel};
 use num_traits::{One, Signed, Zero};
 
 fn q(p: i64, d: i64) -> Exact {
-    Exact::new(p.into(), d.into())
+    Exact::checked_ratio(p, d).expect("nonzero denominator")
 }
 
 /// `sqrt(x)` of a rational square.
 fn sqrt_exact(x: &Exact) -> Exact {
-    let (p, d) = (x.numer().sqrt(), x.denom().sqrt());
-    let s = Exact::new(p, d);
-    assert_eq!(&s * &s, *x, "not a rational square");
-    s
+    x.exact_sqrt().expect("a rational square")
 }
 
 fn dot<const N: usize>(a: &[Exact; N], b: &[Exact; N]) -> Exact {

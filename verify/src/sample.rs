@@ -11,7 +11,6 @@
 
 use collision_core::rng::Rng;
 use collision_core::{stereographic_normal, Ball, BodyState, Exact};
-use num_bigint::BigInt;
 use num_traits::Zero;
 
 /// `|S|`.
@@ -19,7 +18,7 @@ pub const SET_SIZE: u64 = 1 << 20;
 
 /// Uniform in `S`.
 pub fn element(rng: &mut Rng) -> Exact {
-    Exact::from_integer(BigInt::from(rng.integer(1..=SET_SIZE)))
+    Exact::from_integer(rng.integer(1..=SET_SIZE) as i64)
 }
 
 /// One exact point: a normal and two bodies (body 1 immovable when `fixed`).

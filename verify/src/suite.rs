@@ -64,7 +64,7 @@ pub fn identity_checks<const N: usize, const S: usize>(
     progress: &mut dyn FnMut(&CheckResult),
 ) -> Vec<CheckResult>
 where
-    Generated: Kernel<Exact, N, S>,
+    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     Identity::for_variant(variant)
         .iter()
@@ -100,7 +100,7 @@ pub fn run_dim<const N: usize, const S: usize>(
     progress: &mut dyn FnMut(&CheckResult),
 ) -> Vec<CheckResult>
 where
-    Generated: Kernel<Exact, N, S>,
+    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     let mut out = Vec::new();
     for variant in Variant::ALL {

@@ -61,7 +61,9 @@ fn parse_start(i: usize, text: &str) -> Result<Vec<Exact>, Failure> {
     text.split(',')
         .enumerate()
         .map(|(k, p)| {
-            parse_exact(p).map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))
+            parse_exact(p)
+                .map(|x| Exact::from_fraction(&x))
+                .map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))
         })
         .collect()
 }

@@ -91,9 +91,8 @@ fn run<const N: usize, const S: usize>(
     let e0 = energy(ball, &s);
     let g = exact(ball.gamma2);
     let (p, rho) = constant_errors(ball);
-    let per_slip2 = Exact::from_integer(4.into()) * &g
-        / ((Exact::from_integer(1.into()) + &g).pow(2))
-        * (&g * p + rho);
+    let per_slip2 =
+        Exact::from_integer(4) * &g / ((Exact::from_integer(1) + &g).pow(2)) * (&g * p + rho);
     let mut slip2 = 0.0;
     for _ in 0..CONTACTS {
         let axis = rng.random_range(0..N);
@@ -116,9 +115,9 @@ fn constant_errors(ball: &Ball<f64>) -> (Exact, Exact) {
     let d = 1.0 + ball.gamma2;
     let (p, rho) = (ball.gamma2 / d, 2.0 / (ball.radius * d));
     let g = exact(ball.gamma2);
-    let one = Exact::from_integer(1.into());
+    let one = Exact::from_integer(1);
     let p_exact = &g / (&one + &g);
-    let rho_exact = Exact::from_integer(2.into()) / (exact(ball.radius) * (&one + &g));
+    let rho_exact = Exact::from_integer(2) / (exact(ball.radius) * (&one + &g));
     (
         (exact(p) - &p_exact) / p_exact,
         (exact(rho) - &rho_exact) / rho_exact,

@@ -503,7 +503,7 @@ pub fn exact_start<const N: usize, const S: usize>(
                 let l = f.period[k].unwrap_or(0.0);
                 let d = xf[k] - centre[k].to_f64();
                 let n = if l > 0.0 { (d / l).round() as i64 } else { 0 };
-                Exact::from_integer(n.into()) * table.period[k].clone().unwrap_or_default()
+                Exact::from_integer(n) * table.period[k].clone().unwrap_or_default()
             });
             let d: [Exact; N] =
                 std::array::from_fn(|k| s.x[k].clone() - centre[k].clone() - shift[k].clone());
@@ -516,14 +516,14 @@ pub fn exact_start<const N: usize, const S: usize>(
                 return None;
             }
             let sign = if inside {
-                -Exact::from_integer(1.into())
+                -Exact::from_integer(1)
             } else {
-                Exact::from_integer(1.into())
+                Exact::from_integer(1)
             };
             std::array::from_fn(|k| sign.clone() * d[k].clone() / r_eff.clone())
         }
     };
-    (dot(&s.state.velocity, &nu) > Exact::from_integer(0.into())).then_some(s)
+    (dot(&s.state.velocity, &nu) > Exact::from_integer(0)).then_some(s)
 }
 
 /// The section state just after the first contact of a ball at `x` with `state` (the scene's

@@ -26,14 +26,14 @@ pub fn table<const N: usize, const S: usize>(
             let e = |s: i64| -> [Exact; N] {
                 std::array::from_fn(|a| {
                     if a == k {
-                        Exact::from_integer(s.into())
+                        Exact::from_integer(s)
                     } else {
                         Exact::zero()
                     }
                 })
             };
             let mut far = e(0);
-            far[k] = scene.size[k].clone();
+            far[k] = Exact::from_fraction(&scene.size[k]);
             boundaries.push(Boundary::Wall {
                 point: e(0),
                 normal: e(1),
@@ -46,8 +46,8 @@ pub fn table<const N: usize, const S: usize>(
     }
     for o in &scene.obstacles {
         boundaries.push(Boundary::Sphere {
-            centre: std::array::from_fn(|k| o.position[k].clone()),
-            radius: o.radius.clone(),
+            centre: std::array::from_fn(|k| Exact::from_fraction(&o.position[k])),
+            radius: Exact::from_fraction(&o.radius),
         });
     }
     let spec = &scene.balls[0];
@@ -55,19 +55,19 @@ pub fn table<const N: usize, const S: usize>(
     let table = Table {
         boundaries,
         period: std::array::from_fn(|k| {
-            (scene.boundary[k] == Axis::Periodic).then(|| scene.size[k].clone())
+            (scene.boundary[k] == Axis::Periodic).then(|| Exact::from_fraction(&scene.size[k]))
         }),
         ball: Ball {
-            inv_mass: Exact::one() / species.mass.clone(),
-            radius: species.radius.clone(),
-            gamma2: species.gamma2.clone(),
+            inv_mass: Exact::one() / Exact::from_fraction(&species.mass),
+            radius: Exact::from_fraction(&species.radius),
+            gamma2: Exact::from_fraction(&species.gamma2),
         },
         law,
     };
-    let x = std::array::from_fn(|k| spec.position[k].clone());
+    let x = std::array::from_fn(|k| Exact::from_fraction(&spec.position[k]));
     let state = BodyState {
-        velocity: std::array::from_fn(|k| spec.velocity[k].clone()),
-        spin: std::array::from_fn(|k| spec.spin[k].clone()),
+        velocity: std::array::from_fn(|k| Exact::from_fraction(&spec.velocity[k])),
+        spin: std::array::from_fn(|k| Exact::from_fraction(&spec.spin[k])),
     };
     Ok((table, x, state))
 }

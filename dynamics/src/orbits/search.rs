@@ -152,7 +152,10 @@ where
         }
         let bounds: [(f64, f64); N] = std::array::from_fn(|k| match f.period[k] {
             Some(l) => (0.0, l),
-            None => (f.ball.radius, scene.size[k].to_f64() - f.ball.radius),
+            None => (
+                f.ball.radius,
+                Exact::from_fraction(&scene.size[k]).to_f64() - f.ball.radius,
+            ),
         });
         starts.extend(grid(&f, &bounds, m).ok_or_else(|| {
             SearchError::Grid(

@@ -268,7 +268,7 @@ pub fn run<const N: usize, const S: usize>(
     seed: u64,
 ) -> Result<(), String>
 where
-    Generated: Kernel<Exact, N, S>,
+    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     let free = generated::<N, S>(Variant::Free);
     let mut rng = Rng::new(seed);
@@ -286,7 +286,7 @@ mod tests {
 
     fn all_pass<const N: usize, const S: usize>()
     where
-        Generated: Kernel<Exact, N, S>,
+        Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
     {
         for variant in Variant::ALL {
             let kernel = generated::<N, S>(variant);

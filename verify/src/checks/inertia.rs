@@ -62,9 +62,9 @@ fn bernstein(c: &[Exact], a: &Exact, b: &Exact) -> Vec<Exact> {
         .map(|(j, x)| x * pow(&h, j))
         .collect();
     let binom = |n: usize, k: usize| -> Exact {
-        Exact::from_integer(
-            (0..k).fold(num_bigint::BigInt::one(), |acc, i| acc * (n - i) / (i + 1)),
-        )
+        (0..k).fold(Exact::one(), |acc, i| {
+            acc * Exact::from_integer((n - i) as i64) / Exact::from_integer((i + 1) as i64)
+        })
     };
     (0..=d)
         .map(|k| (0..=k).map(|j| &q[j] * binom(k, j) / binom(d, j)).sum())

@@ -39,7 +39,7 @@ pub enum Limit {
 /// from `k = 3` on. Returns the errors as f64 for the report.
 pub fn check<const N: usize, const S: usize>(limit: Limit, seed: u64) -> Result<Vec<f64>, String>
 where
-    Generated: Kernel<Exact, N, S>,
+    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     let mut rng = Rng::new(seed);
     let mut small =

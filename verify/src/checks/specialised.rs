@@ -44,10 +44,10 @@ pub fn check<const N: usize, const S: usize>(
     seed: u64,
 ) -> Vec<PairCheck>
 where
-    Generated: Kernel<Exact, N, S>,
+    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
     assert_eq!(set.dim, N);
-    let balls: Vec<Ball<Exact>> = species_balls(&set.species, Exact::clone);
+    let balls: Vec<Ball<Exact>> = species_balls(&set.species, Exact::from_fraction);
     let generic = GenericKernels {
         species: balls.clone(),
     };

@@ -1,0 +1,205 @@
+//! The big-rational representations [`Rational`](super::Rational) can hold: a small sealed
+//! interface, so that the choice is made (and measured, `accuracy/examples/exact_backends.rs`) in one
+//! place and no other crate names a bignum crate.
+
+use dashu_int::IBig;
+use dashu_ratio::{RBig, Relaxed};
+use std::cmp::Ordering;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for dashu_ratio::RBig {}
+    impl Sealed for dashu_ratio::Relaxed {}
+    #[cfg(feature = "num-rational")]
+    impl Sealed for num_rational::BigRational {}
+}
+
+/// What [`Rational`](super::Rational) needs of a representation. Every method is exact;
+/// the comparisons and [`Backend::parts`] are by value (a representation may keep common
+/// factors of numerator and denominator).
+pub trait Backend: sealed::Sealed + Clone + Send + Sync + 'static {
+    /// `num / den`, `den != 0`.
+    fn from_ratio(num: i64, den: i64) -> Self;
+    /// `num / den` from decimal digits with an optional sign; `None` if either is not an
+    /// integer or `den` is zero.
+    fn from_decimal(num: &str, den: &str) -> Option<Self>;
+    /// The exact value of a finite `f64`.
+    fn from_f64(x: f64) -> Option<Self>;
+    /// `a + b`.
+    fn add(a: &Self, b: &Self) -> Self;
+    /// `a - b`.
+    fn sub(a: &Self, b: &Self) -> Self;
+    /// `a b`.
+    fn mul(a: &Self, b: &Self) -> Self;
+    /// `a / b`; panics if `b = 0`, like integer division.
+    fn div(a: &Self, b: &Self) -> Self;
+    /// `-a`.
+    fn neg(a: &Self) -> Self;
+    /// The integer part, rounded toward zero.
+    fn trunc(a: &Self) -> Self;
+    /// The order of the values.
+    fn cmp(a: &Self, b: &Self) -> Ordering;
+    /// The sign: `Less`, `Equal` or `Greater` than zero.
+    fn sign(a: &Self) -> Ordering;
+    /// Numerator and denominator of the reduced fraction (`q > 0`), in decimal.
+    fn parts(a: &Self) -> (String, String);
+    /// The nearest `f64` (ties to even); `±inf` beyond its range.
+    fn to_f64(a: &Self) -> f64;
+}
+
+fn ibig(digits: &str) -> Option<IBig> {
+    digits.strip_prefix('+').unwrap_or(digits).parse().ok()
+}
+
+impl Backend for RBig {
+    fn from_ratio(num: i64, den: i64) -> Self {
+        RBig::from_parts_signed(IBig::from(num), IBig::from(den))
+    }
+    fn from_decimal(num: &str, den: &str) -> Option<Self> {
+        let (p, q) = (ibig(num)?, ibig(den)?);
+        (q != IBig::ZERO).then(|| RBig::from_parts_signed(p, q))
+    }
+    fn from_f64(x: f64) -> Option<Self> {
+        RBig::try_from(x).ok()
+    }
+    #[inline]
+    fn add(a: &Self, b: &Self) -> Self {
+        a + b
+    }
+    #[inline]
+    fn sub(a: &Self, b: &Self) -> Self {
+        a - b
+    }
+    #[inline]
+    fn mul(a: &Self, b: &Self) -> Self {
+        a * b
+    }
+    #[inline]
+    fn div(a: &Self, b: &Self) -> Self {
+        a / b
+    }
+    #[inline]
+    fn neg(a: &Self) -> Self {
+        -a
+    }
+    fn trunc(a: &Self) -> Self {
+        RBig::from(a.trunc())
+    }
+    fn cmp(a: &Self, b: &Self) -> Ordering {
+        Ord::cmp(a, b)
+    }
+    fn sign(a: &Self) -> Ordering {
+        Ord::cmp(a.numerator(), &IBig::ZERO)
+    }
+    fn parts(a: &Self) -> (String, String) {
+        (a.numerator().to_string(), a.denominator().to_string())
+    }
+    fn to_f64(a: &Self) -> f64 {
+        a.to_f64().value()
+    }
+}
+
+/// Numerator times the other denominator: the cross products that order two fractions with
+/// positive denominators.
+fn cross(a: &Relaxed, b: &Relaxed) -> (IBig, IBig) {
+    let d = |x: &Relaxed| IBig::from(x.denominator().clone());
+    (a.numerator() * d(b), b.numerator() * d(a))
+}
+
+impl Backend for Relaxed {
+    fn from_ratio(num: i64, den: i64) -> Self {
+        Relaxed::from_parts_signed(IBig::from(num), IBig::from(den))
+    }
+    fn from_decimal(num: &str, den: &str) -> Option<Self> {
+        RBig::from_decimal(num, den).map(RBig::relax)
+    }
+    fn from_f64(x: f64) -> Option<Self> {
+        RBig::try_from(x).ok().map(RBig::relax)
+    }
+    #[inline]
+    fn add(a: &Self, b: &Self) -> Self {
+        a + b
+    }
+    #[inline]
+    fn sub(a: &Self, b: &Self) -> Self {
+        a - b
+    }
+    #[inline]
+    fn mul(a: &Self, b: &Self) -> Self {
+        a * b
+    }
+    #[inline]
+    fn div(a: &Self, b: &Self) -> Self {
+        a / b
+    }
+    #[inline]
+    fn neg(a: &Self) -> Self {
+        -a
+    }
+    fn trunc(a: &Self) -> Self {
+        RBig::from(a.trunc()).relax()
+    }
+    fn cmp(a: &Self, b: &Self) -> Ordering {
+        let (x, y) = cross(a, b);
+        Ord::cmp(&x, &y)
+    }
+    fn sign(a: &Self) -> Ordering {
+        Ord::cmp(a.numerator(), &IBig::ZERO)
+    }
+    fn parts(a: &Self) -> (String, String) {
+        Backend::parts(&a.clone().canonicalize())
+    }
+    fn to_f64(a: &Self) -> f64 {
+        a.clone().canonicalize().to_f64().value()
+    }
+}
+
+#[cfg(feature = "num-rational")]
+impl Backend for num_rational::BigRational {
+    fn from_ratio(num: i64, den: i64) -> Self {
+        Self::new(num.into(), den.into())
+    }
+    fn from_decimal(num: &str, den: &str) -> Option<Self> {
+        let parse = |d: &str| d.parse::<num_bigint::BigInt>().ok();
+        let (p, q) = (parse(num)?, parse(den)?);
+        (q != 0.into()).then(|| Self::new(p, q))
+    }
+    fn from_f64(x: f64) -> Option<Self> {
+        Self::from_float(x)
+    }
+    #[inline]
+    fn add(a: &Self, b: &Self) -> Self {
+        a + b
+    }
+    #[inline]
+    fn sub(a: &Self, b: &Self) -> Self {
+        a - b
+    }
+    #[inline]
+    fn mul(a: &Self, b: &Self) -> Self {
+        a * b
+    }
+    #[inline]
+    fn div(a: &Self, b: &Self) -> Self {
+        a / b
+    }
+    #[inline]
+    fn neg(a: &Self) -> Self {
+        -a
+    }
+    fn trunc(a: &Self) -> Self {
+        a.trunc()
+    }
+    fn cmp(a: &Self, b: &Self) -> Ordering {
+        Ord::cmp(a, b)
+    }
+    fn sign(a: &Self) -> Ordering {
+        Ord::cmp(a.numer(), &0.into())
+    }
+    fn parts(a: &Self) -> (String, String) {
+        (a.numer().to_string(), a.denom().to_string())
+    }
+    fn to_f64(a: &Self) -> f64 {
+        num_traits::ToPrimitive::to_f64(a).unwrap_or(f64::NAN)
+    }
+}
