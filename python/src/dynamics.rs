@@ -164,7 +164,11 @@ pub fn orbits(
         let z = start
             .iter()
             .enumerate()
-            .map(|(k, x)| parse_exact(x).map_err(|e| input_error(format!("starts[{i}][{k}]: {e}"))))
+            .map(|(k, x)| {
+                parse_exact(x)
+                    .map(|x| collision_core::Exact::from_fraction(&x))
+                    .map_err(|e| input_error(format!("starts[{i}][{k}]: {e}")))
+            })
             .collect::<PyResult<Vec<_>>>()?;
         from.push(z);
     }
