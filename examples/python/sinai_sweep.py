@@ -1,11 +1,12 @@
-"""A sweep on Dask: the no-slip Sinai table over gamma^2 x obstacle radius, with a plot.
+"""A sweep on Dask: the largest Lyapunov exponent of the no-slip Sinai table over
+gamma^2 x obstacle radius, with a plot.
 
     python examples/python/sinai_sweep.py [--store out/sweep/sinai] [--scheduler ADDRESS]
 
-Each grid point runs the simulator (noslip.tables.sinai_collision_rate: the rate of
-collisions per unit time of a rough disk, radius 1/20, in the periodic unit square with a
-fixed disk obstacle) as part of a Dask task; results stream into the store, so a re-run
-computes only the points not there yet. Without --scheduler a local cluster of processes
+Each grid point computes the largest Lyapunov exponent per unit time
+(noslip.tables.sinai_lyapunov: tangent maps along the simulator's trajectory, QR, for a rough
+disk of radius 1/20 in the periodic unit square with a fixed disk obstacle) as part of a Dask
+task; results stream into the store, so a re-run computes only the points not there yet. Without --scheduler a local cluster of processes
 (one worker per core) runs it; with it, the cluster at that address (dask-jobqueue,
 Kubernetes, ...). The plot (needs matplotlib) is written beside the store.
 """
@@ -16,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 import noslip
-from noslip.tables import sinai_collision_rate
+from noslip.tables import sinai_lyapunov
 
 ap = argparse.ArgumentParser()
 ap.add_argument("--store", default="out/sweep/sinai")
@@ -35,12 +36,12 @@ if args.scheduler:
     client = Client(args.scheduler)
 
 
-def rate(gamma2, radius, events=args.events):
-    return sinai_collision_rate(gamma2, radius, events=events)
+def exponent(gamma2, radius, events=args.events):
+    return sinai_lyapunov(gamma2, radius, events=events)
 
 
-frame = noslip.sweep(rate, grid, client=client, store=args.store)
-table = frame.pivot(index="gamma2", columns="radius", values="collision_rate")
+frame = noslip.sweep(exponent, grid, client=client, store=args.store)
+table = frame.pivot(index="gamma2", columns="radius", values="lyapunov")
 print(table.round(3).to_string())
 try:
     import matplotlib
@@ -54,7 +55,7 @@ else:
     image = ax.pcolormesh(table.columns, table.index, table.values, shading="nearest")
     ax.set_xlabel("obstacle radius")
     ax.set_ylabel("gamma^2 of the disk")
-    ax.set_title("no-slip Sinai table: collisions per unit time")
+    ax.set_title("no-slip Sinai table: largest Lyapunov exponent per unit time")
     fig.colorbar(image, ax=ax)
     out = Path(args.store).with_suffix(".png")
     fig.savefig(out, dpi=120, bbox_inches="tight")

@@ -1,14 +1,23 @@
-"""collide_batch against the Rust batch kernel and a vectorised NumPy peer.
+"""collide_batch against the Rust batch kernel and a vectorised NumPy peer, side by side.
 
-    python python/benches/batch.py [--rows 1000000] [--dims 3] [--repeats 5]
+    python python/benches/batch.py [--rows 1000000] [--dims 3] [--repeats 7]
 
-Prints median-free figures: the best of `repeats` runs, in ns per contact, for
-- `rust`: the Rust batch kernel alone (`Exec::auto().free`, rayon threads) on the same rows,
-  already laid out in its blocked batch (noslip.batch.batch_kernel_seconds);
-- `collide_batch`: noslip.collide_batch on the NumPy arrays, without and with validation;
+On the same random contacts (both bodies free, float64, C-contiguous), in ns per contact,
+the median of `repeats` rounds, each round running every contender once in turn (so that a
+change of the machine's load hits them alike):
+- `rust rows`: the reference, the Rust batch kernel from the same row-major arrays into
+  row-major outputs through collision-core's batch API (fill_from_rows, Exec::free,
+  write_rows; chunks on rayon's threads), timed in Rust (noslip.batch.reference_seconds);
+  its outputs are allocated once and reused, so it does not pay the first touch of new
+  arrays that collide_batch pays;
+- `rust kernel`: Exec::auto().free alone on the rows already in its blocked layout (the
+  floor: the row-major arrays neither read nor written);
+- `collide_batch`: noslip.collide_batch on the NumPy arrays, without and with validation
+  (the default);
 - `numpy`: the closed form of docs/derivation.md section 8 written with NumPy array
   operations (checked against the package first);
-and the speed-up of two Python threads running serial batches (the GIL released).
+and the time of two Python threads each running a serial batch on half the rows over the
+same two calls one after the other (the GIL released: about 0.5 with two free cores).
 """
 
 from __future__ import annotations
@@ -20,7 +29,7 @@ import time
 import numpy as np
 
 import noslip
-from noslip.batch import batch_kernel_seconds
+from noslip.batch import reference_seconds
 
 
 def contacts(rng, rows, n):
@@ -68,25 +77,28 @@ def numpy_peer(nu, bodies):
     )
 
 
-def best(f, repeats):
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        f()
-        times.append(time.perf_counter() - t)
-    return min(times)
+def seconds(f):
+    t = time.perf_counter()
+    f()
+    return time.perf_counter() - t
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rows", type=int, default=1_000_000)
     ap.add_argument("--dims", type=int, nargs="+", default=[3])
-    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--repeats", type=int, default=7)
     args = ap.parse_args()
-    print(f"isa {noslip.isa()}, {args.rows} contacts, best of {args.repeats}, ns per contact")
-    print("| n | rust kernel | collide_batch | ratio | collide_batch, validated | numpy peer "
-          "| numpy / collide_batch | 2 threads / sequential |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print(
+        f"isa {noslip.isa()}, {args.rows} contacts, median of {args.repeats} rounds, "
+        "ns per contact"
+    )
+    print(
+        "| n | rust kernel | rust rows | collide_batch | / rust rows "
+        "| collide_batch, validated | / rust rows | numpy peer "
+        "| numpy / collide_batch validated | 2 threads / sequential |"
+    )
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for n in args.dims:
         rng = np.random.default_rng(n)
         nu, bodies = contacts(rng, args.rows, n)
@@ -99,29 +111,39 @@ def main():
             for key in ("angular_velocity", "velocity"):
                 err = np.abs(ours[b][key] - peer[b][key]).max()
                 assert err < 1e-12, (n, b, key, err)
-        ns = 1e9 / args.rows
-        rust = min(batch_kernel_seconds(nu, bodies, args.repeats)) * ns
-        fast = best(lambda: noslip.collide_batch(nu, bodies, validate=False), args.repeats) * ns
-        checked = best(lambda: noslip.collide_batch(nu, bodies), args.repeats) * ns
-        numpy_t = best(lambda: numpy_peer(nu, bodies), max(1, args.repeats // 2)) * ns
         half = [{key: v[: args.rows // 2] for key, v in b.items()} for b in bodies]
-        run = lambda: noslip.collide_batch(nu[: args.rows // 2], half, validate=False,  # noqa
-                                           parallel=False)
+
+        def run_half():
+            noslip.collide_batch(nu[: args.rows // 2], half, validate=False, parallel=False)
 
         def sequential():
-            run()
-            run()
+            run_half()
+            run_half()
 
         def threaded():
-            ts = [threading.Thread(target=run) for _ in range(2)]
+            ts = [threading.Thread(target=run_half) for _ in range(2)]
             for th in ts:
                 th.start()
             for th in ts:
                 th.join()
 
-        ratio_threads = best(threaded, args.repeats) / best(sequential, args.repeats)
-        print(f"| {n} | {rust:.1f} | {fast:.1f} | {fast / rust:.2f} | {checked:.1f} "
-              f"| {numpy_t:.1f} | {numpy_t / fast:.0f} | {ratio_threads:.2f} |")
+        t = {key: [] for key in ("rows", "kernel", "fast", "checked", "numpy", "seq", "thr")}
+        for _ in range(args.repeats):
+            ref = reference_seconds(nu, bodies, 1)
+            t["rows"] += ref["rows"]
+            t["kernel"] += ref["kernel"]
+            t["fast"].append(seconds(lambda: noslip.collide_batch(nu, bodies, validate=False)))
+            t["checked"].append(seconds(lambda: noslip.collide_batch(nu, bodies)))
+            t["numpy"].append(seconds(lambda: numpy_peer(nu, bodies)))
+            t["seq"].append(seconds(sequential))
+            t["thr"].append(seconds(threaded))
+        m = {key: float(np.median(v)) * 1e9 / args.rows for key, v in t.items()}
+        print(
+            f"| {n} | {m['kernel']:.1f} | {m['rows']:.1f} | {m['fast']:.1f} "
+            f"| {m['fast'] / m['rows']:.2f} | {m['checked']:.1f} "
+            f"| {m['checked'] / m['rows']:.2f} | {m['numpy']:.1f} "
+            f"| {m['numpy'] / m['checked']:.0f} | {m['thr'] / m['seq']:.2f} |"
+        )
 
 
 if __name__ == "__main__":

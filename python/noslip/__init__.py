@@ -9,6 +9,8 @@ generated, exactly verified Rust kernels of the ``noslip`` workspace.
   ``noslip collide``).
 - :func:`collide_batch`: a batch on NumPy arrays (float64 or float32), GIL released, threads.
 - :class:`Scene`, :func:`simulate`: scenes (TOML) and the event-driven simulator.
+- :func:`lyapunov`: Lyapunov exponents of a scene (tangent maps with QR, or two trajectories);
+  :func:`orbits`: periodic orbits of a one-ball table, with their stability.
 - :func:`verify`, :func:`report`: the exact verification and the accuracy report.
 - :func:`sweep`: a function over a parameter grid as Dask tasks, streamed to a store.
 - :class:`InputError`: bad input (a ``ValueError`` naming the field).
@@ -20,6 +22,7 @@ from noslip._native import DIMS, InputError, Scene
 from noslip.batch import collide_batch, isa
 from noslip.case import collide
 from noslip.checks import report, verify
+from noslip.dynamics import LyapunovResult, OrbitsResult, lyapunov, orbits
 from noslip.simulate import SimulationResult, simulate
 from noslip.sweep import sweep
 from noslip import tables
@@ -27,11 +30,15 @@ from noslip import tables
 __all__ = [
     "DIMS",
     "InputError",
+    "LyapunovResult",
+    "OrbitsResult",
     "Scene",
     "SimulationResult",
     "collide",
     "collide_batch",
     "isa",
+    "lyapunov",
+    "orbits",
     "report",
     "simulate",
     "sweep",

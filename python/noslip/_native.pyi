@@ -32,10 +32,23 @@ def collide_batch_f32(
     validate: bool,
     parallel: bool,
 ) -> _BatchOut: ...
-def batch_kernel_seconds(
+def reference_seconds(
     normal: npt.NDArray[np.float64], body1: _BodyArrays, body2: _BodyArrays, repeats: int
-) -> list[float]: ...
+) -> tuple[list[float], list[float]]: ...
 def isa() -> str: ...
+def lyapunov(
+    scene: Scene,
+    events: int,
+    k: int | None,
+    method: str,
+    seed: int,
+    blocks: int,
+    every: int | None,
+    contact: str,
+) -> dict[str, Any]: ...
+def orbits(
+    scene: Scene, period: int, starts: list[list[str]], grid: int | None, contact: str
+) -> str: ...
 
 class Scene:
     """A validated scene (the TOML format of ``noslip simulate``); pickles as its text."""

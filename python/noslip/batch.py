@@ -115,12 +115,22 @@ def isa() -> str:
     return _native.isa()
 
 
-def batch_kernel_seconds(
+def reference_seconds(
     normal: np.ndarray, bodies: Sequence[Mapping[str, Any]], repeats: int = 5
-) -> list[float]:
-    """The Rust batch kernel alone on the same float64 rows (the benchmark's reference): the
-    rows are laid out into its blocked batch once, untimed, then ``Exec::auto().free`` runs
-    ``repeats`` times; the seconds of each run. Every body must move (``inv_mass > 0``)."""
+) -> dict[str, list[float]]:
+    """The benchmark's Rust references on the same float64 rows (C-contiguous, every body
+    moving: ``inv_mass > 0``), timed in Rust; the seconds of each of ``repeats`` runs.
+
+    - ``"rows"``: collision-core's batch API from the same row-major arrays into row-major
+      outputs: chunks of rows on rayon's threads, each gathered into a ``FreeBatch``
+      (``fill_from_rows``), run by ``Exec::free`` (run-time ISA) and scattered into the
+      outputs (``PairBatch::write_rows``); no validation. The outputs are allocated and
+      touched once before the timed runs and reused (``collide_batch`` returns new arrays
+      and pays their first touch).
+    - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in its
+      blocked batch: the kernel's floor, the row-major arrays neither read nor written.
+    """
     normal = np.asarray(normal)
     b1, b2 = (_body(bodies[b], b, np.dtype(np.float64)) for b in range(2))
-    return _native.batch_kernel_seconds(normal, b1, b2, repeats)
+    rows, kernel = _native.reference_seconds(normal, b1, b2, repeats)
+    return {"rows": rows, "kernel": kernel}

@@ -2,24 +2,31 @@
 //! kernels (`collision_core::batch`: blocks of 8 contacts, the instruction set chosen at
 //! run time), with the GIL released and the rows split across rayon's threads.
 //!
-//! The inputs are read in place (any strides, no copy of the arrays) chunk by chunk into a
-//! blocked scratch batch of [`CHUNK`] rows per task, the kernels run on the scratch, and the
-//! results are written into the new output arrays. Beyond the outputs, memory is that
-//! scratch: about `CHUNK` x 0.5 kB per running task, whatever the number of rows.
+//! The inputs are read in place, chunk by chunk ([`CHUNK`] rows), into a blocked scratch
+//! batch, the kernels run on the scratch, and the results are written into the new output
+//! arrays. Row-major arrays (NumPy's default) take the direct path: each chunk is gathered
+//! straight into the kernel's lane arrays (`FreeBatch::fill_from_rows`) and scattered
+//! straight into the outputs (`PairBatch::write_rows`); other strides go row by row through
+//! the batch's items. Beyond the outputs, memory is the scratch: about `CHUNK` x 0.5 kB per
+//! running task, whatever the number of rows.
 //!
 //! Each row runs the kernel [`collision_core::collide`] runs on it: `fixed` when a body is
 //! immovable (`inv_mass = 0`; bodies swapped and `nu` negated when it is body 2, whose
 //! state then comes back unchanged), `free` otherwise; so a row's result is
 //! `collision_core::collide_unchecked`'s bit for bit. With `validate`, every row first
-//! passes `collide`'s checks (`collision_core::validate_parts`, the rounding allowance
-//! included), and the first bad row is an error naming the row and the field.
+//! passes `collide`'s checks (the rounding allowance included): a cheap test in the batch's
+//! own float type accepts the rows that are clearly valid ([`clearly_valid`]), and only the
+//! others go through `collide`'s own checks (`collision_core::validate_parts`), whose error,
+//! for the first bad row, names the row and the field.
 
 use crate::error::input_error;
 use collision_core::batch::BatchKernel;
+use collision_core::batch::{BallRows, FreeRows, StateRows, StateRowsMut};
 use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
 use collision_core::RefArith;
-use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Kernel, Scalar};
+use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Scalar};
 use noslip_case::CaseError;
+use num_traits::Float;
 use numpy::ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use numpy::{
     Element, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
@@ -27,10 +34,11 @@ use numpy::{
 };
 use pyo3::prelude::*;
 use rayon::prelude::*;
-use std::time::Instant;
 
-/// Rows per task: 128 blocks of 8, the chunk the batch kernels' own threading uses.
-pub const CHUNK: usize = 1024;
+/// Rows per chunk: 64 blocks of 8, whose scratch (inputs and outputs in the blocked
+/// layout, 30 to 130 kB for n = 2..6 in `f64`) stays in the core's L2 cache between the
+/// gather, the kernel and the scatter.
+pub const CHUNK: usize = 512;
 
 /// The arrays of one body: `angular_velocity` `(N, n, n)`, `velocity` `(N, n)`, and the
 /// kernel parameters `inv_mass`, `radius`, `gamma2`, each of length `N` or 1 (shared).
@@ -43,7 +51,7 @@ struct BodyArrays<'a, T> {
 }
 
 /// One body's arrays as views: angular velocity, velocity, `inv_mass`, `radius`, `gamma2`.
-type BodyViews<'a, T> = (
+pub(crate) type BodyViews<'a, T> = (
     ArrayView3<'a, T>,
     ArrayView2<'a, T>,
     ArrayView1<'a, T>,
@@ -52,7 +60,7 @@ type BodyViews<'a, T> = (
 );
 
 /// Every input of a batch, shapes checked.
-struct Inputs<'a, T> {
+pub(crate) struct Inputs<'a, T> {
     rows: usize,
     dim: usize,
     nu: ArrayView2<'a, T>,
@@ -71,7 +79,7 @@ fn shape_error(field: &str, expected: String, got: &[usize]) -> PyErr {
 }
 
 impl<'a, T: Copy> Inputs<'a, T> {
-    fn new(nu: ArrayView2<'a, T>, bodies: [BodyViews<'a, T>; 2]) -> PyResult<Self> {
+    pub(crate) fn new(nu: ArrayView2<'a, T>, bodies: [BodyViews<'a, T>; 2]) -> PyResult<Self> {
         let (rows, dim) = nu.dim();
         if !collision_core::DIMS.contains(&dim) {
             return Err(input_error(format!(
@@ -130,6 +138,32 @@ impl<'a, T: Copy> Inputs<'a, T> {
     }
 }
 
+impl<'a, T> Inputs<'a, T> {
+    /// The arrays as row-major slices (`collision_core::batch::FreeRows`), when every one is
+    /// in standard layout (C-contiguous).
+    pub(crate) fn rows(&self) -> Option<FreeRows<'a, T>> {
+        let state = |b: &BodyArrays<'a, T>| {
+            Some(StateRows {
+                spin: b.spin.to_slice()?,
+                velocity: b.velocity.to_slice()?,
+            })
+        };
+        let ball = |b: &BodyArrays<'a, T>| {
+            Some(BallRows {
+                inv_mass: b.inv_mass.to_slice()?,
+                radius: b.radius.to_slice()?,
+                gamma2: b.gamma2.to_slice()?,
+            })
+        };
+        let [a, b] = &self.bodies;
+        Some(FreeRows {
+            nu: self.nu.to_slice()?,
+            states: [state(a)?, state(b)?],
+            balls: [ball(a)?, ball(b)?],
+        })
+    }
+}
+
 /// Parameter `p` of row `i` (a length-1 array is shared by every row).
 fn param<T: Copy>(p: &ArrayView1<'_, T>, i: usize) -> T {
     p[if p.len() == 1 { 0 } else { i }]
@@ -179,6 +213,101 @@ impl<T: Scalar + Copy> BodyArrays<'_, T> {
     }
 }
 
+/// Row `i` of a parameter slice (one shared value for a length-1 slice).
+#[inline(always)]
+fn param_at<T: Copy>(p: &[T], i: usize) -> T {
+    p[if p.len() == 1 { 0 } else { i }]
+}
+
+/// Whether row `i` is clearly valid: a test in `T` (`f64` or `f32`, eps its epsilon) that
+/// accepts only rows `collide`'s checks accept (in its unbounded-exponent arithmetic, with
+/// the allowance `8 eps s`), so that the others alone need those checks. Every input is
+/// finite with `|x| <= max eps^2` (NaN fails every comparison), and
+/// - `||nu|^2 - 1| <= 4 eps`, each nonzero `|nu_k| >= 2 sqrt(min_positive)`: the squares and
+///   their sums are normal numbers, computed as `collide` computes them, bit for bit; so
+///   `|nu|^2` is `collide`'s, within half its allowance;
+/// - `inv_mass >= 0`, `radius > 0`, `0 <= gamma2 <= 2/n` (`2/n` rounded as `collide` does),
+///   not both immovable, not two movable point masses: the balls' checks, without the
+///   allowance;
+/// - `U_rr = 0` and `U_cr = -U_rc` exactly: skew with no allowance needed;
+/// - approaching by a margin: `dn = sum_k nu_k (u_2k - u_1k) <= -(2n + 8) eps s` with
+///   `s = sum_k |nu_k| (|u_1k| + |u_2k|) >= min_positive / eps^2`, or `u_1 = u_2`
+///   (then `dn = 0` exactly). `collide` computes `dn` with `nu` renormalised (each `nu_k`
+///   moved by at most `4 eps |nu_k|`) and its own roundings (at most `(n + 1) eps/2 s`
+///   each way): its `dn` is at most `(n + 6) eps s` above this one, so still negative.
+#[inline(always)]
+fn clearly_valid<T: Float, const N: usize>(rows: &FreeRows<'_, T>, i: usize) -> bool {
+    let eps = T::epsilon();
+    let huge = T::max_value() * eps * eps;
+    let small = T::min_positive_value().sqrt() * (T::one() + T::one());
+    let tiny = T::min_positive_value() / (eps * eps);
+    let four = T::from(4).unwrap_or_else(T::one);
+    let shell = (T::one() + T::one()) / T::from(N).unwrap_or_else(T::one);
+    let nu = &rows.nu[i * N..(i + 1) * N];
+    let mut norm2 = T::zero();
+    for &x in nu {
+        if !(x.abs() <= huge && (x == T::zero() || x.abs() >= small)) {
+            return false;
+        }
+        norm2 = norm2 + x * x;
+    }
+    // Every |nu_k| passed `<= huge`, so norm2 is not NaN (it may be infinite: refused).
+    if (norm2 - T::one()).abs() > four * eps {
+        return false;
+    }
+    let mut w = [T::zero(); 2];
+    let mut g = [T::zero(); 2];
+    for (b, balls) in rows.balls.iter().enumerate() {
+        let (inv_mass, radius, gamma2) = (
+            param_at(balls.inv_mass, i),
+            param_at(balls.radius, i),
+            param_at(balls.gamma2, i),
+        );
+        let fine = inv_mass >= T::zero()
+            && inv_mass <= huge
+            && radius > T::zero()
+            && radius <= huge
+            && gamma2 >= T::zero()
+            && gamma2 <= shell;
+        if !fine {
+            return false;
+        }
+        (w[b], g[b]) = (inv_mass, gamma2);
+    }
+    let zero = T::zero();
+    if (w[0] == zero && w[1] == zero) || (w[0] != zero && w[1] != zero && g == [zero; 2]) {
+        return false;
+    }
+    let mut velocity = [&rows.nu[..0]; 2];
+    for (b, state) in rows.states.iter().enumerate() {
+        let spin = &state.spin[i * N * N..(i + 1) * N * N];
+        for r in 0..N {
+            if spin[r * N + r] != zero {
+                return false;
+            }
+            for c in r + 1..N {
+                let x = spin[r * N + c];
+                if !(x.abs() <= huge && spin[c * N + r] == -x) {
+                    return false;
+                }
+            }
+        }
+        velocity[b] = &state.velocity[i * N..(i + 1) * N];
+    }
+    let (mut dn, mut scale, mut moving) = (zero, zero, false);
+    for k in 0..N {
+        let (u1, u2) = (velocity[0][k], velocity[1][k]);
+        if !(u1.abs() <= huge && u2.abs() <= huge) {
+            return false;
+        }
+        moving |= u1 != u2;
+        dn = dn + nu[k] * (u2 - u1);
+        scale = scale + nu[k].abs() * (u1.abs() + u2.abs());
+    }
+    let margin = T::from(2 * N + 8).unwrap_or_else(T::one) * eps;
+    !moving || (scale >= tiny && dn <= -(margin * scale))
+}
+
 /// The compact entries as a full skew matrix, row-major, `m_cr = 0 - m_rc` (so a zero entry
 /// is `+0` on both sides, as `noslip collide` prints it).
 fn write_state<T: Scalar + Copy, const N: usize, const S: usize>(
@@ -226,14 +355,192 @@ impl<T: Scalar, const N: usize, const S: usize> Scratch<T, N, S> {
 /// A bad row: its index and the message (`row 17: bodies[1].gamma2: ...`).
 type RowError = (usize, String);
 
-/// Rows `start..start + out.velocity[0].len() / N` of the batch.
+/// Row `i`'s normal `nu`.
+fn nu_row<T: Copy, const N: usize>(input: &Inputs<'_, T>, i: usize) -> [T; N] {
+    match input.nu.as_slice() {
+        Some(nu) => std::array::from_fn(|k| nu[i * N + k]),
+        None => std::array::from_fn(|k| input.nu[[i, k]]),
+    }
+}
+
+/// `collide`'s own checks on row `i` (skew `U` as `BodyState::from_matrix`, then
+/// `validate_parts`); the error, built only here, names the row and the field.
+fn check_row<T, const N: usize, const S: usize>(
+    input: &Inputs<'_, T>,
+    i: usize,
+    pairs: &[(usize, usize); S],
+) -> Result<(), RowError>
+where
+    T: Scalar + Copy,
+{
+    let [a, b] = &input.bodies;
+    let nu = nu_row::<T, N>(input, i);
+    let balls = [a.ball(i), b.ball(i)];
+    let states: [BodyState<T, N, S>; 2] = [a.state(i, pairs), b.state(i, pairs)];
+    a.check_skew::<N, S>(i, 0)
+        .and_then(|()| b.check_skew::<N, S>(i, 1))
+        .and_then(|()| {
+            validate_parts(
+                &nu,
+                [&balls[0], &balls[1]],
+                [0, 1].map(|k| (states[k].spin.as_slice(), states[k].velocity.as_slice())),
+            )
+        })
+        .map_err(|e| (i, format!("row {i}: {}", CaseError::from(e))))
+}
+
+/// Put row `i` (local row `j`) into `fixed` when a body is immovable, as `collide` does
+/// (body 2 immovable: bodies swapped, `nu` negated); `false` when both bodies move.
+fn push_fixed<T, const N: usize, const S: usize>(
+    input: &Inputs<'_, T>,
+    i: usize,
+    j: usize,
+    sc: &mut Scratch<T, N, S>,
+    pairs: &[(usize, usize); S],
+) -> bool
+where
+    T: Scalar + Copy,
+{
+    let [a, b] = &input.bodies;
+    let (b1, b2) = (a.ball(i), b.ball(i));
+    if !b1.is_immovable() && !b2.is_immovable() {
+        return false;
+    }
+    let nu = nu_row::<T, N>(input, i);
+    let (s1, s2) = (a.state(i, pairs), b.state(i, pairs));
+    if b1.is_immovable() {
+        let contact = Contact {
+            nu,
+            states: [s1, s2],
+        };
+        sc.fixed.push((contact, b1.radius, b2));
+        sc.fixed_rows.push((j, false));
+    } else {
+        let contact = Contact {
+            nu: nu.map(|x| -x),
+            states: [s2, s1],
+        };
+        sc.fixed.push((contact, b2.radius, b1));
+        sc.fixed_rows.push((j, true));
+    }
+    true
+}
+
+/// Run `fixed` on the rows [`push_fixed`] put there and write both bodies of each (the
+/// immovable one unchanged) into local row `j` of `out`.
+fn run_fixed<T, const N: usize, const S: usize>(
+    exec: &Exec,
+    input: &Inputs<'_, T>,
+    start: usize,
+    out: &mut Outputs<'_, T>,
+    sc: &mut Scratch<T, N, S>,
+    pairs: &[(usize, usize); S],
+) where
+    T: Scalar + Copy + Send + Sync,
+    for<'x> &'x T: RefArith<T>,
+    Generated: BatchKernel<T, N, S>,
+{
+    if sc.fixed.is_empty() {
+        return;
+    }
+    exec.fixed(&sc.fixed, &mut sc.moved);
+    for (k, &(j, body2_fixed)) in sc.fixed_rows.iter().enumerate() {
+        if let Some(moved) = sc.moved.get(k) {
+            let (still, moving) = if body2_fixed { (1, 0) } else { (0, 1) };
+            put(out, j, moving, &moved, pairs);
+            let state: BodyState<T, N, S> = input.bodies[still].state(start + j, pairs);
+            put(out, j, still, &state, pairs);
+        }
+    }
+}
+
+/// Write body `body`'s state into local row `j` of `out`.
+fn put<T: Scalar + Copy, const N: usize, const S: usize>(
+    out: &mut Outputs<'_, T>,
+    j: usize,
+    body: usize,
+    s: &BodyState<T, N, S>,
+    pairs: &[(usize, usize); S],
+) {
+    write_state(
+        s,
+        pairs,
+        &mut out.spin[body][j * N * N..(j + 1) * N * N],
+        &mut out.velocity[body][j * N..(j + 1) * N],
+    );
+}
+
+/// Rows `start..start + out.velocity[0].len() / N` of the batch, from row-major arrays:
+/// validated (a cheap test per row, `collide`'s checks only for the rows it does not
+/// accept), gathered into the scratch's lane arrays, run by `free`, scattered into `out`;
+/// then the rows with an immovable body are run again by `fixed` and overwritten.
+#[allow(clippy::too_many_arguments)]
+fn run_chunk_rows<T, const N: usize, const S: usize>(
+    exec: &Exec,
+    input: &Inputs<'_, T>,
+    rows: &FreeRows<'_, T>,
+    validate: bool,
+    start: usize,
+    mut out: Outputs<'_, T>,
+    sc: &mut Scratch<T, N, S>,
+    pairs: &[(usize, usize); S],
+) -> Result<(), RowError>
+where
+    T: Scalar + Float + Send + Sync,
+    for<'x> &'x T: RefArith<T>,
+    Generated: BatchKernel<T, N, S>,
+{
+    let range = start..start + out.velocity[0].len() / N;
+    if validate {
+        for i in range.clone() {
+            if !clearly_valid::<T, N>(rows, i) {
+                check_row::<T, N, S>(input, i, pairs)?;
+            }
+        }
+    }
+    sc.free.fill_from_rows(rows, range.clone());
+    exec.free(&sc.free, &mut sc.pairs);
+    {
+        let Outputs {
+            spin: [s1, s2],
+            velocity: [v1, v2],
+        } = &mut out;
+        sc.pairs.write_rows([
+            StateRowsMut {
+                spin: s1,
+                velocity: v1,
+            },
+            StateRowsMut {
+                spin: s2,
+                velocity: v2,
+            },
+        ]);
+    }
+    sc.fixed.clear();
+    sc.fixed_rows.clear();
+    let zero = T::zero();
+    let shared_movable = rows
+        .balls
+        .iter()
+        .all(|b| b.inv_mass.len() == 1 && b.inv_mass[0] != zero);
+    if !shared_movable {
+        for (j, i) in range.enumerate() {
+            push_fixed(input, i, j, sc, pairs);
+        }
+    }
+    run_fixed(exec, input, start, &mut out, sc, pairs);
+    Ok(())
+}
+
+/// Rows `start..start + out.velocity[0].len() / N` of the batch, from arrays of any
+/// strides, row by row through the batch's items (`push`, `get`).
 fn run_chunk<T, const N: usize, const S: usize>(
     exec: &Exec,
     input: &Inputs<'_, T>,
     validate: bool,
     start: usize,
-    out: Outputs<'_, T>,
-    scratch: &mut Scratch<T, N, S>,
+    mut out: Outputs<'_, T>,
+    sc: &mut Scratch<T, N, S>,
     pairs: &[(usize, usize); S],
 ) -> Result<(), RowError>
 where
@@ -242,7 +549,6 @@ where
     Generated: BatchKernel<T, N, S>,
 {
     let rows = out.velocity[0].len() / N;
-    let sc = scratch;
     sc.free.clear();
     sc.fixed.clear();
     sc.free_rows.clear();
@@ -250,94 +556,26 @@ where
     let [a, b] = &input.bodies;
     for j in 0..rows {
         let i = start + j;
-        let nu: [T; N] = match input.nu.as_slice() {
-            Some(nu) => std::array::from_fn(|k| nu[i * N + k]),
-            None => std::array::from_fn(|k| input.nu[[i, k]]),
-        };
-        let balls = [a.ball(i), b.ball(i)];
-        let states: [BodyState<T, N, S>; 2] = [a.state(i, pairs), b.state(i, pairs)];
         if validate {
-            let checked = a
-                .check_skew::<N, S>(i, 0)
-                .and_then(|()| b.check_skew::<N, S>(i, 1))
-                .and_then(|()| {
-                    validate_parts(
-                        &nu,
-                        [&balls[0], &balls[1]],
-                        [0, 1].map(|k| (states[k].spin.as_slice(), states[k].velocity.as_slice())),
-                    )
-                });
-            if let Err(e) = checked {
-                return Err((i, format!("row {i}: {}", CaseError::from(e))));
-            }
+            check_row::<T, N, S>(input, i, pairs)?;
         }
-        let [b1, b2] = balls;
-        let [s1, s2] = states;
-        if b1.is_immovable() {
-            sc.fixed.push((
-                Contact {
-                    nu,
-                    states: [s1, s2],
-                },
-                b1.radius,
-                b2,
-            ));
-            sc.fixed_rows.push((j, false));
-        } else if b2.is_immovable() {
-            let minus_nu = nu.map(|x| -x);
-            sc.fixed.push((
-                Contact {
-                    nu: minus_nu,
-                    states: [s2, s1],
-                },
-                b2.radius,
-                b1,
-            ));
-            sc.fixed_rows.push((j, true));
-        } else {
-            sc.free.push((
-                Contact {
-                    nu,
-                    states: [s1, s2],
-                },
-                [b1, b2],
-            ));
+        if !push_fixed(input, i, j, sc, pairs) {
+            let contact = Contact {
+                nu: nu_row::<T, N>(input, i),
+                states: [a.state(i, pairs), b.state(i, pairs)],
+            };
+            sc.free.push((contact, [a.ball(i), b.ball(i)]));
             sc.free_rows.push(j);
         }
     }
     exec.free(&sc.free, &mut sc.pairs);
-    exec.fixed(&sc.fixed, &mut sc.moved);
-    let Outputs {
-        spin: [spin1, spin2],
-        velocity: [vel1, vel2],
-    } = out;
-    let mut put = |j: usize, body: usize, s: &BodyState<T, N, S>| {
-        let (spin, vel) = if body == 0 {
-            (&mut *spin1, &mut *vel1)
-        } else {
-            (&mut *spin2, &mut *vel2)
-        };
-        write_state(
-            s,
-            pairs,
-            &mut spin[j * N * N..(j + 1) * N * N],
-            &mut vel[j * N..(j + 1) * N],
-        );
-    };
     for (k, &j) in sc.free_rows.iter().enumerate() {
         if let Some([p1, p2]) = sc.pairs.get(k) {
-            put(j, 0, &p1);
-            put(j, 1, &p2);
+            put(&mut out, j, 0, &p1, pairs);
+            put(&mut out, j, 1, &p2, pairs);
         }
     }
-    for (k, &(j, body2_fixed)) in sc.fixed_rows.iter().enumerate() {
-        let i = start + j;
-        if let Some(moved) = sc.moved.get(k) {
-            let (still, moving) = if body2_fixed { (1, 0) } else { (0, 1) };
-            put(j, moving, &moved);
-            put(j, still, &input.bodies[still].state(i, pairs));
-        }
-    }
+    run_fixed(exec, input, start, &mut out, sc, pairs);
     Ok(())
 }
 
@@ -350,7 +588,7 @@ fn run_all<T, const N: usize, const S: usize>(
     out: Outputs<'_, T>,
 ) -> Result<(), String>
 where
-    T: Scalar + Copy + Send + Sync,
+    T: Scalar + Float + Send + Sync,
     for<'x> &'x T: RefArith<T>,
     Generated: BatchKernel<T, N, S>,
 {
@@ -359,6 +597,7 @@ where
         let all: Vec<(usize, usize)> = skew_pairs(N).collect();
         std::array::from_fn(|k| all[k])
     };
+    let rows = input.rows();
     let Outputs {
         spin: [s1, s2],
         velocity: [v1, v2],
@@ -378,15 +617,20 @@ where
                     spin: [s1, s2],
                     velocity: [v1, v2],
                 };
-                run_chunk(
-                    &exec,
-                    input,
-                    validate,
-                    start + c * CHUNK,
-                    out,
-                    &mut scratch,
-                    &pairs,
-                )
+                let start = start + c * CHUNK;
+                match &rows {
+                    Some(rows) => run_chunk_rows(
+                        &exec,
+                        input,
+                        rows,
+                        validate,
+                        start,
+                        out,
+                        &mut scratch,
+                        &pairs,
+                    ),
+                    None => run_chunk(&exec, input, validate, start, out, &mut scratch, &pairs),
+                }
             })
     };
     let chunks = input.rows.div_ceil(CHUNK);
@@ -409,7 +653,7 @@ where
 
 /// One body's arrays as Python passes them: `angular_velocity`, `velocity`, `inv_mass`,
 /// `radius`, `gamma2`.
-type BodyIn<'py, T> = (
+pub(crate) type BodyIn<'py, T> = (
     PyReadonlyArray3<'py, T>,
     PyReadonlyArray2<'py, T>,
     PyReadonlyArray1<'py, T>,
@@ -425,7 +669,7 @@ type BatchOut<'py, T> = (
     Bound<'py, PyArray2<T>>,
 );
 
-fn views<'a, T: Element>(b: &'a BodyIn<'_, T>) -> BodyViews<'a, T> {
+pub(crate) fn views<'a, T: Element>(b: &'a BodyIn<'_, T>) -> BodyViews<'a, T> {
     (
         b.0.as_array(),
         b.1.as_array(),
@@ -444,7 +688,7 @@ fn collide_batch<'py, T>(
     parallel: bool,
 ) -> PyResult<BatchOut<'py, T>>
 where
-    T: Element + Scalar + Copy + Send + Sync,
+    T: Element + Scalar + Float + Send + Sync,
     for<'x> &'x T: RefArith<T>,
 {
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
@@ -507,70 +751,6 @@ pub fn collide_batch_f32<'py>(
     parallel: bool,
 ) -> PyResult<BatchOut<'py, f32>> {
     collide_batch::<f32>(py, normal, body1, body2, validate, parallel)
-}
-
-/// The benchmark's reference: the same `float64` rows (both bodies free) built once into a
-/// `FreeBatch` (not timed), then `Exec::auto().free` (the batch kernel, run-time ISA,
-/// rayon threads from `PARALLEL_FROM` rows) timed `repeats` times; the seconds of each run.
-#[pyfunction]
-#[pyo3(signature = (normal, body1, body2, repeats))]
-pub fn batch_kernel_seconds(
-    py: Python<'_>,
-    normal: PyReadonlyArray2<'_, f64>,
-    body1: BodyIn<'_, f64>,
-    body2: BodyIn<'_, f64>,
-    repeats: usize,
-) -> PyResult<Vec<f64>> {
-    let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
-    let n = input.dim;
-    let seconds = py.detach(|| {
-        collision_core::with_dim!(
-            n,
-            |N, S| time_free::<N, S>(&input, repeats),
-            Err(format!("dimension {n} has no batch kernels"))
-        )
-    });
-    seconds.map_err(input_error)
-}
-
-fn time_free<const N: usize, const S: usize>(
-    input: &Inputs<'_, f64>,
-    repeats: usize,
-) -> Result<Vec<f64>, String>
-where
-    Generated: BatchKernel<f64, N, S> + Kernel<f64, N, S>,
-{
-    let pairs: Vec<(usize, usize)> = skew_pairs(N).collect();
-    let pairs: [(usize, usize); S] = std::array::from_fn(|k| pairs[k]);
-    let [a, b] = &input.bodies;
-    let mut batch = FreeBatch::<f64, N, S>::with_capacity(input.rows);
-    for i in 0..input.rows {
-        let balls = [a.ball(i), b.ball(i)];
-        if balls.iter().any(Ball::is_immovable) {
-            return Err(format!(
-                "row {i}: the reference times `free`: both bodies must move"
-            ));
-        }
-        let nu: [f64; N] = std::array::from_fn(|k| input.nu[[i, k]]);
-        batch.push((
-            Contact {
-                nu,
-                states: [a.state(i, &pairs), b.state(i, &pairs)],
-            },
-            balls,
-        ));
-    }
-    let exec = Exec::auto();
-    let mut out = PairBatch::<f64, N, S>::new();
-    exec.free::<f64, N, S>(&batch, &mut out);
-    Ok((0..repeats)
-        .map(|_| {
-            let t = Instant::now();
-            exec.free::<f64, N, S>(&batch, &mut out);
-            std::hint::black_box(&out);
-            t.elapsed().as_secs_f64()
-        })
-        .collect())
 }
 
 /// The instruction set the batch kernels run on here (`Exec::auto`): `sse2`, `avx2`, `avx512`.

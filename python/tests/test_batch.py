@@ -216,3 +216,71 @@ def test_the_gil_is_released_during_a_batch():
         time.sleep(0)
     t.join()
     assert ticks > 100, ticks
+
+
+def boundary_rows(n):
+    """One-row batches on and around each bound of the checks, in units of eps (the
+    rounding allowance is 8 eps of the scale): |nu|^2 - 1, gamma2 - 2/n, U_ij + U_ji, U_ii,
+    the normal relative velocity (approaching to grazing to separating); and magnitudes far
+    from 1 (huge velocities, tiny normal components, subnormal and zero velocities)."""
+    eps = np.finfo(np.float64).eps
+    rng = np.random.default_rng(100 + n)
+    base_nu, base = random_batch(rng, 1, n, immovable=False)
+    cases = []
+
+    def case(edit):
+        nu = base_nu.copy()
+        bodies = [{k: v.copy() for k, v in b.items()} for b in base]
+        edit(nu, bodies)
+        cases.append((nu, bodies))
+
+    ks = [-40, -20, -12, -9, -8, -7, -6, -5, -4, -3, -2, -1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 12, 20]
+    for k in ks:
+        case(lambda nu, b, k=k: nu.__imul__(np.sqrt(1 + k * eps)))
+        case(lambda nu, b, k=k: b[1]["gamma2"].__setitem__(0, 2.0 / n * (1 + k * eps)))
+        case(lambda nu, b, k=k: b[0]["gamma2"].__setitem__(0, k * eps))
+        case(lambda nu, b, k=k: b[0]["angular_velocity"][0].__setitem__(
+            (1, 0), -b[0]["angular_velocity"][0, 0, 1] * (1 + k * eps)))
+        case(lambda nu, b, k=k: b[1]["angular_velocity"][0].__setitem__((0, 0), k * eps))
+
+        def graze(nu, b, k=k):
+            # u_2 - u_1 = t + dn nu with t perpendicular to nu, dn = k eps |t|.
+            t = b[1]["velocity"][0] - b[0]["velocity"][0]
+            t -= (t @ nu[0]) * nu[0]
+            b[1]["velocity"][0] = b[0]["velocity"][0] + t + k * eps * np.linalg.norm(t) * nu[0]
+
+        case(graze)
+    case(lambda nu, b: [x["velocity"].__imul__(1e300) for x in b])
+    case(lambda nu, b: [x["velocity"].__imul__(1e-310) for x in b])
+    case(lambda nu, b: [x["velocity"].__imul__(0.0) for x in b])
+    case(lambda nu, b: b[1]["velocity"].__setitem__(0, b[0]["velocity"][0]))
+
+    def tiny_component(nu, b):
+        nu[0, 0] = 1e-170
+        nu[0, 1:] /= np.linalg.norm(nu[0, 1:])
+
+    case(tiny_component)
+    return cases
+
+
+@pytest.mark.parametrize("n", [2, 3, 6])
+def test_the_fast_check_accepts_only_what_collide_checks_accept(n):
+    """Row-major arrays go through a cheap check in f64 that passes the clearly valid rows and
+    sends the others to `collide`'s checks; strided arrays go through `collide`'s checks
+    alone. Around every bound the two give the same verdict and the same message, and the
+    rows near the bounds do occur on both sides (the cases are not all valid or all bad)."""
+    verdicts = []
+    for nu, bodies in boundary_rows(n):
+        # Every second column of a wider array: strided, so every row takes the slow path.
+        strided_nu = np.repeat(nu, 2, axis=1)[:, ::2]
+        assert not strided_nu.flags.c_contiguous and np.array_equal(strided_nu, nu)
+        results = []
+        for args in ((nu, bodies), (strided_nu, bodies)):
+            try:
+                out = noslip.collide_batch(*args)
+                results.append(("ok", out[0]["velocity"].tobytes(), out[1]["velocity"].tobytes()))
+            except noslip.InputError as e:
+                results.append(("error", str(e)))
+        assert results[0] == results[1]
+        verdicts.append(results[0][0])
+    assert verdicts.count("ok") > 10 and verdicts.count("error") > 10, verdicts

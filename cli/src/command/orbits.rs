@@ -4,13 +4,9 @@ use crate::command::lyapunov::parse_law;
 use crate::exit::{self, Exit, Failure};
 use crate::out::outln;
 use crate::publish::Staging;
-use collision_core::{Exact, Generated, Kernel, Scalar};
-use noslip_dynamics::orbits::{
-    self, exact, exact_start, first_contact, merge, newton, Miss, Orbit,
-};
-use noslip_dynamics::Dual;
+use collision_core::Exact;
+use noslip_dynamics::orbits::search::{search, Search, SearchError};
 use noslip_scene::{parse_exact, Scene};
-use serde::Serialize;
 use std::path::{Path, PathBuf};
 
 pub(crate) const LONG_ABOUT: &str = "\
@@ -61,29 +57,8 @@ pub struct Args {
 /// What `orbits` can return.
 pub const CODES: &[Exit] = &[Exit::Success, Exit::OutputFailed, Exit::BadInput];
 
-/// The most starts a grid may make, and the longest period.
-const MAX_STARTS: usize = 100_000;
-const MAX_PERIOD: usize = 1000;
-
-#[derive(Serialize)]
-struct Report {
-    period: usize,
-    starts: usize,
-    misses: usize,
-    orbits: Vec<Orbit>,
-    exact: Vec<Option<orbits::ExactReturn>>,
-}
-
-fn parse_start(i: usize, text: &str, len: usize) -> Result<Vec<Exact>, Failure> {
-    let parts: Vec<&str> = text.split(',').collect();
-    if parts.len() != len {
-        return Err(Failure::bad_input(format!(
-            "--from[{i}]: has {} numbers, expected 2n + S = {len} (x, u, then the spin entries U_ij, i < j)",
-            parts.len()
-        )));
-    }
-    parts
-        .iter()
+fn parse_start(i: usize, text: &str) -> Result<Vec<Exact>, Failure> {
+    text.split(',')
         .enumerate()
         .map(|(k, p)| {
             parse_exact(p).map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))
@@ -91,88 +66,12 @@ fn parse_start(i: usize, text: &str, len: usize) -> Result<Vec<Exact>, Failure> 
         .collect()
 }
 
-fn search<const N: usize, const S: usize>(scene: &Scene, args: &Args) -> Result<Report, Failure>
-where
-    Generated: Kernel<f64, N, S>
-        + Kernel<Dual<f64>, N, S>
-        + Kernel<Exact, N, S>
-        + Kernel<Dual<Exact>, N, S>,
-{
-    let law = parse_law(&args.contact)?;
-    let (table, x, state) = orbits::scene::table::<N, S>(scene, law).map_err(Failure::bad_input)?;
-    let f = table.map(Scalar::to_f64);
-    let len = 2 * N + S;
-    let mut starts: Vec<Vec<f64>> = Vec::new();
-    let mut exact_reports = Vec::new();
-    for (i, text) in args.from.iter().enumerate() {
-        let z = parse_start(i, text, len)?;
-        let zf: Vec<f64> = z.iter().map(Scalar::to_f64).collect();
-        let xf: [f64; N] = std::array::from_fn(|k| zf[k]);
-        let (b, _) = orbits::nearest(&f, &xf);
-        let (_, nu) = orbits::project(&f, b, &xf);
-        if zf[N..2 * N]
-            .iter()
-            .zip(&nu)
-            .map(|(u, n)| u * n)
-            .sum::<f64>()
-            <= 0.0
-        {
-            return Err(Failure::bad_input(format!(
-                "--from[{i}]: the velocity must point into the table (u . nu > 0) at its nearest boundary {b}"
-            )));
-        }
-        starts.push(zf);
-        exact_reports.push(
-            exact_start::<N, S>(&table, &z).and_then(|s| exact(&table, &s, args.period).ok()),
-        );
+/// The search's error as the command's: its field is the option of the same name.
+fn failure(e: SearchError) -> Failure {
+    match e.field() {
+        Some(field) => Failure::bad_input(format!("--{field}: {}", e.message())),
+        None => Failure::bad_input(e.message()),
     }
-    if let Some(m) = args.grid {
-        let per = f.boundaries.len().saturating_mul(m.saturating_pow(3));
-        if m == 0 || per > MAX_STARTS {
-            return Err(Failure::bad_input(format!(
-                "--grid: must be at least 1 and make at most {MAX_STARTS} starts (M^3 per boundary), got {m}"
-            )));
-        }
-        let bounds: [(f64, f64); N] = std::array::from_fn(|k| match f.period[k] {
-            Some(l) => (0.0, l),
-            None => (f.ball.radius, x_size(scene, k) - f.ball.radius),
-        });
-        starts.extend(orbits::grid(&f, &bounds, m).ok_or_else(|| {
-            Failure::bad_input("--grid: starts on a grid are made in 2D only; give --from")
-        })?);
-    }
-    if args.from.is_empty() && args.grid.is_none() {
-        let xf = x.map(|v| v.to_f64());
-        let sf = collision_core::BodyState {
-            velocity: state.velocity.map(|v| v.to_f64()),
-            spin: state.spin.map(|v| v.to_f64()),
-        };
-        starts.push(first_contact(&f, &xf, &sf).map_err(|e| {
-            Failure::bad_input(format!(
-                "{}: the ball never touches the table ({e:?})",
-                scene.origin
-            ))
-        })?);
-    }
-    let mut found: Vec<Orbit> = Vec::new();
-    let mut misses = 0;
-    for z in &starts {
-        match newton::<N, S>(&f, z, args.period) {
-            Ok(o) => merge(&f, &mut found, o),
-            Err(Miss::NoHit(_) | Miss::NoConvergence { .. } | Miss::LeftSection) => misses += 1,
-        }
-    }
-    Ok(Report {
-        period: args.period,
-        starts: starts.len(),
-        misses,
-        orbits: found,
-        exact: exact_reports,
-    })
-}
-
-fn x_size(scene: &Scene, k: usize) -> f64 {
-    scene.size[k].to_f64()
 }
 
 fn show(v: &[f64]) -> String {
@@ -184,17 +83,23 @@ fn show(v: &[f64]) -> String {
 
 /// Check the arguments, search, publish and print.
 pub fn run(args: &Args) -> Result<Exit, Failure> {
-    if !(1..=MAX_PERIOD).contains(&args.period) {
-        return Err(Failure::bad_input(format!(
-            "--period: must be in 1..={MAX_PERIOD}, got {}",
-            args.period
-        )));
-    }
-    parse_law(&args.contact)?;
+    let law = parse_law(&args.contact)?;
+    let from = args
+        .from
+        .iter()
+        .enumerate()
+        .map(|(i, text)| parse_start(i, text))
+        .collect::<Result<Vec<_>, _>>()?;
+    let ask = Search {
+        period: args.period,
+        from,
+        grid: args.grid,
+        law,
+    };
     let scene = Scene::from_file(&args.file).map_err(|e| Failure::bad_input(e.to_string()))?;
     let report = collision_core::with_dim!(
         scene.dim,
-        |N, S| search::<N, S>(&scene, args),
+        |N, S| search::<N, S>(&scene, &ask).map_err(failure),
         unreachable!("scene validation keeps dim in {:?}", collision_core::DIMS)
     )?;
     let out = args.out.clone().unwrap_or_else(|| {

@@ -55,6 +55,7 @@ mod exec;
 pub mod kernels;
 pub mod lanes;
 mod prefetch;
+mod rows;
 
 #[cfg(test)]
 mod tests;
@@ -68,6 +69,7 @@ pub use lanes::{
     LANES,
 };
 pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
+pub use rows::{BallRows, FreeRows, StateRows, StateRowsMut};
 
 /// Contacts of two free balls with their own parameters.
 pub type FreeBatch<T, const N: usize, const S: usize> = Batch<FreeLanes<T, N, S>>;

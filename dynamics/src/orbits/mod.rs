@@ -18,9 +18,13 @@
 //! **Exact**: for a rational table and a rational start on a flat wall, [`exact`] runs the
 //! return map and its derivative in rationals and gives the characteristic polynomial of the
 //! section map exactly.
+//!
+//! **A search** ([`search`]): the starts (given, a 2D grid, or the scene's ball), Newton
+//! from each, the orbits merged, as `noslip orbits` and the Python package run it.
 
 pub mod poly;
 pub mod scene;
+pub mod search;
 pub mod section;
 
 use crate::dual::Dual;

@@ -1,0 +1,191 @@
+//! A search for the periodic orbits of a scene's table, as `noslip orbits` and
+//! `noslip.orbits` run it: starts from given states, a 2D grid or the scene's ball after its
+//! first contact; Newton from each; the orbits merged; and for each given start the exact
+//! return map where the table and the start are rational.
+
+use super::{exact, exact_start, first_contact, grid, merge, nearest, newton, project};
+use super::{ExactReturn, Miss, Orbit};
+use crate::law::Law;
+use crate::Dual;
+use collision_core::{BodyState, Exact, Generated, Kernel, Scalar};
+use noslip_scene::Scene;
+use serde::Serialize;
+use std::fmt;
+
+/// The most starts a grid may make.
+pub const MAX_STARTS: usize = 100_000;
+/// The longest period.
+pub const MAX_PERIOD: usize = 1000;
+
+/// What a search is asked for.
+#[derive(Clone, Debug)]
+pub struct Search {
+    /// The period `K` (contacts per orbit), in `1..=MAX_PERIOD`.
+    pub period: usize,
+    /// Starts `[x, u, U]` (`2n + S` numbers each), moved along the normal onto the nearest
+    /// boundary.
+    pub from: Vec<Vec<Exact>>,
+    /// 2D: `M` for `M^3` starts per boundary (positions x angles x spins).
+    pub grid: Option<usize>,
+    /// The contact law.
+    pub law: Law,
+}
+
+/// The orbits found (as `orbits.json`).
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    /// The period.
+    pub period: usize,
+    /// Starts tried.
+    pub starts: usize,
+    /// Starts that gave no orbit.
+    pub misses: usize,
+    /// The orbits, each once.
+    pub orbits: Vec<Orbit>,
+    /// Per given start, the exact return map (`None` where a contact time or the start's
+    /// projection is irrational).
+    pub exact: Vec<Option<ExactReturn>>,
+}
+
+/// Why a search could not run; each names the input at fault.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SearchError {
+    /// The period is out of range.
+    Period(String),
+    /// Start `index` of [`Search::from`] is bad.
+    From {
+        /// Its index.
+        index: usize,
+        /// Why.
+        message: String,
+    },
+    /// The grid is bad.
+    Grid(String),
+    /// The scene is not a one-ball table, or its ball never touches it (the message starts
+    /// with the scene's origin).
+    Scene(String),
+}
+
+impl SearchError {
+    /// The input at fault (`period`, `from[2]`, `grid`), `None` for the scene.
+    pub fn field(&self) -> Option<String> {
+        match self {
+            SearchError::Period(_) => Some("period".into()),
+            SearchError::From { index, .. } => Some(format!("from[{index}]")),
+            SearchError::Grid(_) => Some("grid".into()),
+            SearchError::Scene(_) => None,
+        }
+    }
+
+    /// What is wrong with it.
+    pub fn message(&self) -> &str {
+        match self {
+            SearchError::Period(m) | SearchError::Grid(m) | SearchError::Scene(m) => m,
+            SearchError::From { message, .. } => message,
+        }
+    }
+}
+
+impl fmt::Display for SearchError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.field() {
+            Some(field) => write!(f, "{field}: {}", self.message()),
+            None => f.write_str(self.message()),
+        }
+    }
+}
+
+impl std::error::Error for SearchError {}
+
+/// Run the search on `scene` (a one-ball table in R^N).
+pub fn search<const N: usize, const S: usize>(
+    scene: &Scene,
+    ask: &Search,
+) -> Result<Report, SearchError>
+where
+    Generated: Kernel<f64, N, S>
+        + Kernel<Dual<f64>, N, S>
+        + Kernel<Exact, N, S>
+        + Kernel<Dual<Exact>, N, S>,
+{
+    if !(1..=MAX_PERIOD).contains(&ask.period) {
+        return Err(SearchError::Period(format!(
+            "must be in 1..={MAX_PERIOD}, got {}",
+            ask.period
+        )));
+    }
+    let (table, x, state) =
+        super::scene::table::<N, S>(scene, ask.law).map_err(SearchError::Scene)?;
+    let f = table.map(Scalar::to_f64);
+    let len = 2 * N + S;
+    let mut starts: Vec<Vec<f64>> = Vec::new();
+    let mut exact_reports = Vec::new();
+    for (index, z) in ask.from.iter().enumerate() {
+        let bad = |message: String| SearchError::From { index, message };
+        if z.len() != len {
+            return Err(bad(format!(
+                "has {} numbers, expected 2n + S = {len} (x, u, then the spin entries U_ij, i < j)",
+                z.len()
+            )));
+        }
+        let zf: Vec<f64> = z.iter().map(Scalar::to_f64).collect();
+        let xf: [f64; N] = std::array::from_fn(|k| zf[k]);
+        let (b, _) = nearest(&f, &xf);
+        let (_, nu) = project(&f, b, &xf);
+        let inward: f64 = zf[N..2 * N].iter().zip(&nu).map(|(u, n)| u * n).sum();
+        if inward <= 0.0 {
+            return Err(bad(format!(
+                "the velocity must point into the table (u . nu > 0) at its nearest boundary {b}"
+            )));
+        }
+        starts.push(zf);
+        exact_reports
+            .push(exact_start::<N, S>(&table, z).and_then(|s| exact(&table, &s, ask.period).ok()));
+    }
+    if let Some(m) = ask.grid {
+        let per = f.boundaries.len().saturating_mul(m.saturating_pow(3));
+        if m == 0 || per > MAX_STARTS {
+            return Err(SearchError::Grid(format!(
+                "must be at least 1 and make at most {MAX_STARTS} starts (M^3 per boundary), got {m}"
+            )));
+        }
+        let bounds: [(f64, f64); N] = std::array::from_fn(|k| match f.period[k] {
+            Some(l) => (0.0, l),
+            None => (f.ball.radius, scene.size[k].to_f64() - f.ball.radius),
+        });
+        starts.extend(grid(&f, &bounds, m).ok_or_else(|| {
+            SearchError::Grid(
+                "starts on a grid are made in 2D only; give the starts instead".into(),
+            )
+        })?);
+    }
+    if ask.from.is_empty() && ask.grid.is_none() {
+        let xf = x.map(|v| v.to_f64());
+        let sf = BodyState {
+            velocity: state.velocity.map(|v| v.to_f64()),
+            spin: state.spin.map(|v| v.to_f64()),
+        };
+        starts.push(first_contact(&f, &xf, &sf).map_err(|e| {
+            SearchError::Scene(format!(
+                "{}: the ball never touches the table ({e:?})",
+                scene.origin
+            ))
+        })?);
+    }
+    let mut found: Vec<Orbit> = Vec::new();
+    let mut misses = 0;
+    for z in &starts {
+        match newton::<N, S>(&f, z, ask.period) {
+            Ok(o) => merge(&f, &mut found, o),
+            Err(Miss::NoHit(_) | Miss::NoConvergence { .. } | Miss::LeftSection) => misses += 1,
+        }
+    }
+    Ok(Report {
+        period: ask.period,
+        starts: starts.len(),
+        misses,
+        orbits: found,
+        exact: exact_reports,
+    })
+}

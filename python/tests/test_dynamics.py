@@ -1,0 +1,136 @@
+"""noslip.lyapunov against `noslip lyapunov` (the same spectrum and running estimate, bit
+for bit), both methods and both contact laws, and errors naming the argument."""
+
+import csv
+import json
+
+import numpy as np
+import pytest
+
+import noslip
+from conftest import run_cli
+
+
+def cli_spectrum(cli, scene, out, *args):
+    run_cli(cli, "lyapunov", str(scene), "--out", str(out), *args)
+    summary = json.loads((out / "spectrum.json").read_text())
+    with open(out / "running.csv") as f:
+        rows = list(csv.reader(f))
+    return summary, rows
+
+
+@pytest.mark.parametrize(
+    "method, contact, extra",
+    [("qr", "no-slip", []), ("two-trajectory", "smooth", ["--k", "1"])],
+)
+def test_lyapunov_gives_the_cli_spectrum_bit_for_bit(root, cli, tmp_path, method, contact, extra):
+    path = root / "scenes" / "sinai.toml"
+    summary, rows = cli_spectrum(
+        cli, path, tmp_path / "run", "--events", "3000", "--blocks", "5",
+        "--method", method, "--contact", contact, "--seed", "7", *extra,
+    )
+    got = noslip.lyapunov(
+        noslip.Scene.from_file(path), 3000, blocks=5, method=method, contact=contact, seed=7,
+        k=1 if extra else None,
+    )
+    assert got.method == summary["method"] == method
+    assert got.contact == summary["law"] == contact
+    for key in ("dimension", "contacts", "warmup", "every", "time"):
+        assert getattr(got, key) == summary[key], key
+    # The JSON and CSV floats are shortest round-trip text: equal means the same f64.
+    assert got.per_time.tolist() == [e["value"] for e in summary["per_time"]]
+    assert got.per_time_error.tolist() == [e["error"] for e in summary["per_time"]]
+    assert got.per_contact.tolist() == [e["value"] for e in summary["per_contact"]]
+    assert (got.sum, got.sum_error) == (summary["sum"]["value"], summary["sum"]["error"])
+    header, body = rows[0], rows[1:]
+    assert header == ["contacts", "time"] + [f"lambda_{i + 1}" for i in range(len(got.per_time))]
+    assert got.running_contacts.tolist() == [int(r[0]) for r in body]
+    assert got.running_time.tolist() == [float(r[1]) for r in body]
+    assert got.running.tolist() == [[float(x) for x in r[2:]] for r in body]
+    assert got.running.shape == (len(body), len(got.per_time)) and len(body) > 0
+    assert got.largest == got.per_time[0] > 0  # the Sinai table is chaotic
+
+
+def test_the_full_spectrum_of_the_sinai_table_has_the_phase_space_dimension(root):
+    """One disk in 2D: centre (2), velocity (2), spin (1): five exponents, largest first."""
+    got = noslip.lyapunov(noslip.Scene.from_file(root / "scenes" / "sinai.toml"), 2200, blocks=10)
+    assert got.dimension == 5 and got.per_time.shape == (5,)
+    assert np.all(np.diff(got.per_time) <= 0)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"k": 9}, r"^k: must be in 1\.\.=5"),
+        ({"method": "svd"}, r"^method: must be"),
+        ({"contact": "sticky"}, r"^contact: must be"),
+        ({"events": 5}, r"^events: 5 contacts cannot make a warm-up"),
+        ({"every": 0}, r"^every: must be at least 1"),
+        ({"method": "two-trajectory", "k": 2}, r"^k: two-trajectory gives the largest"),
+    ],
+)
+def test_bad_arguments_are_named(root, kwargs, message):
+    scene = noslip.Scene.from_file(root / "scenes" / "sinai.toml")
+    with pytest.raises(noslip.InputError, match=message):
+        noslip.lyapunov(scene, **{"events": 1000, **kwargs})
+
+
+def test_orbits_give_the_cli_report_bit_for_bit(root, cli, tmp_path):
+    """A rational start (the CLI's --from) and a grid: the same orbits, eigenvalues and
+    exact characteristic polynomial as `noslip orbits` writes into orbits.json."""
+    path = root / "scenes" / "sinai.toml"
+    out = tmp_path / "orbits"
+    run_cli(cli, "orbits", str(path), "--period", "2", "--from", "17/20,1/2,1,0,0",
+            "--grid", "2", "--out", str(out))
+    want = json.loads((out / "orbits.json").read_text())
+    from fractions import Fraction as F
+
+    got = noslip.orbits(noslip.Scene.from_file(path), 2, starts=[[F(17, 20), 0.5, 1, 0, "0"]],
+                        grid=2)
+    assert (got.period, got.starts, got.misses) == (want["period"], want["starts"], want["misses"])
+    assert len(got.orbits) == len(want["orbits"]) > 0
+    for o, w in zip(got.orbits, want["orbits"]):
+        assert o.boundaries == w["boundaries"] and o.verdict == w["verdict"]
+        assert o.start.tolist() == w["start"] and o.states.tolist() == w["states"]
+        assert o.residual == w["residual"] and o.found_from == w["found_from"]
+        assert [(z.real, z.imag) for z in o.eigenvalues] == [tuple(e) for e in w["eigenvalues"]]
+    assert len(got.exact) == 1
+    e, w = got.exact[0], want["exact"][0]
+    assert e is not None and e.charpoly == w["charpoly"] and e.periodic == w["periodic"]
+    assert e.coefficients == [F(x) for x in w["coefficients"]]
+    assert e.end == [F(x) for x in w["end"]]
+
+
+def test_the_bouncing_orbit_is_hyperbolic_when_smooth_and_elliptic_when_no_slip():
+    """The disk bouncing along y = 1/2 between the obstacle (radius 3/10 at the centre) and
+    its periodic image: a period-2 orbit of the boundary map (the same obstacle twice) whose
+    exact return map brings the rational start back exactly. Between convex scatterers the
+    smooth (classical) bouncing orbit is hyperbolic (Sinai); under no-slip contacts the
+    period-2 orbits are linearly stable, elliptic (Cox and Feres, no-slip billiards)."""
+    scene = noslip.tables.sinai(0.5, "3/10")
+    # Just after a contact at the obstacle's rightmost point: centre at x = 1/2 + 3/10 +
+    # 1/20, moving right at unit speed, no spin.
+    start = ["17/20", "1/2", 1, 0, 0]
+    for contact, verdict in (("smooth", "hyperbolic"), ("no-slip", "elliptic")):
+        got = noslip.orbits(scene, 2, starts=[start], contact=contact)
+        assert [o.verdict for o in got.orbits] == [verdict], contact
+        assert got.orbits[0].boundaries == [0, 0]
+        assert got.exact[0] is not None and got.exact[0].periodic
+        assert np.allclose(got.orbits[0].start, [0.85, 0.5, 1, 0, 0], atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"period": 0}, r"^period: must be in 1\.\.=1000"),
+        ({"starts": [[1, 2, 3]]}, r"^starts\[0\]: has 3 numbers, expected 2n \+ S = 5"),
+        ({"starts": [["0.85", "0.5", 1, 0, "x"]]}, r"^starts\[0\]\[4\]"),
+        ({"starts": [["0.85", "0.5", -1, 0, 0]]}, r"^starts\[0\]: the velocity must point"),
+        ({"grid": 0}, r"^grid: must be at least 1"),
+        ({"contact": "rough"}, r"^contact: must be"),
+    ],
+)
+def test_bad_orbit_arguments_are_named(root, kwargs, message):
+    scene = noslip.Scene.from_file(root / "scenes" / "sinai.toml")
+    with pytest.raises(noslip.InputError, match=message):
+        noslip.orbits(scene, **{"period": 2, **kwargs})
