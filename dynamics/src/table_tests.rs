@@ -26,7 +26,7 @@ fn tilted_wall_contact_is_exact() {
         }],
         period: [None, None],
         ball: disk(),
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     let hit = table
         .next_hit(&[q(3, 1), q(4, 1)], &[q(-3, 5), q(-4, 5)])
@@ -57,7 +57,7 @@ fn periodic_flight_wraps_and_meets_the_obstacle() {
             radius: q(1, 20),
             ..disk()
         },
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     let hit = table
         .next_hit(&[q(9, 10), q(1, 2)], &[q(1, 1), q(0, 1)])
@@ -89,7 +89,7 @@ fn container_chord_and_step() {
         }],
         period: [None, None],
         ball: disk(),
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     let s = State2::from_scalar_spin(q(0, 1), [q(0, 1), q(2, 1)]);
     let (hit, after) = table.step(&[q(0, 1), q(0, 1)], &s).unwrap();
@@ -116,7 +116,7 @@ fn grazing_flights_are_not_contacts() {
             radius: q(1, 1),
             ..disk()
         },
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     assert_eq!(
         table.next_hit(&[q(-10, 1), q(5, 1)], &[q(1, 1), q(0, 1)]),

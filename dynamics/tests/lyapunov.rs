@@ -41,7 +41,7 @@ fn run(text: &str, events: u64, law: Law, two: bool) -> Spectrum {
         k: None,
         blocks: 10,
         seed: 7,
-        law,
+        law: Some(law),
         every: None,
     };
     if two {

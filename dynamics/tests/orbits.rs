@@ -18,7 +18,10 @@ fn walls() -> Table<Exact, 2> {
         "walls",
     )
     .unwrap();
-    table::<2, 1>(&scene, Law::NoSlip).unwrap().0
+    table::<2, 1>(&scene, Some(Law::NoSlip))
+        .unwrap()
+        .exact
+        .unwrap()
 }
 
 /// The period-2 orbit of a disk bouncing between the walls `y = 0` and `y = 4` (radius 1/2,
@@ -98,7 +101,7 @@ fn exact_return_map_equals_the_f64_one_to_rounding() {
         ],
         period: [None, None],
         ball,
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip; 3],
     };
     let z = Section {
         x: [q(1, 1), q(1, 4)],
@@ -141,10 +144,7 @@ fn exact_return_map_equals_the_f64_one_to_rounding() {
 #[test]
 fn newton_converges_quadratically_on_the_sinai_table() {
     let scene = Scene::from_toml(include_str!("../../scenes/sinai.toml"), "sinai").unwrap();
-    let t = table::<2, 1>(&scene, Law::NoSlip)
-        .unwrap()
-        .0
-        .map(|x| x.to_f64());
+    let t = table::<2, 1>(&scene, Some(Law::NoSlip)).unwrap().float;
     // Near the horizontal period-2 orbit through the periodic face: contacts at x = 0.85 and
     // (the obstacle's image) x = 0.15, y = 1/2.
     let orbit = newton::<2, 1>(&t, &[0.85, 0.51, 1.0, 0.02, 0.05], 2).unwrap();
@@ -169,7 +169,10 @@ fn newton_converges_quadratically_on_the_sinai_table() {
 #[test]
 fn smooth_sinai_bouncing_orbit_is_the_classical_hyperbolic_one() {
     let scene = Scene::from_toml(include_str!("../../scenes/sinai.toml"), "sinai").unwrap();
-    let t = table::<2, 1>(&scene, Law::Smooth).unwrap().0;
+    let t = table::<2, 1>(&scene, Some(Law::Smooth))
+        .unwrap()
+        .exact
+        .unwrap();
     let z = Section {
         x: [q(17, 20), q(1, 2)],
         state: State2::from_scalar_spin(q(0, 1), [q(1, 1), q(0, 1)]),
