@@ -90,7 +90,15 @@ pub enum Miss {
     },
     /// A step left the section (the velocity no longer points into the table).
     LeftSection,
+    /// Newton converged to a ball at rest (`|u|^2 <= RESTING E`, the energy all in the spin):
+    /// a fixed point of the map in the limit of a vanishing flight, not an orbit.
+    Resting,
 }
+
+/// The share of the energy (`|u|^2` against [`energy`]) at or below which a converged
+/// state is a ball at rest ([`Miss::Resting`]): far below any orbit's, far above rounding
+/// of a zero velocity.
+pub const RESTING: f64 = 1e-12;
 
 /// The gap of a centre at `x` from boundary `b`'s contact surface: `>= 0` in the table, 0 on
 /// the surface. A wall: `(x - p) . n - r`; a sphere: `|x - c| - R - r`; a container:
@@ -289,6 +297,12 @@ where
     let mut residuals = vec![res];
     for iteration in 0..=MAX_ITERATIONS {
         if res < CONVERGED {
+            // A ball at rest touching the table (its energy all in the spin, which smooth
+            // contacts keep) is a fixed point of the map but no orbit: no flight.
+            let speed2: f64 = z[N..2 * N].iter().map(|v| v * v).sum();
+            if speed2 <= RESTING * energy0 {
+                return Err(Miss::Resting);
+            }
             let eigenvalues = section_eigenvalues(&r.columns);
             return Ok(Orbit {
                 boundaries: r.boundaries,

@@ -181,7 +181,9 @@ where
     for z in &starts {
         match newton::<N, S>(f, z, ask.period) {
             Ok(o) => merge(f, &mut found, o),
-            Err(Miss::NoHit(_) | Miss::NoConvergence { .. } | Miss::LeftSection) => misses += 1,
+            Err(
+                Miss::NoHit(_) | Miss::NoConvergence { .. } | Miss::LeftSection | Miss::Resting,
+            ) => misses += 1,
         }
     }
     Ok(Report {
