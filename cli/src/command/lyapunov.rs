@@ -186,7 +186,7 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         s.method,
         args.contact
             .as_deref()
-            .unwrap_or("the scene's contact kinds"),
+            .map_or("the scene's kinds of".to_string(), |c| format!("all {c}")),
         s.dimension,
         s.contacts,
         s.warmup,
