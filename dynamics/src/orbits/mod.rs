@@ -95,9 +95,9 @@ pub enum Miss {
     Resting,
 }
 
-/// The share of the energy (`|u|^2` against [`energy`]) at or below which a converged
-/// state is a ball at rest ([`Miss::Resting`]): far below any orbit's, far above rounding
-/// of a zero velocity.
+/// The share of the energy (`|u|^2` against `|u|^2 + gamma^2 R^2 |U|^2`) at or below which
+/// a converged state is a ball at rest ([`Miss::Resting`]): far below any orbit's, far above
+/// rounding of a zero velocity.
 pub const RESTING: f64 = 1e-12;
 
 /// The gap of a centre at `x` from boundary `b`'s contact surface: `>= 0` in the table, 0 on
