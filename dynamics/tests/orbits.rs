@@ -248,3 +248,35 @@ fn triangle_has_stable_period_two_orbits_no_slip_and_none_smooth() {
     assert!(smooth.orbits.is_empty(), "{smooth:?}");
     assert_eq!(smooth.misses, smooth.starts);
 }
+
+/// Cox, Feres and Zhang's corner theorem in its own setting: the shipped wedge of 20 degrees
+/// (two flat walls, no-slip as shipped). The grid search finds period-2 orbits between the
+/// two walls that are elliptic: a non-real pair of eigenvalues on the unit circle (to 1e-6).
+/// With smooth contacts none: the two walls have no common perpendicular.
+#[test]
+fn wedge_of_twenty_degrees_has_elliptic_period_two_orbits() {
+    use noslip_dynamics::orbits::search::{search, Search};
+    let scene = Scene::from_toml(include_str!("../../scenes/wedge.toml"), "wedge").unwrap();
+    let ask = |law| Search {
+        period: 2,
+        from: Vec::new(),
+        grid: Some(3),
+        law,
+    };
+    let no_slip = search::<2, 1>(&scene, &ask(None)).unwrap();
+    let elliptic: Vec<_> = no_slip
+        .orbits
+        .iter()
+        .filter(|o| o.verdict == Verdict::Elliptic)
+        .collect();
+    assert!(!elliptic.is_empty(), "{no_slip:?}");
+    for o in elliptic {
+        assert_ne!(o.boundaries[0], o.boundaries[1], "{o:?}");
+        assert!(o.eigenvalues.iter().any(|(_, im)| im.abs() > 1e-6), "{o:?}");
+        for (re, im) in &o.eigenvalues {
+            assert!((re.hypot(*im) - 1.0).abs() < 1e-6, "{o:?}");
+        }
+    }
+    let smooth = search::<2, 1>(&scene, &ask(Some(Law::Smooth))).unwrap();
+    assert!(smooth.orbits.is_empty(), "{smooth:?}");
+}
