@@ -28,7 +28,7 @@ fn sinai_spectrum_is_printed_and_published() {
     );
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
-        stdout.starts_with("scenes/sinai.toml: 5 exponents by qr (no-slip contacts)"),
+        stdout.starts_with("scenes/sinai.toml: 5 exponents by qr (the scene's kinds of contacts)"),
         "{stdout}"
     );
     assert!(stdout.contains("3 below 1% of the largest"), "{stdout}");
@@ -79,7 +79,7 @@ fn two_trajectory_and_smooth_run() {
     );
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
-        stdout.contains("1 exponent by two-trajectory (smooth contacts)"),
+        stdout.contains("1 exponent by two-trajectory (all smooth contacts)"),
         "{stdout}"
     );
     std::fs::remove_dir_all(&dir).unwrap();

@@ -10,9 +10,14 @@
 //!   `free` for two balls.
 //! - Smooth, with a boundary: `u' = u - 2 (u . nu) nu`, the spin untouched. Two smooth balls:
 //!   `dn = (u_2 - u_1) . nu`, `u_1' = u_1 + 2 w_1 dn nu / (w_1 + w_2)`,
-//!   `u_2' = u_2 - 2 w_2 dn nu / (w_1 + w_2)`, spins untouched.
+//!   `u_2' = u_2 - 2 w_2 dn nu / (w_1 + w_2)`, spins untouched. Both are the engine's
+//!   [`noslip_sim::smooth`] maps (generic over the scalar), so the tangent map differentiates
+//!   the very map the engine runs.
+//!
+//! Which law a contact follows is the scene's (`contact = "smooth"` per boundary, per
+//! obstacle and for ball pairs: [`noslip_sim::ContactKind`], converted by `From`), unless a
+//! run overrides every contact's law.
 
-use crate::geometry::dot;
 use collision_core::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};
 use serde::Serialize;
 
@@ -26,7 +31,24 @@ pub enum Law {
     Smooth,
 }
 
+impl From<noslip_sim::ContactKind> for Law {
+    fn from(kind: noslip_sim::ContactKind) -> Law {
+        match kind {
+            noslip_sim::ContactKind::NoSlip => Law::NoSlip,
+            noslip_sim::ContactKind::Smooth => Law::Smooth,
+        }
+    }
+}
+
 impl Law {
+    /// The scene's contact kind for this law (the inverse of `From<ContactKind>`).
+    pub fn kind(self) -> noslip_sim::ContactKind {
+        match self {
+            Law::NoSlip => noslip_sim::ContactKind::NoSlip,
+            Law::Smooth => noslip_sim::ContactKind::Smooth,
+        }
+    }
+
     /// The state of a ball (parameters `ball`) after touching an immovable boundary at rest,
     /// `nu` from the boundary towards the ball.
     pub fn boundary<T: Scalar, const N: usize, const S: usize>(
@@ -41,15 +63,7 @@ impl Law {
     {
         match self {
             Law::NoSlip => Generated::fixed(nu, &T::one(), ball, &BodyState::zero(), state),
-            Law::Smooth => {
-                let two_un = (T::one() + T::one()) * dot(&state.velocity, nu);
-                BodyState {
-                    spin: state.spin.clone(),
-                    velocity: std::array::from_fn(|k| {
-                        state.velocity[k].clone() - two_un.clone() * nu[k].clone()
-                    }),
-                }
-            }
+            Law::Smooth => noslip_sim::smooth::fixed(nu, state),
         }
     }
 
@@ -66,29 +80,13 @@ impl Law {
     {
         match self {
             Law::NoSlip => Generated::free(nu, balls[0], balls[1], states[0], states[1]),
-            Law::Smooth => {
-                let du: [T; N] = std::array::from_fn(|k| {
-                    states[1].velocity[k].clone() - states[0].velocity[k].clone()
-                });
-                let two = T::one() + T::one();
-                let q =
-                    two * dot(&du, nu) / (balls[0].inv_mass.clone() + balls[1].inv_mass.clone());
-                let [w1, w2] = [&balls[0].inv_mass, &balls[1].inv_mass];
-                [
-                    BodyState {
-                        spin: states[0].spin.clone(),
-                        velocity: std::array::from_fn(|k| {
-                            states[0].velocity[k].clone() + w1.clone() * q.clone() * nu[k].clone()
-                        }),
-                    },
-                    BodyState {
-                        spin: states[1].spin.clone(),
-                        velocity: std::array::from_fn(|k| {
-                            states[1].velocity[k].clone() - w2.clone() * q.clone() * nu[k].clone()
-                        }),
-                    },
-                ]
-            }
+            Law::Smooth => noslip_sim::smooth::pair(
+                nu,
+                &balls[0].inv_mass,
+                &balls[1].inv_mass,
+                states[0],
+                states[1],
+            ),
         }
     }
 }
@@ -145,6 +143,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::dot;
     use collision_core::{Exact, State2};
 
     fn q(n: i64, d: i64) -> Exact {

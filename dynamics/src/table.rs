@@ -42,6 +42,19 @@ pub enum Boundary<T, const N: usize> {
         /// The radius `R`.
         radius: T,
     },
+    /// The segment from `from` to `to` (a 2D polygon obstacle's edge), the table on the side
+    /// of the unit `normal`: touched at `(x - from) . normal = r` with the centre's foot on
+    /// the segment, `0 <= (x - from) . (to - from) <= |to - from|^2`, approached from in
+    /// front of its line (beyond its ends the obstacle's vertices, spheres of radius 0, take
+    /// over).
+    Edge {
+        /// The start vertex.
+        from: [T; N],
+        /// The end vertex.
+        to: [T; N],
+        /// The unit normal out of the obstacle.
+        normal: [T; N],
+    },
 }
 
 /// The first contact of a flight.
@@ -71,7 +84,7 @@ impl<T: Root, const N: usize> Boundary<T, N> {
     /// The contact surface's [`Geometry`] for a ball of radius `r`.
     pub fn geometry(&self, r: &T) -> Geometry<T> {
         match self {
-            Boundary::Wall { .. } => Geometry::Flat,
+            Boundary::Wall { .. } | Boundary::Edge { .. } => Geometry::Flat,
             Boundary::Sphere { radius, .. } => Geometry::Convex {
                 r_eff: radius.clone() + r.clone(),
             },
@@ -93,6 +106,20 @@ impl<T: Root, const N: usize> Boundary<T, N> {
                 let d: [T; N] = std::array::from_fn(|k| x[k].clone() - point[k].clone());
                 let t = (r.clone() - dot(&d, normal)) / un;
                 Ok(Some(if t < T::zero() { T::zero() } else { t }))
+            }
+            Boundary::Edge { from, to, normal } => {
+                let un = dot(u, normal);
+                let d: [T; N] = std::array::from_fn(|k| x[k].clone() - from[k].clone());
+                let depth = dot(&d, normal);
+                if un >= T::zero() || depth < T::zero() {
+                    return Ok(None);
+                }
+                let t = (r.clone() - depth) / un;
+                let t = if t < T::zero() { T::zero() } else { t };
+                let e: [T; N] = std::array::from_fn(|k| to[k].clone() - from[k].clone());
+                let q: [T; N] = std::array::from_fn(|k| d[k].clone() + t.clone() * u[k].clone());
+                let s = dot(&q, &e);
+                Ok((s >= T::zero() && s <= dot(&e, &e)).then_some(t))
             }
             Boundary::Sphere { centre, radius } | Boundary::Container { centre, radius } => {
                 let inside = matches!(self, Boundary::Container { .. });
@@ -137,7 +164,7 @@ impl<T: Root, const N: usize> Boundary<T, N> {
     /// The unit normal towards the centre `x` in contact (the sphere shifted by `shift`).
     fn normal(&self, x: &[T; N], r: &T, shift: &[T; N]) -> [T; N] {
         match self {
-            Boundary::Wall { normal, .. } => normal.clone(),
+            Boundary::Wall { normal, .. } | Boundary::Edge { normal, .. } => normal.clone(),
             Boundary::Sphere { centre, radius } => {
                 let r_eff = radius.clone() + r.clone();
                 std::array::from_fn(|k| {
@@ -161,8 +188,9 @@ pub struct Table<T, const N: usize> {
     pub period: [Option<T>; N],
     /// The ball's parameters.
     pub ball: Ball<T>,
-    /// The law of every contact.
-    pub law: Law,
+    /// The law of the contact with each boundary, by index (as long as
+    /// [`Table::boundaries`]).
+    pub laws: Vec<Law>,
 }
 
 /// Face crossings a flight may take before it is declared escaping.
@@ -189,6 +217,11 @@ impl<T: Clone, const N: usize> Table<T, N> {
                         centre: v(centre),
                         radius: f(radius),
                     },
+                    Boundary::Edge { from, to, normal } => Boundary::Edge {
+                        from: v(from),
+                        to: v(to),
+                        normal: v(normal),
+                    },
                 })
                 .collect(),
             period: std::array::from_fn(|k| self.period[k].as_ref().map(&f)),
@@ -197,7 +230,7 @@ impl<T: Clone, const N: usize> Table<T, N> {
                 radius: f(&self.ball.radius),
                 gamma2: f(&self.ball.gamma2),
             },
-            law: self.law,
+            laws: self.laws.clone(),
         }
     }
 }
@@ -296,7 +329,7 @@ impl<T: Root, const N: usize> Table<T, N> {
         Generated: Kernel<T, N, S>,
     {
         let hit = self.next_hit(x, &state.velocity)?;
-        let after = self.law.boundary(&hit.nu, &self.ball, state);
+        let after = self.laws[hit.boundary].boundary(&hit.nu, &self.ball, state);
         Ok((hit, after))
     }
 }

@@ -26,7 +26,7 @@ fn tilted_wall_contact_is_exact() {
         }],
         period: [None, None],
         ball: disk(),
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     let hit = table
         .next_hit(&[q(3, 1), q(4, 1)], &[q(-3, 5), q(-4, 5)])
@@ -57,7 +57,7 @@ fn periodic_flight_wraps_and_meets_the_obstacle() {
             radius: q(1, 20),
             ..disk()
         },
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     let hit = table
         .next_hit(&[q(9, 10), q(1, 2)], &[q(1, 1), q(0, 1)])
@@ -89,7 +89,7 @@ fn container_chord_and_step() {
         }],
         period: [None, None],
         ball: disk(),
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     let s = State2::from_scalar_spin(q(0, 1), [q(0, 1), q(2, 1)]);
     let (hit, after) = table.step(&[q(0, 1), q(0, 1)], &s).unwrap();
@@ -116,7 +116,7 @@ fn grazing_flights_are_not_contacts() {
             radius: q(1, 1),
             ..disk()
         },
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip],
     };
     assert_eq!(
         table.next_hit(&[q(-10, 1), q(5, 1)], &[q(1, 1), q(0, 1)]),
@@ -129,5 +129,36 @@ fn grazing_flights_are_not_contacts() {
             .unwrap()
             .time,
         q(6, 1)
+    );
+}
+
+/// A polygon obstacle's edge from (0, 0) to (2, 0), the table above (nu = (0, 1)), r = 1/2:
+/// from (1, 3) moving straight down the centre touches at y = 1/2 after t = 5/2, exactly;
+/// from (3, 3) (its foot beyond the edge's end) and from below the edge's line it never
+/// touches the edge itself (the vertices, spheres of radius 0, would).
+#[test]
+fn edge_is_touched_only_over_the_segment_from_in_front() {
+    let table = Table {
+        boundaries: vec![Boundary::Edge {
+            from: [q(0, 1), q(0, 1)],
+            to: [q(2, 1), q(0, 1)],
+            normal: [q(0, 1), q(1, 1)],
+        }],
+        period: [None, None],
+        ball: disk(),
+        laws: vec![Law::NoSlip],
+    };
+    let down = [q(0, 1), q(-1, 1)];
+    let hit = table.next_hit(&[q(1, 1), q(3, 1)], &down).unwrap();
+    assert_eq!(hit.time, q(5, 2));
+    assert_eq!(hit.position, [q(1, 1), q(1, 2)]);
+    assert_eq!(hit.nu, [q(0, 1), q(1, 1)]);
+    assert_eq!(
+        table.next_hit(&[q(3, 1), q(3, 1)], &down),
+        Err(NoHit::Escapes)
+    );
+    assert_eq!(
+        table.next_hit(&[q(1, 1), q(-1, 1)], &[q(0, 1), q(1, 1)]),
+        Err(NoHit::Escapes)
     );
 }

@@ -60,7 +60,14 @@ where
     let mut block = delta.to_vec();
     flight::<T, N>(&mut block, &hit.time);
     let geometry = table.boundaries[hit.boundary].geometry(&table.ball.radius);
-    boundary_contact(&geometry, table.law, &table.ball, &hit.nu, &z.1, &mut block);
+    boundary_contact(
+        &geometry,
+        table.laws[hit.boundary],
+        &table.ball,
+        &hit.nu,
+        &z.1,
+        &mut block,
+    );
     flight::<T, N>(&mut block, &(total.clone() - hit.time));
     block
 }
@@ -74,7 +81,7 @@ fn table2(boundary: Boundary<f64, 2>, law: Law) -> Table<f64, 2> {
             radius: 0.25,
             gamma2: 0.5,
         },
-        law,
+        laws: vec![law],
     }
 }
 
@@ -166,7 +173,7 @@ fn one_ball_tangent_maps_match_central_differences_in_f64() {
             }],
             period: [None, None, None],
             ball: ball3,
-            law,
+            laws: vec![law],
         };
         let z3 = (
             [-2.5, 0.4, -0.3],
@@ -230,7 +237,7 @@ fn one_ball_tangent_maps_equal_the_dual_full_map_exactly() {
                 boundaries: vec![boundary.clone()],
                 period: [None, None],
                 ball: ball.clone(),
-                law,
+                laws: vec![law],
             };
             let total = q(9, 1);
             let dual_table = table.map(|x| Dual::constant(x.clone()));

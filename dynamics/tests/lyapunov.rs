@@ -41,7 +41,7 @@ fn run(text: &str, events: u64, law: Law, two: bool) -> Spectrum {
         k: None,
         blocks: 10,
         seed: 7,
-        law,
+        law: Some(law),
         every: None,
     };
     if two {
@@ -116,4 +116,39 @@ fn the_two_methods_agree_on_the_sinai_table_and_the_gas() {
             "a measured, positive exponent: {a:?}"
         );
     }
+}
+
+/// A container, with smooth contacts: the circular billiard is integrable (the angular
+/// momentum about the centre, hence the chord length, is conserved with the speed), so every
+/// tangent vector grows at most linearly in time and every exponent is 0. Over a finite run
+/// linear growth shows as `ln(T / T_w) / (T - T_w)` (the measured part runs from the warm-up's
+/// end `T_w` to `T`); every flight has the same length, so `T / T_w` is `contacts / warmup`.
+/// Each exponent is at most that (5% for the linear growth's constant term at `T_w`) in
+/// size, and the sum is 0 to rounding (1e-12 per unit time). The contact kind comes from the
+/// scene (`contact = "smooth"` on the container), no override.
+#[test]
+fn smooth_circle_is_integrable_all_exponents_vanish() {
+    let text = include_str!("../../scenes/circle.toml")
+        .replace("radius = 1\n", "radius = 1\ncontact = \"smooth\"\n");
+    let scene = Scene::from_toml(&text, "circle.toml").unwrap();
+    let setup = noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
+    let s = qr(
+        setup,
+        &Options {
+            events: 200_000,
+            k: None,
+            blocks: 10,
+            seed: 7,
+            law: None,
+            every: None,
+        },
+    )
+    .unwrap();
+    let linear = (s.contacts as f64 / s.warmup as f64).ln() / s.time;
+    for e in &s.per_time {
+        assert!(e.value.abs() <= 1.05 * linear, "{e:?} vs {linear}: {s:?}");
+    }
+    assert!(s.sum.value.abs() < 1e-12, "{s:?}");
+    // The largest is the linear growth's, not a smaller rate: the bound is the right one.
+    assert!(s.per_time[0].value > 0.8 * linear, "{s:?}");
 }

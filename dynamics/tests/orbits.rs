@@ -18,7 +18,10 @@ fn walls() -> Table<Exact, 2> {
         "walls",
     )
     .unwrap();
-    table::<2, 1>(&scene, Law::NoSlip).unwrap().0
+    table::<2, 1>(&scene, Some(Law::NoSlip))
+        .unwrap()
+        .exact
+        .unwrap()
 }
 
 /// The period-2 orbit of a disk bouncing between the walls `y = 0` and `y = 4` (radius 1/2,
@@ -98,7 +101,7 @@ fn exact_return_map_equals_the_f64_one_to_rounding() {
         ],
         period: [None, None],
         ball,
-        law: Law::NoSlip,
+        laws: vec![Law::NoSlip; 3],
     };
     let z = Section {
         x: [q(1, 1), q(1, 4)],
@@ -141,10 +144,7 @@ fn exact_return_map_equals_the_f64_one_to_rounding() {
 #[test]
 fn newton_converges_quadratically_on_the_sinai_table() {
     let scene = Scene::from_toml(include_str!("../../scenes/sinai.toml"), "sinai").unwrap();
-    let t = table::<2, 1>(&scene, Law::NoSlip)
-        .unwrap()
-        .0
-        .map(|x| x.to_f64());
+    let t = table::<2, 1>(&scene, Some(Law::NoSlip)).unwrap().float;
     // Near the horizontal period-2 orbit through the periodic face: contacts at x = 0.85 and
     // (the obstacle's image) x = 0.15, y = 1/2.
     let orbit = newton::<2, 1>(&t, &[0.85, 0.51, 1.0, 0.02, 0.05], 2).unwrap();
@@ -169,7 +169,10 @@ fn newton_converges_quadratically_on_the_sinai_table() {
 #[test]
 fn smooth_sinai_bouncing_orbit_is_the_classical_hyperbolic_one() {
     let scene = Scene::from_toml(include_str!("../../scenes/sinai.toml"), "sinai").unwrap();
-    let t = table::<2, 1>(&scene, Law::Smooth).unwrap().0;
+    let t = table::<2, 1>(&scene, Some(Law::Smooth))
+        .unwrap()
+        .exact
+        .unwrap();
     let z = Section {
         x: [q(17, 20), q(1, 2)],
         state: State2::from_scalar_spin(q(0, 1), [q(1, 1), q(0, 1)]),
@@ -197,4 +200,83 @@ fn smooth_sinai_bouncing_orbit_is_the_classical_hyperbolic_one() {
         "{:?}",
         orbit.eigenvalues
     );
+}
+
+/// Cox, Feres and Zhang (Stability of periodic orbits in no-slip billiards, 2017): a no-slip
+/// billiard with a corner of inner angle below `pi` has linearly stable period-2 orbits
+/// bouncing between the corner's two sides. A period-2 orbit runs back and forth along one
+/// chord, so each contact reverses the velocity (and the spin): the no-slip map has such
+/// states (the `-1` eigenvectors of its tangential part), smooth contacts only at normal
+/// incidence.
+///
+/// What holds in the shipped equilateral triangle (no-slip, as shipped): the grid search finds
+/// period-2 orbits, each between two different sides, each with its velocity reversed at the
+/// contacts, and none hyperbolic: every eigenvalue of the section map is on the unit circle
+/// (to 1e-6, the verdict's tolerance). They come in families (the chord moved along the
+/// sides), so their eigenvalues are `+-1` and the verdict is "parabolic" (not "elliptic" in
+/// this program's sense, which needs a non-real eigenvalue: docs/dynamics.md).
+///
+/// The classical control: with smooth (specular) contacts the velocity reverses only at normal
+/// incidence, so a period-2 orbit would run along a common perpendicular of two sides; two
+/// sides of a triangle are not parallel and have none, so the same search finds no period-2
+/// orbit at all.
+#[test]
+fn triangle_has_stable_period_two_orbits_no_slip_and_none_smooth() {
+    use noslip_dynamics::orbits::search::{search, Search};
+    let scene = Scene::from_toml(include_str!("../../scenes/triangle.toml"), "triangle").unwrap();
+    let ask = |law| Search {
+        period: 2,
+        from: Vec::new(),
+        grid: Some(6),
+        law,
+    };
+    let no_slip = search::<2, 1>(&scene, &ask(None)).unwrap();
+    assert!(!no_slip.orbits.is_empty(), "{no_slip:?}");
+    for o in &no_slip.orbits {
+        assert_ne!(o.boundaries[0], o.boundaries[1], "{o:?}");
+        assert_ne!(o.verdict, Verdict::Hyperbolic, "{o:?}");
+        for (re, im) in &o.eigenvalues {
+            assert!((re.hypot(*im) - 1.0).abs() < 1e-6, "{o:?}");
+        }
+        // u at the second contact is -u at the first (relative 1e-9: Newton's residual).
+        let [a, b] = [&o.states[0], &o.states[1]];
+        for k in 2..4 {
+            assert!((a[k] + b[k]).abs() < 1e-9 * (1.0 + a[k].abs()), "{o:?}");
+        }
+    }
+    let smooth = search::<2, 1>(&scene, &ask(Some(Law::Smooth))).unwrap();
+    assert!(smooth.orbits.is_empty(), "{smooth:?}");
+    assert_eq!(smooth.misses, smooth.starts);
+}
+
+/// Cox, Feres and Zhang's corner theorem in its own setting: the shipped wedge of 20 degrees
+/// (two flat walls, no-slip as shipped). The grid search finds period-2 orbits between the
+/// two walls that are elliptic: a non-real pair of eigenvalues on the unit circle (to 1e-6).
+/// With smooth contacts none: the two walls have no common perpendicular.
+#[test]
+fn wedge_of_twenty_degrees_has_elliptic_period_two_orbits() {
+    use noslip_dynamics::orbits::search::{search, Search};
+    let scene = Scene::from_toml(include_str!("../../scenes/wedge.toml"), "wedge").unwrap();
+    let ask = |law| Search {
+        period: 2,
+        from: Vec::new(),
+        grid: Some(3),
+        law,
+    };
+    let no_slip = search::<2, 1>(&scene, &ask(None)).unwrap();
+    let elliptic: Vec<_> = no_slip
+        .orbits
+        .iter()
+        .filter(|o| o.verdict == Verdict::Elliptic)
+        .collect();
+    assert!(!elliptic.is_empty(), "{no_slip:?}");
+    for o in elliptic {
+        assert_ne!(o.boundaries[0], o.boundaries[1], "{o:?}");
+        assert!(o.eigenvalues.iter().any(|(_, im)| im.abs() > 1e-6), "{o:?}");
+        for (re, im) in &o.eigenvalues {
+            assert!((re.hypot(*im) - 1.0).abs() < 1e-6, "{o:?}");
+        }
+    }
+    let smooth = search::<2, 1>(&scene, &ask(Some(Law::Smooth))).unwrap();
+    assert!(smooth.orbits.is_empty(), "{smooth:?}");
 }

@@ -102,7 +102,7 @@ pub fn lyapunov<'py>(
         k,
         blocks,
         seed,
-        law,
+        law: Some(law),
         every,
     };
     let scene = &scene.get().inner;
@@ -176,7 +176,7 @@ pub fn orbits(
         period,
         from,
         grid,
-        law,
+        law: Some(law),
     };
     let scene = &scene.get().inner;
     let n = scene.dim;

@@ -441,6 +441,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
     }
 
+    /// The contact kind of `contact` as the table sets it (the box's, an obstacle's, a
+    /// boundary's, or the ball-ball pairs').
+    pub fn contact_kind(&self, contact: &Contact) -> ContactKind {
+        match *contact {
+            Contact::Ball { .. } => self.table.ball_contact,
+            Contact::Wall { .. } => self.table.box_contact,
+            Contact::Obstacle { obstacle, .. } => self.table.obstacle(obstacle),
+            Contact::Boundary { boundary, .. } => self.table.boundaries[boundary].contact,
+        }
+    }
+
     /// Ball `i`'s species index.
     pub fn species_of(&self, i: usize) -> usize {
         self.kind[i]

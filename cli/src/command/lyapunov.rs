@@ -23,8 +23,10 @@ second run kept 1e-9 away (Benettin), an independent check with no tangent map.
 
 --events N contacts are run; the first of --blocks + 1 equal parts is a warm-up, the other
 --blocks give the standard error (the spread of the blocks' estimates over sqrt(blocks)).
-Exponents are given per unit time and per contact. --contact smooth makes every contact
-specular (spins untouched): the classical billiard, the Hamiltonian control.
+Exponents are given per unit time and per contact. Each contact follows its own kind from
+the scene (contact = \"smooth\" or \"no-slip\" per wall, container, polygon, obstacle and
+for ball pairs), in the trajectory and in the tangent map; --contact smooth (or no-slip)
+overrides every contact's kind: smooth is the classical billiard, the Hamiltonian control.
 
 Prints the spectrum with errors, its sum and the number of exponents below 1% of the largest,
 and writes to --out (default out/lyapunov/SCENE), published as one set: spectrum.json (the
@@ -54,9 +56,10 @@ pub struct Args {
     /// Contacts between re-orthonormalisations (default: the method's).
     #[arg(long)]
     every: Option<u64>,
-    /// The contact law of every contact: `no-slip` or `smooth`.
-    #[arg(long, default_value = "no-slip")]
-    contact: String,
+    /// Override every contact's law: `no-slip` or `smooth` (default: each contact's kind
+    /// from the scene).
+    #[arg(long)]
+    contact: Option<String>,
     /// The output directory (default out/lyapunov/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -100,7 +103,7 @@ fn options(args: &Args) -> Result<(Options, bool), Failure> {
             k: args.k,
             blocks: args.blocks,
             seed: args.seed,
-            law: parse_law(&args.contact)?,
+            law: args.contact.as_deref().map(parse_law).transpose()?,
             every: args.every,
         },
         two,
@@ -181,7 +184,9 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         s.per_time.len(),
         if s.per_time.len() == 1 { "" } else { "s" },
         s.method,
-        args.contact,
+        args.contact
+            .as_deref()
+            .map_or("the scene's kinds of".to_string(), |c| format!("all {c}")),
         s.dimension,
         s.contacts,
         s.warmup,

@@ -11,7 +11,10 @@ use std::path::{Path, PathBuf};
 
 pub(crate) const LONG_ABOUT: &str = "\
 Periodic orbits of the K-th return map of the boundary map of a one-ball table (a scene with
-one [[ball]]: walls of the box, fixed ball obstacles, periodic axes). The section is the state
+one [[ball]]: walls of the box, fixed ball obstacles, periodic axes, and the table's walls,
+containers, polygon tables, wedges and polygon obstacles). Each contact follows its
+boundary's kind in the scene (contact = \"smooth\" or \"no-slip\"); --contact overrides
+every contact's kind. The section is the state
 just after a contact: the centre on a boundary, the velocity and the spin, [x, u, U] (2n + S
 numbers).
 
@@ -24,10 +27,12 @@ angles x M spins, at unit speed), or by default the scene's ball after its first
 
 Each orbit is reported once (orbits found from several starts are merged): its contact
 sequence (boundary indices: walls 2k and 2k+1 at x_k = 0 and L_k for each walled axis k in
-order, then the obstacles), its start, the eigenvalues of the linearised return map on the
+order, then the obstacles, then the table's boundaries in the scene's order: walls, the
+polygon's or wedge's walls, containers, each polygon obstacle's edges then vertices), its start, the eigenvalues of the linearised return map on the
 section and the verdict: elliptic (all on the unit circle, some non-real), parabolic (all at
 +-1) or hyperbolic (some off the unit circle), with tolerance 1e-6. For a rational --from on
-a table whose contact times are rational (flat walls), the return map at that start and the
+a table whose contact times are rational (flat walls whose normals have rational length),
+the return map at that start and the
 characteristic polynomial of its linearisation are also computed in exact rationals.
 Writes orbits.json to --out (default out/orbits/SCENE), published as one set.";
 
@@ -46,9 +51,10 @@ pub struct Args {
     /// 2D: M^3 starts per boundary (positions x angles x spins).
     #[arg(long)]
     grid: Option<usize>,
-    /// The contact law: `no-slip` or `smooth`.
-    #[arg(long, default_value = "no-slip")]
-    contact: String,
+    /// Override every contact's law: `no-slip` or `smooth` (default: each boundary's kind
+    /// from the scene).
+    #[arg(long)]
+    contact: Option<String>,
     /// The output directory (default out/orbits/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -85,7 +91,7 @@ fn show(v: &[f64]) -> String {
 
 /// Check the arguments, search, publish and print.
 pub fn run(args: &Args) -> Result<Exit, Failure> {
-    let law = parse_law(&args.contact)?;
+    let law = args.contact.as_deref().map(parse_law).transpose()?;
     let from = args
         .from
         .iter()

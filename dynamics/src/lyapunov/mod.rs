@@ -21,7 +21,7 @@ pub use two::{two_trajectory, D0};
 
 use crate::law::Law;
 use collision_core::{BodyState, Generated, Kernel};
-use noslip_sim::{Event, SetupError, Simulation, Step};
+use noslip_sim::{Event, Setup, SetupError, Simulation, Step};
 use serde::Serialize;
 use stats::Estimate;
 use std::fmt;
@@ -37,8 +37,10 @@ pub struct Options {
     pub blocks: usize,
     /// Seed of the initial tangent vectors or perturbation.
     pub seed: u64,
-    /// The contact law.
-    pub law: Law,
+    /// The law of every contact, overriding the scene's per-contact kinds (`--contact`);
+    /// `None`: each contact follows its own kind from the scene ([`noslip_sim::Table`]'s
+    /// boundaries, obstacles, box and ball pairs), in the trajectory and in the tangent map.
+    pub law: Option<Law>,
     /// Contacts between re-orthonormalisations (or renormalisations); `None`: the method's
     /// default.
     pub every: Option<u64>,
@@ -60,8 +62,8 @@ pub struct Running {
 pub struct Spectrum {
     /// `"qr"` or `"two-trajectory"`.
     pub method: &'static str,
-    /// The contact law.
-    pub law: Law,
+    /// The override of every contact's law, if any (`None`: the scene's kinds).
+    pub law: Option<Law>,
     /// The phase-space dimension `balls (2n + S)`.
     pub dimension: usize,
     /// Contacts run, and of them the warm-up.
@@ -211,4 +213,25 @@ fn push_state<const N: usize, const S: usize>(
     out.extend_from_slice(x);
     out.extend_from_slice(&s.velocity);
     out.extend_from_slice(&s.spin);
+}
+
+/// The setup with every contact's kind set to `law` when there is an override: the box, the
+/// obstacles, the table's boundaries and the ball pairs. The engine applies the smooth map
+/// itself to smooth contacts and calls its kernels for no-slip ones, so after this the
+/// trajectory and the tangent map ([`Simulation::contact_kind`]) follow the same law.
+pub fn overridden<const N: usize, const S: usize>(
+    mut setup: Setup<N, S>,
+    law: Option<Law>,
+) -> Setup<N, S> {
+    if let Some(law) = law {
+        let kind = law.kind();
+        let table = &mut setup.table;
+        table.box_contact = kind;
+        table.ball_contact = kind;
+        table.obstacle_contact = vec![kind; setup.obstacles.len()];
+        for b in &mut table.boundaries {
+            b.contact = kind;
+        }
+    }
+    setup
 }

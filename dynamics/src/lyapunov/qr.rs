@@ -11,7 +11,7 @@
 use super::stats::Blocks;
 use super::touch::{touch, Touch};
 use super::{next_contact, Dim, LyapunovError, Options, Plan, Running, Spectrum};
-use crate::law::LawKernels;
+use crate::law::{Law, LawKernels};
 use crate::tangent::{block_len, boundary_contact, flight, pair_contact};
 use collision_core::rng::Rng;
 use collision_core::Generated;
@@ -68,11 +68,12 @@ where
         return Err(LyapunovError::K { k, dimension });
     }
     let every = options.every.unwrap_or(default_every(balls)).max(1);
-    let law = options.law;
+    // The engine runs smooth contacts itself; its kernels are the no-slip ones.
     let kernels = LawKernels {
-        law,
+        law: Law::NoSlip,
         species: species.clone(),
     };
+    let setup = super::overridden(setup, options.law);
     let mut sim = Simulation::new(setup, kernels).map_err(LyapunovError::Setup)?;
     let mut rng = Rng::new(options.seed);
     let mut vectors: Vec<Vec<f64>> = (0..k)
@@ -90,6 +91,7 @@ where
         |v: &mut [f64], b: usize, dt: f64| flight::<f64, N>(&mut v[b * len..(b + 1) * len], &dt);
     for c in 1..=plan.events {
         let e = next_contact(&mut sim)?;
+        let law = Law::from(sim.contact_kind(&e.contact));
         match touch(&e.contact, sim.geometry(&e.contact), radius) {
             Touch::Boundary { ball, geometry } => {
                 let dt = e.time - since[ball];
@@ -160,7 +162,7 @@ where
     let (per_time, per_contact) = blocks.estimates();
     Ok(Spectrum {
         method: "qr",
-        law,
+        law: options.law,
         dimension,
         contacts: plan.events,
         warmup: plan.warmup,

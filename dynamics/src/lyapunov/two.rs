@@ -11,7 +11,7 @@
 use super::stats::Blocks;
 use super::touch::unordered;
 use super::{next_contact, push_state, Dim, LyapunovError, Options, Plan, Running, Spectrum};
-use crate::law::LawKernels;
+use crate::law::{Law, LawKernels};
 use collision_core::rng::Rng;
 use collision_core::{BodyState, Generated};
 use noslip_sim::{Body, Contact, Setup, Simulation};
@@ -44,10 +44,12 @@ where
         return Err(LyapunovError::K { k, dimension: 1 });
     }
     let every = options.every.unwrap_or(default_every(balls)).max(1);
+    // The engine runs smooth contacts itself; its kernels are the no-slip ones.
     let kernels = LawKernels {
-        law: options.law,
+        law: Law::NoSlip,
         species: setup.species.clone(),
     };
+    let setup = super::overridden(setup, options.law);
     let template = setup.clone();
     let mut reference = Simulation::new(setup, kernels.clone()).map_err(LyapunovError::Setup)?;
     let mut rng = Rng::new(options.seed);

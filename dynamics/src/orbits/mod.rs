@@ -90,29 +90,44 @@ pub enum Miss {
     },
     /// A step left the section (the velocity no longer points into the table).
     LeftSection,
+    /// Newton converged to a ball at rest (`|u|^2 <= RESTING E`, the energy all in the spin):
+    /// a fixed point of the map in the limit of a vanishing flight, not an orbit.
+    Resting,
 }
 
-/// The boundary nearest to `x` (by `|g|`, the distance of the centre from its contact
+/// The share of the energy (`|u|^2` against `|u|^2 + gamma^2 R^2 |U|^2`) at or below which
+/// a converged state is a ball at rest ([`Miss::Resting`]): far below any orbit's, far above
+/// rounding of a zero velocity.
+pub const RESTING: f64 = 1e-12;
+
+/// The gap of a centre at `x` from boundary `b`'s contact surface: `>= 0` in the table, 0 on
+/// the surface. A wall: `(x - p) . n - r`; a sphere: `|x - c| - R - r`; a container:
+/// `R - r - |x - c|` (minimum images on periodic axes); an edge: the distance from `x` to the
+/// segment minus `r`.
+pub fn gap<const N: usize>(table: &Table<f64, N>, b: usize, x: &[f64; N]) -> f64 {
+    let r = table.ball.radius;
+    match &table.boundaries[b] {
+        Boundary::Wall { point, normal } => {
+            let d: [f64; N] = std::array::from_fn(|k| x[k] - point[k]);
+            dot(&d, normal) - r
+        }
+        Boundary::Sphere { centre, radius } => norm(&image(table, x, centre)) - radius - r,
+        Boundary::Container { centre, radius } => radius - r - norm(&image(table, x, centre)),
+        Boundary::Edge { from, to, .. } => {
+            let e: [f64; N] = std::array::from_fn(|k| to[k] - from[k]);
+            let d: [f64; N] = std::array::from_fn(|k| x[k] - from[k]);
+            let s = (dot(&d, &e) / dot(&e, &e)).clamp(0.0, 1.0);
+            let off: [f64; N] = std::array::from_fn(|k| d[k] - s * e[k]);
+            norm(&off) - r
+        }
+    }
+}
+
+/// The boundary nearest to `x` (by `|g|`, the [`gap`] of the centre from its contact
 /// surface), with `g`.
 pub fn nearest<const N: usize>(table: &Table<f64, N>, x: &[f64; N]) -> (usize, f64) {
-    let r = table.ball.radius;
-    table
-        .boundaries
-        .iter()
-        .enumerate()
-        .map(|(b, boundary)| {
-            let g = match boundary {
-                Boundary::Wall { point, normal } => {
-                    let d: [f64; N] = std::array::from_fn(|k| x[k] - point[k]);
-                    dot(&d, normal) - r
-                }
-                Boundary::Sphere { centre, radius } => norm(&image(table, x, centre)) - radius - r,
-                Boundary::Container { centre, radius } => {
-                    radius - r - norm(&image(table, x, centre))
-                }
-            };
-            (b, g)
-        })
+    (0..table.boundaries.len())
+        .map(|b| (b, gap(table, b, x)))
         .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
         .expect("a table has a boundary")
 }
@@ -137,7 +152,12 @@ pub fn project<const N: usize>(
 ) -> ([f64; N], [f64; N]) {
     let r = table.ball.radius;
     let (y, nu): ([f64; N], [f64; N]) = match &table.boundaries[b] {
-        Boundary::Wall { point, normal } => {
+        Boundary::Wall { point, normal }
+        | Boundary::Edge {
+            from: point,
+            normal,
+            ..
+        } => {
             let d: [f64; N] = std::array::from_fn(|k| x[k] - point[k]);
             let g = dot(&d, normal) - r;
             (std::array::from_fn(|k| x[k] - g * normal[k]), *normal)
@@ -277,6 +297,12 @@ where
     let mut residuals = vec![res];
     for iteration in 0..=MAX_ITERATIONS {
         if res < CONVERGED {
+            // A ball at rest touching the table (its energy all in the spin, which smooth
+            // contacts keep) is a fixed point of the map but no orbit: no flight.
+            let speed2: f64 = z[N..2 * N].iter().map(|v| v * v).sum();
+            if speed2 <= RESTING * energy0 {
+                return Err(Miss::Resting);
+            }
             let eigenvalues = section_eigenvalues(&r.columns);
             return Ok(Orbit {
                 boundaries: r.boundaries,
@@ -448,6 +474,14 @@ pub fn grid<const N: usize>(
                     }
                 }
             }
+            Boundary::Edge { from, to, normal } => {
+                let base = [from[0] + r * normal[0], from[1] + r * normal[1]];
+                for i in 0..m {
+                    let s = mid(i);
+                    let x = std::array::from_fn(|k| base[k] + s * (to[k] - from[k]));
+                    points.push((x, *normal));
+                }
+            }
             Boundary::Sphere { centre, .. } | Boundary::Container { centre, .. } => {
                 for i in 0..m {
                     let a = std::f64::consts::TAU * mid(i);
@@ -457,6 +491,9 @@ pub fn grid<const N: usize>(
                 }
             }
         }
+        // Points of a wall's line outside the table (beyond a polygon's corner, outside a
+        // container) are no starts.
+        points.retain(|(x, _)| (0..table.boundaries.len()).all(|c| gap(table, c, x) >= -1e-9));
         for (x, nu) in points {
             let tau = [-nu[1], nu[0]];
             for j in 0..m {
@@ -489,7 +526,12 @@ pub fn exact_start<const N: usize, const S: usize>(
     let mut s = Section::<Exact, N, S>::from_slice(z);
     let r = table.ball.radius.clone();
     let nu: [Exact; N] = match &table.boundaries[b] {
-        Boundary::Wall { point, normal } => {
+        Boundary::Wall { point, normal }
+        | Boundary::Edge {
+            from: point,
+            normal,
+            ..
+        } => {
             let d: [Exact; N] = std::array::from_fn(|k| s.x[k].clone() - point[k].clone());
             let g = dot(&d, normal) - r;
             for k in 0..N {

@@ -27,8 +27,9 @@ pub struct Search {
     pub from: Vec<Vec<Exact>>,
     /// 2D: `M` for `M^3` starts per boundary (positions x angles x spins).
     pub grid: Option<usize>,
-    /// The contact law.
-    pub law: Law,
+    /// The law of every contact, overriding the scene's per-boundary kinds; `None`: each
+    /// boundary's kind from the scene.
+    pub law: Option<Law>,
 }
 
 /// The orbits found (as `orbits.json`).
@@ -115,9 +116,8 @@ where
             ask.period
         )));
     }
-    let (table, x, state) =
-        super::scene::table::<N, S>(scene, ask.law).map_err(SearchError::Scene)?;
-    let f = table.map(Scalar::to_f64);
+    let one = super::scene::table::<N, S>(scene, ask.law).map_err(SearchError::Scene)?;
+    let f = &one.float;
     let len = 2 * N + S;
     let mut starts: Vec<Vec<f64>> = Vec::new();
     let mut exact_reports = Vec::new();
@@ -131,8 +131,8 @@ where
         }
         let zf: Vec<f64> = z.iter().map(Scalar::to_f64).collect();
         let xf: [f64; N] = std::array::from_fn(|k| zf[k]);
-        let (b, _) = nearest(&f, &xf);
-        let (_, nu) = project(&f, b, &xf);
+        let (b, _) = nearest(f, &xf);
+        let (_, nu) = project(f, b, &xf);
         let inward: f64 = zf[N..2 * N].iter().zip(&nu).map(|(u, n)| u * n).sum();
         if inward <= 0.0 {
             return Err(bad(format!(
@@ -140,8 +140,9 @@ where
             )));
         }
         starts.push(zf);
-        exact_reports
-            .push(exact_start::<N, S>(&table, z).and_then(|s| exact(&table, &s, ask.period).ok()));
+        exact_reports.push(one.exact.as_ref().and_then(|table| {
+            exact_start::<N, S>(table, z).and_then(|s| exact(table, &s, ask.period).ok())
+        }));
     }
     if let Some(m) = ask.grid {
         let per = f.boundaries.len().saturating_mul(m.saturating_pow(3));
@@ -150,26 +151,25 @@ where
                 "must be at least 1 and make at most {MAX_STARTS} starts (M^3 per boundary), got {m}"
             )));
         }
+        // The box, or the region a table without one is drawn in.
+        let (lo, size) = noslip_sim::setup::extent::<N>(scene);
         let bounds: [(f64, f64); N] = std::array::from_fn(|k| match f.period[k] {
             Some(l) => (0.0, l),
-            None => (
-                f.ball.radius,
-                Exact::from_fraction(&scene.size[k]).to_f64() - f.ball.radius,
-            ),
+            None => (lo[k] + f.ball.radius, lo[k] + size[k] - f.ball.radius),
         });
-        starts.extend(grid(&f, &bounds, m).ok_or_else(|| {
+        starts.extend(grid(f, &bounds, m).ok_or_else(|| {
             SearchError::Grid(
                 "starts on a grid are made in 2D only; give the starts instead".into(),
             )
         })?);
     }
     if ask.from.is_empty() && ask.grid.is_none() {
-        let xf = x.map(|v| v.to_f64());
+        let xf = one.x.clone().map(|v| v.to_f64());
         let sf = BodyState {
-            velocity: state.velocity.map(|v| v.to_f64()),
-            spin: state.spin.map(|v| v.to_f64()),
+            velocity: one.state.velocity.clone().map(|v| v.to_f64()),
+            spin: one.state.spin.clone().map(|v| v.to_f64()),
         };
-        starts.push(first_contact(&f, &xf, &sf).map_err(|e| {
+        starts.push(first_contact(f, &xf, &sf).map_err(|e| {
             SearchError::Scene(format!(
                 "{}: the ball never touches the table ({e:?})",
                 scene.origin
@@ -179,9 +179,11 @@ where
     let mut found: Vec<Orbit> = Vec::new();
     let mut misses = 0;
     for z in &starts {
-        match newton::<N, S>(&f, z, ask.period) {
-            Ok(o) => merge(&f, &mut found, o),
-            Err(Miss::NoHit(_) | Miss::NoConvergence { .. } | Miss::LeftSection) => misses += 1,
+        match newton::<N, S>(f, z, ask.period) {
+            Ok(o) => merge(f, &mut found, o),
+            Err(
+                Miss::NoHit(_) | Miss::NoConvergence { .. } | Miss::LeftSection | Miss::Resting,
+            ) => misses += 1,
         }
     }
     Ok(Report {

@@ -91,10 +91,17 @@ where
     for _ in 0..k {
         let hit = table.next_hit(&z.x, &z.state.velocity)?;
         let geometry = table.boundaries[hit.boundary].geometry(&table.ball.radius);
-        let after = table.law.boundary(&hit.nu, &table.ball, &z.state);
+        let after = table.laws[hit.boundary].boundary(&hit.nu, &table.ball, &z.state);
         for c in columns.iter_mut() {
             flight::<T, N>(c, &hit.time);
-            boundary_contact(&geometry, table.law, &table.ball, &hit.nu, &z.state, c);
+            boundary_contact(
+                &geometry,
+                table.laws[hit.boundary],
+                &table.ball,
+                &hit.nu,
+                &z.state,
+                c,
+            );
             let dx: [T; N] = std::array::from_fn(|i| c[i].clone());
             let dt = -dot(&hit.nu, &dx) / dot(&hit.nu, &after.velocity);
             for (ci, ui) in c.iter_mut().zip(&after.velocity) {
