@@ -44,10 +44,10 @@ def lyapunov(
     seed: int,
     blocks: int,
     every: int | None,
-    contact: str,
+    contact: str | None,
 ) -> dict[str, Any]: ...
 def orbits(
-    scene: Scene, period: int, starts: list[list[str]], grid: int | None, contact: str
+    scene: Scene, period: int, starts: list[list[str]], grid: int | None, contact: str | None
 ) -> str: ...
 
 class Scene:

@@ -27,7 +27,8 @@ class LyapunovResult:
     method : str
         ``"qr"`` or ``"two-trajectory"``.
     contact : str
-        The contact law: ``"no-slip"`` or ``"smooth"``.
+        The override of every contact's law, ``"no-slip"`` or ``"smooth"``, or ``"scene"``
+        when each contact followed its own kind in the scene.
     dimension : int
         The phase-space dimension ``balls (2n + S)`` (centres, velocities, spins;
         ``S = n(n-1)/2``).
@@ -93,7 +94,7 @@ def lyapunov(
     seed: int = 1,
     blocks: int = 10,
     every: int | None = None,
-    contact: str = "no-slip",
+    contact: str | None = None,
 ) -> LyapunovResult:
     """Lyapunov exponents of a scene's dynamics, as ``noslip lyapunov`` computes them (the
     same numbers, bit for bit, for the same arguments).
@@ -107,8 +108,10 @@ def lyapunov(
     run kept ``1e-9`` away (Benettin), an independent check with no tangent map (``k=1``).
 
     ``events`` contacts are run: the first of ``blocks + 1`` equal parts is a warm-up, the
-    other ``blocks`` give the standard errors. ``contact="smooth"`` makes every contact
-    specular (spins untouched): the classical billiard, the Hamiltonian control.
+    other ``blocks`` give the standard errors. By default each contact follows its own kind in
+    the scene (``contact = "no-slip"`` or ``"smooth"`` per boundary and for ball pairs);
+    ``contact="smooth"`` or ``"no-slip"`` overrides every contact, as ``noslip lyapunov
+    --contact`` does (``"smooth"``: the classical billiard, the Hamiltonian control).
     See ``docs/dynamics.md``.
 
     Raises
@@ -224,7 +227,7 @@ def orbits(
     *,
     starts: Sequence[Sequence[object]] | None = None,
     grid: int | None = None,
-    contact: str = "no-slip",
+    contact: str | None = None,
 ) -> OrbitsResult:
     """Periodic orbits of the ``period``-th return map of the boundary map of a one-ball
     table (a scene with one ball: walls of the box, fixed ball obstacles, periodic axes), as

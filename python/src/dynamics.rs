@@ -77,7 +77,7 @@ pub fn lyapunov<'py>(
     seed: u64,
     blocks: usize,
     every: Option<u64>,
-    contact: &str,
+    contact: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let two = match method {
         "qr" => false,
@@ -88,7 +88,7 @@ pub fn lyapunov<'py>(
             )))
         }
     };
-    let law = parse_law(contact)?;
+    let law = contact.map(parse_law).transpose()?;
     if every == Some(0) {
         return Err(input_error("every: must be at least 1"));
     }
@@ -102,7 +102,7 @@ pub fn lyapunov<'py>(
         k,
         blocks,
         seed,
-        law: Some(law),
+        law,
         every,
     };
     let scene = &scene.get().inner;
@@ -118,7 +118,7 @@ pub fn lyapunov<'py>(
         .map_err(input_error)?;
     let out = PyDict::new(py);
     out.set_item("method", s.method)?;
-    out.set_item("contact", contact)?;
+    out.set_item("contact", contact.unwrap_or("scene"))?;
     out.set_item("dimension", s.dimension)?;
     out.set_item("contacts", s.contacts)?;
     out.set_item("warmup", s.warmup)?;
@@ -156,9 +156,9 @@ pub fn orbits(
     period: usize,
     starts: Vec<Vec<String>>,
     grid: Option<usize>,
-    contact: &str,
+    contact: Option<&str>,
 ) -> PyResult<String> {
-    let law = parse_law(contact)?;
+    let law = contact.map(parse_law).transpose()?;
     let mut from = Vec::with_capacity(starts.len());
     for (i, start) in starts.iter().enumerate() {
         let z = start
@@ -176,7 +176,7 @@ pub fn orbits(
         period,
         from,
         grid,
-        law: Some(law),
+        law,
     };
     let scene = &scene.get().inner;
     let n = scene.dim;
