@@ -230,7 +230,7 @@ def orbits(
     contact: str | None = None,
 ) -> OrbitsResult:
     """Periodic orbits of the ``period``-th return map of the boundary map of a one-ball
-    table (a scene with one ball: walls of the box, fixed ball obstacles, periodic axes), as
+    table (a scene with one ball: any of its boundaries, fixed ball obstacles, periodic axes), as
     ``noslip orbits`` finds them (the same ``orbits.json``, bit for bit).
 
     The section is the state just after a contact, ``[x, u, U]`` (``2n + S`` numbers).
