@@ -9,6 +9,7 @@
 //! first vertex). That index is the boundary id of the simulator's events.
 
 use crate::raw::{ContactKind, RawScene, RawWedge};
+use crate::validate::Ctx;
 use crate::{Number, SceneError};
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
@@ -72,30 +73,6 @@ pub struct TableBoundary {
     /// For a piece of a polygon: the polygon's index in [`crate::Scene::polygons`] and the
     /// index of the piece's (start) vertex there.
     pub polygon: Option<(usize, usize)>,
-}
-
-struct Ctx<'a> {
-    origin: &'a str,
-}
-
-impl Ctx<'_> {
-    fn err(&self, place: impl Into<String>, message: impl Into<String>) -> SceneError {
-        SceneError {
-            origin: self.origin.to_string(),
-            place: place.into(),
-            message: message.into(),
-        }
-    }
-
-    fn vector(&self, place: &str, v: &[Number], dim: usize) -> Result<Vec<Q>, SceneError> {
-        if v.len() != dim {
-            return Err(self.err(
-                place,
-                format!("has {} components, expected dim = {dim}", v.len()),
-            ));
-        }
-        Ok(v.iter().map(|x| x.0.clone()).collect())
-    }
 }
 
 pub(crate) fn dot(a: &[Q], b: &[Q]) -> Q {

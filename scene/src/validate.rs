@@ -12,12 +12,14 @@ use num_traits::{One, Signed, Zero};
 
 type Q = BigRational;
 
-struct Ctx<'a> {
-    origin: &'a str,
+/// The scene file being validated, for errors that name their place in it.
+pub(crate) struct Ctx<'a> {
+    pub(crate) origin: &'a str,
 }
 
 impl Ctx<'_> {
-    fn err(&self, place: impl Into<String>, message: impl Into<String>) -> SceneError {
+    /// The error `origin: place: message`.
+    pub(crate) fn err(&self, place: impl Into<String>, message: impl Into<String>) -> SceneError {
         SceneError {
             origin: self.origin.to_string(),
             place: place.into(),
@@ -25,7 +27,13 @@ impl Ctx<'_> {
         }
     }
 
-    fn vector(&self, place: &str, v: &[Number], dim: usize) -> Result<Vec<Q>, SceneError> {
+    /// The vector at `place`, which must have `dim` components.
+    pub(crate) fn vector(
+        &self,
+        place: &str,
+        v: &[Number],
+        dim: usize,
+    ) -> Result<Vec<Q>, SceneError> {
         if v.len() != dim {
             return Err(self.err(
                 place,
