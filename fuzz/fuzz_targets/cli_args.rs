@@ -12,6 +12,9 @@
 //!   runs scenes);
 //! - `gen`: the scene read and validated, and without `--check` the module generated with the
 //!   given `--crate-path` (not printed); `--check K` is not run (exact points, seconds);
+//! - `lyapunov`: its options (`Options`: events, blocks, k, method, contact) and the scene
+//!   read and validated, `--out` prepared; `orbits`: the scene read and validated, `--out`
+//!   prepared (its starts are parsed in the run; nothing is run: seconds to minutes);
 //! - `verify`, `report`: their options (`--points`, `--samples`, `--dims`, `--seed`) and
 //!   `--out` prepared as above; the golden copy is not read and nothing is run (minutes).
 //!
@@ -133,7 +136,7 @@ fn validate(command: Command) {
             }
         }
         Command::Gen(a) => {
-            if let Some(s) = scene(&a.scene) {
+            if let Some(s) = a.scene.as_deref().and_then(scene) {
                 if a.check.is_none() {
                     if let Err(e) = noslip_codegen::specialise::generate(
                         &s.pairs(),
@@ -143,6 +146,19 @@ fn validate(command: Command) {
                         refused(Failure::bad_input(e.to_string()), false);
                     }
                 }
+            }
+        }
+        Command::Lyapunov(a) => match command::lyapunov::options(&a) {
+            Ok(_) => {
+                if scene(&a.file).is_some() {
+                    stage(a.out.as_deref().unwrap_or(Path::new("out/lyapunov/scene")));
+                }
+            }
+            Err(f) => refused(f, false),
+        },
+        Command::Orbits(a) => {
+            if scene(&a.file).is_some() {
+                stage(a.out.as_deref().unwrap_or(Path::new("out/orbits/scene")));
             }
         }
         Command::Verify(a) => match command::verify::options(&a) {

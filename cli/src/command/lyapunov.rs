@@ -79,7 +79,9 @@ pub fn parse_law(s: &str) -> Result<Law, Failure> {
     }
 }
 
-fn options(args: &Args) -> Result<(Options, bool), Failure> {
+/// The run's options from the arguments (and whether the method is `two-trajectory`); a bad
+/// option exits 2 naming it.
+pub fn options(args: &Args) -> Result<(Options, bool), Failure> {
     let two = match args.method.as_str() {
         "qr" => false,
         "two-trajectory" => true,
