@@ -1,17 +1,8 @@
 //! `noslip lyapunov` from the outside: a run's outputs, and bad input (exit 2, one line
 //! naming the place).
 
-use std::process::Command;
-
-fn noslip() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_noslip"));
-    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
-    c
-}
-
-fn temp(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
-}
+mod support;
+use support::{noslip, temp};
 
 #[test]
 fn sinai_spectrum_is_printed_and_published() {

@@ -1,17 +1,8 @@
 //! `noslip orbits` from the outside: the bouncing orbit between two walls found and computed
 //! exactly, a grid search, and bad input (exit 2, one line naming the place).
 
-use std::process::Command;
-
-fn noslip() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_noslip"));
-    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
-    c
-}
-
-fn temp(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
-}
+mod support;
+use support::{noslip, temp};
 
 #[test]
 fn bouncing_orbit_is_found_and_its_polynomial_is_exact() {

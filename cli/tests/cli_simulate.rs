@@ -2,12 +2,8 @@
 
 use std::path::Path;
 use std::process::Command;
-
-fn noslip() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_noslip"));
-    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
-    c
-}
+mod support;
+use support::noslip;
 
 #[test]
 fn a_bad_scene_exits_2_with_one_line() {

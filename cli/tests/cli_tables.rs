@@ -2,13 +2,8 @@
 //! boundary map's CSV and portraits, and `noslip gen --check` on the shipped table scenes.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn noslip() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_noslip"));
-    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
-    c
-}
+mod support;
+use support::noslip;
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("noslip-tables-{}-{name}", std::process::id()));

@@ -1,0 +1,18 @@
+//! What the command-line tests share: the `noslip` binary run from the repository root, and a
+//! per-process temporary path. Each test file uses what it needs of it.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// The `noslip` binary of this build, run from the repository root (scene paths as shipped).
+pub fn noslip() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_noslip"));
+    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
+    c
+}
+
+/// A path in the temporary directory, unique to `name` and this process.
+pub fn temp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
+}
