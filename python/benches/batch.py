@@ -1,23 +1,30 @@
 """collide_batch against the Rust batch kernel and a vectorised NumPy peer, side by side.
 
-    python python/benches/batch.py [--rows 1000000] [--dims 3] [--repeats 7]
+    python python/benches/batch.py [--rows 1000000] [--dims 3] [--repeats 7] [--threads]
 
 On the same random contacts (both bodies free, float64, C-contiguous), in ns per contact,
 the median of `repeats` rounds, each round running every contender once in turn (so that a
 change of the machine's load hits them alike):
 - `rust rows`: the reference, the Rust batch kernel from the same row-major arrays into
   row-major outputs through collision-core's batch API (fill_from_rows, Exec::free,
-  write_rows; chunks on rayon's threads), timed in Rust (noslip.batch.reference_seconds);
-  its outputs are allocated once and reused, so it does not pay the first touch of new
-  arrays that collide_batch pays;
-- `rust kernel`: Exec::auto().free alone on the rows already in its blocked layout (the
-  floor: the row-major arrays neither read nor written);
-- `collide_batch`: noslip.collide_batch on the NumPy arrays, without and with validation
-  (the default);
+  write_rows, chunks of 512 rows), timed in Rust (noslip.batch.reference_seconds); its
+  outputs are allocated once and reused;
+- `copy floor`: every input element read once and every output element written once, in
+  Rust (no implementation on these arrays can do with less memory traffic);
+- `rust kernel`: Exec::free alone on the rows already in its blocked layout (the floor: the
+  row-major arrays neither read nor written);
+- `collide_batch`: noslip.collide_batch on the NumPy arrays, into new arrays (which it must
+  allocate and touch for the first time) and into reused arrays (`out=`, as the reference),
+  each without and with validation (the default);
 - `numpy`: the closed form of docs/derivation.md section 8 written with NumPy array
-  operations (checked against the package first);
-and the time of two Python threads each running a serial batch on half the rows over the
-same two calls one after the other (the GIL released: about 0.5 with two free cores).
+  operations (checked against the package first), new arrays as collide_batch's default.
+
+The default is one thread for everything, timed in CPU seconds of the calling thread
+(CLOCK_THREAD_CPUTIME_ID: time.thread_time here, clock_gettime in Rust): on a shared, loaded machine
+these move far less than the wall clock. `--threads` runs the package and the reference on
+rayon's default pool instead (wall clock) and adds the time of two Python threads each
+running a serial batch on half the rows over the same two calls in sequence (the GIL is
+released: about 0.5 with two free cores).
 """
 
 from __future__ import annotations
@@ -77,28 +84,32 @@ def numpy_peer(nu, bodies):
     )
 
 
-def seconds(f):
-    t = time.perf_counter()
-    f()
-    return time.perf_counter() - t
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rows", type=int, default=1_000_000)
     ap.add_argument("--dims", type=int, nargs="+", default=[3])
     ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--threads", action="store_true")
     args = ap.parse_args()
+    parallel = args.threads
+    clock = time.perf_counter if parallel else time.thread_time
+
+    def seconds(f):
+        t = clock()
+        f()
+        return clock() - t
+
     print(
         f"isa {noslip.isa()}, {args.rows} contacts, median of {args.repeats} rounds, "
-        "ns per contact"
+        f"ns per contact, {'rayon threads, wall clock' if parallel else 'one thread, CPU time'}"
     )
-    print(
-        "| n | rust kernel | rust rows | collide_batch | / rust rows "
-        "| collide_batch, validated | / rust rows | numpy peer "
-        "| numpy / collide_batch validated | 2 threads / sequential |"
-    )
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    head = [
+        "n", "copy floor", "rust kernel", "rust rows", "new", "new, validated", "out=", "out=, validated",
+        "numpy peer", "out=, validated / rust rows", "new, validated / rust rows",
+        "numpy / new, validated", "numpy / copy floor",
+    ] + (["2 threads / sequential"] if parallel else [])
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---:|" * len(head))
     for n in args.dims:
         rng = np.random.default_rng(n)
         nu, bodies = contacts(rng, args.rows, n)
@@ -111,6 +122,7 @@ def main():
             for key in ("angular_velocity", "velocity"):
                 err = np.abs(ours[b][key] - peer[b][key]).max()
                 assert err < 1e-12, (n, b, key, err)
+        out = noslip.collide_batch(nu, bodies)  # allocated and touched once, then reused
         half = [{key: v[: args.rows // 2] for key, v in b.items()} for b in bodies]
 
         def run_half():
@@ -127,23 +139,32 @@ def main():
             for th in ts:
                 th.join()
 
-        t = {key: [] for key in ("rows", "kernel", "fast", "checked", "numpy", "seq", "thr")}
+        keys = ("copy", "rows", "kernel", "new", "new_v", "out", "out_v", "numpy", "seq", "thr")
+        t = {key: [] for key in keys}
+        batch = noslip.collide_batch
         for _ in range(args.repeats):
-            ref = reference_seconds(nu, bodies, 1)
+            ref = reference_seconds(nu, bodies, 1, parallel)
             t["rows"] += ref["rows"]
             t["kernel"] += ref["kernel"]
-            t["fast"].append(seconds(lambda: noslip.collide_batch(nu, bodies, validate=False)))
-            t["checked"].append(seconds(lambda: noslip.collide_batch(nu, bodies)))
+            t["copy"] += ref["copy"]
+            t["new"].append(seconds(lambda: batch(nu, bodies, validate=False, parallel=parallel)))
+            t["new_v"].append(seconds(lambda: batch(nu, bodies, parallel=parallel)))
+            t["out"].append(
+                seconds(lambda: batch(nu, bodies, validate=False, parallel=parallel, out=out))
+            )
+            t["out_v"].append(seconds(lambda: batch(nu, bodies, parallel=parallel, out=out)))
             t["numpy"].append(seconds(lambda: numpy_peer(nu, bodies)))
-            t["seq"].append(seconds(sequential))
-            t["thr"].append(seconds(threaded))
-        m = {key: float(np.median(v)) * 1e9 / args.rows for key, v in t.items()}
-        print(
-            f"| {n} | {m['kernel']:.1f} | {m['rows']:.1f} | {m['fast']:.1f} "
-            f"| {m['fast'] / m['rows']:.2f} | {m['checked']:.1f} "
-            f"| {m['checked'] / m['rows']:.2f} | {m['numpy']:.1f} "
-            f"| {m['numpy'] / m['checked']:.0f} | {m['thr'] / m['seq']:.2f} |"
-        )
+            if parallel:
+                t["seq"].append(seconds(sequential))
+                t["thr"].append(seconds(threaded))
+        m = {key: float(np.median(v)) * 1e9 / args.rows for key, v in t.items() if v}
+        cells = [
+            f"{n}", f"{m['copy']:.1f}", f"{m['kernel']:.1f}", f"{m['rows']:.1f}", f"{m['new']:.1f}",
+            f"{m['new_v']:.1f}", f"{m['out']:.1f}", f"{m['out_v']:.1f}", f"{m['numpy']:.0f}",
+            f"{m['out_v'] / m['rows']:.2f}", f"{m['new_v'] / m['rows']:.2f}",
+            f"{m['numpy'] / m['new_v']:.1f}", f"{m['numpy'] / m['copy']:.1f}",
+        ] + ([f"{m['thr'] / m['seq']:.2f}"] if parallel else [])
+        print("| " + " | ".join(cells) + " |")
 
 
 if __name__ == "__main__":

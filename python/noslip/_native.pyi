@@ -24,6 +24,7 @@ def collide_batch_f64(
     body2: _BodyArrays,
     validate: bool,
     parallel: bool,
+    out: _BatchOut | None = None,
 ) -> _BatchOut: ...
 def collide_batch_f32(
     normal: npt.NDArray[np.float32],
@@ -31,10 +32,15 @@ def collide_batch_f32(
     body2: _BodyArrays,
     validate: bool,
     parallel: bool,
+    out: _BatchOut | None = None,
 ) -> _BatchOut: ...
 def reference_seconds(
-    normal: npt.NDArray[np.float64], body1: _BodyArrays, body2: _BodyArrays, repeats: int
-) -> tuple[list[float], list[float]]: ...
+    normal: npt.NDArray[np.float64],
+    body1: _BodyArrays,
+    body2: _BodyArrays,
+    repeats: int,
+    parallel: bool = True,
+) -> tuple[list[float], list[float], list[float]]: ...
 def isa() -> str: ...
 def lyapunov(
     scene: Scene,

@@ -50,6 +50,7 @@ def collide_batch(
     *,
     validate: bool = True,
     parallel: bool = True,
+    out: Sequence[Mapping[str, np.ndarray]] | None = None,
 ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
     """The no-slip collision map on every row of a batch.
 
@@ -85,17 +86,24 @@ def collide_batch(
     parallel : bool
         Split the rows across rayon's threads (``False``: the calling thread only; the GIL
         is released either way).
+    out : two mappings of arrays, optional
+        Arrays to write the results into instead of new ones, as NumPy's ``out=``: per body
+        ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)`` of ``normal``'s dtype,
+        C-contiguous, writeable, sharing no memory with the inputs or each other (a loop
+        that keeps them allocates nothing and skips the first touch of new memory). On an
+        error they may hold some rows' results.
 
     Returns
     -------
     (dict, dict)
-        Per body, new arrays ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)``.
+        Per body, ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)``: new arrays,
+        or those of ``out``.
 
     Raises
     ------
     InputError
-        A wrong shape or dtype (naming the field), or with ``validate`` the first bad row:
-        ``row 17: bodies[1].gamma2: ...``.
+        A wrong shape or dtype (naming the field, ``out[1].velocity`` for an output), or
+        with ``validate`` the first bad row: ``row 17: bodies[1].gamma2: ...``.
     """
     normal = np.asarray(normal)
     if normal.dtype not in (np.float64, np.float32):
@@ -106,11 +114,40 @@ def collide_batch(
         raise InputError("bodies: expected two bodies (a sequence of two mappings)")
     b1, b2 = (_body(bodies[b], b, normal.dtype) for b in range(2))
     run = _native.collide_batch_f64 if normal.dtype == np.float64 else _native.collide_batch_f32
-    s1, v1, s2, v2 = run(normal, b1, b2, validate, parallel)
+    arrays = None if out is None else _out(out, normal.dtype)
+    s1, v1, s2, v2 = run(normal, b1, b2, validate, parallel, arrays)
     return (
         {"angular_velocity": s1, "velocity": v1},
         {"angular_velocity": s2, "velocity": v2},
     )
+
+
+def _out(out: Sequence[Mapping[str, np.ndarray]], dtype: np.dtype) -> tuple:
+    """``out``'s four arrays in the native order, each checked to be an ndarray of ``dtype``
+    (shapes, layout and overlaps are checked natively, naming the field too)."""
+    if isinstance(out, Mapping) or not isinstance(out, Sequence) or len(out) != 2:
+        raise InputError("out: expected two mappings (one per body), as collide_batch returns")
+    arrays = []
+    for b, body in enumerate(out):
+        if not isinstance(body, Mapping):
+            raise InputError(f"out[{b}]: expected a mapping with keys angular_velocity, velocity")
+        unknown = [k for k in body if k not in ("angular_velocity", "velocity")]
+        if unknown:
+            raise InputError(
+                f"out[{b}].{unknown[0]}: unknown key (the keys are: angular_velocity, velocity)"
+            )
+        for key in ("angular_velocity", "velocity"):
+            if key not in body:
+                raise InputError(f"out[{b}].{key}: missing (required)")
+            a = body[key]
+            if not isinstance(a, np.ndarray):
+                raise InputError(f"out[{b}].{key}: expected a NumPy array, got {type(a).__name__}")
+            if a.dtype != dtype:
+                raise InputError(
+                    f"out[{b}].{key}: dtype {a.dtype}, expected {dtype} (the dtype of normal)"
+                )
+            arrays.append(a)
+    return tuple(arrays)
 
 
 def isa() -> str:
@@ -119,10 +156,15 @@ def isa() -> str:
 
 
 def reference_seconds(
-    normal: np.ndarray, bodies: Sequence[Mapping[str, Any]], repeats: int = 5
+    normal: np.ndarray,
+    bodies: Sequence[Mapping[str, Any]],
+    repeats: int = 5,
+    parallel: bool = True,
 ) -> dict[str, list[float]]:
     """The benchmark's Rust references on the same float64 rows (C-contiguous, every body
-    moving: ``inv_mass > 0``), timed in Rust; the seconds of each of ``repeats`` runs.
+    moving: ``inv_mass > 0``), timed in Rust; the seconds of each of ``repeats`` runs: with
+    ``parallel`` on rayon's threads, in wall-clock seconds; else on the calling thread, in
+    its CPU seconds (Linux; a loaded machine disturbs them far less).
 
     - ``"rows"``: collision-core's batch API from the same row-major arrays into row-major
       outputs: chunks of rows on rayon's threads, each gathered into a ``FreeBatch``
@@ -132,8 +174,11 @@ def reference_seconds(
       and pays their first touch).
     - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in its
       blocked batch: the kernel's floor, the row-major arrays neither read nor written.
+    - ``"copy"``: the memory floor of any implementation on these arrays: every input element
+      read once and every output element written once (each body's states copied from its
+      input), in one pass, chunk by chunk as ``"rows"``.
     """
     normal = np.asarray(normal)
     b1, b2 = (_body(bodies[b], b, np.dtype(np.float64)) for b in range(2))
-    rows, kernel = _native.reference_seconds(normal, b1, b2, repeats)
-    return {"rows": rows, "kernel": kernel}
+    rows, kernel, copy = _native.reference_seconds(normal, b1, b2, repeats, parallel)
+    return {"rows": rows, "kernel": kernel, "copy": copy}

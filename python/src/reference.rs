@@ -2,16 +2,23 @@
 //! batch kernel timed in Rust on the same `float64` rows, two ways.
 //!
 //! - `rows`: what a Rust program with the same row-major arrays does with
-//!   `collision_core::batch` at its best: chunks of rows split across rayon's threads, each
+//!   `collision_core::batch` at its best: chunks of rows (split across rayon's threads, or
+//!   on the calling thread when serial), each
 //!   gathered into a `FreeBatch` (`fill_from_rows`), run by `Exec::free` (run-time ISA) and
 //!   scattered into row-major output arrays (`PairBatch::write_rows`); no validation. The
 //!   output arrays are allocated and touched once, before the timed runs, and reused: a
 //!   Rust program can keep them, while `collide_batch` must return new arrays, whose first
 //!   touch (the kernel's page faults and zeroing, about 200 bytes a contact in 3D) it pays
 //!   and this reference does not. The ratio to it is the target's.
-//! - `kernel`: `Exec::auto().free` alone (rayon threads) on the rows laid out once, untimed,
+//! - `copy`: the memory floor of any implementation on these arrays: every input element
+//!   read once (summed) and every output element written once (each body's angular
+//!   velocity and velocity copied from its input), in one pass, chunk by chunk as `rows`.
+//! - `kernel`: `Exec::auto().free` alone (rayon threads, or serial) on the rows laid out once, untimed,
 //!   in its blocked batch, into a reused output batch: the kernel's floor, without reading
 //!   or writing the row-major arrays.
+//!
+//! Serial runs are timed in CPU time of the calling thread (`CLOCK_THREAD_CPUTIME_ID`), which a loaded machine disturbs far less than the wall
+//! clock; parallel runs in wall-clock time.
 
 use crate::batch::{views, BodyIn, Inputs};
 use crate::error::input_error;
@@ -22,20 +29,35 @@ use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::time::Instant;
 
+/// The seconds of each run of the references: `rows`, `kernel`, `copy`.
+type Seconds = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// Chunk `c` of the four outputs: `(c, (((spin_1, spin_2), velocity_1), velocity_2))`.
+type OutChunk<'a> = (
+    usize,
+    (
+        ((&'a mut [f64], &'a mut [f64]), &'a mut [f64]),
+        &'a mut [f64],
+    ),
+);
+
 /// Rows per rayon task of the `rows` reference.
 const CHUNK: usize = 512;
 
-/// The seconds of each of `repeats` runs of both references, `(rows, kernel)`, on the same
+/// The seconds of each of `repeats` runs of the references, `(rows, kernel, copy)`, on the same
 /// `float64` rows (every body must move: `inv_mass > 0`). Arrays must be C-contiguous.
+/// With `parallel` on rayon's threads (wall clock), else on the calling thread (its CPU
+/// time).
 #[pyfunction]
-#[pyo3(signature = (normal, body1, body2, repeats))]
+#[pyo3(signature = (normal, body1, body2, repeats, parallel=true))]
 pub fn reference_seconds(
     py: Python<'_>,
     normal: PyReadonlyArray2<'_, f64>,
     body1: BodyIn<'_, f64>,
     body2: BodyIn<'_, f64>,
     repeats: usize,
-) -> PyResult<(Vec<f64>, Vec<f64>)> {
+    parallel: bool,
+) -> PyResult<Seconds> {
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
     let rows = input
         .rows()
@@ -44,7 +66,7 @@ pub fn reference_seconds(
     let seconds = py.detach(|| {
         collision_core::with_dim!(
             n,
-            |N, S| time_both::<N, S>(&rows, repeats),
+            |N, S| time_both::<N, S>(&rows, repeats, parallel),
             Err(format!("dimension {n} has no batch kernels"))
         )
     });
@@ -55,7 +77,8 @@ pub fn reference_seconds(
 fn time_both<const N: usize, const S: usize>(
     rows: &FreeRows<'_, f64>,
     repeats: usize,
-) -> Result<(Vec<f64>, Vec<f64>), String>
+    parallel: bool,
+) -> Result<Seconds, String>
 where
     Generated: BatchKernel<f64, N, S>,
 {
@@ -64,9 +87,15 @@ where
         return Err("the references time `free`: every body must move".into());
     }
     let time = |f: &mut dyn FnMut()| {
-        let t = Instant::now();
-        f();
-        t.elapsed().as_secs_f64()
+        if parallel {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64()
+        } else {
+            let t = thread_seconds();
+            f();
+            thread_seconds() - t
+        }
     };
     let mut outputs = [
         vec![0.0; len * N * N],
@@ -74,15 +103,19 @@ where
         vec![0.0; len * N * N],
         vec![0.0; len * N],
     ];
-    rows_to_rows::<N, S>(rows, &mut outputs);
+    rows_to_rows::<N, S>(rows, &mut outputs, parallel);
     let mut rows_seconds = Vec::with_capacity(repeats);
     for _ in 0..repeats {
         rows_seconds.push(time(&mut || {
-            rows_to_rows::<N, S>(rows, &mut outputs);
+            rows_to_rows::<N, S>(rows, &mut outputs, parallel);
             std::hint::black_box(&outputs);
         }));
     }
-    let exec = Exec::auto();
+    let exec = if parallel {
+        Exec::auto()
+    } else {
+        Exec::auto().serial()
+    };
     let mut batch = FreeBatch::<f64, N, S>::with_capacity(len);
     batch.fill_from_rows(rows, 0..len);
     let mut out = PairBatch::<f64, N, S>::new();
@@ -95,38 +128,117 @@ where
             })
         })
         .collect();
-    Ok((rows_seconds, kernel_seconds))
+    let copy_seconds = (0..repeats)
+        .map(|_| {
+            time(&mut || {
+                std::hint::black_box(copy_floor::<N>(rows, &mut outputs, parallel));
+                std::hint::black_box(&outputs);
+            })
+        })
+        .collect();
+    Ok((rows_seconds, kernel_seconds, copy_seconds))
+}
+
+/// CPU seconds this thread has run: `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, the clock of
+/// Python's `time.thread_time` (wall-clock seconds where it fails).
+fn thread_seconds() -> f64 {
+    static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec to write into.
+    if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0 {
+        t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+    } else {
+        START.get_or_init(Instant::now).elapsed().as_secs_f64()
+    }
+}
+
+/// The `copy` floor: per chunk of [`CHUNK`] rows, the sum of its normals and parameters, and
+/// each body's angular velocities and velocities copied into the outputs
+/// `[spin_1, velocity_1, spin_2, velocity_2]`; on rayon's threads (`parallel`) or this one.
+fn copy_floor<const N: usize>(
+    rows: &FreeRows<'_, f64>,
+    out: &mut [Vec<f64>; 4],
+    parallel: bool,
+) -> f64 {
+    let [s1, v1, s2, v2] = out;
+    let chunk = |(c, (((s1, s2), v1), v2)): OutChunk<'_>| {
+        let range = c * CHUNK..c * CHUNK + v1.len() / N;
+        let mut sum: f64 = rows.nu[range.start * N..range.end * N].iter().sum();
+        for b in rows.balls {
+            for p in [b.inv_mass, b.radius, b.gamma2] {
+                sum += p[range.clone()].iter().sum::<f64>();
+            }
+        }
+        for (state, (spin, velocity)) in rows.states.iter().zip([(s1, v1), (s2, v2)]) {
+            spin.copy_from_slice(&state.spin[range.start * N * N..range.end * N * N]);
+            velocity.copy_from_slice(&state.velocity[range.start * N..range.end * N]);
+        }
+        sum
+    };
+    if parallel {
+        s1.par_chunks_mut(CHUNK * N * N)
+            .zip(s2.par_chunks_mut(CHUNK * N * N))
+            .zip(v1.par_chunks_mut(CHUNK * N))
+            .zip(v2.par_chunks_mut(CHUNK * N))
+            .enumerate()
+            .map(chunk)
+            .sum()
+    } else {
+        s1.chunks_mut(CHUNK * N * N)
+            .zip(s2.chunks_mut(CHUNK * N * N))
+            .zip(v1.chunks_mut(CHUNK * N))
+            .zip(v2.chunks_mut(CHUNK * N))
+            .enumerate()
+            .map(chunk)
+            .sum()
+    }
 }
 
 /// The `rows` reference, into the row-major outputs `[spin_1, velocity_1, spin_2,
-/// velocity_2]`.
-fn rows_to_rows<const N: usize, const S: usize>(rows: &FreeRows<'_, f64>, out: &mut [Vec<f64>; 4])
-where
+/// velocity_2]`, chunk by chunk on rayon's threads (`parallel`) or on this thread.
+fn rows_to_rows<const N: usize, const S: usize>(
+    rows: &FreeRows<'_, f64>,
+    out: &mut [Vec<f64>; 4],
+    parallel: bool,
+) where
     Generated: BatchKernel<f64, N, S>,
 {
     let exec = Exec::auto().serial();
     let [s1, v1, s2, v2] = out;
-    s1.par_chunks_mut(CHUNK * N * N)
-        .zip(s2.par_chunks_mut(CHUNK * N * N))
-        .zip(v1.par_chunks_mut(CHUNK * N))
-        .zip(v2.par_chunks_mut(CHUNK * N))
-        .enumerate()
-        .for_each_init(
-            || (FreeBatch::<f64, N, S>::new(), PairBatch::<f64, N, S>::new()),
-            |(batch, pairs), (c, (((s1, s2), v1), v2))| {
-                let start = c * CHUNK;
-                batch.fill_from_rows(rows, start..start + v1.len() / N);
-                exec.free::<f64, N, S>(batch, pairs);
-                pairs.write_rows([
-                    StateRowsMut {
-                        spin: s1,
-                        velocity: v1,
-                    },
-                    StateRowsMut {
-                        spin: s2,
-                        velocity: v2,
-                    },
-                ]);
+    let chunk = |(batch, pairs): &mut (FreeBatch<f64, N, S>, PairBatch<f64, N, S>),
+                 (c, (((s1, s2), v1), v2)): OutChunk<'_>| {
+        let start = c * CHUNK;
+        batch.fill_from_rows(rows, start..start + v1.len() / N);
+        exec.free::<f64, N, S>(batch, pairs);
+        pairs.write_rows([
+            StateRowsMut {
+                spin: s1,
+                velocity: v1,
             },
-        );
+            StateRowsMut {
+                spin: s2,
+                velocity: v2,
+            },
+        ]);
+    };
+    let scratch = || (FreeBatch::<f64, N, S>::new(), PairBatch::<f64, N, S>::new());
+    if parallel {
+        s1.par_chunks_mut(CHUNK * N * N)
+            .zip(s2.par_chunks_mut(CHUNK * N * N))
+            .zip(v1.par_chunks_mut(CHUNK * N))
+            .zip(v2.par_chunks_mut(CHUNK * N))
+            .enumerate()
+            .for_each_init(scratch, chunk);
+    } else {
+        let mut sc = scratch();
+        s1.chunks_mut(CHUNK * N * N)
+            .zip(s2.chunks_mut(CHUNK * N * N))
+            .zip(v1.chunks_mut(CHUNK * N))
+            .zip(v2.chunks_mut(CHUNK * N))
+            .enumerate()
+            .for_each(|item| chunk(&mut sc, item));
+    }
 }

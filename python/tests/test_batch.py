@@ -194,6 +194,77 @@ def test_only_the_outputs_are_allocated():
     assert outputs <= peak < outputs + 64 * 1024, (peak, outputs)
 
 
+@pytest.mark.parametrize("n", [2, 3, 6])
+def test_out_arrays_receive_the_same_bits_and_are_returned(n):
+    rng = np.random.default_rng(20 + n)
+    nu, bodies = random_batch(rng, 1000, n, unit_exactly=False)
+    want = noslip.collide_batch(nu, bodies)
+    out = [{k: np.full_like(v, np.nan) for k, v in b.items()} for b in want]
+    for parallel in (True, False):
+        got = noslip.collide_batch(nu, bodies, parallel=parallel, out=out)
+        for b in range(2):
+            for k in ("angular_velocity", "velocity"):
+                assert got[b][k] is out[b][k]
+                assert same_bits(got[b][k], want[b][k]), (n, b, k, parallel)
+        for b in out:
+            for v in b.values():
+                v[:] = np.nan
+
+
+def test_out_allocates_nothing():
+    rng = np.random.default_rng(12)
+    nu, bodies = random_batch(rng, 200_000, 3, immovable=False, unit_exactly=False)
+    out = noslip.collide_batch(nu, bodies)
+    tracemalloc.start()
+    try:
+        tracemalloc.reset_peak()
+        base = tracemalloc.get_traced_memory()[0]
+        noslip.collide_batch(nu, bodies, out=out)
+        peak = tracemalloc.get_traced_memory()[1] - base
+    finally:
+        tracemalloc.stop()
+    assert peak < 64 * 1024, peak
+
+
+def test_bad_out_arrays_are_named():
+    rng = np.random.default_rng(13)
+    nu, bodies = random_batch(rng, 10, 3)
+    good = noslip.collide_batch(nu, bodies)
+
+    def out_with(b, key, value):
+        out = [dict(good[0]), dict(good[1])]
+        out[b][key] = value
+        return out
+
+    cases = [
+        (out_with(1, "velocity", np.zeros((10, 2))), r"^out\[1\]\.velocity: expected shape"),
+        (
+            out_with(0, "angular_velocity", np.zeros((10, 3, 3), np.float32)),
+            r"^out\[0\]\.angular_velocity: dtype float32",
+        ),
+        (
+            out_with(0, "velocity", np.zeros((3, 10)).T),
+            r"^out\[0\]\.velocity: must be C-contiguous",
+        ),
+        (out_with(1, "velocity", [[0.0] * 3] * 10), r"^out\[1\]\.velocity: expected a NumPy array"),
+        (out_with(0, "spin", good[0]["velocity"]), r"^out\[0\]\.spin: unknown key"),
+        ([good[0]], r"^out: expected two mappings"),
+    ]
+    read_only = np.zeros((10, 3))
+    read_only.setflags(write=False)
+    cases.append((out_with(1, "velocity", read_only), r"^out\[1\]\.velocity: must be writeable"))
+    # An output that is an input, or the same array twice: refused, nothing computed in place.
+    cases.append(
+        (out_with(0, "velocity", bodies[0]["velocity"]), r"^out\[0\]\.velocity: shares memory")
+    )
+    cases.append(
+        (out_with(1, "velocity", good[0]["velocity"]), r"^out\[1\]\.velocity: shares memory")
+    )
+    for out, message in cases:
+        with pytest.raises(noslip.InputError, match=message):
+            noslip.collide_batch(nu, bodies, out=out)
+
+
 def test_the_gil_is_released_during_a_batch():
     """While a serial batch runs in one thread, this thread keeps running Python: with the
     GIL held it could not advance at all during the call."""

@@ -15,13 +15,19 @@
 //! state then comes back unchanged), `free` otherwise; so a row's result is
 //! `collision_core::collide_unchecked`'s bit for bit. With `validate`, every row first
 //! passes `collide`'s checks (the rounding allowance included): a cheap test in the batch's
-//! own float type accepts the rows that are clearly valid ([`clearly_valid`]), and only the
-//! others go through `collide`'s own checks (`collision_core::validate_parts`), whose error,
-//! for the first bad row, names the row and the field.
+//! own float type, on the lane arrays of the gathered chunk, accepts the rows that are
+//! clearly valid ([`valid`]), and only the others go through `collide`'s own checks
+//! (`collision_core::validate_parts`), whose error, for the first bad row, names the row and
+//! the field.
+//!
+//! The outputs are new arrays, or the caller's (`out=`: shapes and layout checked, borrowed
+//! read-write, so an output sharing memory with an input or another output is refused).
+
+mod valid;
 
 use crate::error::input_error;
 use collision_core::batch::BatchKernel;
-use collision_core::batch::{BallRows, FreeRows, StateRows, StateRowsMut};
+use collision_core::batch::{BallRows, FreeRows, StateRows, StateRowsMut, LANES};
 use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
 use collision_core::RefArith;
 use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Scalar};
@@ -30,7 +36,7 @@ use num_traits::Float;
 use numpy::ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use numpy::{
     Element, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
-    PyReadonlyArray3,
+    PyReadonlyArray3, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 use rayon::prelude::*;
@@ -213,101 +219,6 @@ impl<T: Scalar + Copy> BodyArrays<'_, T> {
     }
 }
 
-/// Row `i` of a parameter slice (one shared value for a length-1 slice).
-#[inline(always)]
-fn param_at<T: Copy>(p: &[T], i: usize) -> T {
-    p[if p.len() == 1 { 0 } else { i }]
-}
-
-/// Whether row `i` is clearly valid: a test in `T` (`f64` or `f32`, eps its epsilon) that
-/// accepts only rows `collide`'s checks accept (in its unbounded-exponent arithmetic, with
-/// the allowance `8 eps s`), so that the others alone need those checks. Every input is
-/// finite with `|x| <= max eps^2` (NaN fails every comparison), and
-/// - `||nu|^2 - 1| <= 4 eps`, each nonzero `|nu_k| >= 2 sqrt(min_positive)`: the squares and
-///   their sums are normal numbers, computed as `collide` computes them, bit for bit; so
-///   `|nu|^2` is `collide`'s, within half its allowance;
-/// - `inv_mass >= 0`, `radius > 0`, `0 <= gamma2 <= 2/n` (`2/n` rounded as `collide` does),
-///   not both immovable, not two movable point masses: the balls' checks, without the
-///   allowance;
-/// - `U_rr = 0` and `U_cr = -U_rc` exactly: skew with no allowance needed;
-/// - approaching by a margin: `dn = sum_k nu_k (u_2k - u_1k) <= -(2n + 8) eps s` with
-///   `s = sum_k |nu_k| (|u_1k| + |u_2k|) >= min_positive / eps^2`, or `u_1 = u_2`
-///   (then `dn = 0` exactly). `collide` computes `dn` with `nu` renormalised (each `nu_k`
-///   moved by at most `4 eps |nu_k|`) and its own roundings (at most `(n + 1) eps/2 s`
-///   each way): its `dn` is at most `(n + 6) eps s` above this one, so still negative.
-#[inline(always)]
-fn clearly_valid<T: Float, const N: usize>(rows: &FreeRows<'_, T>, i: usize) -> bool {
-    let eps = T::epsilon();
-    let huge = T::max_value() * eps * eps;
-    let small = T::min_positive_value().sqrt() * (T::one() + T::one());
-    let tiny = T::min_positive_value() / (eps * eps);
-    let four = T::from(4).unwrap_or_else(T::one);
-    let shell = (T::one() + T::one()) / T::from(N).unwrap_or_else(T::one);
-    let nu = &rows.nu[i * N..(i + 1) * N];
-    let mut norm2 = T::zero();
-    for &x in nu {
-        if !(x.abs() <= huge && (x == T::zero() || x.abs() >= small)) {
-            return false;
-        }
-        norm2 = norm2 + x * x;
-    }
-    // Every |nu_k| passed `<= huge`, so norm2 is not NaN (it may be infinite: refused).
-    if (norm2 - T::one()).abs() > four * eps {
-        return false;
-    }
-    let mut w = [T::zero(); 2];
-    let mut g = [T::zero(); 2];
-    for (b, balls) in rows.balls.iter().enumerate() {
-        let (inv_mass, radius, gamma2) = (
-            param_at(balls.inv_mass, i),
-            param_at(balls.radius, i),
-            param_at(balls.gamma2, i),
-        );
-        let fine = inv_mass >= T::zero()
-            && inv_mass <= huge
-            && radius > T::zero()
-            && radius <= huge
-            && gamma2 >= T::zero()
-            && gamma2 <= shell;
-        if !fine {
-            return false;
-        }
-        (w[b], g[b]) = (inv_mass, gamma2);
-    }
-    let zero = T::zero();
-    if (w[0] == zero && w[1] == zero) || (w[0] != zero && w[1] != zero && g == [zero; 2]) {
-        return false;
-    }
-    let mut velocity = [&rows.nu[..0]; 2];
-    for (b, state) in rows.states.iter().enumerate() {
-        let spin = &state.spin[i * N * N..(i + 1) * N * N];
-        for r in 0..N {
-            if spin[r * N + r] != zero {
-                return false;
-            }
-            for c in r + 1..N {
-                let x = spin[r * N + c];
-                if !(x.abs() <= huge && spin[c * N + r] == -x) {
-                    return false;
-                }
-            }
-        }
-        velocity[b] = &state.velocity[i * N..(i + 1) * N];
-    }
-    let (mut dn, mut scale, mut moving) = (zero, zero, false);
-    for k in 0..N {
-        let (u1, u2) = (velocity[0][k], velocity[1][k]);
-        if !(u1.abs() <= huge && u2.abs() <= huge) {
-            return false;
-        }
-        moving |= u1 != u2;
-        dn = dn + nu[k] * (u2 - u1);
-        scale = scale + nu[k].abs() * (u1.abs() + u2.abs());
-    }
-    let margin = T::from(2 * N + 8).unwrap_or_else(T::one) * eps;
-    !moving || (scale >= tiny && dn <= -(margin * scale))
-}
-
 /// The compact entries as a full skew matrix, row-major, `m_cr = 0 - m_rc` (so a zero entry
 /// is `+0` on both sides, as `noslip collide` prints it).
 fn write_state<T: Scalar + Copy, const N: usize, const S: usize>(
@@ -336,6 +247,9 @@ struct Scratch<T, const N: usize, const S: usize> {
     free_rows: Vec<usize>,
     /// Local rows of `fixed`'s contacts, and whether body 2 is the immovable one.
     fixed_rows: Vec<(usize, bool)>,
+    /// Per block of `free`, whether all its rows passed the cheap validity test
+    /// ([`valid::chunk`]).
+    valid: Vec<bool>,
 }
 
 impl<T: Scalar, const N: usize, const S: usize> Scratch<T, N, S> {
@@ -348,6 +262,7 @@ impl<T: Scalar, const N: usize, const S: usize> Scratch<T, N, S> {
             moved: StateBatch::with_capacity(rows),
             free_rows: Vec::with_capacity(rows),
             fixed_rows: Vec::with_capacity(rows),
+            valid: Vec::with_capacity(rows.div_ceil(LANES)),
         }
     }
 }
@@ -395,7 +310,7 @@ fn push_fixed<T, const N: usize, const S: usize>(
     input: &Inputs<'_, T>,
     i: usize,
     j: usize,
-    sc: &mut Scratch<T, N, S>,
+    (fixed, fixed_rows): (&mut FixedBatch<T, N, S>, &mut Vec<(usize, bool)>),
     pairs: &[(usize, usize); S],
 ) -> bool
 where
@@ -413,15 +328,15 @@ where
             nu,
             states: [s1, s2],
         };
-        sc.fixed.push((contact, b1.radius, b2));
-        sc.fixed_rows.push((j, false));
+        fixed.push((contact, b1.radius, b2));
+        fixed_rows.push((j, false));
     } else {
         let contact = Contact {
             nu: nu.map(|x| -x),
             states: [s2, s1],
         };
-        sc.fixed.push((contact, b2.radius, b1));
-        sc.fixed_rows.push((j, true));
+        fixed.push((contact, b2.radius, b1));
+        fixed_rows.push((j, true));
     }
     true
 }
@@ -491,14 +406,26 @@ where
     Generated: BatchKernel<T, N, S>,
 {
     let range = start..start + out.velocity[0].len() / N;
+    sc.free.fill_from_rows(rows, range.clone());
+    let lane_rows = |k: usize| (0..LANES).map(move |l| (l, range.start + k * LANES + l));
     if validate {
-        for i in range.clone() {
-            if !clearly_valid::<T, N>(rows, i) {
-                check_row::<T, N, S>(input, i, pairs)?;
+        let [r1, r2] = &rows.states;
+        valid::chunk(
+            exec.isa(),
+            sc.free.blocks(),
+            [r1, r2],
+            range.start,
+            &mut sc.valid,
+        );
+        let blocks = sc.free.blocks().iter().zip(&sc.valid).enumerate();
+        for (k, (block, _)) in blocks.filter(|(_, (_, &ok))| !ok) {
+            for (l, i) in lane_rows(k).take_while(|&(_, i)| i < range.end) {
+                if !valid::row(block, [r1, r2], i, l) {
+                    check_row::<T, N, S>(input, i, pairs)?;
+                }
             }
         }
     }
-    sc.free.fill_from_rows(rows, range.clone());
     exec.free(&sc.free, &mut sc.pairs);
     {
         let Outputs {
@@ -516,16 +443,17 @@ where
             },
         ]);
     }
+    // The rows with an immovable body (`inv_mass = 0` in a lane of the gathered batch).
     sc.fixed.clear();
     sc.fixed_rows.clear();
     let zero = T::zero();
-    let shared_movable = rows
-        .balls
-        .iter()
-        .all(|b| b.inv_mass.len() == 1 && b.inv_mass[0] != zero);
-    if !shared_movable {
-        for (j, i) in range.enumerate() {
-            push_fixed(input, i, j, sc, pairs);
+    for (k, block) in sc.free.blocks().iter().enumerate() {
+        let [b1, b2] = &block.balls;
+        for (l, i) in lane_rows(k).take_while(|&(_, i)| i < range.end) {
+            if b1.inv_mass[l] == zero || b2.inv_mass[l] == zero {
+                let fixed = (&mut sc.fixed, &mut sc.fixed_rows);
+                push_fixed(input, i, i - range.start, fixed, pairs);
+            }
         }
     }
     run_fixed(exec, input, start, &mut out, sc, pairs);
@@ -559,7 +487,7 @@ where
         if validate {
             check_row::<T, N, S>(input, i, pairs)?;
         }
-        if !push_fixed(input, i, j, sc, pairs) {
+        if !push_fixed(input, i, j, (&mut sc.fixed, &mut sc.fixed_rows), pairs) {
             let contact = Contact {
                 nu: nu_row::<T, N>(input, i),
                 states: [a.state(i, pairs), b.state(i, pairs)],
@@ -679,6 +607,66 @@ pub(crate) fn views<'a, T: Element>(b: &'a BodyIn<'_, T>) -> BodyViews<'a, T> {
     )
 }
 
+/// Output arrays a caller passes in (`out=`): body 1's and body 2's angular velocities
+/// `(N, n, n)` and velocities `(N, n)`, C-contiguous and writeable.
+pub(crate) type OutIn<'py, T> = (
+    Bound<'py, PyArray3<T>>,
+    Bound<'py, PyArray2<T>>,
+    Bound<'py, PyArray3<T>>,
+    Bound<'py, PyArray2<T>>,
+);
+
+/// The caller's output arrays' shapes and layout (`out[b].angular_velocity`,
+/// `out[b].velocity` named in the error); whether they can be written is checked when they
+/// are borrowed.
+fn check_out<T: Element>(out: &OutIn<'_, T>, rows: usize, n: usize) -> PyResult<()> {
+    let (s1, v1, s2, v2) = out;
+    for (b, spin, velocity) in [(0, s1, v1), (1, s2, v2)] {
+        for (key, want, got, contiguous) in [
+            (
+                "angular_velocity",
+                vec![rows, n, n],
+                spin.shape(),
+                spin.is_c_contiguous(),
+            ),
+            (
+                "velocity",
+                vec![rows, n],
+                velocity.shape(),
+                velocity.is_c_contiguous(),
+            ),
+        ] {
+            let field = format!("out[{b}].{key}");
+            if got != want.as_slice() {
+                return Err(shape_error(&field, format!("{want:?}"), got));
+            }
+            if !contiguous {
+                return Err(input_error(format!(
+                    "{field}: must be C-contiguous (the rows are written in place)"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A read-write borrow of output `field`: refused (naming it) when the array is read-only
+/// or shares memory with an input (borrowed read-only) or another output.
+fn borrow_out<'py, T: Element, D: numpy::ndarray::Dimension>(
+    array: &Bound<'py, numpy::PyArray<T, D>>,
+    field: &str,
+) -> PyResult<numpy::PyReadwriteArray<'py, T, D>> {
+    array.try_readwrite().map_err(|e| {
+        input_error(match e {
+            numpy::BorrowError::NotWriteable => format!("{field}: must be writeable"),
+            _ => format!(
+                "{field}: shares memory with an input or another output (the outputs must \
+                 be arrays of their own)"
+            ),
+        })
+    })
+}
+
 fn collide_batch<'py, T>(
     py: Python<'py>,
     normal: PyReadonlyArray2<'py, T>,
@@ -686,6 +674,7 @@ fn collide_batch<'py, T>(
     body2: BodyIn<'py, T>,
     validate: bool,
     parallel: bool,
+    out: Option<OutIn<'py, T>>,
 ) -> PyResult<BatchOut<'py, T>>
 where
     T: Element + Scalar + Float + Send + Sync,
@@ -693,32 +682,46 @@ where
 {
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
     let (rows, n) = (input.rows, input.dim);
-    // Every element of the new arrays is written below (each row's both bodies, whichever
-    // kernel ran it) before Python sees them, or the arrays are dropped with the error.
-    let spin = [0, 1].map(|_| unsafe { PyArray3::<T>::new(py, [rows, n, n], false) });
-    let velocity = [0, 1].map(|_| unsafe { PyArray2::<T>::new(py, [rows, n], false) });
-    let slice = |e: numpy::NotContiguousError| input_error(format!("internal error: {e}"));
-    let [s1, s2] = &spin;
-    let [v1, v2] = &velocity;
-    let out = unsafe {
-        Outputs {
+    let (spin, velocity) = match out {
+        Some(out) => {
+            check_out(&out, rows, n)?;
+            let (s1, v1, s2, v2) = out;
+            ([s1, s2], [v1, v2])
+        }
+        // Every element of the new arrays is written below (each row's both bodies,
+        // whichever kernel ran it) before Python sees them, or the arrays are dropped with
+        // the error.
+        None => (
+            [0, 1].map(|_| unsafe { PyArray3::<T>::new(py, [rows, n, n], false) }),
+            [0, 1].map(|_| unsafe { PyArray2::<T>::new(py, [rows, n], false) }),
+        ),
+    };
+    let done = {
+        let [s1, s2] = &spin;
+        let [v1, v2] = &velocity;
+        let mut w1 = borrow_out(s1, "out[0].angular_velocity")?;
+        let mut w2 = borrow_out(s2, "out[1].angular_velocity")?;
+        let mut x1 = borrow_out(v1, "out[0].velocity")?;
+        let mut x2 = borrow_out(v2, "out[1].velocity")?;
+        let slice = |e: numpy::NotContiguousError| input_error(format!("internal error: {e}"));
+        let out = Outputs {
             spin: [
-                s1.as_slice_mut().map_err(slice)?,
-                s2.as_slice_mut().map_err(slice)?,
+                w1.as_slice_mut().map_err(slice)?,
+                w2.as_slice_mut().map_err(slice)?,
             ],
             velocity: [
-                v1.as_slice_mut().map_err(slice)?,
-                v2.as_slice_mut().map_err(slice)?,
+                x1.as_slice_mut().map_err(slice)?,
+                x2.as_slice_mut().map_err(slice)?,
             ],
-        }
+        };
+        py.detach(|| {
+            collision_core::with_dim!(
+                n,
+                |N, S| run_all::<T, N, S>(&input, validate, parallel, out),
+                Err(format!("dimension {n} has no batch kernels"))
+            )
+        })
     };
-    let done = py.detach(|| {
-        collision_core::with_dim!(
-            n,
-            |N, S| run_all::<T, N, S>(&input, validate, parallel, out),
-            Err(format!("dimension {n} has no batch kernels"))
-        )
-    });
     done.map_err(input_error)?;
     let [s1, s2] = spin;
     let [v1, v2] = velocity;
@@ -727,7 +730,7 @@ where
 
 /// `collide_batch` on `float64` arrays (see the Python docstring).
 #[pyfunction]
-#[pyo3(signature = (normal, body1, body2, validate, parallel))]
+#[pyo3(signature = (normal, body1, body2, validate, parallel, out=None))]
 pub fn collide_batch_f64<'py>(
     py: Python<'py>,
     normal: PyReadonlyArray2<'py, f64>,
@@ -735,13 +738,14 @@ pub fn collide_batch_f64<'py>(
     body2: BodyIn<'py, f64>,
     validate: bool,
     parallel: bool,
+    out: Option<OutIn<'py, f64>>,
 ) -> PyResult<BatchOut<'py, f64>> {
-    collide_batch::<f64>(py, normal, body1, body2, validate, parallel)
+    collide_batch::<f64>(py, normal, body1, body2, validate, parallel, out)
 }
 
 /// `collide_batch` on `float32` arrays (see the Python docstring).
 #[pyfunction]
-#[pyo3(signature = (normal, body1, body2, validate, parallel))]
+#[pyo3(signature = (normal, body1, body2, validate, parallel, out=None))]
 pub fn collide_batch_f32<'py>(
     py: Python<'py>,
     normal: PyReadonlyArray2<'py, f32>,
@@ -749,8 +753,9 @@ pub fn collide_batch_f32<'py>(
     body2: BodyIn<'py, f32>,
     validate: bool,
     parallel: bool,
+    out: Option<OutIn<'py, f32>>,
 ) -> PyResult<BatchOut<'py, f32>> {
-    collide_batch::<f32>(py, normal, body1, body2, validate, parallel)
+    collide_batch::<f32>(py, normal, body1, body2, validate, parallel, out)
 }
 
 /// The instruction set the batch kernels run on here (`Exec::auto`): `sse2`, `avx2`, `avx512`.
