@@ -8,7 +8,9 @@ change of the machine's load hits them alike):
 - `rust rows`: the reference, the Rust batch kernel from the same row-major arrays into
   row-major outputs through collision-core's batch API (fill_from_rows, Exec::free,
   write_rows, chunks of 512 rows), timed in Rust (noslip.batch.reference_seconds); its
-  outputs are allocated once and reused;
+  outputs are allocated once and reused (`rust rows`, the reference of `out=`) or new on
+  each run, allocated as NumPy allocates a large array (`rust rows, new`: the reference of
+  new arrays, paying the same first touch);
 - `copy floor`: every input element read once and every output element written once, in
   Rust (no implementation on these arrays can do with less memory traffic);
 - `rust kernel`: Exec::free alone on the rows already in its blocked layout (the floor: the
@@ -62,7 +64,8 @@ def numpy_peer(nu, bodies):
     c = R1 U1 nu + R2 U2 nu, d_n = (u2 - u1).nu, t = u2 - u1 - d_n nu - c,
     D = w1 g2 (1 + g1) + w2 g1 (1 + g2), P = d_n/(w1 + w2) nu + g1 g2/D t,
     u1+ = u1 + 2 w1 P, u2+ = u2 - 2 w2 P,
-    U1+ = U1 + 2 w1 g2/(R1 D) nu^t, U2+ = U2 + 2 w2 g1/(R2 D) nu^t, with a^b = b a^T - a b^T (section 2)."""
+    U1+ = U1 + 2 w1 g2/(R1 D) nu^t, U2+ = U2 + 2 w2 g1/(R2 D) nu^t,
+    with a^b = b a^T - a b^T (section 2)."""
     b1, b2 = bodies
     U1, U2 = b1["angular_velocity"], b2["angular_velocity"]
     u1, u2 = b1["velocity"], b2["velocity"]
@@ -104,8 +107,9 @@ def main():
         f"ns per contact, {'rayon threads, wall clock' if parallel else 'one thread, CPU time'}"
     )
     head = [
-        "n", "copy floor", "rust kernel", "rust rows", "new", "new, validated", "out=", "out=, validated",
-        "numpy peer", "out=, validated / rust rows", "new, validated / rust rows",
+        "n", "copy floor", "rust kernel", "rust rows", "rust rows, new", "new", "new, validated",
+        "out=", "out=, validated", "numpy peer", "out=, validated / rust rows",
+        "new, validated / rust rows, new",
         "numpy / new, validated", "numpy / copy floor",
     ] + (["2 threads / sequential"] if parallel else [])
     print("| " + " | ".join(head) + " |")
@@ -139,12 +143,16 @@ def main():
             for th in ts:
                 th.join()
 
-        keys = ("copy", "rows", "kernel", "new", "new_v", "out", "out_v", "numpy", "seq", "thr")
+        keys = (
+            "copy", "rows", "rows_new", "kernel", "new", "new_v", "out", "out_v", "numpy",
+            "seq", "thr",
+        )
         t = {key: [] for key in keys}
         batch = noslip.collide_batch
         for _ in range(args.repeats):
             ref = reference_seconds(nu, bodies, 1, parallel)
             t["rows"] += ref["rows"]
+            t["rows_new"] += ref["rows_new"]
             t["kernel"] += ref["kernel"]
             t["copy"] += ref["copy"]
             t["new"].append(seconds(lambda: batch(nu, bodies, validate=False, parallel=parallel)))
@@ -159,9 +167,11 @@ def main():
                 t["thr"].append(seconds(threaded))
         m = {key: float(np.median(v)) * 1e9 / args.rows for key, v in t.items() if v}
         cells = [
-            f"{n}", f"{m['copy']:.1f}", f"{m['kernel']:.1f}", f"{m['rows']:.1f}", f"{m['new']:.1f}",
+            f"{n}", f"{m['copy']:.1f}", f"{m['kernel']:.1f}", f"{m['rows']:.1f}",
+            f"{m['rows_new']:.1f}",
+            f"{m['new']:.1f}",
             f"{m['new_v']:.1f}", f"{m['out']:.1f}", f"{m['out_v']:.1f}", f"{m['numpy']:.0f}",
-            f"{m['out_v'] / m['rows']:.2f}", f"{m['new_v'] / m['rows']:.2f}",
+            f"{m['out_v'] / m['rows']:.2f}", f"{m['new_v'] / m['rows_new']:.2f}",
             f"{m['numpy'] / m['new_v']:.1f}", f"{m['numpy'] / m['copy']:.1f}",
         ] + ([f"{m['thr'] / m['seq']:.2f}"] if parallel else [])
         print("| " + " | ".join(cells) + " |")

@@ -172,6 +172,9 @@ def reference_seconds(
       outputs (``PairBatch::write_rows``); no validation. The outputs are allocated and
       touched once before the timed runs and reused (``collide_batch`` returns new arrays
       and pays their first touch).
+    - ``"rows_new"``: the same into new output memory on each run, allocated as NumPy
+      allocates a large array (``mmap``, advised for huge pages): it pays the first touch, as
+      ``collide_batch`` does when it returns new arrays.
     - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in its
       blocked batch: the kernel's floor, the row-major arrays neither read nor written.
     - ``"copy"``: the memory floor of any implementation on these arrays: every input element
@@ -180,5 +183,5 @@ def reference_seconds(
     """
     normal = np.asarray(normal)
     b1, b2 = (_body(bodies[b], b, np.dtype(np.float64)) for b in range(2))
-    rows, kernel, copy = _native.reference_seconds(normal, b1, b2, repeats, parallel)
-    return {"rows": rows, "kernel": kernel, "copy": copy}
+    rows, rows_new, kernel, copy = _native.reference_seconds(normal, b1, b2, repeats, parallel)
+    return {"rows": rows, "rows_new": rows_new, "kernel": kernel, "copy": copy}

@@ -10,6 +10,9 @@
 //!   Rust program can keep them, while `collide_batch` must return new arrays, whose first
 //!   touch (the kernel's page faults and zeroing, about 200 bytes a contact in 3D) it pays
 //!   and this reference does not. The ratio to it is the target's.
+//! - `rows_new`: the same into new output memory on each run, allocated as NumPy allocates
+//!   a large array (`mmap`, advised for huge pages), so that it pays the first touch as
+//!   `collide_batch` does when it returns new arrays.
 //! - `copy`: the memory floor of any implementation on these arrays: every input element
 //!   read once (summed) and every output element written once (each body's angular
 //!   velocity and velocity copied from its input), in one pass, chunk by chunk as `rows`.
@@ -29,8 +32,54 @@ use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// The seconds of each run of the references: `rows`, `kernel`, `copy`.
-type Seconds = (Vec<f64>, Vec<f64>, Vec<f64>);
+/// The seconds of each run of the references: `rows`, `rows_new`, `kernel`, `copy`.
+type Seconds = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// New output memory as NumPy gets it for a large array: anonymous pages from `mmap`
+/// (glibc's `malloc` above its threshold), advised for transparent huge pages
+/// (`madvise(MADV_HUGEPAGE)`, as NumPy does for arrays of 4 MB and more), zero-filled by the
+/// kernel at the first touch, which the timed run pays; unmapped on drop.
+struct Fresh {
+    ptr: *mut f64,
+    len: usize,
+}
+
+impl Fresh {
+    fn new(len: usize) -> Fresh {
+        let bytes = (len * 8).max(1);
+        // SAFETY: an anonymous private mapping of `bytes` bytes; checked for failure below.
+        let ptr = unsafe {
+            libc::mmap(
+                std::ptr::null_mut(),
+                bytes,
+                libc::PROT_READ | libc::PROT_WRITE,
+                libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                -1,
+                0,
+            )
+        };
+        assert!(ptr != libc::MAP_FAILED, "mmap of {bytes} bytes failed");
+        // SAFETY: `ptr..ptr + bytes` is the mapping just made. A refused advice is harmless.
+        unsafe { libc::madvise(ptr, bytes, libc::MADV_HUGEPAGE) };
+        Fresh {
+            ptr: ptr.cast(),
+            len,
+        }
+    }
+
+    /// The memory as `f64`s (zero-filled pages: every element is `0.0` until written).
+    fn slice(&mut self) -> &mut [f64] {
+        // SAFETY: `len` f64s of a live, writable, zero-filled mapping owned by `self`.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr, self.len) }
+    }
+}
+
+impl Drop for Fresh {
+    fn drop(&mut self) {
+        // SAFETY: the mapping made in `new`, unmapped once.
+        unsafe { libc::munmap(self.ptr.cast(), (self.len * 8).max(1)) };
+    }
+}
 
 /// Chunk `c` of the four outputs: `(c, (((spin_1, spin_2), velocity_1), velocity_2))`.
 type OutChunk<'a> = (
@@ -103,11 +152,11 @@ where
         vec![0.0; len * N * N],
         vec![0.0; len * N],
     ];
-    rows_to_rows::<N, S>(rows, &mut outputs, parallel);
+    rows_to_rows::<N, S>(rows, outputs.each_mut().map(|v| v.as_mut_slice()), parallel);
     let mut rows_seconds = Vec::with_capacity(repeats);
     for _ in 0..repeats {
         rows_seconds.push(time(&mut || {
-            rows_to_rows::<N, S>(rows, &mut outputs, parallel);
+            rows_to_rows::<N, S>(rows, outputs.each_mut().map(|v| v.as_mut_slice()), parallel);
             std::hint::black_box(&outputs);
         }));
     }
@@ -131,12 +180,26 @@ where
     let copy_seconds = (0..repeats)
         .map(|_| {
             time(&mut || {
-                std::hint::black_box(copy_floor::<N>(rows, &mut outputs, parallel));
+                std::hint::black_box(copy_floor::<N>(
+                    rows,
+                    outputs.each_mut().map(|v| v.as_mut_slice()),
+                    parallel,
+                ));
                 std::hint::black_box(&outputs);
             })
         })
         .collect();
-    Ok((rows_seconds, kernel_seconds, copy_seconds))
+    let sizes = [len * N * N, len * N, len * N * N, len * N];
+    let fresh_seconds = (0..repeats)
+        .map(|_| {
+            time(&mut || {
+                let mut fresh = sizes.map(Fresh::new);
+                rows_to_rows::<N, S>(rows, fresh.each_mut().map(Fresh::slice), parallel);
+                std::hint::black_box(&fresh);
+            })
+        })
+        .collect();
+    Ok((rows_seconds, fresh_seconds, kernel_seconds, copy_seconds))
 }
 
 /// CPU seconds this thread has run: `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, the clock of
@@ -160,7 +223,7 @@ fn thread_seconds() -> f64 {
 /// `[spin_1, velocity_1, spin_2, velocity_2]`; on rayon's threads (`parallel`) or this one.
 fn copy_floor<const N: usize>(
     rows: &FreeRows<'_, f64>,
-    out: &mut [Vec<f64>; 4],
+    out: [&mut [f64]; 4],
     parallel: bool,
 ) -> f64 {
     let [s1, v1, s2, v2] = out;
@@ -201,7 +264,7 @@ fn copy_floor<const N: usize>(
 /// velocity_2]`, chunk by chunk on rayon's threads (`parallel`) or on this thread.
 fn rows_to_rows<const N: usize, const S: usize>(
     rows: &FreeRows<'_, f64>,
-    out: &mut [Vec<f64>; 4],
+    out: [&mut [f64]; 4],
     parallel: bool,
 ) where
     Generated: BatchKernel<f64, N, S>,
