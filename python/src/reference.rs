@@ -23,9 +23,9 @@
 //! Serial runs are timed in CPU time of the calling thread (`CLOCK_THREAD_CPUTIME_ID`), which a loaded machine disturbs far less than the wall
 //! clock; parallel runs in wall-clock time.
 
-use crate::batch::{views, BodyIn, Inputs};
+use crate::batch::{state_rows_mut, views, BodyIn, Inputs};
 use crate::error::input_error;
-use collision_core::batch::{BatchKernel, Exec, FreeBatch, FreeRows, PairBatch, StateRowsMut};
+use collision_core::batch::{BatchKernel, Exec, FreeBatch, FreeRows, PairBatch};
 use collision_core::Generated;
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
@@ -226,38 +226,27 @@ fn copy_floor<const N: usize>(
     out: [&mut [f64]; 4],
     parallel: bool,
 ) -> f64 {
-    let [s1, v1, s2, v2] = out;
-    let chunk = |(c, (((s1, s2), v1), v2)): OutChunk<'_>| {
-        let range = c * CHUNK..c * CHUNK + v1.len() / N;
-        let mut sum: f64 = rows.nu[range.start * N..range.end * N].iter().sum();
-        for b in rows.balls {
-            for p in [b.inv_mass, b.radius, b.gamma2] {
-                sum += p[range.clone()].iter().sum::<f64>();
+    over_chunks::<N, _>(
+        out,
+        parallel,
+        || (),
+        |(), (c, (((s1, s2), v1), v2))| {
+            let range = c * CHUNK..c * CHUNK + v1.len() / N;
+            let mut sum: f64 = rows.nu[range.start * N..range.end * N].iter().sum();
+            for b in rows.balls {
+                for p in [b.inv_mass, b.radius, b.gamma2] {
+                    // A shared parameter (one value) is read once.
+                    let rows = if p.len() == 1 { 0..1 } else { range.clone() };
+                    sum += p[rows].iter().sum::<f64>();
+                }
             }
-        }
-        for (state, (spin, velocity)) in rows.states.iter().zip([(s1, v1), (s2, v2)]) {
-            spin.copy_from_slice(&state.spin[range.start * N * N..range.end * N * N]);
-            velocity.copy_from_slice(&state.velocity[range.start * N..range.end * N]);
-        }
-        sum
-    };
-    if parallel {
-        s1.par_chunks_mut(CHUNK * N * N)
-            .zip(s2.par_chunks_mut(CHUNK * N * N))
-            .zip(v1.par_chunks_mut(CHUNK * N))
-            .zip(v2.par_chunks_mut(CHUNK * N))
-            .enumerate()
-            .map(chunk)
-            .sum()
-    } else {
-        s1.chunks_mut(CHUNK * N * N)
-            .zip(s2.chunks_mut(CHUNK * N * N))
-            .zip(v1.chunks_mut(CHUNK * N))
-            .zip(v2.chunks_mut(CHUNK * N))
-            .enumerate()
-            .map(chunk)
-            .sum()
-    }
+            for (state, (spin, velocity)) in rows.states.iter().zip([(s1, v1), (s2, v2)]) {
+                spin.copy_from_slice(&state.spin[range.start * N * N..range.end * N * N]);
+                velocity.copy_from_slice(&state.velocity[range.start * N..range.end * N]);
+            }
+            sum
+        },
+    )
 }
 
 /// The `rows` reference, into the row-major outputs `[spin_1, velocity_1, spin_2,
@@ -270,38 +259,47 @@ fn rows_to_rows<const N: usize, const S: usize>(
     Generated: BatchKernel<f64, N, S>,
 {
     let exec = Exec::auto().serial();
-    let [s1, v1, s2, v2] = out;
-    let chunk = |(batch, pairs): &mut (FreeBatch<f64, N, S>, PairBatch<f64, N, S>),
-                 (c, (((s1, s2), v1), v2)): OutChunk<'_>| {
-        let start = c * CHUNK;
-        batch.fill_from_rows(rows, start..start + v1.len() / N);
-        exec.free::<f64, N, S>(batch, pairs);
-        pairs.write_rows([
-            StateRowsMut {
-                spin: s1,
-                velocity: v1,
-            },
-            StateRowsMut {
-                spin: s2,
-                velocity: v2,
-            },
-        ]);
-    };
     let scratch = || (FreeBatch::<f64, N, S>::new(), PairBatch::<f64, N, S>::new());
+    over_chunks::<N, _>(
+        out,
+        parallel,
+        scratch,
+        |(batch, pairs), (c, (((s1, s2), v1), v2))| {
+            let start = c * CHUNK;
+            batch.fill_from_rows(rows, start..start + v1.len() / N);
+            exec.free::<f64, N, S>(batch, pairs);
+            pairs.write_rows(state_rows_mut([s1, s2], [v1, v2]));
+            0.0
+        },
+    );
+}
+
+/// `f(scratch, chunk)` over the chunks of [`CHUNK`] rows of the outputs
+/// `[spin_1, velocity_1, spin_2, velocity_2]`, on rayon's threads (`parallel`, a scratch from
+/// `init` per task) or on this thread (one scratch); the sum of the results.
+fn over_chunks<const N: usize, I>(
+    out: [&mut [f64]; 4],
+    parallel: bool,
+    init: impl Fn() -> I + Send + Sync,
+    f: impl Fn(&mut I, OutChunk<'_>) -> f64 + Send + Sync,
+) -> f64 {
+    let [s1, v1, s2, v2] = out;
     if parallel {
         s1.par_chunks_mut(CHUNK * N * N)
             .zip(s2.par_chunks_mut(CHUNK * N * N))
             .zip(v1.par_chunks_mut(CHUNK * N))
             .zip(v2.par_chunks_mut(CHUNK * N))
             .enumerate()
-            .for_each_init(scratch, chunk);
+            .map_init(init, &f)
+            .sum()
     } else {
-        let mut sc = scratch();
+        let mut scratch = init();
         s1.chunks_mut(CHUNK * N * N)
             .zip(s2.chunks_mut(CHUNK * N * N))
             .zip(v1.chunks_mut(CHUNK * N))
             .zip(v2.chunks_mut(CHUNK * N))
             .enumerate()
-            .for_each(|item| chunk(&mut sc, item));
+            .map(|c| f(&mut scratch, c))
+            .sum()
     }
 }

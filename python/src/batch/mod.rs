@@ -219,6 +219,23 @@ impl<T: Scalar + Copy> BodyArrays<'_, T> {
     }
 }
 
+/// Both bodies' row-major outputs, as `PairBatch::write_rows` takes them.
+pub(crate) fn state_rows_mut<'a, T>(
+    [s1, s2]: [&'a mut [T]; 2],
+    [v1, v2]: [&'a mut [T]; 2],
+) -> [StateRowsMut<'a, T>; 2] {
+    [
+        StateRowsMut {
+            spin: s1,
+            velocity: v1,
+        },
+        StateRowsMut {
+            spin: s2,
+            velocity: v2,
+        },
+    ]
+}
+
 /// The compact entries as a full skew matrix, row-major, `m_cr = 0 - m_rc` (so a zero entry
 /// is `+0` on both sides, as `noslip collide` prints it).
 fn write_state<T: Scalar + Copy, const N: usize, const S: usize>(
@@ -432,16 +449,7 @@ where
             spin: [s1, s2],
             velocity: [v1, v2],
         } = &mut out;
-        sc.pairs.write_rows([
-            StateRowsMut {
-                spin: s1,
-                velocity: v1,
-            },
-            StateRowsMut {
-                spin: s2,
-                velocity: v2,
-            },
-        ]);
+        sc.pairs.write_rows(state_rows_mut([s1, s2], [v1, v2]));
     }
     // The rows with an immovable body (`inv_mass = 0` in a lane of the gathered batch).
     sc.fixed.clear();
