@@ -67,12 +67,12 @@ use super::normal::unit;
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::predict::{contact_time, exit_time};
-use super::queue::{Entry, What};
+use super::motion::Motion;
+use super::queue::{Calendar, What};
 use super::smooth;
 use super::table::{ContactKind, Geometry, Table};
 use super::{Body, FixedBall, PairKernels, Setup};
 use collision_core::{Ball, BodyState};
-use std::collections::BinaryHeap;
 use std::fmt;
 
 /// A contact: ball-ball (`i` is body 1), ball-wall or ball-obstacle.
@@ -242,8 +242,8 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     last: Vec<u32>,
     grid: Grid<N>,
     kind: Vec<usize>,
-    pos: Vec<[f64; N]>,
-    since: Vec<f64>,
+    /// Per ball: centre, its time, velocity and radius (the neighbour scan's reads).
+    motion: Vec<Motion<N>>,
     state: Vec<BodyState<f64, N, S>>,
     count: Vec<u32>,
     wraps: Vec<[i8; N]>,
@@ -254,7 +254,9 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
     orientation: Option<Vec<Matrix<N>>>,
     unturned: Vec<f64>,
-    queue: BinaryHeap<Entry<N>>,
+    /// Per ball: the time of its pending event ([`Calendar`]) and what it is (`next`).
+    queue: Calendar,
+    next: Vec<What<N>>,
     /// The local clock; the absolute time is `origin + origin_low + now`.
     now: f64,
     origin: f64,
@@ -330,6 +332,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let n = bodies.len();
         let w_min = grid.width.iter().copied().fold(f64::INFINITY, f64::min);
+        let motion = bodies
+            .iter()
+            .map(|b| Motion {
+                pos: b.position,
+                since: 0.0,
+                velocity: b.state.velocity,
+                radius: species[b.species].radius,
+            })
+            .collect();
         let mut sim = Simulation {
             kernels,
             species,
@@ -338,8 +349,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             last: vec![0; n],
             grid,
             kind: bodies.iter().map(|b| b.species).collect(),
-            pos: bodies.iter().map(|b| b.position).collect(),
-            since: vec![0.0; n],
+            motion,
             state: bodies.into_iter().map(|b: Body<N, S>| b.state).collect(),
             count: vec![0; n],
             wraps: vec![[0; N]; n],
@@ -348,7 +358,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
-            queue: BinaryHeap::new(),
+            queue: Calendar::new(n),
+            next: vec![What::Wall { axis: 0, upper: false }; n],
             now: 0.0,
             origin: 0.0,
             origin_low: 0.0,
@@ -366,6 +377,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         for i in 0..n {
             sim.predict(i);
         }
+        sim.queue.rebuild(0.0);
         Ok(sim)
     }
 
@@ -404,12 +416,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// The number of balls.
     pub fn len(&self) -> usize {
-        self.pos.len()
+        self.motion.len()
     }
 
     /// Whether there are no balls.
     pub fn is_empty(&self) -> bool {
-        self.pos.is_empty()
+        self.motion.is_empty()
     }
 
     /// The box sides `L_k` (without a box: the table's length scale on every axis).
@@ -465,14 +477,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Ball `i`'s centre now (inside the box; wrapped on periodic axes up to the crossing
     /// in progress).
     pub fn position(&self, i: usize) -> [f64; N] {
-        let dt = self.now - self.since[i];
-        std::array::from_fn(|k| self.pos[i][k] + self.state[i].velocity[k] * dt)
+        self.motion[i].at(self.now)
     }
 
     /// Ball `i`'s orientation `A_i` now, if the setup tracks orientations.
     pub fn orientation(&self, i: usize) -> Option<[[f64; N]; N]> {
         let a = self.orientation.as_ref()?;
-        let dt = self.unturned[i] + (self.now - self.since[i]);
+        let dt = self.unturned[i] + (self.now - self.motion[i].since);
         let r = exp_skew::<N>(&self.state[i].spin, dt);
         Some(mul(&r, &a[i]))
     }
@@ -498,17 +509,18 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Move ball `i`'s centre to now; the orientation's flight time is only noted.
     fn fly(&mut self, i: usize) {
-        let dt = self.now - self.since[i];
+        let m = &mut self.motion[i];
+        let dt = self.now - m.since;
         if dt == 0.0 {
             return;
         }
         for k in 0..N {
-            self.pos[i][k] += self.state[i].velocity[k] * dt;
+            m.pos[k] += m.velocity[k] * dt;
         }
+        m.since = self.now;
         if self.orientation.is_some() {
             self.unturned[i] += dt;
         }
-        self.since[i] = self.now;
     }
 
     /// Ball `j`'s centre now, shifted by `shift` box lengths.
@@ -522,11 +534,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         std::array::from_fn(|k| p[k] + f64::from(shift[k]) * self.grid.size[k])
     }
 
-    /// Push ball `i`'s earliest event (ball `i` is advanced to now first).
+    /// Schedule ball `i`'s earliest event (ball `i` is advanced to now first).
     fn predict(&mut self, i: usize) {
         self.advance(i);
-        let (a, v) = (self.pos[i], self.state[i].velocity);
-        let r = self.species[self.kind[i]].radius;
+        let Motion {
+            pos: a,
+            velocity: v,
+            radius: r,
+            ..
+        } = self.motion[i];
+        let now = self.now;
+        let size = self.grid.size;
         let mut best: Option<(f64, What<N>)> = None;
         let mut offer = |t: f64, what: What<N>| {
             if best.is_none_or(|(b, _)| t < b) {
@@ -540,11 +558,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 if j == i {
                     continue;
                 }
-                let b = self.image(j, &nb.shift);
-                let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
-                let dv: [f64; N] = std::array::from_fn(|k| self.state[j].velocity[k] - v[k]);
-                let sigma = r + self.species[self.kind[j]].radius;
-                if let Some(t) = contact_time(&d, &dv, sigma) {
+                let m = &self.motion[j];
+                let p = m.at(now);
+                let d: [f64; N] =
+                    std::array::from_fn(|k| (p[k] + f64::from(nb.shift[k]) * size[k]) - a[k]);
+                let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
+                if let Some(t) = contact_time(&d, &dv, r + m.radius) {
                     let count = self.count[j];
                     // The image in unwrapped coordinates: s - w_j + w_i (module docs).
                     let shift = std::array::from_fn(|k| {
@@ -614,13 +633,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 }
             }
         }
-        if let Some((t, what)) = best {
-            self.queue.push(Entry {
-                time: self.now + t,
-                ball: i as u32,
-                count: self.count[i],
-                what,
-            });
+        match best {
+            Some((t, what)) => {
+                self.queue.set(i, self.now + t);
+                self.next[i] = what;
+            }
+            None => self.queue.remove(i),
         }
     }
 
@@ -638,13 +656,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         if up {
             c2[axis] = (c[axis] + 1) % n;
             if c2[axis] == 0 {
-                self.pos[i][axis] -= self.grid.size[axis];
+                self.motion[i].pos[axis] -= self.grid.size[axis];
                 self.wraps[i][axis] = self.wraps[i][axis].wrapping_add(1);
             }
         } else {
             c2[axis] = (c[axis] + n - 1) % n;
             if c[axis] == 0 {
-                self.pos[i][axis] += self.grid.size[axis];
+                self.motion[i].pos[axis] += self.grid.size[axis];
                 self.wraps[i][axis] = self.wraps[i][axis].wrapping_sub(1);
             }
         }
@@ -671,7 +689,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                     return Step::Quiet { box_lengths };
                 }
             }
-            let Some(top) = self.queue.peek() else {
+            let Some((time, i)) = self.queue.peek() else {
                 // Every moving ball has an entry in a box (a crossing or a wall at least);
                 // without one, an empty queue means no ball has a contact ahead.
                 let moving = (0..self.len()).any(|i| self.speed2_of(i) > 0.0);
@@ -682,22 +700,19 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 };
                 return self.never(why, until);
             };
-            if top.time > until {
+            if time > until {
                 if until.is_finite() {
                     self.now = self.now.max(until);
                 }
                 return Step::Until;
             }
-            let e = self.queue.pop().expect("peeked");
-            let i = e.ball as usize;
-            if e.count != self.count[i] {
-                continue;
-            }
-            self.now = self.now.max(e.time);
+            // Ball i's event stays in the queue until every branch below re-predicts i.
+            let what = self.next[i];
+            self.now = self.now.max(time);
             if self.clock_due() {
                 self.rebase();
             }
-            match e.what {
+            match what {
                 What::Cell { axis, up } => {
                     self.cross(i, axis as usize, up);
                     self.predict(i);
@@ -793,15 +808,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let mut speed2: f64 = 0.0;
         for i in 0..self.len() {
             self.fly(i);
-            self.since[i] = 0.0;
+            self.motion[i].since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
-        let mut entries = std::mem::take(&mut self.queue).into_vec();
-        entries.retain(|e| e.count == self.count[e.ball as usize]);
-        for e in &mut entries {
-            e.time = (e.time - t).max(0.0);
-        }
-        self.queue = BinaryHeap::from(entries);
+        self.queue.rebuild(t);
         // origin + origin_low += t, compensated (Knuth's two-sum).
         let sum = self.origin + t;
         let b = sum - self.origin;
@@ -839,7 +849,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 .wrapping_sub(self.wraps[i][k])
         });
         let b = self.image(j, &shift);
-        let nu = unit(std::array::from_fn(|k| b[k] - self.pos[i][k]));
+        let nu = unit(std::array::from_fn(|k| b[k] - self.motion[i].pos[k]));
         let pre = [self.state[i].clone(), self.state[j].clone()];
         let [si, sj] = match self.table.ball_contact {
             ContactKind::NoSlip => {
@@ -888,7 +898,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn ball_obstacle(&mut self, i: usize, o: usize, shift: &[i8; N]) -> Event<N, S> {
         self.advance(i);
         let b = self.obstacle_image(o, shift);
-        let nu = unit(std::array::from_fn(|k| self.pos[i][k] - b[k]));
+        let nu = unit(std::array::from_fn(|k| self.motion[i].pos[k] - b[k]));
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match self.table.obstacle(o) {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
@@ -905,7 +915,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn ball_boundary(&mut self, i: usize, b: usize) -> Event<N, S> {
         self.advance(i);
         let boundary = &self.table.boundaries[b];
-        let nu = boundary.shape.normal(&self.pos[i]);
+        let nu = boundary.shape.normal(&self.motion[i].pos);
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match boundary.contact {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
@@ -924,6 +934,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         balls: [usize; 2],
         pre: [BodyState<f64, N, S>; 2],
     ) -> Event<N, S> {
+        for b in balls {
+            self.motion[b].velocity = self.state[b].velocity;
+        }
         self.count[balls[0]] += 1;
         if balls[1] != balls[0] {
             self.count[balls[1]] += 1;
@@ -937,7 +950,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             time: self.absolute(self.now),
             contact,
             nu,
-            position: balls.map(|b| self.pos[b]),
+            position: balls.map(|b| self.motion[b].pos),
             pre,
             post: balls.map(|b| self.state[b].clone()),
         }

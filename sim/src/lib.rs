@@ -32,6 +32,7 @@ mod cells;
 pub mod engine;
 pub mod log;
 pub mod no_contact;
+mod motion;
 mod normal;
 mod observe;
 mod orientation;
