@@ -169,6 +169,10 @@ pub enum Step<const N: usize, const S: usize> {
 /// the narrowest cell on it (module docs).
 const CLOCK_CELLS: f64 = 16.0;
 
+/// The tag of an obstacle index in the neighbour list of a prediction (ball indices are
+/// below it).
+const OBSTACLE: u32 = 1 << 31;
+
 /// A setup the engine cannot run; each variant names the place.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -257,6 +261,9 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// Per ball: the time of its pending event ([`Calendar`]) and what it is (`next`).
     queue: Calendar,
     next: Vec<What<N>>,
+    /// The balls and obstacles (tagged [`OBSTACLE`]) within reach of the ball being
+    /// predicted, with their cell's image shift: a list reused by every prediction.
+    near: Vec<(u32, [i8; N])>,
     /// The local clock; the absolute time is `origin + origin_low + now`.
     now: f64,
     origin: f64,
@@ -360,6 +367,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             unturned: vec![0.0; if orientation { n } else { 0 }],
             queue: Calendar::new(n),
             next: vec![What::Wall { axis: 0, upper: false }; n],
+            near: Vec::new(),
             now: 0.0,
             origin: 0.0,
             origin_low: 0.0,
@@ -551,45 +559,67 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 best = Some((t, what));
             }
         };
+        // Two passes: list the balls and obstacles of the cells within reach (in scan order),
+        // then test them; the second pass's loads do not wait on one another, so the memory
+        // latency of the flight records overlaps.
+        let mut near = std::mem::take(&mut self.near);
+        near.clear();
         let c = self.cell[i];
         self.grid.for_neighbours(&c, |nb| {
-            for &j in &self.members[nb.cell] {
-                let j = j as usize;
-                if j == i {
-                    continue;
-                }
-                let m = &self.motion[j];
-                let p = m.at(now);
-                let d: [f64; N] =
-                    std::array::from_fn(|k| (p[k] + f64::from(nb.shift[k]) * size[k]) - a[k]);
-                let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
-                if let Some(t) = contact_time(&d, &dv, r + m.radius) {
-                    let count = self.count[j];
-                    // The image in unwrapped coordinates: s - w_j + w_i (module docs).
-                    let shift = std::array::from_fn(|k| {
-                        nb.shift[k]
-                            .wrapping_sub(self.wraps[j][k])
-                            .wrapping_add(self.wraps[i][k])
-                    });
-                    offer(
-                        t,
-                        What::Ball {
-                            j: j as u32,
-                            count,
-                            shift,
-                        },
-                    );
-                }
-            }
-            for &o in &self.fixed_members[nb.cell] {
-                let b = self.obstacle_image(o as usize, &nb.shift);
+            near.extend(
+                self.members[nb.cell]
+                    .iter()
+                    .filter(|&&j| j as usize != i)
+                    .map(|&j| (j, nb.shift)),
+            );
+            near.extend(
+                self.fixed_members[nb.cell]
+                    .iter()
+                    .map(|&o| (o | OBSTACLE, nb.shift)),
+            );
+        });
+        for &(j, cell_shift) in &near {
+            if j & OBSTACLE != 0 {
+                let o = j & !OBSTACLE;
+                let b = self.obstacle_image(o as usize, &cell_shift);
                 let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
                 let dv: [f64; N] = std::array::from_fn(|k| -v[k]);
                 if let Some(t) = contact_time(&d, &dv, r + self.obstacles[o as usize].radius) {
-                    offer(t, What::Obstacle { o, shift: nb.shift });
+                    offer(
+                        t,
+                        What::Obstacle {
+                            o,
+                            shift: cell_shift,
+                        },
+                    );
                 }
+                continue;
             }
-        });
+            let j = j as usize;
+            let m = &self.motion[j];
+            let p = m.at(now);
+            let d: [f64; N] =
+                std::array::from_fn(|k| (p[k] + f64::from(cell_shift[k]) * size[k]) - a[k]);
+            let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
+            if let Some(t) = contact_time(&d, &dv, r + m.radius) {
+                let count = self.count[j];
+                // The image in unwrapped coordinates: s - w_j + w_i (module docs).
+                let shift = std::array::from_fn(|k| {
+                    cell_shift[k]
+                        .wrapping_sub(self.wraps[j][k])
+                        .wrapping_add(self.wraps[i][k])
+                });
+                offer(
+                    t,
+                    What::Ball {
+                        j: j as u32,
+                        count,
+                        shift,
+                    },
+                );
+            }
+        }
+        self.near = near;
         for (b, boundary) in self.table.boundaries.iter().enumerate() {
             // Right after a contact with b: a convex b cannot be met again, a container not at
             // the same instant (a graze within rounding would repeat forever at t = 0).

@@ -101,6 +101,7 @@ impl Calendar {
     }
 
     /// The number of balls with a pending event.
+    #[cfg(test)]
     pub(crate) fn len(&self) -> usize {
         self.heap.len() + self.in_buckets + self.overflow.len()
     }
