@@ -6,16 +6,25 @@
 //! modulo 256) that count its crossings of the periodic faces, so that its unwrapped centre is
 //! `a_i + w_i L`.
 //!
-//! Queue invariant: every moving ball has in the queue an entry for its earliest predicted
-//! event, made when it was last predicted, and nothing later than its true next event.
-//! Popping an entry:
-//! - if the owner's counter changed since, the entry is dropped (the owner was re-predicted);
-//! - a ball-ball entry whose partner's counter changed is no longer an event: the owner is
+//! Queue invariant: every moving ball has exactly one pending event in the queue (a
+//! `Calendar` (`queue.rs`), keyed by ball: setting a ball's event replaces the one it had,
+//! so no stale entry is ever kept), its earliest predicted event as of its last prediction,
+//! and nothing later than its true next event. Events are taken in the order of their time,
+//! ties by ball index (the order among exactly simultaneous events is otherwise arbitrary);
+//! the ball whose event is taken is always re-predicted before the next one:
+//! - a ball-ball event whose partner's counter changed is no longer an event: the owner is
 //!   re-predicted from now (its own trajectory is unchanged, so no event of it was missed);
 //! - a cell crossing moves the ball to the next cell (wrapping on a periodic axis) and
 //!   re-predicts it against its new neighbours;
 //! - a contact advances the balls to now, applies the pair's no-slip map, bumps the counters
 //!   and re-predicts the balls involved.
+//!
+//! **Layout.** What a prediction reads of every neighbour (centre, its time, velocity,
+//! radius) is one 64-byte record per ball (`Motion`); the velocity there is a copy of the
+//! ball's state's, written at each contact. A prediction first lists the balls and obstacles
+//! of the `3^n` cells within reach (`Grid::for_neighbours`, no division), then tests them,
+//! so that the loads of their records overlap; the list, the calendar's buckets and the cell
+//! lists are reused, so nothing is allocated per event once they have grown.
 //!
 //! **Image rule.** A ball-ball entry stores its partner's image in unwrapped coordinates,
 //! `s - w_j + w_i` for the cell shift `s` it was predicted with: the partner may cross a
@@ -30,7 +39,8 @@
 //! compensated sum) is moved forward ("re-based") whenever `v_max t > 16 w_min`, `v_max` an
 //! upper bound of the speeds and `w_min` the narrowest cell: all centres are advanced to now
 //! (orientations only note the flight time, to be applied at their next update), the queue's
-//! times are shifted by `-t` (dropping dead entries) and the clock restarts at 0.
+//! times are shifted by `-t` (the calendar is rebuilt, its bucket width chosen again for the
+//! current event rate) and the clock restarts at 0.
 //! Rounding a local time then moves any ball by at most 16 ulps of a cell width, whatever the
 //! absolute time, so contacts stay at contact distance in long runs and after long quiet
 //! stretches (a gas started almost at rest); the check runs at each popped entry and after each
@@ -258,10 +268,10 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
     orientation: Option<Vec<Matrix<N>>>,
     unturned: Vec<f64>,
-    /// Per ball: the time of its pending event ([`Calendar`]) and what it is (`next`).
+    /// Per ball: the time of its pending event (`Calendar`) and what it is (`next`).
     queue: Calendar,
     next: Vec<What<N>>,
-    /// The balls and obstacles (tagged [`OBSTACLE`]) within reach of the ball being
+    /// The balls and obstacles (tagged `OBSTACLE`) within reach of the ball being
     /// predicted, with their cell's image shift: a list reused by every prediction.
     near: Vec<(u32, [i8; N])>,
     /// The local clock; the absolute time is `origin + origin_low + now`.
@@ -831,8 +841,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// Move the clock's origin to now: move every centre to now (orientations keep their
-    /// flight time for later), shift the queue's times by `-now` (dropping dead entries; no
-    /// allocation: the heap's buffer is reused) and restart the local clock at 0.
+    /// flight time for later), shift the queue's times by `-now` (rebuilding the calendar;
+    /// no allocation: its lists are reused) and restart the local clock at 0.
     fn rebase(&mut self) {
         let t = self.now;
         let mut speed2: f64 = 0.0;
