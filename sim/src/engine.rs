@@ -78,6 +78,7 @@ use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::predict::{contact_time, exit_time};
 use super::motion::Motion;
+use super::residents::Residents;
 use super::queue::{Calendar, What};
 use super::smooth;
 use super::table::{ContactKind, Geometry, Table};
@@ -179,10 +180,6 @@ pub enum Step<const N: usize, const S: usize> {
 /// the narrowest cell on it (module docs).
 const CLOCK_CELLS: f64 = 16.0;
 
-/// The tag of an obstacle index in the neighbour list of a prediction (ball indices are
-/// below it).
-const OBSTACLE: u32 = 1 << 31;
-
 /// A setup the engine cannot run; each variant names the place.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -256,13 +253,13 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     last: Vec<u32>,
     grid: Grid<N>,
     kind: Vec<usize>,
-    /// Per ball: centre, its time, velocity and radius (the neighbour scan's reads).
-    motion: Vec<Motion<N>>,
+    /// Per ball: centre, its time, velocity and radius (the neighbour scan's reads), stored
+    /// by cell (the cell lists).
+    motion: Residents<N>,
     state: Vec<BodyState<f64, N, S>>,
     count: Vec<u32>,
     wraps: Vec<[i8; N]>,
     cell: Vec<[usize; N]>,
-    members: Vec<Vec<u32>>,
     fixed_members: Vec<Vec<u32>>,
     /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
@@ -271,9 +268,6 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// Per ball: the time of its pending event (`Calendar`) and what it is (`next`).
     queue: Calendar,
     next: Vec<What<N>>,
-    /// The balls and obstacles (tagged `OBSTACLE`) within reach of the ball being
-    /// predicted, with their cell's image shift: a list reused by every prediction.
-    near: Vec<(u32, [i8; N])>,
     /// The local clock; the absolute time is `origin + origin_low + now`.
     now: f64,
     origin: f64,
@@ -331,7 +325,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         } else {
             Grid::single(size)
         };
-        let mut members = vec![Vec::new(); grid.cells()];
+        let mut motion = Residents::new(grid.cells());
         let mut fixed_members = vec![Vec::new(); grid.cells()];
         let mut cell = Vec::with_capacity(bodies.len());
         for (i, b) in bodies.iter().enumerate() {
@@ -340,7 +334,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 return Err(SetupError::Outside { ball: i, axis: k });
             }
             let c = grid.cell_of(&b.position);
-            members[grid.flat(&c)].push(i as u32);
+            motion.push(
+                grid.flat(&c),
+                Motion {
+                    pos: b.position,
+                    since: 0.0,
+                    velocity: b.state.velocity,
+                    radius: species[b.species].radius,
+                },
+            );
             cell.push(c);
         }
         for (o, f) in obstacles.iter().enumerate() {
@@ -349,15 +351,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let n = bodies.len();
         let w_min = grid.width.iter().copied().fold(f64::INFINITY, f64::min);
-        let motion = bodies
-            .iter()
-            .map(|b| Motion {
-                pos: b.position,
-                since: 0.0,
-                velocity: b.state.velocity,
-                radius: species[b.species].radius,
-            })
-            .collect();
         let mut sim = Simulation {
             kernels,
             species,
@@ -371,13 +364,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             count: vec![0; n],
             wraps: vec![[0; N]; n],
             cell,
-            members,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
             queue: Calendar::new(n),
             next: vec![What::Wall { axis: 0, upper: false }; n],
-            near: Vec::new(),
             now: 0.0,
             origin: 0.0,
             origin_low: 0.0,
@@ -439,7 +430,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Whether there are no balls.
     pub fn is_empty(&self) -> bool {
-        self.motion.is_empty()
+        self.motion.len() == 0
     }
 
     /// The box sides `L_k` (without a box: the table's length scale on every axis).
@@ -495,13 +486,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Ball `i`'s centre now (inside the box; wrapped on periodic axes up to the crossing
     /// in progress).
     pub fn position(&self, i: usize) -> [f64; N] {
-        self.motion[i].at(self.now)
+        self.motion.get(i).at(self.now)
     }
 
     /// Ball `i`'s orientation `A_i` now, if the setup tracks orientations.
     pub fn orientation(&self, i: usize) -> Option<[[f64; N]; N]> {
         let a = self.orientation.as_ref()?;
-        let dt = self.unturned[i] + (self.now - self.motion[i].since);
+        let dt = self.unturned[i] + (self.now - self.motion.get(i).since);
         let r = exp_skew::<N>(&self.state[i].spin, dt);
         Some(mul(&r, &a[i]))
     }
@@ -527,15 +518,16 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Move ball `i`'s centre to now; the orientation's flight time is only noted.
     fn fly(&mut self, i: usize) {
-        let m = &mut self.motion[i];
-        let dt = self.now - m.since;
+        let now = self.now;
+        let m = self.motion.get_mut(i);
+        let dt = now - m.since;
         if dt == 0.0 {
             return;
         }
         for k in 0..N {
             m.pos[k] += m.velocity[k] * dt;
         }
-        m.since = self.now;
+        m.since = now;
         if self.orientation.is_some() {
             self.unturned[i] += dt;
         }
@@ -560,7 +552,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             velocity: v,
             radius: r,
             ..
-        } = self.motion[i];
+        } = *self.motion.get(i);
         let now = self.now;
         let size = self.grid.size;
         let mut best: Option<(f64, What<N>)> = None;
@@ -569,67 +561,45 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 best = Some((t, what));
             }
         };
-        // Two passes: list the balls and obstacles of the cells within reach (in scan order),
-        // then test them; the second pass's loads do not wait on one another, so the memory
-        // latency of the flight records overlaps.
-        let mut near = std::mem::take(&mut self.near);
-        near.clear();
         let c = self.cell[i];
         self.grid.for_neighbours(&c, |nb| {
-            near.extend(
-                self.members[nb.cell]
-                    .iter()
-                    .filter(|&&j| j as usize != i)
-                    .map(|&j| (j, nb.shift)),
-            );
-            near.extend(
-                self.fixed_members[nb.cell]
-                    .iter()
-                    .map(|&o| (o | OBSTACLE, nb.shift)),
-            );
-        });
-        for &(j, cell_shift) in &near {
-            if j & OBSTACLE != 0 {
-                let o = j & !OBSTACLE;
-                let b = self.obstacle_image(o as usize, &cell_shift);
-                let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
-                let dv: [f64; N] = std::array::from_fn(|k| -v[k]);
-                if let Some(t) = contact_time(&d, &dv, r + self.obstacles[o as usize].radius) {
+            for resident in self.motion.cell(nb.cell) {
+                let j = resident.ball as usize;
+                if j == i {
+                    continue;
+                }
+                let m = &resident.motion;
+                let p = m.at(now);
+                let d: [f64; N] =
+                    std::array::from_fn(|k| (p[k] + f64::from(nb.shift[k]) * size[k]) - a[k]);
+                let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
+                if let Some(t) = contact_time(&d, &dv, r + m.radius) {
+                    let count = self.count[j];
+                    // The image in unwrapped coordinates: s - w_j + w_i (module docs).
+                    let shift = std::array::from_fn(|k| {
+                        nb.shift[k]
+                            .wrapping_sub(self.wraps[j][k])
+                            .wrapping_add(self.wraps[i][k])
+                    });
                     offer(
                         t,
-                        What::Obstacle {
-                            o,
-                            shift: cell_shift,
+                        What::Ball {
+                            j: j as u32,
+                            count,
+                            shift,
                         },
                     );
                 }
-                continue;
             }
-            let j = j as usize;
-            let m = &self.motion[j];
-            let p = m.at(now);
-            let d: [f64; N] =
-                std::array::from_fn(|k| (p[k] + f64::from(cell_shift[k]) * size[k]) - a[k]);
-            let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
-            if let Some(t) = contact_time(&d, &dv, r + m.radius) {
-                let count = self.count[j];
-                // The image in unwrapped coordinates: s - w_j + w_i (module docs).
-                let shift = std::array::from_fn(|k| {
-                    cell_shift[k]
-                        .wrapping_sub(self.wraps[j][k])
-                        .wrapping_add(self.wraps[i][k])
-                });
-                offer(
-                    t,
-                    What::Ball {
-                        j: j as u32,
-                        count,
-                        shift,
-                    },
-                );
+            for &o in &self.fixed_members[nb.cell] {
+                let b = self.obstacle_image(o as usize, &nb.shift);
+                let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
+                let dv: [f64; N] = std::array::from_fn(|k| -v[k]);
+                if let Some(t) = contact_time(&d, &dv, r + self.obstacles[o as usize].radius) {
+                    offer(t, What::Obstacle { o, shift: nb.shift });
+                }
             }
-        }
-        self.near = near;
+        });
         for (b, boundary) in self.table.boundaries.iter().enumerate() {
             // Right after a contact with b: a convex b cannot be met again, a container not at
             // the same instant (a graze within rounding would repeat forever at t = 0).
@@ -685,30 +655,24 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn cross(&mut self, i: usize, axis: usize, up: bool) {
         self.advance(i);
         let c = self.cell[i];
-        let flat = self.grid.flat(&c);
-        let at = self.members[flat]
-            .iter()
-            .position(|&x| x as usize == i)
-            .expect("ball in its cell");
-        self.members[flat].swap_remove(at);
         let n = self.grid.n[axis];
+        let size = self.grid.size[axis];
         let mut c2 = c;
         if up {
             c2[axis] = (c[axis] + 1) % n;
             if c2[axis] == 0 {
-                self.motion[i].pos[axis] -= self.grid.size[axis];
+                self.motion.get_mut(i).pos[axis] -= size;
                 self.wraps[i][axis] = self.wraps[i][axis].wrapping_add(1);
             }
         } else {
             c2[axis] = (c[axis] + n - 1) % n;
             if c[axis] == 0 {
-                self.motion[i].pos[axis] += self.grid.size[axis];
+                self.motion.get_mut(i).pos[axis] += size;
                 self.wraps[i][axis] = self.wraps[i][axis].wrapping_sub(1);
             }
         }
         self.cell[i] = c2;
-        let flat2 = self.grid.flat(&c2);
-        self.members[flat2].push(i as u32);
+        self.motion.relocate(i, self.grid.flat(&c2));
         self.crossings += 1;
     }
 
@@ -848,7 +812,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let mut speed2: f64 = 0.0;
         for i in 0..self.len() {
             self.fly(i);
-            self.motion[i].since = 0.0;
+            self.motion.get_mut(i).since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
         self.queue.rebuild(t);
@@ -889,7 +853,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 .wrapping_sub(self.wraps[i][k])
         });
         let b = self.image(j, &shift);
-        let nu = unit(std::array::from_fn(|k| b[k] - self.motion[i].pos[k]));
+        let nu = unit(std::array::from_fn(|k| b[k] - self.motion.get(i).pos[k]));
         let pre = [self.state[i].clone(), self.state[j].clone()];
         let [si, sj] = match self.table.ball_contact {
             ContactKind::NoSlip => {
@@ -938,7 +902,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn ball_obstacle(&mut self, i: usize, o: usize, shift: &[i8; N]) -> Event<N, S> {
         self.advance(i);
         let b = self.obstacle_image(o, shift);
-        let nu = unit(std::array::from_fn(|k| self.motion[i].pos[k] - b[k]));
+        let nu = unit(std::array::from_fn(|k| self.motion.get(i).pos[k] - b[k]));
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match self.table.obstacle(o) {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
@@ -955,7 +919,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn ball_boundary(&mut self, i: usize, b: usize) -> Event<N, S> {
         self.advance(i);
         let boundary = &self.table.boundaries[b];
-        let nu = boundary.shape.normal(&self.motion[i].pos);
+        let nu = boundary.shape.normal(&self.motion.get(i).pos);
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match boundary.contact {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
@@ -975,7 +939,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         pre: [BodyState<f64, N, S>; 2],
     ) -> Event<N, S> {
         for b in balls {
-            self.motion[b].velocity = self.state[b].velocity;
+            self.motion.get_mut(b).velocity = self.state[b].velocity;
         }
         self.count[balls[0]] += 1;
         if balls[1] != balls[0] {
@@ -990,7 +954,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             time: self.absolute(self.now),
             contact,
             nu,
-            position: balls.map(|b| self.motion[b].pos),
+            position: balls.map(|b| self.motion.get(b).pos),
             pre,
             post: balls.map(|b| self.state[b].clone()),
         }

@@ -43,6 +43,7 @@ pub mod portrait;
 pub mod predict;
 mod queue;
 pub mod range;
+mod residents;
 pub mod run;
 pub mod setup;
 pub mod smooth;

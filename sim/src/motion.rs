@@ -2,9 +2,8 @@
 
 /// Ball `i`'s centre `a_i` at its own time `t_i`, its velocity `u_i` (a copy of its state's,
 /// kept equal by the engine) and its radius `R_i`: the flight `a_i + (t - t_i) u_i` and the
-/// contact distance `R_i + R_j`, in one cache line for `n <= 3` (aligned to 64 bytes).
+/// contact distance `R_i + R_j`: `2n + 2` numbers read together.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(64))]
 pub(crate) struct Motion<const N: usize> {
     /// The centre `a_i` at time `since`.
     pub pos: [f64; N],
@@ -30,7 +29,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_flight_moves_along_its_velocity_and_fits_a_cache_line() {
+    fn a_flight_moves_along_its_velocity() {
         let m = Motion {
             pos: [1.0, 2.0, 3.0],
             since: 0.5,
@@ -39,8 +38,5 @@ mod tests {
         };
         assert_eq!(m.at(1.5), [3.0, 2.0, 2.0]);
         assert_eq!(m.at(0.5), m.pos);
-        assert_eq!(std::mem::size_of::<Motion<2>>(), 64);
-        assert_eq!(std::mem::size_of::<Motion<3>>(), 64);
-        assert_eq!(std::mem::align_of::<Motion<3>>(), 64);
     }
 }
