@@ -63,12 +63,18 @@ enum Place {
     Overflow(u32),
 }
 
+/// A ball's pending time and its place.
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    time: f64,
+    place: Place,
+}
+
 /// The calendar of pending events, one per ball (module docs).
 #[derive(Debug)]
 pub(crate) struct Calendar {
-    /// `t_i` of each ball with a pending event.
-    time: Vec<f64>,
-    place: Vec<Place>,
+    /// Per ball: `t_i` and where its event is kept (one record: one cache line to read).
+    slots: Vec<Slot>,
     /// Balls with `b_i <= current`, a binary heap on `(t_i, i)`.
     heap: Vec<u32>,
     /// Balls with `current < b_i < current + B`, in bucket `b_i mod B`.
@@ -88,8 +94,13 @@ impl Calendar {
     /// An empty calendar for balls `0..balls`.
     pub(crate) fn new(balls: usize) -> Self {
         Calendar {
-            time: vec![f64::INFINITY; balls],
-            place: vec![Place::None; balls],
+            slots: vec![
+                Slot {
+                    time: f64::INFINITY,
+                    place: Place::None,
+                };
+                balls
+            ],
             heap: Vec::new(),
             buckets: vec![Vec::new()],
             in_buckets: 0,
@@ -116,8 +127,8 @@ impl Calendar {
     }
 
     fn less(&self, a: u32, b: u32) -> bool {
-        self.time[a as usize]
-            .total_cmp(&self.time[b as usize])
+        self.slots[a as usize].time
+            .total_cmp(&self.slots[b as usize].time)
             .then(a.cmp(&b))
             .is_lt()
     }
@@ -125,55 +136,55 @@ impl Calendar {
     /// Ball `ball`'s pending event is now at `time` (replacing any it had).
     pub(crate) fn set(&mut self, ball: usize, time: f64) {
         self.remove(ball);
-        self.time[ball] = time;
+        self.slots[ball].time = time;
         self.insert(ball as u32);
     }
 
     fn insert(&mut self, ball: u32) {
-        let b = self.bucket(self.time[ball as usize]);
+        let b = self.bucket(self.slots[ball as usize].time);
         if b <= self.current {
             self.heap.push(ball);
             let at = self.heap.len() - 1;
-            self.place[ball as usize] = Place::Heap(at as u32);
+            self.slots[ball as usize].place = Place::Heap(at as u32);
             self.sift_up(at);
         } else if b - self.current < self.buckets.len() as u64 {
             let slot = (b & self.mask()) as usize;
-            self.place[ball as usize] = Place::Bucket(self.buckets[slot].len() as u32);
+            self.slots[ball as usize].place = Place::Bucket(self.buckets[slot].len() as u32);
             self.buckets[slot].push(ball);
             self.in_buckets += 1;
         } else {
-            self.place[ball as usize] = Place::Overflow(self.overflow.len() as u32);
+            self.slots[ball as usize].place = Place::Overflow(self.overflow.len() as u32);
             self.overflow.push(ball);
         }
     }
 
     /// Ball `ball` has no pending event any more.
     pub(crate) fn remove(&mut self, ball: usize) {
-        match std::mem::replace(&mut self.place[ball], Place::None) {
+        match std::mem::replace(&mut self.slots[ball].place, Place::None) {
             Place::None => {}
             Place::Heap(at) => {
                 let at = at as usize;
                 let last = self.heap.pop().expect("a ball in the heap");
                 if at < self.heap.len() {
                     self.heap[at] = last;
-                    self.place[last as usize] = Place::Heap(at as u32);
+                    self.slots[last as usize].place = Place::Heap(at as u32);
                     self.sift_down(at);
                     self.sift_up(at);
                 }
             }
             Place::Bucket(at) => {
-                let slot = (self.bucket(self.time[ball]) & self.mask()) as usize;
+                let slot = (self.bucket(self.slots[ball].time) & self.mask()) as usize;
                 let list = &mut self.buckets[slot];
                 list.swap_remove(at as usize);
                 if let Some(&moved) = list.get(at as usize) {
-                    self.place[moved as usize] = Place::Bucket(at);
+                    self.slots[moved as usize].place = Place::Bucket(at);
                 }
                 self.in_buckets -= 1;
             }
             Place::Overflow(at) => {
                 self.overflow.swap_remove(at as usize);
                 if let Some(&moved) = self.overflow.get(at as usize) {
-                    self.place[moved as usize] = Place::Overflow(at);
+                    self.slots[moved as usize].place = Place::Overflow(at);
                 }
             }
         }
@@ -184,7 +195,7 @@ impl Calendar {
         while self.heap.is_empty() {
             if self.in_buckets == 0 {
                 // Every bucket is empty: jump to the overflow's earliest bucket.
-                let first = self.overflow.iter().map(|&i| self.bucket(self.time[i as usize]));
+                let first = self.overflow.iter().map(|&i| self.bucket(self.slots[i as usize].time));
                 self.current = first.min()?;
                 self.reschedule_overflow();
                 continue;
@@ -199,14 +210,14 @@ impl Calendar {
             for &ball in &list {
                 self.heap.push(ball);
                 let at = self.heap.len() - 1;
-                self.place[ball as usize] = Place::Heap(at as u32);
+                self.slots[ball as usize].place = Place::Heap(at as u32);
                 self.sift_up(at);
             }
             list.clear();
             self.buckets[slot] = list;
         }
         let top = self.heap[0] as usize;
-        Some((self.time[top], top))
+        Some((self.slots[top].time, top))
     }
 
     /// Moves the overflow's balls within reach of the buckets into them (or the heap).
@@ -236,7 +247,7 @@ impl Calendar {
         self.in_buckets = 0;
         let (mut sum, mut finite) = (0.0, 0usize);
         for &ball in &pending {
-            let t = &mut self.time[ball as usize];
+            let t = &mut self.slots[ball as usize].time;
             *t = (*t - shift).max(0.0);
             if t.is_finite() {
                 sum += *t;
@@ -245,13 +256,13 @@ impl Calendar {
         }
         let m = pending.len().max(1);
         let tbar = if finite > 0 { sum / finite as f64 } else { 0.0 };
-        let width = 4.0 * tbar / m as f64;
+        let width = 8.0 * tbar / m as f64;
         self.inv_width = if width > 0.0 && width.is_finite() {
             1.0 / width
         } else {
             1.0
         };
-        let buckets = (2 * m).next_power_of_two();
+        let buckets = m.div_ceil(2).next_power_of_two();
         if self.buckets.len() != buckets {
             self.buckets.resize_with(buckets, Vec::new);
         }
@@ -272,11 +283,11 @@ impl Calendar {
                 break;
             }
             self.heap[at] = p;
-            self.place[p as usize] = Place::Heap(at as u32);
+            self.slots[p as usize].place = Place::Heap(at as u32);
             at = parent;
         }
         self.heap[at] = ball;
-        self.place[ball as usize] = Place::Heap(at as u32);
+        self.slots[ball as usize].place = Place::Heap(at as u32);
     }
 
     fn sift_down(&mut self, mut at: usize) {
@@ -298,11 +309,11 @@ impl Calendar {
                 break;
             }
             self.heap[at] = c;
-            self.place[c as usize] = Place::Heap(at as u32);
+            self.slots[c as usize].place = Place::Heap(at as u32);
             at = child;
         }
         self.heap[at] = ball;
-        self.place[ball as usize] = Place::Heap(at as u32);
+        self.slots[ball as usize].place = Place::Heap(at as u32);
     }
 }
 
