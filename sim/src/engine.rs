@@ -76,7 +76,7 @@ use super::no_contact::{Flight, NoContact, QUIET_BOX_LENGTHS};
 use super::normal::unit;
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
-use super::predict::{contact_time, exit_time};
+use super::predict::{contact_time, contact_time_or_nan, exit_time};
 use super::motion::Motion;
 use super::residents::Residents;
 use super::queue::{Calendar, What};
@@ -555,10 +555,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         } = *self.motion.get(i);
         let now = self.now;
         let size = self.grid.size;
+        // The earliest event offered so far (the first of equal times), if any.
         let mut best: Option<(f64, What<N>)> = None;
-        let mut offer = |t: f64, what: What<N>| {
-            if best.is_none_or(|(b, _)| t < b) {
-                best = Some((t, what));
+        let better = |best: &Option<(f64, What<N>)>, t: f64| best.is_none_or(|(b, _)| t < b);
+        let offer = |best: &mut Option<(f64, What<N>)>, t: f64, what: What<N>| {
+            if better(best, t) {
+                *best = Some((t, what));
             }
         };
         let c = self.cell[i];
@@ -573,7 +575,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let d: [f64; N] =
                     std::array::from_fn(|k| (p[k] + f64::from(nb.shift[k]) * size[k]) - a[k]);
                 let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
-                if let Some(t) = contact_time(&d, &dv, r + m.radius) {
+                let t = contact_time_or_nan(&d, &dv, r + m.radius);
+                // NaN: no contact (never better).
+                if !t.is_nan() && better(&best, t) {
                     let count = self.count[j];
                     // The image in unwrapped coordinates: s - w_j + w_i (module docs).
                     let shift = std::array::from_fn(|k| {
@@ -582,6 +586,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                             .wrapping_add(self.wraps[i][k])
                     });
                     offer(
+                        &mut best,
                         t,
                         What::Ball {
                             j: j as u32,
@@ -596,7 +601,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
                 let dv: [f64; N] = std::array::from_fn(|k| -v[k]);
                 if let Some(t) = contact_time(&d, &dv, r + self.obstacles[o as usize].radius) {
-                    offer(t, What::Obstacle { o, shift: nb.shift });
+                    offer(&mut best, t, What::Obstacle { o, shift: nb.shift });
                 }
             }
         });
@@ -609,7 +614,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
             if let Some(t) = boundary.shape.contact_time(&a, &v, r) {
                 if !(repeat && t == 0.0) {
-                    offer(t, What::Boundary { b: b as u32 });
+                    offer(&mut best, t, What::Boundary { b: b as u32 });
                 }
             }
         }
@@ -623,6 +628,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 };
                 if let Some((t, upper)) = wall {
                     offer(
+                        &mut best,
                         t,
                         What::Wall {
                             axis: k as u8,
@@ -639,7 +645,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let last = c[k] + 1 == self.grid.n[k];
                 let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
                 if !blocked {
-                    offer(t, What::Cell { axis: k as u8, up });
+                    offer(&mut best, t, What::Cell { axis: k as u8, up });
                 }
             }
         }
