@@ -41,5 +41,9 @@ fn main() {
     let contacts: u64 = args.get(1).map_or(10_000, |a| a.parse().expect("CONTACTS"));
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let scene = Scene::from_file(&root.join(format!("{name}.toml"))).expect("scene");
-    collision_core::with_dim!(scene.dim, |N, S| log::<N, S>(&scene, contacts), unreachable!());
+    collision_core::with_dim!(
+        scene.dim,
+        |N, S| log::<N, S>(&scene, contacts),
+        unreachable!()
+    );
 }

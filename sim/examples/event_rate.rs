@@ -104,8 +104,8 @@ fn gas<const N: usize, const S: usize>(
         bodies.iter().map(|b| b.state.velocity[k]).sum::<f64>() / balls as f64
     });
     for b in &mut bodies {
-        for k in 0..N {
-            b.state.velocity[k] -= mean[k];
+        for (u, m) in b.state.velocity.iter_mut().zip(&mean) {
+            *u -= m;
         }
     }
     let species = Ball {

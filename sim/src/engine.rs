@@ -20,11 +20,16 @@
 //!   and re-predicts the balls involved.
 //!
 //! **Layout.** What a prediction reads of every neighbour (centre, its time, velocity,
-//! radius) is one 64-byte record per ball (`Motion`); the velocity there is a copy of the
-//! ball's state's, written at each contact. A prediction first lists the balls and obstacles
-//! of the `3^n` cells within reach (`Grid::for_neighbours`, no division), then tests them,
-//! so that the loads of their records overlap; the list, the calendar's buckets and the cell
-//! lists are reused, so nothing is allocated per event once they have grown.
+//! radius: a `Motion`) is stored by cell (`Residents`, `residents.rs`): a cell's records are one
+//! list, in the order a list of ball indices would hold them, and a byte per cell says
+//! whether it is empty, so a scan of the `3^n` cells within reach (`Grid::for_neighbours`, no
+//! division) reads one list per occupied cell. The velocity there is a copy of the ball's
+//! state's, written at each contact. Contact times in the scan are taken without branches
+//! (`predict::contact_time_or_nan`, the same bits as `contact_time`). The calendar's lists,
+//! the cells' lists and the scan reuse their memory: nothing is allocated per event once they
+//! have grown. The neighbourhood is scanned in full at every prediction (a crossing too), so
+//! every contact time is computed from the same state as before these changes and the event
+//! log is the same, bit for bit.
 //!
 //! **Image rule.** A ball-ball entry stores its partner's image in unwrapped coordinates,
 //! `s - w_j + w_i` for the cell shift `s` it was predicted with: the partner may cross a
@@ -72,14 +77,14 @@
 //! ... box lengths without a contact; the caller decides whether to go on.
 
 use super::cells::Grid;
+use super::motion::Motion;
 use super::no_contact::{Flight, NoContact, QUIET_BOX_LENGTHS};
 use super::normal::unit;
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::predict::{contact_time, contact_time_or_nan, exit_time};
-use super::motion::Motion;
-use super::residents::Residents;
 use super::queue::{Calendar, What};
+use super::residents::Residents;
 use super::smooth;
 use super::table::{ContactKind, Geometry, Table};
 use super::{Body, FixedBall, PairKernels, Setup};
@@ -368,7 +373,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
             queue: Calendar::new(n),
-            next: vec![What::Wall { axis: 0, upper: false }; n],
+            next: vec![
+                What::Wall {
+                    axis: 0,
+                    upper: false
+                };
+                n
+            ],
             now: 0.0,
             origin: 0.0,
             origin_low: 0.0,

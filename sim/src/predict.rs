@@ -87,9 +87,16 @@ mod tests {
         assert!((t - 2.4).abs() < 1e-15);
         assert_eq!(exit_time(0.5, -0.25, 0.0, 1.0), Some((2.0, false)));
         // The branch-free form agrees on these too.
-        for (d, dv) in [([4.0, 0.0], [-2.0, 0.0]), ([4.0, 1.2], [-1.0, 0.0]), ([4.0, 3.0], [-1.0, 0.0])] {
+        for (d, dv) in [
+            ([4.0, 0.0], [-2.0, 0.0]),
+            ([4.0, 1.2], [-1.0, 0.0]),
+            ([4.0, 3.0], [-1.0, 0.0]),
+        ] {
             let t = contact_time_or_nan(&d, &dv, 2.0);
-            assert_eq!(contact_time(&d, &dv, 2.0).unwrap_or(f64::NAN).to_bits(), t.to_bits());
+            assert_eq!(
+                contact_time(&d, &dv, 2.0).unwrap_or(f64::NAN).to_bits(),
+                t.to_bits()
+            );
         }
         assert_eq!(exit_time(0.5, 0.0, 0.0, 1.0), None);
     }

@@ -127,7 +127,8 @@ impl Calendar {
     }
 
     fn less(&self, a: u32, b: u32) -> bool {
-        self.slots[a as usize].time
+        self.slots[a as usize]
+            .time
             .total_cmp(&self.slots[b as usize].time)
             .then(a.cmp(&b))
             .is_lt()
@@ -195,7 +196,10 @@ impl Calendar {
         while self.heap.is_empty() {
             if self.in_buckets == 0 {
                 // Every bucket is empty: jump to the overflow's earliest bucket.
-                let first = self.overflow.iter().map(|&i| self.bucket(self.slots[i as usize].time));
+                let first = self
+                    .overflow
+                    .iter()
+                    .map(|&i| self.bucket(self.slots[i as usize].time));
                 self.current = first.min()?;
                 self.reschedule_overflow();
                 continue;
@@ -239,8 +243,8 @@ impl Calendar {
     pub(crate) fn rebuild(&mut self, shift: f64) {
         let mut pending = std::mem::take(&mut self.scratch);
         pending.clear();
-        pending.extend(self.heap.drain(..));
-        pending.extend(self.overflow.drain(..));
+        pending.append(&mut self.heap);
+        pending.append(&mut self.overflow);
         for list in &mut self.buckets {
             pending.append(list);
         }
@@ -374,8 +378,8 @@ mod tests {
         let mut cal = Calendar::new(balls);
         let mut reference = Reference::default();
         let ahead = |rng: &mut Rng| match rng.below(10) {
-            0 => 1e3 * rng.unit(),        // far: the overflow
-            1 => 0.0,                     // now
+            0 => 1e3 * rng.unit(),           // far: the overflow
+            1 => 0.0,                        // now
             2 => 0.25 * rng.below(4) as f64, // ties
             _ => rng.unit(),
         };

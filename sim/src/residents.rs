@@ -120,7 +120,9 @@ mod tests {
         }
         let mut state = 12345u64;
         for _ in 0..2000 {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let b = (state >> 33) as usize % 40;
             let to = (state >> 20) as usize % cells;
             residents.relocate(b, to);
@@ -131,10 +133,10 @@ mod tests {
             home[b] = to;
             residents.get_mut(b).since += 1.0;
         }
-        for c in 0..cells {
+        for (c, list) in lists.iter().enumerate() {
             let got: Vec<u32> = residents.cell(c).iter().map(|r| r.ball).collect();
-            assert_eq!(got, lists[c]);
-            assert_eq!(residents.occupied[c], !lists[c].is_empty());
+            assert_eq!(&got, list);
+            assert_eq!(residents.occupied[c], !list.is_empty());
         }
         for b in 0..40 {
             assert_eq!(residents.get(b).pos, motion(b as f64).pos);
