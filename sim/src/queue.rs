@@ -237,9 +237,9 @@ impl Calendar {
     }
 
     /// Sets every pending time `t_i` to `max(t_i - shift, 0)` (the clock's origin moved by
-    /// `shift`) and chooses the bucket width again: `delta = 4 tbar / m` for `m` pending
-    /// events whose mean time ahead is `tbar` (so about 4 per bucket), with `B >= 2 m`
-    /// buckets (a horizon of `8 tbar`). `O(balls)`.
+    /// `shift`) and chooses the bucket width again: `delta = 8 tbar / m` for `m` pending
+    /// events whose mean time ahead is `tbar` (so about 8 per bucket), with `B >= m / 2`
+    /// buckets, a power of two (a horizon `B delta` of 4 to 8 `tbar`). `O(balls)`.
     pub(crate) fn rebuild(&mut self, shift: f64) {
         let mut pending = std::mem::take(&mut self.scratch);
         pending.clear();

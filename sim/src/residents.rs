@@ -44,7 +44,19 @@ impl<const N: usize> Residents<N> {
     pub(crate) fn push(&mut self, cell: usize, motion: Motion<N>) {
         let ball = self.home.len() as u32;
         self.home.push((cell as u32, self.cells[cell].len() as u32));
-        self.cells[cell].push(Resident { motion, ball });
+        self.append(cell, Resident { motion, ball });
+    }
+
+    /// Appends `resident` to `cell`'s list, growing it by one record when full (a list's
+    /// capacity is the most balls its cell has held: a cell of a dilute gas holds one or two,
+    /// and the default growth to 4 records would spread the records over 2-4 times the
+    /// memory); a list never shrinks, so this allocates only while a cell reaches a new most.
+    fn append(&mut self, cell: usize, resident: Resident<N>) {
+        let list = &mut self.cells[cell];
+        if list.len() == list.capacity() {
+            list.reserve_exact(1);
+        }
+        list.push(resident);
         self.occupied[cell] = true;
     }
 
@@ -87,8 +99,7 @@ impl<const N: usize> Residents<N> {
         }
         self.occupied[c as usize] = !list.is_empty();
         self.home[ball] = (to as u32, self.cells[to].len() as u32);
-        self.cells[to].push(resident);
-        self.occupied[to] = true;
+        self.append(to, resident);
     }
 }
 
