@@ -29,8 +29,11 @@ pub(crate) struct Grid<const N: usize> {
     pub width: [f64; N],
     pub size: [f64; N],
     pub periodic: [bool; N],
-    /// The cell offsets scanned: `[-K_0, K_0] x .. x [-K_{n-1}, K_{n-1}]`, `K_k` the reach.
-    offsets: Vec<[i64; N]>,
+    /// The reach `K_k` of each axis (at most 2): the cell offsets scanned are
+    /// `[-K_0, K_0] x .. x [-K_{n-1}, K_{n-1}]`.
+    reach: [i64; N],
+    /// `prod_{l > k} n_l`: the flat index is `sum_k c_k stride_k`.
+    stride: [usize; N],
 }
 
 /// A neighbouring cell: its flat index and the image shift of its contents.
@@ -132,25 +135,13 @@ impl<const N: usize> Grid<N> {
                 r as i64
             };
         }
-        let mut offsets = vec![[0i64; N]];
-        for k in 0..N {
-            offsets = offsets
-                .into_iter()
-                .flat_map(|o| {
-                    (-reach[k]..=reach[k]).map(move |d| {
-                        let mut o = o;
-                        o[k] = d;
-                        o
-                    })
-                })
-                .collect();
-        }
         Ok(Grid {
             n,
             width,
             size,
             periodic,
-            offsets,
+            reach,
+            stride: strides(&n),
         })
     }
 
@@ -162,14 +153,15 @@ impl<const N: usize> Grid<N> {
             width: size,
             size,
             periodic: [false; N],
-            offsets: vec![[0; N]],
+            reach: [0; N],
+            stride: strides(&[1; N]),
         }
     }
 
     /// The reach `K_k` of each axis.
     #[cfg(test)]
     fn reach(&self) -> [i64; N] {
-        std::array::from_fn(|k| self.offsets.iter().map(|o| o[k]).max().unwrap_or(0))
+        self.reach
     }
 
     pub(crate) fn cells(&self) -> usize {
@@ -177,7 +169,7 @@ impl<const N: usize> Grid<N> {
     }
 
     pub(crate) fn flat(&self, c: &[usize; N]) -> usize {
-        (0..N).fold(0, |acc, k| acc * self.n[k] + c[k])
+        (0..N).map(|k| c[k] * self.stride[k]).sum()
     }
 
     /// The cell of a point inside the box (clamped, for points on the far boundary).
@@ -187,29 +179,66 @@ impl<const N: usize> Grid<N> {
         })
     }
 
-    /// Calls `f` for every cell within reach of cell `c` (with its image shift).
+    /// Calls `f` for every cell within reach of cell `c` (with its image shift), in the order
+    /// of the offsets `[-K_0, K_0] x .. x [-K_{n-1}, K_{n-1}]` with the last axis fastest
+    /// (offsets outside a walled side skipped). No division: per axis, the at most `2 K_k + 1`
+    /// cells (and shifts, `floor((c_k + delta) / n_k)`) are listed first, then combined.
+    #[inline]
     pub(crate) fn for_neighbours(&self, c: &[usize; N], mut f: impl FnMut(Neighbour<N>)) {
-        'offsets: for o in &self.offsets {
-            let mut cell = [0usize; N];
-            let mut shift = [0i8; N];
-            for k in 0..N {
-                let t = c[k] as i64 + o[k];
-                let n = self.n[k] as i64;
+        let mut part = [[0usize; 5]; N];
+        let mut shifts = [[0i8; 5]; N];
+        let mut len = [0usize; N];
+        for k in 0..N {
+            let n = self.n[k] as i64;
+            for delta in -self.reach[k]..=self.reach[k] {
+                let (mut t, mut s) = (c[k] as i64 + delta, 0i8);
                 if self.periodic[k] {
-                    cell[k] = t.rem_euclid(n) as usize;
-                    shift[k] = t.div_euclid(n) as i8;
-                } else if (0..n).contains(&t) {
-                    cell[k] = t as usize;
-                } else {
-                    continue 'offsets;
+                    while t < 0 {
+                        t += n;
+                        s -= 1;
+                    }
+                    while t >= n {
+                        t -= n;
+                        s += 1;
+                    }
+                } else if !(0..n).contains(&t) {
+                    continue;
                 }
+                part[k][len[k]] = t as usize * self.stride[k];
+                shifts[k][len[k]] = s;
+                len[k] += 1;
             }
+        }
+        // An odometer over the product (each axis lists at least c_k itself).
+        let mut at = [0usize; N];
+        loop {
             f(Neighbour {
-                cell: self.flat(&cell),
-                shift,
+                cell: (0..N).map(|k| part[k][at[k]]).sum(),
+                shift: std::array::from_fn(|k| shifts[k][at[k]]),
             });
+            let mut k = N;
+            loop {
+                if k == 0 {
+                    return;
+                }
+                k -= 1;
+                at[k] += 1;
+                if at[k] < len[k] {
+                    break;
+                }
+                at[k] = 0;
+            }
         }
     }
+}
+
+/// `stride_k = prod_{l > k} n_l`.
+fn strides<const N: usize>(n: &[usize; N]) -> [usize; N] {
+    let mut stride = [1; N];
+    for k in (0..N.saturating_sub(1)).rev() {
+        stride[k] = stride[k + 1] * n[k + 1];
+    }
+    stride
 }
 
 #[cfg(test)]
@@ -223,7 +252,9 @@ mod tests {
         assert_eq!(g.reach(), [1; 3]);
         assert_eq!(g.n, [15; 3]);
         assert!(g.width.iter().all(|&w| w > 1.0 + slack(1.0, 16.0)));
-        assert_eq!(g.offsets.len(), 27);
+        let mut scanned = 0;
+        g.for_neighbours(&[0, 7, 14], |_| scanned += 1);
+        assert_eq!(scanned, 27);
         // gas2d: side 60, d_max = 2; gas4d: side 8, d_max = 1 (200 bodies: capped at 800).
         let g = Grid::<2>::new([60.0; 2], [false; 2], 2.0, 750).unwrap();
         assert_eq!((g.reach(), g.n), ([1; 2], [29; 2]));
@@ -288,5 +319,63 @@ mod tests {
         let g = Grid::<2>::new([1e6, 3.0], [true, true], 1.0, 10).unwrap();
         assert_eq!(g.n, [40, 1]);
         assert_eq!(g.reach(), [1, 1]);
+    }
+
+    /// The cells within reach by the definition: every offset in the box of the reach, the
+    /// cell `(c + delta) mod n` and shift `floor((c + delta) / n)` on a periodic axis, skipped
+    /// outside a walled one; the flat index `sum_k c_k prod_{l > k} n_l`.
+    fn by_definition<const N: usize>(g: &Grid<N>, c: &[usize; N]) -> Vec<(usize, [i8; N])> {
+        let mut out = Vec::new();
+        let count: i64 = (0..N).map(|k| 2 * g.reach[k] + 1).product();
+        'offsets: for mut code in 0..count {
+            let mut delta = [0i64; N];
+            for k in (0..N).rev() {
+                let width = 2 * g.reach[k] + 1;
+                delta[k] = code % width - g.reach[k];
+                code /= width;
+            }
+            let mut cell = [0usize; N];
+            let mut shift = [0i8; N];
+            for k in 0..N {
+                let t = c[k] as i64 + delta[k];
+                let n = g.n[k] as i64;
+                if g.periodic[k] {
+                    cell[k] = t.rem_euclid(n) as usize;
+                    shift[k] = t.div_euclid(n) as i8;
+                } else if (0..n).contains(&t) {
+                    cell[k] = t as usize;
+                } else {
+                    continue 'offsets;
+                }
+            }
+            let flat = (0..N).fold(0, |acc, k| acc * g.n[k] + cell[k]);
+            out.push((flat, shift));
+        }
+        out
+    }
+
+    #[test]
+    fn neighbours_are_the_cells_of_the_definition_in_its_order() {
+        let grids = [
+            Grid::<2>::new([10.0, 4.0], [true, false], 1.0, 100).unwrap(),
+            Grid::<2>::new([1.0, 4.0], [true, true], 1.5, 4).unwrap(),
+            Grid::<2>::new([2.5, 7.0], [true, true], 1.0, 100).unwrap(),
+        ];
+        for g in &grids {
+            for c0 in 0..g.n[0] {
+                for c1 in 0..g.n[1] {
+                    let mut got = Vec::new();
+                    g.for_neighbours(&[c0, c1], |nb| got.push((nb.cell, nb.shift)));
+                    assert_eq!(got, by_definition(g, &[c0, c1]), "{:?} {c0} {c1}", g.n);
+                    assert_eq!(g.flat(&[c0, c1]), c0 * g.n[1] + c1);
+                }
+            }
+        }
+        let g = Grid::<3>::new([5.0, 3.5, 4.0], [true, false, true], 1.0, 100).unwrap();
+        for c in [[0, 0, 0], [4, 2, 3], [2, 1, 0], [0, 2, 2]] {
+            let mut got = Vec::new();
+            g.for_neighbours(&c, |nb| got.push((nb.cell, nb.shift)));
+            assert_eq!(got, by_definition(&g, &c), "{c:?}");
+        }
     }
 }

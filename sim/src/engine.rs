@@ -6,16 +6,30 @@
 //! modulo 256) that count its crossings of the periodic faces, so that its unwrapped centre is
 //! `a_i + w_i L`.
 //!
-//! Queue invariant: every moving ball has in the queue an entry for its earliest predicted
-//! event, made when it was last predicted, and nothing later than its true next event.
-//! Popping an entry:
-//! - if the owner's counter changed since, the entry is dropped (the owner was re-predicted);
-//! - a ball-ball entry whose partner's counter changed is no longer an event: the owner is
+//! Queue invariant: every moving ball has exactly one pending event in the queue (a
+//! `Calendar` (`queue.rs`), keyed by ball: setting a ball's event replaces the one it had,
+//! so no stale entry is ever kept), its earliest predicted event as of its last prediction,
+//! and nothing later than its true next event. Events are taken in the order of their time,
+//! ties by ball index (the order among exactly simultaneous events is otherwise arbitrary);
+//! the ball whose event is taken is always re-predicted before the next one:
+//! - a ball-ball event whose partner's counter changed is no longer an event: the owner is
 //!   re-predicted from now (its own trajectory is unchanged, so no event of it was missed);
 //! - a cell crossing moves the ball to the next cell (wrapping on a periodic axis) and
 //!   re-predicts it against its new neighbours;
 //! - a contact advances the balls to now, applies the pair's no-slip map, bumps the counters
 //!   and re-predicts the balls involved.
+//!
+//! **Layout.** What a prediction reads of every neighbour (centre, its time, velocity,
+//! radius: a `Motion`) is stored by cell (`Residents`, `residents.rs`): a cell's records are one
+//! list, in the order a list of ball indices would hold them, and a byte per cell says
+//! whether it is empty, so a scan of the `3^n` cells within reach (`Grid::for_neighbours`, no
+//! division) reads one list per occupied cell. The velocity there is a copy of the ball's
+//! state's, written at each contact. Contact times in the scan are taken without branches
+//! (`predict::contact_time_or_nan`, the same bits as `contact_time`). The calendar's lists,
+//! the cells' lists and the scan reuse their memory: nothing is allocated per event once they
+//! have grown. The neighbourhood is scanned in full at every prediction (a crossing too), so
+//! every contact time is computed from the same state as before these changes and the event
+//! log is the same, bit for bit.
 //!
 //! **Image rule.** A ball-ball entry stores its partner's image in unwrapped coordinates,
 //! `s - w_j + w_i` for the cell shift `s` it was predicted with: the partner may cross a
@@ -30,7 +44,8 @@
 //! compensated sum) is moved forward ("re-based") whenever `v_max t > 16 w_min`, `v_max` an
 //! upper bound of the speeds and `w_min` the narrowest cell: all centres are advanced to now
 //! (orientations only note the flight time, to be applied at their next update), the queue's
-//! times are shifted by `-t` (dropping dead entries) and the clock restarts at 0.
+//! times are shifted by `-t` (the calendar is rebuilt, its bucket width chosen again for the
+//! current event rate) and the clock restarts at 0.
 //! Rounding a local time then moves any ball by at most 16 ulps of a cell width, whatever the
 //! absolute time, so contacts stay at contact distance in long runs and after long quiet
 //! stretches (a gas started almost at rest); the check runs at each popped entry and after each
@@ -62,17 +77,18 @@
 //! ... box lengths without a contact; the caller decides whether to go on.
 
 use super::cells::Grid;
+use super::motion::Motion;
 use super::no_contact::{Flight, NoContact, QUIET_BOX_LENGTHS};
 use super::normal::unit;
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
-use super::predict::{contact_time, exit_time};
-use super::queue::{Entry, What};
+use super::predict::{contact_time, contact_time_or_nan, exit_time};
+use super::queue::{Calendar, What};
+use super::residents::Residents;
 use super::smooth;
 use super::table::{ContactKind, Geometry, Table};
 use super::{Body, FixedBall, PairKernels, Setup};
 use collision_core::{Ball, BodyState};
-use std::collections::BinaryHeap;
 use std::fmt;
 
 /// A contact: ball-ball (`i` is body 1), ball-wall or ball-obstacle.
@@ -242,19 +258,21 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     last: Vec<u32>,
     grid: Grid<N>,
     kind: Vec<usize>,
-    pos: Vec<[f64; N]>,
-    since: Vec<f64>,
+    /// Per ball: centre, its time, velocity and radius (the neighbour scan's reads), stored
+    /// by cell (the cell lists).
+    motion: Residents<N>,
     state: Vec<BodyState<f64, N, S>>,
     count: Vec<u32>,
     wraps: Vec<[i8; N]>,
     cell: Vec<[usize; N]>,
-    members: Vec<Vec<u32>>,
     fixed_members: Vec<Vec<u32>>,
     /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
     orientation: Option<Vec<Matrix<N>>>,
     unturned: Vec<f64>,
-    queue: BinaryHeap<Entry<N>>,
+    /// Per ball: the time of its pending event (`Calendar`) and what it is (`next`).
+    queue: Calendar,
+    next: Vec<What<N>>,
     /// The local clock; the absolute time is `origin + origin_low + now`.
     now: f64,
     origin: f64,
@@ -312,7 +330,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         } else {
             Grid::single(size)
         };
-        let mut members = vec![Vec::new(); grid.cells()];
+        let mut motion = Residents::new(grid.cells());
         let mut fixed_members = vec![Vec::new(); grid.cells()];
         let mut cell = Vec::with_capacity(bodies.len());
         for (i, b) in bodies.iter().enumerate() {
@@ -321,7 +339,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 return Err(SetupError::Outside { ball: i, axis: k });
             }
             let c = grid.cell_of(&b.position);
-            members[grid.flat(&c)].push(i as u32);
+            motion.push(
+                grid.flat(&c),
+                Motion {
+                    pos: b.position,
+                    since: 0.0,
+                    velocity: b.state.velocity,
+                    radius: species[b.species].radius,
+                },
+            );
             cell.push(c);
         }
         for (o, f) in obstacles.iter().enumerate() {
@@ -338,17 +364,22 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             last: vec![0; n],
             grid,
             kind: bodies.iter().map(|b| b.species).collect(),
-            pos: bodies.iter().map(|b| b.position).collect(),
-            since: vec![0.0; n],
+            motion,
             state: bodies.into_iter().map(|b: Body<N, S>| b.state).collect(),
             count: vec![0; n],
             wraps: vec![[0; N]; n],
             cell,
-            members,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
-            queue: BinaryHeap::new(),
+            queue: Calendar::new(n),
+            next: vec![
+                What::Wall {
+                    axis: 0,
+                    upper: false
+                };
+                n
+            ],
             now: 0.0,
             origin: 0.0,
             origin_low: 0.0,
@@ -366,6 +397,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         for i in 0..n {
             sim.predict(i);
         }
+        sim.queue.rebuild(0.0);
         Ok(sim)
     }
 
@@ -404,12 +436,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// The number of balls.
     pub fn len(&self) -> usize {
-        self.pos.len()
+        self.motion.len()
     }
 
     /// Whether there are no balls.
     pub fn is_empty(&self) -> bool {
-        self.pos.is_empty()
+        self.motion.len() == 0
     }
 
     /// The box sides `L_k` (without a box: the table's length scale on every axis).
@@ -465,14 +497,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Ball `i`'s centre now (inside the box; wrapped on periodic axes up to the crossing
     /// in progress).
     pub fn position(&self, i: usize) -> [f64; N] {
-        let dt = self.now - self.since[i];
-        std::array::from_fn(|k| self.pos[i][k] + self.state[i].velocity[k] * dt)
+        self.motion.get(i).at(self.now)
     }
 
     /// Ball `i`'s orientation `A_i` now, if the setup tracks orientations.
     pub fn orientation(&self, i: usize) -> Option<[[f64; N]; N]> {
         let a = self.orientation.as_ref()?;
-        let dt = self.unturned[i] + (self.now - self.since[i]);
+        let dt = self.unturned[i] + (self.now - self.motion.get(i).since);
         let r = exp_skew::<N>(&self.state[i].spin, dt);
         Some(mul(&r, &a[i]))
     }
@@ -498,17 +529,19 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Move ball `i`'s centre to now; the orientation's flight time is only noted.
     fn fly(&mut self, i: usize) {
-        let dt = self.now - self.since[i];
+        let now = self.now;
+        let m = self.motion.get_mut(i);
+        let dt = now - m.since;
         if dt == 0.0 {
             return;
         }
         for k in 0..N {
-            self.pos[i][k] += self.state[i].velocity[k] * dt;
+            m.pos[k] += m.velocity[k] * dt;
         }
+        m.since = now;
         if self.orientation.is_some() {
             self.unturned[i] += dt;
         }
-        self.since[i] = self.now;
     }
 
     /// Ball `j`'s centre now, shifted by `shift` box lengths.
@@ -522,29 +555,40 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         std::array::from_fn(|k| p[k] + f64::from(shift[k]) * self.grid.size[k])
     }
 
-    /// Push ball `i`'s earliest event (ball `i` is advanced to now first).
+    /// Schedule ball `i`'s earliest event (ball `i` is advanced to now first).
     fn predict(&mut self, i: usize) {
         self.advance(i);
-        let (a, v) = (self.pos[i], self.state[i].velocity);
-        let r = self.species[self.kind[i]].radius;
+        let Motion {
+            pos: a,
+            velocity: v,
+            radius: r,
+            ..
+        } = *self.motion.get(i);
+        let now = self.now;
+        let size = self.grid.size;
+        // The earliest event offered so far (the first of equal times), if any.
         let mut best: Option<(f64, What<N>)> = None;
-        let mut offer = |t: f64, what: What<N>| {
-            if best.is_none_or(|(b, _)| t < b) {
-                best = Some((t, what));
+        let better = |best: &Option<(f64, What<N>)>, t: f64| best.is_none_or(|(b, _)| t < b);
+        let offer = |best: &mut Option<(f64, What<N>)>, t: f64, what: What<N>| {
+            if better(best, t) {
+                *best = Some((t, what));
             }
         };
         let c = self.cell[i];
         self.grid.for_neighbours(&c, |nb| {
-            for &j in &self.members[nb.cell] {
-                let j = j as usize;
+            for resident in self.motion.cell(nb.cell) {
+                let j = resident.ball as usize;
                 if j == i {
                     continue;
                 }
-                let b = self.image(j, &nb.shift);
-                let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
-                let dv: [f64; N] = std::array::from_fn(|k| self.state[j].velocity[k] - v[k]);
-                let sigma = r + self.species[self.kind[j]].radius;
-                if let Some(t) = contact_time(&d, &dv, sigma) {
+                let m = &resident.motion;
+                let p = m.at(now);
+                let d: [f64; N] =
+                    std::array::from_fn(|k| (p[k] + f64::from(nb.shift[k]) * size[k]) - a[k]);
+                let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
+                let t = contact_time_or_nan(&d, &dv, r + m.radius);
+                // NaN: no contact (never better).
+                if !t.is_nan() && better(&best, t) {
                     let count = self.count[j];
                     // The image in unwrapped coordinates: s - w_j + w_i (module docs).
                     let shift = std::array::from_fn(|k| {
@@ -553,6 +597,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                             .wrapping_add(self.wraps[i][k])
                     });
                     offer(
+                        &mut best,
                         t,
                         What::Ball {
                             j: j as u32,
@@ -567,7 +612,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
                 let dv: [f64; N] = std::array::from_fn(|k| -v[k]);
                 if let Some(t) = contact_time(&d, &dv, r + self.obstacles[o as usize].radius) {
-                    offer(t, What::Obstacle { o, shift: nb.shift });
+                    offer(&mut best, t, What::Obstacle { o, shift: nb.shift });
                 }
             }
         });
@@ -580,7 +625,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
             if let Some(t) = boundary.shape.contact_time(&a, &v, r) {
                 if !(repeat && t == 0.0) {
-                    offer(t, What::Boundary { b: b as u32 });
+                    offer(&mut best, t, What::Boundary { b: b as u32 });
                 }
             }
         }
@@ -594,6 +639,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 };
                 if let Some((t, upper)) = wall {
                     offer(
+                        &mut best,
                         t,
                         What::Wall {
                             axis: k as u8,
@@ -610,47 +656,40 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let last = c[k] + 1 == self.grid.n[k];
                 let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
                 if !blocked {
-                    offer(t, What::Cell { axis: k as u8, up });
+                    offer(&mut best, t, What::Cell { axis: k as u8, up });
                 }
             }
         }
-        if let Some((t, what)) = best {
-            self.queue.push(Entry {
-                time: self.now + t,
-                ball: i as u32,
-                count: self.count[i],
-                what,
-            });
+        match best {
+            Some((t, what)) => {
+                self.queue.set(i, self.now + t);
+                self.next[i] = what;
+            }
+            None => self.queue.remove(i),
         }
     }
 
     fn cross(&mut self, i: usize, axis: usize, up: bool) {
         self.advance(i);
         let c = self.cell[i];
-        let flat = self.grid.flat(&c);
-        let at = self.members[flat]
-            .iter()
-            .position(|&x| x as usize == i)
-            .expect("ball in its cell");
-        self.members[flat].swap_remove(at);
         let n = self.grid.n[axis];
+        let size = self.grid.size[axis];
         let mut c2 = c;
         if up {
             c2[axis] = (c[axis] + 1) % n;
             if c2[axis] == 0 {
-                self.pos[i][axis] -= self.grid.size[axis];
+                self.motion.get_mut(i).pos[axis] -= size;
                 self.wraps[i][axis] = self.wraps[i][axis].wrapping_add(1);
             }
         } else {
             c2[axis] = (c[axis] + n - 1) % n;
             if c[axis] == 0 {
-                self.pos[i][axis] += self.grid.size[axis];
+                self.motion.get_mut(i).pos[axis] += size;
                 self.wraps[i][axis] = self.wraps[i][axis].wrapping_sub(1);
             }
         }
         self.cell[i] = c2;
-        let flat2 = self.grid.flat(&c2);
-        self.members[flat2].push(i as u32);
+        self.motion.relocate(i, self.grid.flat(&c2));
         self.crossings += 1;
     }
 
@@ -671,7 +710,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                     return Step::Quiet { box_lengths };
                 }
             }
-            let Some(top) = self.queue.peek() else {
+            let Some((time, i)) = self.queue.peek() else {
                 // Every moving ball has an entry in a box (a crossing or a wall at least);
                 // without one, an empty queue means no ball has a contact ahead.
                 let moving = (0..self.len()).any(|i| self.speed2_of(i) > 0.0);
@@ -682,22 +721,19 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 };
                 return self.never(why, until);
             };
-            if top.time > until {
+            if time > until {
                 if until.is_finite() {
                     self.now = self.now.max(until);
                 }
                 return Step::Until;
             }
-            let e = self.queue.pop().expect("peeked");
-            let i = e.ball as usize;
-            if e.count != self.count[i] {
-                continue;
-            }
-            self.now = self.now.max(e.time);
+            // Ball i's event stays in the queue until every branch below re-predicts i.
+            let what = self.next[i];
+            self.now = self.now.max(time);
             if self.clock_due() {
                 self.rebase();
             }
-            match e.what {
+            match what {
                 What::Cell { axis, up } => {
                     self.cross(i, axis as usize, up);
                     self.predict(i);
@@ -786,22 +822,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// Move the clock's origin to now: move every centre to now (orientations keep their
-    /// flight time for later), shift the queue's times by `-now` (dropping dead entries; no
-    /// allocation: the heap's buffer is reused) and restart the local clock at 0.
+    /// flight time for later), shift the queue's times by `-now` (rebuilding the calendar;
+    /// no allocation: its lists are reused) and restart the local clock at 0.
     fn rebase(&mut self) {
         let t = self.now;
         let mut speed2: f64 = 0.0;
         for i in 0..self.len() {
             self.fly(i);
-            self.since[i] = 0.0;
+            self.motion.get_mut(i).since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
-        let mut entries = std::mem::take(&mut self.queue).into_vec();
-        entries.retain(|e| e.count == self.count[e.ball as usize]);
-        for e in &mut entries {
-            e.time = (e.time - t).max(0.0);
-        }
-        self.queue = BinaryHeap::from(entries);
+        self.queue.rebuild(t);
         // origin + origin_low += t, compensated (Knuth's two-sum).
         let sum = self.origin + t;
         let b = sum - self.origin;
@@ -839,7 +870,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 .wrapping_sub(self.wraps[i][k])
         });
         let b = self.image(j, &shift);
-        let nu = unit(std::array::from_fn(|k| b[k] - self.pos[i][k]));
+        let nu = unit(std::array::from_fn(|k| b[k] - self.motion.get(i).pos[k]));
         let pre = [self.state[i].clone(), self.state[j].clone()];
         let [si, sj] = match self.table.ball_contact {
             ContactKind::NoSlip => {
@@ -888,7 +919,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn ball_obstacle(&mut self, i: usize, o: usize, shift: &[i8; N]) -> Event<N, S> {
         self.advance(i);
         let b = self.obstacle_image(o, shift);
-        let nu = unit(std::array::from_fn(|k| self.pos[i][k] - b[k]));
+        let nu = unit(std::array::from_fn(|k| self.motion.get(i).pos[k] - b[k]));
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match self.table.obstacle(o) {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
@@ -905,7 +936,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn ball_boundary(&mut self, i: usize, b: usize) -> Event<N, S> {
         self.advance(i);
         let boundary = &self.table.boundaries[b];
-        let nu = boundary.shape.normal(&self.pos[i]);
+        let nu = boundary.shape.normal(&self.motion.get(i).pos);
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match boundary.contact {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
@@ -924,6 +955,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         balls: [usize; 2],
         pre: [BodyState<f64, N, S>; 2],
     ) -> Event<N, S> {
+        for b in balls {
+            self.motion.get_mut(b).velocity = self.state[b].velocity;
+        }
         self.count[balls[0]] += 1;
         if balls[1] != balls[0] {
             self.count[balls[1]] += 1;
@@ -937,7 +971,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             time: self.absolute(self.now),
             contact,
             nu,
-            position: balls.map(|b| self.pos[b]),
+            position: balls.map(|b| self.motion.get(b).pos),
             pre,
             post: balls.map(|b| self.state[b].clone()),
         }

@@ -13,7 +13,7 @@
 //!
 //! Events are found with a cell list (cells wider than the largest contact distance, so only
 //! the `3^n` neighbouring cells are scanned, at most 4 cells per body whatever the box) and a
-//! priority queue that holds, per ball, its earliest predicted event ([`engine`] gives the
+//! calendar queue that holds, per ball, its one earliest predicted event ([`engine`] gives the
 //! invariants: the image rule across periodic faces, the local clock); contact times solve
 //! `|d + t dv|^2 = (R_i + R_j)^2` ([`predict`]). A run stops by itself when no contact can
 //! happen again ([`no_contact`]).
@@ -31,6 +31,7 @@ pub mod boundary_map;
 mod cells;
 pub mod engine;
 pub mod log;
+mod motion;
 pub mod no_contact;
 mod normal;
 mod observe;
@@ -42,6 +43,7 @@ pub mod portrait;
 pub mod predict;
 mod queue;
 pub mod range;
+mod residents;
 pub mod run;
 pub mod setup;
 pub mod smooth;

@@ -1,8 +1,25 @@
-//! Queue entries: one ball's earliest predicted event, ordered by time (earliest first).
+//! The event queue: one pending event per ball, in a calendar (Paul, J. Comput. Phys. 221,
+//! 615 (2007); Smallenburg, Eur. Phys. J. E 45, 22 (2022)).
+//!
+//! Ball `i`'s pending event has a time `t_i >= 0` (on the engine's local clock) and a bucket
+//! `b_i = floor(t_i / delta)`. The calendar keeps a current bucket `c` and:
+//! - every ball with `b_i <= c` in a binary heap ordered by `(t_i, i)`;
+//! - every ball with `c < b_i < c + B` in bucket `b_i mod B`, an unordered list (`B`, a power
+//!   of two, the number of buckets);
+//! - every later ball in an overflow list, moved into the buckets each time `c` reaches a
+//!   multiple of `B` (before it can reach their bucket).
+//!
+//! Since `t < t'` implies `b <= b'`, the heap's least `(t_i, i)` is the least over all balls:
+//! the pop order is exactly the order of `(t_i, i)`, ties by ball index, whatever `delta` and
+//! `B` (deterministic). When the heap is empty the next bucket is loaded into it (or, if every
+//! bucket is empty, `c` jumps to the overflow's earliest bucket). Setting or removing a ball's
+//! event is `O(1)` in a bucket or the overflow (a swap-remove; each ball knows its place) and
+//! `O(log h)` in the heap of `h` balls; with `delta` chosen at each [`Calendar::rebuild`] so that
+//! a bucket holds a few events on average and `B delta` spans several times the mean time to
+//! the next event, `h` is a few and the overflow small: the cost per event does not grow
+//! with the number of balls. Nothing is allocated once the lists have grown.
 
-use std::cmp::Ordering;
-
-/// What ball `ball` will meet.
+/// What ball `i` will meet.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum What<const N: usize> {
     /// Ball `j` as of `j`'s counter `count`, its image named in unwrapped coordinates: the
@@ -33,36 +50,406 @@ pub(crate) enum What<const N: usize> {
     },
 }
 
+/// Where a ball's pending event is kept.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Place {
+    /// No pending event.
+    None,
+    /// At this index of the heap.
+    Heap(u32),
+    /// At this index of its bucket (`b_i mod B`).
+    Bucket(u32),
+    /// At this index of the overflow list.
+    Overflow(u32),
+}
+
+/// A ball's pending time and its place.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Entry<const N: usize> {
-    pub time: f64,
-    pub ball: u32,
-    /// The ball's collision counter when this was predicted.
-    pub count: u32,
-    pub what: What<N>,
+struct Slot {
+    time: f64,
+    place: Place,
 }
 
-impl<const N: usize> PartialEq for Entry<N> {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
+/// The calendar of pending events, one per ball (module docs).
+#[derive(Debug)]
+pub(crate) struct Calendar {
+    /// Per ball: `t_i` and where its event is kept (one record: one cache line to read).
+    slots: Vec<Slot>,
+    /// Balls with `b_i <= current`, a binary heap on `(t_i, i)`.
+    heap: Vec<u32>,
+    /// Balls with `current < b_i < current + B`, in bucket `b_i mod B`.
+    buckets: Vec<Vec<u32>>,
+    /// Balls in the buckets, all together.
+    in_buckets: usize,
+    overflow: Vec<u32>,
+    /// The current bucket `c`.
+    current: u64,
+    /// `1 / delta`.
+    inv_width: f64,
+    /// A scratch list (no allocation per event).
+    scratch: Vec<u32>,
+}
+
+impl Calendar {
+    /// An empty calendar for balls `0..balls`.
+    pub(crate) fn new(balls: usize) -> Self {
+        Calendar {
+            slots: vec![
+                Slot {
+                    time: f64::INFINITY,
+                    place: Place::None,
+                };
+                balls
+            ],
+            heap: Vec::new(),
+            buckets: vec![Vec::new()],
+            in_buckets: 0,
+            overflow: Vec::new(),
+            current: 0,
+            inv_width: 1.0,
+            scratch: Vec::new(),
+        }
     }
-}
 
-impl<const N: usize> Eq for Entry<N> {}
-
-impl<const N: usize> PartialOrd for Entry<N> {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
+    /// The number of balls with a pending event.
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
+        self.heap.len() + self.in_buckets + self.overflow.len()
     }
-}
 
-impl<const N: usize> Ord for Entry<N> {
-    /// Reversed, so that `BinaryHeap` pops the earliest; ties by ball index (deterministic).
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
+    fn mask(&self) -> u64 {
+        self.buckets.len() as u64 - 1
+    }
+
+    /// `b = floor(t / delta)` (saturating; 0 for `t <= 0`).
+    fn bucket(&self, t: f64) -> u64 {
+        (t * self.inv_width) as u64
+    }
+
+    fn less(&self, a: u32, b: u32) -> bool {
+        self.slots[a as usize]
             .time
-            .total_cmp(&self.time)
-            .then(other.ball.cmp(&self.ball))
-            .then(other.count.cmp(&self.count))
+            .total_cmp(&self.slots[b as usize].time)
+            .then(a.cmp(&b))
+            .is_lt()
+    }
+
+    /// Ball `ball`'s pending event is now at `time` (replacing any it had).
+    pub(crate) fn set(&mut self, ball: usize, time: f64) {
+        self.remove(ball);
+        self.slots[ball].time = time;
+        self.insert(ball as u32);
+    }
+
+    fn insert(&mut self, ball: u32) {
+        let b = self.bucket(self.slots[ball as usize].time);
+        if b <= self.current {
+            self.heap.push(ball);
+            let at = self.heap.len() - 1;
+            self.slots[ball as usize].place = Place::Heap(at as u32);
+            self.sift_up(at);
+        } else if b - self.current < self.buckets.len() as u64 {
+            let slot = (b & self.mask()) as usize;
+            self.slots[ball as usize].place = Place::Bucket(self.buckets[slot].len() as u32);
+            self.buckets[slot].push(ball);
+            self.in_buckets += 1;
+        } else {
+            self.slots[ball as usize].place = Place::Overflow(self.overflow.len() as u32);
+            self.overflow.push(ball);
+        }
+    }
+
+    /// Ball `ball` has no pending event any more.
+    pub(crate) fn remove(&mut self, ball: usize) {
+        match std::mem::replace(&mut self.slots[ball].place, Place::None) {
+            Place::None => {}
+            Place::Heap(at) => {
+                let at = at as usize;
+                let last = self.heap.pop().expect("a ball in the heap");
+                if at < self.heap.len() {
+                    self.heap[at] = last;
+                    self.slots[last as usize].place = Place::Heap(at as u32);
+                    self.sift_down(at);
+                    self.sift_up(at);
+                }
+            }
+            Place::Bucket(at) => {
+                let slot = (self.bucket(self.slots[ball].time) & self.mask()) as usize;
+                let list = &mut self.buckets[slot];
+                list.swap_remove(at as usize);
+                if let Some(&moved) = list.get(at as usize) {
+                    self.slots[moved as usize].place = Place::Bucket(at);
+                }
+                self.in_buckets -= 1;
+            }
+            Place::Overflow(at) => {
+                self.overflow.swap_remove(at as usize);
+                if let Some(&moved) = self.overflow.get(at as usize) {
+                    self.slots[moved as usize].place = Place::Overflow(at);
+                }
+            }
+        }
+    }
+
+    /// The earliest pending event `(t_i, i)` (least `t_i`, then least `i`), if any.
+    pub(crate) fn peek(&mut self) -> Option<(f64, usize)> {
+        while self.heap.is_empty() {
+            if self.in_buckets == 0 {
+                // Every bucket is empty: jump to the overflow's earliest bucket.
+                let first = self
+                    .overflow
+                    .iter()
+                    .map(|&i| self.bucket(self.slots[i as usize].time));
+                self.current = first.min()?;
+                self.reschedule_overflow();
+                continue;
+            }
+            self.current += 1;
+            if self.current & self.mask() == 0 {
+                self.reschedule_overflow();
+            }
+            let slot = (self.current & self.mask()) as usize;
+            let mut list = std::mem::take(&mut self.buckets[slot]);
+            self.in_buckets -= list.len();
+            for &ball in &list {
+                self.heap.push(ball);
+                let at = self.heap.len() - 1;
+                self.slots[ball as usize].place = Place::Heap(at as u32);
+                self.sift_up(at);
+            }
+            list.clear();
+            self.buckets[slot] = list;
+        }
+        let top = self.heap[0] as usize;
+        Some((self.slots[top].time, top))
+    }
+
+    /// Moves the overflow's balls within reach of the buckets into them (or the heap).
+    fn reschedule_overflow(&mut self) {
+        // The overflow and the (empty) scratch list trade places, so nothing is allocated.
+        let scratch = std::mem::take(&mut self.scratch);
+        let mut list = std::mem::replace(&mut self.overflow, scratch);
+        for &ball in &list {
+            self.insert(ball);
+        }
+        list.clear();
+        self.scratch = list;
+    }
+
+    /// Sets every pending time `t_i` to `max(t_i - shift, 0)` (the clock's origin moved by
+    /// `shift`) and chooses the bucket width again: `delta = 8 tbar / m` for `m` pending
+    /// events whose mean time ahead is `tbar` (so about 8 per bucket), with `B >= m / 2`
+    /// buckets, a power of two (a horizon `B delta` of 4 to 8 `tbar`). `O(balls)`.
+    pub(crate) fn rebuild(&mut self, shift: f64) {
+        let mut pending = std::mem::take(&mut self.scratch);
+        pending.clear();
+        pending.append(&mut self.heap);
+        pending.append(&mut self.overflow);
+        for list in &mut self.buckets {
+            pending.append(list);
+        }
+        self.in_buckets = 0;
+        let (mut sum, mut finite) = (0.0, 0usize);
+        for &ball in &pending {
+            let t = &mut self.slots[ball as usize].time;
+            *t = (*t - shift).max(0.0);
+            if t.is_finite() {
+                sum += *t;
+                finite += 1;
+            }
+        }
+        let m = pending.len().max(1);
+        let tbar = if finite > 0 { sum / finite as f64 } else { 0.0 };
+        let width = 8.0 * tbar / m as f64;
+        self.inv_width = if width > 0.0 && width.is_finite() {
+            1.0 / width
+        } else {
+            1.0
+        };
+        let buckets = m.div_ceil(2).next_power_of_two();
+        if self.buckets.len() != buckets {
+            self.buckets.resize_with(buckets, Vec::new);
+        }
+        self.current = 0;
+        for &ball in &pending {
+            self.insert(ball);
+        }
+        pending.clear();
+        self.scratch = pending;
+    }
+
+    fn sift_up(&mut self, mut at: usize) {
+        let ball = self.heap[at];
+        while at > 0 {
+            let parent = (at - 1) / 2;
+            let p = self.heap[parent];
+            if !self.less(ball, p) {
+                break;
+            }
+            self.heap[at] = p;
+            self.slots[p as usize].place = Place::Heap(at as u32);
+            at = parent;
+        }
+        self.heap[at] = ball;
+        self.slots[ball as usize].place = Place::Heap(at as u32);
+    }
+
+    fn sift_down(&mut self, mut at: usize) {
+        let ball = self.heap[at];
+        let len = self.heap.len();
+        loop {
+            let left = 2 * at + 1;
+            if left >= len {
+                break;
+            }
+            let right = left + 1;
+            let child = if right < len && self.less(self.heap[right], self.heap[left]) {
+                right
+            } else {
+                left
+            };
+            let c = self.heap[child];
+            if !self.less(c, ball) {
+                break;
+            }
+            self.heap[at] = c;
+            self.slots[c as usize].place = Place::Heap(at as u32);
+            at = child;
+        }
+        self.heap[at] = ball;
+        self.slots[ball as usize].place = Place::Heap(at as u32);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeSet;
+
+    /// A reference: the set of `(t_i, i)`, ordered as the calendar must pop them.
+    #[derive(Default)]
+    struct Reference {
+        set: BTreeSet<(u64, usize)>,
+        time: std::collections::HashMap<usize, f64>,
+    }
+
+    /// `t >= 0` (and +0.0) orders as its bits.
+    fn key(t: f64) -> u64 {
+        t.to_bits()
+    }
+
+    impl Reference {
+        fn set(&mut self, i: usize, t: f64) {
+            self.remove(i);
+            self.set.insert((key(t), i));
+            self.time.insert(i, t);
+        }
+        fn remove(&mut self, i: usize) {
+            if let Some(t) = self.time.remove(&i) {
+                self.set.remove(&(key(t), i));
+            }
+        }
+        fn first(&self) -> Option<(f64, usize)> {
+            self.set.iter().next().map(|&(t, i)| (f64::from_bits(t), i))
+        }
+    }
+
+    /// A small deterministic generator (xorshift64*).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+        }
+        fn below(&mut self, n: usize) -> usize {
+            (self.next() % n as u64) as usize
+        }
+        fn unit(&mut self) -> f64 {
+            (self.next() >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Runs an event loop on both: pop the earliest, give its ball (and now and then another)
+    /// a new time ahead (near, far, tied, or none), re-base now and then; every pop agrees.
+    fn agree(balls: usize, steps: usize, seed: u64) {
+        let mut rng = Rng(seed);
+        let mut cal = Calendar::new(balls);
+        let mut reference = Reference::default();
+        let ahead = |rng: &mut Rng| match rng.below(10) {
+            0 => 1e3 * rng.unit(),           // far: the overflow
+            1 => 0.0,                        // now
+            2 => 0.25 * rng.below(4) as f64, // ties
+            _ => rng.unit(),
+        };
+        for i in 0..balls {
+            let t = ahead(&mut rng);
+            cal.set(i, t);
+            reference.set(i, t);
+        }
+        cal.rebuild(0.0);
+        let mut now = 0.0;
+        for step in 0..steps {
+            let got = cal.peek();
+            assert_eq!(got, reference.first(), "step {step}");
+            let Some((t, i)) = got else { break };
+            assert!(t >= now);
+            now = t;
+            assert_eq!(cal.len(), reference.set.len());
+            match rng.below(20) {
+                0 => {
+                    cal.remove(i);
+                    reference.remove(i);
+                }
+                1 => {
+                    // Re-base: every time moves back by now.
+                    cal.rebuild(now);
+                    reference.set.clear();
+                    let times: Vec<(usize, f64)> = reference.time.drain().collect();
+                    for (j, tj) in times {
+                        reference.set(j, (tj - now).max(0.0));
+                    }
+                    now = 0.0;
+                }
+                _ => {
+                    let t = now + ahead(&mut rng);
+                    cal.set(i, t);
+                    reference.set(i, t);
+                }
+            }
+            // Another ball re-predicted (a partner), or one that had none gets one.
+            let j = rng.below(balls);
+            if rng.below(3) == 0 {
+                let t = now + ahead(&mut rng);
+                cal.set(j, t);
+                reference.set(j, t);
+            }
+        }
+    }
+
+    #[test]
+    fn pops_in_time_then_ball_order_like_a_sorted_set() {
+        for (balls, seed) in [(1, 1), (2, 2), (7, 3), (100, 4), (1000, 5)] {
+            agree(balls, 20_000, seed);
+        }
+    }
+
+    #[test]
+    fn far_events_and_empty_buckets_are_reached() {
+        let mut cal = Calendar::new(3);
+        cal.set(0, 1.0);
+        cal.set(1, 2.0);
+        cal.rebuild(0.0);
+        // Far beyond the horizon, then the near ones go away: a jump over empty buckets.
+        cal.set(2, 1e12);
+        assert_eq!(cal.peek(), Some((1.0, 0)));
+        cal.remove(0);
+        cal.remove(1);
+        assert_eq!(cal.peek(), Some((1e12, 2)));
+        cal.set(2, f64::INFINITY);
+        assert_eq!(cal.peek(), Some((f64::INFINITY, 2)));
+        cal.remove(2);
+        assert_eq!((cal.peek(), cal.len()), (None, 0));
     }
 }
