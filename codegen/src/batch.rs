@@ -7,17 +7,21 @@
 //!
 //! ```text
 //! prefetch(blocks.get(k + ahead));                        (a few kB ahead, out of cache)
-//! for l in 0..LANES {
-//!     let nu_0: &T = &block.contact.nu[0][l];  ...       (the live inputs of lane l)
-//!     let tmp0: T = U1_01 * radius1;  ...                (the scalar kernel's steps)
-//!     post[0].spin[0][l] = ...;  ...                     (the outputs of lane l)
+//! for group in 0..LANES / W {                             (W lanes at a time)
+//!     for l in group * W..group * W + W {
+//!         let nu_0: &T = &block.contact.nu[0][l];  ...   (the live inputs of lane l)
+//!         let tmp0: T = U1_01 * radius1;  ...            (the scalar kernel's steps)
+//!         post[0].spin[0][l] = ...;  ...                 (the outputs of lane l)
+//!     }
 //! }
 //! ```
 //!
-//! The lane loop has a constant trip count and no dependence between lanes; LLVM's loop
-//! vectorizer turns each step into one vector operation over the lanes (2, 4 or 8 `f64`
-//! lanes for SSE2, AVX2, AVX-512), with plain vector loads and stores of the lane arrays:
-//! no gathers or scatters.
+//! The lane loop has a constant trip count `W` and no dependence between lanes; LLVM's loop
+//! vectorizer turns each step into one vector operation over the `W` lanes, with plain
+//! vector loads and stores of the lane arrays: no gathers or scatters. The caller picks `W`
+//! as the register width (8 `f64` for AVX-512, 4 for AVX2): with `W = LANES` on a narrower
+//! ISA every live value would take several registers and the kernels of n = 5, 6 spill. `W
+//! = 1` runs the steps lane by lane as straight-line scalar code, as the scalar kernel does.
 //!
 //! The steps are the scalar kernel's, in the scalar kernel's order, with the same operands,
 //! so each lane rounds exactly as the scalar kernel does on that contact: the batch result is
@@ -341,10 +345,11 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
         #doc
         #[inline(always)]
         #[allow(non_snake_case, clippy::needless_range_loop)]
-        pub fn #fn_name<T: Scalar>(#sig)
+        pub fn #fn_name<T: Scalar, const W: usize>(#sig)
         where
             for<'a> &'a T: RefArith<T>,
         {
+            const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
             #(#shared_bindings)*
             #(#constants)*
             #(#hoisted_steps)*
@@ -352,10 +357,12 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
             for k in 0..blocks.len().min(out.len()) {
                 prefetch(blocks.get(k + ahead));
                 let (block, post) = (&blocks[k], &mut out[k]);
-                for l in 0..LANES {
-                    #(#lane_bindings)*
-                    #(#lane_steps)*
-                    #(#stores)*
+                for group in 0..LANES / W {
+                    for l in group * W..group * W + W {
+                        #(#lane_bindings)*
+                        #(#lane_steps)*
+                        #(#stores)*
+                    }
                 }
             }
         }
