@@ -239,11 +239,12 @@ pub fn start<const N: usize>(
 #[derive(Debug, Default)]
 pub struct Shuffle {
     drawn: u64,
-    dense: Vec<u64>,
+    dense: Vec<u32>,
     swapped: std::collections::HashMap<u64, u64>,
 }
 
-/// The largest `total` a [`Shuffle`] keeps as a vector: `2^26` positions, 0.5 GB at most.
+/// The largest `total` a [`Shuffle`] keeps as a vector: `2^26` positions of 4 bytes, 256 MB
+/// at most.
 pub const DENSE: u64 = 1 << 26;
 
 impl Shuffle {
@@ -270,10 +271,11 @@ impl Shuffle {
         let k = rng.integer(j..=total - 1);
         self.drawn += 1;
         if j == 0 {
-            self.dense = (0..total).collect();
+            // total <= DENSE < 2^32: every position fits a u32.
+            self.dense = (0..total as u32).collect();
         }
         self.dense.swap(j as usize, k as usize);
-        Some(self.dense[j as usize])
+        Some(u64::from(self.dense[j as usize]))
     }
 
     fn draw_sparse(&mut self, rng: &mut Rng, total: u64) -> Option<u64> {
