@@ -106,29 +106,29 @@ where
                 let tmp24: T = &lit_2 * inv_mass1;
                 let tmp25: T = &p_0 * &tmp24;
                 let tmp26: T = u1_0 + &tmp25;
+                post[0].velocity[0][l] = tmp26;
                 let tmp27: T = &p_1 * &tmp24;
                 let tmp28: T = u1_1 + &tmp27;
+                post[0].velocity[1][l] = tmp28;
                 let tmp29: T = gamma2_2 * &tmp24;
                 let tmp30: T = radius1 * &d;
                 let rho1: T = &tmp29 / &tmp30;
                 let tmp31: T = &nu_t_01 * &rho1;
                 let tmp32: T = U1_01 + &tmp31;
+                post[0].spin[0][l] = tmp32;
                 let tmp33: T = &lit_2 * inv_mass2;
                 let tmp34: T = &p_0 * &tmp33;
                 let tmp35: T = u2_0 - &tmp34;
+                post[1].velocity[0][l] = tmp35;
                 let tmp36: T = &p_1 * &tmp33;
                 let tmp37: T = u2_1 - &tmp36;
+                post[1].velocity[1][l] = tmp37;
                 let tmp38: T = gamma2_1 * &tmp33;
                 let tmp39: T = radius2 * &d;
                 let rho2: T = &tmp38 / &tmp39;
                 let tmp40: T = &nu_t_01 * &rho2;
                 let tmp41: T = U2_01 + &tmp40;
-                post[0].spin[0][l] = tmp32;
-                post[0].velocity[0][l] = tmp26;
-                post[0].velocity[1][l] = tmp28;
                 post[1].spin[0][l] = tmp41;
-                post[1].velocity[0][l] = tmp35;
-                post[1].velocity[1][l] = tmp37;
             }
         }
     }
@@ -211,15 +211,15 @@ where
                 let nu_t_01: T = &tmp12 - &tmp13;
                 let tmp14: T = &lit_2 * &p_0;
                 let tmp15: T = u2_0 - &tmp14;
+                post.velocity[0][l] = tmp15;
                 let tmp16: T = &lit_2 * &p_1;
                 let tmp17: T = u2_1 - &tmp16;
+                post.velocity[1][l] = tmp17;
                 let tmp18: T = radius2 * &d;
                 let rho2: T = &lit_2 / &tmp18;
                 let tmp19: T = &nu_t_01 * &rho2;
                 let tmp20: T = U2_01 + &tmp19;
                 post.spin[0][l] = tmp20;
-                post.velocity[0][l] = tmp15;
-                post.velocity[1][l] = tmp17;
             }
         }
     }
@@ -330,22 +330,22 @@ where
                 let nu_t_01: T = &tmp22 - &tmp23;
                 let tmp25: T = &p_0 * &tmp24;
                 let tmp26: T = u1_0 + &tmp25;
+                post[0].velocity[0][l] = tmp26;
                 let tmp27: T = &p_1 * &tmp24;
                 let tmp28: T = u1_1 + &tmp27;
+                post[0].velocity[1][l] = tmp28;
                 let tmp31: T = &nu_t_01 * &rho1;
                 let tmp32: T = U1_01 + &tmp31;
+                post[0].spin[0][l] = tmp32;
                 let tmp34: T = &p_0 * &tmp33;
                 let tmp35: T = u2_0 - &tmp34;
+                post[1].velocity[0][l] = tmp35;
                 let tmp36: T = &p_1 * &tmp33;
                 let tmp37: T = u2_1 - &tmp36;
+                post[1].velocity[1][l] = tmp37;
                 let tmp40: T = &nu_t_01 * &rho2;
                 let tmp41: T = U2_01 + &tmp40;
-                post[0].spin[0][l] = tmp32;
-                post[0].velocity[0][l] = tmp26;
-                post[0].velocity[1][l] = tmp28;
                 post[1].spin[0][l] = tmp41;
-                post[1].velocity[0][l] = tmp35;
-                post[1].velocity[1][l] = tmp37;
             }
         }
     }
@@ -433,13 +433,13 @@ where
                 let nu_t_01: T = &tmp12 - &tmp13;
                 let tmp14: T = &lit_2 * &p_0;
                 let tmp15: T = u2_0 - &tmp14;
+                post.velocity[0][l] = tmp15;
                 let tmp16: T = &lit_2 * &p_1;
                 let tmp17: T = u2_1 - &tmp16;
+                post.velocity[1][l] = tmp17;
                 let tmp19: T = &nu_t_01 * &rho2;
                 let tmp20: T = U2_01 + &tmp19;
                 post.spin[0][l] = tmp20;
-                post.velocity[0][l] = tmp15;
-                post.velocity[1][l] = tmp17;
             }
         }
     }
