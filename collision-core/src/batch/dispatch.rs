@@ -77,8 +77,8 @@ pub(crate) trait Job<B, O> {
 }
 
 /// Lanes per step at the baseline level: 1 (LLVM may still vectorize across the lanes). On
-/// SSE2, widths 1, 2 and 8 measured within noise of each other except n = 2 (8 faster) and
-/// n = 3, 5 (1 faster); docs/batch.md has the figures.
+/// SSE2 width 1 measured within noise of width 8 for n = 3..5, slower at n = 2 and 1.7x
+/// faster at n = 6, where 2 and 8 spill; docs/batch.md has the figures.
 pub const BASELINE_WIDTH: usize = 1;
 
 /// Lanes per step at AVX2: 4, one `f64` register per value (with 8, every value took two
