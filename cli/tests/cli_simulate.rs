@@ -394,6 +394,26 @@ fn counts_beyond_the_limit_or_the_box_are_refused_at_once() {
             scene2("10", "mass = 1\nradius = \"1/2\"\ncount = 89", ""),
             "species[0].count: placed ",
         ),
+        // The lattice holds 13 x 14 / 2 = 91 disks (between the walls 9 / 0.707 = 12.7 gives
+        // 12 + 1 points; periodic, 10 / 0.707 = 14.1 gives 14), not 92.
+        (
+            "lattice",
+            scene2(
+                "10",
+                "mass = 1\nradius = \"1/2\"\ncount = 92",
+                "[random]\nplacement = \"lattice\"\n",
+            ),
+            "species[0].count: the lattice start holds 91 balls",
+        ),
+        (
+            "placement",
+            scene2(
+                "10",
+                "mass = 1\nradius = \"1/2\"\ncount = 9",
+                "[random]\nplacement = \"hexagonal\"\n",
+            ),
+            "random.placement: must be \"random\" or \"lattice\"",
+        ),
     ];
     for (name, text, want) in cases {
         let (code, _, err) = simulate_text(&dir, name, &text, &["--events", "10"]);
@@ -405,6 +425,22 @@ fn counts_beyond_the_limit_or_the_box_are_refused_at_once() {
         );
         assert!(err.starts_with(&want), "{name}:\n got  {err}\n want {want}");
     }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_lattice_start_beyond_random_placement_simulates() {
+    // 89 disks at 0.70 of the box: refused by random placement (the "jammed" case above),
+    // placed on the lattice (91 sites) and run.
+    let dir = scratch("lattice");
+    let text = scene2(
+        "10",
+        "mass = 1\nradius = \"1/2\"\ncount = 89",
+        "[random]\nplacement = \"lattice\"\nseed = 3\nspin = 1\n",
+    );
+    let (code, out, err) = simulate_text(&dir, "lattice", &text, &["--events", "2000"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("2000 contacts ("), "{out}");
     std::fs::remove_dir_all(dir).unwrap();
 }
 

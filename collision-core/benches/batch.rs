@@ -5,7 +5,9 @@
 //! - `batch_in_dN`: an in-cache batch of [`IN_CACHE`] contacts (at most 0.4 MB with its
 //!   output: within the 1 MB L2 of the machine in docs/batch.md);
 //! - `batch_out_dN`: an out-of-cache batch of about [`OUT_OF_CACHE_BYTES`] of input and
-//!   output (8 times the 32 MB L3).
+//!   output (8 times the 32 MB L3);
+//! - with `--features parallel`, `batch_l2_dN`: `SHARED_L2` contacts, within the L2 caches of
+//!   two cores together, on one thread (`batch_serial`) and split on rayon (`batch_rayon`).
 //!
 //! Variants, each over the same contacts, reading the same input bytes and writing the same
 //! output bytes:
@@ -17,9 +19,13 @@
 //! - `scalar`: the generated scalar kernel, one contact at a time, over the per-collision
 //!   (array of structs) layout, results stored into a preallocated vector;
 //! - `batch_baseline`, `batch_avx2`, `batch_avx512`: the batch kernel on one thread, at each
-//!   instruction set this CPU runs;
-//! - with `--features parallel`, out of cache: `batch_rayon` (widest instruction set, all
-//!   threads) and `floor_rayon` (the floor split the same way).
+//!   instruction set this CPU runs, at that level's lane width (`collision_core::batch`'s
+//!   `BASELINE_WIDTH`, `AVX2_WIDTH`, `AVX512_WIDTH`);
+//! - `batch_baseline_w2`, `batch_baseline_w8`, `batch_avx2_w8`: the same kernel at other lane
+//!   widths (8 at every level was the code before issue 15);
+//! - with `--features parallel`: `batch_rayon` (widest instruction set, all threads, split
+//!   from the first contact on) and, out of cache, `floor_rayon` (the floor split the same
+//!   way).
 //!
 //! Throughput is `Elements(len)`: criterion's time per element is the time per collision.
 //! Before timing, the batch kernel's results on the in-cache batch are checked bit for bit
@@ -32,7 +38,8 @@ mod cases;
 
 use cases::{batch, Case};
 use collision_core::batch::{
-    BatchKernel, Contact, Exec, FreeBatch, FreeLanes, Isa, PairBatch, StateLanes, LANES,
+    BatchKernel, Contact, Exec, FreeBatch, FreeLanes, Isa, Lane, Lanewise, PairBatch, StateLanes,
+    LANES,
 };
 use collision_core::{BodyState, Generated, Kernel};
 use criterion::measurement::WallTime;
@@ -42,6 +49,11 @@ use std::time::Duration;
 
 /// Contacts of the in-cache batch.
 const IN_CACHE: usize = 512;
+
+/// Contacts of the batch split across threads in cache: 0.5 MB (n = 2) to 2.4 MB (n = 6)
+/// of input and output, within the two cores' L2 caches together.
+#[cfg(feature = "parallel")]
+const SHARED_L2: usize = 3072;
 
 /// Input plus output bytes of the out-of-cache batch.
 const OUT_OF_CACHE_BYTES: usize = 256 << 20;
@@ -127,6 +139,64 @@ fn floor<const N: usize, const S: usize>(
     floor_blocks(black_box(blocks), out)
 }
 
+/// The block kernel at lane width `W` on the default target (x86-64: SSE2).
+#[inline(never)]
+fn width_baseline<const N: usize, const S: usize, const W: usize>(
+    blocks: &[FreeLanes<f64, N, S>],
+    out: &mut [[StateLanes<f64, N, S>; 2]],
+) where
+    Generated: BatchKernel<f64, N, S>,
+{
+    <Generated as BatchKernel<f64, N, S>>::free_blocks::<W>(black_box(blocks), out)
+}
+
+/// The scalar kernel on each lane in turn (gathered from the block, scattered back), on the
+/// default target.
+#[inline(never)]
+fn scalar_lanes<const N: usize, const S: usize>(
+    blocks: &[FreeLanes<f64, N, S>],
+    out: &mut [[StateLanes<f64, N, S>; 2]],
+) where
+    Generated: Kernel<f64, N, S>,
+{
+    for (block, post) in black_box(blocks).iter().zip(out.iter_mut()) {
+        for l in Lane::all() {
+            let (c, [b1, b2]) = block.lane(l);
+            post.set_lane(
+                l,
+                Generated::free(&c.nu, &b1, &b2, &c.states[0], &c.states[1]),
+            );
+        }
+    }
+}
+
+/// # Safety
+/// The CPU must have AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn width_avx2_unchecked<const N: usize, const S: usize, const W: usize>(
+    blocks: &[FreeLanes<f64, N, S>],
+    out: &mut [[StateLanes<f64, N, S>; 2]],
+) where
+    Generated: BatchKernel<f64, N, S>,
+{
+    <Generated as BatchKernel<f64, N, S>>::free_blocks::<W>(blocks, out)
+}
+
+/// The block kernel at lane width `W`, compiled for AVX2 + FMA (the CPU must have them).
+#[cfg(target_arch = "x86_64")]
+#[inline(never)]
+fn width_avx2<const N: usize, const S: usize, const W: usize>(
+    blocks: &[FreeLanes<f64, N, S>],
+    out: &mut [[StateLanes<f64, N, S>; 2]],
+) where
+    Generated: BatchKernel<f64, N, S>,
+{
+    assert!(Isa::Avx2.is_available());
+    // SAFETY: AVX2 and FMA were detected just now.
+    unsafe { width_avx2_unchecked::<N, S, W>(black_box(blocks), out) }
+}
+
 /// The scalar kernel over the per-collision layout, results stored.
 #[inline(never)]
 fn scalar<const N: usize, const S: usize>(
@@ -198,13 +268,36 @@ fn bench_group<const N: usize, const S: usize>(
             b.iter(|| exec.free(black_box(&batch), &mut out))
         });
     }
+    // Other lane widths than the levels' own (docs/batch.md: the widths of before issue 15
+    // were 8 lanes at a time at every level).
+    group.bench_function("scalar_lanes", |b| {
+        b.iter(|| scalar_lanes::<N, S>(batch.blocks(), out.blocks_mut()))
+    });
+    group.bench_function("batch_baseline_w1", |b| {
+        b.iter(|| width_baseline::<N, S, 1>(batch.blocks(), out.blocks_mut()))
+    });
+    group.bench_function("batch_baseline_w2", |b| {
+        b.iter(|| width_baseline::<N, S, 2>(batch.blocks(), out.blocks_mut()))
+    });
+    group.bench_function("batch_baseline_w8", |b| {
+        b.iter(|| width_baseline::<N, S, 8>(batch.blocks(), out.blocks_mut()))
+    });
+    #[cfg(target_arch = "x86_64")]
+    if Isa::Avx2.is_available() {
+        group.bench_function("batch_avx2_w8", |b| {
+            b.iter(|| width_avx2::<N, S, 8>(batch.blocks(), out.blocks_mut()))
+        });
+    }
     #[cfg(feature = "parallel")]
-    if parallel {
-        use rayon::prelude::*;
+    {
         let exec = Exec::auto().parallel_from(0);
         group.bench_function("batch_rayon", |b| {
             b.iter(|| exec.free(black_box(&batch), &mut out))
         });
+    }
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::prelude::*;
         group.bench_function("floor_rayon", |b| {
             b.iter(|| {
                 batch
@@ -232,6 +325,29 @@ where
         .sample_size(30);
     bench_group(&mut group, &cases, false);
     group.finish();
+
+    // Threads on work that fits the two cores' L2 caches (1 MB each).
+    #[cfg(feature = "parallel")]
+    {
+        let cases = batch::<N, S>(SEED ^ (N as u64) << 4, SHARED_L2);
+        let batch = to_batch(&cases);
+        let mut out: PairBatch<f64, N, S> = PairBatch::new();
+        let mut group = c.benchmark_group(format!("batch_l2_d{N}"));
+        group
+            .warm_up_time(Duration::from_millis(500))
+            .measurement_time(Duration::from_millis(1500))
+            .sample_size(30)
+            .throughput(Throughput::Elements(SHARED_L2 as u64));
+        let serial = Exec::auto().serial();
+        group.bench_function("batch_serial", |b| {
+            b.iter(|| serial.free(black_box(&batch), &mut out))
+        });
+        let threads = Exec::auto().parallel_from(0);
+        group.bench_function("batch_rayon", |b| {
+            b.iter(|| threads.free(black_box(&batch), &mut out))
+        });
+        group.finish();
+    }
 
     let len = (OUT_OF_CACHE_BYTES / bytes_per_contact(N, S)).next_multiple_of(LANES);
     let cases = batch::<N, S>(SEED ^ (N as u64) << 8, len);

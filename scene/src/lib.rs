@@ -25,6 +25,7 @@ mod validate;
 pub use number::{parse_exact, Number, MAX_DIGITS};
 pub use pairs::{Pair, PairSet, WallSide};
 pub use raw::{Boundary, ContactKind, Distribution};
+
 pub use table::{Shape, TableBoundary};
 
 use num_rational::BigRational;
@@ -86,13 +87,28 @@ pub struct Obstacle {
     pub contact: ContactKind,
 }
 
-/// Seeded random placement of the species' `count` balls: positions uniform in the box, no
-/// overlaps (rejection sampling), velocity components uniform in `[-speed, speed]`, skew
-/// entries of `U` uniform in `[-spin, spin]`.
+/// Where the species' `count` balls go (`random.placement`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Placement {
+    /// `"random"` (the default): centres uniform in the box, redrawn while they overlap.
+    #[default]
+    Random,
+    /// `"lattice"`: centres on sites of the checkerboard lattice `D_n` (integer points with an
+    /// even coordinate sum; the square lattice in 2D, face-centred cubic in 3D) scaled to
+    /// fill the box, the sites taken in a seeded random order; for packings random placement
+    /// cannot reach.
+    Lattice,
+}
+
+/// Seeded placement of the species' `count` balls: positions uniform in the box, no overlaps
+/// (rejection sampling), or on a lattice ([`Placement`]); velocity components uniform in
+/// `[-speed, speed]`, skew entries of `U` uniform in `[-spin, spin]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Random {
     /// The seed of the placement's ChaCha8 stream (`random.seed`, default 0).
     pub seed: u64,
+    /// Random or lattice centres (`random.placement`, default random).
+    pub placement: Placement,
     /// Velocity components are uniform in `[-speed, speed]`; `>= 0`, default 1.
     pub speed: BigRational,
     /// Skew entries of `U` are uniform in `[-spin, spin]`; `>= 0`, default 0.

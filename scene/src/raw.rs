@@ -249,6 +249,10 @@ pub struct RawRandom {
     /// `spin`: skew entries of `U` uniform in `[-spin, spin]` (default 0).
     #[serde(default)]
     pub spin: Option<Number>,
+    /// `placement`: `"random"` (default) or `"lattice"`; checked by validation, so that a bad
+    /// value is named by its key.
+    #[serde(default)]
+    pub placement: Option<String>,
 }
 
 /// The `[simulation]` table: defaults for `noslip simulate`, which its flags override.

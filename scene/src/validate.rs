@@ -3,8 +3,8 @@
 use crate::raw::{ContactKind, Distribution, RawBall, RawScene, RawSpecies, RawSpin};
 use crate::table::{self, Shape};
 use crate::{
-    BallSpec, Boundary, Number, Obstacle, Random, RunDefaults, Scene, SceneError, Species,
-    MAX_BALLS,
+    BallSpec, Boundary, Number, Obstacle, Placement, Random, RunDefaults, Scene, SceneError,
+    Species, MAX_BALLS,
 };
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -295,8 +295,19 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         });
     }
     count_limit(&ctx, &raw)?;
+    let placement = match raw.random.placement.as_deref() {
+        None | Some("random") => Placement::Random,
+        Some("lattice") => Placement::Lattice,
+        Some(other) => {
+            return Err(ctx.err(
+                "random.placement",
+                format!("must be \"random\" or \"lattice\", got {other:?}"),
+            ))
+        }
+    };
     let random = Random {
         seed: raw.random.seed,
+        placement,
         speed: raw
             .random
             .speed

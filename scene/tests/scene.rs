@@ -1,6 +1,6 @@
 //! Scene files: the shipped ones are valid; bad ones are refused with the place named.
 
-use noslip_scene::{Boundary, ContactKind, Scene, WallSide, MAX_BALLS};
+use noslip_scene::{Boundary, ContactKind, Placement, Scene, WallSide, MAX_BALLS};
 use std::path::Path;
 
 const BASE: &str = r#"
@@ -86,6 +86,8 @@ fn bad_scenes_name_the_place() {
         ("[[species]]\nmass = 1\nradius = 6\n", "t.toml: species[1].radius: a ball of radius 6 does not fit"),
         ("[[obstacle]]\nposition = [5, 5]\nradius = 2\n[[ball]]\nspecies = 0\nposition = [5, 7]\n", "t.toml: ball[0].position: overlaps obstacle[0]"),
         ("[random]\nspeed = -1\n", "t.toml: random.speed: must be >= 0"),
+        ("[random]\nplacement = \"grid\"\n", "t.toml: random.placement: must be \"random\" or \"lattice\", got \"grid\""),
+        ("[random]\nplacement = 1\n", "t.toml: line 10, column 13: invalid type: integer `1`, expected a string"),
         ("[[ball]]\nspecies = 0\nposition = [\"1/0\", 1]\n", "zero denominator"),
     ];
     for (extra, want) in cases {
@@ -116,6 +118,26 @@ fn bad_scenes_name_the_place() {
     assert_eq!(
         dims.unwrap_err().to_string(),
         "d.toml: dim: must be in 2..=6, got 7"
+    );
+}
+
+#[test]
+fn placement_is_random_unless_lattice_is_asked() {
+    let with = |extra: &str| {
+        Scene::from_toml(&format!("{BASE}count = 3\n{extra}"), "t.toml")
+            .unwrap()
+            .random
+            .placement
+    };
+    assert_eq!(with(""), Placement::Random);
+    assert_eq!(with("[random]\nseed = 3\n"), Placement::Random);
+    assert_eq!(
+        with("[random]\nplacement = \"random\"\n"),
+        Placement::Random
+    );
+    assert_eq!(
+        with("[random]\nplacement = \"lattice\"\n"),
+        Placement::Lattice
     );
 }
 

@@ -30,6 +30,9 @@
 pub mod boundary_map;
 mod cells;
 pub mod engine;
+pub mod lattice;
+#[cfg(test)]
+mod lattice_tests;
 pub mod log;
 mod motion;
 pub mod no_contact;

@@ -2,6 +2,7 @@
 //! ([`crate::range`]), species, obstacles, the explicit balls and the seeded random placement
 //! ([`crate::place`]).
 
+use crate::lattice::{self, Shuffle};
 use crate::normal::unit;
 use crate::place::Cells;
 use crate::range::{check_scene, check_start};
@@ -9,7 +10,7 @@ use crate::table::{Boundary as TableBoundary, Shape, Table};
 use crate::{Body, FixedBall, Setup};
 use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState};
-use noslip_scene::{Boundary, ContactKind, Scene};
+use noslip_scene::{Boundary, ContactKind, Placement, Scene};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
@@ -256,9 +257,13 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 /// or overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
 /// visits only the cells around the candidate), at most [`ATTEMPTS`] times in a row and
 /// [`AVERAGE_ATTEMPTS`] per ball overall; balls that would fill more than the box are refused
-/// before any attempt; velocity components uniform in `[-speed,
-/// speed]`, skew entries of `U` uniform in `[-spin, spin]`; one ChaCha8 stream seeded with
-/// `random.seed`, species in order. Errors are `field: message`.
+/// before any attempt. With `random.placement = "lattice"` the centres are instead sites of
+/// the widest [`crate::lattice`] with enough sites clear of the table's boundaries, the
+/// obstacles and the explicit balls (for the largest radius), taken in a seeded random order
+/// ([`lattice::Shuffle`]); a count the densest such lattice cannot hold is refused. Then
+/// velocity components uniform in `[-speed, speed]`, skew entries of `U` uniform in `[-spin,
+/// spin]`; one ChaCha8 stream seeded with `random.seed`, species in order. Errors are
+/// `field: message`.
 pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S>, String> {
     assert_eq!(scene.dim, N, "scene dimension");
     let scales = check_scene(scene)?;
@@ -330,12 +335,52 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     }
     let mut rng = Rng::new(scene.random.seed);
     let (speed, spin) = (f(&scene.random.speed), f(&scene.random.spin));
+    // The tests of a centre `p` of radius `r`: inside the table's other boundaries, outside
+    // the polygon obstacles, clear of the obstacles and (`clear_balls`) of the placed balls.
+    let in_table = |p: &[f64; N], r: f64| {
+        table.boundaries.iter().all(|b| b.shape.gap(p, r) >= 0.0)
+            && !polygons.iter().any(|v| inside_polygon(v, p))
+            && fixed.all_near(p, |o| {
+                let o = &obstacles[o];
+                let s = r + o.radius;
+                distance2(p, &o.position, &size, &periodic) >= s * s
+            })
+    };
+    let clear_balls = |balls: &Cells<N>, bodies: &[Body<N, S>], p: &[f64; N], r: f64| {
+        balls.all_near(p, |i| {
+            let b = &bodies[i];
+            let s = r + species[b.species].radius;
+            distance2(p, &b.position, &size, &periodic) >= s * s
+        })
+    };
+    let random_count: usize = scene.species.iter().map(|s| s.count).sum();
+    let last = (0..scene.species.len())
+        .rev()
+        .find(|&k| scene.species[k].count > 0)
+        .unwrap_or(0);
+    // The lattice start: the widest lattice with enough sites clear of everything placed,
+    // its sites drawn in a seeded random order.
+    let mut sites = match scene.random.placement {
+        Placement::Lattice if random_count > 0 => {
+            let usable =
+                |p: &[f64; N]| in_table(p, r_max) && clear_balls(&balls, &bodies, p, r_max);
+            let all_usable = bodies.is_empty()
+                && obstacles.is_empty()
+                && table.boundaries.is_empty()
+                && polygons.is_empty();
+            let lattice = lattice::start(&size, &periodic, r_max, random_count, all_usable, usable)
+                .map_err(|why| format!("species[{last}].count: {why}"))?;
+            Some((lattice, Shuffle::new()))
+        }
+        _ => None,
+    };
     let (mut attempts, mut placed_random) = (0usize, 0usize);
     let too_full = |k: usize, placed: usize, why: String| {
         format!(
             "species[{k}].count: placed {placed} of {} balls, then {why}: the box is too full \
              for random placement (the balls would fill {fraction:.3} of it; random sequential \
-             placement of equal balls saturates near {:.2} in {N}D)",
+             placement of equal balls saturates near {:.2} in {N}D; [random] placement = \
+             \"lattice\" reaches denser packings)",
             scene.species[k].count,
             saturation(N)
         )
@@ -343,35 +388,46 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     for (k, sp) in scene.species.iter().enumerate() {
         let r = species[k].radius;
         for placed in 0..sp.count {
-            if attempts > AVERAGE_ATTEMPTS * placed_random + ATTEMPTS {
-                let why = format!("{attempts} attempts (over {AVERAGE_ATTEMPTS} per ball)");
-                return Err(too_full(k, placed, why));
-            }
-            let mut found = None;
-            for _ in 0..ATTEMPTS {
-                attempts += 1;
-                let p = random_position(&mut rng, &size, &periodic, r);
-                let clear_balls = balls.all_near(&p, |i| {
-                    let b = &bodies[i];
-                    let s = r + species[b.species].radius;
-                    distance2(&p, &b.position, &size, &periodic) >= s * s
-                });
-                let clear = clear_balls
-                    && table.boundaries.iter().all(|b| b.shape.gap(&p, r) >= 0.0)
-                    && !polygons.iter().any(|v| inside_polygon(v, &p))
-                    && fixed.all_near(&p, |o| {
-                        let o = &obstacles[o];
-                        let s = r + o.radius;
-                        distance2(&p, &o.position, &size, &periodic) >= s * s
-                    });
-                if clear {
-                    found = Some(p);
-                    break;
+            let position = if let Some((lattice, shuffle)) = &mut sites {
+                // Every usable site is clear of the lattice's other sites by construction
+                // (`crate::lattice`); the test is repeated with this ball's radius.
+                let mut found = None;
+                while let Some(g) = shuffle.draw(&mut rng, lattice.points()) {
+                    let Some(index) = lattice.site(g) else {
+                        continue;
+                    };
+                    let p = lattice.position(&index);
+                    if in_table(&p, r_max) && clear_balls(&balls, &bodies, &p, r_max) {
+                        found = Some(p);
+                        break;
+                    }
                 }
-            }
-            let Some(position) = found else {
-                let why = format!("{ATTEMPTS} random positions in a row overlapped");
-                return Err(too_full(k, placed, why));
+                found.ok_or_else(|| {
+                    format!(
+                        "species[{k}].count: placed {placed} of {} balls, then the lattice ran \
+                         out of clear sites",
+                        sp.count
+                    )
+                })?
+            } else {
+                if attempts > AVERAGE_ATTEMPTS * placed_random + ATTEMPTS {
+                    let why = format!("{attempts} attempts (over {AVERAGE_ATTEMPTS} per ball)");
+                    return Err(too_full(k, placed, why));
+                }
+                let mut found = None;
+                for _ in 0..ATTEMPTS {
+                    attempts += 1;
+                    let p = random_position(&mut rng, &size, &periodic, r);
+                    if clear_balls(&balls, &bodies, &p, r) && in_table(&p, r) {
+                        found = Some(p);
+                        break;
+                    }
+                }
+                let Some(position) = found else {
+                    let why = format!("{ATTEMPTS} random positions in a row overlapped");
+                    return Err(too_full(k, placed, why));
+                };
+                position
             };
             placed_random += 1;
             let mut uniform = |scale: f64| scale * rng.uniform(-1.0, 1.0);

@@ -37,96 +37,99 @@ use crate::{Ball, RefArith, Scalar};
 /// Ops per contact: 21 add, 31 mul, 4 div, 0 neg (56 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
-pub fn free<T: Scalar>(
+pub fn free<T: Scalar, const W: usize>(
     blocks: &[FreeLanes<T, 2, 1>],
     out: &mut [[StateLanes<T, 2, 1>; 2]],
 )
 where
     for<'a> &'a T: RefArith<T>,
 {
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
     let lit_1: T = T::from_ratio(1, 1);
     let lit_2: T = T::from_ratio(2, 1);
     let ahead = prefetch_distance::<FreeLanes<T, 2, 1>>();
     for k in 0..blocks.len().min(out.len()) {
         prefetch(blocks.get(k + ahead));
         let (block, post) = (&blocks[k], &mut out[k]);
-        for l in 0..LANES {
-            let U1_01: &T = &block.contact.states[0].spin[0][l];
-            let U2_01: &T = &block.contact.states[1].spin[0][l];
-            let gamma2_1: &T = &block.balls[0].gamma2[l];
-            let gamma2_2: &T = &block.balls[1].gamma2[l];
-            let inv_mass1: &T = &block.balls[0].inv_mass[l];
-            let inv_mass2: &T = &block.balls[1].inv_mass[l];
-            let nu_0: &T = &block.contact.nu[0][l];
-            let nu_1: &T = &block.contact.nu[1][l];
-            let radius1: &T = &block.balls[0].radius[l];
-            let radius2: &T = &block.balls[1].radius[l];
-            let u1_0: &T = &block.contact.states[0].velocity[0][l];
-            let u1_1: &T = &block.contact.states[0].velocity[1][l];
-            let u2_0: &T = &block.contact.states[1].velocity[0][l];
-            let u2_1: &T = &block.contact.states[1].velocity[1][l];
-            let tmp0: T = U1_01 * radius1;
-            let tmp1: T = U2_01 * radius2;
-            let tmp2: T = &tmp0 + &tmp1;
-            let c_0: T = nu_1 * &tmp2;
-            let tmp3: T = nu_0 * &tmp2;
-            let du_0: T = u2_0 - u1_0;
-            let du_1: T = u2_1 - u1_1;
-            let tmp4: T = nu_0 * &du_0;
-            let tmp5: T = nu_1 * &du_1;
-            let dn: T = &tmp4 + &tmp5;
-            let tmp6: T = nu_0 * &dn;
-            let tmp7: T = &du_0 - &tmp6;
-            let t_0: T = &tmp7 - &c_0;
-            let tmp8: T = nu_1 * &dn;
-            let tmp9: T = &du_1 - &tmp8;
-            let t_1: T = &tmp3 + &tmp9;
-            let tmp10: T = inv_mass1 + inv_mass2;
-            let p_n: T = &dn / &tmp10;
-            let tmp11: T = gamma2_1 + &lit_1;
-            let tmp12: T = gamma2_2 + &lit_1;
-            let tmp13: T = inv_mass1 * gamma2_2;
-            let tmp14: T = &tmp11 * &tmp13;
-            let tmp15: T = gamma2_1 * inv_mass2;
-            let tmp16: T = &tmp12 * &tmp15;
-            let d: T = &tmp14 + &tmp16;
-            let tmp17: T = gamma2_1 * gamma2_2;
-            let p_t: T = &tmp17 / &d;
-            let tmp18: T = nu_0 * &p_n;
-            let tmp19: T = &t_0 * &p_t;
-            let p_0: T = &tmp18 + &tmp19;
-            let tmp20: T = nu_1 * &p_n;
-            let tmp21: T = &t_1 * &p_t;
-            let p_1: T = &tmp20 + &tmp21;
-            let tmp22: T = nu_1 * &t_0;
-            let tmp23: T = nu_0 * &t_1;
-            let nu_t_01: T = &tmp22 - &tmp23;
-            let tmp24: T = &lit_2 * inv_mass1;
-            let tmp25: T = &p_0 * &tmp24;
-            let tmp26: T = u1_0 + &tmp25;
-            let tmp27: T = &p_1 * &tmp24;
-            let tmp28: T = u1_1 + &tmp27;
-            let tmp29: T = gamma2_2 * &tmp24;
-            let tmp30: T = radius1 * &d;
-            let rho1: T = &tmp29 / &tmp30;
-            let tmp31: T = &nu_t_01 * &rho1;
-            let tmp32: T = U1_01 + &tmp31;
-            let tmp33: T = &lit_2 * inv_mass2;
-            let tmp34: T = &p_0 * &tmp33;
-            let tmp35: T = u2_0 - &tmp34;
-            let tmp36: T = &p_1 * &tmp33;
-            let tmp37: T = u2_1 - &tmp36;
-            let tmp38: T = gamma2_1 * &tmp33;
-            let tmp39: T = radius2 * &d;
-            let rho2: T = &tmp38 / &tmp39;
-            let tmp40: T = &nu_t_01 * &rho2;
-            let tmp41: T = U2_01 + &tmp40;
-            post[0].spin[0][l] = tmp32;
-            post[0].velocity[0][l] = tmp26;
-            post[0].velocity[1][l] = tmp28;
-            post[1].spin[0][l] = tmp41;
-            post[1].velocity[0][l] = tmp35;
-            post[1].velocity[1][l] = tmp37;
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.contact.states[0].spin[0][l];
+                let U2_01: &T = &block.contact.states[1].spin[0][l];
+                let gamma2_1: &T = &block.balls[0].gamma2[l];
+                let gamma2_2: &T = &block.balls[1].gamma2[l];
+                let inv_mass1: &T = &block.balls[0].inv_mass[l];
+                let inv_mass2: &T = &block.balls[1].inv_mass[l];
+                let nu_0: &T = &block.contact.nu[0][l];
+                let nu_1: &T = &block.contact.nu[1][l];
+                let radius1: &T = &block.balls[0].radius[l];
+                let radius2: &T = &block.balls[1].radius[l];
+                let u1_0: &T = &block.contact.states[0].velocity[0][l];
+                let u1_1: &T = &block.contact.states[0].velocity[1][l];
+                let u2_0: &T = &block.contact.states[1].velocity[0][l];
+                let u2_1: &T = &block.contact.states[1].velocity[1][l];
+                let tmp0: T = U1_01 * radius1;
+                let tmp1: T = U2_01 * radius2;
+                let tmp2: T = &tmp0 + &tmp1;
+                let c_0: T = nu_1 * &tmp2;
+                let tmp3: T = nu_0 * &tmp2;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp4: T = nu_0 * &du_0;
+                let tmp5: T = nu_1 * &du_1;
+                let dn: T = &tmp4 + &tmp5;
+                let tmp6: T = nu_0 * &dn;
+                let tmp7: T = &du_0 - &tmp6;
+                let t_0: T = &tmp7 - &c_0;
+                let tmp8: T = nu_1 * &dn;
+                let tmp9: T = &du_1 - &tmp8;
+                let t_1: T = &tmp3 + &tmp9;
+                let tmp10: T = inv_mass1 + inv_mass2;
+                let p_n: T = &dn / &tmp10;
+                let tmp11: T = gamma2_1 + &lit_1;
+                let tmp12: T = gamma2_2 + &lit_1;
+                let tmp13: T = inv_mass1 * gamma2_2;
+                let tmp14: T = &tmp11 * &tmp13;
+                let tmp15: T = gamma2_1 * inv_mass2;
+                let tmp16: T = &tmp12 * &tmp15;
+                let d: T = &tmp14 + &tmp16;
+                let tmp17: T = gamma2_1 * gamma2_2;
+                let p_t: T = &tmp17 / &d;
+                let tmp18: T = nu_0 * &p_n;
+                let tmp19: T = &t_0 * &p_t;
+                let p_0: T = &tmp18 + &tmp19;
+                let tmp20: T = nu_1 * &p_n;
+                let tmp21: T = &t_1 * &p_t;
+                let p_1: T = &tmp20 + &tmp21;
+                let tmp22: T = nu_1 * &t_0;
+                let tmp23: T = nu_0 * &t_1;
+                let nu_t_01: T = &tmp22 - &tmp23;
+                let tmp24: T = &lit_2 * inv_mass1;
+                let tmp25: T = &p_0 * &tmp24;
+                let tmp26: T = u1_0 + &tmp25;
+                post[0].velocity[0][l] = tmp26;
+                let tmp27: T = &p_1 * &tmp24;
+                let tmp28: T = u1_1 + &tmp27;
+                post[0].velocity[1][l] = tmp28;
+                let tmp29: T = gamma2_2 * &tmp24;
+                let tmp30: T = radius1 * &d;
+                let rho1: T = &tmp29 / &tmp30;
+                let tmp31: T = &nu_t_01 * &rho1;
+                let tmp32: T = U1_01 + &tmp31;
+                post[0].spin[0][l] = tmp32;
+                let tmp33: T = &lit_2 * inv_mass2;
+                let tmp34: T = &p_0 * &tmp33;
+                let tmp35: T = u2_0 - &tmp34;
+                post[1].velocity[0][l] = tmp35;
+                let tmp36: T = &p_1 * &tmp33;
+                let tmp37: T = u2_1 - &tmp36;
+                post[1].velocity[1][l] = tmp37;
+                let tmp38: T = gamma2_1 * &tmp33;
+                let tmp39: T = radius2 * &d;
+                let rho2: T = &tmp38 / &tmp39;
+                let tmp40: T = &nu_t_01 * &rho2;
+                let tmp41: T = U2_01 + &tmp40;
+                post[1].spin[0][l] = tmp41;
+            }
         }
     }
 }
@@ -154,64 +157,70 @@ where
 /// Ops per contact: 15 add, 16 mul, 2 div, 0 neg (33 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
-pub fn fixed<T: Scalar>(blocks: &[FixedLanes<T, 2, 1>], out: &mut [StateLanes<T, 2, 1>])
+pub fn fixed<T: Scalar, const W: usize>(
+    blocks: &[FixedLanes<T, 2, 1>],
+    out: &mut [StateLanes<T, 2, 1>],
+)
 where
     for<'a> &'a T: RefArith<T>,
 {
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
     let lit_1: T = T::from_ratio(1, 1);
     let lit_2: T = T::from_ratio(2, 1);
     let ahead = prefetch_distance::<FixedLanes<T, 2, 1>>();
     for k in 0..blocks.len().min(out.len()) {
         prefetch(blocks.get(k + ahead));
         let (block, post) = (&blocks[k], &mut out[k]);
-        for l in 0..LANES {
-            let U1_01: &T = &block.contact.states[0].spin[0][l];
-            let U2_01: &T = &block.contact.states[1].spin[0][l];
-            let gamma2_2: &T = &block.ball2.gamma2[l];
-            let nu_0: &T = &block.contact.nu[0][l];
-            let nu_1: &T = &block.contact.nu[1][l];
-            let radius1: &T = &block.radius1[l];
-            let radius2: &T = &block.ball2.radius[l];
-            let u1_0: &T = &block.contact.states[0].velocity[0][l];
-            let u1_1: &T = &block.contact.states[0].velocity[1][l];
-            let u2_0: &T = &block.contact.states[1].velocity[0][l];
-            let u2_1: &T = &block.contact.states[1].velocity[1][l];
-            let tmp0: T = U1_01 * radius1;
-            let tmp1: T = U2_01 * radius2;
-            let tmp2: T = &tmp0 + &tmp1;
-            let c_0: T = nu_1 * &tmp2;
-            let tmp3: T = nu_0 * &tmp2;
-            let du_0: T = u2_0 - u1_0;
-            let du_1: T = u2_1 - u1_1;
-            let tmp4: T = nu_0 * &du_0;
-            let tmp5: T = nu_1 * &du_1;
-            let dn: T = &tmp4 + &tmp5;
-            let tmp6: T = nu_0 * &dn;
-            let tmp7: T = &du_0 - &tmp6;
-            let t_0: T = &tmp7 - &c_0;
-            let tmp8: T = nu_1 * &dn;
-            let tmp9: T = &du_1 - &tmp8;
-            let t_1: T = &tmp3 + &tmp9;
-            let d: T = &lit_1 + gamma2_2;
-            let p_t: T = gamma2_2 / &d;
-            let tmp10: T = &t_0 * &p_t;
-            let p_0: T = &tmp6 + &tmp10;
-            let tmp11: T = &t_1 * &p_t;
-            let p_1: T = &tmp8 + &tmp11;
-            let tmp12: T = nu_1 * &t_0;
-            let tmp13: T = nu_0 * &t_1;
-            let nu_t_01: T = &tmp12 - &tmp13;
-            let tmp14: T = &lit_2 * &p_0;
-            let tmp15: T = u2_0 - &tmp14;
-            let tmp16: T = &lit_2 * &p_1;
-            let tmp17: T = u2_1 - &tmp16;
-            let tmp18: T = radius2 * &d;
-            let rho2: T = &lit_2 / &tmp18;
-            let tmp19: T = &nu_t_01 * &rho2;
-            let tmp20: T = U2_01 + &tmp19;
-            post.spin[0][l] = tmp20;
-            post.velocity[0][l] = tmp15;
-            post.velocity[1][l] = tmp17;
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.contact.states[0].spin[0][l];
+                let U2_01: &T = &block.contact.states[1].spin[0][l];
+                let gamma2_2: &T = &block.ball2.gamma2[l];
+                let nu_0: &T = &block.contact.nu[0][l];
+                let nu_1: &T = &block.contact.nu[1][l];
+                let radius1: &T = &block.radius1[l];
+                let radius2: &T = &block.ball2.radius[l];
+                let u1_0: &T = &block.contact.states[0].velocity[0][l];
+                let u1_1: &T = &block.contact.states[0].velocity[1][l];
+                let u2_0: &T = &block.contact.states[1].velocity[0][l];
+                let u2_1: &T = &block.contact.states[1].velocity[1][l];
+                let tmp0: T = U1_01 * radius1;
+                let tmp1: T = U2_01 * radius2;
+                let tmp2: T = &tmp0 + &tmp1;
+                let c_0: T = nu_1 * &tmp2;
+                let tmp3: T = nu_0 * &tmp2;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp4: T = nu_0 * &du_0;
+                let tmp5: T = nu_1 * &du_1;
+                let dn: T = &tmp4 + &tmp5;
+                let tmp6: T = nu_0 * &dn;
+                let tmp7: T = &du_0 - &tmp6;
+                let t_0: T = &tmp7 - &c_0;
+                let tmp8: T = nu_1 * &dn;
+                let tmp9: T = &du_1 - &tmp8;
+                let t_1: T = &tmp3 + &tmp9;
+                let d: T = &lit_1 + gamma2_2;
+                let p_t: T = gamma2_2 / &d;
+                let tmp10: T = &t_0 * &p_t;
+                let p_0: T = &tmp6 + &tmp10;
+                let tmp11: T = &t_1 * &p_t;
+                let p_1: T = &tmp8 + &tmp11;
+                let tmp12: T = nu_1 * &t_0;
+                let tmp13: T = nu_0 * &t_1;
+                let nu_t_01: T = &tmp12 - &tmp13;
+                let tmp14: T = &lit_2 * &p_0;
+                let tmp15: T = u2_0 - &tmp14;
+                post.velocity[0][l] = tmp15;
+                let tmp16: T = &lit_2 * &p_1;
+                let tmp17: T = u2_1 - &tmp16;
+                post.velocity[1][l] = tmp17;
+                let tmp18: T = radius2 * &d;
+                let rho2: T = &lit_2 / &tmp18;
+                let tmp19: T = &nu_t_01 * &rho2;
+                let tmp20: T = U2_01 + &tmp19;
+                post.spin[0][l] = tmp20;
+            }
         }
     }
 }
@@ -243,7 +252,7 @@ where
 /// Ops per call, on the shared parameters: 4 add, 11 mul, 3 div, 0 neg (18 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
-pub fn free_shared<T: Scalar>(
+pub fn free_shared<T: Scalar, const W: usize>(
     ball1: &Ball<T>,
     ball2: &Ball<T>,
     blocks: &[ContactLanes<T, 2, 1>],
@@ -252,6 +261,7 @@ pub fn free_shared<T: Scalar>(
 where
     for<'a> &'a T: RefArith<T>,
 {
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
     let gamma2_1: &T = &ball1.gamma2.clone();
     let gamma2_2: &T = &ball2.gamma2.clone();
     let inv_mass1: &T = &ball1.inv_mass.clone();
@@ -282,59 +292,61 @@ where
     for k in 0..blocks.len().min(out.len()) {
         prefetch(blocks.get(k + ahead));
         let (block, post) = (&blocks[k], &mut out[k]);
-        for l in 0..LANES {
-            let U1_01: &T = &block.states[0].spin[0][l];
-            let U2_01: &T = &block.states[1].spin[0][l];
-            let nu_0: &T = &block.nu[0][l];
-            let nu_1: &T = &block.nu[1][l];
-            let u1_0: &T = &block.states[0].velocity[0][l];
-            let u1_1: &T = &block.states[0].velocity[1][l];
-            let u2_0: &T = &block.states[1].velocity[0][l];
-            let u2_1: &T = &block.states[1].velocity[1][l];
-            let tmp0: T = U1_01 * radius1;
-            let tmp1: T = U2_01 * radius2;
-            let tmp2: T = &tmp0 + &tmp1;
-            let c_0: T = nu_1 * &tmp2;
-            let tmp3: T = nu_0 * &tmp2;
-            let du_0: T = u2_0 - u1_0;
-            let du_1: T = u2_1 - u1_1;
-            let tmp4: T = nu_0 * &du_0;
-            let tmp5: T = nu_1 * &du_1;
-            let dn: T = &tmp4 + &tmp5;
-            let tmp6: T = nu_0 * &dn;
-            let tmp7: T = &du_0 - &tmp6;
-            let t_0: T = &tmp7 - &c_0;
-            let tmp8: T = nu_1 * &dn;
-            let tmp9: T = &du_1 - &tmp8;
-            let t_1: T = &tmp3 + &tmp9;
-            let p_n: T = &dn / &tmp10;
-            let tmp18: T = nu_0 * &p_n;
-            let tmp19: T = &t_0 * &p_t;
-            let p_0: T = &tmp18 + &tmp19;
-            let tmp20: T = nu_1 * &p_n;
-            let tmp21: T = &t_1 * &p_t;
-            let p_1: T = &tmp20 + &tmp21;
-            let tmp22: T = nu_1 * &t_0;
-            let tmp23: T = nu_0 * &t_1;
-            let nu_t_01: T = &tmp22 - &tmp23;
-            let tmp25: T = &p_0 * &tmp24;
-            let tmp26: T = u1_0 + &tmp25;
-            let tmp27: T = &p_1 * &tmp24;
-            let tmp28: T = u1_1 + &tmp27;
-            let tmp31: T = &nu_t_01 * &rho1;
-            let tmp32: T = U1_01 + &tmp31;
-            let tmp34: T = &p_0 * &tmp33;
-            let tmp35: T = u2_0 - &tmp34;
-            let tmp36: T = &p_1 * &tmp33;
-            let tmp37: T = u2_1 - &tmp36;
-            let tmp40: T = &nu_t_01 * &rho2;
-            let tmp41: T = U2_01 + &tmp40;
-            post[0].spin[0][l] = tmp32;
-            post[0].velocity[0][l] = tmp26;
-            post[0].velocity[1][l] = tmp28;
-            post[1].spin[0][l] = tmp41;
-            post[1].velocity[0][l] = tmp35;
-            post[1].velocity[1][l] = tmp37;
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.states[0].spin[0][l];
+                let U2_01: &T = &block.states[1].spin[0][l];
+                let nu_0: &T = &block.nu[0][l];
+                let nu_1: &T = &block.nu[1][l];
+                let u1_0: &T = &block.states[0].velocity[0][l];
+                let u1_1: &T = &block.states[0].velocity[1][l];
+                let u2_0: &T = &block.states[1].velocity[0][l];
+                let u2_1: &T = &block.states[1].velocity[1][l];
+                let tmp0: T = U1_01 * radius1;
+                let tmp1: T = U2_01 * radius2;
+                let tmp2: T = &tmp0 + &tmp1;
+                let c_0: T = nu_1 * &tmp2;
+                let tmp3: T = nu_0 * &tmp2;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp4: T = nu_0 * &du_0;
+                let tmp5: T = nu_1 * &du_1;
+                let dn: T = &tmp4 + &tmp5;
+                let tmp6: T = nu_0 * &dn;
+                let tmp7: T = &du_0 - &tmp6;
+                let t_0: T = &tmp7 - &c_0;
+                let tmp8: T = nu_1 * &dn;
+                let tmp9: T = &du_1 - &tmp8;
+                let t_1: T = &tmp3 + &tmp9;
+                let p_n: T = &dn / &tmp10;
+                let tmp18: T = nu_0 * &p_n;
+                let tmp19: T = &t_0 * &p_t;
+                let p_0: T = &tmp18 + &tmp19;
+                let tmp20: T = nu_1 * &p_n;
+                let tmp21: T = &t_1 * &p_t;
+                let p_1: T = &tmp20 + &tmp21;
+                let tmp22: T = nu_1 * &t_0;
+                let tmp23: T = nu_0 * &t_1;
+                let nu_t_01: T = &tmp22 - &tmp23;
+                let tmp25: T = &p_0 * &tmp24;
+                let tmp26: T = u1_0 + &tmp25;
+                post[0].velocity[0][l] = tmp26;
+                let tmp27: T = &p_1 * &tmp24;
+                let tmp28: T = u1_1 + &tmp27;
+                post[0].velocity[1][l] = tmp28;
+                let tmp31: T = &nu_t_01 * &rho1;
+                let tmp32: T = U1_01 + &tmp31;
+                post[0].spin[0][l] = tmp32;
+                let tmp34: T = &p_0 * &tmp33;
+                let tmp35: T = u2_0 - &tmp34;
+                post[1].velocity[0][l] = tmp35;
+                let tmp36: T = &p_1 * &tmp33;
+                let tmp37: T = u2_1 - &tmp36;
+                post[1].velocity[1][l] = tmp37;
+                let tmp40: T = &nu_t_01 * &rho2;
+                let tmp41: T = U2_01 + &tmp40;
+                post[1].spin[0][l] = tmp41;
+            }
         }
     }
 }
@@ -363,7 +375,7 @@ where
 /// Ops per call, on the shared parameters: 1 add, 1 mul, 2 div, 0 neg (4 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
-pub fn fixed_shared<T: Scalar>(
+pub fn fixed_shared<T: Scalar, const W: usize>(
     radius1: &T,
     ball2: &Ball<T>,
     blocks: &[ContactLanes<T, 2, 1>],
@@ -372,6 +384,7 @@ pub fn fixed_shared<T: Scalar>(
 where
     for<'a> &'a T: RefArith<T>,
 {
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
     let gamma2_2: &T = &ball2.gamma2.clone();
     let radius1: &T = &radius1.clone();
     let radius2: &T = &ball2.radius.clone();
@@ -385,47 +398,49 @@ where
     for k in 0..blocks.len().min(out.len()) {
         prefetch(blocks.get(k + ahead));
         let (block, post) = (&blocks[k], &mut out[k]);
-        for l in 0..LANES {
-            let U1_01: &T = &block.states[0].spin[0][l];
-            let U2_01: &T = &block.states[1].spin[0][l];
-            let nu_0: &T = &block.nu[0][l];
-            let nu_1: &T = &block.nu[1][l];
-            let u1_0: &T = &block.states[0].velocity[0][l];
-            let u1_1: &T = &block.states[0].velocity[1][l];
-            let u2_0: &T = &block.states[1].velocity[0][l];
-            let u2_1: &T = &block.states[1].velocity[1][l];
-            let tmp0: T = U1_01 * radius1;
-            let tmp1: T = U2_01 * radius2;
-            let tmp2: T = &tmp0 + &tmp1;
-            let c_0: T = nu_1 * &tmp2;
-            let tmp3: T = nu_0 * &tmp2;
-            let du_0: T = u2_0 - u1_0;
-            let du_1: T = u2_1 - u1_1;
-            let tmp4: T = nu_0 * &du_0;
-            let tmp5: T = nu_1 * &du_1;
-            let dn: T = &tmp4 + &tmp5;
-            let tmp6: T = nu_0 * &dn;
-            let tmp7: T = &du_0 - &tmp6;
-            let t_0: T = &tmp7 - &c_0;
-            let tmp8: T = nu_1 * &dn;
-            let tmp9: T = &du_1 - &tmp8;
-            let t_1: T = &tmp3 + &tmp9;
-            let tmp10: T = &t_0 * &p_t;
-            let p_0: T = &tmp6 + &tmp10;
-            let tmp11: T = &t_1 * &p_t;
-            let p_1: T = &tmp8 + &tmp11;
-            let tmp12: T = nu_1 * &t_0;
-            let tmp13: T = nu_0 * &t_1;
-            let nu_t_01: T = &tmp12 - &tmp13;
-            let tmp14: T = &lit_2 * &p_0;
-            let tmp15: T = u2_0 - &tmp14;
-            let tmp16: T = &lit_2 * &p_1;
-            let tmp17: T = u2_1 - &tmp16;
-            let tmp19: T = &nu_t_01 * &rho2;
-            let tmp20: T = U2_01 + &tmp19;
-            post.spin[0][l] = tmp20;
-            post.velocity[0][l] = tmp15;
-            post.velocity[1][l] = tmp17;
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.states[0].spin[0][l];
+                let U2_01: &T = &block.states[1].spin[0][l];
+                let nu_0: &T = &block.nu[0][l];
+                let nu_1: &T = &block.nu[1][l];
+                let u1_0: &T = &block.states[0].velocity[0][l];
+                let u1_1: &T = &block.states[0].velocity[1][l];
+                let u2_0: &T = &block.states[1].velocity[0][l];
+                let u2_1: &T = &block.states[1].velocity[1][l];
+                let tmp0: T = U1_01 * radius1;
+                let tmp1: T = U2_01 * radius2;
+                let tmp2: T = &tmp0 + &tmp1;
+                let c_0: T = nu_1 * &tmp2;
+                let tmp3: T = nu_0 * &tmp2;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp4: T = nu_0 * &du_0;
+                let tmp5: T = nu_1 * &du_1;
+                let dn: T = &tmp4 + &tmp5;
+                let tmp6: T = nu_0 * &dn;
+                let tmp7: T = &du_0 - &tmp6;
+                let t_0: T = &tmp7 - &c_0;
+                let tmp8: T = nu_1 * &dn;
+                let tmp9: T = &du_1 - &tmp8;
+                let t_1: T = &tmp3 + &tmp9;
+                let tmp10: T = &t_0 * &p_t;
+                let p_0: T = &tmp6 + &tmp10;
+                let tmp11: T = &t_1 * &p_t;
+                let p_1: T = &tmp8 + &tmp11;
+                let tmp12: T = nu_1 * &t_0;
+                let tmp13: T = nu_0 * &t_1;
+                let nu_t_01: T = &tmp12 - &tmp13;
+                let tmp14: T = &lit_2 * &p_0;
+                let tmp15: T = u2_0 - &tmp14;
+                post.velocity[0][l] = tmp15;
+                let tmp16: T = &lit_2 * &p_1;
+                let tmp17: T = u2_1 - &tmp16;
+                post.velocity[1][l] = tmp17;
+                let tmp19: T = &nu_t_01 * &rho2;
+                let tmp20: T = U2_01 + &tmp19;
+                post.spin[0][l] = tmp20;
+            }
         }
     }
 }

@@ -41,5 +41,29 @@ def table(where, variants):
         print("| " + " | ".join(row) + " |")
 
 
-table("in", ["batch_baseline", "batch_avx2", "batch_avx512"])
+def threads():
+    print("\nl2 (median ns per collision, one thread and two)\n")
+    print("| n | serial | rayon | rayon / serial |")
+    print("|---:|---:|---:|---:|")
+    for n in range(2, 7):
+        g = f"batch_l2_d{n}"
+        serial, rayon = ns(g, "batch_serial"), ns(g, "batch_rayon")
+        ratio = rayon / serial if serial and rayon else None
+        print(f"| {n} | {fmt(serial)} | {fmt(rayon)} | {fmt(ratio)} |")
+
+
+table(
+    "in",
+    [
+        "batch_baseline",
+        "batch_baseline_w2",
+        "batch_baseline_w8",
+        "scalar_lanes",
+        "batch_avx2",
+        "batch_avx2_w8",
+        "batch_avx512",
+        "batch_rayon",
+    ],
+)
+threads()
 table("out", ["batch_baseline", "batch_avx2", "batch_avx512", "batch_rayon", "floor_rayon"])

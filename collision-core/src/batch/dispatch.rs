@@ -72,11 +72,27 @@ impl fmt::Display for Isa {
 /// vectorizer needs (through a struct field that knowledge is lost and the lane loop stays
 /// scalar).
 pub(crate) trait Job<B, O> {
-    fn run(&self, blocks: &[B], out: &mut [O]);
+    /// The block kernel on `blocks`, `W` lanes at a time.
+    fn run<const W: usize>(&self, blocks: &[B], out: &mut [O]);
 }
 
+/// Lanes per step at the baseline level: 1 (LLVM may still vectorize across the lanes). On
+/// SSE2 width 1 measured within noise of width 8 for n = 3..5, slower at n = 2 and 1.7x
+/// faster at n = 6, where 2 and 8 spill; docs/batch.md has the figures.
+pub const BASELINE_WIDTH: usize = 1;
+
+/// Lanes per step at AVX2: 4, one `f64` register per value (with 8, every value took two
+/// of the 16 registers and n = 5, 6 spilled).
+pub const AVX2_WIDTH: usize = 4;
+
+/// Lanes per step at AVX-512: 8, one `f64` register (of 32) per value.
+pub const AVX512_WIDTH: usize = 8;
+
 /// Run `job` on `blocks` and `out`, compiled for `isa` when this CPU has it, else for the
-/// baseline.
+/// baseline, at the level's width. Every level runs in a function of its own that takes the
+/// blocks and the output as arguments (so they are known not to alias; the baseline was
+/// once inlined into its caller, lost that knowledge and ran 1.4-1.8x slower than the
+/// scalar kernel).
 #[inline(always)]
 pub(crate) fn run_on<B, O>(isa: Isa, job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
     #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
@@ -86,13 +102,20 @@ pub(crate) fn run_on<B, O>(isa: Isa, job: &impl Job<B, O>, blocks: &[B], out: &m
         Isa::Avx512 if isa.is_available() => unsafe { x86::avx512(job, blocks, out) },
         // SAFETY: the CPU has AVX2 and FMA (as above).
         Isa::Avx2 if isa.is_available() => unsafe { x86::avx2(job, blocks, out) },
-        _ => job.run(blocks, out),
+        _ => baseline(job, blocks, out),
     }
     #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
     {
         let _ = isa;
-        job.run(blocks, out)
+        baseline(job, blocks, out)
     }
+}
+
+/// The baseline level: the default target (x86-64: SSE2), [`BASELINE_WIDTH`] lanes at a
+/// time.
+#[inline(never)]
+fn baseline<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
+    job.run::<BASELINE_WIDTH>(blocks, out)
 }
 
 #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
@@ -103,13 +126,13 @@ mod x86 {
     /// The CPU must support AVX2 and FMA.
     #[target_feature(enable = "avx2,fma")]
     pub(super) unsafe fn avx2<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
-        job.run(blocks, out)
+        job.run::<{ super::AVX2_WIDTH }>(blocks, out)
     }
 
     /// # Safety
     /// The CPU must support AVX-512F, AVX2 and FMA.
     #[target_feature(enable = "avx512f,avx2,fma")]
     pub(super) unsafe fn avx512<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
-        job.run(blocks, out)
+        job.run::<{ super::AVX512_WIDTH }>(blocks, out)
     }
 }

@@ -31,9 +31,17 @@ impl std::error::Error for BatchError {}
 /// Batches at least this long run on rayon's thread pool (feature `parallel`).
 pub const PARALLEL_FROM: usize = 1 << 15;
 
-/// Blocks per rayon task: 1024 contacts, 64 kB to 0.8 MB of input and output.
+/// The most blocks per rayon task: 1024 contacts, 64 kB to 0.8 MB of input and output.
 #[cfg(feature = "parallel")]
 const CHUNK_BLOCKS: usize = 128;
+
+/// Blocks per rayon task for `blocks` blocks on `threads` threads: an equal share per
+/// thread (so that a short batch is split once per thread, not left on one), at most
+/// [`CHUNK_BLOCKS`] (so that a long one balances the load between threads).
+#[cfg(feature = "parallel")]
+fn chunk_blocks(blocks: usize, threads: usize) -> usize {
+    blocks.div_ceil(threads.max(1)).clamp(1, CHUNK_BLOCKS)
+}
 
 /// How batches run: the instruction set and, with the `parallel` feature, from which
 /// length on they are split across rayon's thread pool. Every setting gives the same
@@ -163,9 +171,10 @@ impl Exec {
         {
             use rayon::prelude::*;
             let isa = self.isa;
+            let chunk = chunk_blocks(blocks.len(), rayon::current_num_threads());
             blocks
-                .par_chunks(CHUNK_BLOCKS)
-                .zip(out.par_chunks_mut(CHUNK_BLOCKS))
+                .par_chunks(chunk)
+                .zip(out.par_chunks_mut(chunk))
                 .for_each(|(b, o)| run_on(isa, job, b, o));
             return;
         }
@@ -193,8 +202,12 @@ where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(&self, blocks: &[FreeLanes<T, N, S>], out: &mut [[StateLanes<T, N, S>; 2]]) {
-        Generated::free_blocks(blocks, out)
+    fn run<const W: usize>(
+        &self,
+        blocks: &[FreeLanes<T, N, S>],
+        out: &mut [[StateLanes<T, N, S>; 2]],
+    ) {
+        Generated::free_blocks::<W>(blocks, out)
     }
 }
 
@@ -205,8 +218,8 @@ where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(&self, blocks: &[FixedLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]) {
-        Generated::fixed_blocks(blocks, out)
+    fn run<const W: usize>(&self, blocks: &[FixedLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]) {
+        Generated::fixed_blocks::<W>(blocks, out)
     }
 }
 
@@ -220,8 +233,12 @@ where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(&self, blocks: &[ContactLanes<T, N, S>], out: &mut [[StateLanes<T, N, S>; 2]]) {
-        Generated::free_shared_blocks(self.balls, blocks, out)
+    fn run<const W: usize>(
+        &self,
+        blocks: &[ContactLanes<T, N, S>],
+        out: &mut [[StateLanes<T, N, S>; 2]],
+    ) {
+        Generated::free_shared_blocks::<W>(self.balls, blocks, out)
     }
 }
 
@@ -236,7 +253,11 @@ where
     Generated: BatchKernel<T, N, S>,
 {
     #[inline(always)]
-    fn run(&self, blocks: &[ContactLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]) {
-        Generated::fixed_shared_blocks(self.radius1, self.ball2, blocks, out)
+    fn run<const W: usize>(
+        &self,
+        blocks: &[ContactLanes<T, N, S>],
+        out: &mut [StateLanes<T, N, S>],
+    ) {
+        Generated::fixed_shared_blocks::<W>(self.radius1, self.ball2, blocks, out)
     }
 }

@@ -23,52 +23,60 @@ macro_rules! generated {
             for<'a> &'a T: RefArith<T>,
         {
             #[inline(always)]
-            fn free_blocks(blocks: &[FreeLanes<T, $n, $s>], out: &mut [[StateLanes<T, $n, $s>; 2]]) {
-                $module::free(blocks, out)
+            fn free_blocks<const W: usize>(blocks: &[FreeLanes<T, $n, $s>], out: &mut [[StateLanes<T, $n, $s>; 2]]) {
+                $module::free::<T, W>(blocks, out)
             }
 
             #[inline(always)]
-            fn fixed_blocks(blocks: &[FixedLanes<T, $n, $s>], out: &mut [StateLanes<T, $n, $s>]) {
-                $module::fixed(blocks, out)
+            fn fixed_blocks<const W: usize>(blocks: &[FixedLanes<T, $n, $s>], out: &mut [StateLanes<T, $n, $s>]) {
+                $module::fixed::<T, W>(blocks, out)
             }
 
             #[inline(always)]
-            fn free_shared_blocks(
+            fn free_shared_blocks<const W: usize>(
                 balls: [&Ball<T>; 2],
                 blocks: &[ContactLanes<T, $n, $s>],
                 out: &mut [[StateLanes<T, $n, $s>; 2]],
             ) {
-                $module::free_shared(balls[0], balls[1], blocks, out)
+                $module::free_shared::<T, W>(balls[0], balls[1], blocks, out)
             }
 
             #[inline(always)]
-            fn fixed_shared_blocks(
+            fn fixed_shared_blocks<const W: usize>(
                 radius1: &T,
                 ball2: &Ball<T>,
                 blocks: &[ContactLanes<T, $n, $s>],
                 out: &mut [StateLanes<T, $n, $s>],
             ) {
-                $module::fixed_shared(radius1, ball2, blocks, out)
+                $module::fixed_shared::<T, W>(radius1, ball2, blocks, out)
             }
         }
     )*};
 }
 
 /// The generated batch kernels of one dimension `N` (`S = N(N-1)/2`), for generic code.
-/// Each processes `min(blocks.len(), out.len())` blocks.
+/// Each processes `min(blocks.len(), out.len())` blocks, `W` lanes at a time (`W` divides
+/// `LANES`; the register width in `f64` of the instruction set it is compiled for, or 1 for
+/// lane-by-lane scalar code). Every `W` gives the same results, bit for bit.
 pub trait BatchKernel<T, const N: usize, const S: usize> {
     /// Both bodies free, parameters per contact: `out[k]` = `[body 1+, body 2+]` lanes.
-    fn free_blocks(blocks: &[FreeLanes<T, N, S>], out: &mut [[StateLanes<T, N, S>; 2]]);
+    fn free_blocks<const W: usize>(
+        blocks: &[FreeLanes<T, N, S>],
+        out: &mut [[StateLanes<T, N, S>; 2]],
+    );
     /// Body 1 immovable, parameters per contact: `out[k]` = body 2+ lanes.
-    fn fixed_blocks(blocks: &[FixedLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]);
+    fn fixed_blocks<const W: usize>(
+        blocks: &[FixedLanes<T, N, S>],
+        out: &mut [StateLanes<T, N, S>],
+    );
     /// Both bodies free, one pair of balls for every contact.
-    fn free_shared_blocks(
+    fn free_shared_blocks<const W: usize>(
         balls: [&Ball<T>; 2],
         blocks: &[ContactLanes<T, N, S>],
         out: &mut [[StateLanes<T, N, S>; 2]],
     );
     /// Body 1 immovable, one `radius1` and `ball2` for every contact.
-    fn fixed_shared_blocks(
+    fn fixed_shared_blocks<const W: usize>(
         radius1: &T,
         ball2: &Ball<T>,
         blocks: &[ContactLanes<T, N, S>],

@@ -49,10 +49,12 @@ fn splat<T: Clone, const K: usize>(x: &[T; K]) -> [Lanes<T>; K] {
     std::array::from_fn(|k| std::array::from_fn(|_| x[k].clone()))
 }
 
+#[inline(always)]
 fn lane_of<T: Clone, const K: usize>(x: &[Lanes<T>; K], l: Lane) -> [T; K] {
     std::array::from_fn(|k| x[k][l.0].clone())
 }
 
+#[inline(always)]
 fn set_lane_of<T, const K: usize>(x: &mut [Lanes<T>; K], l: Lane, item: [T; K]) {
     for (lanes, v) in x.iter_mut().zip(item) {
         lanes[l.0] = v;
@@ -64,9 +66,11 @@ impl<B: Lanewise, const K: usize> Lanewise for [B; K] {
     fn splat(item: &Self::Item) -> Self {
         std::array::from_fn(|k| B::splat(&item[k]))
     }
+    #[inline(always)]
     fn lane(&self, l: Lane) -> Self::Item {
         std::array::from_fn(|k| self[k].lane(l))
     }
+    #[inline(always)]
     fn set_lane(&mut self, l: Lane, item: Self::Item) {
         for (b, v) in self.iter_mut().zip(item) {
             b.set_lane(l, v);
@@ -96,6 +100,7 @@ impl<T: Clone> Lanewise for BallLanes<T> {
             gamma2,
         }
     }
+    #[inline(always)]
     fn lane(&self, l: Lane) -> Ball<T> {
         Ball {
             inv_mass: self.inv_mass[l.0].clone(),
@@ -103,6 +108,7 @@ impl<T: Clone> Lanewise for BallLanes<T> {
             gamma2: self.gamma2[l.0].clone(),
         }
     }
+    #[inline(always)]
     fn set_lane(&mut self, l: Lane, b: Ball<T>) {
         self.inv_mass[l.0] = b.inv_mass;
         self.radius[l.0] = b.radius;
@@ -127,12 +133,14 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for StateLanes<T, N, S> 
             velocity: splat(&s.velocity),
         }
     }
+    #[inline(always)]
     fn lane(&self, l: Lane) -> Self::Item {
         BodyState {
             spin: lane_of(&self.spin, l),
             velocity: lane_of(&self.velocity, l),
         }
     }
+    #[inline(always)]
     fn set_lane(&mut self, l: Lane, s: Self::Item) {
         set_lane_of(&mut self.spin, l, s.spin);
         set_lane_of(&mut self.velocity, l, s.velocity);
@@ -166,12 +174,14 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for ContactLanes<T, N, S
             states: Lanewise::splat(&c.states),
         }
     }
+    #[inline(always)]
     fn lane(&self, l: Lane) -> Self::Item {
         Contact {
             nu: lane_of(&self.nu, l),
             states: self.states.lane(l),
         }
     }
+    #[inline(always)]
     fn set_lane(&mut self, l: Lane, c: Self::Item) {
         set_lane_of(&mut self.nu, l, c.nu);
         self.states.set_lane(l, c.states);
@@ -196,9 +206,11 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for FreeLanes<T, N, S> {
             balls: Lanewise::splat(balls),
         }
     }
+    #[inline(always)]
     fn lane(&self, l: Lane) -> Self::Item {
         (self.contact.lane(l), self.balls.lane(l))
     }
+    #[inline(always)]
     fn set_lane(&mut self, l: Lane, (c, balls): Self::Item) {
         self.contact.set_lane(l, c);
         self.balls.set_lane(l, balls);
@@ -227,6 +239,7 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for FixedLanes<T, N, S> 
             ball2: BallLanes::splat(ball2),
         }
     }
+    #[inline(always)]
     fn lane(&self, l: Lane) -> Self::Item {
         (
             self.contact.lane(l),
@@ -234,6 +247,7 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for FixedLanes<T, N, S> 
             self.ball2.lane(l),
         )
     }
+    #[inline(always)]
     fn set_lane(&mut self, l: Lane, (c, radius1, ball2): Self::Item) {
         self.contact.set_lane(l, c);
         self.radius1[l.0] = radius1;

@@ -61,7 +61,7 @@ mod rows;
 mod tests;
 
 pub use container::Batch;
-pub use dispatch::Isa;
+pub use dispatch::{Isa, AVX2_WIDTH, AVX512_WIDTH, BASELINE_WIDTH};
 pub use exec::{BatchError, Exec, PARALLEL_FROM};
 pub use kernels::BatchKernel;
 pub use lanes::{

@@ -174,6 +174,76 @@ where
     }
 }
 
+/// The block kernels called directly at every lane width `W` (1, 2, 4, 8; on the default
+/// target) against the scalar kernels: `free` with per-contact parameters and
+/// `fixed_shared`, the two parameter modes.
+fn check_widths<T, const N: usize, const S: usize>(items: &[Item<T, N, S>])
+where
+    T: Scalar + Send + Sync,
+    for<'a> &'a T: RefArith<T>,
+    Generated: BatchKernel<T, N, S> + Kernel<T, N, S>,
+{
+    let Some((_, [s1, s2])) = items.first() else {
+        return;
+    };
+    let free_batch: FreeBatch<T, N, S> = items.iter().cloned().collect();
+    let contacts: ContactBatch<T, N, S> = items.iter().map(|(c, _)| c.clone()).collect();
+    let (mut pairs, mut states) = (PairBatch::new(), StateBatch::new());
+    // Sized (and filled) by the default exec, then overwritten at each width.
+    Exec::auto().serial().free(&free_batch, &mut pairs);
+    Exec::auto()
+        .serial()
+        .fixed_shared(&s1.radius, s2, &contacts, &mut states);
+    for w in [1, 2, 4, 8] {
+        let run_free = match w {
+            1 => <Generated as BatchKernel<T, N, S>>::free_blocks::<1>,
+            2 => <Generated as BatchKernel<T, N, S>>::free_blocks::<2>,
+            4 => <Generated as BatchKernel<T, N, S>>::free_blocks::<4>,
+            _ => <Generated as BatchKernel<T, N, S>>::free_blocks::<8>,
+        };
+        let run_fixed = match w {
+            1 => <Generated as BatchKernel<T, N, S>>::fixed_shared_blocks::<1>,
+            2 => <Generated as BatchKernel<T, N, S>>::fixed_shared_blocks::<2>,
+            4 => <Generated as BatchKernel<T, N, S>>::fixed_shared_blocks::<4>,
+            _ => <Generated as BatchKernel<T, N, S>>::fixed_shared_blocks::<8>,
+        };
+        // Outputs cleared to zeros first, so that a lane the width skipped would show.
+        for block in pairs.blocks_mut() {
+            *block = Lanewise::splat(&[BodyState::zero(), BodyState::zero()]);
+        }
+        for block in states.blocks_mut() {
+            *block = StateLanes::splat(&BodyState::zero());
+        }
+        run_free(free_batch.blocks(), pairs.blocks_mut());
+        run_fixed(&s1.radius, s2, contacts.blocks(), states.blocks_mut());
+        for (k, ((c, [b1, b2]), (got, got_fixed))) in items
+            .iter()
+            .zip(pairs.iter().zip(states.iter()))
+            .enumerate()
+        {
+            let want =
+                <Generated as Kernel<T, N, S>>::free(&c.nu, b1, b2, &c.states[0], &c.states[1]);
+            assert!(
+                same_state(&got[0], &want[0]) && same_state(&got[1], &want[1]),
+                "{} n = {N}, free, W = {w}, contact {k}",
+                T::NAME
+            );
+            let want = <Generated as Kernel<T, N, S>>::fixed(
+                &c.nu,
+                &s1.radius,
+                s2,
+                &c.states[0],
+                &c.states[1],
+            );
+            assert!(
+                same_state(&got_fixed, &want),
+                "{} n = {N}, fixed_shared, W = {w}, contact {k}",
+                T::NAME
+            );
+        }
+    }
+}
+
 /// An empty batch gives empty outputs (and an output that held results is emptied).
 fn check_empty<T, const N: usize, const S: usize>(
     free_batch: &FreeBatch<T, N, S>,
@@ -217,6 +287,12 @@ macro_rules! per_dim {
                 for (i, len) in LENGTHS.into_iter().enumerate() {
                     check::<f32, $n, $s>(&sample(0xf32 ^ (100 * $n + i as u64), len, float));
                 }
+            }
+
+            #[test]
+            fn every_lane_width_bit_for_bit() {
+                check_widths::<f64, $n, $s>(&sample(0x3d ^ $n, 37, float));
+                check_widths::<f32, $n, $s>(&sample(0x3e ^ $n, 37, float));
             }
 
             #[test]

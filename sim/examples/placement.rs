@@ -1,0 +1,75 @@
+//! Seconds to place `N` balls against `N`: `cargo run --release -p noslip-sim --example
+//! placement -- [MAX_N]` times `setup()` (the range checks and the placement of
+//! `noslip_sim::setup`) for disks (2D) and spheres (3D) of radius 1/2 in a periodic cube
+//! sized for packing fractions 0.1 to 0.4, random and lattice placement, `N` from `10^4` up
+//! to `MAX_N` (default `10^6`) by factors of 10, and prints one line per run: dimension,
+//! placement, fraction, `N`, seconds of wall clock, microseconds per ball. Random placement
+//! is skipped beyond random sequential saturation (`noslip_sim::setup::saturation`: 0.54 in
+//! 2D, 0.39 in 3D), where it would spend its whole attempt budget (`AVERAGE_ATTEMPTS` per
+//! ball) before refusing; an error prints its start instead of a time.
+
+use noslip_scene::Scene;
+use noslip_sim::setup::{saturation, setup};
+use std::time::Instant;
+
+/// The scene text: `count` balls of radius 1/2 at `fraction` of a periodic cube in `dim`
+/// dimensions (side `(count V_n / 2^n / fraction)^(1/n)`, written with 12 decimals).
+fn scene(dim: usize, count: usize, fraction: f64, placement: &str) -> String {
+    let ball = match dim {
+        2 => std::f64::consts::PI / 4.0,
+        _ => std::f64::consts::PI / 6.0,
+    };
+    let side = (count as f64 * ball / fraction).powf(1.0 / dim as f64);
+    let axes = vec![format!("\"{side:.12}\""); dim].join(", ");
+    let periodic = vec!["\"periodic\""; dim].join(", ");
+    format!(
+        "dim = {dim}\n[box]\nsize = [{axes}]\nboundary = [{periodic}]\n\
+         [[species]]\nmass = 1\nradius = \"1/2\"\ncount = {count}\n\
+         [random]\nseed = 1\nplacement = \"{placement}\"\n"
+    )
+}
+
+fn time<const N: usize, const S: usize>(text: &str) -> Result<f64, String> {
+    let scene = Scene::from_toml(text, "placement").map_err(|e| e.to_string())?;
+    let start = Instant::now();
+    let placed = setup::<N, S>(&scene)?;
+    let seconds = start.elapsed().as_secs_f64();
+    assert_eq!(placed.bodies.len(), scene.ball_count());
+    Ok(seconds)
+}
+
+fn main() {
+    let max: usize = std::env::args()
+        .nth(1)
+        .map_or(1_000_000, |s| s.parse().expect("MAX_N: a whole number"));
+    println!("dim placement fraction N seconds us/ball");
+    for dim in [2, 3] {
+        for placement in ["random", "lattice"] {
+            for fraction in [0.1, 0.2, 0.3, 0.4] {
+                if placement == "random" && fraction > saturation(dim) {
+                    println!("{dim} {placement} {fraction} - beyond saturation");
+                    continue;
+                }
+                let mut count = 10_000;
+                while count <= max {
+                    let text = scene(dim, count, fraction, placement);
+                    let result = match dim {
+                        2 => time::<2, 1>(&text),
+                        _ => time::<3, 3>(&text),
+                    };
+                    match result {
+                        Ok(s) => println!(
+                            "{dim} {placement} {fraction} {count} {s:.3} {:.2}",
+                            s * 1e6 / count as f64
+                        ),
+                        Err(e) => {
+                            let short: String = e.chars().take(90).collect();
+                            println!("{dim} {placement} {fraction} {count} - {short}");
+                        }
+                    }
+                    count *= 10;
+                }
+            }
+        }
+    }
+}
