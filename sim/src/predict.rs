@@ -8,14 +8,7 @@
 /// rounding (`c < 0`) while approaching collides at once (`t = 0`).
 #[inline]
 pub fn contact_time<const N: usize>(d: &[f64; N], dv: &[f64; N], sigma: f64) -> Option<f64> {
-    let mut a = 0.0;
-    let mut b = 0.0;
-    let mut dd = 0.0;
-    for k in 0..N {
-        a += dv[k] * dv[k];
-        b += d[k] * dv[k];
-        dd += d[k] * d[k];
-    }
+    let (a, b, dd) = dots(d, dv);
     if b >= 0.0 {
         return None;
     }
@@ -35,14 +28,7 @@ pub fn contact_time<const N: usize>(d: &[f64; N], dv: &[f64; N], sigma: f64) -> 
 /// pairs keeps the least without the branch mispredictions of the early returns).
 #[inline]
 pub fn contact_time_or_nan<const N: usize>(d: &[f64; N], dv: &[f64; N], sigma: f64) -> f64 {
-    let mut a = 0.0;
-    let mut b = 0.0;
-    let mut dd = 0.0;
-    for k in 0..N {
-        a += dv[k] * dv[k];
-        b += d[k] * dv[k];
-        dd += d[k] * d[k];
-    }
+    let (a, b, dd) = dots(d, dv);
     let c = dd - sigma * sigma;
     let disc = b * b - a * c;
     // With c <= 0, disc >= b^2 >= 0: a negative disc means c > 0.
@@ -56,6 +42,19 @@ pub fn contact_time_or_nan<const N: usize>(d: &[f64; N], dv: &[f64; N], sigma: f
     } else {
         f64::NAN
     }
+}
+
+/// `(|dv|^2, d . dv, |d|^2)`, each summed over `k = 0, 1, ...` in that order (both contact
+/// times take them from here, so they round alike).
+#[inline(always)]
+fn dots<const N: usize>(d: &[f64; N], dv: &[f64; N]) -> (f64, f64, f64) {
+    let (mut a, mut b, mut dd) = (0.0, 0.0, 0.0);
+    for k in 0..N {
+        a += dv[k] * dv[k];
+        b += d[k] * dv[k];
+        dd += d[k] * d[k];
+    }
+    (a, b, dd)
 }
 
 /// The time at which a coordinate `x` moving with speed `v` reaches `lo` (moving down) or
