@@ -2,22 +2,16 @@
 //! naming the place).
 
 mod support;
-use support::{noslip, temp};
+use support::{noslip, run_ok, temp};
 
 #[test]
 fn sinai_spectrum_is_printed_and_published() {
     let dir = temp("lyapunov-sinai");
-    let out = noslip()
-        .args(["lyapunov", "scenes/sinai.toml", "--events", "5000", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = run_ok(
+        noslip()
+            .args(["lyapunov", "scenes/sinai.toml", "--events", "5000", "--out"])
+            .arg(&dir),
     );
-    let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
         stdout.starts_with("scenes/sinai.toml: 5 exponents by qr (the scene's kinds of contacts)"),
         "{stdout}"
@@ -50,25 +44,19 @@ fn sinai_spectrum_is_printed_and_published() {
 #[test]
 fn two_trajectory_and_smooth_run() {
     let dir = temp("lyapunov-two");
-    let out = noslip()
-        .args([
-            "lyapunov",
-            "scenes/sinai.toml",
-            "--events",
-            "500",
-            "--method",
-            "two-trajectory",
-        ])
-        .args(["--contact", "smooth", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = run_ok(
+        noslip()
+            .args([
+                "lyapunov",
+                "scenes/sinai.toml",
+                "--events",
+                "500",
+                "--method",
+                "two-trajectory",
+            ])
+            .args(["--contact", "smooth", "--out"])
+            .arg(&dir),
     );
-    let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
         stdout.contains("1 exponent by two-trajectory (all smooth contacts)"),
         "{stdout}"

@@ -2,23 +2,17 @@
 //! exactly, a grid search, and bad input (exit 2, one line naming the place).
 
 mod support;
-use support::{noslip, temp};
+use support::{noslip, run_ok, temp};
 
 #[test]
 fn bouncing_orbit_is_found_and_its_polynomial_is_exact() {
     let dir = temp("orbits-walls");
-    let out = noslip()
-        .args(["orbits", "scenes/disk_between_walls.toml", "--period", "2"])
-        .args(["--from", "1,1/2,0,1,0", "--from", "1,0.5,0,1,0", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = run_ok(
+        noslip()
+            .args(["orbits", "scenes/disk_between_walls.toml", "--period", "2"])
+            .args(["--from", "1,1/2,0,1,0", "--from", "1,0.5,0,1,0", "--out"])
+            .arg(&dir),
     );
-    let stdout = String::from_utf8(out.stdout).unwrap();
     // The two starts are the same orbit: merged.
     assert!(stdout.starts_with("scenes/disk_between_walls.toml: period 2, 2 starts, 1 orbit (0 starts did not converge)"), "{stdout}");
     assert!(
@@ -36,25 +30,19 @@ fn bouncing_orbit_is_found_and_its_polynomial_is_exact() {
 #[test]
 fn a_grid_search_on_the_sinai_table_finds_elliptic_orbits() {
     let dir = temp("orbits-sinai");
-    let out = noslip()
-        .args([
-            "orbits",
-            "scenes/sinai.toml",
-            "--period",
-            "2",
-            "--grid",
-            "3",
-            "--out",
-        ])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = run_ok(
+        noslip()
+            .args([
+                "orbits",
+                "scenes/sinai.toml",
+                "--period",
+                "2",
+                "--grid",
+                "3",
+                "--out",
+            ])
+            .arg(&dir),
     );
-    let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
         stdout.starts_with("scenes/sinai.toml: period 2, 27 starts"),
         "{stdout}"

@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::process::Command;
 mod support;
-use support::noslip;
+use support::{noslip, run_ok};
 
 #[test]
 fn a_bad_scene_exits_2_with_one_line() {
@@ -31,26 +31,20 @@ fn sinai_runs_and_writes_its_pictures() {
     let dir = std::env::temp_dir().join(format!("noslip-sinai-{}", std::process::id()));
     let log = dir.join("events.jsonl");
     std::fs::create_dir_all(&dir).unwrap();
-    let out = noslip()
-        .args([
-            "simulate",
-            "scenes/sinai.toml",
-            "--events",
-            "300",
-            "--quiet",
-            "--out",
-        ])
-        .arg(&dir)
-        .arg("--log")
-        .arg(&log)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = run_ok(
+        noslip()
+            .args([
+                "simulate",
+                "scenes/sinai.toml",
+                "--events",
+                "300",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&dir)
+            .arg("--log")
+            .arg(&log),
     );
-    let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(
         stdout.starts_with(
             "300 contacts (0 ball-ball, 0 ball-wall, 300 ball-obstacle, 0 ball-boundary)"
@@ -484,22 +478,17 @@ fn time_and_events_flags_are_checked_like_the_scene() {
 fn sinai_trajectories_stay_small_at_many_events() {
     // 10^5 contacts used to write 9.2 MB of 81 000 polylines, most with one point.
     let dir = scratch("sinai-size");
-    let out = noslip()
-        .args([
-            "simulate",
-            "scenes/sinai.toml",
-            "--events",
-            "200000",
-            "--quiet",
-            "--out",
-        ])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        noslip()
+            .args([
+                "simulate",
+                "scenes/sinai.toml",
+                "--events",
+                "200000",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&dir),
     );
     let svg = std::fs::read_to_string(dir.join("trajectories.svg")).unwrap();
     assert!(
@@ -520,24 +509,19 @@ fn the_log_may_go_into_the_output_directory_not_yet_made() {
     let dir = scratch("log-dir");
     let out_dir = dir.join("run");
     let log = out_dir.join("events.jsonl");
-    let out = noslip()
-        .args([
-            "simulate",
-            "scenes/sinai.toml",
-            "--events",
-            "50",
-            "--quiet",
-            "--out",
-        ])
-        .arg(&out_dir)
-        .arg("--log")
-        .arg(&log)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        noslip()
+            .args([
+                "simulate",
+                "scenes/sinai.toml",
+                "--events",
+                "50",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&out_dir)
+            .arg("--log")
+            .arg(&log),
     );
     assert_eq!(std::fs::read_to_string(&log).unwrap().lines().count(), 50);
     let mut names: Vec<String> = std::fs::read_dir(&out_dir)
