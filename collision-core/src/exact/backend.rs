@@ -51,6 +51,33 @@ fn ibig(digits: &str) -> Option<IBig> {
     digits.strip_prefix('+').unwrap_or(digits).parse().ok()
 }
 
+/// `add`, `sub`, `mul`, `div` and `neg` of a [`Backend`] by the type's own operators on
+/// references (every representation here has them).
+macro_rules! by_operators {
+    () => {
+        #[inline]
+        fn add(a: &Self, b: &Self) -> Self {
+            a + b
+        }
+        #[inline]
+        fn sub(a: &Self, b: &Self) -> Self {
+            a - b
+        }
+        #[inline]
+        fn mul(a: &Self, b: &Self) -> Self {
+            a * b
+        }
+        #[inline]
+        fn div(a: &Self, b: &Self) -> Self {
+            a / b
+        }
+        #[inline]
+        fn neg(a: &Self) -> Self {
+            -a
+        }
+    };
+}
+
 impl Backend for RBig {
     fn from_ratio(num: i64, den: i64) -> Self {
         RBig::from_parts_signed(IBig::from(num), IBig::from(den))
@@ -62,26 +89,7 @@ impl Backend for RBig {
     fn from_f64(x: f64) -> Option<Self> {
         RBig::try_from(x).ok()
     }
-    #[inline]
-    fn add(a: &Self, b: &Self) -> Self {
-        a + b
-    }
-    #[inline]
-    fn sub(a: &Self, b: &Self) -> Self {
-        a - b
-    }
-    #[inline]
-    fn mul(a: &Self, b: &Self) -> Self {
-        a * b
-    }
-    #[inline]
-    fn div(a: &Self, b: &Self) -> Self {
-        a / b
-    }
-    #[inline]
-    fn neg(a: &Self) -> Self {
-        -a
-    }
+    by_operators!();
     fn trunc(a: &Self) -> Self {
         RBig::from(a.trunc())
     }
@@ -116,26 +124,7 @@ impl Backend for Relaxed {
     fn from_f64(x: f64) -> Option<Self> {
         RBig::try_from(x).ok().map(RBig::relax)
     }
-    #[inline]
-    fn add(a: &Self, b: &Self) -> Self {
-        a + b
-    }
-    #[inline]
-    fn sub(a: &Self, b: &Self) -> Self {
-        a - b
-    }
-    #[inline]
-    fn mul(a: &Self, b: &Self) -> Self {
-        a * b
-    }
-    #[inline]
-    fn div(a: &Self, b: &Self) -> Self {
-        a / b
-    }
-    #[inline]
-    fn neg(a: &Self) -> Self {
-        -a
-    }
+    by_operators!();
     fn trunc(a: &Self) -> Self {
         RBig::from(a.trunc()).relax()
     }
@@ -167,26 +156,7 @@ impl Backend for num_rational::BigRational {
     fn from_f64(x: f64) -> Option<Self> {
         Self::from_float(x)
     }
-    #[inline]
-    fn add(a: &Self, b: &Self) -> Self {
-        a + b
-    }
-    #[inline]
-    fn sub(a: &Self, b: &Self) -> Self {
-        a - b
-    }
-    #[inline]
-    fn mul(a: &Self, b: &Self) -> Self {
-        a * b
-    }
-    #[inline]
-    fn div(a: &Self, b: &Self) -> Self {
-        a / b
-    }
-    #[inline]
-    fn neg(a: &Self) -> Self {
-        -a
-    }
+    by_operators!();
     fn trunc(a: &Self) -> Self {
         a.trunc()
     }
