@@ -27,7 +27,10 @@
 //! state's, written at each contact. Contact times in the scan are taken without branches
 //! (`predict::contact_time_or_nan`, the same bits as `contact_time`). The calendar's lists,
 //! the cells' lists and the scan reuse their memory: nothing is allocated per event once they
-//! have grown. The neighbourhood is scanned in full at every prediction (a crossing too), so
+//! have grown. When the cell list outgrows the caches ([`PREFETCH_FROM`] cells), a prediction
+//! first prefetches the neighbour cells' list headers, then their first records, so that the
+//! cache misses of the `3^n` cells overlap instead of following one another; the scan itself
+//! is the same. The neighbourhood is scanned in full at every prediction (a crossing too), so
 //! every contact time is computed from the same state as before these changes and the event
 //! log is the same, bit for bit.
 //!
@@ -181,6 +184,12 @@ pub enum Step<const N: usize, const S: usize> {
     },
 }
 
+/// The number of cells from which a prediction prefetches its neighbour cells' lists: a
+/// list header and a record per occupied cell, about 2 MiB of cell list from here, more than
+/// a core's L2 cache. Below it the lists are cached and the extra passes cost more than they
+/// save (docs/benchmarks.md, "The event loop").
+const PREFETCH_FROM: usize = 1 << 16;
+
 /// The local clock is re-based when the fastest ball could have moved this many widths of
 /// the narrowest cell on it (module docs).
 const CLOCK_CELLS: f64 = 16.0;
@@ -270,6 +279,9 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
     orientation: Option<Vec<Matrix<N>>>,
     unturned: Vec<f64>,
+    /// Whether a prediction prefetches its neighbour cells' lists: a cell list larger than
+    /// the caches ([`PREFETCH_FROM`]).
+    prefetch: bool,
     /// Per ball: the time of its pending event (`Calendar`) and what it is (`next`).
     queue: Calendar,
     next: Vec<What<N>>,
@@ -355,6 +367,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             fixed_members[grid.flat(&c)].push(o as u32);
         }
         let n = bodies.len();
+        let prefetch = grid.cells() >= PREFETCH_FROM;
         let w_min = grid.width.iter().copied().fold(f64::INFINITY, f64::min);
         let mut sim = Simulation {
             kernels,
@@ -372,6 +385,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
+            prefetch,
             queue: Calendar::new(n),
             next: vec![
                 What::Wall {
@@ -399,6 +413,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         sim.queue.rebuild(0.0);
         Ok(sim)
+    }
+
+    /// Sets whether predictions prefetch (a test of the prefetching scan on a small setup).
+    #[cfg(test)]
+    pub(crate) fn set_prefetch(&mut self, on: bool) {
+        self.prefetch = on;
     }
 
     /// The absolute time now.
@@ -575,6 +595,16 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         };
         let c = self.cell[i];
+        if self.prefetch {
+            // Start the loads of the neighbour cells' lists together, in two rounds (the
+            // headers, then the records they point to), instead of one after another as the
+            // scan meets them.
+            self.grid
+                .for_neighbours(&c, |nb| self.motion.prefetch_header(nb.cell));
+            self.grid
+                .for_neighbours(&c, |nb| self.motion.prefetch_list(nb.cell));
+        }
+        let obstacles = !self.obstacles.is_empty();
         self.grid.for_neighbours(&c, |nb| {
             for resident in self.motion.cell(nb.cell) {
                 let j = resident.ball as usize;
@@ -606,6 +636,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                         },
                     );
                 }
+            }
+            if !obstacles {
+                return;
             }
             for &o in &self.fixed_members[nb.cell] {
                 let b = self.obstacle_image(o as usize, &nb.shift);
