@@ -27,7 +27,7 @@
 //! state's, written at each contact. Contact times in the scan are taken without branches
 //! (`predict::contact_time_or_nan`, the same bits as `contact_time`). The calendar's lists,
 //! the cells' lists and the scan reuse their memory: nothing is allocated per event once they
-//! have grown. When the cell list outgrows the caches ([`PREFETCH_FROM`] cells), a prediction
+//! have grown. When the cell list outgrows the caches (`PREFETCH_FROM` cells, 2^16), a prediction
 //! first prefetches the neighbour cells' list headers, then their first records, so that the
 //! cache misses of the `3^n` cells overlap instead of following one another; the scan itself
 //! is the same. The neighbourhood is scanned in full at every prediction (a crossing too), so
