@@ -1,13 +1,15 @@
 //! Criterion benchmark of the batch kernels (`collision_core::batch`), `free` with per-contact
 //! parameters, n = 2..6, against the memory floor and the scalar kernel, side by side in one
-//! run. Two groups per n:
+//! run. Groups per n:
 //!
 //! - `batch_in_dN`: an in-cache batch of [`IN_CACHE`] contacts (at most 0.4 MB with its
 //!   output: within the 1 MB L2 of the machine in docs/batch.md);
 //! - `batch_out_dN`: an out-of-cache batch of about [`OUT_OF_CACHE_BYTES`] of input and
 //!   output (8 times the 32 MB L3);
 //! - with `--features parallel`, `batch_l2_dN`: `SHARED_L2` contacts, within the L2 caches of
-//!   two cores together, on one thread (`batch_serial`) and split on rayon (`batch_rayon`).
+//!   two cores together, and `batch_l3_dN`: `IN_L3_BYTES` of input and output, within a
+//!   quarter of the L3; each on one thread (`batch_serial`), split on rayon (`batch_rayon`)
+//!   and as `Exec::auto()` decides (`batch_auto`: split from `PARALLEL_FROM_BYTES` on).
 //!
 //! Variants, each over the same contacts, reading the same input bytes and writing the same
 //! output bytes:
@@ -54,6 +56,11 @@ const IN_CACHE: usize = 512;
 /// of input and output, within the two cores' L2 caches together.
 #[cfg(feature = "parallel")]
 const SHARED_L2: usize = 3072;
+
+/// Input plus output bytes of the batch split across threads within the L3: a quarter of the
+/// 32 MB L3 (about 52000 contacts at n = 2, 11000 at n = 6).
+#[cfg(feature = "parallel")]
+const IN_L3_BYTES: usize = 8 << 20;
 
 /// Input plus output bytes of the out-of-cache batch.
 const OUT_OF_CACHE_BYTES: usize = 256 << 20;
@@ -326,27 +333,13 @@ where
     bench_group(&mut group, &cases, false);
     group.finish();
 
-    // Threads on work that fits the two cores' L2 caches (1 MB each).
+    // Threads on work that fits the two cores' L2 caches (1 MB each), and on work that fits
+    // a quarter of the L3.
     #[cfg(feature = "parallel")]
     {
-        let cases = batch::<N, S>(SEED ^ (N as u64) << 4, SHARED_L2);
-        let batch = to_batch(&cases);
-        let mut out: PairBatch<f64, N, S> = PairBatch::new();
-        let mut group = c.benchmark_group(format!("batch_l2_d{N}"));
-        group
-            .warm_up_time(Duration::from_millis(500))
-            .measurement_time(Duration::from_millis(1500))
-            .sample_size(30)
-            .throughput(Throughput::Elements(SHARED_L2 as u64));
-        let serial = Exec::auto().serial();
-        group.bench_function("batch_serial", |b| {
-            b.iter(|| serial.free(black_box(&batch), &mut out))
-        });
-        let threads = Exec::auto().parallel_from(0);
-        group.bench_function("batch_rayon", |b| {
-            b.iter(|| threads.free(black_box(&batch), &mut out))
-        });
-        group.finish();
+        let in_l3 = (IN_L3_BYTES / bytes_per_contact(N, S)).next_multiple_of(LANES);
+        threads_group::<N, S>(c, "l2", SHARED_L2);
+        threads_group::<N, S>(c, "l3", in_l3);
     }
 
     let len = (OUT_OF_CACHE_BYTES / bytes_per_contact(N, S)).next_multiple_of(LANES);
@@ -357,6 +350,36 @@ where
         .measurement_time(Duration::from_secs(3))
         .sample_size(10);
     bench_group(&mut group, &cases, true);
+    group.finish();
+}
+
+/// Group `batch_{name}_dN`: `len` contacts on one thread and split on rayon.
+#[cfg(feature = "parallel")]
+fn threads_group<const N: usize, const S: usize>(c: &mut Criterion, name: &str, len: usize)
+where
+    Generated: Kernel<f64, N, S> + BatchKernel<f64, N, S>,
+{
+    let cases = batch::<N, S>(SEED ^ (N as u64) << 4 ^ len as u64, len);
+    let batch = to_batch(&cases);
+    let mut out: PairBatch<f64, N, S> = PairBatch::new();
+    let mut group = c.benchmark_group(format!("batch_{name}_d{N}"));
+    group
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_millis(1500))
+        .sample_size(30)
+        .throughput(Throughput::Elements(len as u64));
+    let serial = Exec::auto().serial();
+    group.bench_function("batch_serial", |b| {
+        b.iter(|| serial.free(black_box(&batch), &mut out))
+    });
+    let threads = Exec::auto().parallel_from(0);
+    group.bench_function("batch_rayon", |b| {
+        b.iter(|| threads.free(black_box(&batch), &mut out))
+    });
+    let auto = Exec::auto();
+    group.bench_function("batch_auto", |b| {
+        b.iter(|| auto.free(black_box(&batch), &mut out))
+    });
     group.finish();
 }
 

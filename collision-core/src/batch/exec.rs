@@ -28,8 +28,13 @@ impl fmt::Display for BatchError {
 
 impl std::error::Error for BatchError {}
 
-/// Batches at least this long run on rayon's thread pool (feature `parallel`).
-pub const PARALLEL_FROM: usize = 1 << 15;
+/// Batches of at least this many bytes of input and output run on rayon's thread pool
+/// (feature `parallel`, [`Exec::auto`]): about 26000 contacts of `free` at n = 2 (160 bytes
+/// each), 5500 at n = 6 (768 bytes). A rayon call costs 12-20 µs on the 2-core VM of
+/// docs/batch.md, so a batch is split only where each thread's share takes well over that,
+/// and the work per contact grows with n about as its bytes do (1.6 ns at n = 2, 10 ns at
+/// n = 6 within the L3); below it one thread is faster.
+pub const PARALLEL_FROM_BYTES: usize = 4 << 20;
 
 /// The most blocks per rayon task: 1024 contacts, 64 kB to 0.8 MB of input and output.
 #[cfg(feature = "parallel")]
@@ -49,7 +54,17 @@ fn chunk_blocks(blocks: usize, threads: usize) -> usize {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Exec {
     isa: Isa,
-    parallel_from: Option<usize>,
+    split: Option<Split>,
+}
+
+/// From which size on a batch is split across rayon's pool.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Split {
+    /// At least this many contacts ([`Exec::parallel_from`], feature `parallel`).
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+    Contacts(usize),
+    /// At least this many bytes of input and output ([`PARALLEL_FROM_BYTES`]).
+    Bytes(usize),
 }
 
 impl Default for Exec {
@@ -60,11 +75,11 @@ impl Default for Exec {
 
 impl Exec {
     /// The widest instruction set of this CPU ([`Isa::detect`]); with the `parallel`
-    /// feature, threads for batches of at least [`PARALLEL_FROM`] contacts.
+    /// feature, threads for batches of at least [`PARALLEL_FROM_BYTES`] of input and output.
     pub fn auto() -> Self {
         Exec {
             isa: Isa::detect(),
-            parallel_from: cfg!(feature = "parallel").then_some(PARALLEL_FROM),
+            split: cfg!(feature = "parallel").then_some(Split::Bytes(PARALLEL_FROM_BYTES)),
         }
     }
 
@@ -80,7 +95,7 @@ impl Exec {
     /// The same, on the calling thread only.
     pub fn serial(self) -> Self {
         Exec {
-            parallel_from: None,
+            split: None,
             ..self
         }
     }
@@ -89,7 +104,7 @@ impl Exec {
     #[cfg(feature = "parallel")]
     pub fn parallel_from(self, contacts: usize) -> Self {
         Exec {
-            parallel_from: Some(contacts),
+            split: Some(Split::Contacts(contacts)),
             ..self
         }
     }
@@ -165,10 +180,7 @@ impl Exec {
     #[inline(always)]
     fn drive<B: Sync, O: Send>(&self, job: &(impl Job<B, O> + Sync), blocks: &[B], out: &mut [O]) {
         #[cfg(feature = "parallel")]
-        if self
-            .parallel_from
-            .is_some_and(|from| blocks.len() * super::LANES >= from)
-        {
+        if self.splits::<B, O>(blocks.len()) {
             use rayon::prelude::*;
             let isa = self.isa;
             let chunk = chunk_blocks(blocks.len(), rayon::current_num_threads());
@@ -179,6 +191,20 @@ impl Exec {
             return;
         }
         run_on(self.isa, job, blocks, out);
+    }
+}
+
+impl Exec {
+    /// Whether a batch of `blocks` blocks of inputs `B` and outputs `O` is split.
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+    fn splits<B, O>(&self, blocks: usize) -> bool {
+        match self.split {
+            None => false,
+            Some(Split::Contacts(from)) => blocks * super::LANES >= from,
+            Some(Split::Bytes(from)) => {
+                blocks * (std::mem::size_of::<B>() + std::mem::size_of::<O>()) >= from
+            }
+        }
     }
 }
 
@@ -259,5 +285,42 @@ where
         out: &mut [StateLanes<T, N, S>],
     ) {
         Generated::fixed_shared_blocks::<W>(self.radius1, self.ball2, blocks, out)
+    }
+}
+
+#[cfg(test)]
+mod split_tests {
+    use super::*;
+
+    #[test]
+    fn a_batch_is_split_by_its_bytes_unless_told_a_length() {
+        // `free` at n = 2: 160 bytes a contact (8 (n + 6 + 4 (n + s))), 1280 a block of 8.
+        type In = FreeLanes<f64, 2, 1>;
+        type Out = [StateLanes<f64, 2, 1>; 2];
+        let block = std::mem::size_of::<In>() + std::mem::size_of::<Out>();
+        assert_eq!(block, 8 * 160);
+        let auto = Exec {
+            isa: Isa::Baseline,
+            split: Some(Split::Bytes(PARALLEL_FROM_BYTES)),
+        };
+        let from = PARALLEL_FROM_BYTES.div_ceil(block);
+        assert!(!auto.splits::<In, Out>(from - 1));
+        assert!(auto.splits::<In, Out>(from));
+        // n = 6 moves 768 bytes a contact: split from 4.8 times fewer contacts.
+        type In6 = FreeLanes<f64, 6, 15>;
+        type Out6 = [StateLanes<f64, 6, 15>; 2];
+        let block6 = std::mem::size_of::<In6>() + std::mem::size_of::<Out6>();
+        assert_eq!(block6, 8 * 768);
+        let from6 = PARALLEL_FROM_BYTES.div_ceil(block6);
+        assert!(!auto.splits::<In6, Out6>(from6 - 1));
+        assert!(auto.splits::<In6, Out6>(from6));
+        // A length given (`parallel_from`) counts contacts; `serial` never splits.
+        let by_length = Exec {
+            split: Some(Split::Contacts(64)),
+            ..auto
+        };
+        assert!(!by_length.splits::<In6, Out6>(7));
+        assert!(by_length.splits::<In6, Out6>(8));
+        assert!(!auto.serial().splits::<In, Out>(usize::MAX / block));
     }
 }

@@ -27,8 +27,8 @@
 //!
 //! **Execution.** [`Exec`] picks the instruction set ([`Isa`]: the default target, AVX2 +
 //! FMA, AVX-512F; [`Exec::auto`] takes the widest this CPU has) and, with the `parallel`
-//! feature, splits batches of at least [`PARALLEL_FROM`] contacts across rayon's pool. Its
-//! methods [`Exec::free`], [`Exec::fixed`], [`Exec::free_shared`] and [`Exec::fixed_shared`]
+//! feature, splits batches of at least [`PARALLEL_FROM_BYTES`] of input and output across
+//! rayon's pool. Its methods [`Exec::free`], [`Exec::fixed`], [`Exec::free_shared`] and [`Exec::fixed_shared`]
 //! run the kernels; [`BatchKernel`] reaches the generated block kernels of each n directly.
 //!
 //! **Preconditions** are those of the scalar kernels (see [`crate::kernels`]); nothing is
@@ -62,7 +62,7 @@ mod tests;
 
 pub use container::Batch;
 pub use dispatch::{Isa, AVX2_WIDTH, AVX512_WIDTH, BASELINE_WIDTH};
-pub use exec::{BatchError, Exec, PARALLEL_FROM};
+pub use exec::{BatchError, Exec, PARALLEL_FROM_BYTES};
 pub use kernels::BatchKernel;
 pub use lanes::{
     BallLanes, Contact, ContactLanes, FixedLanes, FreeLanes, Lane, Lanes, Lanewise, StateLanes,
