@@ -27,12 +27,12 @@
 //! state's, written at each contact. Contact times in the scan are taken without branches
 //! (`predict::contact_time_or_nan`, the same bits as `contact_time`). The calendar's lists,
 //! the cells' lists and the scan reuse their memory: nothing is allocated per event once they
-//! have grown. When the cell list outgrows the caches (`PREFETCH_FROM` cells, 2^16), a prediction
-//! first prefetches the neighbour cells' list headers, then their first records, so that the
-//! cache misses of the `3^n` cells overlap instead of following one another; the scan itself
-//! is the same. The neighbourhood is scanned in full at every prediction (a crossing too), so
-//! every contact time is computed from the same state as before these changes and the event
-//! log is the same, bit for bit.
+//! have grown. When the cell list outgrows the caches (`PREFETCH_FROM` cells, 2^16), a
+//! prediction first prefetches the neighbour cells' list headers, then their first records,
+//! so that the cache misses of the `3^n` cells overlap instead of following one another; the
+//! scan itself is the same. The neighbourhood is scanned in full at every prediction (a
+//! crossing too), so every contact time is computed from the same state as before these
+//! changes and the event log is the same, bit for bit.
 //!
 //! **Image rule.** A ball-ball entry stores its partner's image in unwrapped coordinates,
 //! `s - w_j + w_i` for the cell shift `s` it was predicted with: the partner may cross a

@@ -330,13 +330,12 @@ fn prefetching_changes_no_event() {
             .collect();
         let mut sim = sim2([40.0, 40.0], [true, false], obstacles, bodies);
         sim.set_prefetch(prefetch);
-        let events: Vec<String> = (0..6000)
+        (0..6000)
             .map(|_| match sim.step(f64::INFINITY) {
                 Step::Contact(e) => format!("{e:?}"),
                 other => panic!("{other:?}"),
             })
-            .collect();
-        events
+            .collect::<Vec<String>>()
     };
     let plain = run(false);
     assert!(plain.iter().any(|e| e.contains("Obstacle")));

@@ -175,6 +175,18 @@ impl Exec {
         self.drive(&job, batch.blocks(), out.blocks_mut());
     }
 
+    /// Whether a batch of `blocks` blocks of inputs `B` and outputs `O` is split.
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+    fn splits<B, O>(&self, blocks: usize) -> bool {
+        match self.split {
+            None => false,
+            Some(Split::Contacts(from)) => blocks * super::LANES >= from,
+            Some(Split::Bytes(from)) => {
+                blocks * (std::mem::size_of::<B>() + std::mem::size_of::<O>()) >= from
+            }
+        }
+    }
+
     /// Run `job` on this instruction set, in chunks on rayon's pool when the batch is long
     /// enough.
     #[inline(always)]
@@ -191,20 +203,6 @@ impl Exec {
             return;
         }
         run_on(self.isa, job, blocks, out);
-    }
-}
-
-impl Exec {
-    /// Whether a batch of `blocks` blocks of inputs `B` and outputs `O` is split.
-    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
-    fn splits<B, O>(&self, blocks: usize) -> bool {
-        match self.split {
-            None => false,
-            Some(Split::Contacts(from)) => blocks * super::LANES >= from,
-            Some(Split::Bytes(from)) => {
-                blocks * (std::mem::size_of::<B>() + std::mem::size_of::<O>()) >= from
-            }
-        }
     }
 }
 

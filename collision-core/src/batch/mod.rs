@@ -28,8 +28,9 @@
 //! **Execution.** [`Exec`] picks the instruction set ([`Isa`]: the default target, AVX2 +
 //! FMA, AVX-512F; [`Exec::auto`] takes the widest this CPU has) and, with the `parallel`
 //! feature, splits batches of at least [`PARALLEL_FROM_BYTES`] of input and output across
-//! rayon's pool. Its methods [`Exec::free`], [`Exec::fixed`], [`Exec::free_shared`] and [`Exec::fixed_shared`]
-//! run the kernels; [`BatchKernel`] reaches the generated block kernels of each n directly.
+//! rayon's pool. Its methods [`Exec::free`], [`Exec::fixed`], [`Exec::free_shared`] and
+//! [`Exec::fixed_shared`] run the kernels; [`BatchKernel`] reaches the generated block
+//! kernels of each n directly.
 //!
 //! **Preconditions** are those of the scalar kernels (see [`crate::kernels`]); nothing is
 //! validated, and invalid contacts give NaN or infinities in their own lanes only.
