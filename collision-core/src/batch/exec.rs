@@ -28,25 +28,41 @@ impl fmt::Display for BatchError {
 
 impl std::error::Error for BatchError {}
 
-/// Batches of at least this many bytes of input and output run on rayon's thread pool
-/// (feature `parallel`, [`Exec::auto`]): about 26000 contacts of `free` at n = 2 (160 bytes
-/// each), 5500 at n = 6 (768 bytes). A rayon call costs 12-20 µs on the 2-core VM of
-/// docs/batch.md, so a batch is split only where each thread's share takes well over that,
-/// and the work per contact grows with n about as its bytes do (1.6 ns at n = 2, 10 ns at
-/// n = 6 within the L3); below it one thread is faster.
-pub const PARALLEL_FROM_BYTES: usize = 4 << 20;
+/// Batches of at least this many bytes of input and output are shared with rayon's workers
+/// (feature `parallel`, [`Exec::auto`]): 384 KiB, about 2460 contacts of `free` at n = 2
+/// (160 bytes each) and 512 at n = 6 (768 bytes), 3-5 µs on one thread. The calling thread
+/// works from the start and a worker joins when it wakes (`share.rs`), so a split costs the
+/// caller about 0.4 µs more than one thread when no worker comes in time. On the 2-core VM
+/// of docs/batch.md two threads were faster from about this size on (1.13x at 384 KiB, n =
+/// 6), slower below it (0.58-0.90x at 82-290 KiB).
+pub const PARALLEL_FROM_BYTES: usize = 384 << 10;
 
-/// The most blocks per rayon task: 1024 contacts, 64 kB to 0.8 MB of input and output.
+/// The most blocks per chunk: 1024 contacts, 64 kB to 0.8 MB of input and output.
 #[cfg(feature = "parallel")]
 const CHUNK_BLOCKS: usize = 128;
 
-/// Blocks per rayon task for `blocks` blocks on `threads` threads: an equal share per
-/// thread (so that a short batch is split once per thread, not left on one), at most
-/// [`CHUNK_BLOCKS`] (so that a long one balances the load between threads).
+/// Chunks per thread: a helper that starts late still finds some left.
+#[cfg(feature = "parallel")]
+const CHUNKS_PER_THREAD: usize = 8;
+
+/// Blocks per chunk for `blocks` blocks on `threads` threads: [`CHUNKS_PER_THREAD`] chunks
+/// per thread (so that the threads share a short batch evenly, whenever each starts), at
+/// most [`CHUNK_BLOCKS`].
 #[cfg(feature = "parallel")]
 fn chunk_blocks(blocks: usize, threads: usize) -> usize {
-    blocks.div_ceil(threads.max(1)).clamp(1, CHUNK_BLOCKS)
+    blocks
+        .div_ceil(threads.max(1) * CHUNKS_PER_THREAD)
+        .clamp(1, CHUNK_BLOCKS)
 }
+
+/// `out`'s start, shared by the chunks of a split batch (each writes its own run).
+#[cfg(feature = "parallel")]
+struct OutPtr<O>(*mut O);
+
+// SAFETY: the chunks write disjoint runs of `out` (`share`'s contract), each from one thread,
+// and `O: Send` lets each run be written from another thread.
+#[cfg(feature = "parallel")]
+unsafe impl<O: Send> Sync for OutPtr<O> {}
 
 /// How batches run: the instruction set and, with the `parallel` feature, from which
 /// length on they are split across rayon's thread pool. Every setting gives the same
@@ -187,19 +203,27 @@ impl Exec {
         }
     }
 
-    /// Run `job` on this instruction set, in chunks on rayon's pool when the batch is long
-    /// enough.
+    /// Run `job` on this instruction set, shared with rayon's workers in chunks when the
+    /// batch is long enough (`share.rs`).
     #[inline(always)]
     fn drive<B: Sync, O: Send>(&self, job: &(impl Job<B, O> + Sync), blocks: &[B], out: &mut [O]) {
         #[cfg(feature = "parallel")]
         if self.splits::<B, O>(blocks.len()) {
-            use rayon::prelude::*;
-            let isa = self.isa;
-            let chunk = chunk_blocks(blocks.len(), rayon::current_num_threads());
-            blocks
-                .par_chunks(chunk)
-                .zip(out.par_chunks_mut(chunk))
-                .for_each(|(b, o)| run_on(isa, job, b, o));
+            let (isa, len) = (self.isa, blocks.len().min(out.len()));
+            let threads = rayon::current_num_threads();
+            let start = OutPtr(out.as_mut_ptr());
+            let start = &start;
+            super::share::share(
+                len,
+                chunk_blocks(len, threads),
+                threads - 1,
+                &|first, count| {
+                    // SAFETY: `[first, first + count)` is within `out` (`len <= out.len()`) and
+                    // no other chunk writes it; `out` is borrowed until `share` returns.
+                    let out = unsafe { std::slice::from_raw_parts_mut(start.0.add(first), count) };
+                    run_on(isa, job, &blocks[first..first + count], out);
+                },
+            );
             return;
         }
         run_on(self.isa, job, blocks, out);

@@ -57,6 +57,8 @@ pub mod kernels;
 pub mod lanes;
 mod prefetch;
 mod rows;
+#[cfg(feature = "parallel")]
+mod share;
 
 #[cfg(test)]
 mod tests;
