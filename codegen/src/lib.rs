@@ -29,6 +29,7 @@ pub mod fuse;
 pub mod ir;
 pub mod literal;
 pub mod model;
+pub mod pressure;
 pub mod program;
 pub mod schedule;
 pub mod specialise;

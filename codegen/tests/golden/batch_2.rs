@@ -13,7 +13,7 @@ use crate::{Ball, RefArith, Scalar};
 /// Batch form of [`crate::kernels::d2::free`]: block `k` of `blocks` into `out[k]`,
 /// lane by lane, for `min(blocks.len(), out.len())` blocks.
 /// Ball parameters: per contact, in the lanes.
-/// Each lane runs the scalar kernel's operations in its order: the same bits in floats.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
 ///
 /// No-slip collision of two free balls in R^2: returns `[body 1, body 2]` after contact.
 ///
@@ -136,7 +136,7 @@ where
 /// Batch form of [`crate::kernels::d2::fixed`]: block `k` of `blocks` into `out[k]`,
 /// lane by lane, for `min(blocks.len(), out.len())` blocks.
 /// Ball parameters: per contact, in the lanes.
-/// Each lane runs the scalar kernel's operations in its order: the same bits in floats.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
 ///
 /// No-slip collision in R^2 of a free ball (body 2) with an immovable one (body 1):
 /// returns body 2 after contact. The `w_1 -> 0` limit of [`free`]; body 2's mass drops out.
@@ -227,7 +227,7 @@ where
 /// Batch form of [`crate::kernels::d2::free`]: block `k` of `blocks` into `out[k]`,
 /// lane by lane, for `min(blocks.len(), out.len())` blocks.
 /// Ball parameters: shared by every contact; what depends on them alone is computed once.
-/// Each lane runs the scalar kernel's operations in its order: the same bits in floats.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
 ///
 /// No-slip collision of two free balls in R^2: returns `[body 1, body 2]` after contact.
 ///
@@ -353,7 +353,7 @@ where
 /// Batch form of [`crate::kernels::d2::fixed`]: block `k` of `blocks` into `out[k]`,
 /// lane by lane, for `min(blocks.len(), out.len())` blocks.
 /// Ball parameters: shared by every contact; what depends on them alone is computed once.
-/// Each lane runs the scalar kernel's operations in its order: the same bits in floats.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
 ///
 /// No-slip collision in R^2 of a free ball (body 2) with an immovable one (body 1):
 /// returns body 2 after contact. The `w_1 -> 0` limit of [`free`]; body 2's mass drops out.

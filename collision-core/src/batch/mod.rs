@@ -8,10 +8,11 @@
 //! xi_k+ = 2 P_G(q_k) xi_k- - xi_k-
 //! ```
 //!
-//! computed by the generated scalar kernel's operations in the scalar kernel's order (the
-//! batch kernels are emitted from the same DAG and schedule by `noslip_codegen::batch`), so
-//! that in `f32` and `f64` every result is bit for bit [`crate::kernels`]' result on that
-//! contact, and in [`crate::Exact`] the same rational.
+//! computed by the generated scalar kernel's operations on the same operands (the batch
+//! kernels are emitted from the same DAG by `noslip_codegen::batch`, in the scalar kernel's
+//! order or in one that holds fewer values at once), so that in `f32` and `f64` every result
+//! is bit for bit [`crate::kernels`]' result on that contact, and in [`crate::Exact`] the
+//! same rational.
 //!
 //! **Layout.** Blocked structure of arrays (AoSoA): a block holds `LANES` contacts, every
 //! scalar field as a `[T; LANES]` lane array ([`lanes`]); a [`Batch`] is a vector of blocks
