@@ -17,10 +17,14 @@
 //! **Protocol.** A helper registers (`inside += 1`), then reads `closed`; the caller, once
 //! the counter is spent, sets `closed`, then waits until `inside == 0`. Both orders are
 //! sequentially consistent, so either the helper sees `closed` and leaves without reading a
-//! block, or the caller sees it inside and waits for it. A panic in a chunk is caught where
-//! it happens, the remaining chunks are still claimed (and skipped), and the caller resumes
-//! the first panic after every helper has left; the caller waits for the helpers even while
-//! it unwinds (a drop guard), so no helper outlives the borrowed blocks.
+//! block, or the caller sees it inside and waits for it; a helper's leaving (`inside -= 1`)
+//! orders its writes before the caller's return. A helper leaves even if it unwinds (a drop
+//! guard), and the caller waits for the helpers even while it unwinds (another), so no
+//! helper outlives the borrowed blocks and no caller waits forever. The caller spins while
+//! waiting (a helper inside has at most one chunk left), then yields its core after a
+//! thousand rounds, in case the helper was preempted. A panic in a chunk is caught where it
+//! happens, the remaining chunks are still claimed (and skipped), and the caller resumes the
+//! first panic after every helper has left.
 
 use std::any::Any;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
@@ -30,7 +34,9 @@ use std::sync::{Arc, Mutex};
 /// Runs `run(first, count)` for the `chunks` chunks `[k chunk, min((k + 1) chunk, len))` of
 /// a batch of `len` blocks, `chunk` blocks each, on the calling thread and on up to
 /// `helpers` rayon workers; returns when every chunk has run. `run` must only touch the
-/// blocks of the chunk it is given (the chunks are disjoint).
+/// blocks of the chunk it is given (the chunks are disjoint), and must not wait on rayon
+/// (`join`, `scope`, parallel iterators): a helper's caller spins, it does not run other
+/// rayon jobs. `Exec` passes `threads - 1` helpers: the caller is the other thread.
 pub(crate) fn share(len: usize, chunk: usize, helpers: usize, run: &(dyn Fn(usize, usize) + Sync)) {
     let chunk = chunk.max(1);
     let chunks = len.div_ceil(chunk);
@@ -40,9 +46,14 @@ pub(crate) fn share(len: usize, chunk: usize, helpers: usize, run: &(dyn Fn(usiz
         }
         return;
     }
-    // SAFETY (lifetime): the helpers reach `run` only between registering and leaving, and
-    // `Close` (below) does not return, nor unwind past this frame, while one is registered.
-    let run: &'static (dyn Fn(usize, usize) + Sync) = unsafe { std::mem::transmute(run) };
+    // SAFETY: only the pointer's lifetime bound changes (the same fat pointer); it is
+    // dereferenced only while `share` runs (`Shared::run`).
+    let run = unsafe {
+        std::mem::transmute::<
+            *const (dyn Fn(usize, usize) + Sync + '_),
+            *const (dyn Fn(usize, usize) + Sync + 'static),
+        >(run)
+    };
     let shared = Arc::new(Shared {
         run,
         len,
@@ -72,7 +83,10 @@ pub(crate) fn share(len: usize, chunk: usize, helpers: usize, run: &(dyn Fn(usiz
 
 /// What the caller and its helpers share.
 struct Shared {
-    run: &'static (dyn Fn(usize, usize) + Sync),
+    /// The caller's `run`, its lifetime erased. It is called only by the caller and by
+    /// helpers between registering and leaving, and `Close` does not let `share` return or
+    /// unwind past its frame while a helper is registered; after that it is never read.
+    run: *const (dyn Fn(usize, usize) + Sync),
     len: usize,
     chunk: usize,
     chunks: usize,
@@ -86,6 +100,12 @@ struct Shared {
     panic: Mutex<Option<Box<dyn Any + Send>>>,
 }
 
+// SAFETY: `run` points to a `Sync` closure, called from several threads only while `share`
+// keeps it alive (`Shared::run`); the rest is atomics and a mutex.
+unsafe impl Send for Shared {}
+// SAFETY: as above.
+unsafe impl Sync for Shared {}
+
 impl Shared {
     /// Takes chunks until none is left; a panicking chunk is recorded and the rest skipped.
     fn work(&self) {
@@ -96,24 +116,44 @@ impl Shared {
             }
             let first = k * self.chunk;
             let count = self.chunk.min(self.len - first);
-            if let Err(payload) = catch_unwind(AssertUnwindSafe(|| (self.run)(first, count))) {
-                self.panic
-                    .lock()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .get_or_insert(payload);
-                // Hand out the rest as done.
+            // SAFETY: a thread working here is the caller or a registered helper of an open
+            // call (`Shared::run`).
+            let run = unsafe { &*self.run };
+            if let Err(payload) = catch_unwind(AssertUnwindSafe(|| run(first, count))) {
+                // Hand out the rest as done, and keep the first panic (a later one is
+                // dropped outside the lock).
                 self.next.fetch_max(self.chunks, SeqCst);
+                let mut first_panic = self.panic.lock().unwrap_or_else(|e| e.into_inner());
+                let later = match *first_panic {
+                    None => {
+                        *first_panic = Some(payload);
+                        None
+                    }
+                    Some(_) => Some(payload),
+                };
+                drop(first_panic);
+                drop(later);
             }
         }
     }
 
-    /// A helper's job: register, and work unless the call is already closed.
+    /// A helper's job: register, and work unless the call is already closed; leave even if
+    /// that unwinds (a caller waiting for it would wait forever).
     fn help(&self) {
         self.inside.fetch_add(1, SeqCst);
+        let _leave = Leave(&self.inside);
         if !self.closed.load(SeqCst) {
             self.work();
         }
-        self.inside.fetch_sub(1, SeqCst);
+    }
+}
+
+/// A helper's leaving: `inside -= 1`, on return and on unwinding.
+struct Leave<'a>(&'a AtomicUsize);
+
+impl Drop for Leave<'_> {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, SeqCst);
     }
 }
 
@@ -126,8 +166,16 @@ impl Drop for Close<'_> {
         // spent the counter: spend it, so that a helper inside stops after its chunk).
         self.0.next.fetch_max(self.0.chunks, SeqCst);
         self.0.closed.store(true, SeqCst);
+        // A helper inside runs at most one chunk more; spin briefly, then give the core
+        // away in case the helper was preempted (two threads on two cores).
+        let mut spins = 0u32;
         while self.0.inside.load(SeqCst) != 0 {
-            std::hint::spin_loop();
+            if spins < 1 << 10 {
+                spins += 1;
+                std::hint::spin_loop();
+            } else {
+                std::thread::yield_now();
+            }
         }
     }
 }
@@ -137,46 +185,93 @@ mod tests {
     use super::*;
     use std::sync::atomic::AtomicU64;
 
+    /// A slice's start, written by the chunks of a test (each its own elements).
+    struct Start(*mut u64);
+    // SAFETY: the chunks write disjoint elements.
+    unsafe impl Sync for Start {}
+
     #[test]
-    fn every_block_runs_once_whatever_the_chunks_and_helpers() {
+    fn every_block_runs_once_and_its_writes_reach_the_caller() {
+        // Plain (not atomic) writes from whichever thread runs a chunk, read by the caller
+        // after `share` returns: the helpers' leaving orders them before the return.
         for len in [0usize, 1, 7, 8, 9, 100, 1000] {
             for chunk in [1usize, 3, 16, 2000] {
                 for helpers in [0usize, 1, 3] {
-                    let hits: Vec<AtomicU64> = (0..len).map(|_| AtomicU64::new(0)).collect();
+                    let mut out = vec![0u64; len];
+                    let start = Start(out.as_mut_ptr());
+                    let start = &start;
                     share(len, chunk, helpers, &|first, count| {
                         // One run of the whole batch without helpers, chunks otherwise.
                         assert!(helpers == 0 || count <= chunk.max(1));
                         assert!(first + count <= len);
-                        for hit in &hits[first..first + count] {
-                            hit.fetch_add(1, SeqCst);
+                        for k in first..first + count {
+                            // SAFETY: k < len, and no other chunk writes element k.
+                            unsafe { *start.0.add(k) += k as u64 + 1 };
                         }
                     });
-                    for (b, hit) in hits.iter().enumerate() {
-                        assert_eq!(hit.load(SeqCst), 1, "block {b} of {len}, chunk {chunk}");
-                    }
+                    let expected: Vec<u64> = (1..=len as u64).collect();
+                    assert_eq!(
+                        out, expected,
+                        "{len} blocks, chunk {chunk}, {helpers} helpers"
+                    );
                 }
             }
         }
     }
 
     #[test]
-    fn many_short_calls_leave_no_helper_behind() {
-        // Helpers that start after their call returned must not touch its (dropped) data:
-        // each call owns a fresh vector, checked and freed right after the call.
+    fn a_helper_takes_chunks_when_the_caller_is_slow() {
+        // 64 chunks of 1 ms each: a rayon worker wakes within that time and takes some.
+        let caller = std::thread::current().id();
+        let elsewhere = AtomicU64::new(0);
+        share(64, 1, 1, &|_, _| {
+            std::thread::sleep(std::time::Duration::from_millis(1));
+            if std::thread::current().id() != caller {
+                elsewhere.fetch_add(1, SeqCst);
+            }
+        });
+        assert!(elsewhere.load(SeqCst) > 0, "no chunk ran on a helper");
+    }
+
+    /// Whether a call of the test below is running, and calls of its chunks outside one.
+    static OPEN: AtomicBool = AtomicBool::new(false);
+    static LATE: AtomicUsize = AtomicUsize::new(0);
+    static HITS: [AtomicU64; 37] = [const { AtomicU64::new(0) }; 37];
+
+    #[test]
+    fn no_chunk_runs_after_its_call_returned() {
+        // The chunk closure captures nothing (a late call would be harmless here), counts
+        // its blocks in statics and any call made after its `share` returned; helpers of
+        // earlier calls may still be starting during later ones.
+        let chunk = |first: usize, count: usize| {
+            if !OPEN.load(SeqCst) {
+                LATE.fetch_add(1, SeqCst);
+                return;
+            }
+            for hit in &HITS[first..first + count] {
+                hit.fetch_add(1, SeqCst);
+            }
+        };
         for round in 0..2000 {
             let len = 1 + round % 37;
-            let out: Vec<AtomicU64> = (0..len).map(|_| AtomicU64::new(0)).collect();
-            share(len, 1, 1, &|first, count| {
-                for x in &out[first..first + count] {
-                    x.fetch_add(round as u64 + 1, SeqCst);
-                }
-            });
-            assert!(out.iter().all(|x| x.load(SeqCst) == round as u64 + 1));
+            for hit in &HITS {
+                hit.store(0, SeqCst);
+            }
+            OPEN.store(true, SeqCst);
+            share(len, 1, 1, &chunk);
+            OPEN.store(false, SeqCst);
+            assert!(
+                HITS[..len].iter().all(|h| h.load(SeqCst) == 1),
+                "round {round}"
+            );
         }
+        // Let helpers still queued run (they must find their calls closed).
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        assert_eq!(LATE.load(SeqCst), 0);
     }
 
     #[test]
-    fn a_panicking_chunk_reaches_the_caller_after_the_helpers_leave() {
+    fn a_panic_in_a_chunk_reaches_the_caller() {
         let ran = AtomicU64::new(0);
         let result = catch_unwind(AssertUnwindSafe(|| {
             share(64, 1, 1, &|first, _| {
@@ -188,6 +283,7 @@ mod tests {
         }));
         let payload = result.expect_err("the panic is resumed in the caller");
         assert_eq!(payload.downcast_ref::<&str>(), Some(&"chunk 5"));
+        // Chunks 0..=5 were handed out before the panic, so they ran.
         assert!(ran.load(SeqCst) >= 6 && ran.load(SeqCst) <= 64);
     }
 }
