@@ -360,15 +360,8 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
         lane.iter().enumerate().map(|(i, &id)| (id, i)).collect();
     let mut last_use: std::collections::HashMap<Id, usize> = std::collections::HashMap::new();
     for (i, &id) in lane.iter().enumerate() {
-        match kernel.graph.node(id) {
-            Node::Neg(a) => {
-                last_use.insert(*a, i);
-            }
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                last_use.insert(*a, i);
-                last_use.insert(*b, i);
-            }
-            Node::Input(_) | Node::Const(_) => {}
+        for a in kernel.graph.node(id).operands() {
+            last_use.insert(a, i);
         }
     }
     let mut after: Vec<Vec<TokenStream>> = vec![Vec::new(); lane.len() + 1];

@@ -63,13 +63,8 @@ pub fn fuse(graph: &Graph, steps: &[Id], outputs: impl IntoIterator<Item = Id>) 
         *uses.entry(id).or_default() += 2; // an output is never absorbed
     }
     for &id in steps {
-        match graph.node(id) {
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                *uses.entry(*a).or_default() += 1;
-                *uses.entry(*b).or_default() += 1;
-            }
-            Node::Neg(a) => *uses.entry(*a).or_default() += 1,
-            Node::Input(_) | Node::Const(_) => {}
+        for a in graph.node(id).operands() {
+            *uses.entry(a).or_default() += 1;
         }
     }
     let product = |id: Id| match graph.node(id) {

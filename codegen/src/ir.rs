@@ -53,6 +53,20 @@ pub enum Node {
     Neg(Id),
 }
 
+impl Node {
+    /// The operands, in order (`a` then `b`; none for an input or a constant).
+    pub fn operands(&self) -> impl Iterator<Item = Id> {
+        let (a, b) = match *self {
+            Node::Input(_) | Node::Const(_) => (None, None),
+            Node::Neg(a) => (Some(a), None),
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+                (Some(a), Some(b))
+            }
+        };
+        a.into_iter().chain(b)
+    }
+}
+
 /// A hook of [`Graph::eval_all`]: a replacement value for node `id`, given the values of the
 /// nodes before it, or `None` to evaluate the node as built.
 pub type Rewrite<'a, T = BigRational> = dyn Fn(Id, &Node, &[T]) -> Option<T> + 'a;

@@ -14,17 +14,8 @@
 //! n = 4, 5, 6 the most values held fall from 13, 18, 24 to 12, 15, 20 (both variants); at
 //! n = 2, 3 (7 and 9, within the registers) the given order is kept.
 
-use crate::ir::{Graph, Id, Node};
+use crate::ir::{Graph, Id};
 use std::collections::{HashMap, HashSet};
-
-/// The operands of a node.
-fn operands(graph: &Graph, id: Id) -> Vec<Id> {
-    match graph.node(id) {
-        Node::Input(_) | Node::Const(_) => Vec::new(),
-        Node::Neg(a) => vec![*a],
-        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => vec![*a, *b],
-    }
-}
 
 /// The most values held at once when `steps` run in this order: after each step, the values
 /// computed so far that a later step still reads, and the step's own (inputs, constants and
@@ -33,7 +24,7 @@ pub fn held(graph: &Graph, steps: &[Id]) -> usize {
     let position: HashMap<Id, usize> = steps.iter().enumerate().map(|(i, &id)| (id, i)).collect();
     let mut last: Vec<usize> = (0..steps.len()).collect();
     for (i, &id) in steps.iter().enumerate() {
-        for a in operands(graph, id) {
+        for a in graph.node(id).operands() {
             if let Some(&p) = position.get(&a) {
                 last[p] = last[p].max(i);
             }
@@ -66,7 +57,7 @@ pub fn tail_last(graph: &Graph, steps: &[Id], outputs: &[Id]) -> Vec<Id> {
         while let Some(x) = stack.pop() {
             if in_steps.contains(&x) && seen.insert(x) {
                 *feeds.entry(x).or_default() += 1;
-                stack.extend(operands(graph, x));
+                stack.extend(graph.node(x).operands());
             }
         }
     }
@@ -91,7 +82,7 @@ pub fn tail_last(graph: &Graph, steps: &[Id], outputs: &[Id]) -> Vec<Id> {
         if !tail.contains(&id) || !done.insert(id) {
             return;
         }
-        for a in operands(graph, id) {
+        for a in graph.node(id).operands() {
             visit(graph, a, tail, done, order);
         }
         order.push(id);
@@ -131,9 +122,10 @@ mod tests {
         let position: HashMap<Id, usize> =
             order.iter().enumerate().map(|(i, &id)| (id, i)).collect();
         order.iter().enumerate().all(|(i, &id)| {
-            operands(graph, id)
-                .iter()
-                .all(|a| position.get(a).is_none_or(|&p| p < i))
+            graph
+                .node(id)
+                .operands()
+                .all(|a| position.get(&a).is_none_or(|&p| p < i))
         })
     }
 

@@ -66,13 +66,7 @@ pub fn schedule(graph: &Graph, roots: impl IntoIterator<Item = Id>) -> Schedule 
         if std::mem::replace(&mut live[id.index()], true) {
             continue;
         }
-        match graph.node(id) {
-            Node::Input(_) | Node::Const(_) => {}
-            Node::Neg(a) => stack.push(*a),
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                stack.extend([*a, *b])
-            }
-        }
+        stack.extend(graph.node(id).operands());
     }
     let mut out = Schedule {
         steps: Vec::new(),
