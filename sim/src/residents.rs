@@ -8,6 +8,7 @@
 //! would hold them, so scans meet the balls in the same order as such a list.
 
 use crate::motion::Motion;
+use collision_core::batch::prefetch;
 
 /// A ball's record in its cell's list.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,16 +80,14 @@ impl<const N: usize> Residents<N> {
     /// and its list's header (a hint: nothing changes, and it is free if they are cached).
     #[inline]
     pub(crate) fn prefetch_header(&self, cell: usize) {
-        prefetch(&self.occupied[cell]);
-        prefetch(&self.cells[cell]);
+        prefetch(Some(&self.occupied[cell]));
+        prefetch(Some(&self.cells[cell]));
     }
 
     /// Asks the CPU to start loading `cell`'s first record, if it has one.
     #[inline]
     pub(crate) fn prefetch_list(&self, cell: usize) {
-        if let Some(first) = self.cell(cell).first() {
-            prefetch(first);
-        }
+        prefetch(self.cell(cell).first());
     }
 
     /// Ball `ball`'s flight.
@@ -117,19 +116,6 @@ impl<const N: usize> Residents<N> {
         self.home[ball] = (to as u32, self.cells[to].len() as u32);
         self.append(to, resident);
     }
-}
-
-/// A hint to load the cache line holding `x` (a no-op off x86-64).
-#[inline(always)]
-fn prefetch<T>(x: &T) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: SSE is part of x86-64; a prefetch reads nothing and faults never.
-    unsafe {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        _mm_prefetch::<_MM_HINT_T0>((x as *const T).cast::<i8>());
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = x;
 }
 
 #[cfg(test)]
