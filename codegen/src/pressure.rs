@@ -50,7 +50,7 @@ pub fn held(graph: &Graph, steps: &[Id]) -> usize {
 /// given order (interleave the bodies there).
 pub fn tail_last(graph: &Graph, steps: &[Id], outputs: &[Id]) -> Vec<Id> {
     let in_steps: HashSet<Id> = steps.iter().copied().collect();
-    // How many outputs each step feeds (at most 3 are counted).
+    // How many outputs each step feeds.
     let mut feeds: HashMap<Id, usize> = HashMap::new();
     for &o in outputs {
         let (mut stack, mut seen) = (vec![o], HashSet::new());
