@@ -64,10 +64,12 @@ def collide_batch(
     body comes back unchanged.
 
     The arrays are read in place (any strides; no copy, no per-row Python object), the GIL
-    is released, and with ``parallel`` the rows are split across rayon's threads. C-contiguous
-    arrays (NumPy's default) are gathered straight into the kernels' lane arrays and the
-    results scattered straight into the outputs, in chunks of 512 rows; other strides go row
-    by row. Memory beyond the new output arrays is a scratch of one chunk per running thread.
+    is released, and with ``parallel`` the rows are shared between the calling thread and
+    rayon's other threads (from 513 rows on; the caller never waits for a thread to wake).
+    C-contiguous arrays (NumPy's default) are gathered straight into the kernels' lane arrays
+    and the results scattered straight into the outputs, in chunks of 512 rows; other strides
+    go row by row. Memory beyond the new output arrays is a scratch of one chunk (30 to
+    130 kB) per running thread, kept for the next call.
 
     Parameters
     ----------

@@ -23,13 +23,13 @@
 //! Serial runs are timed in CPU time of the calling thread (`CLOCK_THREAD_CPUTIME_ID`), which a loaded machine disturbs far less than the wall
 //! clock; parallel runs in wall-clock time.
 
-use crate::batch::{state_rows_mut, views, BodyIn, Inputs};
+use crate::batch::{piece_rows, state_rows_mut, views, BodyIn, Inputs};
 use crate::error::input_error;
-use collision_core::batch::{BatchKernel, Exec, FreeBatch, FreeRows, PairBatch};
+use collision_core::batch::{share_rows, BatchKernel, Exec, FreeBatch, FreeRows, PairBatch};
 use collision_core::Generated;
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
-use rayon::prelude::*;
+use std::sync::Mutex;
 use std::time::Instant;
 
 /// The seconds of each run of the references: `rows`, `rows_new`, `kernel`, `copy`.
@@ -275,8 +275,9 @@ fn rows_to_rows<const N: usize, const S: usize>(
 }
 
 /// `f(scratch, chunk)` over the chunks of [`CHUNK`] rows of the outputs
-/// `[spin_1, velocity_1, spin_2, velocity_2]`, on rayon's threads (`parallel`, a scratch from
-/// `init` per task) or on this thread (one scratch); the sum of the results.
+/// `[spin_1, velocity_1, spin_2, velocity_2]`, shared with rayon's threads (`parallel`, runs
+/// of whole chunks as `collide_batch` splits them, a scratch from `init` per run) or on this
+/// thread (one scratch); the sum of the results.
 fn over_chunks<const N: usize, I>(
     out: [&mut [f64]; 4],
     parallel: bool,
@@ -284,22 +285,30 @@ fn over_chunks<const N: usize, I>(
     f: impl Fn(&mut I, OutChunk<'_>) -> f64 + Send + Sync,
 ) -> f64 {
     let [s1, v1, s2, v2] = out;
-    if parallel {
-        s1.par_chunks_mut(CHUNK * N * N)
-            .zip(s2.par_chunks_mut(CHUNK * N * N))
-            .zip(v1.par_chunks_mut(CHUNK * N))
-            .zip(v2.par_chunks_mut(CHUNK * N))
-            .enumerate()
-            .map_init(init, &f)
-            .sum()
-    } else {
+    // The chunks of one run of rows, from chunk `first`, with one scratch.
+    let run = |first: usize, s1: &mut [f64], s2: &mut [f64], v1: &mut [f64], v2: &mut [f64]| {
         let mut scratch = init();
         s1.chunks_mut(CHUNK * N * N)
             .zip(s2.chunks_mut(CHUNK * N * N))
             .zip(v1.chunks_mut(CHUNK * N))
             .zip(v2.chunks_mut(CHUNK * N))
             .enumerate()
-            .map(|c| f(&mut scratch, c))
-            .sum()
+            .map(|(c, chunk)| f(&mut scratch, (first + c, chunk)))
+            .sum::<f64>()
+    };
+    if !parallel {
+        return run(0, s1, s2, v1, v2);
     }
+    let chunks = (v1.len() / N).div_ceil(CHUNK);
+    let total = Mutex::new(0.0);
+    share_rows(
+        [s1, s2, v1, v2],
+        [N * N, N * N, N, N],
+        piece_rows(chunks, CHUNK),
+        &|first, [s1, s2, v1, v2]| {
+            let sum = run(first / CHUNK, s1, s2, v1, v2);
+            *total.lock().unwrap_or_else(|p| p.into_inner()) += sum;
+        },
+    );
+    total.into_inner().unwrap_or_else(|p| p.into_inner())
 }

@@ -133,9 +133,12 @@ def test_a_bad_row_is_named_with_its_field():
     rng = np.random.default_rng(5)
     nu, bodies = random_batch(rng, 3000, 2, immovable=False)
     bodies[1]["gamma2"][2049] = 1.5  # above 2/n = 1
-    bodies[0]["radius"][2500] = -1.0
-    with pytest.raises(noslip.InputError, match=r"^row 2049: bodies\[1\]\.gamma2"):
-        noslip.collide_batch(nu, bodies)
+    # Later bad rows in the same chunk of 512 rows and in later ones (run by whichever thread
+    # takes them first): the first bad row is named, split or not.
+    bodies[0]["radius"][[2500, 2600, 2999]] = -1.0
+    for parallel in (True, False):
+        with pytest.raises(noslip.InputError, match=r"^row 2049: bodies\[1\]\.gamma2"):
+            noslip.collide_batch(nu, bodies, parallel=parallel)
     bodies[1]["gamma2"][2049] = 0.5
     bodies[0]["angular_velocity"][17, 0, 1] += 1.0  # no longer skew
     with pytest.raises(noslip.InputError, match=r"^row 17: bodies\[0\]\.angular_velocity"):
@@ -144,6 +147,32 @@ def test_a_bad_row_is_named_with_its_field():
     nu[9] *= 1.001
     with pytest.raises(noslip.InputError, match=r"^row 9: normal: must be a unit vector"):
         noslip.collide_batch(nu, bodies)
+
+
+def test_a_failed_call_leaves_nothing_for_the_next():
+    """The chunks' scratches are kept between calls: a call stopped by a bad row, and calls
+    of other sizes and types in between, must not change a later call's bits."""
+    rng = np.random.default_rng(12)
+    nu, bodies = random_batch(rng, 3000, 3, unit_exactly=False)
+    want = noslip.collide_batch(nu, bodies, parallel=False)
+    bad = [dict(b) for b in bodies]
+    bad[0] = dict(bad[0], radius=bad[0]["radius"].copy())
+    bad[0]["radius"][[100, 1500, 2900]] = -1.0
+    other_nu, other = random_batch(rng, 700, 5, unit_exactly=False)
+    for parallel in (True, False):
+        with pytest.raises(noslip.InputError, match=r"^row 100: bodies\[0\]\.radius"):
+            noslip.collide_batch(nu, bad, parallel=parallel)
+        noslip.collide_batch(other_nu, other, parallel=parallel)
+        noslip.collide_batch(
+            other_nu.astype(np.float32),
+            [{k: v.astype(np.float32) for k, v in b.items()} for b in other],
+            validate=False,
+            parallel=parallel,
+        )
+        got = noslip.collide_batch(nu, bodies, parallel=parallel)
+        for b in range(2):
+            for k in ("angular_velocity", "velocity"):
+                assert same_bits(got[b][k], want[b][k]), (parallel, b, k)
 
 
 def test_without_validation_a_bad_row_spoils_only_itself():

@@ -74,6 +74,8 @@ pub use lanes::{
 };
 pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
 pub use rows::{BallRows, FreeRows, StateRows, StateRowsMut};
+#[cfg(feature = "parallel")]
+pub use share::share_rows;
 
 /// Contacts of two free balls with their own parameters.
 pub type FreeBatch<T, const N: usize, const S: usize> = Batch<FreeLanes<T, N, S>>;

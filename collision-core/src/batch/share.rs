@@ -81,6 +81,56 @@ pub(crate) fn share(len: usize, chunk: usize, helpers: usize, run: &(dyn Fn(usiz
     }
 }
 
+/// Runs `run(first, arrays)` on runs of `chunk` rows of `K` row-aligned arrays, on the
+/// calling thread and rayon's other threads, handed out as in the module's notes. Row `r` of array `k` is
+/// `arrays[k][r w_k..(r + 1) w_k]` with `w_k = widths[k]`; the batch has
+/// `min_k(arrays[k].len() / w_k)` rows. Each call gets, in every array, the rows
+/// `[first, first + count)` of its run (`count <= chunk`), and every row goes to exactly one
+/// call. `run` must not wait on rayon (`join`, `scope`, parallel iterators).
+///
+/// This is the safe form of the split for callers outside the crate (the Python package's
+/// `collide_batch` over NumPy arrays); it costs the caller no hand-over, unlike a parallel
+/// iterator called from outside rayon's pool (the module's notes).
+///
+/// # Panics
+/// If a width is 0; a panic in `run` is resumed in the caller once every helper has left.
+pub fn share_rows<T: Send, const K: usize>(
+    arrays: [&mut [T]; K],
+    widths: [usize; K],
+    chunk: usize,
+    run: &(dyn Fn(usize, [&mut [T]; K]) + Sync),
+) {
+    assert!(widths.iter().all(|&w| w > 0), "row widths must be positive");
+    let rows = (0..K)
+        .map(|k| arrays[k].len() / widths[k])
+        .min()
+        .unwrap_or(0);
+    let starts = RowStarts(arrays.map(|a| a.as_mut_ptr()));
+    let starts = &starts;
+    let helpers = rayon::current_num_threads().saturating_sub(1);
+    share(rows, chunk, helpers, &|first, count| {
+        let arrays = std::array::from_fn(|k| {
+            // SAFETY: rows `[first, first + count)` lie within array `k` (`first + count <=
+            // rows <= len_k / w_k`), no other call gets them (`share` hands out disjoint
+            // runs), and the arrays stay borrowed until `share` returns.
+            unsafe {
+                std::slice::from_raw_parts_mut(
+                    starts.0[k].add(first * widths[k]),
+                    count * widths[k],
+                )
+            }
+        });
+        run(first, arrays);
+    });
+}
+
+/// The arrays' starts, shared by the calls of `share_rows` (each writes its own rows).
+struct RowStarts<T, const K: usize>([*mut T; K]);
+
+// SAFETY: the calls touch disjoint rows, each from one thread, and `T: Send` lets a row be
+// written from another thread.
+unsafe impl<T: Send, const K: usize> Sync for RowStarts<T, K> {}
+
 /// What the caller and its helpers share.
 struct Shared {
     /// The caller's `run`, its lifetime erased. It is called only by the caller and by
@@ -215,6 +265,32 @@ mod tests {
                         "{len} blocks, chunk {chunk}, {helpers} helpers"
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn share_rows_gives_each_row_of_every_array_once() {
+        // Two arrays of widths 3 and 1 (and a longer second one: the batch is the shorter),
+        // written by whichever thread runs a run of rows; checked after the call.
+        for rows in [0usize, 1, 5, 64, 1000] {
+            for chunk in [1usize, 7, 512, 5000] {
+                let mut wide = vec![0u64; 3 * rows];
+                let mut narrow = vec![0u64; rows + 2];
+                share_rows([&mut wide, &mut narrow], [3, 1], chunk, &|first, [w, n]| {
+                    assert_eq!(w.len(), 3 * n.len());
+                    assert!(n.len() <= chunk && first + n.len() <= rows);
+                    for (r, (w, n)) in w.chunks_mut(3).zip(n.iter_mut()).enumerate() {
+                        let row = (first + r) as u64;
+                        w.iter_mut().for_each(|x| *x += 10 * row + 1);
+                        *n += row + 1;
+                    }
+                });
+                let want_wide: Vec<u64> = (0..rows as u64).flat_map(|r| [10 * r + 1; 3]).collect();
+                let mut want_narrow: Vec<u64> = (1..=rows as u64).collect();
+                want_narrow.extend([0, 0]);
+                assert_eq!(wide, want_wide, "{rows} rows, chunk {chunk}");
+                assert_eq!(narrow, want_narrow, "{rows} rows, chunk {chunk}");
             }
         }
     }

@@ -7,8 +7,9 @@
 //! arrays. Row-major arrays (NumPy's default) take the direct path: each chunk is gathered
 //! straight into the kernel's lane arrays (`FreeBatch::fill_from_rows`) and scattered
 //! straight into the outputs (`PairBatch::write_rows`); other strides go row by row through
-//! the batch's items. Beyond the outputs, memory is the scratch: about `CHUNK` x 0.5 kB per
-//! running task, whatever the number of rows.
+//! the batch's items. Beyond the outputs, memory is the scratch: about `CHUNK` x 0.25 kB per
+//! running thread, whatever the number of rows, kept between calls (at most
+//! [`KEPT_SCRATCHES`] of them).
 //!
 //! Each row runs the kernel [`collision_core::collide`] runs on it: `fixed` when a body is
 //! immovable (`inv_mass = 0`; bodies swapped and `nu` negated when it is body 2, whose
@@ -27,7 +28,7 @@ mod valid;
 
 use crate::error::input_error;
 use collision_core::batch::BatchKernel;
-use collision_core::batch::{BallRows, FreeRows, StateRows, StateRowsMut, LANES};
+use collision_core::batch::{share_rows, BallRows, FreeRows, StateRows, StateRowsMut, LANES};
 use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
 use collision_core::RefArith;
 use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Scalar};
@@ -39,7 +40,8 @@ use numpy::{
     PyReadonlyArray3, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use rayon::prelude::*;
+use std::any::Any;
+use std::sync::Mutex;
 
 /// Rows per chunk: 64 blocks of 8, whose scratch (inputs and outputs in the blocked
 /// layout, 30 to 130 kB for n = 2..6 in `f64`) stays in the core's L2 cache between the
@@ -267,6 +269,36 @@ struct Scratch<T, const N: usize, const S: usize> {
     /// Per block of `free`, whether all its rows passed the cheap validity test
     /// ([`valid::chunk`]).
     valid: Vec<bool>,
+}
+
+/// Scratches kept between calls, of any type (`Scratch<T, N, S>` boxed), at most
+/// [`KEPT_SCRATCHES`]. Scratches allocated by each call and freed at its end went back to
+/// the system (the allocator trims or unmaps them), so their pages faulted in again on every
+/// call: a split batch took 2x the serial time at n = 6, 1024 rows (15-20 faults a call).
+static SCRATCHES: Mutex<Vec<Box<dyn Any + Send>>> = Mutex::new(Vec::new());
+
+/// At most this many scratches are kept (one per thread of a split batch, for a few types:
+/// 30 to 130 kB each, n = 2..6 in `f64`).
+const KEPT_SCRATCHES: usize = 16;
+
+impl<T: Scalar + Send + 'static, const N: usize, const S: usize> Scratch<T, N, S> {
+    /// A kept scratch of this type, or a new one with room for a chunk.
+    fn take() -> Self {
+        let mut kept = lock(&SCRATCHES);
+        let i = kept.iter().rposition(|s| s.is::<Self>());
+        match i.map(|i| kept.swap_remove(i).downcast::<Self>()) {
+            Some(Ok(scratch)) => *scratch,
+            _ => Self::new(CHUNK),
+        }
+    }
+
+    /// Keeps this scratch for a later call, unless enough are kept.
+    fn give_back(self) {
+        let mut kept = lock(&SCRATCHES);
+        if kept.len() < KEPT_SCRATCHES {
+            kept.push(Box::new(self));
+        }
+    }
 }
 
 impl<T: Scalar, const N: usize, const S: usize> Scratch<T, N, S> {
@@ -515,8 +547,22 @@ where
     Ok(())
 }
 
-/// The whole batch, into `out` (`rows` rows), chunk by chunk; on rayon's pool when
-/// `parallel` and there is more than one chunk.
+/// `m`'s guard, also after a panic elsewhere (the data, a scratch pool or the first error,
+/// stays usable).
+fn lock<X>(m: &Mutex<X>) -> std::sync::MutexGuard<'_, X> {
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// Rows per run of a split batch of `chunks` chunks of `chunk` rows: whole chunks, about
+/// four runs per rayon thread (a run takes one scratch, and a thread that wakes late still
+/// finds runs to take).
+pub(crate) fn piece_rows(chunks: usize, chunk: usize) -> usize {
+    let pieces = (4 * rayon::current_num_threads()).clamp(1, chunks.max(1));
+    chunks.div_ceil(pieces) * chunk
+}
+
+/// The whole batch, into `out` (`rows` rows), chunk by chunk; shared with rayon's threads
+/// when `parallel` and there is more than one chunk.
 fn run_all<T, const N: usize, const S: usize>(
     input: &Inputs<'_, T>,
     validate: bool,
@@ -538,10 +584,13 @@ where
         spin: [s1, s2],
         velocity: [v1, v2],
     } = out;
-    // A piece: consecutive chunks run on one thread with one scratch (allocated once per
-    // piece, a few pieces per thread: rayon's per-split `map_init` allocated it per chunk).
-    let piece = |start: usize, s1: &mut [T], s2: &mut [T], v1: &mut [T], v2: &mut [T]| {
-        let mut scratch = Scratch::<T, N, S>::new((v1.len() / N).min(CHUNK));
+    // A piece: consecutive chunks run on one thread with one scratch.
+    let piece = |start: usize,
+                 scratch: &mut Scratch<T, N, S>,
+                 s1: &mut [T],
+                 s2: &mut [T],
+                 v1: &mut [T],
+                 v2: &mut [T]| {
         let (spin_len, vel_len) = (CHUNK * N * N, CHUNK * N);
         s1.chunks_mut(spin_len)
             .zip(s2.chunks_mut(spin_len))
@@ -555,34 +604,40 @@ where
                 };
                 let start = start + c * CHUNK;
                 match &rows {
-                    Some(rows) => run_chunk_rows(
-                        &exec,
-                        input,
-                        rows,
-                        validate,
-                        start,
-                        out,
-                        &mut scratch,
-                        &pairs,
-                    ),
-                    None => run_chunk(&exec, input, validate, start, out, &mut scratch, &pairs),
+                    Some(rows) => {
+                        run_chunk_rows(&exec, input, rows, validate, start, out, scratch, &pairs)
+                    }
+                    None => run_chunk(&exec, input, validate, start, out, scratch, &pairs),
                 }
             })
     };
     let chunks = input.rows.div_ceil(CHUNK);
     let first_error = if parallel && chunks > 1 {
-        let pieces = (4 * rayon::current_num_threads()).min(chunks);
-        let rows = chunks.div_ceil(pieces) * CHUNK;
-        s1.par_chunks_mut(rows * N * N)
-            .zip(s2.par_chunks_mut(rows * N * N))
-            .zip(v1.par_chunks_mut(rows * N))
-            .zip(v2.par_chunks_mut(rows * N))
-            .enumerate()
-            .map(|(p, (((s1, s2), v1), v2))| piece(p * rows, s1, s2, v1, v2))
-            .filter_map(Result::err)
-            .min_by_key(|e: &RowError| e.0)
+        // Runs of whole chunks, a few per thread, shared between this thread and rayon's
+        // others without handing the batch over (`share_rows`); the first row's error wins.
+        let first_error = Mutex::new(None::<RowError>);
+        share_rows(
+            [s1, s2, v1, v2],
+            [N * N, N * N, N, N],
+            piece_rows(chunks, CHUNK),
+            &|first, [s1, s2, v1, v2]| {
+                let mut scratch = Scratch::<T, N, S>::take();
+                let result = piece(first, &mut scratch, s1, s2, v1, v2);
+                scratch.give_back();
+                if let Err(e) = result {
+                    let mut kept = lock(&first_error);
+                    if kept.as_ref().is_none_or(|k| e.0 < k.0) {
+                        *kept = Some(e);
+                    }
+                }
+            },
+        );
+        first_error.into_inner().unwrap_or_else(|p| p.into_inner())
     } else {
-        piece(0, s1, s2, v1, v2).err()
+        let mut scratch = Scratch::<T, N, S>::take();
+        let result = piece(0, &mut scratch, s1, s2, v1, v2);
+        scratch.give_back();
+        result.err()
     };
     first_error.map_or(Ok(()), |(_, m)| Err(m))
 }
