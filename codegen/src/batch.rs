@@ -358,18 +358,10 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
     // it does not stay live (in a register, or spilled) to the end of the lane loop.
     let position: std::collections::HashMap<Id, usize> =
         lane.iter().enumerate().map(|(i, &id)| (id, i)).collect();
-    let mut last_use: std::collections::HashMap<Id, usize> = std::collections::HashMap::new();
-    for (i, &id) in lane.iter().enumerate() {
-        for a in kernel.graph.node(id).operands() {
-            last_use.insert(a, i);
-        }
-    }
+    let last_read = pressure::last_reads(&kernel.graph, &lane);
     let mut after: Vec<Vec<TokenStream>> = vec![Vec::new(); lane.len() + 1];
     for (id, store) in stores {
-        let slot = match position.get(&id) {
-            Some(&p) => p.max(last_use.get(&id).copied().unwrap_or(p)),
-            None => lane.len(),
-        };
+        let slot = position.get(&id).map_or(lane.len(), |&p| last_read[p]);
         after[slot].push(store);
     }
     let lane_steps = lane.iter().enumerate().map(|(i, &id)| {

@@ -17,10 +17,9 @@
 use crate::ir::{Graph, Id};
 use std::collections::{HashMap, HashSet};
 
-/// The most values held at once when `steps` run in this order: after each step, the values
-/// computed so far that a later step still reads, and the step's own (inputs, constants and
-/// values from outside the steps are read where they are used, so they are not counted).
-pub fn held(graph: &Graph, steps: &[Id]) -> usize {
+/// For each step `i` of `steps` (in this order), the last step that reads its value, or `i`
+/// itself if none does.
+pub fn last_reads(graph: &Graph, steps: &[Id]) -> Vec<usize> {
     let position: HashMap<Id, usize> = steps.iter().enumerate().map(|(i, &id)| (id, i)).collect();
     let mut last: Vec<usize> = (0..steps.len()).collect();
     for (i, &id) in steps.iter().enumerate() {
@@ -30,6 +29,14 @@ pub fn held(graph: &Graph, steps: &[Id]) -> usize {
             }
         }
     }
+    last
+}
+
+/// The most values held at once when `steps` run in this order: after each step, the values
+/// computed so far that a later step still reads, and the step's own (inputs, constants and
+/// values from outside the steps are read where they are used, so they are not counted).
+pub fn held(graph: &Graph, steps: &[Id]) -> usize {
+    let last = last_reads(graph, steps);
     // Step i's value is held after steps i..last_i - 1 (after step i alone if unused).
     let mut change = vec![0i64; steps.len() + 1];
     for (i, &l) in last.iter().enumerate() {
