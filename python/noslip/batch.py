@@ -68,8 +68,8 @@ def collide_batch(
     rayon's other threads (from 513 rows on; the caller never waits for a thread to wake).
     C-contiguous arrays (NumPy's default) are gathered straight into the kernels' lane arrays
     and the results scattered straight into the outputs, in chunks of 512 rows; other strides
-    go row by row. Memory beyond the new output arrays is a scratch of one chunk (30 to
-    130 kB) per running thread, kept for the next call.
+    go row by row. Memory beyond the new output arrays is a scratch of one chunk (15 to
+    130 kB) per running thread, which that thread keeps for its next call.
 
     Parameters
     ----------

@@ -90,7 +90,7 @@ type OutChunk<'a> = (
     ),
 );
 
-/// Rows per rayon task of the `rows` reference.
+/// Rows per chunk of the `rows` reference (runs of whole chunks are shared between threads).
 const CHUNK: usize = 512;
 
 /// The seconds of each of `repeats` runs of the references, `(rows, kernel, copy)`, on the same

@@ -82,11 +82,11 @@ pub(crate) fn share(len: usize, chunk: usize, helpers: usize, run: &(dyn Fn(usiz
 }
 
 /// Runs `run(first, arrays)` on runs of `chunk` rows of `K` row-aligned arrays, on the
-/// calling thread and rayon's other threads, handed out as in the module's notes. Row `r` of array `k` is
-/// `arrays[k][r w_k..(r + 1) w_k]` with `w_k = widths[k]`; the batch has
-/// `min_k(arrays[k].len() / w_k)` rows. Each call gets, in every array, the rows
-/// `[first, first + count)` of its run (`count <= chunk`), and every row goes to exactly one
-/// call. `run` must not wait on rayon (`join`, `scope`, parallel iterators).
+/// calling thread and rayon's other threads, handed out as in the module's notes. Row `r` of
+/// array `k` is `arrays[k][r w_k..(r + 1) w_k]` with `w_k = widths[k]`; the batch has
+/// `min_k(arrays[k].len() / w_k)` rows (0 for `K = 0`). Each call gets, in every array, the
+/// rows `[first, first + count)` of its run (`1 <= count <= max(chunk, 1)`, also with one
+/// rayon thread), and every row goes to exactly one call. `run` must not wait on rayon (`join`, `scope`, parallel iterators).
 ///
 /// This is the safe form of the split for callers outside the crate (the Python package's
 /// `collide_batch` over NumPy arrays); it costs the caller no hand-over, unlike a parallel
@@ -107,20 +107,24 @@ pub fn share_rows<T: Send, const K: usize>(
         .unwrap_or(0);
     let starts = RowStarts(arrays.map(|a| a.as_mut_ptr()));
     let starts = &starts;
-    let helpers = rayon::current_num_threads().saturating_sub(1);
-    share(rows, chunk, helpers, &|first, count| {
-        let arrays = std::array::from_fn(|k| {
-            // SAFETY: rows `[first, first + count)` lie within array `k` (`first + count <=
-            // rows <= len_k / w_k`), no other call gets them (`share` hands out disjoint
-            // runs), and the arrays stay borrowed until `share` returns.
-            unsafe {
-                std::slice::from_raw_parts_mut(
-                    starts.0[k].add(first * widths[k]),
-                    count * widths[k],
-                )
-            }
-        });
-        run(first, arrays);
+    let (chunk, helpers) = (chunk.max(1), rayon::current_num_threads().saturating_sub(1));
+    share(rows, chunk, helpers, &|start, len| {
+        // `share` gives the whole batch at once when it has no helper: cut it here too.
+        for first in (start..start + len).step_by(chunk) {
+            let count = chunk.min(start + len - first);
+            let arrays = std::array::from_fn(|k| {
+                // SAFETY: rows `[first, first + count)` lie within array `k` (`first + count
+                // <= rows <= len_k / w_k`), no other call gets them (`share` hands out
+                // disjoint runs), and the arrays stay borrowed until `share` returns.
+                unsafe {
+                    std::slice::from_raw_parts_mut(
+                        starts.0[k].add(first * widths[k]),
+                        count * widths[k],
+                    )
+                }
+            });
+            run(first, arrays);
+        }
     });
 }
 
@@ -269,30 +273,49 @@ mod tests {
         }
     }
 
+    /// `share_rows` on two arrays of widths 3 and 1 (the second longer: the batch is the
+    /// shorter), written by whichever thread runs a run of rows; checked after the call.
+    fn rows_once(rows: usize, chunk: usize) {
+        let mut wide = vec![0u64; 3 * rows];
+        let mut narrow = vec![0u64; rows + 2];
+        share_rows([&mut wide, &mut narrow], [3, 1], chunk, &|first, [w, n]| {
+            assert_eq!(w.len(), 3 * n.len());
+            assert!(!n.is_empty() && n.len() <= chunk.max(1) && first + n.len() <= rows);
+            for (r, (w, n)) in w.chunks_mut(3).zip(n.iter_mut()).enumerate() {
+                let row = (first + r) as u64;
+                w.iter_mut().for_each(|x| *x += 10 * row + 1);
+                *n += row + 1;
+            }
+        });
+        let want_wide: Vec<u64> = (0..rows as u64).flat_map(|r| [10 * r + 1; 3]).collect();
+        let mut want_narrow: Vec<u64> = (1..=rows as u64).collect();
+        want_narrow.extend([0, 0]);
+        assert_eq!(wide, want_wide, "{rows} rows, chunk {chunk}");
+        assert_eq!(narrow, want_narrow, "{rows} rows, chunk {chunk}");
+    }
+
     #[test]
     fn share_rows_gives_each_row_of_every_array_once() {
-        // Two arrays of widths 3 and 1 (and a longer second one: the batch is the shorter),
-        // written by whichever thread runs a run of rows; checked after the call.
+        // On the global pool, and on a pool of one thread (no helper: `share` gives the
+        // whole batch at once, and `share_rows` must still cut it into runs of `chunk`).
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
         for rows in [0usize, 1, 5, 64, 1000] {
-            for chunk in [1usize, 7, 512, 5000] {
-                let mut wide = vec![0u64; 3 * rows];
-                let mut narrow = vec![0u64; rows + 2];
-                share_rows([&mut wide, &mut narrow], [3, 1], chunk, &|first, [w, n]| {
-                    assert_eq!(w.len(), 3 * n.len());
-                    assert!(n.len() <= chunk && first + n.len() <= rows);
-                    for (r, (w, n)) in w.chunks_mut(3).zip(n.iter_mut()).enumerate() {
-                        let row = (first + r) as u64;
-                        w.iter_mut().for_each(|x| *x += 10 * row + 1);
-                        *n += row + 1;
-                    }
-                });
-                let want_wide: Vec<u64> = (0..rows as u64).flat_map(|r| [10 * r + 1; 3]).collect();
-                let mut want_narrow: Vec<u64> = (1..=rows as u64).collect();
-                want_narrow.extend([0, 0]);
-                assert_eq!(wide, want_wide, "{rows} rows, chunk {chunk}");
-                assert_eq!(narrow, want_narrow, "{rows} rows, chunk {chunk}");
+            for chunk in [0usize, 1, 7, 512, 5000] {
+                rows_once(rows, chunk);
+                one.install(|| rows_once(rows, chunk));
             }
         }
+        // No arrays: no rows, no call.
+        share_rows::<u64, 0>([], [], 4, &|_, _| panic!("called without rows"));
+    }
+
+    #[test]
+    #[should_panic(expected = "row widths must be positive")]
+    fn share_rows_refuses_a_zero_width() {
+        share_rows([&mut [0u64; 4][..]], [0], 1, &|_, _| {});
     }
 
     #[test]

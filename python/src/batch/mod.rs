@@ -8,8 +8,8 @@
 //! straight into the kernel's lane arrays (`FreeBatch::fill_from_rows`) and scattered
 //! straight into the outputs (`PairBatch::write_rows`); other strides go row by row through
 //! the batch's items. Beyond the outputs, memory is the scratch: about `CHUNK` x 0.25 kB per
-//! running thread, whatever the number of rows, kept between calls (at most
-//! [`KEPT_SCRATCHES`] of them).
+//! running thread, whatever the number of rows, kept by that thread between calls (at
+//! most [`KEPT_SCRATCHES`] of them, one per type).
 //!
 //! Each row runs the kernel [`collision_core::collide`] runs on it: `fixed` when a body is
 //! immovable (`inv_mass = 0`; bodies swapped and `nu` negated when it is body 2, whose
@@ -41,6 +41,7 @@ use numpy::{
 };
 use pyo3::prelude::*;
 use std::any::Any;
+use std::cell::RefCell;
 use std::sync::Mutex;
 
 /// Rows per chunk: 64 blocks of 8, whose scratch (inputs and outputs in the blocked
@@ -271,33 +272,40 @@ struct Scratch<T, const N: usize, const S: usize> {
     valid: Vec<bool>,
 }
 
-/// Scratches kept between calls, of any type (`Scratch<T, N, S>` boxed), at most
-/// [`KEPT_SCRATCHES`]. Scratches allocated by each call and freed at its end went back to
-/// the system (the allocator trims or unmaps them), so their pages faulted in again on every
-/// call: a split batch took 2x the serial time at n = 6, 1024 rows (15-20 faults a call).
-static SCRATCHES: Mutex<Vec<Box<dyn Any + Send>>> = Mutex::new(Vec::new());
+thread_local! {
+    /// This thread's scratches kept between calls, of any type (`Scratch<T, N, S>` boxed),
+    /// the most recently used last, at most [`KEPT_SCRATCHES`]. Scratches allocated by each
+    /// call and freed at its end went back to the system (the allocator trims or unmaps
+    /// them), so their pages faulted in again on every call: a split batch took 2x the
+    /// serial time at n = 6, 1024 rows (15-20 faults a call). Per thread, so that a scratch
+    /// stays in the L2 of the core that last used it, and rayon's workers live as long as
+    /// the process.
+    static SCRATCHES: RefCell<Vec<Box<dyn Any>>> = const { RefCell::new(Vec::new()) };
+}
 
-/// At most this many scratches are kept (one per thread of a split batch, for a few types:
-/// 30 to 130 kB each, n = 2..6 in `f64`).
-const KEPT_SCRATCHES: usize = 16;
+/// At most this many scratches are kept per thread: one per type (`f32`, `f64` and n = 2..6,
+/// 15 to 130 kB each), so a program alternating between all ten types still reuses them.
+const KEPT_SCRATCHES: usize = 10;
 
-impl<T: Scalar + Send + 'static, const N: usize, const S: usize> Scratch<T, N, S> {
-    /// A kept scratch of this type, or a new one with room for a chunk.
+impl<T: Scalar + 'static, const N: usize, const S: usize> Scratch<T, N, S> {
+    /// This thread's kept scratch of this type, or a new one with room for a chunk.
     fn take() -> Self {
-        let mut kept = lock(&SCRATCHES);
-        let i = kept.iter().rposition(|s| s.is::<Self>());
-        match i.map(|i| kept.swap_remove(i).downcast::<Self>()) {
-            Some(Ok(scratch)) => *scratch,
-            _ => Self::new(CHUNK),
-        }
+        let kept = SCRATCHES.with_borrow_mut(|kept| {
+            let i = kept.iter().rposition(|s| s.is::<Self>())?;
+            kept.remove(i).downcast::<Self>().ok()
+        });
+        kept.map_or_else(|| Self::new(CHUNK), |scratch| *scratch)
     }
 
-    /// Keeps this scratch for a later call, unless enough are kept.
+    /// Keeps this scratch on this thread for a later call; the least recently used one goes
+    /// if [`KEPT_SCRATCHES`] are kept.
     fn give_back(self) {
-        let mut kept = lock(&SCRATCHES);
-        if kept.len() < KEPT_SCRATCHES {
+        SCRATCHES.with_borrow_mut(|kept| {
+            if kept.len() >= KEPT_SCRATCHES {
+                kept.remove(0);
+            }
             kept.push(Box::new(self));
-        }
+        });
     }
 }
 
@@ -547,23 +555,22 @@ where
     Ok(())
 }
 
-/// `m`'s guard, also after a panic elsewhere (the data, a scratch pool or the first error,
-/// stays usable).
+/// `m`'s guard, also after a panic elsewhere (the first error stays usable).
 fn lock<X>(m: &Mutex<X>) -> std::sync::MutexGuard<'_, X> {
     m.lock().unwrap_or_else(|p| p.into_inner())
 }
 
-/// Rows per run of a split batch of `chunks` chunks of `chunk` rows: whole chunks, at least
-/// four runs per rayon thread and at most [`RUN_CHUNKS`] chunks a run, so that a thread that
-/// wakes late still finds runs to take and the threads finish within one short run of each
-/// other.
+/// Rows per run of a split batch of `chunks` chunks of `chunk` rows: whole chunks, about
+/// four runs per rayon thread (one run per chunk when there are fewer chunks) and at most
+/// [`RUN_CHUNKS`] chunks a run, so that a thread that wakes late still finds runs to take and
+/// the threads finish within one short run of each other.
 pub(crate) fn piece_rows(chunks: usize, chunk: usize) -> usize {
     let pieces = (4 * rayon::current_num_threads()).clamp(1, chunks.max(1));
     chunks.div_ceil(pieces).min(RUN_CHUNKS) * chunk
 }
 
 /// The most chunks in a run of a split batch: 8 chunks of 512 rows, 0.1-0.4 ms at n = 3..6.
-/// A run costs two locks of the scratch pool and one atomic step, far below that.
+/// A run costs two thread-local lookups of a scratch and one atomic step, far below that.
 const RUN_CHUNKS: usize = 8;
 
 /// The whole batch, into `out` (`rows` rows), chunk by chunk; shared with rayon's threads
