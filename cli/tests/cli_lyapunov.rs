@@ -93,7 +93,22 @@ fn bad_input_exits_2_naming_the_place() {
         ),
         (
             vec!["scenes/sinai.toml", "--blocks", "0"],
-            "--events: 100000 contacts cannot make a warm-up and 0 blocks",
+            "--blocks: must be in 1..=10000",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--blocks", "10001"],
+            "--blocks: must be in 1..=10000",
+        ),
+        // blocks + 1 wrapped to 0 here once (a division by zero).
+        (
+            vec!["scenes/sinai.toml", "--blocks", "18446744073709551615"],
+            "--blocks: must be in 1..=10000",
+        ),
+        // The Sinai table's lambda_1 is 1.3 a contact: in 300 contacts the vectors grow by
+        // about e^400, and their squares overflow.
+        (
+            vec!["scenes/sinai.toml", "--events", "2000", "--every", "300"],
+            "--every: the tangent vectors stopped being finite between contacts 0 and 300",
         ),
         (
             vec!["scenes/sinai.toml", "--every", "0"],

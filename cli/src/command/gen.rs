@@ -9,6 +9,7 @@ use noslip_codegen::backend::{self, Lang};
 use noslip_codegen::specialise::generate;
 use noslip_scene::Scene;
 use noslip_verify::checks::specialised::check;
+use noslip_verify::suite::MAX_POINTS;
 use std::path::{Path, PathBuf};
 
 pub(crate) const LONG_ABOUT: &str = "\
@@ -51,7 +52,8 @@ pub struct Args {
     /// Print only the op-count table (generic against specialised), not the module.
     #[arg(long)]
     ops: bool,
-    /// Check the specialised kernels against the generic map at this many exact points.
+    /// Check the specialised kernels against the generic map at this many exact points
+    /// (1 to 1024).
     #[arg(long, value_name = "K")]
     pub check: Option<usize>,
 }
@@ -100,6 +102,12 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         return Err(Failure::bad_input(
             "--out: only with --lang c or opencl (--lang rust prints the module)",
         ));
+    }
+    if let Some(points) = args.check.filter(|p| !(1..=MAX_POINTS).contains(p)) {
+        // 0 points would pass without a check.
+        return Err(Failure::bad_input(format!(
+            "--check: must be in 1..={MAX_POINTS}, got {points}"
+        )));
     }
     let scene = Scene::from_file(scene_path).map_err(|e| Failure::bad_input(e.to_string()))?;
     let set = scene.pairs();

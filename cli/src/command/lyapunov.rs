@@ -50,7 +50,7 @@ pub struct Args {
     /// Seed of the initial tangent vectors or perturbation.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Measured blocks for the standard error (after a warm-up block).
+    /// Measured blocks for the standard error (after a warm-up block), at most 10000.
     #[arg(long, default_value_t = 10)]
     blocks: usize,
     /// Contacts between re-orthonormalisations (default: the method's).
@@ -129,7 +129,10 @@ where
     };
     result.map_err(|e| match e {
         LyapunovError::Setup(_) => Failure::bad_input(format!("{}: {e}", scene.origin)),
-        LyapunovError::K { .. } | LyapunovError::Events { .. } => Failure::bad_input(e.to_string()),
+        LyapunovError::K { .. }
+        | LyapunovError::Blocks { .. }
+        | LyapunovError::Events { .. }
+        | LyapunovError::Overflow { .. } => Failure::bad_input(e.to_string()),
         _ => Failure::bad_input(format!("{}: {e}", scene.origin)),
     })
 }

@@ -7,7 +7,7 @@ use crate::out::outln;
 use crate::progress::ProgressDisplay;
 use crate::publish::Staging;
 use noslip_accuracy::plot::svg;
-use noslip_accuracy::{dim_result, AccuracyReport, Options, Provenance};
+use noslip_accuracy::{dim_result, AccuracyReport, Options, Provenance, MAX_SAMPLES};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -39,7 +39,7 @@ pub struct Args {
     /// run (refused if it exists, is not empty and was not made by noslip).
     #[arg(long, default_value = "out/report")]
     pub out: PathBuf,
-    /// Sampled cases per dimension and regime.
+    /// Sampled cases per dimension and regime (1 to 100000).
     #[arg(long, default_value_t = Options::default().samples)]
     samples: usize,
     /// Seed of the sampling.
@@ -64,8 +64,11 @@ pub fn options(args: &Args) -> Result<Options, Failure> {
         seed: args.seed,
         ..Options::default()
     };
-    if opts.samples == 0 {
-        return Err(Failure::bad_input("--samples must be at least 1"));
+    if !(1..=MAX_SAMPLES).contains(&opts.samples) {
+        return Err(Failure::bad_input(format!(
+            "--samples: must be in 1..={MAX_SAMPLES}, got {}",
+            opts.samples
+        )));
     }
     Ok(opts)
 }

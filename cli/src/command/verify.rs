@@ -7,7 +7,7 @@ use crate::out::outln;
 use crate::progress::ProgressDisplay;
 use crate::publish::{write_atomic, Staging};
 use noslip_verify::report::{golden, Report};
-use noslip_verify::suite::{self, checks_per_dim, Options};
+use noslip_verify::suite::{self, checks_per_dim, Options, MAX_POINTS};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -39,7 +39,7 @@ pub struct Args {
     /// (refused if it exists, is not empty and was not made by noslip).
     #[arg(long, default_value = "out/verify")]
     pub out: PathBuf,
-    /// Random points per identity check.
+    /// Random points per identity check (1 to 1024).
     #[arg(long, default_value_t = Options::default().points)]
     points: usize,
     /// Compare the results (without timings) of the dimensions run with the golden copy;
@@ -79,8 +79,11 @@ pub fn options(args: &Args) -> Result<Options, Failure> {
         points: args.points,
         ..Options::default()
     };
-    if opts.points == 0 {
-        return Err(Failure::bad_input("--points must be at least 1"));
+    if !(1..=MAX_POINTS).contains(&opts.points) {
+        return Err(Failure::bad_input(format!(
+            "--points: must be in 1..={MAX_POINTS}, got {}",
+            opts.points
+        )));
     }
     Ok(opts)
 }

@@ -97,7 +97,12 @@ pub enum LyapunovError {
         /// The phase-space dimension.
         dimension: usize,
     },
-    /// Fewer contacts than blocks + 1, or no blocks.
+    /// Blocks not in `1..=`[`MAX_BLOCKS`].
+    Blocks {
+        /// The blocks asked for.
+        blocks: usize,
+    },
+    /// Fewer contacts than twice the blocks + 1.
     Events {
         /// The contacts asked for.
         events: u64,
@@ -106,6 +111,16 @@ pub enum LyapunovError {
     },
     /// The run ran out of contacts.
     NoContact(String),
+    /// The tangent vectors stopped being finite between two re-orthonormalisations more than
+    /// one contact apart: they grew by more than about `e^354` (their squares, in the norms
+    /// and dot products of Gram-Schmidt, pass the largest `f64`, about `e^709`), or met a
+    /// grazing contact.
+    Overflow {
+        /// The contact of the last re-orthonormalisation (0: the start).
+        from: u64,
+        /// The contact at which it was found.
+        at: u64,
+    },
     /// A growth was not finite: a grazing contact (`nu . v_rel = 0`), where the tangent map
     /// is singular, or a collapse of the perturbation.
     Singular {
@@ -126,6 +141,11 @@ impl fmt::Display for LyapunovError {
             LyapunovError::K { k, dimension } => {
                 write!(f, "--k: must be in 1..={dimension} (the phase-space dimension), got {k}")
             }
+            LyapunovError::Blocks { blocks } => write!(
+                f,
+                "--blocks: must be in 1..={MAX_BLOCKS} (more blocks only shorten each block), \
+                 got {blocks}"
+            ),
             LyapunovError::Events { events, blocks } => write!(
                 f,
                 "--events: {events} contacts cannot make a warm-up and {blocks} blocks: at least {} \
@@ -133,6 +153,15 @@ impl fmt::Display for LyapunovError {
                 (*blocks as u64 + 1) * 2
             ),
             LyapunovError::NoContact(why) => write!(f, "the run stopped: {why}"),
+            LyapunovError::Overflow { from, at } => write!(
+                f,
+                "--every: the tangent vectors stopped being finite between contacts {from} and \
+                 {at}, {} contacts without re-orthonormalisation: they overflow when they grow \
+                 by more than about e^354 in between (their squares pass the largest f64); \
+                 renormalise more often (a grazing contact, nu . v_rel = 0, also does this: if \
+                 --every 1 fails too, that is the cause)",
+                at - from
+            ),
             LyapunovError::Singular { at } => write!(
                 f,
                 "the tangent dynamics became singular near contact {at} (a grazing contact, \
@@ -162,6 +191,11 @@ fn next_contact<const N: usize, const S: usize, K: noslip_sim::PairKernels<f64, 
     }
 }
 
+/// The most measured blocks a run takes. Block statistics need blocks long compared with the
+/// correlation time of the growth, so a few tens are the usual choice; the cap keeps the
+/// per-block sums (`(k + 2)` numbers a block) to what the run itself holds.
+pub const MAX_BLOCKS: usize = 10_000;
+
 /// The measured plan: the warm-up and the block of each contact.
 #[derive(Clone, Copy, Debug)]
 struct Plan {
@@ -172,7 +206,10 @@ struct Plan {
 
 impl Plan {
     fn new(o: &Options) -> Result<Self, LyapunovError> {
-        if o.blocks == 0 || o.events < 2 * (o.blocks as u64 + 1) {
+        if !(1..=MAX_BLOCKS).contains(&o.blocks) {
+            return Err(LyapunovError::Blocks { blocks: o.blocks });
+        }
+        if o.events < 2 * (o.blocks as u64 + 1) {
             return Err(LyapunovError::Events {
                 events: o.events,
                 blocks: o.blocks,

@@ -137,7 +137,14 @@ where
             }
             let logs = gram_schmidt(&mut vectors);
             if logs.iter().any(|l| !l.is_finite()) {
-                return Err(LyapunovError::Singular { at: c });
+                return Err(if c - last_contact > 1 {
+                    LyapunovError::Overflow {
+                        from: last_contact,
+                        at: c,
+                    }
+                } else {
+                    LyapunovError::Singular { at: c }
+                });
             }
             if let Some(b) = plan.block(c) {
                 let dt = e.time - last_time;
