@@ -14,7 +14,7 @@
 //! |---|---|---|---|
 //! | `lambda` | `[0, R^2/n]` | `R^2/n` | to the bound |
 //! | `gamma2`, given or `2 lambda / R^2` | `[0, 2/n]` | `2/n` | to the bound |
-//! | `\|nu\|^2` | `{1}` | `\|nu\|^2` | `nu` is renormalised |
+//! | `\|nu\|^2` | `{1}` | `\|nu\|^2`, with `ULPS + 2n` for `ULPS` (rounding of `d / \|d\|` in `n` dimensions) | `nu` is renormalised |
 //! | `U_ij + U_ji`, `U_ii` | `{0}` | `max \|U_kl\|` | `U` is replaced by its skew part `(U - U^T)/2` |
 //! | `(u_2 - u_1) . nu` | `<= 0` | `sum_k \|nu_k\| (\|u_1k\| + \|u_2k\|)` | grazing: the relative velocity loses its normal part, shared so that momentum is kept |
 //!

@@ -37,6 +37,17 @@ fn max_abs<W: Scalar>(xs: &[W]) -> W {
         .fold(W::zero(), |m, x| if x.abs() > m { x.abs() } else { m })
 }
 
+/// The allowance of `|nu|^2` in dimension `n`, in units of epsilon: `ULPS + 2n`
+/// ([`allowance::ULPS`] is 8). A normal computed as `d / |d|` carries up to
+/// `(n/2 + 2) eps/2` of relative error per component (the sum of `n` squares, the square
+/// root, the division), so its exact `|nu|^2` is within `(n + 4) eps/2` of 1, and the check's
+/// own sum of squares adds `n eps/2`: `(n + 2) eps` in all, beyond `ULPS` from `n = 7` on.
+/// `ULPS` on top covers the components' decimal writing (16 significant digits are up to
+/// `2.25 eps` each, `4.5 eps` on `|nu|^2`).
+const fn normal_ulps(n: usize) -> u32 {
+    allowance::ULPS + 2 * n as u32
+}
+
 /// Validate and clamp (see [`crate::collide`] for the checks; [`crate::allowance`] for the
 /// rule), for any `n = nu.len()`.
 pub(crate) fn prepare<T: Scalar>(
@@ -59,14 +70,16 @@ pub(crate) fn prepare<T: Scalar>(
         .iter()
         .fold(T::Unbounded::zero(), |s, x| s + x.clone() * x.clone());
     let one = T::Unbounded::one();
-    if allowance::within(&norm2, &one, &one, &allowance(&norm2)).is_none() {
+    let ulps = normal_ulps(n);
+    let slack =
+        allowance(&norm2) * T::Unbounded::from_ratio(i64::from(ulps), i64::from(allowance::ULPS));
+    if allowance::within(&norm2, &one, &one, &slack).is_none() {
         let how = if T::EXACT {
             "exactly".to_string()
         } else {
             format!(
-                "| |nu|^2 - 1 | <= {} eps |nu|^2 = {}, the rounding allowance",
-                allowance::ULPS,
-                crate::scalar::allowance(&norm2).show()
+                "| |nu|^2 - 1 | <= {ulps} eps |nu|^2 = {}, the rounding allowance in {n}D",
+                slack.show()
             )
         };
         return Err(InputError::new(
@@ -356,6 +369,39 @@ mod tests {
             velocity: s.velocity.map(exact),
         });
         collide_unchecked(&nu.map(exact), [&b[0], &b[1]], [&s[0], &s[1]])
+    }
+
+    /// A normal `d / |d|` computed in `f64`, in every dimension the checked entry points take
+    /// (2 to 16), is accepted; one beyond `(8 + 2n) eps` of `|nu|^2 = 1` is refused.
+    #[test]
+    fn normalised_normals_are_accepted_in_every_dimension_and_no_further_one() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let eps = f64::EPSILON;
+        for n in 2..=16usize {
+            let b = Ball::new(n, Mass::Finite(1.0), 1.0, Inertia::Uniform).unwrap();
+            let spin = vec![0.0; n * (n - 1) / 2];
+            let velocity = vec![0.0; n];
+            let parts = [(&spin[..], &velocity[..]), (&spin[..], &velocity[..])];
+            for _ in 0..2000 {
+                let d: Vec<f64> = (0..n)
+                    .map(|_| rng.random_range(-1.0..1.0) * 10f64.powf(rng.random_range(-3.0..3.0)))
+                    .collect();
+                let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let nu: Vec<f64> = d.iter().map(|x| x / norm).collect();
+                assert!(super::prepare(&nu, [&b, &b], parts).is_ok(), "{nu:?}");
+            }
+            // |nu|^2 = (1 + k eps)^2 = 1 + 2k eps (rounded): k = 4 + n is the allowance's edge.
+            let edge = 4.0 + n as f64;
+            let mut nu = vec![0.0; n];
+            nu[0] = 1.0 + edge * eps;
+            assert!(
+                super::prepare(&nu, [&b, &b], parts).is_ok(),
+                "{n}: at the edge"
+            );
+            nu[0] = 1.0 + (edge + 1.0) * eps;
+            let e = super::prepare(&nu, [&b, &b], parts).unwrap_err();
+            assert_eq!(e.field, Field::Normal, "{n}: beyond the edge");
+        }
     }
 
     #[test]

@@ -63,7 +63,8 @@ Modes:
              most 8 eps (eps = 2^-52) of its scale, is accepted and clamped to the bound:
                lambda in [0, R^2/n]   scale R^2/n   set to the bound
                gamma2 in [0, 2/n]     scale 2/n     set to the bound (also 2 lambda/R^2)
-               |nu|^2 = 1             scale |nu|^2  nu renormalised
+               |nu|^2 = 1             scale |nu|^2  nu renormalised; (8 + 2n) eps, the
+                                      rounding of d/|d| in n dimensions
                U skew                 scale max|U|  its skew part (U - U^T)/2 used
                (u_2 - u_1) . nu <= 0  scale sum_k |nu_k| (|u_1k| + |u_2k|)
                                       grazing: the normal part of u_2 - u_1 removed,
