@@ -461,6 +461,11 @@ fn time_and_events_flags_are_checked_like_the_scene() {
             "inf",
             "error: --time: must be positive and finite, got inf",
         ),
+        (
+            "--time",
+            "1e-320",
+            "error: --time: 1e-320 is not a normal f64 (the least is 2.2250738585072014e-308)",
+        ),
         ("--events", "0", "error: --events: must be at least 1"),
     ] {
         let out = noslip()
@@ -738,4 +743,53 @@ fn a_long_flight_without_contact_is_noticed_and_the_run_goes_on() {
         "{stderr}"
     );
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn outputs_that_would_overwrite_the_scene_or_each_other_are_refused() {
+    let dir = scratch("clash");
+    let scene = dir.join("sinai.toml");
+    std::fs::copy(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/sinai.toml"),
+        &scene,
+    )
+    .unwrap();
+    let before = std::fs::read(&scene).unwrap();
+    let both = dir.join("same.txt");
+    std::fs::write(&both, "kept").unwrap();
+    let dotted = dir.join(".").join("sinai.toml");
+    let cases: Vec<(Vec<&std::ffi::OsStr>, &str)> = vec![
+        (vec!["--log".as_ref(), scene.as_os_str()], "--log: "),
+        (
+            vec!["--boundary-map".as_ref(), dotted.as_os_str()],
+            "--boundary-map: ",
+        ),
+        (
+            vec![
+                "--log".as_ref(),
+                both.as_os_str(),
+                "--boundary-map".as_ref(),
+                both.as_os_str(),
+            ],
+            "is also --log; the two need two files",
+        ),
+    ];
+    for (args, want) in cases {
+        let out = noslip()
+            .arg("simulate")
+            .arg(&scene)
+            .args(["--quiet", "--events", "5", "--out"])
+            .arg(dir.join("out"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+        assert!(!dir.join("out").exists(), "{args:?}: nothing is run");
+    }
+    assert_eq!(std::fs::read(&scene).unwrap(), before, "the scene is kept");
+    assert_eq!(std::fs::read_to_string(&both).unwrap(), "kept");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -311,6 +311,13 @@ pub fn check_limits(args: &Args) -> Result<(), Failure> {
                 "--time: must be positive and finite, got {t}"
             )));
         }
+        if !t.is_normal() {
+            // As the scene's simulation.time: a subnormal time has lost its precision.
+            return Err(Failure::bad_input(format!(
+                "--time: {t:e} is not a normal f64 (the least is {:e})",
+                f64::MIN_POSITIVE
+            )));
+        }
     }
     if args.events == Some(0) {
         return Err(Failure::bad_input(
@@ -320,9 +327,52 @@ pub fn check_limits(args: &Args) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Check the limits, read the scene, run it and publish its outputs.
+/// Whether `a` and `b` name one file: the same file if both exist, else the same absolute
+/// path, lexically.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => {
+            let clean = |p: &Path| -> Option<PathBuf> {
+                let p = std::path::absolute(p).ok()?;
+                Some(
+                    p.components()
+                        .filter(|c| !matches!(c, std::path::Component::CurDir))
+                        .collect(),
+                )
+            };
+            clean(a).is_some_and(|x| Some(x) == clean(b))
+        }
+    }
+}
+
+/// `--log` and `--boundary-map` name two files, neither of them the scene: the run would
+/// otherwise overwrite its own input, or one output with the other.
+fn check_paths(args: &Args) -> Result<(), Failure> {
+    let outputs = [("--log", &args.log), ("--boundary-map", &args.boundary_map)];
+    for (option, path) in outputs {
+        if let Some(p) = path.as_deref().filter(|p| same_file(p, &args.file)) {
+            return Err(Failure::bad_input(format!(
+                "{option}: {} is the scene file; the run would write over it",
+                p.display()
+            )));
+        }
+    }
+    if let (Some(log), Some(map)) = (&args.log, &args.boundary_map) {
+        if same_file(log, map) {
+            return Err(Failure::bad_input(format!(
+                "--boundary-map: {} is also --log; the two need two files",
+                map.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Check the limits and the output paths, read the scene, run it and publish its outputs.
 pub fn run(args: &Args) -> Result<Exit, Failure> {
     check_limits(args)?;
+    check_paths(args)?;
     let scene = Scene::from_file(&args.file).map_err(|e| Failure::bad_input(e.to_string()))?;
     collision_core::with_dim!(
         scene.dim,
