@@ -81,6 +81,16 @@ fn bad_input_exits_2_naming_the_place() {
                 "--period",
                 "2",
                 "--from",
+                "1,1/2,0,1e400,0",
+            ],
+            "--from[0][3]: 1e400 is beyond the f64 range",
+        ),
+        (
+            vec![
+                "scenes/sinai.toml",
+                "--period",
+                "2",
+                "--from",
                 "0.85,0.5,-1,0,0",
             ],
             "--from[0]: the velocity must point into the table",
