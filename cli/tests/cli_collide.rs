@@ -944,7 +944,7 @@ fn the_readmes_collide_command_runs_as_written() {
     }
 }
 
-/// An input larger than the 64 MiB limit (`/dev/zero` never ends) is refused with exit 2 and
+/// An input larger than the 16 MiB limit (`/dev/zero` never ends) is refused with exit 2 and
 /// one line, after reading one byte past the limit, not read until memory runs out.
 #[cfg(target_os = "linux")]
 #[test]
@@ -954,7 +954,7 @@ fn an_endless_input_is_refused_at_the_size_limit() {
     assert!(out.is_empty(), "{out}");
     assert_eq!(
         err.trim(),
-        "error: /dev/zero: larger than 64 MiB, the limit of an input (split the cases into \
+        "error: /dev/zero: larger than 16 MiB, the limit of an input (split the cases into \
          several files)"
     );
     let (code, _, err) = noslip(&["simulate", "/dev/zero", "--quiet"], "");

@@ -111,10 +111,12 @@ pub struct Args {
     pub file: Option<PathBuf>,
 }
 
-/// The largest input `collide` reads (a case or an array of cases), 64 MiB: about 10^5
-/// cases; parsing holds a few times this in memory, so a larger input is refused before it is
-/// read whole rather than left to the operating system's memory limit.
-pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+/// The largest input `collide` reads (a case or an array of cases), 16 MiB: about 45,000
+/// cases of `examples/case.json`'s size. Parsing holds about 32 times the input (JSON values
+/// with arbitrary-precision numbers: 520 MB for 16 MB of `[0,0,...]`, 207 MB for 6.9 MiB of
+/// cases), so a run stays near 0.5 GB; a larger input is refused before it is read whole.
+/// More cases: several files, or the Python package's `collide_batch`.
+pub const MAX_INPUT_BYTES: u64 = 16 << 20;
 
 fn read_input(file: Option<&PathBuf>) -> Result<String, String> {
     match file {
