@@ -83,7 +83,7 @@ fn bad_input_exits_2_naming_the_place() {
                 "--from",
                 "1,1/2,0,1e400,0",
             ],
-            "--from[0][3]: 1e400 is beyond the f64 range",
+            "--from[0]: number 3 is beyond the f64 range",
         ),
         (
             vec![

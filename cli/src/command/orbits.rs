@@ -67,17 +67,9 @@ fn parse_start(i: usize, text: &str) -> Result<Vec<Exact>, Failure> {
     text.split(',')
         .enumerate()
         .map(|(k, p)| {
-            let x = parse_exact(p)
+            parse_exact(p)
                 .map(|x| Exact::from_fraction(&x))
-                .map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))?;
-            // The search runs in f64 from the start's nearest f64 values.
-            if !x.to_f64().is_finite() {
-                return Err(Failure::bad_input(format!(
-                    "--from[{i}][{k}]: {} is beyond the f64 range",
-                    p.trim()
-                )));
-            }
-            Ok(x)
+                .map_err(|e| Failure::bad_input(format!("--from[{i}][{k}]: {e}")))
         })
         .collect()
 }

@@ -130,6 +130,12 @@ where
             )));
         }
         let zf: Vec<f64> = z.iter().map(Scalar::to_f64).collect();
+        // The search runs in f64 from the start's nearest f64 values.
+        if let Some(k) = zf.iter().position(|x| !x.is_finite()) {
+            return Err(bad(format!(
+                "number {k} is beyond the f64 range (|x| < 1.8e308)"
+            )));
+        }
         let xf: [f64; N] = std::array::from_fn(|k| zf[k]);
         let (b, _) = nearest(f, &xf);
         let (_, nu) = project(f, b, &xf);
