@@ -15,7 +15,33 @@ __all__ = ["collide_batch", "isa", "BODY_KEYS"]
 BODY_KEYS = ("angular_velocity", "velocity", "inv_mass", "radius", "gamma2")
 
 
-def _body(body: Mapping[str, Any], b: int, dtype: np.dtype) -> tuple:
+def _shapes(shape: tuple[int, ...]) -> dict[str, str]:
+    """The expected shape of each body key, as text, for ``normal``'s shape ``(N, n)``."""
+    rows, n = shape if len(shape) == 2 else ("N", "n")
+    return {
+        "angular_velocity": f"({rows}, {n}, {n})",
+        "velocity": f"({rows}, {n})",
+        "inv_mass": f"({rows},) or a scalar",
+        "radius": f"({rows},) or a scalar",
+        "gamma2": f"({rows},) or a scalar",
+    }
+
+
+#: The number of dimensions of each body key's array (a scalar parameter made 1-D).
+_NDIM = {"angular_velocity": 3, "velocity": 2, "inv_mass": 1, "radius": 1, "gamma2": 1}
+
+
+def _body(body: Mapping[str, Any], b: int, dtype: np.dtype, shape: tuple[int, ...]) -> tuple:
+    """Body ``b``'s five arrays in the native order, each of ``dtype`` (``normal``'s) and
+    with the number of dimensions its key needs; ``shape`` is ``normal``'s, for the
+    message (the sizes are checked natively, naming the field too).
+
+    Raises
+    ------
+    InputError
+        A missing or unknown key, a wrong dtype or a wrong number of dimensions, naming
+        ``bodies[b].key``.
+    """
     if not isinstance(body, Mapping):
         raise InputError(f"bodies[{b}]: expected a mapping with keys {', '.join(BODY_KEYS)}")
     unknown = [k for k in body if k not in BODY_KEYS]
@@ -40,6 +66,9 @@ def _body(body: Mapping[str, Any], b: int, dtype: np.dtype) -> tuple:
                 f"bodies[{b}].{key}: dtype {a.dtype}, expected {dtype} (the dtype of normal; "
                 "arrays are read in place, never converted)"
             )
+        if a.ndim != _NDIM[key]:
+            got = "a scalar" if np.ndim(x) == 0 else str(a.shape)
+            raise InputError(f"bodies[{b}].{key}: expected shape {_shapes(shape)[key]}, got {got}")
         arrays.append(a)
     return tuple(arrays)
 
@@ -84,7 +113,9 @@ def collide_batch(
         Check every row as :func:`noslip.collide` does (finite; unit normal; valid balls;
         skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``), within the rounding allowance:
         a cheap test accepts the clearly valid rows, ``collide``'s own checks decide the rest.
-        Without it, a bad row gives NaN or infinities in its own outputs only.
+        Without it, a bad row's outputs are garbage, not always visibly (NaN or infinities
+        from a non-finite input, but finite, wrong numbers from others, such as a zero
+        normal); the other rows' outputs are unaffected.
     parallel : bool
         Split the rows across rayon's threads (``False``: the calling thread only; the GIL
         is released either way).
@@ -114,9 +145,9 @@ def collide_batch(
         raise InputError(f"normal: expected shape (N, n), got {normal.shape}")
     if not isinstance(bodies, Sequence) or len(bodies) != 2:
         raise InputError("bodies: expected two bodies (a sequence of two mappings)")
-    b1, b2 = (_body(bodies[b], b, normal.dtype) for b in range(2))
+    b1, b2 = (_body(bodies[b], b, normal.dtype, normal.shape) for b in range(2))
     run = _native.collide_batch_f64 if normal.dtype == np.float64 else _native.collide_batch_f32
-    arrays = None if out is None else _out(out, normal.dtype)
+    arrays = None if out is None else _out(out, normal.dtype, normal.shape)
     s1, v1, s2, v2 = run(normal, b1, b2, validate, parallel, arrays)
     return (
         {"angular_velocity": s1, "velocity": v1},
@@ -124,9 +155,11 @@ def collide_batch(
     )
 
 
-def _out(out: Sequence[Mapping[str, np.ndarray]], dtype: np.dtype) -> tuple:
+def _out(out: Sequence[Mapping[str, np.ndarray]], dtype: np.dtype, shape: tuple[int, ...]) -> tuple:
     """``out``'s four arrays in the native order, each checked to be an ndarray of ``dtype``
-    (shapes, layout and overlaps are checked natively, naming the field too)."""
+    with the number of dimensions its key needs (``shape``, ``normal``'s, is for the
+    message; sizes, layout and overlaps are checked natively, naming the field too)."""
+    rows, n = shape
     if isinstance(out, Mapping) or not isinstance(out, Sequence) or len(out) != 2:
         raise InputError("out: expected two mappings (one per body), as collide_batch returns")
     arrays = []
@@ -148,6 +181,9 @@ def _out(out: Sequence[Mapping[str, np.ndarray]], dtype: np.dtype) -> tuple:
                 raise InputError(
                     f"out[{b}].{key}: dtype {a.dtype}, expected {dtype} (the dtype of normal)"
                 )
+            want = [rows, n, n] if key == "angular_velocity" else [rows, n]
+            if a.ndim != len(want):
+                raise InputError(f"out[{b}].{key}: expected shape {want}, got {list(a.shape)}")
             arrays.append(a)
     return tuple(arrays)
 
@@ -184,6 +220,8 @@ def reference_seconds(
       input), in one pass, chunk by chunk as ``"rows"``.
     """
     normal = np.asarray(normal)
-    b1, b2 = (_body(bodies[b], b, np.dtype(np.float64)) for b in range(2))
+    b1, b2 = (
+        _body(bodies[b], b, np.dtype(np.float64), normal.shape) for b in range(2)
+    )
     rows, rows_new, kernel, copy = _native.reference_seconds(normal, b1, b2, repeats, parallel)
     return {"rows": rows, "rows_new": rows_new, "kernel": kernel, "copy": copy}

@@ -2,14 +2,22 @@
 //! accuracy report (`noslip-accuracy`), run as `noslip verify` / `noslip report` run them,
 //! their reports returned as the JSON text those commands write (the Python layer parses it).
 
-use crate::error::input_error;
-use noslip_accuracy::{dim_result, AccuracyReport, Options as ReportOptions, Provenance};
+use crate::error::{input_error, unsigned};
+use noslip_accuracy::{
+    dim_result, AccuracyReport, Options as ReportOptions, Provenance, MAX_SAMPLES,
+};
 use noslip_verify::report::Report;
-use noslip_verify::suite::{self, Options as VerifyOptions};
+use noslip_verify::suite::{self, Options as VerifyOptions, MAX_POINTS};
 use pyo3::prelude::*;
 use std::time::Instant;
 
-fn check_dims(dims: &[usize]) -> PyResult<Vec<usize>> {
+/// The dimensions asked for, each a known one, sorted, without repeats.
+fn check_dims(dims: &[Bound<'_, PyAny>]) -> PyResult<Vec<usize>> {
+    let dims = dims
+        .iter()
+        .enumerate()
+        .map(|(i, d)| unsigned(d, &format!("dims[{i}]"), 0, usize::MAX))
+        .collect::<PyResult<Vec<usize>>>()?;
     if dims.is_empty() {
         return Err(input_error("dims: give at least one dimension"));
     }
@@ -29,10 +37,17 @@ fn check_dims(dims: &[usize]) -> PyResult<Vec<usize>> {
 /// identity: `verify.json`'s text.
 #[pyfunction]
 #[pyo3(signature = (dims, points))]
-pub fn verify(py: Python<'_>, dims: Vec<usize>, points: usize) -> PyResult<String> {
+pub fn verify(
+    py: Python<'_>,
+    dims: Vec<Bound<'_, PyAny>>,
+    points: &Bound<'_, PyAny>,
+) -> PyResult<String> {
     let dims = check_dims(&dims)?;
-    if points == 0 {
-        return Err(input_error("points: must be at least 1"));
+    let points = unsigned(points, "points", 1, MAX_POINTS)?;
+    if !(1..=MAX_POINTS).contains(&points) {
+        return Err(input_error(format!(
+            "points: must be at least 1 and at most {MAX_POINTS}, got {points}"
+        )));
     }
     let opts = VerifyOptions {
         points,
@@ -56,10 +71,19 @@ pub fn verify(py: Python<'_>, dims: Vec<usize>, points: usize) -> PyResult<Strin
 /// `report.json`'s text.
 #[pyfunction]
 #[pyo3(signature = (dims, samples, seed))]
-pub fn report(py: Python<'_>, dims: Vec<usize>, samples: usize, seed: u64) -> PyResult<String> {
+pub fn report(
+    py: Python<'_>,
+    dims: Vec<Bound<'_, PyAny>>,
+    samples: &Bound<'_, PyAny>,
+    seed: &Bound<'_, PyAny>,
+) -> PyResult<String> {
     let dims = check_dims(&dims)?;
-    if samples == 0 {
-        return Err(input_error("samples: must be at least 1"));
+    let samples = unsigned(samples, "samples", 1, MAX_SAMPLES)?;
+    let seed = unsigned(seed, "seed", 0, u64::MAX)?;
+    if !(1..=MAX_SAMPLES).contains(&samples) {
+        return Err(input_error(format!(
+            "samples: must be at least 1 and at most {MAX_SAMPLES}, got {samples}"
+        )));
     }
     let opts = ReportOptions {
         dims: dims.clone(),

@@ -4,11 +4,11 @@
 //! (`noslip_dynamics::orbits::search`, as `noslip orbits` runs it), as the JSON text of
 //! `orbits.json`.
 
-use crate::error::input_error;
+use crate::error::{input_error, unsigned, unsigned_opt};
 use crate::scene::Scene;
 use collision_core::Generated;
 use noslip_dynamics::lyapunov::stats::Estimate;
-use noslip_dynamics::lyapunov::{qr, two_trajectory, Dim, Options, Spectrum};
+use noslip_dynamics::lyapunov::{qr, two_trajectory, Dim, Options, Spectrum, MAX_BLOCKS};
 use noslip_dynamics::orbits::search::{search, Search, SearchError};
 use noslip_dynamics::Law;
 use noslip_scene::parse_exact;
@@ -71,14 +71,19 @@ fn estimates<'py>(
 pub fn lyapunov<'py>(
     py: Python<'py>,
     scene: &Bound<'py, Scene>,
-    events: u64,
-    k: Option<usize>,
+    events: &Bound<'py, PyAny>,
+    k: Option<Bound<'py, PyAny>>,
     method: &str,
-    seed: u64,
-    blocks: usize,
-    every: Option<u64>,
+    seed: &Bound<'py, PyAny>,
+    blocks: &Bound<'py, PyAny>,
+    every: Option<Bound<'py, PyAny>>,
     contact: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let events = unsigned(events, "events", 1, u64::MAX)?;
+    let k = unsigned_opt(k.as_ref(), "k", 1, usize::MAX)?;
+    let seed = unsigned(seed, "seed", 0, u64::MAX)?;
+    let blocks = unsigned(blocks, "blocks", 1, MAX_BLOCKS)?;
+    let every = unsigned_opt(every.as_ref(), "every", 1, u64::MAX)?;
     let two = match method {
         "qr" => false,
         "two-trajectory" => true,
@@ -153,11 +158,13 @@ pub fn lyapunov<'py>(
 pub fn orbits(
     py: Python<'_>,
     scene: &Bound<'_, Scene>,
-    period: usize,
+    period: &Bound<'_, PyAny>,
     starts: Vec<Vec<String>>,
-    grid: Option<usize>,
+    grid: Option<Bound<'_, PyAny>>,
     contact: Option<&str>,
 ) -> PyResult<String> {
+    let period = unsigned(period, "period", 1, usize::MAX)?;
+    let grid = unsigned_opt(grid.as_ref(), "grid", 1, usize::MAX)?;
     let law = contact.map(parse_law).transpose()?;
     let mut from = Vec::with_capacity(starts.len());
     for (i, start) in starts.iter().enumerate() {

@@ -24,7 +24,7 @@
 //! clock; parallel runs in wall-clock time.
 
 use crate::batch::{piece_rows, state_rows_mut, views, BodyIn, Inputs};
-use crate::error::input_error;
+use crate::error::{input_error, unsigned};
 use collision_core::batch::{share_rows, BatchKernel, Exec, FreeBatch, FreeRows, PairBatch};
 use collision_core::Generated;
 use numpy::PyReadonlyArray2;
@@ -104,9 +104,10 @@ pub fn reference_seconds(
     normal: PyReadonlyArray2<'_, f64>,
     body1: BodyIn<'_, f64>,
     body2: BodyIn<'_, f64>,
-    repeats: usize,
+    repeats: &Bound<'_, PyAny>,
     parallel: bool,
 ) -> PyResult<Seconds> {
+    let repeats = unsigned(repeats, "repeats", 0, usize::MAX)?;
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
     let rows = input
         .rows()

@@ -5,7 +5,7 @@
 use crate::error::input_error;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// A validated scene and the TOML text it was read from.
 #[pyclass(module = "noslip._native", frozen)]
@@ -16,71 +16,310 @@ pub struct Scene {
     pub inner: noslip_scene::Scene,
 }
 
+/// Scene `text` parsed and validated (`origin` names it in messages); a failure is an
+/// [`InputError`](crate::error::InputError) naming the place, with a hint when the text
+/// looks like a file name.
 fn parse(text: &str, origin: &str) -> PyResult<noslip_scene::Scene> {
-    noslip_scene::Scene::from_toml(text, origin).map_err(|e| input_error(e.to_string()))
+    noslip_scene::Scene::from_toml(text, origin).map_err(|e| {
+        let mut message = e.to_string();
+        // A file name given where TOML text is expected (`Scene("scenes/sinai.toml")`,
+        // `simulate("scenes/sinai.toml")`) fails to parse on its first line.
+        let path = text.trim();
+        if !path.contains('\n') && (path.ends_with(".toml") || Path::new(path).is_file()) {
+            message.push_str(&format!(
+                " ({path:?} looks like a file name: read a file with \
+                 noslip.Scene.from_file({path:?}))"
+            ));
+        }
+        input_error(message)
+    })
 }
 
-/// A Python value as TOML: dicts (string keys), lists and tuples, bools, ints, floats,
-/// strings, and `fractions.Fraction` as the scene format's exact `"p/q"` string.
-fn to_toml(value: &Bound<'_, PyAny>, place: &str) -> PyResult<toml::Value> {
-    let bad = |what: String| input_error(format!("{place}: {what}"));
-    if let Ok(d) = value.cast::<PyDict>() {
-        let mut table = toml::Table::new();
-        for (k, v) in d.iter() {
-            let key: String = k.extract().map_err(|_| {
-                bad(format!(
-                    "keys must be strings, got {}",
-                    k.repr().map_or("?".into(), |r| r.to_string())
-                ))
-            })?;
-            let inner = if place.is_empty() {
-                key.clone()
-            } else {
-                format!("{place}.{key}")
-            };
-            table.insert(key, to_toml(&v, &inner)?);
+/// How deep the containers (dicts, lists, tuples) of a dict given to `Scene.from_dict` may
+/// nest. The scene format nests at most four deep (`table.wedge.directions[0][0]`: a table,
+/// a table, an array, an array), so 64 refuses nothing a scene can use, while each level
+/// costs a few hundred bytes of the calling thread's stack (which may be a small one, a
+/// Dask worker's): a deeper or self-referencing dict is an [`InputError`] naming the path
+/// where the limit is passed, not a stack overflow.
+///
+/// [`InputError`]: crate::error::InputError
+pub const MAX_DICT_DEPTH: usize = 64;
+
+/// The reader of a dict given to `Scene.from_dict`: Python values to TOML values.
+struct DictReader<'a> {
+    /// The dict's name in messages (`<dict>`, or the caller's `origin`).
+    origin: &'a str,
+    /// The places of the ints beyond `i64`, kept as their decimal text (exact numbers may be
+    /// that large), with that text: a field that wants a machine integer then says it is
+    /// too large.
+    big_ints: Vec<(String, String)>,
+}
+
+impl DictReader<'_> {
+    /// A Python value as TOML: dicts (string keys), lists and tuples, bools, ints, floats,
+    /// strings, and `fractions.Fraction` as the scene format's exact `"p/q"` string.
+    /// `place` is its dict path (`species[0].mass`, empty for the dict itself), `depth` the
+    /// number of containers around it, at most [`MAX_DICT_DEPTH`].
+    fn read(
+        &mut self,
+        value: &Bound<'_, PyAny>,
+        place: &str,
+        depth: usize,
+    ) -> PyResult<toml::Value> {
+        let where_ = if place.is_empty() { "scene" } else { place };
+        let origin = self.origin;
+        let bad = |what: String| input_error(format!("{origin}: {where_}: {what}"));
+        let is_container = value.is_instance_of::<PyDict>()
+            || value.is_instance_of::<PyList>()
+            || value.is_instance_of::<PyTuple>();
+        if is_container && depth >= MAX_DICT_DEPTH {
+            return Err(bad(format!(
+                "nested more than {MAX_DICT_DEPTH} deep (a scene nests at most 4 deep; \
+                 is a dict or list inside itself?)"
+            )));
         }
-        return Ok(toml::Value::Table(table));
+        if let Ok(d) = value.cast::<PyDict>() {
+            let mut table = toml::Table::new();
+            for (k, v) in d.iter() {
+                let key: String = k.extract().map_err(|_| {
+                    bad(format!(
+                        "keys must be strings, got {}",
+                        k.repr().map_or("?".into(), |r| r.to_string())
+                    ))
+                })?;
+                let v = self.read(&v, &join(place, &key), depth + 1)?;
+                table.insert(key, v);
+            }
+            return Ok(toml::Value::Table(table));
+        }
+        if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+            let items = value
+                .try_iter()?
+                .enumerate()
+                .map(|(i, v)| self.read(&v?, &format!("{place}[{i}]"), depth + 1))
+                .collect::<PyResult<Vec<_>>>()?;
+            return Ok(toml::Value::Array(items));
+        }
+        if value.is_instance_of::<PyBool>() {
+            return Ok(toml::Value::Boolean(value.extract()?));
+        }
+        if value.is_instance_of::<PyInt>() {
+            if let Ok(i) = value.extract::<i64>() {
+                return Ok(toml::Value::Integer(i));
+            }
+            let text = value
+                .str()
+                .map_err(
+                    |_| bad("an int of more than 4300 digits, too large for any field".into()),
+                )?
+                .to_string();
+            self.big_ints.push((place.to_string(), text.clone()));
+            return Ok(toml::Value::String(text));
+        }
+        if value.is_instance_of::<PyFloat>() {
+            return Ok(toml::Value::Float(value.extract()?));
+        }
+        if value.is_instance_of::<PyString>() {
+            return Ok(toml::Value::String(value.extract()?));
+        }
+        let type_name = value.get_type().name()?.to_string();
+        if type_name == "Fraction" {
+            let (p, q): (String, String) = (
+                value.getattr("numerator")?.str()?.to_string(),
+                value.getattr("denominator")?.str()?.to_string(),
+            );
+            return Ok(toml::Value::String(format!("{p}/{q}")));
+        }
+        Err(bad(format!(
+            "expected a table, an array, a number, a string or a boolean, got {type_name}"
+        )))
     }
-    if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
-        let items = value
-            .try_iter()?
-            .enumerate()
-            .map(|(i, v)| to_toml(&v?, &format!("{place}[{i}]")))
-            .collect::<PyResult<Vec<_>>>()?;
-        return Ok(toml::Value::Array(items));
+}
+
+/// A stretch `start..end` of the TOML text made from a dict, and the dict path it came
+/// from (`species[0].mass`: a key, a value or a table's header).
+struct Span {
+    start: usize,
+    end: usize,
+    path: String,
+}
+
+/// TOML text written from a dict, remembering where each key, value and header came from,
+/// so that an error at a line and column of that text (which the user never saw) can name
+/// the dict path instead.
+#[derive(Default)]
+struct Emitter {
+    text: String,
+    spans: Vec<Span>,
+}
+
+/// `path.key`, or `key` at the top.
+fn join(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_string()
+    } else {
+        format!("{path}.{key}")
     }
-    if value.is_instance_of::<PyBool>() {
-        return Ok(toml::Value::Boolean(value.extract()?));
+}
+
+/// A key as TOML writes it: bare when it can be, else quoted.
+fn toml_key(key: &str) -> String {
+    let bare = !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    if bare {
+        key.to_string()
+    } else {
+        toml::Value::String(key.to_string()).to_string()
     }
-    if value.is_instance_of::<PyInt>() {
-        return value
-            .extract::<i64>()
-            .map(toml::Value::Integer)
-            .or_else(|_| Ok(toml::Value::String(value.str()?.to_string())));
+}
+
+/// Whether `value` is written as a section (`[header]` or `[[header]]`) rather than inline.
+fn is_section(value: &toml::Value) -> bool {
+    match value {
+        toml::Value::Table(_) => true,
+        toml::Value::Array(a) => !a.is_empty() && a.iter().all(toml::Value::is_table),
+        _ => false,
     }
-    if value.is_instance_of::<PyFloat>() {
-        return Ok(toml::Value::Float(value.extract()?));
+}
+
+impl Emitter {
+    /// Record that `start..` (to the end of the text so far) came from `path`.
+    fn span(&mut self, start: usize, path: String) {
+        let end = self.text.len();
+        self.spans.push(Span { start, end, path });
     }
-    if value.is_instance_of::<PyString>() {
-        return Ok(toml::Value::String(value.extract()?));
+
+    /// The table at TOML key path `keys` (dict path `path`): its plain keys, then its
+    /// tables and arrays of tables as sections.
+    fn table(&mut self, keys: &[String], path: &str, table: &toml::Table) {
+        for (k, v) in table.iter().filter(|(_, v)| !is_section(v)) {
+            let (start, inner) = (self.text.len(), join(path, k));
+            self.text.push_str(&toml_key(k));
+            self.span(start, inner.clone());
+            self.text.push_str(" = ");
+            self.inline(v, &inner);
+            self.text.push('\n');
+        }
+        for (k, v) in table.iter().filter(|(_, v)| is_section(v)) {
+            let keys: Vec<String> = keys.iter().cloned().chain([toml_key(k)]).collect();
+            let header = keys.join(".");
+            match v {
+                toml::Value::Table(t) => {
+                    let inner = join(path, k);
+                    self.header(&format!("[{header}]"), inner.clone());
+                    self.table(&keys, &inner, t);
+                }
+                toml::Value::Array(items) => {
+                    for (i, t) in items.iter().filter_map(toml::Value::as_table).enumerate() {
+                        let inner = format!("{}[{i}]", join(path, k));
+                        self.header(&format!("[[{header}]]"), inner.clone());
+                        self.table(&keys, &inner, t);
+                    }
+                }
+                _ => unreachable!("a section is a table or an array of tables"),
+            }
+        }
     }
-    let type_name = value.get_type().name()?.to_string();
-    if type_name == "Fraction" {
-        let (p, q): (String, String) = (
-            value.getattr("numerator")?.str()?.to_string(),
-            value.getattr("denominator")?.str()?.to_string(),
-        );
-        return Ok(toml::Value::String(format!("{p}/{q}")));
+
+    /// A section's header line, from dict path `path`.
+    fn header(&mut self, header: &str, path: String) {
+        self.text.push('\n');
+        let start = self.text.len();
+        self.text.push_str(header);
+        self.span(start, path);
+        self.text.push('\n');
     }
-    Err(bad(format!(
-        "expected a table, an array, a number, a string or a boolean, got {type_name}"
-    )))
+
+    /// `value` inline (arrays and tables on one line), from dict path `path`.
+    fn inline(&mut self, value: &toml::Value, path: &str) {
+        let start = self.text.len();
+        match value {
+            toml::Value::Array(items) => {
+                self.text.push('[');
+                for (i, v) in items.iter().enumerate() {
+                    if i > 0 {
+                        self.text.push_str(", ");
+                    }
+                    self.inline(v, &format!("{path}[{i}]"));
+                }
+                self.text.push(']');
+            }
+            toml::Value::Table(t) => {
+                self.text.push('{');
+                for (i, (k, v)) in t.iter().enumerate() {
+                    self.text.push_str(if i > 0 { ", " } else { " " });
+                    let (key_start, inner) = (self.text.len(), join(path, k));
+                    self.text.push_str(&toml_key(k));
+                    self.span(key_start, inner.clone());
+                    self.text.push_str(" = ");
+                    self.inline(v, &inner);
+                }
+                self.text.push_str(if t.is_empty() { "}" } else { " }" });
+            }
+            leaf => self.text.push_str(&leaf.to_string()),
+        }
+        self.span(start, path.to_string());
+    }
+
+    /// The dict path of byte `offset`: that of the shortest span holding it.
+    fn path_at(&self, offset: usize) -> Option<&str> {
+        self.spans
+            .iter()
+            .filter(|s| s.start <= offset && offset < s.end)
+            .min_by_key(|s| s.end - s.start)
+            .map(|s| s.path.as_str())
+    }
+}
+
+/// The byte offset of 1-based `line` and byte `column` in `text` (as `noslip-scene` counts
+/// them in its `line L, column C` places).
+fn offset_of(text: &str, place: &str) -> Option<usize> {
+    let (line, column) = place.strip_prefix("line ")?.split_once(", column ")?;
+    let (line, column): (usize, usize) = (line.parse().ok()?, column.parse().ok()?);
+    let line_start = if line == 1 {
+        0
+    } else {
+        text.match_indices('\n').nth(line - 2)?.0 + 1
+    };
+    Some(line_start + column.checked_sub(1)?)
+}
+
+/// A dict's scene error with its place as the dict path the user wrote (`species[0].mass`),
+/// not a line and column of the TOML text made from the dict; an int too large for a
+/// machine-integer field (made a string by [`DictReader::read`]) says so.
+fn dict_error(
+    mut e: noslip_scene::SceneError,
+    emitted: &Emitter,
+    big_ints: &[(String, String)],
+) -> noslip_scene::SceneError {
+    if let Some(path) = offset_of(&emitted.text, &e.place).and_then(|o| emitted.path_at(o)) {
+        e.place = path.to_string();
+    } else if e.place.starts_with("line ") {
+        e.place = "scene".to_string();
+    }
+    let big = big_ints.iter().find(|(place, _)| *place == e.place);
+    if let (Some((_, int)), true) = (big, e.message.starts_with("invalid type: string")) {
+        let expected = e
+            .message
+            .split_once(", expected ")
+            .map_or(String::new(), |(_, x)| format!(" (expected {x})"));
+        let sign = if int.starts_with('-') {
+            "small"
+        } else {
+            "large"
+        };
+        e.message = format!("integer {int} is too {sign} for this field{expected}");
+    }
+    e
 }
 
 #[pymethods]
 impl Scene {
-    /// A scene from TOML `text`; `origin` names it in messages.
+    /// A scene from TOML `text`; `origin` names it in messages. Text that fails to parse
+    /// and looks like a file name (one line, ending in `.toml` or naming a file) gets a
+    /// hint to use `Scene.from_file`.
     #[new]
     #[pyo3(signature = (text, origin = "<string>".to_string()))]
     fn new(text: String, origin: String) -> PyResult<Self> {
@@ -107,13 +346,28 @@ impl Scene {
     }
 
     /// A scene from a dict with the TOML file's structure (`{"dim": 2, "box": {...},
-    /// "species": [...], ...}`); exact numbers as strings (`"1/20"`) or `Fraction`s.
+    /// "species": [...], ...}`); exact numbers as strings (`"1/20"`) or `Fraction`s. Errors
+    /// name the dict path (`<dict>: species[0].mass: ...`); containers nested more than
+    /// [`MAX_DICT_DEPTH`] deep (or inside themselves) are refused.
     #[staticmethod]
     #[pyo3(signature = (scene, origin = "<dict>".to_string()))]
     fn from_dict(scene: &Bound<'_, PyDict>, origin: String) -> PyResult<Self> {
-        let value = to_toml(scene.as_any(), "")?;
-        let text = toml::to_string(&value).map_err(|e| input_error(format!("{origin}: {e}")))?;
-        Scene::new(text, origin)
+        let mut reader = DictReader {
+            origin: &origin,
+            big_ints: Vec::new(),
+        };
+        let value = reader.read(scene.as_any(), "", 0)?;
+        let mut emitted = Emitter::default();
+        if let toml::Value::Table(t) = &value {
+            emitted.table(&[], "", t);
+        }
+        let inner = noslip_scene::Scene::from_toml(&emitted.text, &origin)
+            .map_err(|e| input_error(dict_error(e, &emitted, &reader.big_ints).to_string()))?;
+        Ok(Scene {
+            text: emitted.text,
+            origin,
+            inner,
+        })
     }
 
     /// The TOML text of the scene.

@@ -6,7 +6,7 @@
 //! boundary map is `noslip_sim::boundary_map::row` of each contact with an immovable body,
 //! as `noslip simulate --boundary-map` writes it, in the CSV's columns.
 
-use crate::error::input_error;
+use crate::error::{input_error, unsigned_opt};
 use crate::scene::Scene;
 use collision_core::{Generated, Kernel};
 use noslip_sim::boundary_map::{self, Row};
@@ -205,11 +205,12 @@ fn map_columns<'py>(py: Python<'py>, rows: &[Row], n: usize) -> PyResult<Bound<'
 pub fn simulate<'py>(
     py: Python<'py>,
     scene: &Bound<'py, Scene>,
-    events: Option<u64>,
+    events: Option<Bound<'py, PyAny>>,
     time: Option<f64>,
     log: bool,
     boundary_map: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let events = unsigned_opt(events.as_ref(), "events", 1, u64::MAX)?;
     if let Some(t) = time {
         if !(t > 0.0 && t.is_finite()) {
             return Err(input_error(format!(

@@ -400,3 +400,61 @@ def test_the_fast_check_accepts_only_what_collide_checks_accept(n):
         assert results[0] == results[1]
         verdicts.append(results[0][0])
     assert verdicts.count("ok") > 10 and verdicts.count("error") > 10, verdicts
+
+
+def test_arrays_with_the_wrong_number_of_dimensions_are_named():
+    """A column (N, 1) where (N,) is expected once gave PyO3's `TypeError: argument 'body1':
+    'ndarray' object cannot be cast as 'ndarray'`; now the field and the expected shape."""
+    rng = np.random.default_rng(14)
+    nu, bodies = random_batch(rng, 10, 3)
+    cases = [
+        (0, "gamma2", np.full((10, 1), 0.4),
+         r"^bodies\[0\]\.gamma2: expected shape \(10,\) or a scalar, got \(10, 1\)$"),
+        (1, "velocity", np.zeros((10, 3, 1)),
+         r"^bodies\[1\]\.velocity: expected shape \(10, 3\), got \(10, 3, 1\)$"),
+        (0, "angular_velocity", 0.0,
+         r"^bodies\[0\]\.angular_velocity: expected shape \(10, 3, 3\), got a scalar$"),
+    ]
+    for b, key, value, message in cases:
+        given = [dict(body) for body in bodies]
+        given[b][key] = value
+        with pytest.raises(noslip.InputError, match=message):
+            noslip.collide_batch(nu, given)
+    out = noslip.collide_batch(nu, bodies)
+    out[1]["velocity"] = np.zeros(10)
+    message = r"^out\[1\]\.velocity: expected shape \[10, 3\], got \[10\]$"
+    with pytest.raises(noslip.InputError, match=message):
+        noslip.collide_batch(nu, bodies, out=out)
+
+
+def test_an_inverse_mass_error_names_inv_mass():
+    """The batch takes `inv_mass` (collide takes `mass`): its errors name the key given."""
+    rng = np.random.default_rng(15)
+    nu, bodies = random_batch(rng, 10, 3, immovable=False)
+    bodies[0]["inv_mass"][4] = -1.0
+    message = r"^row 4: bodies\[0\]\.inv_mass: inverse mass must be >= 0$"
+    with pytest.raises(noslip.InputError, match=message):
+        noslip.collide_batch(nu, bodies)
+    bodies[0]["inv_mass"][4] = 1.0
+    bodies[1]["inv_mass"] = np.inf
+    message = r"^row 0: bodies\[1\]\.inv_mass: must be a finite number"
+    with pytest.raises(noslip.InputError, match=message):
+        noslip.collide_batch(nu, bodies)
+
+
+def test_without_validation_a_zero_normal_gives_finite_garbage():
+    """docs/python.md: without validation a bad row's outputs are garbage, not always NaN; a
+    zero normal gives finite numbers (not the input state, not a collision), the other
+    rows are untouched."""
+    rng = np.random.default_rng(16)
+    nu, bodies = random_batch(rng, 40, 3, immovable=False)
+    good = noslip.collide_batch(nu, bodies)
+    nu[7] = 0.0
+    with pytest.raises(noslip.InputError, match=r"^row 7: normal"):
+        noslip.collide_batch(nu, bodies)
+    bad = noslip.collide_batch(nu, bodies, validate=False)
+    for b in range(2):
+        for key in ("angular_velocity", "velocity"):
+            assert np.isfinite(bad[b][key]).all()
+            keep = np.arange(40) != 7
+            assert same_bits(bad[b][key][keep], good[b][key][keep])

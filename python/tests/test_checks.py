@@ -1,5 +1,7 @@
 """noslip.verify and noslip.report return the reports of the Rust crates as Python objects."""
 
+import pytest
+
 import noslip
 
 
@@ -11,9 +13,35 @@ def test_verify_passes_and_reports_every_check():
 
 
 def test_bad_dims_are_input_errors():
-    import pytest
-
     with pytest.raises(noslip.InputError, match=r"^dims: 7 has no generated kernels"):
         noslip.verify(dims=[7])
     with pytest.raises(noslip.InputError, match=r"^samples: must be at least 1"):
         noslip.report(dims=[2], samples=0)
+
+
+def test_negative_and_huge_ints_are_named():
+    """Not PyO3's bare `OverflowError: can't convert negative int to unsigned`."""
+    cases = [
+        (lambda: noslip.verify(points=-1), r"^points: must be an integer in 1\.\.=\d+, got -1$"),
+        (lambda: noslip.verify(dims=[2, -2]),
+         r"^dims\[1\]: must be an integer in 0\.\.=\d+, got -2$"),
+        (lambda: noslip.report(samples=-5), r"^samples: must be an integer in 1\.\.=\d+, got -5$"),
+        (lambda: noslip.report(seed=10**30),
+         r"^seed: must be an integer in 0\.\.=\d+, got 10{30}$"),
+    ]
+    for call, message in cases:
+        with pytest.raises(noslip.InputError, match=message):
+            call()
+
+
+def test_counts_past_their_cap_are_named():
+    """The caps of `noslip verify --points` and `noslip report --samples` (a huge count ran for
+    ever, or grew memory without limit)."""
+    with pytest.raises(
+        noslip.InputError, match=r"^points: must be at least 1 and at most 1024, got 1025$"
+    ):
+        noslip.verify(dims=[2], points=1025)
+    with pytest.raises(
+        noslip.InputError, match=r"^samples: must be at least 1 and at most 100000, got 100001$"
+    ):
+        noslip.report(dims=[2], samples=100001)

@@ -126,6 +126,7 @@ def test_the_bouncing_orbit_is_hyperbolic_when_smooth_and_elliptic_when_no_slip(
         ({"starts": [[1, 2, 3]]}, r"^starts\[0\]: has 3 numbers, expected 2n \+ S = 5"),
         ({"starts": [["0.85", "0.5", 1, 0, "x"]]}, r"^starts\[0\]\[4\]"),
         ({"starts": [["0.85", "0.5", -1, 0, 0]]}, r"^starts\[0\]: the velocity must point"),
+        ({"starts": [[1, "1/2", 0, "1e400", 0]]}, r"^starts\[0\]: number 3 is beyond the f64"),
         ({"grid": 0}, r"^grid: must be at least 1"),
         ({"contact": "rough"}, r"^contact: must be"),
     ],
@@ -134,3 +135,33 @@ def test_bad_orbit_arguments_are_named(root, kwargs, message):
     scene = noslip.Scene.from_file(root / "scenes" / "sinai.toml")
     with pytest.raises(noslip.InputError, match=message):
         noslip.orbits(scene, **{"period": 2, **kwargs})
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda s: noslip.lyapunov(s, -1), r"^events: must be an integer in 1\.\.=\d+, got -1$"),
+        (lambda s: noslip.lyapunov(s, 1000, seed=-1),
+         r"^seed: must be an integer in 0\.\.=\d+, got -1$"),
+        (lambda s: noslip.lyapunov(s, 1000, seed=2**64),
+         r"^seed: must be an integer in 0\.\.=18446744073709551615, got 18446744073709551616$"),
+        (lambda s: noslip.lyapunov(s, 1000, blocks=-1),
+         r"^blocks: must be an integer in 1\.\.=10000, got -1$"),
+        (lambda s: noslip.lyapunov(s, 1000, blocks=2**64 - 1),
+         r"^blocks: must be in 1\.\.=10000"),
+        (lambda s: noslip.lyapunov(s, 2000, every=300),
+         r"^every: the tangent vectors stopped being finite between contacts 0 and 300"),
+        (lambda s: noslip.lyapunov(s, 1000, k=-1), r"^k: must be an integer in 1\.\.=\d+, got -1$"),
+        (lambda s: noslip.lyapunov(s, 1000, every=-2),
+         r"^every: must be an integer in 1\.\.=\d+, got -2$"),
+        (lambda s: noslip.orbits(s, -1), r"^period: must be an integer in 1\.\.=\d+, got -1$"),
+        (lambda s: noslip.orbits(s, 2, grid=-1),
+         r"^grid: must be an integer in 1\.\.=\d+, got -1$"),
+    ],
+)
+def test_negative_and_huge_ints_are_named(root, call, message):
+    """An unsigned argument out of its type's range: an InputError naming it and its range,
+    not PyO3's bare `OverflowError: can't convert negative int to unsigned`."""
+    scene = noslip.Scene.from_file(root / "scenes" / "sinai.toml")
+    with pytest.raises(noslip.InputError, match=message):
+        call(scene)

@@ -4,6 +4,8 @@ bit), scenes from text, files and dicts, pickling, and errors naming the place."
 import csv
 import json
 import pickle
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -141,3 +143,86 @@ def test_the_boundary_map_keeps_the_disk_energy_at_each_contact(root):
     # 32 eps of the energy, and the map's columns add a few roundings: 64 eps.
     assert np.all(np.abs(after - before) <= 64 * np.finfo(float).eps * before)
     assert np.all(np.abs(m["incidence"]) < np.pi / 2) and np.all(np.abs(m["reflection"]) < np.pi / 2)
+
+
+def sinai_dict(**changes):
+    """The Sinai scene as a dict, with `changes` to its species (one disk)."""
+    return {
+        "dim": 2,
+        "box": {"size": [1, 1], "boundary": ["periodic", "periodic"]},
+        "species": [{"name": "disk", "mass": 1, "radius": "1/20", **changes}],
+        "ball": [{"species": 0, "position": ["1/10", "1/10"], "velocity": ["0.6", "0.8"]}],
+        "obstacle": [{"position": ["1/2", "1/2"], "radius": "3/10"}],
+    }
+
+
+@pytest.mark.parametrize(
+    "scene, message",
+    [
+        (sinai_dict(mass=float("inf")),
+         r"^<dict>: species\[0\]\.mass: must be finite, got inf$"),
+        (sinai_dict(radus=0.1), r"^<dict>: species\[0\]\.radus: unknown field `radus`"),
+        (sinai_dict(count=-3), r"^<dict>: species\[0\]\.count: invalid value: integer `-3`"),
+        ({**sinai_dict(), "dim": 10**30},
+         r"^<dict>: dim: integer 1000000000000000000000000000000 is too large for this field"),
+        ({**sinai_dict(), "dim": -(10**30)}, r"^<dict>: dim: integer -1\d{30} is too small"),
+        ({**sinai_dict(), "box": {"size": [1, 1]}}, r"^<dict>: box: missing field `boundary`"),
+        ({"box": sinai_dict()["box"]}, r"^<dict>: scene: missing field `dim`"),
+        ({**sinai_dict(), "ball": [{"species": 0, "position": [0.1, "x"], "velocity": [1, 0]}]},
+         r"^<dict>: ball\[0\]\.position\[1\]: not a number"),
+    ],
+)
+def test_dict_errors_name_the_dict_path_not_toml_lines(scene, message):
+    """The TOML text made from a dict is never seen by the user: errors name the path in the
+    dict (`species[0].mass`), never a line and column of that text."""
+    with pytest.raises(noslip.InputError, match=message) as e:
+        noslip.Scene.from_dict(scene)
+    assert "line" not in str(e.value)
+
+
+def test_a_deep_or_self_referencing_dict_is_an_input_error():
+    """A dict inside itself, or nested 10000 deep, once overflowed the stack converting it
+    to TOML (Python died with SIGSEGV): now an InputError naming the path where the depth
+    limit (64) is passed. Run in a child process, so that a crash fails this test alone."""
+    code = """
+import noslip
+loop = {}; loop["x"] = loop
+deep = []; cur = deep
+for _ in range(10000):
+    nxt = []; cur.append(nxt); cur = nxt
+for scene in (loop, {"dim": 2, "x": deep}):
+    try:
+        noslip.Scene.from_dict(scene)
+    except noslip.InputError as e:
+        print(str(e))
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, (out.returncode, out.stderr)
+    loop, deep = out.stdout.splitlines()
+    assert loop == "<dict>: " + ".".join(["x"] * 64) + ": nested more than 64 deep " \
+        "(a scene nests at most 4 deep; is a dict or list inside itself?)"
+    assert deep.startswith("<dict>: x" + "[0]" * 63 + ": nested more than 64 deep")
+    # A scene's own nesting (4 deep here: table.wedge.directions[0][0]) is far from it.
+    with pytest.raises(noslip.InputError, match=r"^<dict>: table\.wedge"):
+        noslip.Scene.from_dict({"dim": 2, "table": {"wedge": {"directions": [[1, 0], [0]]}}})
+
+
+def test_a_file_name_given_as_text_gets_a_hint(root):
+    """A path where TOML text is expected fails to parse; the message says to use
+    Scene.from_file, for a `.toml` name and for any existing file."""
+    hint = r"looks like a file name: read a file with noslip\.Scene\.from_file\("
+    with pytest.raises(noslip.InputError, match=r"^<string>: line 1, column 7: .*" + hint):
+        noslip.simulate("scenes/sinai.toml")
+    with pytest.raises(noslip.InputError, match=hint):
+        noslip.Scene(str(root / "README.md"))
+    with pytest.raises(noslip.InputError) as e:
+        noslip.Scene("dim = ")
+    assert "from_file" not in str(e.value)
+
+
+@pytest.mark.parametrize("events", [-1, 2**64, 10**30])
+def test_an_out_of_range_events_is_named(events):
+    """Not PyO3's bare `OverflowError: can't convert negative int to unsigned`."""
+    message = rf"^events: must be an integer in 1\.\.=18446744073709551615, got {events}$"
+    with pytest.raises(noslip.InputError, match=message):
+        noslip.simulate(noslip.tables.sinai(0.5, 0.3), events=events)

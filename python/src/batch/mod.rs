@@ -32,6 +32,7 @@ use collision_core::batch::{share_rows, BallRows, FreeRows, StateRows, StateRows
 use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
 use collision_core::RefArith;
 use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Scalar};
+use collision_core::{BodyField, Field};
 use noslip_case::CaseError;
 use num_traits::Float;
 use numpy::ndarray::{ArrayView1, ArrayView2, ArrayView3};
@@ -358,7 +359,19 @@ where
                 [0, 1].map(|k| (states[k].spin.as_slice(), states[k].velocity.as_slice())),
             )
         })
-        .map_err(|e| (i, format!("row {i}: {}", CaseError::from(e))))
+        .map_err(|e| (i, format!("row {i}: {}", row_error(e))))
+}
+
+/// `collide`'s error on a row, its field named by the batch's keys: the batch takes
+/// `inv_mass` where `collide` takes `mass` (collision-core's `BodyField::Mass` stands for
+/// both), so that field is `bodies[b].inv_mass`; the others are named as in a case.
+fn row_error(e: collision_core::InputError) -> CaseError {
+    match e.field {
+        Field::Body(b, BodyField::Mass) => {
+            CaseError::new(format!("bodies[{b}].inv_mass"), e.message)
+        }
+        _ => CaseError::from(e),
+    }
 }
 
 /// Put row `i` (local row `j`) into `fixed` when a body is immovable, as `collide` does
