@@ -16,6 +16,16 @@ use std::collections::BTreeMap;
 /// grows with it.
 pub const MAX_SAMPLES: usize = 100_000;
 
+/// `samples` if it is in `1..=`[`MAX_SAMPLES`], else the reason, for the caller to prefix
+/// with the option's name (`--samples`, `samples`).
+pub fn check_samples(samples: usize) -> Result<usize, String> {
+    if (1..=MAX_SAMPLES).contains(&samples) {
+        Ok(samples)
+    } else {
+        Err(format!("must be in 1..={MAX_SAMPLES}, got {samples}"))
+    }
+}
+
 /// What a report run samples and times.
 #[derive(Clone, Debug, Serialize)]
 pub struct Options {

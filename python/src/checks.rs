@@ -4,10 +4,10 @@
 
 use crate::error::{input_error, unsigned};
 use noslip_accuracy::{
-    dim_result, AccuracyReport, Options as ReportOptions, Provenance, MAX_SAMPLES,
+    check_samples, dim_result, AccuracyReport, Options as ReportOptions, Provenance, MAX_SAMPLES,
 };
 use noslip_verify::report::Report;
-use noslip_verify::suite::{self, Options as VerifyOptions, MAX_POINTS};
+use noslip_verify::suite::{self, check_points, Options as VerifyOptions, MAX_POINTS};
 use pyo3::prelude::*;
 use std::time::Instant;
 
@@ -43,12 +43,8 @@ pub fn verify(
     points: &Bound<'_, PyAny>,
 ) -> PyResult<String> {
     let dims = check_dims(&dims)?;
-    let points = unsigned(points, "points", 1, MAX_POINTS)?;
-    if !(1..=MAX_POINTS).contains(&points) {
-        return Err(input_error(format!(
-            "points: must be at least 1 and at most {MAX_POINTS}, got {points}"
-        )));
-    }
+    let points = check_points(unsigned(points, "points", 1, MAX_POINTS)?)
+        .map_err(|m| input_error(format!("points: {m}")))?;
     let opts = VerifyOptions {
         points,
         ..VerifyOptions::default()
@@ -78,13 +74,9 @@ pub fn report(
     seed: &Bound<'_, PyAny>,
 ) -> PyResult<String> {
     let dims = check_dims(&dims)?;
-    let samples = unsigned(samples, "samples", 1, MAX_SAMPLES)?;
+    let samples = check_samples(unsigned(samples, "samples", 1, MAX_SAMPLES)?)
+        .map_err(|m| input_error(format!("samples: {m}")))?;
     let seed = unsigned(seed, "seed", 0, u64::MAX)?;
-    if !(1..=MAX_SAMPLES).contains(&samples) {
-        return Err(input_error(format!(
-            "samples: must be at least 1 and at most {MAX_SAMPLES}, got {samples}"
-        )));
-    }
     let opts = ReportOptions {
         dims: dims.clone(),
         samples,

@@ -15,7 +15,7 @@ def test_verify_passes_and_reports_every_check():
 def test_bad_dims_are_input_errors():
     with pytest.raises(noslip.InputError, match=r"^dims: 7 has no generated kernels"):
         noslip.verify(dims=[7])
-    with pytest.raises(noslip.InputError, match=r"^samples: must be at least 1"):
+    with pytest.raises(noslip.InputError, match=r"^samples: must be in 1\.\.=100000, got 0$"):
         noslip.report(dims=[2], samples=0)
 
 
@@ -37,11 +37,7 @@ def test_negative_and_huge_ints_are_named():
 def test_counts_past_their_cap_are_named():
     """The caps of `noslip verify --points` and `noslip report --samples` (a huge count ran for
     ever, or grew memory without limit)."""
-    with pytest.raises(
-        noslip.InputError, match=r"^points: must be at least 1 and at most 1024, got 1025$"
-    ):
+    with pytest.raises(noslip.InputError, match=r"^points: must be in 1\.\.=1024, got 1025$"):
         noslip.verify(dims=[2], points=1025)
-    with pytest.raises(
-        noslip.InputError, match=r"^samples: must be at least 1 and at most 100000, got 100001$"
-    ):
+    with pytest.raises(noslip.InputError, match=r"^samples: must be in 1\.\.=100000, got 100001$"):
         noslip.report(dims=[2], samples=100001)

@@ -16,6 +16,16 @@ use std::time::Instant;
 /// each point costs about a sixteenth of the default run.
 pub const MAX_POINTS: usize = 1024;
 
+/// `points` if it is in `1..=`[`MAX_POINTS`] (0 would check nothing), else the reason, for
+/// the caller to prefix with the option's name (`--points`, `--check`, `points`).
+pub fn check_points(points: usize) -> Result<usize, String> {
+    if (1..=MAX_POINTS).contains(&points) {
+        Ok(points)
+    } else {
+        Err(format!("must be in 1..={MAX_POINTS}, got {points}"))
+    }
+}
+
 /// How much to sample.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {

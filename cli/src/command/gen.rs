@@ -9,7 +9,7 @@ use noslip_codegen::backend::{self, Lang};
 use noslip_codegen::specialise::generate;
 use noslip_scene::Scene;
 use noslip_verify::checks::specialised::check;
-use noslip_verify::suite::MAX_POINTS;
+use noslip_verify::suite::check_points;
 use std::path::{Path, PathBuf};
 
 pub(crate) const LONG_ABOUT: &str = "\
@@ -103,11 +103,8 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
             "--out: only with --lang c or opencl (--lang rust prints the module)",
         ));
     }
-    if let Some(points) = args.check.filter(|p| !(1..=MAX_POINTS).contains(p)) {
-        // 0 points would pass without a check.
-        return Err(Failure::bad_input(format!(
-            "--check: must be in 1..={MAX_POINTS}, got {points}"
-        )));
+    if let Some(points) = args.check {
+        check_points(points).map_err(|m| Failure::bad_input(format!("--check: {m}")))?;
     }
     let scene = Scene::from_file(scene_path).map_err(|e| Failure::bad_input(e.to_string()))?;
     let set = scene.pairs();

@@ -7,7 +7,7 @@ use crate::out::outln;
 use crate::progress::ProgressDisplay;
 use crate::publish::Staging;
 use noslip_accuracy::plot::svg;
-use noslip_accuracy::{dim_result, AccuracyReport, Options, Provenance, MAX_SAMPLES};
+use noslip_accuracy::{check_samples, dim_result, AccuracyReport, Options, Provenance};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -64,12 +64,7 @@ pub fn options(args: &Args) -> Result<Options, Failure> {
         seed: args.seed,
         ..Options::default()
     };
-    if !(1..=MAX_SAMPLES).contains(&opts.samples) {
-        return Err(Failure::bad_input(format!(
-            "--samples: must be in 1..={MAX_SAMPLES}, got {}",
-            opts.samples
-        )));
-    }
+    check_samples(opts.samples).map_err(|m| Failure::bad_input(format!("--samples: {m}")))?;
     Ok(opts)
 }
 

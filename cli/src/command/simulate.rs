@@ -291,15 +291,17 @@ where
     log_failed.or(map_failed).map_or(Ok(()), Err)
 }
 
+/// `p` without its `.` components: two spellings of one path compare equal lexically.
+fn lexical(p: &Path) -> PathBuf {
+    p.components()
+        .filter(|c| !matches!(c, std::path::Component::CurDir))
+        .collect()
+}
+
 /// Whether `dir` (a log file's parent) is the output directory `out`, lexically (neither need
 /// exist yet): `OUT/events.jsonl` is then a file of the published set.
 fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
-    let clean = |p: &Path| -> PathBuf {
-        p.components()
-            .filter(|c| !matches!(c, std::path::Component::CurDir))
-            .collect()
-    };
-    dir.is_some_and(|d| clean(d) == clean(out))
+    dir.is_some_and(|d| lexical(d) == lexical(out))
 }
 
 /// `--time` and `--events` as the scene file has them: a positive finite time, at least one
@@ -333,14 +335,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
     match (a.canonicalize(), b.canonicalize()) {
         (Ok(x), Ok(y)) => x == y,
         _ => {
-            let clean = |p: &Path| -> Option<PathBuf> {
-                let p = std::path::absolute(p).ok()?;
-                Some(
-                    p.components()
-                        .filter(|c| !matches!(c, std::path::Component::CurDir))
-                        .collect(),
-                )
-            };
+            let clean = |p: &Path| std::path::absolute(p).ok().map(|p| lexical(&p));
             clean(a).is_some_and(|x| Some(x) == clean(b))
         }
     }

@@ -7,7 +7,7 @@ use crate::out::outln;
 use crate::progress::ProgressDisplay;
 use crate::publish::{write_atomic, Staging};
 use noslip_verify::report::{golden, Report};
-use noslip_verify::suite::{self, checks_per_dim, Options, MAX_POINTS};
+use noslip_verify::suite::{self, check_points, checks_per_dim, Options};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -75,17 +75,12 @@ fn shipped_golden() -> PathBuf {
 /// The run's options from `args`, or the usage error (`--points 0`); nothing is run or
 /// read (the fuzz target `cli_args` calls it too).
 pub fn options(args: &Args) -> Result<Options, Failure> {
-    let opts = Options {
-        points: args.points,
+    let points =
+        check_points(args.points).map_err(|m| Failure::bad_input(format!("--points: {m}")))?;
+    Ok(Options {
+        points,
         ..Options::default()
-    };
-    if !(1..=MAX_POINTS).contains(&opts.points) {
-        return Err(Failure::bad_input(format!(
-            "--points: must be in 1..={MAX_POINTS}, got {}",
-            opts.points
-        )));
-    }
-    Ok(opts)
+    })
 }
 
 /// Run the exact checks for `--dims` and publish the reports into `--out`; compare them with
