@@ -15,7 +15,8 @@
 //! [`MAX_DIM`], so nothing of size `dim` is built from a short input.
 
 use crate::error::{clip, kind, quote, CaseError};
-use crate::number::{from_json, integer_literal, InputScalar};
+use crate::number::{integer_literal, read, scalar_from_json, InputScalar};
+use crate::tiny::Tiny;
 use collision_core::{Inertia, Mass};
 use serde_json::{Map, Value};
 
@@ -118,8 +119,14 @@ fn get<'a>(obj: &'a Map<String, Value>, path: &str, key: &str) -> Result<&'a Val
         .ok_or_else(|| CaseError::new(join(path, key), "missing (required)"))
 }
 
-/// An array of exactly `len` numbers; the length is checked before any number is read.
-fn vector<T: InputScalar>(value: &Value, field: &str, len: usize) -> Result<Vec<T>, CaseError> {
+/// An array of exactly `len` numbers; the length is checked before any number is read. The
+/// fields of components below the normal range of `T` are pushed on `tiny`.
+fn vector<T: InputScalar>(
+    value: &Value,
+    field: &str,
+    len: usize,
+    tiny: &mut Vec<String>,
+) -> Result<Vec<T>, CaseError> {
     let items = value.as_array().ok_or_else(|| {
         CaseError::new(
             field,
@@ -135,7 +142,14 @@ fn vector<T: InputScalar>(value: &Value, field: &str, len: usize) -> Result<Vec<
     items
         .iter()
         .enumerate()
-        .map(|(k, x)| from_json(x, &format!("{field}[{k}]")))
+        .map(|(k, x)| {
+            let field = format!("{field}[{k}]");
+            let (x, below) = read(x, &field)?;
+            if below {
+                tiny.push(field);
+            }
+            Ok(x)
+        })
         .collect()
 }
 
@@ -174,12 +188,21 @@ fn spin_forms(dim: usize) -> String {
     }
 }
 
-fn spin<T: InputScalar>(value: &Value, field: &str, dim: usize) -> Result<Spin<T>, CaseError> {
+fn spin<T: InputScalar>(
+    value: &Value,
+    field: &str,
+    dim: usize,
+    tiny: &mut Vec<String>,
+) -> Result<Spin<T>, CaseError> {
     let wrong =
         |what: String| CaseError::new(field, format!("expected {}, got {what}", spin_forms(dim)));
     match value {
         Value::Number(_) | Value::String(_) if dim == 2 => {
-            Ok(Spin::Scalar(from_json(value, field)?))
+            let (c, below) = read(value, field)?;
+            if below {
+                tiny.push(field.to_string());
+            }
+            Ok(Spin::Scalar(c))
         }
         Value::Array(rows) if !rows.is_empty() && rows.iter().all(Value::is_array) => {
             if rows.len() != dim {
@@ -187,15 +210,15 @@ fn spin<T: InputScalar>(value: &Value, field: &str, dim: usize) -> Result<Spin<T
             }
             rows.iter()
                 .enumerate()
-                .map(|(r, row)| vector(row, &format!("{field}[{r}]"), dim))
+                .map(|(r, row)| vector(row, &format!("{field}[{r}]"), dim, tiny))
                 .collect::<Result<_, _>>()
                 .map(Spin::Matrix)
         }
         Value::Array(items)
             if dim == 3 && items.len() == 3 && !items.iter().any(Value::is_array) =>
         {
-            let [a, b, c] = [0, 1, 2].map(|k| from_json::<T>(&items[k], &format!("{field}[{k}]")));
-            Ok(Spin::Omega([a?, b?, c?]))
+            let omega: Vec<T> = vector(value, field, 3, tiny)?;
+            Ok(Spin::Omega([0, 1, 2].map(|k| omega[k].clone())))
         }
         Value::Array(items) if items.is_empty() => Err(wrong("an empty array".into())),
         Value::Array(items) if items.iter().any(Value::is_array) => {
@@ -220,8 +243,8 @@ fn inertia<T: InputScalar>(obj: &Map<String, Value>, path: &str) -> Result<Inert
     let field = |k: &str| join(path, k);
     Ok(match given.first().copied() {
         None => Inertia::Uniform,
-        Some("lambda") => Inertia::Lambda(from_json(&obj["lambda"], &field("lambda"))?),
-        Some("gamma2") => Inertia::Gamma2(from_json(&obj["gamma2"], &field("gamma2"))?),
+        Some("lambda") => Inertia::Lambda(scalar_from_json(&obj["lambda"], &field("lambda"))?),
+        Some("gamma2") => Inertia::Gamma2(scalar_from_json(&obj["gamma2"], &field("gamma2"))?),
         Some(_) => match &obj["distribution"] {
             Value::String(s) if s == "uniform" => Inertia::Uniform,
             Value::String(s) if s == "shell" => Inertia::Shell,
@@ -246,8 +269,15 @@ fn is_infinity(s: &str) -> bool {
 }
 
 impl<T: InputScalar> BodyInput<T> {
-    /// Body `index` of a case in `dim` dimensions.
-    pub fn from_json(value: &Value, index: usize, dim: usize) -> Result<Self, CaseError> {
+    /// Body `index` of a case in `dim` dimensions. Its velocity's and angular velocity's
+    /// components below the normal range of `T` are recorded in `tiny` (whether they can be
+    /// taken depends on the other body: see [`Tiny`]).
+    fn from_json(
+        value: &Value,
+        index: usize,
+        dim: usize,
+        tiny: &mut Tiny,
+    ) -> Result<Self, CaseError> {
         let path = format!("bodies[{index}]");
         let obj = object(
             value,
@@ -270,15 +300,21 @@ impl<T: InputScalar> BodyInput<T> {
                     format!("{message}, got {}", quote(s, 40)),
                 ));
             }
-            v => Mass::Finite(from_json(v, &field("mass"))?),
+            v => Mass::Finite(scalar_from_json(v, &field("mass"))?),
         };
-        let radius = from_json(get(obj, &path, "radius")?, &field("radius"))?;
+        let radius = scalar_from_json(get(obj, &path, "radius")?, &field("radius"))?;
         let inertia = inertia(obj, &path)?;
-        let velocity = vector(get(obj, &path, "velocity")?, &field("velocity"), dim)?;
+        let velocity = vector(
+            get(obj, &path, "velocity")?,
+            &field("velocity"),
+            dim,
+            &mut tiny.velocity,
+        )?;
         let spin = spin(
             get(obj, &path, "angular_velocity")?,
             &field("angular_velocity"),
             dim,
+            &mut tiny.spin[index],
         )?;
         Ok(BodyInput {
             mass,
@@ -300,7 +336,9 @@ impl<T: InputScalar> Case<T> {
         )?;
         no_unknown_keys(obj, "", &CASE_KEYS)?;
         let dim = dim(get(obj, "", "dim")?)?;
-        let normal = vector(get(obj, "", "normal")?, "normal", dim)?;
+        // A normal's components are measured against |nu| = 1: one below the normal range
+        // is off by at most 2^-1075, far inside the allowance of |nu|^2.
+        let normal = vector(get(obj, "", "normal")?, "normal", dim, &mut Vec::new())?;
         let bodies = get(obj, "", "bodies")?;
         let list = bodies.as_array().ok_or_else(|| {
             CaseError::new(
@@ -314,10 +352,12 @@ impl<T: InputScalar> Case<T> {
                 format!("expected 2 bodies, got {}", list.len()),
             ));
         }
+        let mut tiny = Tiny::default();
         let bodies = [
-            BodyInput::from_json(&list[0], 0, dim)?,
-            BodyInput::from_json(&list[1], 1, dim)?,
+            BodyInput::from_json(&list[0], 0, dim, &mut tiny)?,
+            BodyInput::from_json(&list[1], 1, dim, &mut tiny)?,
         ];
+        tiny.check(&bodies)?;
         Ok(Case {
             dim,
             normal,

@@ -24,6 +24,7 @@ pub mod keys;
 pub mod number;
 pub mod output;
 pub mod solve;
+mod tiny;
 
 pub use collide::{collide_json, Mode, RunError};
 pub use error::CaseError;

@@ -37,7 +37,16 @@ pub trait InputScalar: Scalar {
     fn parse_number(text: &str) -> Result<Self, String>;
     /// The value as JSON output; `None` if it is not finite.
     fn to_json(&self) -> Option<Value>;
+    /// Whether `x`, read from `text`, is a nonzero number that lies below the normal range
+    /// of the type: it was rounded to a subnormal or to zero, with an absolute error of up to
+    /// half the smallest subnormal (`2^-1075` in `f64`) instead of `eps/2` of itself. Never
+    /// in exact arithmetic.
+    fn below_normal(text: &str, x: &Self) -> bool;
 }
+
+/// The absolute rounding error of an `f64` below the normal range: half the spacing of the
+/// subnormals, `2^-1075`.
+pub const SUBNORMAL_ERROR: f64 = f64::MIN_POSITIVE * f64::EPSILON / 2.0;
 
 impl InputScalar for Exact {
     fn parse_number(text: &str) -> Result<Self, String> {
@@ -47,6 +56,10 @@ impl InputScalar for Exact {
     /// A reduced rational as a string: `"-3/5"`, `"2"`.
     fn to_json(&self) -> Option<Value> {
         Some(Value::String(self.to_string()))
+    }
+
+    fn below_normal(_: &str, _: &Self) -> bool {
+        false
     }
 }
 
@@ -78,24 +91,73 @@ impl InputScalar for f64 {
             .ok()
             .map(Value::Number)
     }
+
+    fn below_normal(text: &str, x: &Self) -> bool {
+        if *x != 0.0 {
+            return x.abs() < f64::MIN_POSITIVE;
+        }
+        // A zero read from a nonzero number: an underflow.
+        match scan(text) {
+            Ok(Scanned::Decimal { int, frac, .. }) => {
+                int.bytes().chain(frac.bytes()).any(|c| c != b'0')
+            }
+            Ok(Scanned::Ratio { numer, .. }) => numer.bytes().any(|c| c != b'0'),
+            Err(_) => false,
+        }
+    }
 }
 
 /// Read the number at `field` of a case: a JSON number or a string.
 pub fn from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseError> {
-    let text = match value {
-        Value::Number(n) => n.as_str(),
-        Value::String(s) => s.as_str(),
-        other => {
-            return Err(CaseError::new(
-                field,
-                format!(
-                    "expected a number (a JSON number or a string such as \"3/5\"), got {}",
-                    kind(other)
-                ),
-            ))
-        }
+    read(value, field).map(|(x, _)| x)
+}
+
+/// [`from_json`] for a scalar of a body (mass, radius, lambda, gamma2): one that lies below
+/// the normal range of `T` is refused, since it would be read with less than `T`'s
+/// relative precision (a radius `4e-324` is read as `4.94e-324`, 23% off).
+pub fn scalar_from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseError> {
+    let (x, tiny) = read::<T>(value, field)?;
+    if tiny {
+        return Err(CaseError::new(
+            field,
+            format!(
+                "{} is below the normal range of {} (magnitudes under {:e}), where it would \
+                 be read as {} with less than {}'s precision; --exact reads it as written",
+                number_text(value).map_or_else(String::new, |t| quote(t, QUOTE_CHARS)),
+                T::NAME,
+                f64::MIN_POSITIVE,
+                format_args!("{:.16e}", x.to_f64()),
+                T::NAME,
+            ),
+        ));
+    }
+    Ok(x)
+}
+
+/// The number at `field` and whether it lies below the normal range of `T`
+/// ([`InputScalar::below_normal`]).
+pub(crate) fn read<T: InputScalar>(value: &Value, field: &str) -> Result<(T, bool), CaseError> {
+    let Some(text) = number_text(value) else {
+        return Err(CaseError::new(
+            field,
+            format!(
+                "expected a number (a JSON number or a string such as \"3/5\"), got {}",
+                kind(value)
+            ),
+        ));
     };
-    T::parse_number(text).map_err(|m| CaseError::new(field, m))
+    let x = T::parse_number(text).map_err(|m| CaseError::new(field, m))?;
+    let tiny = T::below_normal(text, &x);
+    Ok((x, tiny))
+}
+
+/// The text of a JSON number or string.
+pub(crate) fn number_text(value: &Value) -> Option<&str> {
+    match value {
+        Value::Number(n) => Some(n.as_str()),
+        Value::String(s) => Some(s.as_str()),
+        _ => None,
+    }
 }
 
 /// The parts of a number's text, checked against the grammar.

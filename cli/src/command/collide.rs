@@ -58,7 +58,12 @@ Numbers:
 
 Modes:
   (default)  f64. Each number is rounded once to the nearest f64 (a rational as the exact
-             quotient, rounded); numbers beyond the f64 range are errors.
+             quotient, rounded); numbers beyond the f64 range are errors. Below the
+             normal range (|x| < 2.2e-308) a number keeps fewer digits: a mass, radius,
+             lambda or gamma2 there is an error; a velocity or angular velocity entry
+             there is taken while its rounding (at most 2^-1075, times R for a spin
+             entry) is within eps/2 of the contact's speed scale max(|u_i|, R_i |U_i|),
+             an error naming it otherwise.
              The rounding allowance: a quantity that misses its bound by rounding, by at
              most 8 eps (eps = 2^-52) of its scale, is accepted and clamped to the bound:
                lambda in [0, R^2/n]   scale R^2/n   set to the bound
@@ -73,8 +78,10 @@ Modes:
              The kernel computes with an unbounded exponent: no intermediate quantity
              overflows or underflows, so any magnitudes (1e-300 .. 1e300 in any field)
              give the f64 kernel's accuracy. A case whose answer does not fit f64 (a
-             component beyond 1.8e308, or a body's whole answer below the normal range,
-             2.2e-308) is an error naming the inputs that drive it; --exact computes it.
+             component beyond 1.8e308, or a body's answer whose components below the
+             normal range, 2.2e-308, would cost more than 8 eps of its energy norm
+             sqrt(gamma2 R^2 |U|^2 + |u|^2)) is an error naming the component and the
+             input that drives it; --exact computes it.
              Output: JSON numbers in Rust's shortest round-trip form, integers with a
              trailing .0 (2.0, -0.0, 0.1, 1e-300, 1.5e+300); reading them back as f64
              gives the computed values exactly.

@@ -1,0 +1,172 @@
+//! Velocity and angular-velocity components below the normal range of the float type.
+//!
+//! A component read below the normal range (`|x| < 2.2e-308` in `f64`) is rounded with an
+//! absolute error of up to [`SUBNORMAL_ERROR`] (`2^-1075`) instead of `eps/2` of itself. It
+//! is taken when that error is within `eps/2` of the scale it is measured against, as the
+//! rounding of any normal-range input is:
+//!
+//! - a velocity component against the contact's speed scale
+//!   `V = max_i max(|u_i|, R_i |U_i|)` (entries' magnitudes): taken iff `V >= 2^-1022`;
+//! - an entry of body `i`'s angular velocity, which moves the contact point by `R_i` times
+//!   its error: taken iff `V / R_i >= 2^-1022`.
+//!
+//! So `[1, 1e-310]` is taken (the `1e-310` is off by at most `eps/2` of the speed), while a
+//! case whose whole speed scale is below the range, or a spin entry of `7e-320` on a ball of
+//! radius `1e200`, is refused naming the component: f64 cannot carry it to its precision,
+//! and `--exact` reads it as written. (A normal's components are measured against 1 and are
+//! always taken; body scalars below the range are refused on their own, see
+//! [`crate::number::scalar_from_json`].)
+
+use crate::case::{BodyInput, Spin};
+use crate::error::CaseError;
+use crate::number::{InputScalar, SUBNORMAL_ERROR};
+
+/// The fields of the components read below the normal range.
+#[derive(Debug, Default)]
+pub(crate) struct Tiny {
+    /// Velocity components, of either body.
+    pub velocity: Vec<String>,
+    /// Angular-velocity entries, per body.
+    pub spin: [Vec<String>; 2],
+}
+
+/// The largest magnitude of `xs`, in `f64` (exact for `f64` inputs).
+fn max_abs<'a, T: InputScalar + 'a>(xs: impl IntoIterator<Item = &'a T>) -> f64 {
+    xs.into_iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
+}
+
+/// The magnitudes of the angular velocity's entries, in the form given.
+fn spin_scale<T: InputScalar>(spin: &Spin<T>) -> f64 {
+    match spin {
+        Spin::Matrix(rows) => max_abs(rows.iter().flatten()),
+        Spin::Scalar(c) => c.to_f64().abs(),
+        Spin::Omega(omega) => max_abs(omega),
+    }
+}
+
+impl Tiny {
+    /// Refuse the first component whose rounding error is beyond `eps/2` of its scale (see
+    /// the module documentation).
+    pub(crate) fn check<T: InputScalar>(
+        &self,
+        bodies: &[BodyInput<T>; 2],
+    ) -> Result<(), CaseError> {
+        if self.velocity.is_empty() && self.spin.iter().all(Vec::is_empty) {
+            return Ok(());
+        }
+        let radius = |b: usize| bodies[b].radius.to_f64();
+        let speed = (0..2)
+            .map(|b| max_abs(&bodies[b].velocity).max(radius(b) * spin_scale(&bodies[b].spin)))
+            .fold(0.0, f64::max);
+        let tail = format!(
+            "a component below the normal range of {} (magnitudes under {:e}) is read with an \
+             error of up to {SUBNORMAL_ERROR:e}",
+            T::NAME,
+            f64::MIN_POSITIVE
+        );
+        if let Some(field) = self.velocity.first().filter(|_| speed < f64::MIN_POSITIVE) {
+            return Err(CaseError::new(
+                field,
+                format!(
+                    "{tail}, beyond the rounding allowance of the contact's speed scale (up to \
+                     {speed:e}, itself below the normal range); --exact reads it as written"
+                ),
+            ));
+        }
+        for (b, fields) in self.spin.iter().enumerate() {
+            let r = radius(b);
+            // V / R >= 2^-1022, without the quotient's underflow.
+            if let Some(field) = fields.first().filter(|_| speed < f64::MIN_POSITIVE * r) {
+                return Err(CaseError::new(
+                    field,
+                    format!(
+                        "{tail}, and with body {}'s radius {r:e} it moves the contact point by \
+                         up to {:e}, beyond the rounding allowance of the contact's speed \
+                         scale (up to {speed:e}); --exact reads it as written",
+                        b + 1,
+                        r * SUBNORMAL_ERROR
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::case::Case;
+    use crate::error::CaseError;
+    use collision_core::Exact;
+    use serde_json::{json, Value};
+
+    /// A 2D case: body 1 (`mass`, `radius`, spin `c`, velocity `u`) against a unit ball at
+    /// rest.
+    fn case(mass: &str, radius: &str, c: &str, u: [&str; 2]) -> Value {
+        json!({"dim": 2, "normal": ["1", "0"], "bodies": [
+            {"mass": mass, "radius": radius, "angular_velocity": c, "velocity": u},
+            {"mass": "1", "radius": "1", "angular_velocity": "0", "velocity": ["0", "0"]}]})
+    }
+
+    fn refused(v: &Value) -> CaseError {
+        Case::<f64>::from_json(v).expect_err("refused in f64")
+    }
+
+    /// Issue 26, item 2: a radius of `4e-324` was read as `4.94e-324` (23% off) and body 1's
+    /// spin came back 19% off, exit 0. Every body scalar below the normal range is refused,
+    /// naming it; exact mode takes it as written.
+    #[test]
+    fn body_scalars_below_the_normal_range_are_refused_naming_them() {
+        for (text, field) in [
+            (case("1", "4e-324", "0", ["1", "0"]), "bodies[0].radius"),
+            (case("1", "2.3e-319", "0", ["1", "0"]), "bodies[0].radius"),
+            (case("1", "1e-400", "0", ["1", "0"]), "bodies[0].radius"),
+            (case("3e-310", "1", "0", ["1", "0"]), "bodies[0].mass"),
+        ] {
+            let e = refused(&text);
+            assert_eq!(e.field, field, "{e}");
+            assert!(e.message.contains("below the normal range of f64"), "{e}");
+            assert!(Case::<Exact>::from_json(&text).is_ok(), "{text}");
+        }
+        let mut lambda = case("1", "1", "0", ["1", "0"]);
+        lambda["bodies"][0]["lambda"] = json!("1e-310");
+        assert_eq!(refused(&lambda).field, "bodies[0].lambda");
+        let mut gamma2 = case("1", "1", "0", ["1", "0"]);
+        gamma2["bodies"][0]["gamma2"] = json!(5e-324);
+        assert_eq!(refused(&gamma2).field, "bodies[0].gamma2");
+        // The smallest normal, and a zero, are taken (a zero radius is refused later, by the
+        // ball's own check, as not positive).
+        assert!(
+            Case::<f64>::from_json(&case("1", "2.2250738585072014e-308", "0", ["1", "0"])).is_ok()
+        );
+        assert!(Case::<f64>::from_json(&case("1", "1", "0", ["0.0e-999", "0"])).is_ok());
+    }
+
+    /// A component below the range is taken when its error, at most 2^-1075, is within
+    /// eps/2 of the contact's speed scale, and refused naming it when not.
+    #[test]
+    fn components_below_the_range_are_measured_against_the_speed_scale() {
+        // Against a speed of 1: taken.
+        assert!(Case::<f64>::from_json(&case("1", "1", "0", ["1", "1e-310"])).is_ok());
+        assert!(Case::<f64>::from_json(&case("1", "1", "1e-320", ["1", "0"])).is_ok());
+        // At the edge: a speed scale of exactly 2^-1022 takes it.
+        let edge = format!("{:e}", f64::MIN_POSITIVE);
+        assert!(Case::<f64>::from_json(&case("1", "1", "0", [&edge, "1e-310"])).is_ok());
+        // The whole speed scale below the range: refused, naming the first such component.
+        let e = refused(&case("1", "1", "0", ["1e-310", "3e-311"]));
+        assert_eq!(e.field, "bodies[0].velocity[0]", "{e}");
+        assert!(e.message.contains("itself below the normal range"), "{e}");
+        // A spin entry on a huge ball: R 2^-1075 = 4.9e-16 against a speed of 1.
+        let e = refused(&case("1", "1e308", "7e-320", ["1", "0"]));
+        assert_eq!(e.field, "bodies[0].angular_velocity", "{e}");
+        assert!(e.message.contains("moves the contact point"), "{e}");
+        // ... but not on the same ball moving at 1e-6 of the range's top.
+        assert!(Case::<f64>::from_json(&case("1", "1e308", "7e-320", ["1e302", "0"])).is_ok());
+        // Matrix and omega forms name their entry.
+        let mut m = case("1", "1e308", "0", ["1", "0"]);
+        m["bodies"][0]["angular_velocity"] = json!([["0", "-7e-320"], ["7e-320", "0"]]);
+        assert_eq!(refused(&m).field, "bodies[0].angular_velocity[0][1]");
+        // Exact mode reads all of them as written.
+        assert!(Case::<Exact>::from_json(&case("1", "1", "0", ["1e-310", "3e-311"])).is_ok());
+    }
+}
