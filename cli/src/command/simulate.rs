@@ -29,14 +29,17 @@ second, kinetic energy and the drift of energy, linear and angular momentum rela
 start) and writes to --out, published as one set (the whole directory is replaced at once;
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
 drift over events) and, in 2D, trajectories.svg (a few balls' paths, cut at periodic wraps
-and thinned, and the contact points); a --log file inside --out belongs to the set.
+and thinned, and the contact points). --log and --boundary-map belong to the set: a file
+directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
+or boundary-map.csv, the file becoming a link to it (so it always shows the log of the
+set in --out, and a kill at any moment leaves the log and the set of one run).
 --boundary-map FILE writes the boundary map as CSV (one row per contact with an immovable
 body: event, time, ball, kind, id, contact point, boundary coordinate, angles of incidence
 and reflection, normal velocity, tangential velocity and spin before and after, scaled spin;
 see docs/tables.md), complete or absent like the log, and into --out each body's phase
 portraits, portrait-KIND-ID.svg and .png (coordinate against angle of reflection, tangential
 velocity against scaled spin gamma R c, after each contact). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
-and post states; the log file appears complete at the end of the run or not at all (if it
+and post states; the log appears complete at the end of the run or not at all (if it
 cannot be written, the run still ends, prints and writes its summary, and exits 1).
 
 A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, \"The
