@@ -86,6 +86,24 @@ pub fn run(cli: Cli) -> ExitCode {
     })
 }
 
+/// End a command line the parser stopped at: a usage error is clap's (its message on stderr,
+/// exit 2); help and version texts are printed through [`out::print`], so a stdout that
+/// fails (`--help > /dev/full`, `>&-`) is one error line and exit 1, not a silent 0.
+pub fn parse_stopped(e: clap::Error) -> ExitCode {
+    if e.use_stderr() {
+        e.exit();
+    }
+    let text = if std::io::IsTerminal::is_terminal(&std::io::stdout()) {
+        e.render().ansi().to_string()
+    } else {
+        e.render().to_string()
+    };
+    match out::print(&text) {
+        Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(1)),
+        Err(f) => exit::finish(Err(f)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,5 +5,8 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    noslip::run(noslip::Cli::parse())
+    match noslip::Cli::try_parse() {
+        Ok(cli) => noslip::run(cli),
+        Err(e) => noslip::parse_stopped(e),
+    }
 }

@@ -20,6 +20,10 @@
 //!   exists) are removed by the next publish to the same `D`. A set is removed marker last,
 //!   so a removal cut short leaves a directory the next run still recognises as noslip's.
 //!
+//! - **Side outputs.** A file of the run outside `D` ([`Staging::side`]: `simulate --log
+//!   FILE`) is staged as a member of the set, and `FILE` is made a link to that member in
+//!   `D` just before the switch, so `FILE` and `D` always show one run ([`link`]).
+//!
 //! Files are written with `sync_all` before the switch, so the switch never publishes a
 //! file whose contents are still in flight.
 //!
@@ -89,9 +93,12 @@ pub enum Fault {
     Staged,
     /// `aside`: abort after `D` was renamed aside (the rename fallback only).
     Aside,
+    /// `linked`: abort after the side outputs' links are in place, before the switch.
+    Linked,
     /// `switched`: abort after the switch, before the old set is removed.
     Switched,
-    /// `full-disk`: the second file written fails with "no space left" after half its bytes.
+    /// `full-disk`: the first file staged after the marker fails with "no space left" after
+    /// half its bytes.
     FullDisk,
 }
 
@@ -100,6 +107,7 @@ impl Fault {
         match std::env::var("NOSLIP_FAULT").ok()?.as_str() {
             "staged" => Some(Fault::Staged),
             "aside" => Some(Fault::Aside),
+            "linked" => Some(Fault::Linked),
             "switched" => Some(Fault::Switched),
             "full-disk" => Some(Fault::FullDisk),
             _ => None,
@@ -131,6 +139,8 @@ pub struct Staging {
     target: PathBuf,
     dir: PathBuf,
     files: usize,
+    /// Side outputs: (the path outside the set, the member it links to).
+    links: Vec<(PathBuf, String)>,
     fault: Option<Fault>,
     /// In-process stand-in for a kill at `fault` (tests): stop instead of aborting.
     stop_at_fault: bool,
@@ -177,6 +187,7 @@ impl Staging {
             target: target.to_path_buf(),
             dir,
             files: 0,
+            links: Vec::new(),
             fault,
             stop_at_fault,
             done: false,
@@ -196,10 +207,27 @@ impl Staging {
         self.dir.join(name)
     }
 
+    /// Where to write the side output `path` (a file outside the set that belongs to it):
+    /// the staged member `member`, with `path` made a link to it at [`Staging::commit`]; or
+    /// `path` itself if it is a stream ([`link::is_stream`]: `/dev/stdout`, a pipe, a device,
+    /// a link that is not noslip's), which cannot be published atomically. Removes the
+    /// temporaries that killed runs left beside `path`.
+    pub fn side(&mut self, path: &Path, member: &str) -> Result<PathBuf, PublishError> {
+        let target = std::path::absolute(&self.target)
+            .map_err(at(&self.target))?
+            .join(member);
+        if link::is_stream(path, &target) {
+            return Ok(path.to_path_buf());
+        }
+        link::remove_stale(path);
+        self.links.push((path.to_path_buf(), member.to_string()));
+        Ok(self.path(member))
+    }
+
     /// Stage file `name` with `contents` (written and synced).
     pub fn write(&mut self, name: &str, contents: &[u8]) -> Result<(), PublishError> {
         self.files += 1;
-        if self.fault == Some(Fault::FullDisk) && self.files == 2 {
+        if self.fault == Some(Fault::FullDisk) && self.files == 1 {
             let path = self.path(name);
             let mut file = fs::File::create(&path).map_err(at(&path))?;
             file.write_all(&contents[..contents.len() / 2])
@@ -246,6 +274,15 @@ impl Staging {
         sync_dir(&self.dir);
         if !replaceable(&self.target)? {
             return Err(PublishError::NotOurs(self.target.clone()));
+        }
+        if !self.links.is_empty() {
+            let set = std::path::absolute(&self.target).map_err(at(&self.target))?;
+            for (path, member) in &self.links {
+                link::place(path, &set.join(member), &set).map_err(at(path))?;
+            }
+            if let Injected::Kill = self.injected(Fault::Linked) {
+                return Ok(());
+            }
         }
         let old = if !self.target.exists() {
             fs::rename(&self.dir, &self.target).map_err(at(&self.target))?;
@@ -425,18 +462,13 @@ fn exchange(_: &Path, _: &Path) -> io::Result<()> {
 
 /// Write `contents` to `path` atomically: a temporary file in the same directory, synced,
 /// then renamed over `path`, so a reader never sees a half-written file and the old one is
-/// kept until the new one is complete. On any error the temporary is removed.
+/// kept until the new one is complete. On any error the temporary is removed; the
+/// temporaries of killed runs beside `path` are removed first ([`link::remove_stale`]).
 pub fn write_atomic(path: &Path, contents: &str) -> io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
+    let dir = link::parent(path);
     fs::create_dir_all(dir)?;
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        path.file_name().and_then(|n| n.to_str()).unwrap_or("file"),
-        std::process::id()
-    ));
+    link::remove_stale(path);
+    let tmp = dir.join(link::temporary(path, "tmp"));
     let written = fs::File::create(&tmp).and_then(|mut f| {
         f.write_all(contents.as_bytes())?;
         f.sync_all()
@@ -450,5 +482,6 @@ pub fn write_atomic(path: &Path, contents: &str) -> io::Result<()> {
     }
 }
 
+pub mod link;
 #[cfg(test)]
 mod tests;

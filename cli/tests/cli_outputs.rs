@@ -152,9 +152,10 @@ fn a_reader_that_went_away_ends_output_quietly() {
 }
 
 #[test]
-fn a_closed_stdout_does_not_panic() {
-    // `>&-`: the Rust runtime reopens a closed standard descriptor on /dev/null, so the
-    // output is discarded as by `> /dev/null`; what must hold is no panic and no lost file.
+fn a_closed_stdout_fails_after_writing_the_files() {
+    // `>&-`: the Rust runtime reopens a closed standard descriptor on /dev/null, which would
+    // discard the output silently; noslip tells it from `> /dev/null` (issue 26): the files
+    // are written, then the first print is one error line and exit 1.
     let dir = scratch("closed");
     for (args, files) in printing_runs(&dir) {
         let what = args.join(" ");
@@ -168,7 +169,12 @@ fn a_closed_stdout_does_not_panic() {
             .output()
             .unwrap();
         assert_no_panic(&what, &out);
-        assert_eq!(out.status.code(), Some(0), "{what}: {}", text(&out.stderr));
+        assert_eq!(out.status.code(), Some(1), "{what}: {}", text(&out.stderr));
+        assert_eq!(
+            errors(&out),
+            ["error: cannot write to stdout: it is closed"],
+            "{what}"
+        );
         for f in files {
             assert!(f.exists(), "{what}: {} lost", f.display());
         }

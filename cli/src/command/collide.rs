@@ -5,7 +5,7 @@ use crate::json::case::MAX_DIM;
 use crate::json::number::{MAX_DIGITS, MAX_EXACT_EXPONENT};
 use crate::json::{collide_json, Mode};
 use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 const ABOUT: &str = "Collide two balls in contact: JSON cases in, post-collision states out";
 
@@ -155,32 +155,13 @@ fn read_limited(input: impl Read, what: &str) -> Result<String, String> {
         .map_err(|_| format!("cannot read {what}: stream did not contain valid UTF-8"))
 }
 
-/// Whether stdout was closed when the program started (`noslip collide case.json >&-`). The
-/// Rust runtime puts `/dev/null`, opened read-write, in place of a closed standard
-/// descriptor, so writes would succeed and the answer be lost; a `> /dev/null` of the shell
-/// opens it write-only. Linux only (it reads `/proc/self`); elsewhere `false`.
-fn stdout_was_closed() -> bool {
-    if !cfg!(target_os = "linux") {
-        return false;
-    }
-    let null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|p| p == Path::new("/dev/null"));
-    let read_write = std::fs::read_to_string("/proc/self/fdinfo/1")
-        .ok()
-        .and_then(|info| {
-            let flags = info.lines().find_map(|l| l.strip_prefix("flags:"))?;
-            u32::from_str_radix(flags.trim(), 8).ok()
-        })
-        .is_some_and(|flags| flags & 0o3 == 0o2);
-    null && read_write
-}
-
 /// Write the answer and a newline to stdout, all of it, or say why not (a closed stdout, a
 /// broken pipe, a full disk).
 fn write_answer(answer: &str) -> std::io::Result<()> {
-    if stdout_was_closed() {
+    if let Some(why) = crate::out::unusable_stdout() {
         return Err(std::io::Error::new(
             std::io::ErrorKind::BrokenPipe,
-            "stdout is closed",
+            format!("stdout is {why}"),
         ));
     }
     let mut stdout = std::io::stdout().lock();

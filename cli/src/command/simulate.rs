@@ -29,14 +29,17 @@ second, kinetic energy and the drift of energy, linear and angular momentum rela
 start) and writes to --out, published as one set (the whole directory is replaced at once;
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
 drift over events) and, in 2D, trajectories.svg (a few balls' paths, cut at periodic wraps
-and thinned, and the contact points); a --log file inside --out belongs to the set.
+and thinned, and the contact points). --log and --boundary-map belong to the set: a file
+directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
+or boundary-map.csv, the file becoming a link to it (so it always shows the log of the
+set in --out, and a kill at any moment leaves the log and the set of one run).
 --boundary-map FILE writes the boundary map as CSV (one row per contact with an immovable
 body: event, time, ball, kind, id, contact point, boundary coordinate, angles of incidence
 and reflection, normal velocity, tangential velocity and spin before and after, scaled spin;
 see docs/tables.md), complete or absent like the log, and into --out each body's phase
 portraits, portrait-KIND-ID.svg and .png (coordinate against angle of reflection, tangential
 velocity against scaled spin gamma R c, after each contact). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
-and post states; the log file appears complete at the end of the run or not at all (if it
+and post states; the log appears complete at the end of the run or not at all (if it
 cannot be written, the run still ends, prints and writes its summary, and exits 1).
 
 A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, \"The
@@ -140,24 +143,29 @@ where
             .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         PathBuf::from("out/simulate").join(stem)
     });
-    // The output set is staged before the run, so that a refused --out costs no run, and a
-    // log asked for inside it (`--log OUT/events.jsonl`) is written into the set itself.
+    // The output set is staged before the run, so that a refused --out costs no run. The log
+    // and the boundary map are members of the set, published with it: `--log OUT/NAME` as
+    // NAME, a file outside --out as a link to its member (`publish::link`).
+    let members = side_members(args, &out)?;
     let mut set = Staging::new(&out).map_err(|e| crate::exit::publish_failure(&e))?;
-    let open = |p: &PathBuf, set: &Staging| {
-        let at = match p.file_name() {
-            Some(name) if same_dir(p.parent(), &out) => set.path(&name.to_string_lossy()),
-            _ => p.clone(),
+    let mut open = |p: &PathBuf, member: &Option<String>| {
+        let at = match member {
+            Some(m) if same_dir(p.parent(), &out) => set.path(m),
+            Some(m) => set
+                .side(p, m)
+                .map_err(|e| crate::exit::publish_failure(&e))?,
+            None => p.clone(),
         };
         LogFile::create(&at)
             .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))
     };
     let mut log = match &args.log {
-        Some(p) => Some(open(p, &set)?),
+        Some(p) => Some(open(p, &members[0])?),
         None => None,
     };
     let mut map = match &args.boundary_map {
         Some(p) => Some(
-            BoundaryMap::new(open(p, &set)?, N)
+            BoundaryMap::new(open(p, &members[1])?, N)
                 .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
         ),
         None => None,
@@ -302,6 +310,59 @@ fn lexical(p: &Path) -> PathBuf {
 /// exist yet): `OUT/events.jsonl` is then a file of the published set.
 fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
     dir.is_some_and(|d| lexical(d) == lexical(out))
+}
+
+/// Files of every simulate set; a side output may not take their names.
+const SET_FILES: [&str; 4] = [
+    crate::publish::MARKER,
+    "summary.json",
+    "energy.svg",
+    "trajectories.svg",
+];
+
+/// The member of the set that `--log` and `--boundary-map` become: the file's own name
+/// when it is directly in `out`, else `events.jsonl` / `boundary-map.csv` (the file outside
+/// becomes a link to it). Refused (exit 2): a file deeper inside `out` (the switch would
+/// remove it), a name of the set's own files, or two side outputs on one member.
+fn side_members(args: &Args, out: &Path) -> Result<[Option<String>; 2], Failure> {
+    let mut members = [None, None];
+    let sides = [
+        ("--log", &args.log, "events.jsonl"),
+        ("--boundary-map", &args.boundary_map, "boundary-map.csv"),
+    ];
+    for (i, (option, path, outside)) in sides.into_iter().enumerate() {
+        let Some(p) = path else { continue };
+        let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
+        let member = match name {
+            Some(name) if same_dir(p.parent(), out) => name,
+            _ if lexical(p).starts_with(lexical(out)) => {
+                return Err(Failure::bad_input(format!(
+                    "{option}: {} is inside --out {} but not directly in it: the output set is \
+                     replaced as a whole; put it in {} itself or outside",
+                    p.display(),
+                    out.display(),
+                    out.display()
+                )))
+            }
+            _ => outside.to_string(),
+        };
+        if SET_FILES.contains(&member.as_str()) || member.starts_with("portrait-") {
+            return Err(Failure::bad_input(format!(
+                "{option}: {} would replace the set's own file {member} in {}",
+                p.display(),
+                out.display()
+            )));
+        }
+        if members[0].as_ref() == Some(&member) {
+            return Err(Failure::bad_input(format!(
+                "--boundary-map: {} would be the set's file {member}, as --log is; name them \
+                 differently",
+                p.display()
+            )));
+        }
+        members[i] = Some(member);
+    }
+    Ok(members)
 }
 
 /// `--time` and `--events` as the scene file has them: a positive finite time, at least one
