@@ -16,6 +16,7 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+mod convex;
 mod number;
 mod pairs;
 pub mod raw;

@@ -8,6 +8,7 @@
 //! order; each `[[polygon]]` obstacle's edges then its vertices (counterclockwise from its
 //! first vertex). That index is the boundary id of the simulator's events.
 
+use crate::convex::{cross, strictly_convex, NotConvex};
 use crate::raw::{ContactKind, RawScene, RawWedge};
 use crate::validate::Ctx;
 use crate::{Number, SceneError};
@@ -83,14 +84,10 @@ fn sub(a: &[Q], b: &[Q]) -> Vec<Q> {
     a.iter().zip(b).map(|(x, y)| x - y).collect()
 }
 
-/// `a_0 b_1 - a_1 b_0`.
-fn cross(a: &[Q], b: &[Q]) -> Q {
-    &a[0] * &b[1] - &a[1] * &b[0]
-}
-
 /// The vertices of a strictly convex polygon, counterclockwise: refused (naming `place`) with
-/// fewer than 3 vertices, a repeated or collinear vertex, or when some vertex is not strictly
-/// inside the half-plane of an edge it is not on (non-convex or self-intersecting).
+/// fewer than 3 vertices, no area, a turn that is not strictly left (a repeated or collinear
+/// vertex, a dent) or edges that turn more than once around (self-intersecting), in `O(m)`
+/// ([`crate::convex`]).
 fn convex(ctx: &Ctx, place: &str, raw: &[Vec<Number>]) -> Result<Vec<Vec<Q>>, SceneError> {
     if raw.len() < 3 {
         return Err(ctx.err(
@@ -111,25 +108,28 @@ fn convex(ctx: &Ctx, place: &str, raw: &[Vec<Number>]) -> Result<Vec<Vec<Q>>, Sc
         // Counterclockwise from the same first vertex.
         v[1..].reverse();
     }
-    for k in 0..m {
-        let (a, b) = (&v[k], &v[(k + 1) % m]);
-        let e = sub(b, a);
-        for (j, p) in v.iter().enumerate() {
-            if j == k || j == (k + 1) % m {
-                continue;
-            }
-            // Strictly left of the edge a -> b (counterclockwise: inside).
-            if !cross(&e, &sub(p, a)).is_positive() {
-                return Err(ctx.err(
-                    place,
-                    format!(
-                        "not strictly convex: vertex ({}, {}) is not strictly inside the line \
-                         of the edge from ({}, {}) to ({}, {}) (vertices must be the corners of \
-                         a convex polygon, in order, none repeated or on a line with two others)",
-                        p[0], p[1], a[0], a[1], b[0], b[1]
-                    ),
-                ));
-            }
+    match strictly_convex(&v) {
+        Ok(()) => {}
+        Err(NotConvex::Turn(k)) => {
+            let (a, b, p) = (&v[k], &v[(k + 1) % m], &v[(k + 2) % m]);
+            return Err(ctx.err(
+                place,
+                format!(
+                    "not strictly convex: vertex ({}, {}) is not strictly inside the line of \
+                     the edge from ({}, {}) to ({}, {}) (vertices must be the corners of a \
+                     convex polygon, in order, none repeated or on a line with two others)",
+                    p[0], p[1], a[0], a[1], b[0], b[1]
+                ),
+            ));
+        }
+        Err(NotConvex::Winds(w)) => {
+            return Err(ctx.err(
+                place,
+                format!(
+                    "not strictly convex: every turn goes the same way but the edges turn {w} \
+                     times around (the polygon crosses itself, like a pentagram)"
+                ),
+            ));
         }
     }
     Ok(v)

@@ -456,8 +456,10 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         if let Some(g) = scene
             .boundaries
             .iter()
-            .filter_map(|b| match b.shape {
-                Shape::Edge { .. } => b.polygon.map(|(g, _)| g),
+            .filter_map(|b| match (&b.shape, b.polygon) {
+                // Each polygon obstacle once, by its first edge (a test per edge made the
+                // check quadratic in the vertices).
+                (Shape::Edge { .. }, Some((g, 0))) => Some(g),
                 _ => None,
             })
             .find(|&g| table::inside_polygon(&scene.polygons[g], &spec.position))

@@ -29,6 +29,7 @@
 
 pub mod boundary_map;
 mod cells;
+pub mod dilute;
 pub mod engine;
 pub mod lattice;
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! energy drift and (for the picture) a few trajectories and the contact points, and tells
 //! the caller how it goes ([`Progress`]).
 
+use crate::dilute::out_of_reach;
 use crate::trace::{Tracer, CONTACT_DOTS};
 use crate::{Contact, Event, PairKernels, Simulation, Step};
 use collision_core::BodyState;
@@ -231,6 +232,20 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
                          lengths (t = {:.6e}): a next contact, if there is one, is out of reach \
                          of the run (--time bounds a run instead)",
                         sim.now()
+                    ));
+                    break;
+                }
+                if let Some(far) = out_of_reach(sim, species, box_lengths) {
+                    stopped = Some(format!(
+                        "no contact while every moving ball travelled {box_lengths:.0} box \
+                         lengths (t = {:.6e}), and this periodic gas is so dilute that kinetic \
+                         theory expects at most {:.1e} contacts per unit time, {:.1e} before every \
+                         moving ball has travelled {MAX_QUIET_BOX_LENGTHS:.0e} box lengths: a next \
+                         contact, if there is one, is out of reach of the run (--time bounds a run \
+                         instead)",
+                        sim.now(),
+                        far.rate,
+                        far.expected
                     ));
                     break;
                 }

@@ -12,7 +12,7 @@ use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState};
 use noslip_scene::{Boundary, ContactKind, Placement, Scene};
 use num_rational::BigRational;
-use num_traits::ToPrimitive;
+use num_traits::{ToPrimitive, Zero};
 
 /// The nearest f64 (scene numbers are validated finite rationals).
 pub fn f(x: &BigRational) -> f64 {
@@ -60,14 +60,37 @@ fn distance2<const N: usize>(
 
 /// A unit normal from the scene's nonzero `normal`: its components rounded once when it is
 /// already a unit vector in exact rationals, else `n / |n|` in f64 (each component one
-/// rounding of the quotient by the accurate norm).
+/// rounding of the quotient by the accurate norm) of `n` first scaled exactly by a power of
+/// two, [`binary_scaled`], so that its largest component is in `[1/2, 2)`: a normal of any
+/// magnitude the scene can write (`1e-300`, `1e200`: `|n|^2` would underflow to 0 or
+/// overflow) gives the same unit vector, and a normal of moderate size the same bits as
+/// without the scaling (scaling by `2^s` commutes with every rounding in the normal range).
 fn unit_normal<const N: usize>(normal: &[BigRational]) -> [f64; N] {
     let n2: BigRational = normal.iter().map(|x| x * x).sum();
     if n2 == BigRational::from_integer(1.into()) {
         array(normal)
     } else {
-        unit(array(normal))
+        unit(array(&binary_scaled(normal)))
     }
+}
+
+/// `v 2^-E`, exactly, with `E` the largest `bits(p) - bits(q)` over `v`'s nonzero components
+/// `p/q`, so that the largest `|v_k| 2^-E` is in `[1/2, 2)`; `v` itself if it is zero.
+fn binary_scaled(v: &[BigRational]) -> Vec<BigRational> {
+    let exponent = |x: &BigRational| x.numer().bits() as i64 - x.denom().bits() as i64;
+    let Some(e) = v.iter().filter(|x| !x.is_zero()).map(exponent).max() else {
+        return v.to_vec();
+    };
+    let shift = e.unsigned_abs() as usize;
+    v.iter()
+        .map(|x| {
+            if e >= 0 {
+                BigRational::new(x.numer().clone(), x.denom() << shift)
+            } else {
+                BigRational::new(x.numer() << shift, x.denom().clone())
+            }
+        })
+        .collect()
 }
 
 fn length(a: &[BigRational], b: &[BigRational]) -> f64 {
@@ -81,6 +104,24 @@ fn length(a: &[BigRational], b: &[BigRational]) -> f64 {
 /// The table's boundaries in f64 (boundary ids as in the scene), the obstacles' contact kinds
 /// and the box's presence.
 pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
+    // Per polygon, the arc length up to each vertex: `arcs[g][k] = sum_{j < k} |v_{j+1} -
+    // v_j|`, summed from the first vertex in order (linear in the vertices; the same sums
+    // as one per piece).
+    let arcs: Vec<Vec<f64>> = scene
+        .polygons
+        .iter()
+        .map(|v| {
+            // -0.0: the empty sum as f64's `Sum` gives it, which the boundary map has
+            // printed for a polygon's first vertex.
+            let mut arc = -0.0;
+            let mut out = vec![arc];
+            for j in 0..v.len() - 1 {
+                arc += length(&v[j], &v[j + 1]);
+                out.push(arc);
+            }
+            out
+        })
+        .collect();
     let boundaries = scene
         .boundaries
         .iter()
@@ -105,10 +146,7 @@ pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
                 },
             };
             // The arc length of the polygon up to the piece's start vertex.
-            let arc = b.polygon.map_or(0.0, |(g, k)| {
-                let v = &scene.polygons[g];
-                (0..k).map(|j| length(&v[j], &v[j + 1])).sum()
-            });
+            let arc = b.polygon.map_or(0.0, |(g, k)| arcs[g][k]);
             TableBoundary {
                 shape,
                 contact: b.contact,
@@ -222,7 +260,7 @@ pub fn saturation(n: usize) -> f64 {
 }
 
 /// `log` of the volume of the unit ball in R^n, `pi^(n/2) / Gamma(n/2 + 1)`.
-fn log_unit_ball(n: usize) -> f64 {
+pub(crate) fn log_unit_ball(n: usize) -> f64 {
     // Gamma(n/2 + 1) by its recurrence from Gamma(1) = 1 or Gamma(3/2) = sqrt(pi)/2.
     let pi = std::f64::consts::PI;
     let mut gamma = if n % 2 == 0 { 1.0 } else { pi.sqrt() / 2.0 };
@@ -293,7 +331,9 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
         })
         .collect();
     let fraction = volume_fraction(scene);
-    if fraction > 1.0 {
+    // Without a box (no random balls then) there is no box volume to fill: the explicit balls
+    // were checked exactly against the table and each other.
+    if fraction > 1.0 && !scene.size.is_empty() {
         let k = (0..scene.species.len())
             .rev()
             .find(|&k| scene.species[k].count > 0)
@@ -551,6 +591,52 @@ mod tests {
         let h = 1.0 / 2f64.sqrt();
         assert_eq!(normals[2], [-h, -h]);
         assert!((h - std::f64::consts::FRAC_1_SQRT_2).abs() <= f64::EPSILON / 2.0);
+    }
+
+    /// Issue 26, item 6: a normal whose `|n|^2` underflows (`1e-300`) or overflows (`1e200`)
+    /// in f64, or whose components are beyond f64 altogether (`1e-400`), gave a normal of NaN
+    /// or 0 and a run of NaN energy; a polygon edge of length `1e-300` the same. Each is now
+    /// the unit vector of its direction, as for a normal of moderate size.
+    #[test]
+    fn normals_of_any_magnitude_are_unit_vectors() {
+        let scene = Scene::from_toml(
+            "dim = 2\n[[wall]]\npoint = [0, 0]\nnormal = [\"1e-300\", \"1e-300\"]\n\
+             [[wall]]\npoint = [9, 9]\nnormal = [\"-1e200\", \"-1e200\"]\n\
+             [[wall]]\npoint = [0, 0]\nnormal = [\"1e-400\", \"3e-400\"]\n\
+             [[wall]]\npoint = [0, 0]\nnormal = [1, 3]\n\
+             [[polygon]]\nvertices = [[\"1e-300\", \"1e-300\"], [\"2e-300\", \"1e-300\"], \
+             [\"1e-300\", \"2e-300\"]]\n\
+             [[species]]\nmass = 1\nradius = \"1/10\"\n[[ball]]\nspecies = 0\nposition = [2, 2]\n\
+             velocity = [1, 0]\n",
+            "t.toml",
+        )
+        .unwrap();
+        let normals: Vec<[f64; 2]> = table::<2>(&scene)
+            .boundaries
+            .iter()
+            .filter_map(|b| match b.shape {
+                Shape::Wall { normal, .. } | Shape::Edge { normal, .. } => Some(normal),
+                _ => None,
+            })
+            .collect();
+        // Directions (1, 1) and (-1, -1): components within an ulp of 1/sqrt(2).
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let near = |a: [f64; 2], b: [f64; 2]| (0..2).all(|k| (a[k] - b[k]).abs() <= f64::EPSILON);
+        assert!(near(normals[0], [h, h]), "{normals:?}");
+        assert!(near(normals[1], [-h, -h]), "{normals:?}");
+        // 1e-400 and 3e-400 are not (1, 3) scaled by a power of two: the same up to rounding.
+        assert_eq!(normals[3], unit([1.0, 3.0]));
+        assert!(near(normals[2], normals[3]), "{normals:?}");
+        // The polygon's edges, of length 1e-300 and sqrt(2) 1e-300: outward normals.
+        assert_eq!(normals[4], [0.0, -1.0]);
+        assert!(near(normals[5], [h, h]), "{normals:?}");
+        assert_eq!(normals[6], [-1.0, 0.0]);
+        for n in &normals {
+            assert!(
+                (n[0] * n[0] + n[1] * n[1] - 1.0).abs() <= 4.0 * f64::EPSILON,
+                "{n:?}"
+            );
+        }
     }
 
     #[test]

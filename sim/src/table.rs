@@ -247,7 +247,13 @@ impl<const N: usize> Shape<N> {
             Shape::Sphere { centre, radius } => norm(&sub(a, centre)) - radius - r,
             Shape::Edge { from, to, .. } => {
                 let e = sub(to, from);
-                let s = (dot(&sub(a, from), &e) / dot(&e, &e)).clamp(0.0, 1.0);
+                // An edge shorter than f64 can square (its ends a few ulps apart) is its start.
+                let ee = dot(&e, &e);
+                let s = if ee > 0.0 {
+                    (dot(&sub(a, from), &e) / ee).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
                 let foot: [f64; N] = std::array::from_fn(|k| from[k] + s * e[k]);
                 norm(&sub(a, &foot)) - r
             }

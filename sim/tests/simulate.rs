@@ -321,3 +321,55 @@ fn a_contact_out_of_reach_ends_the_run() {
     );
     assert_eq!(summary.energy_end, summary.energy_start);
 }
+
+/// Issue 26, item 12: ten balls of radius 1 in a 6D periodic box of side 10^6 (mean free path
+/// about 10^26 box lengths) ran for hours on the way to the stop at `MAX_QUIET_BOX_LENGTHS`
+/// (about 1000 box lengths a second). Kinetic theory puts any contact out of reach, so the run
+/// stops at the first quiet notice, 1000 box lengths, saying why.
+#[test]
+fn a_dilute_gas_stops_at_the_first_notice() {
+    let size = ["1000000"; 6].join(", ");
+    let boundary = ["\"periodic\""; 6].join(", ");
+    let scene = Scene::from_toml(
+        &format!(
+            "dim = 6\n[box]\nsize = [{size}]\nboundary = [{boundary}]\n[[species]]\nmass = 1\n\
+             radius = 1\ncount = 10\n[random]\nseed = 1\n"
+        ),
+        "dilute.toml",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let (mut sim, species) = simulation::<6, 15>(&scene);
+    let rate = noslip_sim::dilute::contact_rate(&sim, &species).expect("all periodic");
+    let mut notices = 0;
+    let (summary, _) = run(&mut sim, &species, &limits(100), None, &mut |p| {
+        if let Progress::Quiet { .. } = p {
+            notices += 1;
+        }
+    })
+    .unwrap();
+    assert_eq!((summary.events, notices), (0, 0));
+    let why = summary.stopped.expect("the run says why it stopped");
+    assert!(
+        why.contains("kinetic theory") && why.contains("out of reach"),
+        "{why}"
+    );
+    // At most c_5 2^5 (N - 1) sum |u_i| / V per unit time: below 1e-28 for speeds below 1.
+    assert!(rate > 0.0 && rate < 1e-28, "{rate:e}");
+}
+
+/// The Sinai table and a dense gas are far from the rule: they expect many contacts per box
+/// length, so their quiet flights still run to the full reach (the corridor above).
+#[test]
+fn dense_tables_expect_contacts_within_reach() {
+    for (name, dim) in [("sinai.toml", 2), ("gas6d.toml", 6)] {
+        let scene = scene(name);
+        let expected = if dim == 2 {
+            let (sim, species) = simulation::<2, 1>(&scene);
+            noslip_sim::dilute::out_of_reach(&sim, &species, 1000.0)
+        } else {
+            let (sim, species) = simulation::<6, 15>(&scene);
+            noslip_sim::dilute::out_of_reach(&sim, &species, 1000.0)
+        };
+        assert_eq!(expected, None, "{name}");
+    }
+}

@@ -79,110 +79,23 @@
 //! it also returns [`Step::Quiet`], a notice, once the balls have travelled 1000, 2000, 4000
 //! ... box lengths without a contact; the caller decides whether to go on.
 
+mod contacts;
+mod events;
+mod quiet;
+
+pub use events::{Contact, Event, SetupError, Step};
+
 use super::cells::Grid;
 use super::motion::Motion;
-use super::no_contact::{Flight, NoContact, QUIET_BOX_LENGTHS};
-use super::normal::unit;
+use super::no_contact::{NoContact, QUIET_BOX_LENGTHS};
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::predict::{contact_time, contact_time_or_nan, exit_time};
 use super::queue::{Calendar, What};
 use super::residents::Residents;
-use super::smooth;
 use super::table::{ContactKind, Geometry, Table};
 use super::{Body, FixedBall, PairKernels, Setup};
 use collision_core::{Ball, BodyState};
-use std::fmt;
-
-/// A contact: ball-ball (`i` is body 1), ball-wall or ball-obstacle.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Contact {
-    /// Two balls.
-    Ball {
-        /// Body 1's ball index.
-        i: usize,
-        /// Body 2's ball index.
-        j: usize,
-    },
-    /// A ball and a wall.
-    Wall {
-        /// The ball's index.
-        i: usize,
-        /// The wall's axis `k`.
-        axis: usize,
-        /// The wall at `x_k = L_k` if `true`, at `x_k = 0` if `false`.
-        upper: bool,
-    },
-    /// A ball and a fixed ball obstacle.
-    Obstacle {
-        /// The ball's index.
-        i: usize,
-        /// The obstacle's index in [`Setup::obstacles`].
-        obstacle: usize,
-    },
-    /// A ball and a boundary of the table besides the box and the obstacles: a wall, a
-    /// container, a polygon obstacle's edge or vertex ([`crate::table`]).
-    Boundary {
-        /// The ball's index.
-        i: usize,
-        /// The boundary's id, its index in [`crate::Table::boundaries`].
-        boundary: usize,
-    },
-}
-
-impl Contact {
-    /// The ball of a contact with an immovable body (box wall, obstacle, boundary); `None` for
-    /// two balls.
-    pub fn lone_ball(&self) -> Option<usize> {
-        match *self {
-            Contact::Ball { .. } => None,
-            Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
-                Some(i)
-            }
-        }
-    }
-}
-
-/// One contact with the states around it. Index 0 is ball `i`, index 1 ball `j` of a
-/// ball-ball contact (for a wall or an obstacle, index 1 repeats index 0). `nu` is the unit
-/// normal from body 1 (ball `i`, the wall or the obstacle) to body 2 (ball `j`, or ball `i`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Event<const N: usize, const S: usize> {
-    /// The simulated time of the contact.
-    pub time: f64,
-    /// Which bodies touch.
-    pub contact: Contact,
-    /// The unit contact normal `nu`, from body 1 to body 2.
-    pub nu: [f64; N],
-    /// The centres `a` of index 0 and index 1 at `time`.
-    pub position: [[f64; N]; 2],
-    /// The states `(U, u)` of index 0 and index 1 before the contact.
-    pub pre: [BodyState<f64, N, S>; 2],
-    /// The states `(U, u)` of index 0 and index 1 after the contact.
-    pub post: [BodyState<f64, N, S>; 2],
-}
-
-/// What [`Simulation::step`] found.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Step<const N: usize, const S: usize> {
-    /// The next contact.
-    Contact(Event<N, S>),
-    /// No contact at or before `until`; the clock is at `until`.
-    Until,
-    /// No contact will happen again (the clock is at `until` if that is finite, else where it
-    /// was found out).
-    Never(NoContact),
-    /// A notice, not an end: no contact yet while every moving ball travelled `box_lengths`
-    /// times the longest box side since the last contact (first at
-    /// [`QUIET_BOX_LENGTHS`], then at twice, four times
-    /// ... that). Contacts may still come (a flight nearly along a corridor of a periodic
-    /// table); stepping again goes on.
-    Quiet {
-        /// The distance every moving ball travelled since the last contact, in longest box
-        /// sides.
-        box_lengths: f64,
-    },
-}
 
 /// The number of cells from which a prediction prefetches its neighbour cells' lists: a
 /// list header and a record per occupied cell, about 2 MiB of cell list from here, more than
@@ -193,67 +106,6 @@ const PREFETCH_FROM: usize = 1 << 16;
 /// The local clock is re-based when the fastest ball could have moved this many widths of
 /// the narrowest cell on it (module docs).
 const CLOCK_CELLS: f64 = 16.0;
-
-/// A setup the engine cannot run; each variant names the place.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum SetupError {
-    /// Box side `axis` is not positive and finite.
-    BoxSize {
-        /// The axis `k`.
-        axis: usize,
-        /// The side `L_k` given.
-        size: f64,
-    },
-    /// Ball `ball` names species `species`, which does not exist.
-    Species {
-        /// The ball's index.
-        ball: usize,
-        /// The species index it names.
-        species: usize,
-    },
-    /// Ball `ball` is outside the box along `axis`.
-    Outside {
-        /// The ball's index.
-        ball: usize,
-        /// The axis `k` along which it is outside.
-        axis: usize,
-    },
-    /// Periodic box side `axis` is shorter than half the largest contact distance `d_max`:
-    /// a body would touch more than two images of another.
-    ShortSide {
-        /// The periodic axis `k`.
-        axis: usize,
-        /// The side `L_k`.
-        size: f64,
-        /// The largest contact distance, a sum of two radii (ball-ball or ball-obstacle).
-        d_max: f64,
-    },
-}
-
-impl fmt::Display for SetupError {
-    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        match self {
-            SetupError::BoxSize { axis, .. } => write!(f, "box size {axis} must be positive"),
-            SetupError::Species { ball, species } => {
-                write!(
-                    f,
-                    "ball {ball} names species {species}, which does not exist"
-                )
-            }
-            SetupError::Outside { ball, axis } => {
-                write!(f, "ball {ball} is outside the box along axis {axis}")
-            }
-            SetupError::ShortSide { axis, size, d_max } => write!(
-                f,
-                "box side {axis} ({size}) is shorter than half the largest contact distance \
-                 ({d_max}): a body would touch more than two images of another"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for SetupError {}
 
 /// An event-driven simulation; see the module docs.
 pub struct Simulation<const N: usize, const S: usize, K> {
@@ -467,6 +319,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// The box sides `L_k` (without a box: the table's length scale on every axis).
     pub fn box_size(&self) -> [f64; N] {
         self.grid.size
+    }
+
+    /// Which axes of the box are periodic (none without a box).
+    pub fn periodic(&self) -> [bool; N] {
+        if self.table.boxed {
+            self.grid.periodic
+        } else {
+            [false; N]
+        }
     }
 
     /// The fixed ball obstacles.
@@ -787,226 +648,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 }
                 What::Boundary { b } => return Step::Contact(self.ball_boundary(i, b as usize)),
             }
-        }
-    }
-
-    /// [`Step::Never`], with the clock moved on to `until` (local) if that is finite: free
-    /// flight to it is all that happens.
-    fn never(&mut self, why: NoContact, until: f64) -> Step<N, S> {
-        if until.is_finite() {
-            self.now = self.now.max(until);
-        }
-        Step::Never(why)
-    }
-
-    /// Events without a contact before the first no-contact check after a contact.
-    fn first_check(&self) -> u64 {
-        (2 * self.len() as u64).max(1024)
-    }
-
-    /// Whether no contact can happen again ([`NoContact`]); the exact pair test is run when
-    /// its cost (balls x bodies) is at most `max(2^20, 16 quiet)`, so `O(1)` per event.
-    fn no_contact(&self) -> Option<NoContact> {
-        let position = |i: usize| self.position(i);
-        let velocity = |i: usize| self.state[i].velocity;
-        let radius = |i: usize| self.species[self.kind[i]].radius;
-        let flight = Flight {
-            size: self.grid.size,
-            periodic: self.grid.periodic,
-            position: &position,
-            velocity: &velocity,
-            radius: &radius,
-            balls: self.len(),
-            obstacles: &self.obstacles,
-        };
-        if flight.least_speed().is_none() {
-            return Some(NoContact::AtRest);
-        }
-        if !self.table.boxed || !self.table.boundaries.is_empty() {
-            // Without a box the empty queue decides (step); with boundaries every axis is
-            // walled, and a moving ball may still meet them.
-            return None;
-        }
-        let budget = usize::try_from(self.quiet.saturating_mul(16)).unwrap_or(usize::MAX);
-        flight.separated(budget.max(1 << 20))
-    }
-
-    /// Box lengths (the longest side) the slowest moving ball travelled since the last
-    /// contact (0 if every ball is at rest).
-    fn quiet_travel(&self) -> f64 {
-        let slowest = (0..self.len())
-            .map(|i| self.speed2_of(i).sqrt())
-            .filter(|&v| v > 0.0)
-            .fold(f64::INFINITY, f64::min);
-        if !slowest.is_finite() {
-            return 0.0;
-        }
-        let side = self.grid.size.iter().copied().fold(0.0, f64::max);
-        (self.now - self.last_contact) * slowest / side
-    }
-
-    fn speed2_of(&self, i: usize) -> f64 {
-        self.state[i].velocity.iter().map(|x| x * x).sum()
-    }
-
-    /// Whether the local clock must be re-based: `v_max^2 t^2 > (16 w_min)^2`.
-    fn clock_due(&self) -> bool {
-        self.speed2 * self.now * self.now > self.span2
-    }
-
-    /// Move the clock's origin to now: move every centre to now (orientations keep their
-    /// flight time for later), shift the queue's times by `-now` (rebuilding the calendar;
-    /// no allocation: its lists are reused) and restart the local clock at 0.
-    fn rebase(&mut self) {
-        let t = self.now;
-        let mut speed2: f64 = 0.0;
-        for i in 0..self.len() {
-            self.fly(i);
-            self.motion.get_mut(i).since = 0.0;
-            speed2 = speed2.max(self.speed2_of(i));
-        }
-        self.queue.rebuild(t);
-        // origin + origin_low += t, compensated (Knuth's two-sum).
-        let sum = self.origin + t;
-        let b = sum - self.origin;
-        let error = (self.origin - (sum - b)) + (t - b);
-        self.origin = sum;
-        self.origin_low += error;
-        self.last_contact -= t;
-        self.now = 0.0;
-        self.speed2 = speed2;
-        self.rebases += 1;
-    }
-
-    /// After a contact changed the velocities of `balls`: raise the speed bound and re-base
-    /// the clock if it is due, before the new predictions.
-    fn after_contact(&mut self, balls: [usize; 2]) {
-        for b in balls {
-            self.speed2 = self.speed2.max(self.speed2_of(b));
-        }
-        if self.clock_due() {
-            self.rebase();
-        }
-        self.predict(balls[0]);
-        if balls[1] != balls[0] {
-            self.predict(balls[1]);
-        }
-    }
-
-    fn ball_ball(&mut self, i: usize, j: usize, unwrapped: &[i8; N]) -> Event<N, S> {
-        self.advance(i);
-        self.advance(j);
-        // The image the contact was predicted with: s' + w_j - w_i (module docs).
-        let shift = std::array::from_fn(|k| {
-            unwrapped[k]
-                .wrapping_add(self.wraps[j][k])
-                .wrapping_sub(self.wraps[i][k])
-        });
-        let b = self.image(j, &shift);
-        let nu = unit(std::array::from_fn(|k| b[k] - self.motion.get(i).pos[k]));
-        let pre = [self.state[i].clone(), self.state[j].clone()];
-        let [si, sj] = match self.table.ball_contact {
-            ContactKind::NoSlip => {
-                self.kernels
-                    .ball_ball(self.kind[i], self.kind[j], &nu, &pre[0], &pre[1])
-            }
-            ContactKind::Smooth => {
-                let (w1, w2) = (
-                    self.species[self.kind[i]].inv_mass,
-                    self.species[self.kind[j]].inv_mass,
-                );
-                smooth::pair(&nu, &w1, &w2, &pre[0], &pre[1])
-            }
-        };
-        self.last[i] = 0;
-        self.last[j] = 0;
-        self.state[i] = si;
-        self.state[j] = sj;
-        let event = self.finish(Contact::Ball { i, j }, nu, [i, j], pre);
-        self.after_contact([i, j]);
-        event
-    }
-
-    fn ball_wall(&mut self, i: usize, axis: usize, upper: bool) -> Event<N, S> {
-        self.advance(i);
-        let nu = std::array::from_fn(|k| {
-            if k != axis {
-                0.0
-            } else if upper {
-                -1.0
-            } else {
-                1.0
-            }
-        });
-        let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = match self.table.box_contact {
-            ContactKind::NoSlip => self.kernels.ball_wall(self.kind[i], axis, upper, &pre[0]),
-            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
-        };
-        self.last[i] = 0;
-        let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre);
-        self.after_contact([i, i]);
-        event
-    }
-
-    fn ball_obstacle(&mut self, i: usize, o: usize, shift: &[i8; N]) -> Event<N, S> {
-        self.advance(i);
-        let b = self.obstacle_image(o, shift);
-        let nu = unit(std::array::from_fn(|k| self.motion.get(i).pos[k] - b[k]));
-        let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = match self.table.obstacle(o) {
-            ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
-            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
-        };
-        self.last[i] = 0;
-        let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre);
-        self.after_contact([i, i]);
-        event
-    }
-
-    /// A contact with boundary `b`: the `fixed` kernel (no-slip) or the specular map
-    /// (smooth) at the boundary's local normal (see [`crate::table`]).
-    fn ball_boundary(&mut self, i: usize, b: usize) -> Event<N, S> {
-        self.advance(i);
-        let boundary = &self.table.boundaries[b];
-        let nu = boundary.shape.normal(&self.motion.get(i).pos);
-        let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = match boundary.contact {
-            ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
-            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
-        };
-        self.last[i] = b as u32 + 1;
-        let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre);
-        self.after_contact([i, i]);
-        event
-    }
-
-    fn finish(
-        &mut self,
-        contact: Contact,
-        nu: [f64; N],
-        balls: [usize; 2],
-        pre: [BodyState<f64, N, S>; 2],
-    ) -> Event<N, S> {
-        for b in balls {
-            self.motion.get_mut(b).velocity = self.state[b].velocity;
-        }
-        self.count[balls[0]] += 1;
-        if balls[1] != balls[0] {
-            self.count[balls[1]] += 1;
-        }
-        self.contacts += 1;
-        self.last_contact = self.now;
-        self.quiet = 0;
-        self.next_check = self.first_check();
-        self.next_notice = QUIET_BOX_LENGTHS;
-        Event {
-            time: self.absolute(self.now),
-            contact,
-            nu,
-            position: balls.map(|b| self.motion.get(b).pos),
-            pre,
-            post: balls.map(|b| self.state[b].clone()),
         }
     }
 }

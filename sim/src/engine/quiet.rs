@@ -1,0 +1,96 @@
+//! The engine's clock and its quiet stretches: re-basing the local clock, the checks that no
+//! contact can come ([`NoContact`]) and the travel since the last contact.
+
+use super::{Simulation, Step};
+use crate::no_contact::{Flight, NoContact};
+use crate::PairKernels;
+
+impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
+    /// [`Step::Never`], with the clock moved on to `until` (local) if that is finite: free
+    /// flight to it is all that happens.
+    pub(super) fn never(&mut self, why: NoContact, until: f64) -> Step<N, S> {
+        if until.is_finite() {
+            self.now = self.now.max(until);
+        }
+        Step::Never(why)
+    }
+
+    /// Events without a contact before the first no-contact check after a contact.
+    pub(super) fn first_check(&self) -> u64 {
+        (2 * self.len() as u64).max(1024)
+    }
+
+    /// Whether no contact can happen again ([`NoContact`]); the exact pair test is run when
+    /// its cost (balls x bodies) is at most `max(2^20, 16 quiet)`, so `O(1)` per event.
+    pub(super) fn no_contact(&self) -> Option<NoContact> {
+        let position = |i: usize| self.position(i);
+        let velocity = |i: usize| self.state[i].velocity;
+        let radius = |i: usize| self.species[self.kind[i]].radius;
+        let flight = Flight {
+            size: self.grid.size,
+            periodic: self.grid.periodic,
+            position: &position,
+            velocity: &velocity,
+            radius: &radius,
+            balls: self.len(),
+            obstacles: &self.obstacles,
+        };
+        if flight.least_speed().is_none() {
+            return Some(NoContact::AtRest);
+        }
+        if !self.table.boxed || !self.table.boundaries.is_empty() {
+            // Without a box the empty queue decides (step); with boundaries every axis is
+            // walled, and a moving ball may still meet them.
+            return None;
+        }
+        let budget = usize::try_from(self.quiet.saturating_mul(16)).unwrap_or(usize::MAX);
+        flight.separated(budget.max(1 << 20))
+    }
+
+    /// Box lengths (the longest side) the slowest moving ball travelled since the last
+    /// contact (0 if every ball is at rest).
+    pub(super) fn quiet_travel(&self) -> f64 {
+        let slowest = (0..self.len())
+            .map(|i| self.speed2_of(i).sqrt())
+            .filter(|&v| v > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        if !slowest.is_finite() {
+            return 0.0;
+        }
+        let side = self.grid.size.iter().copied().fold(0.0, f64::max);
+        (self.now - self.last_contact) * slowest / side
+    }
+
+    pub(super) fn speed2_of(&self, i: usize) -> f64 {
+        self.state[i].velocity.iter().map(|x| x * x).sum()
+    }
+
+    /// Whether the local clock must be re-based: `v_max^2 t^2 > (16 w_min)^2`.
+    pub(super) fn clock_due(&self) -> bool {
+        self.speed2 * self.now * self.now > self.span2
+    }
+
+    /// Move the clock's origin to now: move every centre to now (orientations keep their
+    /// flight time for later), shift the queue's times by `-now` (rebuilding the calendar;
+    /// no allocation: its lists are reused) and restart the local clock at 0.
+    pub(super) fn rebase(&mut self) {
+        let t = self.now;
+        let mut speed2: f64 = 0.0;
+        for i in 0..self.len() {
+            self.fly(i);
+            self.motion.get_mut(i).since = 0.0;
+            speed2 = speed2.max(self.speed2_of(i));
+        }
+        self.queue.rebuild(t);
+        // origin + origin_low += t, compensated (Knuth's two-sum).
+        let sum = self.origin + t;
+        let b = sum - self.origin;
+        let error = (self.origin - (sum - b)) + (t - b);
+        self.origin = sum;
+        self.origin_low += error;
+        self.last_contact -= t;
+        self.now = 0.0;
+        self.speed2 = speed2;
+        self.rebases += 1;
+    }
+}
