@@ -12,6 +12,8 @@
 //!   runs scenes);
 //! - `gen`: the scene read and validated, and without `--check` the module generated with the
 //!   given `--crate-path` (not printed); `--check K` is not run (exact points, seconds);
+//!   `gen --lang c|opencl` runs whole (`command::gen::run`: the generic kernels of `--dims`,
+//!   the scene's if given, written into `--out`), when its paths are inside the sandbox;
 //! - `lyapunov`: its options (`Options`: events, blocks, k, method, contact) and the scene
 //!   read and validated, `--out` prepared; `orbits`: the scene read and validated, `--out`
 //!   prepared (its starts are parsed in the run; nothing is run: seconds to minutes);
@@ -133,6 +135,16 @@ fn validate(command: Command) {
             }
             if scene(&a.file).is_some() {
                 stage(a.out.as_deref().unwrap_or(Path::new("out/simulate/scene")));
+            }
+        }
+        Command::Gen(a) if matches!(a.lang, command::gen::Language::Backend(_)) => {
+            // `--lang c|opencl` writes its files (milliseconds: the generic kernels' text is
+            // generated at build time), into the sandbox only.
+            let paths = a.out.iter().chain(&a.scene);
+            if paths.into_iter().all(|p| inside(p)) {
+                if let Err(f) = command::gen::run(&a) {
+                    refused(f, true);
+                }
             }
         }
         Command::Gen(a) => {

@@ -3,7 +3,8 @@
 //! Any bytes are a scene file. The CLI reads it as UTF-8 (other bytes: exit 2), then:
 //! - parse and validate (`Scene::from_toml`);
 //! - `gen`: the pair set and the specialised module (`specialise::generate`: range checks of
-//!   the folded constants, code generation, formatting);
+//!   the folded constants, code generation, formatting), and the same in C and OpenCL C
+//!   (`backend::generate_scene`), which must accept and refuse exactly the scenes Rust does;
 //! - `simulate`: the f64 range checks, placement and setup (`simulate::setup::setup`), the
 //!   engine's own setup checks (`Simulation::new`), and a short run through the CLI's run loop
 //!   (`simulate::run::run`, at most [`EVENTS`] contacts, the scene's time limit if any, the
@@ -26,6 +27,7 @@
 
 use collision_core::{Generated, Kernel};
 use libfuzzer_sys::fuzz_target;
+use noslip_codegen::backend::{generate_scene, Lang};
 use noslip_codegen::specialise::generate;
 use noslip_scene::Scene;
 use noslip_sim::boundary_map::{self, BoundaryMap};
@@ -51,8 +53,20 @@ fuzz_target!(|data: &[u8]| {
     };
     // `gen`
     let set = scene.pairs();
-    let _ = generate(&set, "collision_core", "noslip_sim"); // Err: exit 2
-                                                            // `simulate`
+    let rust = generate(&set, "collision_core", "noslip_sim"); // Err: exit 2
+    // `gen --lang c|opencl --scene`: the same folded constants, so the same verdict.
+    for lang in [Lang::C, Lang::OpenCl] {
+        let other = generate_scene(lang, &set);
+        assert_eq!(
+            other.is_ok(),
+            rust.is_ok(),
+            "{} and Rust disagree: {:?} vs {:?}",
+            lang.name(),
+            other.err(),
+            rust.as_ref().err()
+        );
+    }
+    // `simulate`
     if scene.ball_count() <= MAX_RUN_BALLS {
         collision_core::with_dim!(
             scene.dim,
