@@ -40,7 +40,7 @@ characteristic polynomial of its linearisation are also computed in exact ration
 
 The work is bounded: every evaluation of P^K (with its derivative) follows K contacts, a
 start takes at most 41 Newton steps of at most 31 evaluations, and the whole search follows
-at most --max-contacts contacts (default 50000000, about a minute); when the bound is
+at most --max-contacts contacts (default 50000000, one to two minutes); when the bound is
 reached the search stops, reports the orbits found so far and says how many starts it tried
 (exit 0). Progress goes to stderr (a bar on a terminal, a line per tenth of the starts
 elsewhere once the search has run a second); --quiet turns it off.
@@ -198,11 +198,16 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         .map_err(|e| exit::publish_failure(&e))?;
     set.commit().map_err(|e| exit::publish_failure(&e))?;
     outln!(
-        "{}: period {}, {} start{}, {} orbit{} ({} start{} did not converge)",
+        "{}: period {}, {} start{}{}, {} orbit{} ({} start{} did not converge)",
         scene.origin,
         report.period,
         report.starts,
         if report.starts == 1 { "" } else { "s" },
+        if report.tried < report.starts {
+            format!(" ({} tried)", report.tried)
+        } else {
+            String::new()
+        },
         report.orbits.len(),
         if report.orbits.len() == 1 { "" } else { "s" },
         report.misses,

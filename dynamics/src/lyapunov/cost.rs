@@ -22,8 +22,9 @@ pub const MAX_TANGENT_BYTES: u64 = 1 << 30;
 /// The default `k`'s memory budget: 64 MiB of tangent vectors.
 pub const DEFAULT_TANGENT_BYTES: u64 = 64 << 20;
 
-/// The default `k`'s work budget: `2e9` multiply-adds of Gram-Schmidt over the run (about
-/// 3 s at the 0.6-1 billion a second measured on the development machine, docs/dynamics.md).
+/// The default `k`'s work budget: `2e9` multiply-adds of Gram-Schmidt over the run (3-4 s at
+/// the 0.55-0.7 billion a second measured on the shared development machine,
+/// docs/dynamics.md).
 pub const DEFAULT_WORK: f64 = 2e9;
 
 /// The `k` of a QR run and what it costs.

@@ -16,9 +16,9 @@ use std::fmt;
 pub const MAX_STARTS: usize = 100_000;
 /// The longest period.
 pub const MAX_PERIOD: usize = 1000;
-/// The default bound on the contacts a search follows ([`Search::max_contacts`]): about a
-/// minute of the 2D search (measured 0.8-1.0 million contacts a second in a release build,
-/// docs/dynamics.md).
+/// The default bound on the contacts a search follows ([`Search::max_contacts`]): one to two
+/// minutes of the 2D search (measured 0.5-0.9 million contacts a second, Newton's steps
+/// included, in a release build; docs/dynamics.md).
 pub const DEFAULT_MAX_CONTACTS: u64 = 50_000_000;
 
 /// What a search is asked for.
