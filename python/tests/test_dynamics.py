@@ -211,5 +211,5 @@ def test_the_orbit_search_is_bounded(root):
     report = json.loads(noslip._native.orbits(sector, 4, [], 4, None, 2000))
     assert report["contacts"] <= 2000 and 0 < report["tried"] < report["starts"] == 64
     assert report["stopped"].startswith("the search followed ")
-    with pytest.raises(noslip.InputError, match=r"^max_contacts: must be an integer in 1\.\.="):
+    with pytest.raises(noslip.InputError, match=r"^max_contacts: must be at least 1, got 0$"):
         noslip._native.orbits(sector, 4, [], 4, None, 0)
