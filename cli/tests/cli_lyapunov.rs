@@ -1,8 +1,110 @@
-//! `noslip lyapunov` from the outside: a run's outputs, and bad input (exit 2, one line
-//! naming the place).
+//! `noslip lyapunov` from the outside: a run's outputs, the default `--k` and the memory cap
+//! of large scenes, and bad input (exit 2, one line naming the place).
 
 mod support;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 use support::{noslip, run_ok, temp};
+
+/// Runs `command` to its end, or kills it and fails after `limit` (a run without bound is a
+/// failure, not a test that never ends).
+fn within(command: &mut Command, limit: Duration) -> Output {
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let begun = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if begun.elapsed() > limit {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("{command:?} still running after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// The shipped gas2d (750 disks, phase-space dimension 3750) with the default `--k` ran the
+/// whole spectrum: two Gram-Schmidt passes of `3750^3` multiply-adds each, 223 s for
+/// `--events 200`. The default now keeps the run's Gram-Schmidt within 2e9 multiply-adds:
+/// the 516 largest exponents, said on stderr; the run takes seconds.
+#[test]
+fn a_gas_gets_a_default_k_within_the_budget_and_says_so() {
+    let dir = temp("lyapunov-gas2d");
+    let out = within(
+        noslip()
+            .args(["lyapunov", "scenes/gas2d.toml", "--events", "200", "--out"])
+            .arg(&dir),
+        Duration::from_secs(120),
+    );
+    let (stdout, stderr) = (
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    );
+    assert!(out.status.success(), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with(
+            "note: --k not given: the whole spectrum (3750 exponents) would need 107.288 MiB"
+        ) && stderr.contains("computing the 516 largest"),
+        "{stderr}"
+    );
+    assert!(
+        stdout.contains("516 exponents by qr") && stdout.contains("phase-space dimension 3750"),
+        "{stdout}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// 12 000 disks (dimension 60 000): the whole spectrum needs 28.8 GB and the run aborted on a
+/// failed allocation. Asked for, it is refused before any work (exit 2, naming `--k`, the
+/// memory and the cap); by default 139 vectors (64 MiB) are carried.
+#[test]
+fn a_spectrum_beyond_the_memory_cap_is_refused_up_front() {
+    let dir = temp("lyapunov-big");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("big.toml");
+    std::fs::write(
+        &scene,
+        "dim = 2\n[box]\nsize = [400, 400]\nboundary = [\"periodic\", \"periodic\"]\n\
+         [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 12000\n\
+         [random]\nseed = 1\nspeed = 1\nspin = 1\n",
+    )
+    .unwrap();
+    let out = within(
+        noslip().args(["lyapunov", scene.to_str().unwrap(), "--k", "60000"]),
+        Duration::from_secs(60),
+    );
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(
+        stderr.trim_end(),
+        "error: --k: 60000 tangent vectors of dimension 60000 need 26.822 GiB (28800000000 \
+         bytes, 8 k d), beyond the cap of 1.000 GiB: at most 2236 fit"
+    );
+    let out = within(
+        noslip()
+            .args([
+                "lyapunov",
+                scene.to_str().unwrap(),
+                "--events",
+                "100",
+                "--out",
+            ])
+            .arg(dir.join("out")),
+        Duration::from_secs(120),
+    );
+    let (stdout, stderr) = (
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    );
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("computing the 139 largest"), "{stderr}");
+    assert!(stdout.contains("139 exponents by qr"), "{stdout}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
 
 #[test]
 fn sinai_spectrum_is_printed_and_published() {

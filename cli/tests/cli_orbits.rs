@@ -1,8 +1,113 @@
 //! `noslip orbits` from the outside: the bouncing orbit between two walls found and computed
-//! exactly, a grid search, and bad input (exit 2, one line naming the place).
+//! exactly, a grid search, the bound on its work and its progress, and bad input (exit 2, one
+//! line naming the place).
 
 mod support;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 use support::{noslip, run_ok, temp};
+
+/// Runs `command` to its end, or kills it and fails after `limit` (a hang is a failure, not a
+/// test that never ends).
+fn within(command: &mut Command, limit: Duration) -> Output {
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let begun = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if begun.elapsed() > limit {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("{command:?} still running after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// `orbits scenes/triangle.toml --period 4 --grid 1` never returned (over 120 s): the
+/// eigenvalues of its orbits' return maps (1 three times, to a few ulps) stalled nalgebra's
+/// uncapped Schur iteration. Now the eigenvalue iteration is bounded and the search takes
+/// well under a second (the limit here is a generous 60 s).
+#[test]
+fn the_triangle_period_four_search_returns() {
+    let dir = temp("orbits-triangle4");
+    let out = within(
+        noslip()
+            .args([
+                "orbits",
+                "scenes/triangle.toml",
+                "--period",
+                "4",
+                "--grid",
+                "1",
+            ])
+            .arg("--out")
+            .arg(&dir),
+        Duration::from_secs(60),
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success(), "{stdout}");
+    assert!(
+        stdout.starts_with("scenes/triangle.toml: period 4, 3 starts, 3 orbits"),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("stopped"), "{stdout}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A search that reaches `--max-contacts` stops there (exit 0), publishes what it found, and
+/// says how far it got; `--quiet` leaves stderr empty. The sector's period-4 grid of 64 starts
+/// follows about 10^4 contacts in all; a bound of 2000 stops it part way.
+#[test]
+fn a_search_stops_at_its_bound_of_contacts_and_says_so() {
+    let dir = temp("orbits-bound");
+    let out = within(
+        noslip()
+            .args([
+                "orbits",
+                "scenes/sector.toml",
+                "--period",
+                "4",
+                "--grid",
+                "4",
+            ])
+            .args(["--max-contacts", "2000", "--quiet", "--out"])
+            .arg(&dir),
+        Duration::from_secs(60),
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success(), "{stdout}");
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stop = stdout
+        .lines()
+        .find(|l| l.starts_with("stopped: the search followed "))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(
+        stop.contains("its bound is 2000")
+            && stop.ends_with("raise --max-contacts or give fewer starts"),
+        "{stop}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("orbits.json")).unwrap()).unwrap();
+    let (tried, starts) = (
+        json["tried"].as_u64().unwrap(),
+        json["starts"].as_u64().unwrap(),
+    );
+    assert!(0 < tried && tried < starts && starts == 64, "{json}");
+    assert!(json["contacts"].as_u64().unwrap() <= 2000, "{json}");
+    assert!(
+        stop.contains(&format!("{tried} of 64 starts were tried")),
+        "{stop}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
 
 #[test]
 fn bouncing_orbit_is_found_and_its_polynomial_is_exact() {
@@ -98,6 +203,10 @@ fn bad_input_exits_2_naming_the_place() {
         (
             vec!["scenes/sinai.toml", "--period", "2", "--grid", "0"],
             "--grid: must be at least 1",
+        ),
+        (
+            vec!["scenes/sinai.toml", "--period", "2", "--max-contacts", "0"],
+            "--max-contacts: must be at least 1, got 0",
         ),
         (
             vec!["scenes/sinai.toml", "--period", "2", "--contact", "rough"],

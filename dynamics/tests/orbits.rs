@@ -222,13 +222,14 @@ fn smooth_sinai_bouncing_orbit_is_the_classical_hyperbolic_one() {
 /// orbit at all.
 #[test]
 fn triangle_has_stable_period_two_orbits_no_slip_and_none_smooth() {
-    use noslip_dynamics::orbits::search::{search, Search};
+    use noslip_dynamics::orbits::search::{search, Search, DEFAULT_MAX_CONTACTS};
     let scene = Scene::from_toml(include_str!("../../scenes/triangle.toml"), "triangle").unwrap();
     let ask = |law| Search {
         period: 2,
         from: Vec::new(),
         grid: Some(6),
         law,
+        max_contacts: DEFAULT_MAX_CONTACTS,
     };
     let no_slip = search::<2, 1>(&scene, &ask(None)).unwrap();
     assert!(!no_slip.orbits.is_empty(), "{no_slip:?}");
@@ -255,13 +256,14 @@ fn triangle_has_stable_period_two_orbits_no_slip_and_none_smooth() {
 /// With smooth contacts none: the two walls have no common perpendicular.
 #[test]
 fn wedge_of_twenty_degrees_has_elliptic_period_two_orbits() {
-    use noslip_dynamics::orbits::search::{search, Search};
+    use noslip_dynamics::orbits::search::{search, Search, DEFAULT_MAX_CONTACTS};
     let scene = Scene::from_toml(include_str!("../../scenes/wedge.toml"), "wedge").unwrap();
     let ask = |law| Search {
         period: 2,
         from: Vec::new(),
         grid: Some(3),
         law,
+        max_contacts: DEFAULT_MAX_CONTACTS,
     };
     let no_slip = search::<2, 1>(&scene, &ask(None)).unwrap();
     let elliptic: Vec<_> = no_slip
@@ -279,4 +281,66 @@ fn wedge_of_twenty_degrees_has_elliptic_period_two_orbits() {
     }
     let smooth = search::<2, 1>(&scene, &ask(Some(Law::Smooth))).unwrap();
     assert!(smooth.orbits.is_empty(), "{smooth:?}");
+}
+
+/// `noslip orbits scenes/triangle.toml --period 4 --grid 1` never returned: the return maps
+/// of its period-4 orbits have the eigenvalue 1 four times (three of them in a block equal to
+/// the identity up to a few ulps), on which nalgebra's eigenvalue iteration, uncapped, looped
+/// forever. With the bounded attempts of `poly::eigenvalues` the three starts give three
+/// orbits, each with its eigenvalues (on the unit circle: 1 or a pair near -1) and a verdict.
+#[test]
+fn the_triangle_period_four_search_returns_with_its_eigenvalues() {
+    use noslip_dynamics::orbits::search::{search, Search, DEFAULT_MAX_CONTACTS};
+    let scene = Scene::from_toml(include_str!("../../scenes/triangle.toml"), "triangle").unwrap();
+    let ask = Search {
+        period: 4,
+        from: Vec::new(),
+        grid: Some(1),
+        law: None,
+        max_contacts: DEFAULT_MAX_CONTACTS,
+    };
+    let r = search::<2, 1>(&scene, &ask).unwrap();
+    assert_eq!((r.starts, r.tried, r.orbits.len()), (3, 3, 3), "{r:?}");
+    assert_eq!(r.stopped, None);
+    for o in &r.orbits {
+        assert_ne!(o.verdict, Verdict::Undetermined, "{o:?}");
+        assert_eq!(o.eigenvalues.len(), 4, "{o:?}");
+    }
+}
+
+/// A search shares one budget of contacts among its starts: with a bound of 2000 the
+/// sector's period-4 grid (64 starts, about 10^4 contacts in all) stops part way, having
+/// followed at most 2000 contacts, and says how many starts it tried; with the default bound
+/// it tries them all.
+#[test]
+fn a_search_stops_at_its_bound_of_contacts() {
+    use noslip_dynamics::orbits::search::{search, Search, DEFAULT_MAX_CONTACTS};
+    let scene = Scene::from_toml(include_str!("../../scenes/sector.toml"), "sector").unwrap();
+    let ask = |max_contacts| Search {
+        period: 4,
+        from: Vec::new(),
+        grid: Some(4),
+        law: None,
+        max_contacts,
+    };
+    let cut = search::<2, 1>(&scene, &ask(2000)).unwrap();
+    assert!(
+        cut.contacts <= 2000 && cut.contacts > 1000,
+        "{}",
+        cut.contacts
+    );
+    assert!(
+        0 < cut.tried && cut.tried < cut.starts,
+        "{} {}",
+        cut.tried,
+        cut.starts
+    );
+    let why = cut.stopped.as_deref().unwrap();
+    assert!(
+        why.contains(&format!("{} of 64 starts were tried", cut.tried)),
+        "{why}"
+    );
+    let all = search::<2, 1>(&scene, &ask(DEFAULT_MAX_CONTACTS)).unwrap();
+    assert_eq!((all.starts, all.tried, all.stopped), (64, 64, None));
+    assert!(all.contacts > 2000 && all.orbits.len() >= cut.orbits.len());
 }

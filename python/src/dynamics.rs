@@ -9,7 +9,7 @@ use crate::scene::Scene;
 use collision_core::Generated;
 use noslip_dynamics::lyapunov::stats::Estimate;
 use noslip_dynamics::lyapunov::{qr, two_trajectory, Dim, Options, Spectrum, MAX_BLOCKS};
-use noslip_dynamics::orbits::search::{search, Search, SearchError};
+use noslip_dynamics::orbits::search::{search, Search, SearchError, DEFAULT_MAX_CONTACTS};
 use noslip_dynamics::Law;
 use noslip_scene::parse_exact;
 use noslip_sim::setup::setup;
@@ -153,8 +153,10 @@ pub fn lyapunov<'py>(
 
 /// The periodic orbits of period `period` of a one-ball table (see the Python docstring of
 /// `noslip.orbits`): `orbits.json`'s text. `starts` are rationals or decimals as text.
+/// `max_contacts` bounds the search's work as `noslip orbits --max-contacts` does (default
+/// [`DEFAULT_MAX_CONTACTS`]): the search stops there and `orbits.json` says so (`stopped`).
 #[pyfunction]
-#[pyo3(signature = (scene, period, starts, grid, contact))]
+#[pyo3(signature = (scene, period, starts, grid, contact, max_contacts=None))]
 pub fn orbits(
     py: Python<'_>,
     scene: &Bound<'_, Scene>,
@@ -162,9 +164,12 @@ pub fn orbits(
     starts: Vec<Vec<String>>,
     grid: Option<Bound<'_, PyAny>>,
     contact: Option<&str>,
+    max_contacts: Option<Bound<'_, PyAny>>,
 ) -> PyResult<String> {
     let period = unsigned(period, "period", 1, usize::MAX)?;
     let grid = unsigned_opt(grid.as_ref(), "grid", 1, usize::MAX)?;
+    let max_contacts = unsigned_opt(max_contacts.as_ref(), "max_contacts", 1, u64::MAX)?
+        .unwrap_or(DEFAULT_MAX_CONTACTS);
     let law = contact.map(parse_law).transpose()?;
     let mut from = Vec::with_capacity(starts.len());
     for (i, start) in starts.iter().enumerate() {
@@ -184,6 +189,7 @@ pub fn orbits(
         from,
         grid,
         law,
+        max_contacts,
     };
     let scene = &scene.get().inner;
     let n = scene.dim;
@@ -203,7 +209,7 @@ pub fn orbits(
 fn message(e: &SearchError) -> String {
     match (e, e.field()) {
         (SearchError::From { index, message }, _) => format!("starts[{index}]: {message}"),
-        (_, Some(field)) => format!("{field}: {}", e.message()),
+        (_, Some(field)) => format!("{}: {}", field.replace('-', "_"), e.message()),
         (_, None) => e.message().to_string(),
     }
 }

@@ -165,3 +165,51 @@ def test_negative_and_huge_ints_are_named(root, call, message):
     scene = noslip.Scene.from_file(root / "scenes" / "sinai.toml")
     with pytest.raises(noslip.InputError, match=message):
         call(scene)
+
+
+BIG_GAS = """dim = 2
+[box]
+size = [400, 400]
+boundary = ["periodic", "periodic"]
+[[species]]
+mass = 1
+radius = "1/2"
+count = 12000
+[random]
+seed = 1
+speed = 1
+spin = 1
+"""
+
+
+def test_a_spectrum_beyond_the_memory_cap_is_refused_naming_k():
+    """12 000 disks (dimension 60 000): the whole spectrum's tangent vectors need 28.8 GB (the
+    run aborted on a failed allocation); asked for, it is an InputError naming k, the memory
+    and the cap, before any work. By default the 139 largest exponents fit 64 MiB."""
+    with pytest.raises(noslip.InputError, match=(
+            r"^k: 60000 tangent vectors of dimension 60000 need 26\.822 GiB \(28800000000 "
+            r"bytes, 8 k d\), beyond the cap of 1\.000 GiB: at most 2236 fit$")):
+        noslip.lyapunov(BIG_GAS, 100, k=60000)
+    got = noslip.lyapunov(BIG_GAS, 100)
+    assert (got.dimension, len(got.per_time)) == (60000, 139)
+
+
+def test_the_default_k_of_a_gas_keeps_the_run_short(root):
+    """gas2d (dimension 3750) over 200 contacts ran the whole spectrum by default (223 s); the
+    default is now the 516 largest (2e9 multiply-adds of Gram-Schmidt), as in the CLI."""
+    got = noslip.lyapunov(noslip.Scene.from_file(root / "scenes" / "gas2d.toml"), 200)
+    assert (got.dimension, len(got.per_time)) == (3750, 516)
+
+
+def test_the_orbit_search_is_bounded(root):
+    """The triangle's period-4 search returns (it never did: an uncapped eigenvalue
+    iteration); the native search stops at its bound of contacts and says so."""
+    triangle = noslip.Scene.from_file(root / "scenes" / "triangle.toml")
+    got = noslip.orbits(triangle, 4, grid=1)
+    assert (got.starts, len(got.orbits)) == (3, 3)
+    sector = noslip.Scene.from_file(root / "scenes" / "sector.toml")
+    report = json.loads(noslip._native.orbits(sector, 4, [], 4, None, 2000))
+    assert report["contacts"] <= 2000 and 0 < report["tried"] < report["starts"] == 64
+    assert report["stopped"].startswith("the search followed ")
+    with pytest.raises(noslip.InputError, match=r"^max_contacts: must be at least 1, got 0$"):
+        noslip._native.orbits(sector, 4, [], 4, None, 0)

@@ -4,10 +4,13 @@ use crate::exit::{self, Exit, Failure};
 use crate::out::outln;
 use crate::publish::Staging;
 use collision_core::Generated;
-use noslip_dynamics::lyapunov::{qr, two_trajectory, Dim, LyapunovError, Options, Spectrum};
+use noslip_dynamics::lyapunov::{
+    choice, qr, two_trajectory, Dim, LyapunovError, Options, Spectrum,
+};
 use noslip_dynamics::Law;
 use noslip_scene::Scene;
 use noslip_sim::setup::setup;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 pub(crate) const LONG_ABOUT: &str = "\
@@ -15,10 +18,14 @@ Lyapunov exponents of a scene (TOML, see docs/scenes.md): a one-ball billiard or
 the phase space of the balls' centres, velocities and spins (orientations never feed back
 and are left out; see docs/dynamics.md).
 
---method qr (default): the --k largest exponents (default: all, balls x (2n + S)) from
-tangent vectors carried by the exact flight and contact tangent maps along the engine's
-trajectory, re-orthonormalised (Gram-Schmidt) every --every contacts (default: every contact
-for one ball, balls/4 for a gas). --method two-trajectory: the largest exponent from a
+--method qr (default): the --k largest exponents from tangent vectors carried by the exact
+flight and contact tangent maps along the engine's trajectory, re-orthonormalised
+(Gram-Schmidt) every --every contacts (default: every contact for one ball, balls/4 for a
+gas). k vectors of the phase-space dimension d = balls x (2n + S) take 8 k d bytes, and each
+re-orthonormalisation about k^2 d multiply-adds. Default --k: the whole spectrum (k = d) if
+it fits 64 MiB of vectors and 2e9 multiply-adds of Gram-Schmidt over the
+run (a few seconds), else the largest k that fits both, said on stderr. A --k whose vectors
+pass 1 GiB is refused. --method two-trajectory: the largest exponent from a
 second run kept 1e-9 away (Benettin), an independent check with no tangent map.
 
 --events N contacts are run; the first of --blocks + 1 equal parts is a warm-up, the other
@@ -125,11 +132,16 @@ where
     let result = if two {
         two_trajectory(setup, options)
     } else {
+        // What the default --k chose (or what a large --k costs), before the run.
+        if let Some(note) = choice(&setup, options).ok().and_then(|c| c.note()) {
+            let _ = writeln!(std::io::stderr(), "note: {note}");
+        }
         qr(setup, options)
     };
     result.map_err(|e| match e {
         LyapunovError::Setup(_) => Failure::bad_input(format!("{}: {e}", scene.origin)),
         LyapunovError::K { .. }
+        | LyapunovError::Memory { .. }
         | LyapunovError::Blocks { .. }
         | LyapunovError::Events { .. }
         | LyapunovError::Overflow { .. } => Failure::bad_input(e.to_string()),
@@ -226,4 +238,19 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
     }
     outln!("wrote {}", out.display())?;
     Ok(Exit::Success)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::LONG_ABOUT;
+    use noslip_dynamics::lyapunov::cost::{DEFAULT_TANGENT_BYTES, DEFAULT_WORK, MAX_TANGENT_BYTES};
+
+    /// The help states the budgets the code applies.
+    #[test]
+    fn the_help_states_the_budgets() {
+        let about = LONG_ABOUT.replace('\n', " ");
+        assert!(about.contains(&format!("fits {} MiB", DEFAULT_TANGENT_BYTES >> 20)));
+        assert!(about.contains(&format!("and {DEFAULT_WORK:.0e} multiply-adds")));
+        assert!(about.contains(&format!("pass {} GiB is refused", MAX_TANGENT_BYTES >> 30)));
+    }
 }

@@ -3,11 +3,14 @@
 use crate::command::lyapunov::parse_law;
 use crate::exit::{self, Exit, Failure};
 use crate::out::outln;
+use crate::progress::ProgressDisplay;
 use crate::publish::Staging;
 use collision_core::Exact;
-use noslip_dynamics::orbits::search::{search, Search, SearchError};
+use noslip_dynamics::orbits::search::DEFAULT_MAX_CONTACTS;
+use noslip_dynamics::orbits::search::{search_observed, Progress, Search, SearchError};
 use noslip_scene::{parse_exact, Scene};
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 pub(crate) const LONG_ABOUT: &str = "\
 Periodic orbits of the K-th return map of the boundary map of a one-ball table (a scene with
@@ -34,6 +37,13 @@ section and the verdict: elliptic (all on the unit circle, some non-real), parab
 a table whose contact times are rational (flat walls whose normals have rational length),
 the return map at that start and the
 characteristic polynomial of its linearisation are also computed in exact rationals.
+
+The work is bounded: every evaluation of P^K (with its derivative) follows K contacts, a
+start takes at most 41 Newton steps of at most 31 evaluations, and the whole search follows
+at most --max-contacts contacts (default 50000000, one to two minutes); when the bound is
+reached the search stops, reports the orbits found so far and says how many starts it tried
+(exit 0). Progress goes to stderr (a bar on a terminal, a line per tenth of the starts
+elsewhere once the search has run a second); --quiet turns it off.
 Writes orbits.json to --out (default out/orbits/SCENE), published as one set.";
 
 /// The arguments of `noslip orbits`.
@@ -55,9 +65,64 @@ pub struct Args {
     /// from the scene).
     #[arg(long)]
     contact: Option<String>,
+    /// The most contacts the search follows (each evaluation of P^K follows K); it stops
+    /// there and says so.
+    #[arg(long, default_value_t = DEFAULT_MAX_CONTACTS)]
+    max_contacts: u64,
+    /// No progress on stderr.
+    #[arg(long)]
+    quiet: bool,
     /// The output directory (default out/orbits/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+/// Off a terminal, progress lines start once the search has run this long (a short search
+/// prints none).
+const QUIET_START: Duration = Duration::from_secs(1);
+
+/// Progress of the search on stderr: a bar on a terminal; elsewhere a line at each tenth of
+/// the starts once the search has run [`QUIET_START`].
+struct Shown {
+    display: ProgressDisplay,
+    begun: Instant,
+    tenth: usize,
+}
+
+impl Shown {
+    fn new(starts: usize) -> Shown {
+        Shown {
+            display: ProgressDisplay::new(starts as u64, "starts"),
+            begun: Instant::now(),
+            tenth: 0,
+        }
+    }
+
+    fn show(&mut self, p: Progress) {
+        let line = progress_line(p, self.begun.elapsed(), &mut self.tenth);
+        self.display
+            .set_message(format!("{} orbits, {} contacts", p.orbits, p.contacts));
+        self.display.inc(line);
+    }
+}
+
+/// The progress line off a terminal after `p`, `elapsed` into the search: one each time a
+/// new tenth of the starts is done (`tenth` is the last one shown), none before
+/// [`QUIET_START`].
+fn progress_line(p: Progress, elapsed: Duration, tenth: &mut usize) -> Option<String> {
+    let now = p.done * 10 / p.starts.max(1);
+    (now > *tenth && elapsed >= QUIET_START).then(|| {
+        *tenth = now;
+        format!(
+            "orbits: {}/{} starts, {} orbit{}, {} contacts followed, {:.0} s",
+            p.done,
+            p.starts,
+            p.orbits,
+            if p.orbits == 1 { "" } else { "s" },
+            p.contacts,
+            elapsed.as_secs_f64()
+        )
+    })
 }
 
 /// What `orbits` can return.
@@ -103,13 +168,24 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         from,
         grid: args.grid,
         law,
+        max_contacts: args.max_contacts,
     };
     let scene = Scene::from_file(&args.file).map_err(|e| Failure::bad_input(e.to_string()))?;
+    let mut shown: Option<Shown> = None;
+    let mut progress = |p: Progress| {
+        if !args.quiet {
+            shown.get_or_insert_with(|| Shown::new(p.starts)).show(p);
+        }
+    };
     let report = collision_core::with_dim!(
         scene.dim,
-        |N, S| search::<N, S>(&scene, &ask).map_err(failure),
+        |N, S| search_observed::<N, S>(&scene, &ask, &mut progress).map_err(failure),
         unreachable!("scene validation keeps dim in {:?}", collision_core::DIMS)
-    )?;
+    );
+    if let Some(s) = shown {
+        s.display.finish();
+    }
+    let report = report?;
     let out = args.out.clone().unwrap_or_else(|| {
         let stem = Path::new(&scene.origin)
             .file_stem()
@@ -122,16 +198,24 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         .map_err(|e| exit::publish_failure(&e))?;
     set.commit().map_err(|e| exit::publish_failure(&e))?;
     outln!(
-        "{}: period {}, {} start{}, {} orbit{} ({} start{} did not converge)",
+        "{}: period {}, {} start{}{}, {} orbit{} ({} start{} did not converge)",
         scene.origin,
         report.period,
         report.starts,
         if report.starts == 1 { "" } else { "s" },
+        if report.tried < report.starts {
+            format!(" ({} tried)", report.tried)
+        } else {
+            String::new()
+        },
         report.orbits.len(),
         if report.orbits.len() == 1 { "" } else { "s" },
         report.misses,
         if report.misses == 1 { "" } else { "s" }
     )?;
+    if let Some(why) = &report.stopped {
+        outln!("stopped: {why}; raise --max-contacts or give fewer starts")?;
+    }
     for (i, o) in report.orbits.iter().enumerate() {
         outln!(
             "orbit {}: {:?}, contacts {:?}, found from {} start{}, residual {:.1e}",
@@ -165,4 +249,36 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
     }
     outln!("wrote {}", out.display())?;
     Ok(Exit::Success)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Off a terminal: nothing in the first second; then a line at each new tenth of the
+    /// starts, naming the starts done, the orbits and the contacts followed.
+    #[test]
+    fn progress_lines_come_per_tenth_after_a_second() {
+        let p = |done| Progress {
+            done,
+            starts: 40,
+            orbits: 1,
+            contacts: 1234,
+        };
+        let mut tenth = 0;
+        assert_eq!(
+            progress_line(p(8), Duration::from_millis(500), &mut tenth),
+            None
+        );
+        assert_eq!(
+            progress_line(p(8), Duration::from_millis(1500), &mut tenth).as_deref(),
+            Some("orbits: 8/40 starts, 1 orbit, 1234 contacts followed, 2 s")
+        );
+        assert_eq!(
+            progress_line(p(9), Duration::from_secs(2), &mut tenth),
+            None
+        );
+        assert!(progress_line(p(12), Duration::from_secs(2), &mut tenth).is_some());
+        assert!(progress_line(p(40), Duration::from_secs(3), &mut tenth).is_some());
+    }
 }

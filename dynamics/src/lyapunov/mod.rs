@@ -11,12 +11,13 @@
 //! Both report per unit time and per contact (all contacts of the scene), with the standard
 //! error over blocks ([`stats`]) after a warm-up block that is not measured.
 
+pub mod cost;
 mod qr;
 pub mod stats;
 pub mod touch;
 mod two;
 
-pub use qr::qr;
+pub use qr::{choice, qr};
 pub use two::{two_trajectory, D0};
 
 use crate::law::Law;
@@ -31,7 +32,8 @@ use std::fmt;
 pub struct Options {
     /// Contacts to run (warm-up included).
     pub events: u64,
-    /// How many exponents (the largest); `None`: all.
+    /// How many exponents (the largest); `None`: the default of [`cost::choose`] (all of
+    /// them when they fit its memory and work budget).
     pub k: Option<usize>,
     /// Measured blocks (after one warm-up block of the same length).
     pub blocks: usize,
@@ -97,6 +99,15 @@ pub enum LyapunovError {
         /// The phase-space dimension.
         dimension: usize,
     },
+    /// The `k` tangent vectors would take more than [`cost::MAX_TANGENT_BYTES`].
+    Memory {
+        /// The `k` asked for (or the default's 1).
+        k: usize,
+        /// The phase-space dimension.
+        dimension: usize,
+        /// The memory they need, `8 k d` bytes.
+        bytes: u64,
+    },
     /// Blocks not in `1..=`[`MAX_BLOCKS`].
     Blocks {
         /// The blocks asked for.
@@ -141,6 +152,18 @@ impl fmt::Display for LyapunovError {
             LyapunovError::K { k, dimension } => {
                 write!(f, "--k: must be in 1..={dimension} (the phase-space dimension), got {k}")
             }
+            LyapunovError::Memory {
+                k,
+                dimension,
+                bytes,
+            } => write!(
+                f,
+                "--k: {k} tangent vectors of dimension {dimension} need {} ({bytes} bytes, \
+                 8 k d), beyond the cap of {}: at most {} fit",
+                cost::show_bytes(*bytes),
+                cost::show_bytes(cost::MAX_TANGENT_BYTES),
+                cost::MAX_TANGENT_BYTES / 8 / (*dimension).max(1) as u64
+            ),
             LyapunovError::Blocks { blocks } => write!(
                 f,
                 "--blocks: must be in 1..={MAX_BLOCKS} (more blocks only shorten each block), \

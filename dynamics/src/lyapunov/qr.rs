@@ -8,6 +8,7 @@
 //! mean rate is exponent `i`. The metric is the plain Euclidean one of `[x, u, U]`; the
 //! exponents do not depend on it (any fixed metric is equivalent).
 
+use super::cost::{self, Choice};
 use super::stats::Blocks;
 use super::touch::{touch, Touch};
 use super::{next_contact, Dim, LyapunovError, Options, Plan, Running, Spectrum};
@@ -28,6 +29,33 @@ fn default_every(balls: usize) -> u64 {
     (balls as u64 / 4).max(1)
 }
 
+/// The contacts between re-orthonormalisations of a run of `balls` balls: `--every`, or
+/// [`default_every`].
+fn every(options: &Options, balls: usize) -> u64 {
+    options.every.unwrap_or(default_every(balls)).max(1)
+}
+
+/// `a . b` in eight interleaved partial sums, added pairwise at the end: the same products,
+/// summed in another order (no less accurate than one running sum), which the compiler
+/// vectorises; one running sum is a chain of dependent additions, and Gram-Schmidt is
+/// dot products for half its work.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut s = [0.0f64; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let tail: f64 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for i in 0..8 {
+            s[i] += x[i] * y[i];
+        }
+    }
+    tail + ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]))
+}
+
 /// Modified Gram-Schmidt: orthonormalises `vectors` in place, returns `log R_ii`.
 pub(crate) fn gram_schmidt(vectors: &mut [Vec<f64>]) -> Vec<f64> {
     let mut logs = Vec::with_capacity(vectors.len());
@@ -35,18 +63,34 @@ pub(crate) fn gram_schmidt(vectors: &mut [Vec<f64>]) -> Vec<f64> {
         let (done, rest) = vectors.split_at_mut(i);
         let v = &mut rest[0];
         for q in done.iter() {
-            let p: f64 = v.iter().zip(q).map(|(a, b)| a * b).sum();
+            let p = dot(v, q);
             for (a, b) in v.iter_mut().zip(q) {
                 *a -= p * b;
             }
         }
-        let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let norm = dot(v, v).sqrt();
         for a in v.iter_mut() {
             *a /= norm;
         }
         logs.push(norm.ln());
     }
     logs
+}
+
+/// The `k` a QR run of `setup` with `options` takes, and its cost ([`cost::choose`]): what
+/// [`qr`] will do, known before it runs (the command prints the default's note first).
+pub fn choice<const N: usize, const S: usize>(
+    setup: &Setup<N, S>,
+    options: &Options,
+) -> Result<Choice, LyapunovError> {
+    let plan = Plan::new(options)?;
+    let balls = setup.bodies.len();
+    cost::choose(
+        options.k,
+        balls * block_len(N, S),
+        plan.events,
+        every(options, balls),
+    )
 }
 
 /// The `k` largest exponents of the scene's dynamics (see the module docs).
@@ -63,11 +107,8 @@ where
     let balls = kinds.len();
     let len = block_len(N, S);
     let dimension = balls * len;
-    let k = options.k.unwrap_or(dimension);
-    if !(1..=dimension).contains(&k) {
-        return Err(LyapunovError::K { k, dimension });
-    }
-    let every = options.every.unwrap_or(default_every(balls)).max(1);
+    let every = every(options, balls);
+    let k = choice(&setup, options)?.k;
     // The engine runs smooth contacts itself; its kernels are the no-slip ones.
     let kernels = LawKernels {
         law: Law::NoSlip,

@@ -13,7 +13,8 @@
 //! **Verdict** from the eigenvalues of the section map (the `2n + S - 1` eigenvalues of
 //! `DP^K` other than the flow direction's 0): *hyperbolic* if one is off the unit circle by
 //! more than [`STABILITY_TOL`]; else *elliptic* if one is non-real by more than it, else
-//! *parabolic* (all at `+-1`).
+//! *parabolic* (all at `+-1`); *undetermined* if the eigenvalue iteration did not converge
+//! within its bound ([`poly::eigenvalues`]).
 //!
 //! **Exact**: for a rational table and a rational start on a flat wall, [`exact`] runs the
 //! return map and its derivative in rationals and gives the characteristic polynomial of the
@@ -22,16 +23,19 @@
 //! **A search** ([`search`]): the starts (given, a 2D grid, or the scene's ball), Newton
 //! from each, the orbits merged, as `noslip orbits` and the Python package run it.
 
+mod newton;
 pub mod poly;
 pub mod scene;
 pub mod search;
 pub mod section;
 
+pub use newton::{newton, newton_within, section_eigenvalues, verdict, Budget};
+pub use newton::{MAX_HALVINGS, SVD_SWEEPS};
+
 use crate::dual::Dual;
 use crate::geometry::dot;
 use crate::table::{Boundary, NoHit, Table};
 use collision_core::{Exact, Generated, Kernel, RefArith, Scalar};
-use nalgebra::{DMatrix, DVector};
 use section::{return_map, Section};
 use serde::Serialize;
 
@@ -55,6 +59,9 @@ pub enum Verdict {
     Parabolic,
     /// Some eigenvalue off the unit circle.
     Hyperbolic,
+    /// The eigenvalues could not be computed: their iteration did not converge within its
+    /// bound ([`poly::eigenvalues`]); the orbit itself converged.
+    Undetermined,
 }
 
 /// A periodic orbit found by Newton's method.
@@ -70,7 +77,8 @@ pub struct Orbit {
     pub residual: f64,
     /// The residual before each Newton step, and at the end.
     pub residuals: Vec<f64>,
-    /// Eigenvalues `(re, im)` of the section map (the flow direction's 0 removed).
+    /// Eigenvalues `(re, im)` of the section map (the flow direction's 0 removed); empty if
+    /// they could not be computed ([`Verdict::Undetermined`]).
     pub eigenvalues: Vec<(f64, f64)>,
     /// The verdict.
     pub verdict: Verdict,
@@ -90,6 +98,8 @@ pub enum Miss {
     },
     /// A step left the section (the velocity no longer points into the table).
     LeftSection,
+    /// The search's budget of contacts ([`Budget`]) was spent before this start was done.
+    Budget,
     /// Newton converged to a ball at rest (`|u|^2 <= RESTING E`, the energy all in the spin):
     /// a fixed point of the map in the limit of a vanishing flight, not an orbit.
     Resting,
@@ -196,178 +206,6 @@ fn residual_vector<const N: usize>(table: &Table<f64, N>, end: &[f64], z: &[f64]
             }
         })
         .collect()
-}
-
-/// A start put on boundary `b`'s contact surface with its energy reset to `energy0`, its
-/// `k`-step return and its relative residual `|P^K(z) - z| / (1 + |z|)`.
-#[allow(clippy::type_complexity)]
-fn evaluate<const N: usize, const S: usize>(
-    table: &Table<f64, N>,
-    b: usize,
-    energy0: f64,
-    z: &[f64],
-    k: usize,
-) -> Result<(Vec<f64>, section::Return<f64, N, S>, Vec<f64>, f64), Miss>
-where
-    Generated: Kernel<f64, N, S> + Kernel<Dual<f64>, N, S>,
-{
-    let mut z = z.to_vec();
-    let x: [f64; N] = std::array::from_fn(|i| z[i]);
-    let (y, nu) = project(table, b, &x);
-    z[..N].copy_from_slice(&y);
-    let scale = (energy0 / energy(table, &z)).sqrt();
-    for v in &mut z[N..] {
-        *v *= scale;
-    }
-    let un = dot(&z[N..2 * N], &nu);
-    if un.is_nan() || un <= 0.0 {
-        return Err(Miss::LeftSection);
-    }
-    let r = return_map(table, &Section::<f64, N, S>::from_slice(&z), k).map_err(Miss::NoHit)?;
-    let f = residual_vector(table, &r.states[k - 1].to_vec(), &z);
-    let res = norm(&f) / (1.0 + norm(&z));
-    Ok((z, r, f, res))
-}
-
-/// The least-squares Newton step of least norm for `(DP^K - I) dz = -F`, constrained to the
-/// energy surface (`grad E . dz = 0`) and to the section (`nu . dx = 0`): without these two
-/// rows the velocity scaling `(0, u, U)`, along which `(DP^K - I)` maps to the velocity part
-/// of `F` itself off the orbit, would be used to shrink `F` by shrinking the velocity.
-fn newton_step<const N: usize>(
-    table: &Table<f64, N>,
-    b0: usize,
-    z: &[f64],
-    columns: &[Vec<f64>],
-    f: &[f64],
-) -> Vec<f64> {
-    let len = z.len();
-    let x: [f64; N] = std::array::from_fn(|i| z[i]);
-    let (_, nu) = project(table, b0, &x);
-    let g = table.ball.gamma2 * table.ball.radius * table.ball.radius;
-    let mut grad_e: Vec<f64> = (0..len)
-        .map(|i| {
-            if i < N {
-                0.0
-            } else if i < 2 * N {
-                z[i]
-            } else {
-                g * z[i]
-            }
-        })
-        .collect();
-    let scale = norm(&grad_e);
-    grad_e.iter_mut().for_each(|v| *v /= scale);
-    let j = DMatrix::from_fn(len + 2, len, |a, b| {
-        if a < len {
-            columns[b][a] - f64::from(u8::from(a == b))
-        } else if a == len {
-            grad_e[b]
-        } else if b < N {
-            nu[b]
-        } else {
-            0.0
-        }
-    });
-    let rhs = DVector::from_iterator(len + 2, f.iter().map(|v| -v).chain([0.0, 0.0]));
-    let svd = j.svd(true, true);
-    let cut = 1e-9 * svd.singular_values.max();
-    svd.solve(&rhs, cut)
-        .expect("u and v were computed")
-        .iter()
-        .copied()
-        .collect()
-}
-
-/// Newton's method from `start` (moved onto its nearest boundary first) for a period-`k`
-/// orbit. Far from an orbit the full step may overshoot (leave the section, or grow the
-/// residual): it is halved until it does neither (at most 30 times); near an orbit the full
-/// step is taken, so the convergence is quadratic.
-pub fn newton<const N: usize, const S: usize>(
-    table: &Table<f64, N>,
-    start: &[f64],
-    k: usize,
-) -> Result<Orbit, Miss>
-where
-    Generated: Kernel<f64, N, S> + Kernel<Dual<f64>, N, S>,
-{
-    let x: [f64; N] = std::array::from_fn(|i| start[i]);
-    let (b0, _) = nearest(table, &x);
-    let energy0 = energy(table, start);
-    let (mut z, mut r, mut f, mut res) = evaluate::<N, S>(table, b0, energy0, start, k)?;
-    let mut residuals = vec![res];
-    for iteration in 0..=MAX_ITERATIONS {
-        if res < CONVERGED {
-            // A ball at rest touching the table (its energy all in the spin, which smooth
-            // contacts keep) is a fixed point of the map but no orbit: no flight.
-            let speed2: f64 = z[N..2 * N].iter().map(|v| v * v).sum();
-            if speed2 <= RESTING * energy0 {
-                return Err(Miss::Resting);
-            }
-            let eigenvalues = section_eigenvalues(&r.columns);
-            return Ok(Orbit {
-                boundaries: r.boundaries,
-                start: z,
-                states: r.states.iter().map(Section::to_vec).collect(),
-                residual: res,
-                residuals,
-                verdict: verdict(&eigenvalues),
-                eigenvalues,
-                found_from: 1,
-            });
-        }
-        if iteration == MAX_ITERATIONS {
-            break;
-        }
-        let step = newton_step(table, b0, &z, &r.columns, &f);
-        let mut accepted = None;
-        let mut s = 1.0;
-        for _ in 0..30 {
-            let candidate: Vec<f64> = z.iter().zip(&step).map(|(v, d)| v + s * d).collect();
-            if let Ok(next) = evaluate::<N, S>(table, b0, energy0, &candidate, k) {
-                if next.3 < res {
-                    accepted = Some(next);
-                    break;
-                }
-            }
-            s /= 2.0;
-        }
-        let Some(next) = accepted else { break };
-        (z, r, f, res) = next;
-        residuals.push(res);
-    }
-    Err(Miss::NoConvergence { residual: res })
-}
-
-/// The section map's eigenvalues: those of `DP^K` without the one nearest 0 (the flow
-/// direction's).
-pub fn section_eigenvalues(columns: &[Vec<f64>]) -> Vec<(f64, f64)> {
-    let mut e = poly::eigenvalues(columns);
-    if let Some(i) =
-        (0..e.len()).min_by(|&a, &b| e[a].0.hypot(e[a].1).total_cmp(&e[b].0.hypot(e[b].1)))
-    {
-        e.remove(i);
-    }
-    e.sort_by(|a, b| {
-        b.0.hypot(b.1)
-            .total_cmp(&a.0.hypot(a.1))
-            .then(b.0.total_cmp(&a.0))
-            .then(b.1.total_cmp(&a.1))
-    });
-    e
-}
-
-/// The verdict of these eigenvalues (module docs).
-pub fn verdict(eigenvalues: &[(f64, f64)]) -> Verdict {
-    if eigenvalues
-        .iter()
-        .any(|(re, im)| (re.hypot(*im) - 1.0).abs() > STABILITY_TOL)
-    {
-        Verdict::Hyperbolic
-    } else if eigenvalues.iter().any(|(_, im)| im.abs() > STABILITY_TOL) {
-        Verdict::Elliptic
-    } else {
-        Verdict::Parabolic
-    }
 }
 
 /// Whether `z` is one of `orbit`'s section states (within `1e-7 (1 + |z|)`, positions by the

@@ -1,6 +1,7 @@
 //! Characteristic polynomials (exact in rationals) and eigenvalues (f64).
 
 use collision_core::Scalar;
+use nalgebra::linalg::Schur;
 use nalgebra::DMatrix;
 
 /// The characteristic polynomial `det(lambda I - A)` of the matrix with these columns,
@@ -47,14 +48,45 @@ pub fn deflate_zero<T: Scalar>(p: &[T]) -> Vec<T> {
     p[1..].to_vec()
 }
 
-/// The eigenvalues `(re, im)` of the matrix with these columns.
-pub fn eigenvalues(columns: &[Vec<f64>]) -> Vec<(f64, f64)> {
+/// Shifted QR sweeps allowed per row of the matrix in one attempt at its real Schur form
+/// (LAPACK's `dlahqr` allows 30, and at least 300 in all).
+pub const SCHUR_SWEEPS_PER_ROW: usize = 30;
+
+/// The deflation thresholds tried in turn, relative to the two neighbouring diagonal entries
+/// of the (scaled) Hessenberg matrix: `eps`, `4 eps`, `16 eps`, `64 eps`.
+///
+/// nalgebra's `complex_eigenvalues` runs the implicit double-shift QR iteration with no cap on
+/// its sweeps and no exceptional shift, and splits the matrix only where a subdiagonal entry
+/// is below `eps (|t_ii| + |t_i+1,i+1|)`. At a multiple eigenvalue (the triangle's period-4
+/// orbits have `1` three times) each sweep leaves subdiagonal entries of a few ulps, never
+/// below that threshold, and the iteration ran forever (nalgebra issues 611, 764, 1528).
+/// A larger threshold is a backward error of that size relative to the largest entry: it
+/// moves a simple eigenvalue by about that times its condition number, a double one by its
+/// square root (`sqrt(64 eps) = 1.2e-7`), below the verdict's tolerance
+/// ([`super::STABILITY_TOL`] = `1e-6`).
+pub const DEFLATION: [f64; 4] = [
+    f64::EPSILON,
+    4.0 * f64::EPSILON,
+    16.0 * f64::EPSILON,
+    64.0 * f64::EPSILON,
+];
+
+/// The eigenvalues `(re, im)` of the matrix with these columns, from its real Schur form:
+/// at most [`SCHUR_SWEEPS_PER_ROW`] `max(n, 10)` sweeps for each threshold of [`DEFLATION`];
+/// `None` if none converged (bounded work in every case).
+pub fn eigenvalues(columns: &[Vec<f64>]) -> Option<Vec<(f64, f64)>> {
     let n = columns.len();
     let m = DMatrix::from_fn(n, n, |i, j| columns[j][i]);
-    m.complex_eigenvalues()
-        .iter()
-        .map(|z| (z.re, z.im))
-        .collect()
+    let sweeps = SCHUR_SWEEPS_PER_ROW * n.max(10);
+    DEFLATION.iter().find_map(|&eps| {
+        Schur::try_new(m.clone(), eps, sweeps).map(|schur| {
+            schur
+                .complex_eigenvalues()
+                .iter()
+                .map(|z| (z.re, z.im))
+                .collect()
+        })
+    })
 }
 
 /// A polynomial (coefficients from the constant up) as text, highest power first:
@@ -119,9 +151,49 @@ mod tests {
         assert_eq!(p, vec![q(0, 1), q(1, 1), q(0, 1), q(1, 1)]);
         assert_eq!(show(&deflate_zero(&p)), "l^2 + 1");
         assert_eq!(show(&[q(1, 1), q(14, 9), q(-1, 1)]), "-l^2 + 14/9 l + 1");
-        let e = eigenvalues(&[vec![0.0, 1.0], vec![-1.0, 0.0]]);
+        let e = eigenvalues(&[vec![0.0, 1.0], vec![-1.0, 0.0]]).unwrap();
         assert!(e
             .iter()
             .all(|(re, im)| re.abs() < 1e-15 && (im.abs() - 1.0).abs() < 1e-15));
+    }
+
+    /// The derivative of `P^4` at a period-4 orbit of the shipped triangle (found by
+    /// `noslip orbits scenes/triangle.toml --period 4 --grid 1`): eigenvalues `0` (the flow
+    /// direction) and `1` four times, the last three of a block equal to the identity up to a
+    /// few ulps. nalgebra's uncapped `complex_eigenvalues` never returned on it (the
+    /// command ran past 120 s); with the bounded attempts it returns at once.
+    #[test]
+    fn a_near_identity_block_does_not_stall_the_schur_iteration() {
+        let columns = vec![
+            vec![-0.0006880172990406366, 0.0011916809184246925, 0.0, 0.0, 0.0],
+            vec![-0.5777474961624343, 1.0006880172990407, 0.0, 0.0, 0.0],
+            vec![
+                -5.551115123125783e-17,
+                1.3769367590565906e-16,
+                1.0000000000000007,
+                3.3306690738754696e-16,
+                1.7763568394002505e-15,
+            ],
+            vec![
+                -3.885780586188048e-16,
+                6.941062308252199e-16,
+                -2.220446049250313e-16,
+                1.0000000000000007,
+                -7.105427357601002e-15,
+            ],
+            vec![
+                1.0408340855860843e-17,
+                -1.4690939437178585e-17,
+                1.0408340855860843e-17,
+                3.469446951953614e-18,
+                1.0000000000000009,
+            ],
+        ];
+        let mut e = eigenvalues(&columns).expect("converges within the bounded attempts");
+        e.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert!(e[0].0.abs() < 1e-12 && e[0].1.abs() < 1e-12, "{e:?}");
+        for (re, im) in &e[1..] {
+            assert!((re - 1.0).abs() < 1e-12 && im.abs() < 1e-12, "{e:?}");
+        }
     }
 }
