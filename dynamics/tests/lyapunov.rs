@@ -152,3 +152,58 @@ fn smooth_circle_is_integrable_all_exponents_vanish() {
     // The largest is the linear growth's, not a smaller rate: the bound is the right one.
     assert!(s.per_time[0].value > 0.8 * linear, "{s:?}");
 }
+
+/// Issue 26: a run of few contacts for its balls (gas2d with `--events 200` renormalised
+/// every 187 contacts, 10 blocks of 18) left blocks without a re-orthonormalisation: their
+/// estimates were 0/0 and every error bar printed `± NaN`. The default interval is now
+/// shortened to a block, and a longer `every` asked for is refused.
+#[test]
+fn every_block_gets_a_renormalisation_and_every_error_is_finite() {
+    // 80 disks: default intervals 20 (QR) and 40 (two trajectories); blocks of 18 contacts.
+    let text = GAS
+        .replace("size = [6, 6]", "size = [30, 30]")
+        .replace("count = 8", "count = 80");
+    let scene = Scene::from_toml(&text, "test.toml").unwrap();
+    let options = Options {
+        events: 200,
+        k: Some(4),
+        blocks: 10,
+        seed: 7,
+        law: Some(Law::NoSlip),
+        every: None,
+    };
+    let setup = || noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
+    let two = Options {
+        k: Some(1),
+        ..options
+    };
+    for s in [
+        qr(setup(), &options).unwrap(),
+        two_trajectory(setup(), &two).unwrap(),
+    ] {
+        assert!(s.every <= 18, "{}: every {}", s.method, s.every);
+        for e in s.per_time.iter().chain(&s.per_contact).chain([&s.sum]) {
+            assert!(
+                e.value.is_finite() && e.error.is_finite(),
+                "{}: {e:?}",
+                s.method
+            );
+            assert!(e.error > 0.0, "{}: {e:?}", s.method);
+        }
+    }
+    let long = Options {
+        every: Some(19),
+        ..options
+    };
+    let e = qr(setup(), &long).unwrap_err();
+    assert!(e.to_string().starts_with("--every: 19 contacts"), "{e}");
+    assert!(e.to_string().contains("at most 18"), "{e}");
+    assert!(qr(
+        setup(),
+        &Options {
+            every: Some(18),
+            ..options
+        }
+    )
+    .is_ok());
+}

@@ -21,7 +21,8 @@ and are left out; see docs/dynamics.md).
 --method qr (default): the --k largest exponents from tangent vectors carried by the exact
 flight and contact tangent maps along the engine's trajectory, re-orthonormalised
 (Gram-Schmidt) every --every contacts (default: every contact for one ball, balls/4 for a
-gas). k vectors of the phase-space dimension d = balls x (2n + S) take 8 k d bytes, and each
+gas, shortened to a block's contacts; a longer --every is refused, as it would leave blocks
+without an estimate). k vectors of the phase-space dimension d = balls x (2n + S) take 8 k d bytes, and each
 re-orthonormalisation about k^2 d multiply-adds. Default --k: the whole spectrum (k = d) if
 it fits 64 MiB of vectors and 2e9 multiply-adds of Gram-Schmidt over the
 run (a few seconds), else the largest k that fits both, said on stderr. A --k whose vectors
@@ -144,6 +145,7 @@ where
         | LyapunovError::Memory { .. }
         | LyapunovError::Blocks { .. }
         | LyapunovError::Events { .. }
+        | LyapunovError::Every { .. }
         | LyapunovError::Overflow { .. } => Failure::bad_input(e.to_string()),
         _ => Failure::bad_input(format!("{}: {e}", scene.origin)),
     })

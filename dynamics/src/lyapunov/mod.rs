@@ -120,6 +120,14 @@ pub enum LyapunovError {
         /// The blocks asked for.
         blocks: usize,
     },
+    /// `every` (asked for) is longer than a block, so some blocks would get no
+    /// re-orthonormalisation, no growth and no estimate.
+    Every {
+        /// The contacts between re-orthonormalisations asked for.
+        every: u64,
+        /// The block length, the most `every` may be.
+        most: u64,
+    },
     /// The run ran out of contacts.
     NoContact(String),
     /// The tangent vectors stopped being finite between two re-orthonormalisations more than
@@ -174,6 +182,12 @@ impl fmt::Display for LyapunovError {
                 "--events: {events} contacts cannot make a warm-up and {blocks} blocks: at least {} \
                  are needed",
                 (*blocks as u64 + 1) * 2
+            ),
+            LyapunovError::Every { every, most } => write!(
+                f,
+                "--every: {every} contacts between re-orthonormalisations would leave blocks \
+                 without one (no growth, no error estimate): at most {most}, the contacts of a \
+                 block (the measured contacts over --blocks)"
             ),
             LyapunovError::NoContact(why) => write!(f, "the run stopped: {why}"),
             LyapunovError::Overflow { from, at } => write!(
@@ -243,6 +257,25 @@ impl Plan {
             warmup: o.events / (o.blocks as u64 + 1),
             blocks: o.blocks,
         })
+    }
+
+    /// The contacts of the shortest block, `floor((events - warmup) / blocks)` (at least 1,
+    /// by [`Plan::new`]'s rule): any `every` consecutive contacts with `every` at most this
+    /// hold a multiple of `every`, so each block gets a re-orthonormalisation.
+    fn block_len(&self) -> u64 {
+        (self.events - self.warmup) / self.blocks as u64
+    }
+
+    /// The contacts between re-orthonormalisations (or renormalisations): `asked`, refused
+    /// beyond [`Plan::block_len`], else `default` shortened to it. With more, blocks got no
+    /// growth and their estimates were 0/0 (the errors printed `± NaN`).
+    fn every(&self, asked: Option<u64>, default: u64) -> Result<u64, LyapunovError> {
+        let most = self.block_len().max(1);
+        match asked {
+            Some(every) if every > most => Err(LyapunovError::Every { every, most }),
+            Some(every) => Ok(every.max(1)),
+            None => Ok(default.clamp(1, most)),
+        }
     }
 
     /// The block of contact `c` (1-based), `None` in the warm-up.

@@ -29,12 +29,6 @@ fn default_every(balls: usize) -> u64 {
     (balls as u64 / 4).max(1)
 }
 
-/// The contacts between re-orthonormalisations of a run of `balls` balls: `--every`, or
-/// [`default_every`].
-fn every(options: &Options, balls: usize) -> u64 {
-    options.every.unwrap_or(default_every(balls)).max(1)
-}
-
 /// `a . b` in eight interleaved partial sums, added pairwise at the end: the same products,
 /// summed in another order (no less accurate than one running sum), which the compiler
 /// vectorises; one running sum is a chain of dependent additions, and Gram-Schmidt is
@@ -89,7 +83,7 @@ pub fn choice<const N: usize, const S: usize>(
         options.k,
         balls * block_len(N, S),
         plan.events,
-        every(options, balls),
+        plan.every(options.every, default_every(balls))?,
     )
 }
 
@@ -107,7 +101,7 @@ where
     let balls = kinds.len();
     let len = block_len(N, S);
     let dimension = balls * len;
-    let every = every(options, balls);
+    let every = plan.every(options.every, default_every(balls))?;
     let k = choice(&setup, options)?.k;
     // The engine runs smooth contacts itself; its kernels are the no-slip ones.
     let kernels = LawKernels {

@@ -43,7 +43,7 @@ where
     if let Some(k) = options.k.filter(|&k| k != 1) {
         return Err(LyapunovError::K { k, dimension: 1 });
     }
-    let every = options.every.unwrap_or(default_every(balls)).max(1);
+    let every = plan.every(options.every, default_every(balls))?;
     // The engine runs smooth contacts itself; its kernels are the no-slip ones.
     let kernels = LawKernels {
         law: Law::NoSlip,
