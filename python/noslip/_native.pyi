@@ -76,7 +76,12 @@ class Scene:
     def balls(self) -> int: ...
 
 def simulate(
-    scene: Scene, events: int | None, time: float | None, log: bool, boundary_map: bool
+    scene: Scene,
+    events: int | None,
+    time: float | None,
+    log: bool,
+    boundary_map: bool,
+    max_memory: int | None,
 ) -> dict[str, Any]: ...
 def verify(dims: list[int], points: int) -> str: ...
 def report(dims: list[int], samples: int, seed: int) -> str: ...

@@ -59,8 +59,12 @@ def _body(body: Mapping[str, Any], b: int, dtype: np.dtype, shape: tuple[int, ..
         else:
             a = np.asarray(x)
             if a.ndim == 0:
-                # A scalar parameter, shared by every row: rounded once to the batch's dtype.
-                a = a.astype(dtype).reshape(1)
+                # A scalar parameter, shared by every row: rounded once to the batch's dtype
+                # (a finite number beyond float32's range is named, not made infinite).
+                with np.errstate(over="ignore"):
+                    a = a.astype(dtype).reshape(1)
+                if a.dtype.kind == "f" and np.isinf(a[0]) and np.isfinite(np.asarray(x, float)):
+                    raise InputError(f"bodies[{b}].{key}: {x!r} is beyond the range of {dtype}")
         if a.dtype != dtype:
             raise InputError(
                 f"bodies[{b}].{key}: dtype {a.dtype}, expected {dtype} (the dtype of normal; "
@@ -83,14 +87,22 @@ def collide_batch(
 ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
     """The no-slip collision map on every row of a batch.
 
-    Row ``k`` is one contact: ``xi_k+ = 2 P_G(q_k) xi_k - xi_k`` (see :func:`noslip.collide`),
-    computed by the generated batch kernels (blocks of 8 contacts, vectorised with the
-    instruction set chosen at run time, :func:`isa`) in the kernel's own operations: each row
-    is bit for bit the scalar kernel's result, which is :func:`noslip.collide`'s whenever the
-    row needs no rounding allowance (``|nu|^2 = 1`` in the batch's float type, ``gamma2`` in
-    ``[0, 2/n]``, not grazing within 8 eps) and its result is in range. A row with an
-    immovable body (``inv_mass = 0``) runs the ``fixed`` kernel, as ``collide`` does; that
-    body comes back unchanged.
+    Row ``k`` is one contact: ``xi_k+ = 2 P_G(q_k) xi_k - xi_k`` (see :func:`noslip.collide`).
+    With ``validate`` (the default) every row goes through :func:`noslip.collide`'s own
+    checked path (the checks and the rounding allowance, the kernel run with an unbounded
+    exponent, the results rounded back or refused when they do not fit): each row is
+    accepted or refused as ``collide`` does it and its result is ``collide``'s bit for bit
+    (the batch takes ``inv_mass`` where ``collide`` takes ``mass``). Without it the
+    generated batch kernels run the rows (blocks of 8 contacts, vectorised with the
+    instruction set chosen at run time, :func:`isa`): each row is bit for bit the scalar
+    kernel's result (``collide_unchecked`` in Rust), which is ``collide``'s only where the
+    row needs no rounding allowance (``|nu|^2 = 1`` in the batch's float type, ``gamma2``
+    in ``[0, 2/n]``, not grazing within 8 eps, ``U`` exactly skew) and no intermediate
+    leaves the float type's range (a velocity of 1e308 against an immovable body gives
+    ``-inf`` there, ``collide`` the finite ``3.3e307``). A row with an immovable body
+    (``inv_mass = 0``) runs the ``fixed`` kernel, as ``collide`` does; that body comes back
+    unchanged. The validated rows cost about 1 µs each (``collide``'s unbounded-exponent
+    arithmetic), the unvalidated ones 15 to 150 ns (``docs/python.md``).
 
     The arrays are read in place (any strides; no copy, no per-row Python object), the GIL
     is released, and with ``parallel`` the rows are shared between the calling thread and
@@ -111,9 +123,8 @@ def collide_batch(
         ``2/n`` a shell; ``I/(m R^2)`` in 3D), each ``(N,)`` or a scalar shared by all rows.
     validate : bool
         Check every row as :func:`noslip.collide` does (finite; unit normal; valid balls;
-        skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``), within the rounding allowance:
-        a cheap test accepts the clearly valid rows, ``collide``'s own checks decide the rest.
-        Without it, a bad row's outputs are garbage, not always visibly (NaN or infinities
+        skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``; a result that fits the float
+        type), within the rounding allowance, by calling ``collide``'s own code. Without it, a bad row's outputs are garbage, not always visibly (NaN or infinities
         from a non-finite input, but finite, wrong numbers from others, such as a zero
         normal); the other rows' outputs are unaffected.
     parallel : bool

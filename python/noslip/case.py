@@ -111,8 +111,14 @@ def collide(
         A bad case; the message names the field (``bodies[1].gamma2: ...``): the bodies must
         approach or graze, ``(u_2 - u_1) . nu <= 0``.
     """
+    if dim is None:
+        if isinstance(normal, (str, bytes, Mapping)) or not hasattr(normal, "__len__"):
+            raise InputError(
+                f"normal: expected a sequence of n numbers, got {type(normal).__name__}"
+            )
+        dim = len(normal)
     case = {
-        "dim": len(normal) if dim is None else dim,
+        "dim": dim,
         "normal": normal,
         "bodies": bodies,
     }

@@ -6,8 +6,17 @@ import json
 from typing import Any, Iterable
 
 from noslip import _native
+from noslip._native import InputError
 
 __all__ = ["verify", "report"]
+
+
+def _dims(dims: Iterable[int]) -> list[int]:
+    """``dims`` as a list, or an :class:`InputError` naming it (a bare ``TypeError: 'NoneType'
+    object is not iterable`` before)."""
+    if isinstance(dims, (str, bytes)) or not isinstance(dims, Iterable):
+        raise InputError(f"dims: expected a sequence of dimensions, got {type(dims).__name__}")
+    return list(dims)
 
 
 def verify(dims: Iterable[int] = (2, 3, 4, 5, 6), points: int = 16) -> dict[str, Any]:
@@ -28,7 +37,7 @@ def verify(dims: Iterable[int] = (2, 3, 4, 5, 6), points: int = 16) -> dict[str,
         ``check``, ``passed``, ``detail``, its proof and bound), ``seed``, ``points``,
         ``seconds``; and ``passed``, whether every check passed.
     """
-    out = json.loads(_native.verify(list(dims), points))
+    out = json.loads(_native.verify(_dims(dims), points))
     out["passed"] = all(r["passed"] for r in out["results"])
     return out
 
@@ -47,4 +56,4 @@ def report(dims: Iterable[int] = (2, 3), samples: int = 200, seed: int = 1) -> d
         ``report.json``'s content (``dims``: per dimension, per regime, per variant, the
         errors and timings; ``options``; ``provenance``).
     """
-    return json.loads(_native.report(list(dims), samples, seed))
+    return json.loads(_native.report(_dims(dims), samples, seed))

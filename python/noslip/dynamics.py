@@ -250,6 +250,8 @@ def orbits(
         A bad scene (naming the place) or argument (``period``, ``starts[i]``, ``grid``,
         ``contact``).
     """
+    if isinstance(starts, (str, bytes)) or not isinstance(starts, (Sequence, type(None))):
+        raise InputError(f"starts: expected a sequence of starts, got {type(starts).__name__}")
     given = []
     for i, z in enumerate(starts or []):
         if isinstance(z, (str, bytes)) or not isinstance(z, Sequence):

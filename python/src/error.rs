@@ -1,7 +1,7 @@
 //! `noslip.InputError`: bad input, as a `ValueError` whose message names the field.
 
 use pyo3::create_exception;
-use pyo3::exceptions::{PyOverflowError, PyValueError};
+use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 create_exception!(
@@ -23,7 +23,9 @@ pub fn input_error(message: impl Into<String>) -> PyErr {
 /// [`InputError`] naming the argument and its range `low..=high` (the caller passes `T`'s
 /// largest value as `high` where the argument has no smaller bound). Values inside `T`'s range
 /// but outside `low..=high` pass: the callers' own checks name them with more to say (a
-/// count of 0, a `k` above the dimension). A non-integer keeps PyO3's `TypeError`.
+/// count of 0, a `k` above the dimension). A non-integer (`None`, a str, a float) is a
+/// `TypeError` naming the argument and the type given (PyO3's own said only `'str' object
+/// cannot be interpreted as an integer`).
 pub fn unsigned<'py, T>(value: &Bound<'py, PyAny>, name: &str, low: T, high: T) -> PyResult<T>
 where
     T: for<'a> FromPyObject<'a, 'py, Error = PyErr> + std::fmt::Display,
@@ -37,6 +39,15 @@ where
             );
             Err(input_error(format!(
                 "{name}: must be an integer in {low}..={high}, got {got}"
+            )))
+        }
+        Err(e) if e.is_instance_of::<PyTypeError>(value.py()) => {
+            let given = value
+                .get_type()
+                .name()
+                .map_or_else(|_| "?".into(), |t| t.to_string());
+            Err(PyTypeError::new_err(format!(
+                "{name}: must be an integer in {low}..={high}, got {given}"
             )))
         }
         Err(e) => Err(e),

@@ -18,32 +18,50 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde_json::Value;
 
-/// A finished run: the summary, the energy samples, the events log (JSON lines, empty
+/// A finished run: the summary, the energy samples, the events log's columns (empty
 /// without `log`) and the boundary map's rows (empty without `map`).
 struct Run {
     summary: Summary,
     trace: Trace,
-    log: Vec<u8>,
+    columns: Columns,
     rows: Vec<Row>,
 }
+
+/// What a run keeps of each contact, and at most how many contacts' worth.
+#[derive(Clone, Copy)]
+struct Keep {
+    log: bool,
+    map: bool,
+    /// The most contacts whose records fit the memory cap (`u64::MAX` keeping nothing).
+    contacts: u64,
+}
+
+/// The error of a run stopped at the memory cap (its text is replaced by [`simulate`]'s
+/// message naming the argument).
+const CAPPED: &str = "the records reached the memory cap";
 
 fn run_dim<const N: usize, const S: usize>(
     scene: &noslip_scene::Scene,
     limits: &Limits,
-    log: bool,
-    map: bool,
-) -> Result<Run, String>
+    keep: Keep,
+) -> Result<Run, RunError>
 where
     Generated: Kernel<f64, N, S>,
 {
-    let setup = setup::<N, S>(scene).map_err(|e| format!("{}: {e}", scene.origin))?;
+    let fail = |e: String| RunError::Input(format!("{}: {e}", scene.origin));
+    let setup = setup::<N, S>(scene).map_err(|e| fail(e.to_string()))?;
     let species = setup.species.clone();
     let kernels = GenericKernels {
         species: species.clone(),
     };
-    let mut sim = Simulation::new(setup, kernels).map_err(|e| format!("{}: {e}", scene.origin))?;
-    let mut lines = Vec::new();
-    let writer: Option<&mut dyn std::io::Write> = if log { Some(&mut lines) } else { None };
+    let mut sim = Simulation::new(setup, kernels).map_err(|e| fail(e.to_string()))?;
+    let mut lines = LogColumns {
+        line: Vec::new(),
+        columns: Columns::default(),
+        n: N,
+        s: S,
+    };
+    let writer: Option<&mut dyn std::io::Write> = if keep.log { Some(&mut lines) } else { None };
     let mut rows = Vec::new();
     let (summary, trace) = run_observed(
         &mut sim,
@@ -52,19 +70,81 @@ where
         writer,
         &mut |_| {},
         &mut |index, e, sim| {
-            if map {
+            if keep.map {
                 rows.extend(boundary_map::row(index, e, sim, &species));
+            }
+            if index > keep.contacts {
+                return Err(std::io::Error::other(CAPPED));
             }
             Ok(())
         },
     )
-    .map_err(|e| format!("internal error: the log in memory failed: {e}"))?;
+    .map_err(|e| match e.to_string().as_str() {
+        CAPPED => RunError::Capped(sim.now()),
+        _ => RunError::Input(format!("internal error: the log in memory failed: {e}")),
+    })?;
     Ok(Run {
         summary,
         trace,
-        log: lines,
+        columns: lines.columns,
         rows,
     })
+}
+
+/// Why a run gave no result: bad input (the message), or the memory cap reached at this
+/// simulated time.
+enum RunError {
+    Input(String),
+    Capped(f64),
+}
+
+/// The events log as the simulator writes it (JSON lines), read into [`Columns`] line by
+/// line as it comes: the log's text is never held whole (it was, about 0.5 kB a contact,
+/// then read into the columns: 0.9 kB a contact at the peak).
+struct LogColumns {
+    line: Vec<u8>,
+    columns: Columns,
+    n: usize,
+    s: usize,
+}
+
+impl std::io::Write for LogColumns {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        for part in buf.split_inclusive(|&b| b == b'\n') {
+            self.line.extend_from_slice(part);
+            if self.line.last() == Some(&b'\n') {
+                let e: Value = serde_json::from_slice(&self.line)
+                    .map_err(|e| std::io::Error::other(format!("a log line: {e}")))?;
+                self.columns.push(&e, self.n, self.s);
+                self.line.clear();
+            }
+        }
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Bytes one contact's row of the events log's columns holds, in dimension `n` (`s` spin
+/// entries): 57 + 56 n + 32 s (201 in 2D, 321 in 3D).
+fn log_bytes(n: usize) -> u64 {
+    let s = n * (n - 1) / 2;
+    (57 + 56 * n + 32 * s) as u64
+}
+
+/// Bytes one boundary map row holds while the run goes on and once it is turned into
+/// arrays: the row (and its contact point's allocation), then `14 + n` columns of 8 bytes
+/// and the `kind` text (a Python `str`, about 60 bytes).
+fn map_bytes(n: usize) -> u64 {
+    (std::mem::size_of::<Row>() + 8 * n + 32 + 8 * (14 + n) + 60) as u64
+}
+
+/// The memory kept per contact, with room for the vectors' growth (a vector grows by
+/// doubling, so while it moves it holds up to three times its contents).
+fn bytes_per_contact(n: usize, log: bool, map: bool) -> u64 {
+    3 * (if log { log_bytes(n) } else { 0 } + if map { map_bytes(n) } else { 0 })
 }
 
 /// The columns of the events log.
@@ -196,12 +276,34 @@ fn map_columns<'py>(py: Python<'py>, rows: &[Row], n: usize) -> PyResult<Bound<'
     Ok(out)
 }
 
+/// The memory cap on a run's records when the caller gives none: 1 GiB.
+pub const MAX_MEMORY: u64 = 1 << 30;
+
+/// `time` as `noslip simulate --time` takes it: positive, finite and a normal f64 (a
+/// subnormal time has lost its precision; the scene's `simulation.time` is held to the same).
+fn check_time(t: f64) -> PyResult<f64> {
+    if !(t > 0.0 && t.is_finite()) {
+        return Err(input_error(format!(
+            "time: must be positive and finite, got {t}"
+        )));
+    }
+    if !t.is_normal() {
+        return Err(input_error(format!(
+            "time: {t:e} is not a normal f64 (the least is {:e})",
+            f64::MIN_POSITIVE
+        )));
+    }
+    Ok(t)
+}
+
 /// Run `scene` to `events` contacts or simulated `time` (the scene's `[simulation]`
-/// defaults, else 100000 contacts); keep the events log when `log`. Returns a dict:
-/// `summary` (JSON text of the simulator's summary), `energy` (event counts and relative
-/// drifts of the samples), `events` (the log's columns as arrays).
+/// defaults, else 100000 contacts); keep the events log when `log`, the boundary map when
+/// `boundary_map`, their memory at most `max_memory` bytes (refused up front when `events`
+/// is known, else the run stops with an error at the cap). Returns a dict: `summary` (JSON
+/// text of the simulator's summary), `energy` (event counts and relative drifts of the
+/// samples), `events` (the log's columns as arrays), `boundary_map`.
 #[pyfunction]
-#[pyo3(signature = (scene, events, time, log, boundary_map))]
+#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory))]
 pub fn simulate<'py>(
     py: Python<'py>,
     scene: &Bound<'py, Scene>,
@@ -209,25 +311,53 @@ pub fn simulate<'py>(
     time: Option<f64>,
     log: bool,
     boundary_map: bool,
+    max_memory: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let events = unsigned_opt(events.as_ref(), "events", 1, u64::MAX)?;
-    if let Some(t) = time {
-        if !(t > 0.0 && t.is_finite()) {
-            return Err(input_error(format!(
-                "time: must be positive and finite, got {t}"
-            )));
-        }
-    }
+    let time = time.map(check_time).transpose()?;
+    let max_memory =
+        unsigned_opt(max_memory.as_ref(), "max_memory", 0, u64::MAX)?.unwrap_or(MAX_MEMORY);
     if events == Some(0) {
         return Err(input_error(
             "events: must be at least 1 (a run of no contacts has nothing to report)",
         ));
     }
     let scene = &scene.get().inner;
+    let n = scene.dim;
+    let given_events = events.is_some();
     let mut events = events.or(scene.simulation.events);
     let time = time.or(scene.simulation.time.as_ref().map(f));
     if events.is_none() && time.is_none() {
         events = Some(100_000);
+    }
+    let per_contact = bytes_per_contact(n, log, boundary_map);
+    let keep = Keep {
+        log,
+        map: boundary_map,
+        contacts: max_memory.checked_div(per_contact).unwrap_or(u64::MAX),
+    };
+    let kept = || {
+        [("log", log), ("boundary_map", boundary_map)]
+            .iter()
+            .filter(|k| k.1)
+            .map(|k| format!("{}=True", k.0))
+            .collect::<Vec<_>>()
+            .join(" and ")
+    };
+    if let Some(e) = events.filter(|&e| e > keep.contacts) {
+        let name = if given_events {
+            "events"
+        } else {
+            "events (the scene's simulation.events)"
+        };
+        return Err(input_error(format!(
+            "{name}: {e} contacts with {} would keep up to {} bytes ({per_contact} a contact \
+             in {n}D), beyond max_memory = {max_memory} bytes: at most {} contacts; ask for \
+             fewer, keep less, or raise max_memory",
+            kept(),
+            u128::from(e) * u128::from(per_contact),
+            keep.contacts
+        )));
     }
     let limits = Limits {
         events,
@@ -236,22 +366,30 @@ pub fn simulate<'py>(
         traced: 0,
         contact_points: 0,
     };
-    let n = scene.dim;
     let done = py.detach(|| {
         collision_core::with_dim!(
             n,
-            |N, S| run_dim::<N, S>(scene, &limits, log, boundary_map),
-            Err(format!("{}: dimension {n} has no kernels", scene.origin))
+            |N, S| run_dim::<N, S>(scene, &limits, keep),
+            Err(RunError::Input(format!(
+                "{}: dimension {n} has no kernels",
+                scene.origin
+            )))
         )
     });
-    let done = done.map_err(input_error)?;
+    let done = done.map_err(|e| match e {
+        RunError::Input(m) => input_error(m),
+        RunError::Capped(t) => input_error(format!(
+            "time: the run to t = {} with {} reached max_memory = {max_memory} bytes after \
+             {} contacts, at t = {t} ({per_contact} bytes a contact in {n}D); give events \
+             (up to {}), keep less, or raise max_memory",
+            time.map_or("(none)".into(), |t| format!("{t:e}")),
+            kept(),
+            keep.contacts,
+            keep.contacts
+        )),
+    })?;
     let s = n * (n - 1) / 2;
-    let mut cols = Columns::default();
-    for line in done.log.split(|&b| b == b'\n').filter(|l| !l.is_empty()) {
-        let e: Value = serde_json::from_slice(line)
-            .map_err(|e| input_error(format!("internal error: a log line: {e}")))?;
-        cols.push(&e, n, s);
-    }
+    let cols = done.columns;
     let count = cols.time.len();
     let ev = PyDict::new(py);
     ev.set_item("time", array(py, cols.time, &[count])?)?;

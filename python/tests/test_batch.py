@@ -458,3 +458,139 @@ def test_without_validation_a_zero_normal_gives_finite_garbage():
             assert np.isfinite(bad[b][key]).all()
             keep = np.arange(40) != 7
             assert same_bits(bad[b][key][keep], good[b][key][keep])
+
+
+def collide_or_error(nu, bodies, i, masses):
+    """`noslip.collide` on row `i`, the bodies' masses given as `masses[b][i]` (the batch
+    takes their inverses): its result, or None if it refuses the row."""
+    case_bodies = []
+    for b, body in enumerate(bodies):
+        m = masses[b][i]
+        case_bodies.append({
+            "mass": "inf" if m == np.inf else float(m),
+            "radius": float(body["radius"][i]),
+            "gamma2": float(body["gamma2"][i]),
+            "angular_velocity": body["angular_velocity"][i].tolist(),
+            "velocity": body["velocity"][i].tolist(),
+        })
+    try:
+        return noslip.collide(nu[i].tolist(), case_bodies)
+    except noslip.InputError:
+        return None
+
+
+def batch_or_error(nu, bodies, i):
+    """The validated batch on row `i` alone: its two bodies, or None if it refuses the row."""
+    row = [{k: v[i:i + 1] for k, v in b.items()} for b in bodies]
+    try:
+        return noslip.collide_batch(nu[i:i + 1], row)
+    except noslip.InputError:
+        return None
+
+
+def test_validated_rows_at_the_range_limits_are_collides():
+    """Issue 26: a velocity of 1e308 against an immovable body came back -inf from the
+    validated batch (the f64 kernel's 2 P overflowed) where `collide` returns the finite
+    [3.33e307, -1e308]; a velocity of 5e-324 came back subnormal where `collide` refuses
+    it. The validated rows now go through `collide` itself."""
+    def row(speed):
+        nu = np.array([[0.0, 1.0]])
+        bodies = [
+            {"angular_velocity": np.zeros((1, 2, 2)), "velocity": np.array([[speed, speed]]),
+             "inv_mass": np.array([1.0]), "radius": np.array([1.0]),
+             "gamma2": np.array([0.5])},
+            {"angular_velocity": np.zeros((1, 2, 2)), "velocity": np.zeros((1, 2)),
+             "inv_mass": np.array([0.0]), "radius": np.array([1.0]),
+             "gamma2": np.array([0.5])},
+        ]
+        return nu, bodies, [[1.0], [np.inf]]
+
+    nu, bodies, masses = row(1e308)
+    want = collide_or_error(nu, bodies, 0, masses)
+    got = batch_or_error(nu, bodies, 0)
+    assert want is not None and got is not None
+    assert np.isfinite(got[0]["velocity"]).all(), got[0]["velocity"]
+    assert same_bits(got[0]["velocity"][0], want[0]["velocity"])
+    assert want[0]["velocity"][1] == -1e308 and 3.3e307 < want[0]["velocity"][0] < 3.4e307
+    nu, bodies, masses = row(5e-324)
+    assert collide_or_error(nu, bodies, 0, masses) is None
+    with pytest.raises(noslip.InputError, match=r"^row 0: bodies\[0\]\.velocity: .* below the "
+                       r"normal range of f64"):
+        noslip.collide_batch(nu, bodies)
+
+
+def extreme_rows(rng, rows, n):
+    """Random rows whose magnitudes span f64's range, its ends included: each number is
+    zero or `±m 10^e` with `e` from the subnormals to 308; normals unit in floats (some a
+    few ulps off), `gamma2` up to a few eps beyond 2/n, masses from 1e-300 to 1e300 or
+    immovable, some rows grazing or separating. About half are valid."""
+    exps = np.array([-323, -315, -308, -300, -200, -150, -30, -1, 0, 1, 30, 150, 200, 300,
+                     306, 307, 308])
+    scale = rng.choice(exps, size=rows)
+
+    def magnitudes(shape):
+        """Per row, numbers within 10^-3 of the row's scale 10^e (at most 1.7e308)."""
+        e = (scale.reshape((rows,) + (1,) * (len(shape) - 1))
+             - rng.integers(0, 3, size=shape) * (rng.random(size=shape) < 0.5))
+        x = rng.uniform(1, 1.7, size=shape) * 10.0 ** e
+        x *= rng.choice([-1.0, 1.0], size=shape)
+        x[rng.random(size=shape) < 0.15] = 0.0
+        return x
+
+    nu = rng.normal(size=(rows, n))
+    nu /= np.linalg.norm(nu, axis=1, keepdims=True)
+    off = rng.random(rows) < 0.2
+    nu[off] *= 1 + rng.integers(-6, 7, size=(off.sum(), 1)) * np.finfo(float).eps
+    small = rng.random(rows) < 0.1
+    nu[small, 0] = 1e-200
+    nu[small, 1:] /= np.linalg.norm(nu[small, 1:], axis=1, keepdims=True)
+    bodies, masses = [], []
+    for _ in range(2):
+        a = magnitudes((rows, n, n))
+        spin = np.triu(a, 1) - np.triu(a, 1).transpose(0, 2, 1)
+        m = 10.0 ** rng.uniform(-300, 300, size=rows)
+        bodies.append({
+            "angular_velocity": spin,
+            "velocity": magnitudes((rows, n)),
+            "radius": np.where(rng.random(rows) < 0.5, rng.uniform(0.5, 2, size=rows),
+                               10.0 ** rng.choice(exps, size=rows)),
+            "gamma2": np.minimum(rng.uniform(0, 2.0 / n * (1 + 1e-15), size=rows), 2.0 / n + 4e-16),
+        })
+        masses.append(m)
+    fixed = rng.integers(0, 5, size=rows)
+    for b in range(2):
+        masses[b] = np.where(fixed == b, np.inf, masses[b])
+        bodies[b]["inv_mass"] = 1.0 / masses[b]
+    # Approaching, mostly: flip the normal where the bodies separate, except in a tenth.
+    with np.errstate(over="ignore", invalid="ignore"):
+        dn = np.einsum("ij,ij->i", bodies[1]["velocity"] - bodies[0]["velocity"], nu)
+    nu[(dn > 0) & (rng.random(rows) < 0.9)] *= -1
+    return nu, bodies, masses
+
+
+@pytest.mark.parametrize("n", [2, 3, 6])
+def test_validated_rows_are_accepted_refused_and_rounded_as_collide_does(n):
+    """Property: on random rows spanning f64's range, each row alone is refused by the
+    validated batch exactly when `collide` refuses it, and otherwise gives `collide`'s
+    result bit for bit; the accepted rows together in one batch (threads, chunks of 512)
+    give the same bits."""
+    rng = np.random.default_rng(260 + n)
+    nu, bodies, masses = extreme_rows(rng, 1200, n)
+    accepted = []
+    for i in range(len(nu)):
+        want = collide_or_error(nu, bodies, i, masses)
+        got = batch_or_error(nu, bodies, i)
+        assert (got is None) == (want is None), (n, i)
+        if want is not None:
+            accepted.append(i)
+            for b in range(2):
+                assert same_bits(got[b]["angular_velocity"][0], want[b]["angular_velocity"]), (n, i)
+                assert same_bits(got[b]["velocity"][0], want[b]["velocity"]), (n, i)
+    assert 150 < len(accepted) < len(nu) - 150, len(accepted)
+    keep = np.array(accepted)
+    together = noslip.collide_batch(nu[keep], [{k: v[keep] for k, v in b.items()} for b in bodies])
+    for j, i in enumerate(accepted):
+        got = batch_or_error(nu, bodies, i)
+        for b in range(2):
+            assert same_bits(together[b]["velocity"][j], got[b]["velocity"][0]), (n, i)
+            assert same_bits(together[b]["angular_velocity"][j], got[b]["angular_velocity"][0])

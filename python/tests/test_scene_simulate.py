@@ -30,7 +30,7 @@ def test_scene_from_file_text_and_dict_agree(root):
         }
     )
     assert (a.dim, a.balls, b.dim, c.dim) == (2, 1, 2, 2)
-    runs = [noslip.simulate(s, events=300) for s in (a, b, c)]
+    runs = [noslip.simulate(s, events=300, log=True) for s in (a, b, c)]
     for r in runs[1:]:
         assert np.array_equal(
                 r.events["post_velocity"], runs[0].events["post_velocity"], equal_nan=True
@@ -53,7 +53,7 @@ def test_simulate_gives_the_cli_events_log_bit_for_bit(root, cli, tmp_path):
             "--out", str(out), "--log", str(out / "events.jsonl"))
     lines = [json.loads(line) for line in (out / "events.jsonl").read_text().splitlines()]
     summary = json.loads((out / "summary.json").read_text())
-    got = noslip.simulate(noslip.Scene.from_file(path), events=1500)
+    got = noslip.simulate(noslip.Scene.from_file(path), events=1500, log=True)
     ev = got.events
     assert len(lines) == len(ev["time"]) == 1500
     assert ev["time"].tolist() == [e["time"] for e in lines]
@@ -71,7 +71,7 @@ def test_simulate_gives_the_cli_events_log_bit_for_bit(root, cli, tmp_path):
 def test_energy_is_conserved_event_by_event():
     """Each contact of a ball with the fixed obstacle keeps the ball's energy
     m (|u|^2 + lambda U_12^2 * 2) / 2 up to f64 rounding (a few eps of the energy)."""
-    run = noslip.simulate(noslip.tables.sinai(0.5, 0.3), events=2000)
+    run = noslip.simulate(noslip.tables.sinai(0.5, 0.3), events=2000, log=True)
     ev = run.events
     lam = 0.5 * (1 / 20) ** 2 / 2  # gamma2 R^2 / 2
 
@@ -114,7 +114,7 @@ def test_the_boundary_map_is_the_cli_csv_bit_for_bit(root, cli, tmp_path, scene,
     with open(csv_path) as f:
         rows = list(csv.reader(f))
     header, body = rows[0], rows[1:]
-    got = noslip.simulate(noslip.Scene.from_file(path), events=events, log=False).boundary_map
+    got = noslip.simulate(noslip.Scene.from_file(path), events=events, boundary_map=True).boundary_map
     assert list(got) == header
     assert len(body) > 0 and all(len(got[c]) == len(body) for c in header)
     for k, column in enumerate(header):
@@ -132,7 +132,7 @@ def test_the_boundary_map_keeps_the_disk_energy_at_each_contact(root):
     eps of it; the normal velocity is reversed and the tangential part and the scaled spin
     are reflected together (an orthogonal map on (u_t, gamma R c))."""
     run = noslip.simulate(noslip.Scene.from_file(root / "scenes" / "sector.toml"), events=500,
-                          log=False)
+                          boundary_map=True)
     m = run.boundary_map
     before = m["normal_velocity"] ** 2 + m["tangential_velocity"] ** 2 + m["scaled_spin"] ** 2
     after = m["normal_velocity"] ** 2 + m["tangential_velocity_post"] ** 2 \

@@ -1,572 +1,43 @@
-//! `noslip.collide_batch`: the collision map on every row of NumPy arrays, by the batch
-//! kernels (`collision_core::batch`: blocks of 8 contacts, the instruction set chosen at
-//! run time), with the GIL released and the rows split across rayon's threads.
+//! `noslip.collide_batch`: the collision map on every row of NumPy arrays, with the GIL
+//! released and the rows split across rayon's threads, chunk by chunk ([`CHUNK`] rows).
 //!
-//! The inputs are read in place, chunk by chunk ([`CHUNK`] rows), into a blocked scratch
-//! batch, the kernels run on the scratch, and the results are written into the new output
-//! arrays. Row-major arrays (NumPy's default) take the direct path: each chunk is gathered
-//! straight into the kernel's lane arrays (`FreeBatch::fill_from_rows`) and scattered
-//! straight into the outputs (`PairBatch::write_rows`); other strides go row by row through
-//! the batch's items. Beyond the outputs, memory is the scratch: about `CHUNK` x 0.25 kB per
-//! running thread, whatever the number of rows, kept by that thread between calls (at
-//! most [`KEPT_SCRATCHES`] of them, one per type).
+//! - With `validate` (the default), each row goes through `collision_core::collide`
+//!   itself (`checked.rs`): accepted or refused, and its result rounded, exactly as
+//!   `noslip.collide` does it; the first bad row's error names the row and the field.
+//! - Without, the batch kernels run the rows (`unchecked.rs`: blocks of 8 contacts, the
+//!   instruction set chosen at run time): `collision_core::collide_unchecked`'s result bit
+//!   for bit. Row-major arrays (NumPy's default) are gathered straight into the kernel's
+//!   lane arrays and scattered straight into the outputs; other strides go row by row.
+//!   Beyond the outputs, memory is the scratch: about `CHUNK` x 0.25 kB per running thread,
+//!   whatever the number of rows, kept by that thread between calls.
 //!
-//! Each row runs the kernel [`collision_core::collide`] runs on it: `fixed` when a body is
-//! immovable (`inv_mass = 0`; bodies swapped and `nu` negated when it is body 2, whose
-//! state then comes back unchanged), `free` otherwise; so a row's result is
-//! `collision_core::collide_unchecked`'s bit for bit. With `validate`, every row first
-//! passes `collide`'s checks (the rounding allowance included): a cheap test in the batch's
-//! own float type, on the lane arrays of the gathered chunk, accepts the rows that are
-//! clearly valid ([`valid`]), and only the others go through `collide`'s own checks
-//! (`collision_core::validate_parts`), whose error, for the first bad row, names the row and
-//! the field.
-//!
-//! The outputs are new arrays, or the caller's (`out=`: shapes and layout checked, borrowed
-//! read-write, so an output sharing memory with an input or another output is refused).
+//! The inputs' shapes are checked and their rows read by `inputs.rs`. The outputs are new
+//! arrays, or the caller's (`out=`: shapes and layout checked, borrowed read-write, so an
+//! output sharing memory with an input or another output is refused).
 
-mod valid;
+mod checked;
+mod inputs;
+mod unchecked;
 
 use crate::error::input_error;
-use collision_core::batch::BatchKernel;
-use collision_core::batch::{share_rows, BallRows, FreeRows, StateRows, StateRowsMut, LANES};
-use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
-use collision_core::RefArith;
-use collision_core::{skew_pairs, validate_parts, Ball, BodyState, Generated, Scalar};
-use collision_core::{BodyField, Field};
-use noslip_case::CaseError;
+use checked::{run_chunk_checked, RowError};
+use collision_core::batch::{share_rows, BatchKernel, Exec};
+use collision_core::{skew_pairs, Generated, Kernel, RefArith, Scalar};
+use inputs::{shape_error, Outputs};
+pub(crate) use inputs::{state_rows_mut, BodyViews, Inputs};
 use num_traits::Float;
-use numpy::ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use numpy::{
     Element, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
     PyReadonlyArray3, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use std::any::Any;
-use std::cell::RefCell;
 use std::sync::Mutex;
+use unchecked::{run_chunk, run_chunk_rows, Scratch};
 
 /// Rows per chunk: 64 blocks of 8, whose scratch (inputs and outputs in the blocked
 /// layout, 30 to 130 kB for n = 2..6 in `f64`) stays in the core's L2 cache between the
 /// gather, the kernel and the scatter.
 pub const CHUNK: usize = 512;
-
-/// The arrays of one body: `angular_velocity` `(N, n, n)`, `velocity` `(N, n)`, and the
-/// kernel parameters `inv_mass`, `radius`, `gamma2`, each of length `N` or 1 (shared).
-struct BodyArrays<'a, T> {
-    spin: ArrayView3<'a, T>,
-    velocity: ArrayView2<'a, T>,
-    inv_mass: ArrayView1<'a, T>,
-    radius: ArrayView1<'a, T>,
-    gamma2: ArrayView1<'a, T>,
-}
-
-/// One body's arrays as views: angular velocity, velocity, `inv_mass`, `radius`, `gamma2`.
-pub(crate) type BodyViews<'a, T> = (
-    ArrayView3<'a, T>,
-    ArrayView2<'a, T>,
-    ArrayView1<'a, T>,
-    ArrayView1<'a, T>,
-    ArrayView1<'a, T>,
-);
-
-/// Every input of a batch, shapes checked.
-pub(crate) struct Inputs<'a, T> {
-    rows: usize,
-    dim: usize,
-    nu: ArrayView2<'a, T>,
-    bodies: [BodyArrays<'a, T>; 2],
-}
-
-/// The output arrays' memory: per body, the `(N, n, n)` angular velocities and the `(N, n)`
-/// velocities, row-major.
-struct Outputs<'a, T> {
-    spin: [&'a mut [T]; 2],
-    velocity: [&'a mut [T]; 2],
-}
-
-fn shape_error(field: &str, expected: String, got: &[usize]) -> PyErr {
-    input_error(format!("{field}: expected shape {expected}, got {got:?}"))
-}
-
-impl<'a, T: Copy> Inputs<'a, T> {
-    pub(crate) fn new(nu: ArrayView2<'a, T>, bodies: [BodyViews<'a, T>; 2]) -> PyResult<Self> {
-        let (rows, dim) = nu.dim();
-        if !collision_core::DIMS.contains(&dim) {
-            return Err(input_error(format!(
-                "normal: expected shape (N, n) with n in {:?} (the batch kernels), got {:?}",
-                collision_core::DIMS,
-                nu.shape()
-            )));
-        }
-        let mut checked = Vec::with_capacity(2);
-        for (b, (spin, velocity, inv_mass, radius, gamma2)) in bodies.into_iter().enumerate() {
-            let field = |k: &str| format!("bodies[{b}].{k}");
-            if spin.dim() != (rows, dim, dim) {
-                return Err(shape_error(
-                    &field("angular_velocity"),
-                    format!("({rows}, {dim}, {dim})"),
-                    spin.shape(),
-                ));
-            }
-            if velocity.dim() != (rows, dim) {
-                return Err(shape_error(
-                    &field("velocity"),
-                    format!("({rows}, {dim})"),
-                    velocity.shape(),
-                ));
-            }
-            for (name, p) in [
-                ("inv_mass", &inv_mass),
-                ("radius", &radius),
-                ("gamma2", &gamma2),
-            ] {
-                if p.len() != rows && p.len() != 1 {
-                    return Err(shape_error(
-                        &field(name),
-                        format!("({rows},) or a scalar"),
-                        p.shape(),
-                    ));
-                }
-            }
-            checked.push(BodyArrays {
-                spin,
-                velocity,
-                inv_mass,
-                radius,
-                gamma2,
-            });
-        }
-        let [b1, b2]: [BodyArrays<'a, T>; 2] = checked
-            .try_into()
-            .unwrap_or_else(|_| unreachable!("two bodies"));
-        Ok(Inputs {
-            rows,
-            dim,
-            nu,
-            bodies: [b1, b2],
-        })
-    }
-}
-
-impl<'a, T> Inputs<'a, T> {
-    /// The arrays as row-major slices (`collision_core::batch::FreeRows`), when every one is
-    /// in standard layout (C-contiguous).
-    pub(crate) fn rows(&self) -> Option<FreeRows<'a, T>> {
-        let state = |b: &BodyArrays<'a, T>| {
-            Some(StateRows {
-                spin: b.spin.to_slice()?,
-                velocity: b.velocity.to_slice()?,
-            })
-        };
-        let ball = |b: &BodyArrays<'a, T>| {
-            Some(BallRows {
-                inv_mass: b.inv_mass.to_slice()?,
-                radius: b.radius.to_slice()?,
-                gamma2: b.gamma2.to_slice()?,
-            })
-        };
-        let [a, b] = &self.bodies;
-        Some(FreeRows {
-            nu: self.nu.to_slice()?,
-            states: [state(a)?, state(b)?],
-            balls: [ball(a)?, ball(b)?],
-        })
-    }
-}
-
-/// Parameter `p` of row `i` (a length-1 array is shared by every row).
-fn param<T: Copy>(p: &ArrayView1<'_, T>, i: usize) -> T {
-    p[if p.len() == 1 { 0 } else { i }]
-}
-
-impl<T: Scalar + Copy> BodyArrays<'_, T> {
-    fn ball(&self, i: usize) -> Ball<T> {
-        Ball {
-            inv_mass: param(&self.inv_mass, i),
-            radius: param(&self.radius, i),
-            gamma2: param(&self.gamma2, i),
-        }
-    }
-
-    /// Row `i`'s state: the compact entries `U_rc`, `r < c` (upper triangle), and `u`.
-    fn state<const N: usize, const S: usize>(
-        &self,
-        i: usize,
-        pairs: &[(usize, usize); S],
-    ) -> BodyState<T, N, S> {
-        // Row-major arrays (the usual case) are read as slices, without ndarray's
-        // per-element index arithmetic and bounds checks.
-        if let (Some(spin), Some(velocity)) = (self.spin.as_slice(), self.velocity.as_slice()) {
-            let (spin, velocity) = (
-                &spin[i * N * N..(i + 1) * N * N],
-                &velocity[i * N..(i + 1) * N],
-            );
-            return BodyState {
-                spin: pairs.map(|(r, c)| spin[r * N + c]),
-                velocity: std::array::from_fn(|k| velocity[k]),
-            };
-        }
-        BodyState {
-            spin: pairs.map(|(r, c)| self.spin[[i, r, c]]),
-            velocity: std::array::from_fn(|k| self.velocity[[i, k]]),
-        }
-    }
-
-    /// `collide`'s check that row `i`'s angular velocity is skew (as `BodyState::from_matrix`).
-    fn check_skew<const N: usize, const S: usize>(
-        &self,
-        i: usize,
-        b: usize,
-    ) -> Result<(), collision_core::InputError> {
-        let m: [[T; N]; N] = std::array::from_fn(|r| std::array::from_fn(|c| self.spin[[i, r, c]]));
-        BodyState::<T, N, S>::from_matrix(b, &m, [T::zero(); N]).map(|_| ())
-    }
-}
-
-/// Both bodies' row-major outputs, as `PairBatch::write_rows` takes them.
-pub(crate) fn state_rows_mut<'a, T>(
-    [s1, s2]: [&'a mut [T]; 2],
-    [v1, v2]: [&'a mut [T]; 2],
-) -> [StateRowsMut<'a, T>; 2] {
-    [
-        StateRowsMut {
-            spin: s1,
-            velocity: v1,
-        },
-        StateRowsMut {
-            spin: s2,
-            velocity: v2,
-        },
-    ]
-}
-
-/// The compact entries as a full skew matrix, row-major, `m_cr = 0 - m_rc` (so a zero entry
-/// is `+0` on both sides, as `noslip collide` prints it).
-fn write_state<T: Scalar + Copy, const N: usize, const S: usize>(
-    s: &BodyState<T, N, S>,
-    pairs: &[(usize, usize); S],
-    spin: &mut [T],
-    velocity: &mut [T],
-) {
-    for (r, row) in spin.chunks_exact_mut(N).enumerate() {
-        row[r] = T::zero();
-    }
-    for (&(r, c), &x) in pairs.iter().zip(&s.spin) {
-        spin[r * N + c] = x;
-        spin[c * N + r] = T::zero() - x;
-    }
-    velocity.copy_from_slice(&s.velocity);
-}
-
-/// The blocked batches of one chunk, reused from chunk to chunk.
-struct Scratch<T, const N: usize, const S: usize> {
-    free: FreeBatch<T, N, S>,
-    fixed: FixedBatch<T, N, S>,
-    pairs: PairBatch<T, N, S>,
-    moved: StateBatch<T, N, S>,
-    /// Local rows of `free`'s contacts, in order.
-    free_rows: Vec<usize>,
-    /// Local rows of `fixed`'s contacts, and whether body 2 is the immovable one.
-    fixed_rows: Vec<(usize, bool)>,
-    /// Per block of `free`, whether all its rows passed the cheap validity test
-    /// ([`valid::chunk`]).
-    valid: Vec<bool>,
-}
-
-thread_local! {
-    /// This thread's scratches kept between calls, of any type (`Scratch<T, N, S>` boxed),
-    /// the most recently used last, at most [`KEPT_SCRATCHES`]. Scratches allocated by each
-    /// call and freed at its end went back to the system (the allocator trims or unmaps
-    /// them), so their pages faulted in again on every call: a split batch took 2x the
-    /// serial time at n = 6, 1024 rows (15-20 faults a call). Per thread, so that a scratch
-    /// stays in the L2 of the core that last used it, and rayon's workers live as long as
-    /// the process.
-    static SCRATCHES: RefCell<Vec<Box<dyn Any>>> = const { RefCell::new(Vec::new()) };
-}
-
-/// At most this many scratches are kept per thread: one per type (`f32`, `f64` and n = 2..6,
-/// 15 to 130 kB each), so a program alternating between all ten types still reuses them.
-const KEPT_SCRATCHES: usize = 10;
-
-impl<T: Scalar + 'static, const N: usize, const S: usize> Scratch<T, N, S> {
-    /// This thread's kept scratch of this type, or a new one with room for a chunk.
-    fn take() -> Self {
-        let kept = SCRATCHES.with_borrow_mut(|kept| {
-            let i = kept.iter().rposition(|s| s.is::<Self>())?;
-            kept.remove(i).downcast::<Self>().ok()
-        });
-        kept.map_or_else(|| Self::new(CHUNK), |scratch| *scratch)
-    }
-
-    /// Keeps this scratch on this thread for a later call; the least recently used one goes
-    /// if [`KEPT_SCRATCHES`] are kept.
-    fn give_back(self) {
-        SCRATCHES.with_borrow_mut(|kept| {
-            if kept.len() >= KEPT_SCRATCHES {
-                kept.remove(0);
-            }
-            kept.push(Box::new(self));
-        });
-    }
-}
-
-impl<T: Scalar, const N: usize, const S: usize> Scratch<T, N, S> {
-    /// Room for `rows` contacts (a chunk, or a shorter batch).
-    fn new(rows: usize) -> Self {
-        Scratch {
-            free: FreeBatch::with_capacity(rows),
-            fixed: FixedBatch::with_capacity(rows),
-            pairs: PairBatch::with_capacity(rows),
-            moved: StateBatch::with_capacity(rows),
-            free_rows: Vec::with_capacity(rows),
-            fixed_rows: Vec::with_capacity(rows),
-            valid: Vec::with_capacity(rows.div_ceil(LANES)),
-        }
-    }
-}
-
-/// A bad row: its index and the message (`row 17: bodies[1].gamma2: ...`).
-type RowError = (usize, String);
-
-/// Row `i`'s normal `nu`.
-fn nu_row<T: Copy, const N: usize>(input: &Inputs<'_, T>, i: usize) -> [T; N] {
-    match input.nu.as_slice() {
-        Some(nu) => std::array::from_fn(|k| nu[i * N + k]),
-        None => std::array::from_fn(|k| input.nu[[i, k]]),
-    }
-}
-
-/// `collide`'s own checks on row `i` (skew `U` as `BodyState::from_matrix`, then
-/// `validate_parts`); the error, built only here, names the row and the field.
-fn check_row<T, const N: usize, const S: usize>(
-    input: &Inputs<'_, T>,
-    i: usize,
-    pairs: &[(usize, usize); S],
-) -> Result<(), RowError>
-where
-    T: Scalar + Copy,
-{
-    let [a, b] = &input.bodies;
-    let nu = nu_row::<T, N>(input, i);
-    let balls = [a.ball(i), b.ball(i)];
-    let states: [BodyState<T, N, S>; 2] = [a.state(i, pairs), b.state(i, pairs)];
-    a.check_skew::<N, S>(i, 0)
-        .and_then(|()| b.check_skew::<N, S>(i, 1))
-        .and_then(|()| {
-            validate_parts(
-                &nu,
-                [&balls[0], &balls[1]],
-                [0, 1].map(|k| (states[k].spin.as_slice(), states[k].velocity.as_slice())),
-            )
-        })
-        .map_err(|e| (i, format!("row {i}: {}", row_error(e))))
-}
-
-/// `collide`'s error on a row, its field named by the batch's keys: the batch takes
-/// `inv_mass` where `collide` takes `mass` (collision-core's `BodyField::Mass` stands for
-/// both), so that field is `bodies[b].inv_mass`; the others are named as in a case.
-fn row_error(e: collision_core::InputError) -> CaseError {
-    match e.field {
-        Field::Body(b, BodyField::Mass) => {
-            CaseError::new(format!("bodies[{b}].inv_mass"), e.message)
-        }
-        _ => CaseError::from(e),
-    }
-}
-
-/// Put row `i` (local row `j`) into `fixed` when a body is immovable, as `collide` does
-/// (body 2 immovable: bodies swapped, `nu` negated); `false` when both bodies move.
-fn push_fixed<T, const N: usize, const S: usize>(
-    input: &Inputs<'_, T>,
-    i: usize,
-    j: usize,
-    (fixed, fixed_rows): (&mut FixedBatch<T, N, S>, &mut Vec<(usize, bool)>),
-    pairs: &[(usize, usize); S],
-) -> bool
-where
-    T: Scalar + Copy,
-{
-    let [a, b] = &input.bodies;
-    let (b1, b2) = (a.ball(i), b.ball(i));
-    if !b1.is_immovable() && !b2.is_immovable() {
-        return false;
-    }
-    let nu = nu_row::<T, N>(input, i);
-    let (s1, s2) = (a.state(i, pairs), b.state(i, pairs));
-    if b1.is_immovable() {
-        let contact = Contact {
-            nu,
-            states: [s1, s2],
-        };
-        fixed.push((contact, b1.radius, b2));
-        fixed_rows.push((j, false));
-    } else {
-        let contact = Contact {
-            nu: nu.map(|x| -x),
-            states: [s2, s1],
-        };
-        fixed.push((contact, b2.radius, b1));
-        fixed_rows.push((j, true));
-    }
-    true
-}
-
-/// Run `fixed` on the rows [`push_fixed`] put there and write both bodies of each (the
-/// immovable one unchanged) into local row `j` of `out`.
-fn run_fixed<T, const N: usize, const S: usize>(
-    exec: &Exec,
-    input: &Inputs<'_, T>,
-    start: usize,
-    out: &mut Outputs<'_, T>,
-    sc: &mut Scratch<T, N, S>,
-    pairs: &[(usize, usize); S],
-) where
-    T: Scalar + Copy + Send + Sync,
-    for<'x> &'x T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
-{
-    if sc.fixed.is_empty() {
-        return;
-    }
-    exec.fixed(&sc.fixed, &mut sc.moved);
-    for (k, &(j, body2_fixed)) in sc.fixed_rows.iter().enumerate() {
-        if let Some(moved) = sc.moved.get(k) {
-            let (still, moving) = if body2_fixed { (1, 0) } else { (0, 1) };
-            put(out, j, moving, &moved, pairs);
-            let state: BodyState<T, N, S> = input.bodies[still].state(start + j, pairs);
-            put(out, j, still, &state, pairs);
-        }
-    }
-}
-
-/// Write body `body`'s state into local row `j` of `out`.
-fn put<T: Scalar + Copy, const N: usize, const S: usize>(
-    out: &mut Outputs<'_, T>,
-    j: usize,
-    body: usize,
-    s: &BodyState<T, N, S>,
-    pairs: &[(usize, usize); S],
-) {
-    write_state(
-        s,
-        pairs,
-        &mut out.spin[body][j * N * N..(j + 1) * N * N],
-        &mut out.velocity[body][j * N..(j + 1) * N],
-    );
-}
-
-/// Rows `start..start + out.velocity[0].len() / N` of the batch, from row-major arrays:
-/// validated (a cheap test per row, `collide`'s checks only for the rows it does not
-/// accept), gathered into the scratch's lane arrays, run by `free`, scattered into `out`;
-/// then the rows with an immovable body are run again by `fixed` and overwritten.
-#[allow(clippy::too_many_arguments)]
-fn run_chunk_rows<T, const N: usize, const S: usize>(
-    exec: &Exec,
-    input: &Inputs<'_, T>,
-    rows: &FreeRows<'_, T>,
-    validate: bool,
-    start: usize,
-    mut out: Outputs<'_, T>,
-    sc: &mut Scratch<T, N, S>,
-    pairs: &[(usize, usize); S],
-) -> Result<(), RowError>
-where
-    T: Scalar + Float + Send + Sync,
-    for<'x> &'x T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
-{
-    let range = start..start + out.velocity[0].len() / N;
-    sc.free.fill_from_rows(rows, range.clone());
-    let lane_rows = |k: usize| (0..LANES).map(move |l| (l, range.start + k * LANES + l));
-    if validate {
-        let [r1, r2] = &rows.states;
-        valid::chunk(
-            exec.isa(),
-            sc.free.blocks(),
-            [r1, r2],
-            range.start,
-            &mut sc.valid,
-        );
-        let blocks = sc.free.blocks().iter().zip(&sc.valid).enumerate();
-        for (k, (block, _)) in blocks.filter(|(_, (_, &ok))| !ok) {
-            for (l, i) in lane_rows(k).take_while(|&(_, i)| i < range.end) {
-                if !valid::row(block, [r1, r2], i, l) {
-                    check_row::<T, N, S>(input, i, pairs)?;
-                }
-            }
-        }
-    }
-    exec.free(&sc.free, &mut sc.pairs);
-    {
-        let Outputs {
-            spin: [s1, s2],
-            velocity: [v1, v2],
-        } = &mut out;
-        sc.pairs.write_rows(state_rows_mut([s1, s2], [v1, v2]));
-    }
-    // The rows with an immovable body (`inv_mass = 0` in a lane of the gathered batch).
-    sc.fixed.clear();
-    sc.fixed_rows.clear();
-    let zero = T::zero();
-    for (k, block) in sc.free.blocks().iter().enumerate() {
-        let [b1, b2] = &block.balls;
-        for (l, i) in lane_rows(k).take_while(|&(_, i)| i < range.end) {
-            if b1.inv_mass[l] == zero || b2.inv_mass[l] == zero {
-                let fixed = (&mut sc.fixed, &mut sc.fixed_rows);
-                push_fixed(input, i, i - range.start, fixed, pairs);
-            }
-        }
-    }
-    run_fixed(exec, input, start, &mut out, sc, pairs);
-    Ok(())
-}
-
-/// Rows `start..start + out.velocity[0].len() / N` of the batch, from arrays of any
-/// strides, row by row through the batch's items (`push`, `get`).
-fn run_chunk<T, const N: usize, const S: usize>(
-    exec: &Exec,
-    input: &Inputs<'_, T>,
-    validate: bool,
-    start: usize,
-    mut out: Outputs<'_, T>,
-    sc: &mut Scratch<T, N, S>,
-    pairs: &[(usize, usize); S],
-) -> Result<(), RowError>
-where
-    T: Scalar + Copy + Send + Sync,
-    for<'x> &'x T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
-{
-    let rows = out.velocity[0].len() / N;
-    sc.free.clear();
-    sc.fixed.clear();
-    sc.free_rows.clear();
-    sc.fixed_rows.clear();
-    let [a, b] = &input.bodies;
-    for j in 0..rows {
-        let i = start + j;
-        if validate {
-            check_row::<T, N, S>(input, i, pairs)?;
-        }
-        if !push_fixed(input, i, j, (&mut sc.fixed, &mut sc.fixed_rows), pairs) {
-            let contact = Contact {
-                nu: nu_row::<T, N>(input, i),
-                states: [a.state(i, pairs), b.state(i, pairs)],
-            };
-            sc.free.push((contact, [a.ball(i), b.ball(i)]));
-            sc.free_rows.push(j);
-        }
-    }
-    exec.free(&sc.free, &mut sc.pairs);
-    for (k, &j) in sc.free_rows.iter().enumerate() {
-        if let Some([p1, p2]) = sc.pairs.get(k) {
-            put(&mut out, j, 0, &p1, pairs);
-            put(&mut out, j, 1, &p2, pairs);
-        }
-    }
-    run_fixed(exec, input, start, &mut out, sc, pairs);
-    Ok(())
-}
 
 /// `m`'s guard, also after a panic elsewhere (the first error stays usable).
 fn lock<X>(m: &Mutex<X>) -> std::sync::MutexGuard<'_, X> {
@@ -597,7 +68,7 @@ fn run_all<T, const N: usize, const S: usize>(
 where
     T: Scalar + Float + Send + Sync,
     for<'x> &'x T: RefArith<T>,
-    Generated: BatchKernel<T, N, S>,
+    Generated: BatchKernel<T, N, S> + Kernel<T::Unbounded, N, S>,
 {
     let exec = Exec::auto().serial();
     let pairs: [(usize, usize); S] = {
@@ -629,11 +100,11 @@ where
                 };
                 let start = start + c * CHUNK;
                 match &rows {
-                    Some(rows) => {
-                        run_chunk_rows(&exec, input, rows, validate, start, out, scratch, &pairs)
-                    }
-                    None => run_chunk(&exec, input, validate, start, out, scratch, &pairs),
+                    _ if validate => return run_chunk_checked(input, start, out, &pairs),
+                    Some(rows) => run_chunk_rows(&exec, input, rows, start, out, scratch, &pairs),
+                    None => run_chunk(&exec, input, start, out, scratch, &pairs),
                 }
+                Ok(())
             })
     };
     let chunks = input.rows.div_ceil(CHUNK);
@@ -767,6 +238,7 @@ fn collide_batch<'py, T>(
 where
     T: Element + Scalar + Float + Send + Sync,
     for<'x> &'x T: RefArith<T>,
+    for<'x> &'x T::Unbounded: RefArith<T::Unbounded>,
 {
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
     let (rows, n) = (input.rows, input.dim);
