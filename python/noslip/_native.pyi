@@ -53,7 +53,12 @@ def lyapunov(
     contact: str | None,
 ) -> dict[str, Any]: ...
 def orbits(
-    scene: Scene, period: int, starts: list[list[str]], grid: int | None, contact: str | None
+    scene: Scene,
+    period: int,
+    starts: list[list[str]],
+    grid: int | None,
+    contact: str | None,
+    max_contacts: int | None = None,
 ) -> str: ...
 
 class Scene:

@@ -166,7 +166,9 @@ class Orbit:
         The eigenvalues of the linearised section map (the flow direction's 0 removed).
     verdict : str
         ``"elliptic"`` (all on the unit circle, some non-real), ``"parabolic"`` (all at
-        ``+-1``) or ``"hyperbolic"`` (some off the unit circle), with tolerance ``1e-6``.
+        ``+-1``) or ``"hyperbolic"`` (some off the unit circle), with tolerance ``1e-6``;
+        ``"undetermined"`` when the eigenvalue iteration did not converge (``eigenvalues``
+        is then empty).
     found_from : int
         How many starts converged to it.
     """
@@ -197,15 +199,21 @@ class ExactReturn:
 
 @dataclass(frozen=True)
 class OrbitsResult:
-    """The periodic orbits of period ``period`` found from ``starts`` starts (``misses`` of
-    them did not converge), each once; ``exact``: per given start, its :class:`ExactReturn`
-    or ``None`` (a contact time or the start's projection is irrational)."""
+    """The periodic orbits of period ``period`` found from ``starts`` starts (``tried`` of
+    them tried before the search's bound of contacts, ``misses`` of those did not converge),
+    each once; ``contacts``: the contacts the search followed; ``stopped``: why it stopped
+    before trying every start (``None`` if it tried them all); ``exact``: per given start,
+    its :class:`ExactReturn` or ``None`` (a contact time or the start's projection is
+    irrational)."""
 
     period: int
     starts: int
     misses: int
     orbits: list[Orbit]
     exact: list[ExactReturn | None]
+    tried: int
+    contacts: int
+    stopped: str | None
 
 
 def _number(x: object, where: str) -> str:
@@ -228,6 +236,7 @@ def orbits(
     starts: Sequence[Sequence[object]] | None = None,
     grid: int | None = None,
     contact: str | None = None,
+    max_contacts: int | None = None,
 ) -> OrbitsResult:
     """Periodic orbits of the ``period``-th return map of the boundary map of a one-ball
     table (a scene with one ball: any of its boundaries, fixed ball obstacles, periodic axes), as
@@ -242,13 +251,16 @@ def orbits(
     angles x ``M`` spins, at unit speed), or by default the scene's ball after its first
     contact. For a rational start on a table with rational contact times (flat walls), the
     return map and the characteristic polynomial of its linearisation are also computed in
-    exact rationals. See ``docs/dynamics.md``.
+    exact rationals. ``max_contacts`` bounds the search's work as ``noslip orbits
+    --max-contacts`` does (default 5e7 contacts, a minute or two): at the bound the search
+    returns what it found, with ``stopped`` saying how many starts it tried. See
+    ``docs/dynamics.md``.
 
     Raises
     ------
     InputError
         A bad scene (naming the place) or argument (``period``, ``starts[i]``, ``grid``,
-        ``contact``).
+        ``contact``, ``max_contacts``).
     """
     if isinstance(starts, (str, bytes)) or not isinstance(starts, (Sequence, type(None))):
         raise InputError(f"starts: expected a sequence of starts, got {type(starts).__name__}")
@@ -257,7 +269,9 @@ def orbits(
         if isinstance(z, (str, bytes)) or not isinstance(z, Sequence):
             raise InputError(f"starts[{i}]: expected a sequence of 2n + S numbers")
         given.append([_number(x, f"starts[{i}][{k}]") for k, x in enumerate(z)])
-    report = json.loads(_native.orbits(_scene(scene), period, given, grid, contact))
+    report = json.loads(
+        _native.orbits(_scene(scene), period, given, grid, contact, max_contacts)
+    )
     found = [
         Orbit(
             boundaries=o["boundaries"],
@@ -289,4 +303,7 @@ def orbits(
         misses=report["misses"],
         orbits=found,
         exact=exact,
+        tried=report["tried"],
+        contacts=report["contacts"],
+        stopped=report["stopped"],
     )

@@ -10,7 +10,7 @@ use crate::error::{input_error, unsigned_opt};
 use crate::scene::Scene;
 use collision_core::{Generated, Kernel};
 use noslip_sim::boundary_map::{self, Row};
-use noslip_sim::run::{run_observed, Limits, Summary, Trace};
+use noslip_sim::run::{check_time, run_observed, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Simulation};
 use numpy::{PyArray1, PyArrayMethods};
@@ -279,21 +279,9 @@ fn map_columns<'py>(py: Python<'py>, rows: &[Row], n: usize) -> PyResult<Bound<'
 /// The memory cap on a run's records when the caller gives none: 1 GiB.
 pub const MAX_MEMORY: u64 = 1 << 30;
 
-/// `time` as `noslip simulate --time` takes it: positive, finite and a normal f64 (a
-/// subnormal time has lost its precision; the scene's `simulation.time` is held to the same).
-fn check_time(t: f64) -> PyResult<f64> {
-    if !(t > 0.0 && t.is_finite()) {
-        return Err(input_error(format!(
-            "time: must be positive and finite, got {t}"
-        )));
-    }
-    if !t.is_normal() {
-        return Err(input_error(format!(
-            "time: {t:e} is not a normal f64 (the least is {:e})",
-            f64::MIN_POSITIVE
-        )));
-    }
-    Ok(t)
+/// `time` as `noslip simulate --time` takes it ([`check_time`]).
+fn time_of(t: f64) -> PyResult<f64> {
+    check_time(t).map_err(|m| input_error(format!("time: {m}")))
 }
 
 /// Run `scene` to `events` contacts or simulated `time` (the scene's `[simulation]`
@@ -314,7 +302,7 @@ pub fn simulate<'py>(
     max_memory: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let events = unsigned_opt(events.as_ref(), "events", 1, u64::MAX)?;
-    let time = time.map(check_time).transpose()?;
+    let time = time.map(time_of).transpose()?;
     let max_memory =
         unsigned_opt(max_memory.as_ref(), "max_memory", 0, u64::MAX)?.unwrap_or(MAX_MEMORY);
     if events == Some(0) {

@@ -207,9 +207,10 @@ def test_the_orbit_search_is_bounded(root):
     triangle = noslip.Scene.from_file(root / "scenes" / "triangle.toml")
     got = noslip.orbits(triangle, 4, grid=1)
     assert (got.starts, len(got.orbits)) == (3, 3)
+    assert (got.tried, got.stopped) == (3, None)
     sector = noslip.Scene.from_file(root / "scenes" / "sector.toml")
-    report = json.loads(noslip._native.orbits(sector, 4, [], 4, None, 2000))
-    assert report["contacts"] <= 2000 and 0 < report["tried"] < report["starts"] == 64
-    assert report["stopped"].startswith("the search followed ")
+    report = noslip.orbits(sector, 4, grid=4, max_contacts=2000)
+    assert report.contacts <= 2000 and 0 < report.tried < report.starts == 64
+    assert report.stopped.startswith("the search followed ")
     with pytest.raises(noslip.InputError, match=r"^max_contacts: must be at least 1, got 0$"):
-        noslip._native.orbits(sector, 4, [], 4, None, 0)
+        noslip.orbits(sector, 4, grid=4, max_contacts=0)

@@ -34,6 +34,23 @@ pub enum Progress {
     },
 }
 
+/// A run's time limit as the front ends take it (`noslip simulate --time`, Python's
+/// `simulate(time=...)`): positive, finite and a normal f64, as the scene's `simulation.time`
+/// (a subnormal time has lost its precision). The error is the message, without the option's
+/// name.
+pub fn check_time(t: f64) -> Result<f64, String> {
+    if !(t > 0.0 && t.is_finite()) {
+        return Err(format!("must be positive and finite, got {t}"));
+    }
+    if !t.is_normal() {
+        return Err(format!(
+            "{t:e} is not a normal f64 (the least is {:e})",
+            f64::MIN_POSITIVE
+        ));
+    }
+    Ok(t)
+}
+
 /// When to stop, and how much to record.
 #[derive(Clone, Debug)]
 pub struct Limits {

@@ -369,18 +369,7 @@ fn side_members(args: &Args, out: &Path) -> Result<[Option<String>; 2], Failure>
 /// contact (the fuzz target `cli_args` calls it too).
 pub fn check_limits(args: &Args) -> Result<(), Failure> {
     if let Some(t) = args.time {
-        if !(t > 0.0 && t.is_finite()) {
-            return Err(Failure::bad_input(format!(
-                "--time: must be positive and finite, got {t}"
-            )));
-        }
-        if !t.is_normal() {
-            // As the scene's simulation.time: a subnormal time has lost its precision.
-            return Err(Failure::bad_input(format!(
-                "--time: {t:e} is not a normal f64 (the least is {:e})",
-                f64::MIN_POSITIVE
-            )));
-        }
+        noslip_sim::run::check_time(t).map_err(|m| Failure::bad_input(format!("--time: {m}")))?;
     }
     if args.events == Some(0) {
         return Err(Failure::bad_input(
