@@ -2,34 +2,14 @@
 //! of large scenes, and bad input (exit 2, one line naming the place).
 
 mod support;
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
-use support::{noslip, run_ok, temp};
-
-/// Runs `command` to its end, or kills it and fails after `limit` (a run without bound is a
-/// failure, not a test that never ends).
-fn within(command: &mut Command, limit: Duration) -> Output {
-    let mut child = command
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let begun = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if begun.elapsed() > limit {
-            child.kill().unwrap();
-            child.wait().unwrap();
-            panic!("{command:?} still running after {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
-}
+use std::time::Duration;
+use support::{noslip, run_ok, temp, within};
 
 /// The shipped gas2d (750 disks, phase-space dimension 3750) with the default `--k` ran the
 /// whole spectrum: two Gram-Schmidt passes of `3750^3` multiply-adds each, 223 s for
 /// `--events 200`. The default now keeps the run's Gram-Schmidt within 2e9 multiply-adds:
-/// the 516 largest exponents, said on stderr; the run takes seconds.
+/// the 210 largest exponents (12 re-orthonormalisations: one per block of 18 contacts at
+/// least), said on stderr; the run takes seconds.
 #[test]
 fn a_gas_gets_a_default_k_within_the_budget_and_says_so() {
     let dir = temp("lyapunov-gas2d");
@@ -48,11 +28,11 @@ fn a_gas_gets_a_default_k_within_the_budget_and_says_so() {
     assert!(
         stderr.starts_with(
             "note: --k not given: the whole spectrum (3750 exponents) would need 107.288 MiB"
-        ) && stderr.contains("computing the 516 largest"),
+        ) && stderr.contains("computing the 210 largest"),
         "{stderr}"
     );
     assert!(
-        stdout.contains("516 exponents by qr") && stdout.contains("phase-space dimension 3750"),
+        stdout.contains("210 exponents by qr") && stdout.contains("phase-space dimension 3750"),
         "{stdout}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
@@ -60,7 +40,8 @@ fn a_gas_gets_a_default_k_within_the_budget_and_says_so() {
 
 /// 12 000 disks (dimension 60 000): the whole spectrum needs 28.8 GB and the run aborted on a
 /// failed allocation. Asked for, it is refused before any work (exit 2, naming `--k`, the
-/// memory and the cap); by default 139 vectors (64 MiB) are carried.
+/// memory and the cap); by default 52 vectors are carried (the work budget: 12
+/// re-orthonormalisations of 100 contacts in blocks of 9; 139 would fit 64 MiB).
 #[test]
 fn a_spectrum_beyond_the_memory_cap_is_refused_up_front() {
     let dir = temp("lyapunov-big");
@@ -101,8 +82,8 @@ fn a_spectrum_beyond_the_memory_cap_is_refused_up_front() {
         String::from_utf8(out.stderr).unwrap(),
     );
     assert!(out.status.success(), "{stderr}");
-    assert!(stderr.contains("computing the 139 largest"), "{stderr}");
-    assert!(stdout.contains("139 exponents by qr"), "{stdout}");
+    assert!(stderr.contains("computing the 52 largest"), "{stderr}");
+    assert!(stdout.contains("52 exponents by qr"), "{stdout}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -209,8 +190,23 @@ fn bad_input_exits_2_naming_the_place() {
         // The Sinai table's lambda_1 is 1.3 a contact: in 300 contacts the vectors grow by
         // about e^400, and their squares overflow.
         (
-            vec!["scenes/sinai.toml", "--events", "2000", "--every", "300"],
+            vec![
+                "scenes/sinai.toml",
+                "--events",
+                "2000",
+                "--blocks",
+                "2",
+                "--every",
+                "300",
+            ],
             "--every: the tangent vectors stopped being finite between contacts 0 and 300",
+        ),
+        // Ten blocks of 181 contacts: an interval of 300 would leave blocks empty (their
+        // estimates 0/0, the errors NaN).
+        (
+            vec!["scenes/sinai.toml", "--events", "2000", "--every", "300"],
+            "--every: 300 contacts between re-orthonormalisations would leave blocks without \
+             one (no growth, no error estimate): at most 181",
         ),
         (
             vec!["scenes/sinai.toml", "--every", "0"],

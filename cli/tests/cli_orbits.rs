@@ -3,29 +3,8 @@
 //! line naming the place).
 
 mod support;
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
-use support::{noslip, run_ok, temp};
-
-/// Runs `command` to its end, or kills it and fails after `limit` (a hang is a failure, not a
-/// test that never ends).
-fn within(command: &mut Command, limit: Duration) -> Output {
-    let mut child = command
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let begun = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if begun.elapsed() > limit {
-            child.kill().unwrap();
-            child.wait().unwrap();
-            panic!("{command:?} still running after {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
-}
+use std::time::Duration;
+use support::{noslip, run_ok, temp, within};
 
 /// `orbits scenes/triangle.toml --period 4 --grid 1` never returned (over 120 s): the
 /// eigenvalues of its orbits' return maps (1 three times, to a few ulps) stalled nalgebra's

@@ -3,7 +3,8 @@
 #![allow(dead_code)]
 
 use std::path::PathBuf;
-use std::process::Command;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 /// The `noslip` binary of this build, run from the repository root (scene paths as shipped).
 pub fn noslip() -> Command {
@@ -26,4 +27,24 @@ pub fn run_ok(command: &mut Command) -> String {
 /// A path in the temporary directory, unique to `name` and this process.
 pub fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
+}
+
+/// Runs `command` to its end, or kills it and fails after `limit` (a run without bound, a
+/// hang, is a failure, not a test that never ends).
+pub fn within(command: &mut Command, limit: Duration) -> Output {
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let begun = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if begun.elapsed() > limit {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("{command:?} still running after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
 }
