@@ -125,6 +125,7 @@ fn vector<T: InputScalar>(
     value: &Value,
     field: &str,
     len: usize,
+    floats: bool,
     tiny: &mut Vec<String>,
 ) -> Result<Vec<T>, CaseError> {
     let items = value.as_array().ok_or_else(|| {
@@ -144,11 +145,11 @@ fn vector<T: InputScalar>(
         .enumerate()
         .map(|(k, x)| {
             let field = format!("{field}[{k}]");
-            let (x, below) = read(x, &field)?;
-            if below {
+            let (y, below) = read(x, &field)?;
+            if below && !(floats && x.is_number()) {
                 tiny.push(field);
             }
-            Ok(x)
+            Ok(y)
         })
         .collect()
 }
@@ -192,6 +193,7 @@ fn spin<T: InputScalar>(
     value: &Value,
     field: &str,
     dim: usize,
+    floats: bool,
     tiny: &mut Vec<String>,
 ) -> Result<Spin<T>, CaseError> {
     let wrong =
@@ -199,7 +201,7 @@ fn spin<T: InputScalar>(
     match value {
         Value::Number(_) | Value::String(_) if dim == 2 => {
             let (c, below) = read(value, field)?;
-            if below {
+            if below && !(floats && value.is_number()) {
                 tiny.push(field.to_string());
             }
             Ok(Spin::Scalar(c))
@@ -210,14 +212,14 @@ fn spin<T: InputScalar>(
             }
             rows.iter()
                 .enumerate()
-                .map(|(r, row)| vector(row, &format!("{field}[{r}]"), dim, tiny))
+                .map(|(r, row)| vector(row, &format!("{field}[{r}]"), dim, floats, tiny))
                 .collect::<Result<_, _>>()
                 .map(Spin::Matrix)
         }
         Value::Array(items)
             if dim == 3 && items.len() == 3 && !items.iter().any(Value::is_array) =>
         {
-            let omega: Vec<T> = vector(value, field, 3, tiny)?;
+            let omega: Vec<T> = vector(value, field, 3, floats, tiny)?;
             Ok(Spin::Omega([0, 1, 2].map(|k| omega[k].clone())))
         }
         Value::Array(items) if items.is_empty() => Err(wrong("an empty array".into())),
@@ -229,7 +231,11 @@ fn spin<T: InputScalar>(
     }
 }
 
-fn inertia<T: InputScalar>(obj: &Map<String, Value>, path: &str) -> Result<Inertia<T>, CaseError> {
+fn inertia<T: InputScalar>(
+    obj: &Map<String, Value>,
+    path: &str,
+    floats: bool,
+) -> Result<Inertia<T>, CaseError> {
     let given: Vec<&str> = INERTIA_KEYS
         .into_iter()
         .filter(|k| obj.contains_key(*k))
@@ -243,8 +249,12 @@ fn inertia<T: InputScalar>(obj: &Map<String, Value>, path: &str) -> Result<Inert
     let field = |k: &str| join(path, k);
     Ok(match given.first().copied() {
         None => Inertia::Uniform,
-        Some("lambda") => Inertia::Lambda(scalar_from_json(&obj["lambda"], &field("lambda"))?),
-        Some("gamma2") => Inertia::Gamma2(scalar_from_json(&obj["gamma2"], &field("gamma2"))?),
+        Some("lambda") => {
+            Inertia::Lambda(scalar_from_json(&obj["lambda"], &field("lambda"), floats)?)
+        }
+        Some("gamma2") => {
+            Inertia::Gamma2(scalar_from_json(&obj["gamma2"], &field("gamma2"), floats)?)
+        }
         Some(_) => match &obj["distribution"] {
             Value::String(s) if s == "uniform" => Inertia::Uniform,
             Value::String(s) if s == "shell" => Inertia::Shell,
@@ -276,6 +286,7 @@ impl<T: InputScalar> BodyInput<T> {
         value: &Value,
         index: usize,
         dim: usize,
+        floats: bool,
         tiny: &mut Tiny,
     ) -> Result<Self, CaseError> {
         let path = format!("bodies[{index}]");
@@ -300,20 +311,22 @@ impl<T: InputScalar> BodyInput<T> {
                     format!("{message}, got {}", quote(s, 40)),
                 ));
             }
-            v => Mass::Finite(scalar_from_json(v, &field("mass"))?),
+            v => Mass::Finite(scalar_from_json(v, &field("mass"), floats)?),
         };
-        let radius = scalar_from_json(get(obj, &path, "radius")?, &field("radius"))?;
-        let inertia = inertia(obj, &path)?;
+        let radius = scalar_from_json(get(obj, &path, "radius")?, &field("radius"), floats)?;
+        let inertia = inertia(obj, &path, floats)?;
         let velocity = vector(
             get(obj, &path, "velocity")?,
             &field("velocity"),
             dim,
+            floats,
             &mut tiny.velocity,
         )?;
         let spin = spin(
             get(obj, &path, "angular_velocity")?,
             &field("angular_velocity"),
             dim,
+            floats,
             &mut tiny.spin[index],
         )?;
         Ok(BodyInput {
@@ -327,8 +340,21 @@ impl<T: InputScalar> BodyInput<T> {
 }
 
 impl<T: InputScalar> Case<T> {
-    /// One case of the input.
+    /// One case of the input, every number read as the decimal or rational it spells.
     pub fn from_json(value: &Value) -> Result<Self, CaseError> {
+        Self::read(value, false)
+    }
+
+    /// One case whose JSON numbers (not strings) are floats of `T` written in their
+    /// shortest round-trip form, as the Python package writes its floats: each is read as
+    /// that float, so one below the normal range is taken as it is (it lost nothing), where
+    /// [`Case::from_json`] refuses it or measures its rounding ([`crate::tiny`]). Strings
+    /// are read as in [`Case::from_json`].
+    pub fn from_floats(value: &Value) -> Result<Self, CaseError> {
+        Self::read(value, true)
+    }
+
+    fn read(value: &Value, floats: bool) -> Result<Self, CaseError> {
         let obj = object(
             value,
             "",
@@ -338,7 +364,13 @@ impl<T: InputScalar> Case<T> {
         let dim = dim(get(obj, "", "dim")?)?;
         // A normal's components are measured against |nu| = 1: one below the normal range
         // is off by at most 2^-1075, far inside the allowance of |nu|^2.
-        let normal = vector(get(obj, "", "normal")?, "normal", dim, &mut Vec::new())?;
+        let normal = vector(
+            get(obj, "", "normal")?,
+            "normal",
+            dim,
+            floats,
+            &mut Vec::new(),
+        )?;
         let bodies = get(obj, "", "bodies")?;
         let list = bodies.as_array().ok_or_else(|| {
             CaseError::new(
@@ -354,8 +386,8 @@ impl<T: InputScalar> Case<T> {
         }
         let mut tiny = Tiny::default();
         let bodies = [
-            BodyInput::from_json(&list[0], 0, dim, &mut tiny)?,
-            BodyInput::from_json(&list[1], 1, dim, &mut tiny)?,
+            BodyInput::from_json(&list[0], 0, dim, floats, &mut tiny)?,
+            BodyInput::from_json(&list[1], 1, dim, floats, &mut tiny)?,
         ];
         tiny.check(&bodies)?;
         Ok(Case {

@@ -82,6 +82,18 @@ where
     render(&case, &out)
 }
 
+/// [`collide_case`] for a case whose JSON numbers are floats of `T` in their shortest
+/// round-trip form ([`Case::from_floats`]: the Python package's floats).
+pub fn collide_floats<T>(case: &Value) -> Result<Value, CaseError>
+where
+    T: InputScalar,
+    for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
+{
+    let case = Case::<T>::from_floats(case)?;
+    let out = solve(&case)?;
+    render(&case, &out)
+}
+
 /// Collide every case of `input` (a case, or an array of cases) and return the output
 /// JSON (one line, no trailing newline): an array for an array, an object for an object.
 /// A key given twice in one object is an error (naming its case and path). Stops at the

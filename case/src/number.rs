@@ -114,10 +114,16 @@ pub fn from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseEr
 
 /// [`from_json`] for a scalar of a body (mass, radius, lambda, gamma2): one that lies below
 /// the normal range of `T` is refused, since it would be read with less than `T`'s
-/// relative precision (a radius `4e-324` is read as `4.94e-324`, 23% off).
-pub fn scalar_from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseError> {
+/// relative precision (a radius `4e-324` is read as `4.94e-324`, 23% off); with `floats`, a
+/// JSON number is a float of `T` in its shortest round-trip form and is taken as that float
+/// ([`crate::case::Case::from_floats`]).
+pub fn scalar_from_json<T: InputScalar>(
+    value: &Value,
+    field: &str,
+    floats: bool,
+) -> Result<T, CaseError> {
     let (x, tiny) = read::<T>(value, field)?;
-    if tiny {
+    if tiny && !(floats && value.is_number()) {
         return Err(CaseError::new(
             field,
             format!(

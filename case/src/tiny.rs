@@ -169,4 +169,23 @@ mod tests {
         // Exact mode reads all of them as written.
         assert!(Case::<Exact>::from_json(&case("1", "1", "0", ["1e-310", "3e-311"])).is_ok());
     }
+
+    /// The Python package writes its floats as JSON numbers in their shortest round-trip
+    /// form: read as those floats, a subnormal lost nothing and is taken; its strings are
+    /// still decimals, refused as above.
+    #[test]
+    fn json_numbers_read_as_floats_are_taken_below_the_range_and_strings_are_not() {
+        let mut floats = case("1", "1", "0", ["0", "0"]);
+        floats["bodies"][0]["radius"] = json!(5e-324);
+        floats["bodies"][0]["velocity"] = json!([1e-310, 3e-311]);
+        floats["bodies"][0]["angular_velocity"] = json!(1e-320);
+        let read = Case::<f64>::from_floats(&floats).unwrap();
+        assert_eq!(read.bodies[0].radius, 5e-324);
+        assert_eq!(read.bodies[0].velocity, [1e-310, 3e-311]);
+        assert!(Case::<f64>::from_json(&floats).is_err());
+        let e = Case::<f64>::from_floats(&case("1", "4e-324", "0", ["1", "0"])).unwrap_err();
+        assert_eq!(e.field, "bodies[0].radius", "{e}");
+        let e = Case::<f64>::from_floats(&case("1", "1", "0", ["1e-310", "3e-311"])).unwrap_err();
+        assert_eq!(e.field, "bodies[0].velocity[0]", "{e}");
+    }
 }

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import numbers
 from decimal import Decimal
 from fractions import Fraction
@@ -30,7 +31,10 @@ def _number_text(x: Any, path: str, exact: bool) -> Any:
                 "int, a Fraction or a string such as \"3/5\" (Fraction(x) is the float's "
                 "exact binary value)"
             )
-        return "inf" if x == float("inf") else repr(x)
+        # A finite float as a JSON number: the package reads JSON numbers as the floats
+        # whose shortest round-trip text they are (a subnormal is taken as it is); the
+        # others as text, for the field's own message.
+        return x if math.isfinite(x) else "inf" if x == float("inf") else repr(x)
     raise InputError(f"{path}: expected a number, got {type(x).__name__}")
 
 

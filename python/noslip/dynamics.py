@@ -100,10 +100,13 @@ def lyapunov(
     same numbers, bit for bit, for the same arguments).
 
     The phase space is the balls' centres, velocities and spins (orientations never feed
-    back). ``method="qr"``: the ``k`` largest exponents (default all) from tangent vectors
+    back). ``method="qr"``: the ``k`` largest exponents (default: all when they fit 64 MiB
+    of tangent vectors and ``2e9`` multiply-adds of Gram-Schmidt over the run, else the
+    largest ``k`` that fits; a ``k`` needing over 1 GiB is refused) from tangent vectors
     carried by the exact flight and contact tangent maps along the engine's trajectory,
     re-orthonormalised (Gram-Schmidt) every ``every`` contacts (default: every contact for
-    one ball, ``balls/4`` for a gas); exponent ``i`` is the mean growth rate of the i-th
+    one ball, ``balls/4`` for a gas, shortened to a block's contacts; a longer ``every`` is
+    refused, as it would leave blocks without an estimate); exponent ``i`` is the mean growth rate of the i-th
     diagonal entry of ``R``. ``method="two-trajectory"``: the largest exponent from a second
     run kept ``1e-9`` away (Benettin), an independent check with no tangent map (``k=1``).
 

@@ -1,13 +1,16 @@
 //! One collision from a case in the JSON case format (the `noslip-case` crate: the same
 //! parsing, validation and messages as `noslip collide`), in `f64` or exact rationals.
 //!
-//! The Python layer turns its arguments into that format's JSON (floats as their shortest
-//! round-trip text, `Fraction`s as `"p/q"`), so a case means the same thing from Python and
-//! from the command line, bit for bit.
+//! The Python layer turns its arguments into that format's JSON (floats as JSON numbers in
+//! their shortest round-trip text, `Fraction`s and decimal strings as strings), so a case
+//! means the same thing from Python and from the command line, bit for bit; in `f64` the
+//! JSON numbers are read as the floats they were ([`noslip_case::Case::from_floats`]), so a
+//! subnormal float is taken as it is, where the command refuses a decimal that would round
+//! below the normal range.
 
 use crate::error::input_error;
 use collision_core::Exact;
-use noslip_case::collide::collide_case as solve_case;
+use noslip_case::collide::{collide_case as solve_case, collide_floats};
 use noslip_case::CaseError;
 use pyo3::prelude::*;
 use serde_json::Value;
@@ -23,7 +26,7 @@ pub fn collide_case(py: Python<'_>, case: &str, exact: bool) -> PyResult<String>
         if exact {
             solve_case::<Exact>(&value)
         } else {
-            solve_case::<f64>(&value)
+            collide_floats::<f64>(&value)
         }
     });
     let out = out.map_err(|e| input_error(e.to_string()))?;

@@ -149,8 +149,10 @@ def test_bad_orbit_arguments_are_named(root, kwargs, message):
          r"^blocks: must be an integer in 1\.\.=10000, got -1$"),
         (lambda s: noslip.lyapunov(s, 1000, blocks=2**64 - 1),
          r"^blocks: must be in 1\.\.=10000"),
-        (lambda s: noslip.lyapunov(s, 2000, every=300),
+        (lambda s: noslip.lyapunov(s, 2000, blocks=2, every=300),
          r"^every: the tangent vectors stopped being finite between contacts 0 and 300"),
+        (lambda s: noslip.lyapunov(s, 2000, every=300),
+         r"^every: 300 contacts between re-orthonormalisations would leave blocks without one"),
         (lambda s: noslip.lyapunov(s, 1000, k=-1), r"^k: must be an integer in 1\.\.=\d+, got -1$"),
         (lambda s: noslip.lyapunov(s, 1000, every=-2),
          r"^every: must be an integer in 1\.\.=\d+, got -2$"),
@@ -185,13 +187,14 @@ spin = 1
 def test_a_spectrum_beyond_the_memory_cap_is_refused_naming_k():
     """12 000 disks (dimension 60 000): the whole spectrum's tangent vectors need 28.8 GB (the
     run aborted on a failed allocation); asked for, it is an InputError naming k, the memory
-    and the cap, before any work. By default the 139 largest exponents fit 64 MiB."""
+    and the cap, before any work. By default the 52 largest (the work budget: 12
+    re-orthonormalisations, one per block of 9 contacts)."""
     with pytest.raises(noslip.InputError, match=(
             r"^k: 60000 tangent vectors of dimension 60000 need 26\.822 GiB \(28800000000 "
             r"bytes, 8 k d\), beyond the cap of 1\.000 GiB: at most 2236 fit$")):
         noslip.lyapunov(BIG_GAS, 100, k=60000)
     got = noslip.lyapunov(BIG_GAS, 100)
-    assert (got.dimension, len(got.per_time)) == (60000, 139)
+    assert (got.dimension, len(got.per_time)) == (60000, 52)
 
 
 def test_the_default_k_of_a_gas_keeps_the_run_short(root):
