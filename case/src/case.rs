@@ -348,7 +348,7 @@ impl<T: InputScalar> Case<T> {
     /// One case whose JSON numbers (not strings) are floats of `T` written in their
     /// shortest round-trip form, as the Python package writes its floats: each is read as
     /// that float, so one below the normal range is taken as it is (it lost nothing), where
-    /// [`Case::from_json`] refuses it or measures its rounding ([`crate::tiny`]). Strings
+    /// [`Case::from_json`] refuses it or measures its rounding (`case/src/tiny.rs`). Strings
     /// are read as in [`Case::from_json`].
     pub fn from_floats(value: &Value) -> Result<Self, CaseError> {
         Self::read(value, true)

@@ -1,6 +1,7 @@
 """noslip.collide_batch: bit for bit the single calls, validation naming the row and field,
 only the outputs allocated, and the GIL released."""
 
+import os
 import threading
 import time
 import tracemalloc
@@ -575,7 +576,9 @@ def test_validated_rows_are_accepted_refused_and_rounded_as_collide_does(n):
     result bit for bit; the accepted rows together in one batch (threads, chunks of 512)
     give the same bits."""
     rng = np.random.default_rng(260 + n)
-    nu, bodies, masses = extreme_rows(rng, 1200, n)
+    # NOSLIP_BATCH_ROWS rows per n for a longer local run (1200 in the suite).
+    rows = int(os.environ.get("NOSLIP_BATCH_ROWS", "1200"))
+    nu, bodies, masses = extreme_rows(rng, rows, n)
     accepted = []
     for i in range(len(nu)):
         want = collide_or_error(nu, bodies, i, masses)
@@ -586,7 +589,7 @@ def test_validated_rows_are_accepted_refused_and_rounded_as_collide_does(n):
             for b in range(2):
                 assert same_bits(got[b]["angular_velocity"][0], want[b]["angular_velocity"]), (n, i)
                 assert same_bits(got[b]["velocity"][0], want[b]["velocity"]), (n, i)
-    assert 150 < len(accepted) < len(nu) - 150, len(accepted)
+    assert len(nu) // 8 < len(accepted) < len(nu) - len(nu) // 8, len(accepted)
     keep = np.array(accepted)
     together = noslip.collide_batch(nu[keep], [{k: v[keep] for k, v in b.items()} for b in bodies])
     for j, i in enumerate(accepted):
