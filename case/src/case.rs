@@ -145,11 +145,11 @@ fn vector<T: InputScalar>(
         .enumerate()
         .map(|(k, x)| {
             let field = format!("{field}[{k}]");
-            let (y, below) = read(x, &field)?;
-            if below && !(floats && x.is_number()) {
+            let (x, below) = read(x, &field, floats)?;
+            if below {
                 tiny.push(field);
             }
-            Ok(y)
+            Ok(x)
         })
         .collect()
 }
@@ -200,8 +200,8 @@ fn spin<T: InputScalar>(
         |what: String| CaseError::new(field, format!("expected {}, got {what}", spin_forms(dim)));
     match value {
         Value::Number(_) | Value::String(_) if dim == 2 => {
-            let (c, below) = read(value, field)?;
-            if below && !(floats && value.is_number()) {
+            let (c, below) = read(value, field, floats)?;
+            if below {
                 tiny.push(field.to_string());
             }
             Ok(Spin::Scalar(c))

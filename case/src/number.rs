@@ -109,7 +109,7 @@ impl InputScalar for f64 {
 
 /// Read the number at `field` of a case: a JSON number or a string.
 pub fn from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseError> {
-    read(value, field).map(|(x, _)| x)
+    read(value, field, false).map(|(x, _)| x)
 }
 
 /// [`from_json`] for a scalar of a body (mass, radius, lambda, gamma2): one that lies below
@@ -122,8 +122,8 @@ pub fn scalar_from_json<T: InputScalar>(
     field: &str,
     floats: bool,
 ) -> Result<T, CaseError> {
-    let (x, tiny) = read::<T>(value, field)?;
-    if tiny && !(floats && value.is_number()) {
+    let (x, tiny) = read::<T>(value, field, floats)?;
+    if tiny {
         return Err(CaseError::new(
             field,
             format!(
@@ -140,9 +140,15 @@ pub fn scalar_from_json<T: InputScalar>(
     Ok(x)
 }
 
-/// The number at `field` and whether it lies below the normal range of `T`
-/// ([`InputScalar::below_normal`]).
-pub(crate) fn read<T: InputScalar>(value: &Value, field: &str) -> Result<(T, bool), CaseError> {
+/// The number at `field` and whether it was rounded below the normal range of `T`
+/// ([`InputScalar::below_normal`]); with `floats`, a JSON number is a float of `T` in its
+/// shortest round-trip form ([`crate::case::Case::from_floats`]): read as that float, it
+/// lost nothing.
+pub(crate) fn read<T: InputScalar>(
+    value: &Value,
+    field: &str,
+    floats: bool,
+) -> Result<(T, bool), CaseError> {
     let Some(text) = number_text(value) else {
         return Err(CaseError::new(
             field,
@@ -153,7 +159,7 @@ pub(crate) fn read<T: InputScalar>(value: &Value, field: &str) -> Result<(T, boo
         ));
     };
     let x = T::parse_number(text).map_err(|m| CaseError::new(field, m))?;
-    let tiny = T::below_normal(text, &x);
+    let tiny = T::below_normal(text, &x) && !(floats && value.is_number());
     Ok((x, tiny))
 }
 

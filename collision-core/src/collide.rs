@@ -27,8 +27,9 @@ pub use fma::{collide_unchecked_fma, fma_in_hardware};
 /// In floats the kernel runs with an unbounded exponent ([`crate::Wide`]): the result is
 /// the format's kernel result bit for bit wherever that kernel stays in range, and right where
 /// an intermediate quantity would overflow or underflow. A result that does not fit the format
-/// (a component beyond its range, or a body's whole result below its normal range) is an
-/// error naming the inputs that drive it.
+/// (a component beyond its range, or a body whose components below the normal range would
+/// cost more than the rounding allowance of its energy norm) is an error naming the inputs
+/// that drive it.
 ///
 /// An immovable body (`inv_mass = 0`) comes back unchanged; the map is then the `fixed`
 /// kernel (with the bodies swapped and `nu` negated when body 2 is the immovable one).

@@ -6,9 +6,10 @@
 //! the precision of the format whatever its magnitude (`R_2 U_2` for `R_2 = 8e307`,
 //! `1/(R_2 D)`, products of tiny inverse masses), and the result is the format's kernel
 //! result bit for bit wherever that kernel stays in range. A result is refused only when it
-//! does not fit the format: a component beyond its range, or a body whose whole result lies
-//! below its normal range (it would come back with fewer significant bits than the rounding
-//! allowance). The error names the inputs that drive it.
+//! does not fit the format: a component beyond its range, or a body whose components below
+//! the normal range would cost, rounded, more than the rounding allowance of its energy norm
+//! `sqrt(gamma2 R^2 |U|^2 + |u|^2)`. The error names the component that costs most and the
+//! input that drives it.
 
 use crate::allowance;
 use crate::error::{BodyField, Field, InputError};

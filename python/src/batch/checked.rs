@@ -5,8 +5,8 @@
 //! `collide` checks the inputs under the rounding allowance (and clamps: `nu`
 //! renormalised, `gamma2` set to its bound, a grazing normal velocity removed), runs the
 //! kernel with an unbounded exponent (`collision_core::Wide`) and rounds the results back,
-//! refusing a result beyond the float type's range or a body's whole result below its
-//! normal range. The batch kernels in the float type agree with it only where no
+//! refusing a result beyond the float type's range or one whose components below the
+//! normal range would cost more than the rounding allowance of the body's energy norm. The batch kernels in the float type agree with it only where no
 //! intermediate leaves the range and nothing is clamped: a velocity of `1e308` against an
 //! immovable body overflowed to `-inf` in the kernel where `collide` returns the finite
 //! `3.3e307`, and a velocity of `5e-324` came back subnormal where `collide` refuses it
