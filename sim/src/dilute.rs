@@ -59,13 +59,13 @@ pub fn contact_rate<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     }
     // Lengths in units of the longest side, so that no power over- or underflows needlessly.
     let size = sim.box_size();
-    let side = size.iter().copied().fold(0.0, f64::max);
+    let side = sim.longest_side();
     let volume: f64 = size.iter().map(|l| l / side).product();
     let power = |x: f64| (x / side).powi(N as i32 - 1);
     let r_max = (0..sim.len())
         .map(|i| species[sim.species_of(i)].radius)
         .fold(0.0, f64::max);
-    let speeds: f64 = (0..sim.len()).map(|i| speed(sim, i)).sum();
+    let speeds: f64 = (0..sim.len()).map(|i| sim.speed_of(i)).sum();
     let targets = (sim.len().saturating_sub(1)) as f64 * power(2.0 * r_max)
         + sim
             .obstacles()
@@ -85,27 +85,8 @@ pub fn out_of_reach<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     box_lengths: f64,
 ) -> Option<OutOfReach> {
     let rate = contact_rate(sim, species)?;
-    let slowest = (0..sim.len())
-        .map(|i| speed(sim, i))
-        .filter(|&v| v > 0.0)
-        .fold(f64::INFINITY, f64::min);
-    if !slowest.is_finite() {
-        return None;
-    }
-    let side = sim.box_size().iter().copied().fold(0.0, f64::max);
-    let left = (MAX_QUIET_BOX_LENGTHS - box_lengths).max(0.0) * side / slowest;
+    let slowest = sim.slowest_speed()?;
+    let left = (MAX_QUIET_BOX_LENGTHS - box_lengths).max(0.0) * sim.longest_side() / slowest;
     let expected = rate * left;
     (expected < MAX_EXPECTED_CONTACTS).then_some(OutOfReach { rate, expected })
-}
-
-fn speed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
-    sim: &Simulation<N, S, K>,
-    i: usize,
-) -> f64 {
-    sim.state(i)
-        .velocity
-        .iter()
-        .map(|x| x * x)
-        .sum::<f64>()
-        .sqrt()
 }

@@ -50,15 +50,28 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Box lengths (the longest side) the slowest moving ball travelled since the last
     /// contact (0 if every ball is at rest).
     pub(super) fn quiet_travel(&self) -> f64 {
+        self.slowest_speed().map_or(0.0, |slowest| {
+            (self.now - self.last_contact) * slowest / self.longest_side()
+        })
+    }
+
+    /// The speed `|u|` of the slowest moving ball, `None` if every ball is at rest.
+    pub(crate) fn slowest_speed(&self) -> Option<f64> {
         let slowest = (0..self.len())
-            .map(|i| self.speed2_of(i).sqrt())
+            .map(|i| self.speed_of(i))
             .filter(|&v| v > 0.0)
             .fold(f64::INFINITY, f64::min);
-        if !slowest.is_finite() {
-            return 0.0;
-        }
-        let side = self.grid.size.iter().copied().fold(0.0, f64::max);
-        (self.now - self.last_contact) * slowest / side
+        slowest.is_finite().then_some(slowest)
+    }
+
+    /// The longest side of the box, the unit of box lengths.
+    pub(crate) fn longest_side(&self) -> f64 {
+        self.grid.size.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// Ball `i`'s speed `|u_i|`.
+    pub(crate) fn speed_of(&self, i: usize) -> f64 {
+        self.speed2_of(i).sqrt()
     }
 
     pub(super) fn speed2_of(&self, i: usize) -> f64 {
