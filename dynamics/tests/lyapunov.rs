@@ -207,3 +207,55 @@ fn every_block_gets_a_renormalisation_and_every_error_is_finite() {
     )
     .is_ok());
 }
+
+/// The fuzzer's hang (CI, 2026-12-03): a ball flying almost along a corridor of a periodic
+/// Sinai table, its next contact `0.3 / 2.2e-12` time units (about `10^11` box lengths) away.
+/// `simulate` stopped such a run after [`noslip_sim::run::MAX_QUIET_BOX_LENGTHS`] box lengths;
+/// `lyapunov` waited for the contact. Both methods now stop by the same rule, with its
+/// reason. (The reach is `2^20` crossings of the box, well under a second.)
+#[test]
+fn a_corridor_flight_stops_both_methods_at_the_reach_of_simulate() {
+    let text = r#"
+dim = 2
+[box]
+size = [1, 1]
+boundary = ["periodic", "periodic"]
+[[species]]
+mass = 1
+radius = "1/20"
+[[ball]]
+species = 0
+position = ["0.49", "0.8501"]
+velocity = ["-0.99165", "2.2074e-12"]
+[[obstacle]]
+position = ["1/2", "1/2"]
+radius = "3/10"
+"#;
+    let scene = Scene::from_toml(text, "corridor.toml").unwrap();
+    let options = Options {
+        events: 48,
+        k: None,
+        blocks: 3,
+        seed: 1,
+        law: None,
+        every: None,
+    };
+    let setup = || noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
+    let two = Options {
+        k: Some(1),
+        ..options
+    };
+    for e in [
+        qr(setup(), &options).unwrap_err(),
+        two_trajectory(setup(), &two).unwrap_err(),
+    ] {
+        let e = e.to_string();
+        assert!(
+            e.starts_with(
+                "the run stopped: no contact while every moving ball travelled 1048576 box lengths"
+            ),
+            "{e}"
+        );
+        assert!(e.contains("out of reach"), "{e}");
+    }
+}

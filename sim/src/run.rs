@@ -199,6 +199,38 @@ pub fn run<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     run_observed(sim, species, limits, log, progress, &mut |_, _, _| Ok(()))
 }
 
+/// Why a run that has had no contact while every moving ball travelled `box_lengths` box
+/// lengths (a [`Step::Quiet`] notice) should stop now, or `None` to go on: the reach
+/// [`MAX_QUIET_BOX_LENGTHS`] is spent, or the periodic gas is so dilute that kinetic theory
+/// expects no contact within it ([`out_of_reach`]). Every command that runs the engine to a
+/// count of contacts (`simulate`, `lyapunov`) stops by this one rule.
+pub fn quiet_stop<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+    box_lengths: f64,
+) -> Option<String> {
+    if box_lengths >= MAX_QUIET_BOX_LENGTHS {
+        return Some(format!(
+            "no contact while every moving ball travelled {box_lengths:.0} box lengths \
+             (t = {:.6e}): a next contact, if there is one, is out of reach of the run \
+             (--time bounds a run instead)",
+            sim.now()
+        ));
+    }
+    out_of_reach(sim, species, box_lengths).map(|far| {
+        format!(
+            "no contact while every moving ball travelled {box_lengths:.0} box lengths \
+             (t = {:.6e}), and this periodic gas is so dilute that kinetic theory expects at \
+             most {:.1e} contacts per unit time, {:.1e} before every moving ball has travelled \
+             {MAX_QUIET_BOX_LENGTHS:.0e} box lengths: a next contact, if there is one, is out \
+             of reach of the run (--time bounds a run instead)",
+            sim.now(),
+            far.rate,
+            far.expected
+        )
+    })
+}
+
 /// What [`run_observed`] calls after each contact: `(index, event, simulation)`.
 pub type Observer<'a, const N: usize, const S: usize, K> =
     dyn FnMut(u64, &Event<N, S>, &Simulation<N, S, K>) -> io::Result<()> + 'a;
@@ -243,27 +275,8 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
                 break;
             }
             Step::Quiet { box_lengths } => {
-                if box_lengths >= MAX_QUIET_BOX_LENGTHS {
-                    stopped = Some(format!(
-                        "no contact while every moving ball travelled {box_lengths:.0} box \
-                         lengths (t = {:.6e}): a next contact, if there is one, is out of reach \
-                         of the run (--time bounds a run instead)",
-                        sim.now()
-                    ));
-                    break;
-                }
-                if let Some(far) = out_of_reach(sim, species, box_lengths) {
-                    stopped = Some(format!(
-                        "no contact while every moving ball travelled {box_lengths:.0} box \
-                         lengths (t = {:.6e}), and this periodic gas is so dilute that kinetic \
-                         theory expects at most {:.1e} contacts per unit time, {:.1e} before every \
-                         moving ball has travelled {MAX_QUIET_BOX_LENGTHS:.0e} box lengths: a next \
-                         contact, if there is one, is out of reach of the run (--time bounds a run \
-                         instead)",
-                        sim.now(),
-                        far.rate,
-                        far.expected
-                    ));
+                if let Some(why) = quiet_stop(sim, species, box_lengths) {
+                    stopped = Some(why);
                     break;
                 }
                 progress(Progress::Quiet {

@@ -21,7 +21,7 @@ pub use qr::{choice, qr};
 pub use two::{two_trajectory, D0};
 
 use crate::law::Law;
-use collision_core::{BodyState, Generated, Kernel};
+use collision_core::{Ball, BodyState, Generated, Kernel};
 use noslip_sim::{Event, Setup, SetupError, Simulation, Step};
 use serde::Serialize;
 use stats::Estimate;
@@ -215,15 +215,24 @@ impl fmt::Display for LyapunovError {
 
 impl std::error::Error for LyapunovError {}
 
-/// The next contact of the engine (quiet notices are passed over).
+/// The next contact of the engine. A quiet notice is passed over unless the run should stop
+/// there by the rule `simulate` stops by ([`noslip_sim::run::quiet_stop`]: the reach of
+/// [`noslip_sim::run::MAX_QUIET_BOX_LENGTHS`] spent, or a periodic gas too dilute to meet
+/// within it), so a flight along a corridor cannot hold a run for ever.
 fn next_contact<const N: usize, const S: usize, K: noslip_sim::PairKernels<f64, N, S>>(
     sim: &mut Simulation<N, S, K>,
+    species: &[Ball<f64>],
 ) -> Result<Event<N, S>, LyapunovError> {
     loop {
         match sim.step(f64::INFINITY) {
             Step::Contact(e) => return Ok(e),
             Step::Never(why) => return Err(LyapunovError::NoContact(why.to_string())),
-            Step::Quiet { .. } | Step::Until => {}
+            Step::Quiet { box_lengths } => {
+                if let Some(why) = noslip_sim::run::quiet_stop(sim, species, box_lengths) {
+                    return Err(LyapunovError::NoContact(why));
+                }
+            }
+            Step::Until => {}
         }
     }
 }

@@ -125,7 +125,7 @@ where
     let fly =
         |v: &mut [f64], b: usize, dt: f64| flight::<f64, N>(&mut v[b * len..(b + 1) * len], &dt);
     for c in 1..=plan.events {
-        let e = next_contact(&mut sim)?;
+        let e = next_contact(&mut sim, &species)?;
         let law = Law::from(sim.contact_kind(&e.contact));
         match touch(&e.contact, sim.geometry(&e.contact), radius) {
             Touch::Boundary { ball, geometry } => {

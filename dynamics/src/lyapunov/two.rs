@@ -73,7 +73,7 @@ where
         let (mut a, mut b): (Vec<Contact>, Vec<Contact>) = (Vec::new(), Vec::new());
         let mut t = 0.0;
         for _ in 0..every.min(plan.events - c) {
-            let e = next_contact(&mut reference)?;
+            let e = next_contact(&mut reference, &kernels.species)?;
             a.push(unordered(&e.contact));
             t = e.time;
             c += 1;
@@ -81,7 +81,7 @@ where
         let mut second_time = offset;
         loop {
             while b.len() < a.len() {
-                let e = next_contact(&mut second)?;
+                let e = next_contact(&mut second, &kernels.species)?;
                 b.push(unordered(&e.contact));
                 second_time = offset + e.time;
             }
@@ -91,7 +91,7 @@ where
             if a.len() > every as usize + SLACK || c >= plan.events {
                 return Err(LyapunovError::Diverged { at: c });
             }
-            let e = next_contact(&mut reference)?;
+            let e = next_contact(&mut reference, &kernels.species)?;
             a.push(unordered(&e.contact));
             t = e.time;
             c += 1;
