@@ -1,5 +1,5 @@
 //! Contacts per second of the event loop on hard-ball gases built here, against the number of
-//! balls `N` and the packing fraction `phi` (issue 15):
+//! balls `N` and the packing fraction `phi` (issue 15), in 2 to 6 dimensions:
 //!
 //! ```text
 //! cargo run --release -p noslip-sim --example event_rate -- \
@@ -266,7 +266,10 @@ fn main() {
                 let r = match dim {
                     2 => measure::<2, 1>(balls, phi, &opts),
                     3 => measure::<3, 3>(balls, phi, &opts),
-                    _ => Err(format!("dimension {dim}: only 2 and 3 here")),
+                    4 => measure::<4, 6>(balls, phi, &opts),
+                    5 => measure::<5, 10>(balls, phi, &opts),
+                    6 => measure::<6, 15>(balls, phi, &opts),
+                    _ => Err(format!("dimension {dim}: only 2..6 here")),
                 };
                 match r {
                     Ok(r) => {

@@ -184,13 +184,44 @@ impl<const N: usize> Grid<N> {
     /// (offsets outside a walled side skipped). No division: per axis, the at most `2 K_k + 1`
     /// cells (and shifts, `floor((c_k + delta) / n_k)`) are listed first, then combined.
     #[inline]
-    pub(crate) fn for_neighbours(&self, c: &[usize; N], mut f: impl FnMut(Neighbour<N>)) {
+    pub(crate) fn for_neighbours(&self, c: &[usize; N], f: impl FnMut(Neighbour<N>)) {
+        self.for_cells(c, None, f);
+    }
+
+    /// Calls `f` for the cells newly within reach after a move from cell `c - step e_axis`
+    /// to `c` (`step` = +1 or -1 along `axis`): the layer of offset `step K_axis` along `axis`,
+    /// every offset within reach along the others, in [`Grid::for_neighbours`]' order. With
+    /// the cells within reach of the cell left, they are every cell within reach of `c`.
+    #[inline]
+    pub(crate) fn for_layer(
+        &self,
+        c: &[usize; N],
+        axis: usize,
+        step: i64,
+        f: impl FnMut(Neighbour<N>),
+    ) {
+        self.for_cells(c, Some((axis, step * self.reach[axis])), f);
+    }
+
+    /// [`Grid::for_neighbours`], or with `only = (axis, delta)` the offset `delta` alone along
+    /// `axis`.
+    #[inline]
+    fn for_cells(
+        &self,
+        c: &[usize; N],
+        only: Option<(usize, i64)>,
+        mut f: impl FnMut(Neighbour<N>),
+    ) {
         let mut part = [[0usize; 5]; N];
         let mut shifts = [[0i8; 5]; N];
         let mut len = [0usize; N];
         for k in 0..N {
             let n = self.n[k] as i64;
-            for delta in -self.reach[k]..=self.reach[k] {
+            let deltas = match only {
+                Some((axis, delta)) if axis == k => delta..=delta,
+                _ => -self.reach[k]..=self.reach[k],
+            };
+            for delta in deltas {
                 let (mut t, mut s) = (c[k] as i64 + delta, 0i8);
                 if self.periodic[k] {
                     while t < 0 {
@@ -209,7 +240,11 @@ impl<const N: usize> Grid<N> {
                 len[k] += 1;
             }
         }
-        // An odometer over the product (each axis lists at least c_k itself).
+        // An odometer over the product (each axis lists at least c_k itself, but a layer
+        // beyond a wall lists nothing).
+        if len.contains(&0) {
+            return;
+        }
         let mut at = [0usize; N];
         loop {
             f(Neighbour {
@@ -244,6 +279,60 @@ fn strides<const N: usize>(n: &[usize; N]) -> [usize; N] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The (cell, shift) pairs `f` is called with.
+    fn listed<const N: usize>(
+        visit: impl FnOnce(&mut dyn FnMut(Neighbour<N>)),
+    ) -> Vec<(usize, [i8; N])> {
+        let mut out = Vec::new();
+        visit(&mut |nb: Neighbour<N>| out.push((nb.cell, nb.shift)));
+        out
+    }
+
+    #[test]
+    fn a_layer_is_the_new_cells_within_reach_after_a_move() {
+        // 2D: a periodic axis of 6 cells (reach 1), a walled one of 5; then a periodic axis of
+        // one cell shorter than the contact distance (reach 2).
+        let g = Grid::<2>::new([10.0, 8.0], [true, false], 1.5, 40).unwrap();
+        assert_eq!((g.n, g.reach()), ([6, 5], [1, 1]));
+        let moves = [
+            ([0, 0], 0, 1),
+            ([0, 0], 0, -1),
+            ([5, 2], 0, 1),
+            ([1, 2], 1, 1),
+            ([1, 1], 1, -1),
+        ];
+        for (from, axis, step) in moves {
+            let mut to: [usize; 2] = from;
+            to[axis] = ((from[axis] as i64 + step).rem_euclid(g.n[axis] as i64)) as usize;
+            let all = listed(|f| g.for_neighbours(&to, f));
+            let old = listed(|f| g.for_neighbours(&from, f));
+            let layer = listed(|f| g.for_layer(&to, axis, step, f));
+            // Every layer cell is within reach of the new cell, none of the old one (by
+            // cell index: with 6 cells, offset 2 from the old cell is not within reach).
+            assert!(
+                layer.iter().all(|x| all.contains(x)),
+                "{from:?} {axis} {step}"
+            );
+            assert!(
+                layer.iter().all(|(c, _)| old.iter().all(|(o, _)| o != c)),
+                "{from:?}"
+            );
+            // Together with the old cells, every new one: |layer| = |all| - |kept|.
+            let kept = all
+                .iter()
+                .filter(|(c, _)| old.iter().any(|(o, _)| o == c))
+                .count();
+            assert_eq!(layer.len() + kept, all.len(), "{from:?} {axis} {step}");
+        }
+        // Towards a wall from the last cell there is no layer.
+        assert!(listed(|f| g.for_layer(&[2, 4], 1, 1, f)).is_empty());
+        // Reach 2: the layer is the offset +-2.
+        let g = Grid::<1>::new([1.0], [true], 1.5, 2).unwrap();
+        assert_eq!(g.reach(), [2]);
+        assert_eq!(listed(|f| g.for_layer(&[0], 0, 1, f)), vec![(0, [2])]);
+        assert_eq!(listed(|f| g.for_layer(&[0], 0, -1, f)), vec![(0, [-2])]);
+    }
 
     #[test]
     fn sides_that_are_multiples_of_the_contact_distance_have_reach_one() {

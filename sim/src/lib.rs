@@ -28,6 +28,7 @@
 #![warn(missing_docs, unreachable_pub)]
 
 pub mod boundary_map;
+mod canonical;
 mod cells;
 pub mod dilute;
 pub mod engine;
@@ -47,6 +48,8 @@ pub mod portrait;
 pub mod predict;
 mod queue;
 pub mod range;
+#[cfg(test)]
+mod reference;
 mod residents;
 pub mod run;
 pub mod setup;

@@ -3,14 +3,15 @@
 //!
 //! Ball `i`'s pending event has a time `t_i >= 0` (on the engine's local clock) and a bucket
 //! `b_i = floor(t_i / delta)`. The calendar keeps a current bucket `c` and:
-//! - every ball with `b_i <= c` in a binary heap ordered by `(t_i, i)`;
+//! - every ball with `b_i <= c` in a binary heap ordered by `(t_i, key_i, i)` (the key orders
+//!   the events of one time, [`crate::canonical`]);
 //! - every ball with `c < b_i < c + B` in bucket `b_i mod B`, an unordered list (`B`, a power
 //!   of two, the number of buckets);
 //! - every later ball in an overflow list, moved into the buckets each time `c` reaches a
 //!   multiple of `B` (before it can reach their bucket).
 //!
-//! Since `t < t'` implies `b <= b'`, the heap's least `(t_i, i)` is the least over all balls:
-//! the pop order is exactly the order of `(t_i, i)`, ties by ball index, whatever `delta` and
+//! Since `t < t'` implies `b <= b'`, the heap's least `(t_i, key_i, i)` is the least over all
+//! balls: the pop order is exactly that order, whatever `delta` and
 //! `B` (deterministic). When the heap is empty the next bucket is loaded into it (or, if every
 //! bucket is empty, `c` jumps to the overflow's earliest bucket). Setting or removing a ball's
 //! event is `O(1)` in a bucket or the overflow (a swap-remove; each ball knows its place) and
@@ -19,21 +20,22 @@
 //! the next event, `h` is a few and the overflow small: the cost per event does not grow
 //! with the number of balls. Nothing is allocated once the lists have grown.
 
+use crate::canonical::Key;
+
 /// What ball `i` will meet.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum What<const N: usize> {
-    /// Ball `j` as of `j`'s counter `count`, its image named in unwrapped coordinates: the
-    /// cell shift `s` (box lengths on periodic axes) minus `j`'s wrap counters plus the
-    /// owner's, modulo 256 (see the engine's image rule).
+    /// Ball `j` as of `j`'s counter `count`, at image `image`: box lengths on periodic axes,
+    /// in the owner's record coordinates (`crate::canonical`).
     Ball {
         j: u32,
         count: u32,
-        shift: [i8; N],
+        image: [i16; N],
     },
-    /// Obstacle `o` shifted by `shift_k L_k` (the owner does not wrap while this is pending).
+    /// Obstacle `o` at image `image` (box lengths, in the owner's record coordinates).
     Obstacle {
         o: u32,
-        shift: [i8; N],
+        image: [i16; N],
     },
     Wall {
         axis: u8,
@@ -63,10 +65,11 @@ enum Place {
     Overflow(u32),
 }
 
-/// A ball's pending time and its place.
+/// A ball's pending time, its event's key and its place.
 #[derive(Clone, Copy, Debug)]
 struct Slot {
     time: f64,
+    key: Key,
     place: Place,
 }
 
@@ -75,7 +78,7 @@ struct Slot {
 pub(crate) struct Calendar {
     /// Per ball: `t_i` and where its event is kept (one record: one cache line to read).
     slots: Vec<Slot>,
-    /// Balls with `b_i <= current`, a binary heap on `(t_i, i)`.
+    /// Balls with `b_i <= current`, a binary heap on `(t_i, key_i, i)`.
     heap: Vec<u32>,
     /// Balls with `current < b_i < current + B`, in bucket `b_i mod B`.
     buckets: Vec<Vec<u32>>,
@@ -97,6 +100,7 @@ impl Calendar {
             slots: vec![
                 Slot {
                     time: f64::INFINITY,
+                    key: 0,
                     place: Place::None,
                 };
                 balls
@@ -127,17 +131,19 @@ impl Calendar {
     }
 
     fn less(&self, a: u32, b: u32) -> bool {
-        self.slots[a as usize]
-            .time
-            .total_cmp(&self.slots[b as usize].time)
+        let (x, y) = (&self.slots[a as usize], &self.slots[b as usize]);
+        x.time
+            .total_cmp(&y.time)
+            .then(x.key.cmp(&y.key))
             .then(a.cmp(&b))
             .is_lt()
     }
 
-    /// Ball `ball`'s pending event is now at `time` (replacing any it had).
-    pub(crate) fn set(&mut self, ball: usize, time: f64) {
+    /// Ball `ball`'s pending event is now at `time`, with key `key` (replacing any it had).
+    pub(crate) fn set(&mut self, ball: usize, time: f64, key: Key) {
         self.remove(ball);
         self.slots[ball].time = time;
+        self.slots[ball].key = key;
         self.insert(ball as u32);
     }
 
@@ -191,7 +197,7 @@ impl Calendar {
         }
     }
 
-    /// The earliest pending event `(t_i, i)` (least `t_i`, then least `i`), if any.
+    /// The earliest pending event `(t_i, i)` (least `(t_i, key_i, i)`), if any.
     pub(crate) fn peek(&mut self) -> Option<(f64, usize)> {
         while self.heap.is_empty() {
             if self.in_buckets == 0 {
@@ -326,31 +332,34 @@ mod tests {
     use super::*;
     use std::collections::BTreeSet;
 
-    /// A reference: the set of `(t_i, i)`, ordered as the calendar must pop them.
+    /// A reference: the set of `(t_i, key_i, i)`, ordered as the calendar must pop them.
     #[derive(Default)]
     struct Reference {
-        set: BTreeSet<(u64, usize)>,
-        time: std::collections::HashMap<usize, f64>,
+        set: BTreeSet<(u64, Key, usize)>,
+        time: std::collections::HashMap<usize, (f64, Key)>,
     }
 
     /// `t >= 0` (and +0.0) orders as its bits.
-    fn key(t: f64) -> u64 {
+    fn bits(t: f64) -> u64 {
         t.to_bits()
     }
 
     impl Reference {
-        fn set(&mut self, i: usize, t: f64) {
+        fn set(&mut self, i: usize, t: f64, key: Key) {
             self.remove(i);
-            self.set.insert((key(t), i));
-            self.time.insert(i, t);
+            self.set.insert((bits(t), key, i));
+            self.time.insert(i, (t, key));
         }
         fn remove(&mut self, i: usize) {
-            if let Some(t) = self.time.remove(&i) {
-                self.set.remove(&(key(t), i));
+            if let Some((t, key)) = self.time.remove(&i) {
+                self.set.remove(&(bits(t), key, i));
             }
         }
         fn first(&self) -> Option<(f64, usize)> {
-            self.set.iter().next().map(|&(t, i)| (f64::from_bits(t), i))
+            self.set
+                .iter()
+                .next()
+                .map(|&(t, _, i)| (f64::from_bits(t), i))
         }
     }
 
@@ -383,10 +392,12 @@ mod tests {
             2 => 0.25 * rng.below(4) as f64, // ties
             _ => rng.unit(),
         };
+        // Few keys, so that equal times often have equal keys too (then the ball decides).
+        let key = |rng: &mut Rng| rng.below(4) as Key;
         for i in 0..balls {
-            let t = ahead(&mut rng);
-            cal.set(i, t);
-            reference.set(i, t);
+            let (t, k) = (ahead(&mut rng), key(&mut rng));
+            cal.set(i, t, k);
+            reference.set(i, t, k);
         }
         cal.rebuild(0.0);
         let mut now = 0.0;
@@ -406,30 +417,30 @@ mod tests {
                     // Re-base: every time moves back by now.
                     cal.rebuild(now);
                     reference.set.clear();
-                    let times: Vec<(usize, f64)> = reference.time.drain().collect();
-                    for (j, tj) in times {
-                        reference.set(j, (tj - now).max(0.0));
+                    let times: Vec<(usize, (f64, Key))> = reference.time.drain().collect();
+                    for (j, (tj, k)) in times {
+                        reference.set(j, (tj - now).max(0.0), k);
                     }
                     now = 0.0;
                 }
                 _ => {
-                    let t = now + ahead(&mut rng);
-                    cal.set(i, t);
-                    reference.set(i, t);
+                    let (t, k) = (now + ahead(&mut rng), key(&mut rng));
+                    cal.set(i, t, k);
+                    reference.set(i, t, k);
                 }
             }
             // Another ball re-predicted (a partner), or one that had none gets one.
             let j = rng.below(balls);
             if rng.below(3) == 0 {
-                let t = now + ahead(&mut rng);
-                cal.set(j, t);
-                reference.set(j, t);
+                let (t, k) = (now + ahead(&mut rng), key(&mut rng));
+                cal.set(j, t, k);
+                reference.set(j, t, k);
             }
         }
     }
 
     #[test]
-    fn pops_in_time_then_ball_order_like_a_sorted_set() {
+    fn pops_in_time_then_key_then_ball_order_like_a_sorted_set() {
         for (balls, seed) in [(1, 1), (2, 2), (7, 3), (100, 4), (1000, 5)] {
             agree(balls, 20_000, seed);
         }
@@ -438,16 +449,16 @@ mod tests {
     #[test]
     fn far_events_and_empty_buckets_are_reached() {
         let mut cal = Calendar::new(3);
-        cal.set(0, 1.0);
-        cal.set(1, 2.0);
+        cal.set(0, 1.0, 0);
+        cal.set(1, 2.0, 0);
         cal.rebuild(0.0);
         // Far beyond the horizon, then the near ones go away: a jump over empty buckets.
-        cal.set(2, 1e12);
+        cal.set(2, 1e12, 0);
         assert_eq!(cal.peek(), Some((1.0, 0)));
         cal.remove(0);
         cal.remove(1);
         assert_eq!(cal.peek(), Some((1e12, 2)));
-        cal.set(2, f64::INFINITY);
+        cal.set(2, f64::INFINITY, 0);
         assert_eq!(cal.peek(), Some((f64::INFINITY, 2)));
         cal.remove(2);
         assert_eq!((cal.peek(), cal.len()), (None, 0));

@@ -15,6 +15,9 @@ use collision_core::batch::prefetch;
 pub(crate) struct Resident<const N: usize> {
     /// Its flight.
     pub motion: Motion<N>,
+    /// Its wraps `W_i` across periodic faces since its record moved: its centre in the box
+    /// is `a_i + (t - t_i) u_i - W_i L` (`crate::canonical`).
+    pub wraps: [i16; N],
     /// The ball's index.
     pub ball: u32,
 }
@@ -45,7 +48,14 @@ impl<const N: usize> Residents<N> {
     pub(crate) fn push(&mut self, cell: usize, motion: Motion<N>) {
         let ball = self.home.len() as u32;
         self.home.push((cell as u32, self.cells[cell].len() as u32));
-        self.append(cell, Resident { motion, ball });
+        self.append(
+            cell,
+            Resident {
+                motion,
+                wraps: [0; N],
+                ball,
+            },
+        );
     }
 
     /// Appends `resident` to `cell`'s list, growing it by one record when full (a list's
@@ -100,8 +110,25 @@ impl<const N: usize> Residents<N> {
     /// Ball `ball`'s flight, to change.
     #[inline]
     pub(crate) fn get_mut(&mut self, ball: usize) -> &mut Motion<N> {
+        &mut self.resident_mut(ball).motion
+    }
+
+    /// Ball `ball`'s wraps since its record moved.
+    #[inline]
+    pub(crate) fn wraps(&self, ball: usize) -> [i16; N] {
         let (c, s) = self.home[ball];
-        &mut self.cells[c as usize][s as usize].motion
+        self.cells[c as usize][s as usize].wraps
+    }
+
+    /// Ball `ball`'s wraps, to change.
+    #[inline]
+    pub(crate) fn wraps_mut(&mut self, ball: usize) -> &mut [i16; N] {
+        &mut self.resident_mut(ball).wraps
+    }
+
+    fn resident_mut(&mut self, ball: usize) -> &mut Resident<N> {
+        let (c, s) = self.home[ball];
+        &mut self.cells[c as usize][s as usize]
     }
 
     /// Moves ball `ball` to cell `to`: swap-removed from its cell, appended to `to`.

@@ -155,14 +155,16 @@ where
 
 /// The tolerance of the contact geometry, relative to the contact distance `sigma`:
 /// `64 eps (L_max / sigma + 1)`. Centres are coordinates in `[0, L_k]`, each the result of a
-/// few roundings of size `eps L_k` (free flight `a + u dt`, the wrap `a - L`, the image
-/// `b + s L`), and the local clock's rounding moves a ball by at most `16 eps w_min <= 16 eps
-/// L` (engine docs); the contact time solves `|d + t dv|^2 = sigma^2` from those centres with a
-/// residual of a few `eps sigma^2`. So `|d|` is within `64 eps (L_max + sigma)` of `sigma`, and
-/// the engine's `nu` (from the same centres, through the stored image) within `64 eps (L_max /
-/// sigma + 1)` of the test's unit minimum-image line. A contact with the wrong image is off by
-/// O(1) in `nu`; the clock's rounding at absolute times `t` (before the local clock) moved
-/// centres by `eps t |u|`.
+/// few roundings of size `eps L_k` (free flight `a + u dt` from the record, the fold into the
+/// box, the image `b + k L`); the local clock's rounding moves a ball by `eps` times its
+/// flight since the last re-basing; the contact time is solved from the closest approach
+/// (`predict::contact_time`), whose roundings are of the size of the centres' offset, not its
+/// square. So `|d|` is within `64 eps (L_max + sigma)` of `sigma`, and the engine's `nu` (from
+/// the same centres, through the stored image) within `64 eps (L_max / sigma + 1)` of the
+/// test's unit minimum-image line. A contact with the wrong image is off by O(1) in `nu`; the
+/// clock's rounding at absolute times `t` (before the local clock) moved centres by
+/// `eps t |u|`, and the form of the root through `|d|^2 - sigma^2` by `eps |d|^2 / sigma`
+/// after a long flight (5e-12 on the Sinai table with canonical contact times).
 fn tolerance<const N: usize>(size: &[f64; N], sigma: f64) -> f64 {
     let side = size.iter().copied().fold(0.0, f64::max);
     64.0 * f64::EPSILON * (side / sigma + 1.0)

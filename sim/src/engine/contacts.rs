@@ -2,22 +2,28 @@
 //! the contact normal, the counters, and the re-prediction of the balls involved.
 
 use super::{Contact, Event, Simulation};
+use crate::canonical::{obstacle_image, pair_offset, rebase_at};
 use crate::no_contact::QUIET_BOX_LENGTHS;
 use crate::normal::unit;
+use crate::orientation::{exp_skew, mul};
 use crate::smooth;
 use crate::table::ContactKind;
 use crate::PairKernels;
 use collision_core::BodyState;
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
-    /// After a contact changed the velocities of `balls`: raise the speed bound and re-base
-    /// the clock if it is due, before the new predictions.
-    pub(super) fn after_contact(&mut self, balls: [usize; 2]) {
+    /// After a contact at local time `t` changed the velocities of `balls`: raise the speed
+    /// bound and re-base the clock at `t` if the lowered re-basing time is past (every ball
+    /// is then predicted again), else predict the balls involved.
+    pub(super) fn after_contact(&mut self, balls: [usize; 2], t: f64) {
         for b in balls {
             self.speed2 = self.speed2.max(self.speed2_of(b));
         }
-        if self.clock_due() {
-            self.rebase();
+        self.quiet_rebases = 0;
+        self.rebase_at = rebase_at(self.span2, self.speed2, 0, self.any_periodic());
+        if t > self.rebase_at {
+            self.rebase(t, false);
+            return;
         }
         self.predict(balls[0]);
         if balls[1] != balls[0] {
@@ -25,42 +31,68 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
     }
 
-    pub(super) fn ball_ball(&mut self, i: usize, j: usize, unwrapped: &[i8; N]) -> Event<N, S> {
-        self.advance(i);
-        self.advance(j);
-        // The image the contact was predicted with: s' + w_j - w_i (module docs).
-        let shift = std::array::from_fn(|k| {
-            unwrapped[k]
-                .wrapping_add(self.wraps[j][k])
-                .wrapping_sub(self.wraps[i][k])
-        });
-        let b = self.image(j, &shift);
-        let nu = unit(std::array::from_fn(|k| b[k] - self.motion.get(i).pos[k]));
-        let pre = [self.state[i].clone(), self.state[j].clone()];
-        let [si, sj] = match self.table.ball_contact {
+    /// Moves ball `b`'s record to the contact's time `t` and turns its orientation there
+    /// (by the spin before the contact).
+    fn settle(&mut self, b: usize, t: f64) {
+        self.move_record(b, t);
+        if let Some(a) = &mut self.orientation {
+            let dt = std::mem::take(&mut self.unturned[b]);
+            if dt != 0.0 {
+                a[b] = mul(&exp_skew::<N>(&self.state[b].spin, dt), &a[b]);
+            }
+        }
+    }
+
+    /// The contact of balls `i` and `j` (`j` at image `image` in `i`'s record coordinates)
+    /// at local time `t`: body 1 is the lower index, `nu` along the canonical offset
+    /// ([`pair_offset`]).
+    pub(super) fn ball_ball(
+        &mut self,
+        i: usize,
+        j: usize,
+        image: &[i16; N],
+        t: f64,
+    ) -> Event<N, S> {
+        let (lo, hi, image) = if i < j {
+            (i, j, *image)
+        } else {
+            (j, i, image.map(|k| -k))
+        };
+        let d = pair_offset(
+            self.motion.get(lo),
+            self.motion.get(hi),
+            &image,
+            &self.grid.size,
+            t,
+        );
+        let nu = unit(d);
+        self.settle(lo, t);
+        self.settle(hi, t);
+        let pre = [self.state[lo].clone(), self.state[hi].clone()];
+        let [s1, s2] = match self.table.ball_contact {
             ContactKind::NoSlip => {
                 self.kernels
-                    .ball_ball(self.kind[i], self.kind[j], &nu, &pre[0], &pre[1])
+                    .ball_ball(self.kind[lo], self.kind[hi], &nu, &pre[0], &pre[1])
             }
             ContactKind::Smooth => {
                 let (w1, w2) = (
-                    self.species[self.kind[i]].inv_mass,
-                    self.species[self.kind[j]].inv_mass,
+                    self.species[self.kind[lo]].inv_mass,
+                    self.species[self.kind[hi]].inv_mass,
                 );
                 smooth::pair(&nu, &w1, &w2, &pre[0], &pre[1])
             }
         };
-        self.last[i] = 0;
-        self.last[j] = 0;
-        self.state[i] = si;
-        self.state[j] = sj;
-        let event = self.finish(Contact::Ball { i, j }, nu, [i, j], pre);
-        self.after_contact([i, j]);
+        self.last[lo] = 0;
+        self.last[hi] = 0;
+        self.state[lo] = s1;
+        self.state[hi] = s2;
+        let event = self.finish(Contact::Ball { i: lo, j: hi }, nu, [lo, hi], pre, t);
+        self.after_contact([lo, hi], t);
         event
     }
 
-    pub(super) fn ball_wall(&mut self, i: usize, axis: usize, upper: bool) -> Event<N, S> {
-        self.advance(i);
+    pub(super) fn ball_wall(&mut self, i: usize, axis: usize, upper: bool, t: f64) -> Event<N, S> {
+        self.settle(i, t);
         let nu = std::array::from_fn(|k| {
             if k != axis {
                 0.0
@@ -76,40 +108,49 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
         };
         self.last[i] = 0;
-        let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre);
-        self.after_contact([i, i]);
+        let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre, t);
+        self.after_contact([i, i], t);
         event
     }
 
-    pub(super) fn ball_obstacle(&mut self, i: usize, o: usize, shift: &[i8; N]) -> Event<N, S> {
-        self.advance(i);
-        let b = self.obstacle_image(o, shift);
-        let nu = unit(std::array::from_fn(|k| self.motion.get(i).pos[k] - b[k]));
+    /// The contact of ball `i` with obstacle `o` at image `image` at local time `t`.
+    pub(super) fn ball_obstacle(
+        &mut self,
+        i: usize,
+        o: usize,
+        image: &[i16; N],
+        t: f64,
+    ) -> Event<N, S> {
+        let p = self.motion.get(i).at(t);
+        let b = obstacle_image(&self.obstacles[o].position, image, &self.grid.size);
+        let nu = unit(std::array::from_fn(|k| p[k] - b[k]));
+        self.settle(i, t);
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match self.table.obstacle(o) {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
             ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
         };
         self.last[i] = 0;
-        let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre);
-        self.after_contact([i, i]);
+        let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre, t);
+        self.after_contact([i, i], t);
         event
     }
 
     /// A contact with boundary `b`: the `fixed` kernel (no-slip) or the specular map
     /// (smooth) at the boundary's local normal (see [`crate::table`]).
-    pub(super) fn ball_boundary(&mut self, i: usize, b: usize) -> Event<N, S> {
-        self.advance(i);
+    pub(super) fn ball_boundary(&mut self, i: usize, b: usize, t: f64) -> Event<N, S> {
+        let p = self.motion.get(i).at(t);
+        let nu = self.table.boundaries[b].shape.normal(&p);
+        self.settle(i, t);
         let boundary = &self.table.boundaries[b];
-        let nu = boundary.shape.normal(&self.motion.get(i).pos);
         let pre = [self.state[i].clone(), self.state[i].clone()];
         self.state[i] = match boundary.contact {
             ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
             ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
         };
         self.last[i] = b as u32 + 1;
-        let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre);
-        self.after_contact([i, i]);
+        let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre, t);
+        self.after_contact([i, i], t);
         event
     }
 
@@ -119,6 +160,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         nu: [f64; N],
         balls: [usize; 2],
         pre: [BodyState<f64, N, S>; 2],
+        t: f64,
     ) -> Event<N, S> {
         for b in balls {
             self.motion.get_mut(b).velocity = self.state[b].velocity;
@@ -128,12 +170,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             self.count[balls[1]] += 1;
         }
         self.contacts += 1;
-        self.last_contact = self.now;
+        self.last_contact = t;
         self.quiet = 0;
         self.next_check = self.first_check();
         self.next_notice = QUIET_BOX_LENGTHS;
         Event {
-            time: self.absolute(self.now),
+            time: self.absolute(t),
             contact,
             nu,
             position: balls.map(|b| self.motion.get(b).pos),

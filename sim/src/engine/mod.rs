@@ -1,61 +1,59 @@
 //! The event loop.
 //!
-//! State: per ball a centre `a_i` valid at its own time `t_i` (balls are advanced lazily, only
-//! when they take part in an event), its velocity state, species, cell, a collision counter
-//! `count_i` that increases whenever its velocity changes, and wrap counters `w_i` (per axis,
-//! modulo 256) that count its crossings of the periodic faces, so that its unwrapped centre is
-//! `a_i + w_i L`.
+//! State: per ball its flight record (`Motion`: centre `a_i` at its own time `t_i`, velocity,
+//! radius), which moves only at its contacts and at re-basings of the clock
+//! ([`crate::canonical`]), its velocity state, species, cell, a collision counter `count_i`
+//! that increases whenever its velocity changes, and its wraps `W_i` across periodic faces
+//! since its record moved, so that its centre in the box is `a_i + (t - t_i) u_i - W_i L`.
+//! Every contact time is canonical: a function of the records of the bodies that meet, so
+//! that the all-pairs reference of the tests writes the same log byte for byte (docs/engine.md).
 //!
 //! Queue invariant: every moving ball has exactly one pending event in the queue (a
 //! `Calendar` (`queue.rs`), keyed by ball: setting a ball's event replaces the one it had,
 //! so no stale entry is ever kept), its earliest predicted event as of its last prediction,
-//! and nothing later than its true next event. Events are taken in the order of their time,
-//! ties by ball index (the order among exactly simultaneous events is otherwise arbitrary);
-//! the ball whose event is taken is always re-predicted before the next one:
+//! and nothing later than its true next event. Events are taken in the canonical order of
+//! `(time, key)` (the key orders the events of one time by their lowest ball, kind, other
+//! body and image, so that exactly simultaneous events are taken alike by every engine); the
+//! ball whose event is taken is always re-predicted before the next one:
 //! - a ball-ball event whose partner's counter changed is no longer an event: the owner is
-//!   re-predicted from now (its own trajectory is unchanged, so no event of it was missed);
-//! - a cell crossing moves the ball to the next cell (wrapping on a periodic axis) and
-//!   re-predicts it against its new neighbours;
-//! - a contact advances the balls to now, applies the pair's no-slip map, bumps the counters
-//!   and re-predicts the balls involved.
+//!   re-predicted (its record is unchanged, so no event of it was missed);
+//! - a cell crossing moves the ball to the next cell (counting a wrap on a periodic axis) and
+//!   re-predicts it against its new neighbours; its record does not move, so the times it
+//!   finds are the ones any other prediction finds;
+//! - a contact moves the records of the balls involved to its time, applies the pair's map
+//!   (body 1 the lower index), bumps the counters and re-predicts them.
 //!
-//! **Layout.** What a prediction reads of every neighbour (centre, its time, velocity,
-//! radius: a `Motion`) is stored by cell (`Residents`, `residents.rs`): a cell's records are one
-//! list, in the order a list of ball indices would hold them, and a byte per cell says
-//! whether it is empty, so a scan of the `3^n` cells within reach (`Grid::for_neighbours`, no
-//! division) reads one list per occupied cell. The velocity there is a copy of the ball's
-//! state's, written at each contact. Contact times in the scan are taken without branches
-//! (`predict::contact_time_or_nan`, the same bits as `contact_time`). The calendar's lists,
-//! the cells' lists and the scan reuse their memory: nothing is allocated per event once they
-//! have grown. When the cell list outgrows the caches (`PREFETCH_FROM` cells, 2^16), a
-//! prediction first prefetches the neighbour cells' list headers, then their first records,
-//! so that the cache misses of the `3^n` cells overlap instead of following one another; the
-//! scan itself is the same. The neighbourhood is scanned in full at every prediction (a
-//! crossing too), so every contact time is computed from the same state as before these
-//! changes and the event log is the same, bit for bit.
+//! **Layout.** What a prediction reads of every neighbour (its record and its wraps) is stored
+//! by cell (`Residents`, `residents.rs`): a cell's records are one list, and a byte per cell
+//! says whether it is empty, so a scan of the `3^n` cells within reach
+//! (`Grid::for_neighbours`, no division) reads one list per occupied cell. The velocity there
+//! is a copy of the ball's state's, written at each contact. Contact times in the scan are
+//! taken without branches (`predict::contact_time_or_nan`, the same bits as
+//! `contact_time`). The calendar's lists, the cells' lists and the scan reuse their memory:
+//! nothing is allocated per event once they have grown. When the cell list outgrows the
+//! caches (`PREFETCH_FROM` cells, 2^16), a prediction first prefetches the neighbour cells'
+//! list headers, then their first records, so that the cache misses of the `3^n` cells
+//! overlap instead of following one another; the scan itself is the same.
 //!
-//! **Image rule.** A ball-ball entry stores its partner's image in unwrapped coordinates,
-//! `s - w_j + w_i` for the cell shift `s` it was predicted with: the partner may cross a
-//! periodic face (a cell crossing, which leaves its counter and so the entry valid) before
-//! the contact, and then `s` alone would name an image one box length away. At the contact
-//! the image is `s' + w_j - w_i`: exactly the image the contact time was solved for, with no
-//! minimum-image guess (which could be ambiguous on a periodic side shorter than two contact
-//! distances). The owner itself never wraps while its entry is pending (its crossings are its
-//! own entries), and obstacles never move, so obstacle entries keep the cell shift.
+//! **Images.** A ball-ball entry stores its partner's image in the owner's record
+//! coordinates, `k = s - W_j + W_i` for the cell shift `s` it was predicted with: the partner
+//! may cross a periodic face (a cell crossing, which leaves its counter and its record, and
+//! so the entry, valid) before the contact, and the image stays the one the contact time was
+//! solved for, with no minimum-image guess (which could be ambiguous on a periodic side
+//! shorter than two contact distances). An obstacle's image is `s + W_i`.
 //!
 //! **Clock.** Times are kept on a local clock `t` whose origin (an absolute time, kept as a
-//! compensated sum) is moved forward ("re-based") whenever `v_max t > 16 w_min`, `v_max` an
-//! upper bound of the speeds and `w_min` the narrowest cell: all centres are advanced to now
-//! (orientations only note the flight time, to be applied at their next update), the queue's
-//! times are shifted by `-t` (the calendar is rebuilt, its bucket width chosen again for the
-//! current event rate) and the clock restarts at 0.
-//! Rounding a local time then moves any ball by at most 16 ulps of a cell width, whatever the
-//! absolute time, so contacts stay at contact distance in long runs and after long quiet
-//! stretches (a gas started almost at rest); the check runs at each popped entry and after each
-//! contact (before the new predictions), and a rebase costs `O(balls + queue)` once per 16 cell
-//! widths travelled by the fastest ball, while every ball crosses a cell or meets another each
-//! cell width or so: amortised over many events (per 10^5 contacts of the shipped gases 26
-//! rebases in gas2d, 22 in gas3d, 242 in gas4d).
+//! compensated sum) is moved forward ("re-based") at the canonical time
+//! `T = CLOCK_CELLS w_min / v_max` ([`crate::canonical::rebase_at`]; `v_max` an upper bound of
+//! the speeds, `w_min` the narrowest cell, lowered by a contact that raises `v_max`, doubled
+//! after quiet re-basings on a table without a periodic axis): every record moves to `T`,
+//! folded into the box, the clock restarts at 0 and every ball is predicted again (the
+//! calendar's bucket width chosen again for the current event rate). Rounding a local time
+//! then moves a ball by at most `CLOCK_CELLS` ulps of a cell width, whatever the absolute
+//! time, so contacts stay at contact distance in long runs and after long quiet stretches (a
+//! gas started almost at rest), and a ball wraps at most `CLOCK_CELLS + 1` times between two
+//! moves of its record. A re-basing costs one prediction per ball, once per `CLOCK_CELLS` cell
+//! widths travelled by the fastest ball.
 //!
 //! **Boundaries.** Besides the box walls and the obstacles, every ball is predicted against
 //! every boundary of the table ([`crate::table`]: walls, containers, polygon edges and
@@ -82,15 +80,16 @@
 mod contacts;
 mod events;
 mod quiet;
+mod scan;
 
 pub use events::{Contact, Event, SetupError, Step};
 
+use super::canonical::rebase_at;
 use super::cells::Grid;
 use super::motion::Motion;
 use super::no_contact::{NoContact, QUIET_BOX_LENGTHS};
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
-use super::predict::{contact_time, contact_time_or_nan, exit_time};
 use super::queue::{Calendar, What};
 use super::residents::Residents;
 use super::table::{ContactKind, Geometry, Table};
@@ -104,8 +103,9 @@ use collision_core::{Ball, BodyState};
 const PREFETCH_FROM: usize = 1 << 16;
 
 /// The local clock is re-based when the fastest ball could have moved this many widths of
-/// the narrowest cell on it (module docs).
-const CLOCK_CELLS: f64 = 16.0;
+/// the narrowest cell on it (module docs). Then a ball wraps at most `CLOCK_CELLS + 1` times
+/// between two moves of its record, so every image fits a key ([`crate::canonical::key`]).
+pub(crate) const CLOCK_CELLS: f64 = 128.0;
 
 /// An event-driven simulation; see the module docs.
 pub struct Simulation<const N: usize, const S: usize, K> {
@@ -124,7 +124,6 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     motion: Residents<N>,
     state: Vec<BodyState<f64, N, S>>,
     count: Vec<u32>,
-    wraps: Vec<[i8; N]>,
     cell: Vec<[usize; N]>,
     fixed_members: Vec<Vec<u32>>,
     /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
@@ -137,6 +136,8 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// Per ball: the time of its pending event (`Calendar`) and what it is (`next`).
     queue: Calendar,
     next: Vec<What<N>>,
+    /// Per ball: its best contact found by its last scans (`scan.rs`).
+    found: Vec<scan::Found<N>>,
     /// The local clock; the absolute time is `origin + origin_low + now`.
     now: f64,
     origin: f64,
@@ -145,6 +146,10 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     speed2: f64,
     /// `(CLOCK_CELLS w_min)^2`.
     span2: f64,
+    /// The local time of the next re-basing ([`crate::canonical::rebase_at`]).
+    rebase_at: f64,
+    /// Re-basings since the last contact.
+    quiet_rebases: u32,
     /// The local time of the last contact (or of the start).
     last_contact: f64,
     /// Events (crossings, re-predictions) since the last contact, and when to check next
@@ -232,13 +237,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             motion,
             state: bodies.into_iter().map(|b: Body<N, S>| b.state).collect(),
             count: vec![0; n],
-            wraps: vec![[0; N]; n],
             cell,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
             prefetch,
             queue: Calendar::new(n),
+            found: vec![None; n],
             next: vec![
                 What::Wall {
                     axis: 0,
@@ -251,6 +256,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             origin_low: 0.0,
             speed2: 0.0,
             span2: (CLOCK_CELLS * w_min).powi(2),
+            rebase_at: f64::INFINITY,
+            quiet_rebases: 0,
             last_contact: 0.0,
             quiet: 0,
             next_check: 0,
@@ -260,6 +267,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             rebases: 0,
         };
         sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
+        sim.rebase_at = rebase_at(sim.span2, sim.speed2, 0, sim.any_periodic());
         for i in 0..n {
             sim.predict(i);
         }
@@ -330,6 +338,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
     }
 
+    /// Whether an axis is periodic.
+    fn any_periodic(&self) -> bool {
+        self.periodic().iter().any(|&p| p)
+    }
+
     /// The fixed ball obstacles.
     pub fn obstacles(&self) -> &[FixedBall<N>] {
         &self.obstacles
@@ -376,9 +389,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// Ball `i`'s centre now (inside the box; wrapped on periodic axes up to the crossing
-    /// in progress).
+    /// in progress): `a_i + (t - t_i) u_i - W_i L`.
     pub fn position(&self, i: usize) -> [f64; N] {
-        self.motion.get(i).at(self.now)
+        let x = self.motion.get(i).at(self.now);
+        let w = self.motion.wraps(i);
+        std::array::from_fn(|k| x[k] - f64::from(w[k]) * self.grid.size[k])
     }
 
     /// Ball `i`'s orientation `A_i` now, if the setup tracks orientations.
@@ -395,196 +410,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         Observables::of(
             (0..self.len()).map(|i| (&self.species[self.kind[i]], &positions[i], &self.state[i])),
         )
-    }
-
-    /// Move ball `i` (and its orientation) to now.
-    fn advance(&mut self, i: usize) {
-        self.fly(i);
-        if let Some(a) = &mut self.orientation {
-            let dt = std::mem::take(&mut self.unturned[i]);
-            if dt != 0.0 {
-                a[i] = mul(&exp_skew::<N>(&self.state[i].spin, dt), &a[i]);
-            }
-        }
-    }
-
-    /// Move ball `i`'s centre to now; the orientation's flight time is only noted.
-    fn fly(&mut self, i: usize) {
-        let now = self.now;
-        let m = self.motion.get_mut(i);
-        let dt = now - m.since;
-        if dt == 0.0 {
-            return;
-        }
-        for k in 0..N {
-            m.pos[k] += m.velocity[k] * dt;
-        }
-        m.since = now;
-        if self.orientation.is_some() {
-            self.unturned[i] += dt;
-        }
-    }
-
-    /// Ball `j`'s centre now, shifted by `shift` box lengths.
-    fn image(&self, j: usize, shift: &[i8; N]) -> [f64; N] {
-        let p = self.position(j);
-        std::array::from_fn(|k| p[k] + f64::from(shift[k]) * self.grid.size[k])
-    }
-
-    fn obstacle_image(&self, o: usize, shift: &[i8; N]) -> [f64; N] {
-        let p = self.obstacles[o].position;
-        std::array::from_fn(|k| p[k] + f64::from(shift[k]) * self.grid.size[k])
-    }
-
-    /// Schedule ball `i`'s earliest event (ball `i` is advanced to now first).
-    fn predict(&mut self, i: usize) {
-        self.advance(i);
-        let Motion {
-            pos: a,
-            velocity: v,
-            radius: r,
-            ..
-        } = *self.motion.get(i);
-        let now = self.now;
-        let size = self.grid.size;
-        // The earliest event offered so far (the first of equal times), if any.
-        let mut best: Option<(f64, What<N>)> = None;
-        let better = |best: &Option<(f64, What<N>)>, t: f64| best.is_none_or(|(b, _)| t < b);
-        let offer = |best: &mut Option<(f64, What<N>)>, t: f64, what: What<N>| {
-            if better(best, t) {
-                *best = Some((t, what));
-            }
-        };
-        let c = self.cell[i];
-        if self.prefetch {
-            // Start the loads of the neighbour cells' lists together, in two rounds (the
-            // headers, then the records they point to), instead of one after another as the
-            // scan meets them.
-            self.grid
-                .for_neighbours(&c, |nb| self.motion.prefetch_header(nb.cell));
-            self.grid
-                .for_neighbours(&c, |nb| self.motion.prefetch_list(nb.cell));
-        }
-        let obstacles = !self.obstacles.is_empty();
-        self.grid.for_neighbours(&c, |nb| {
-            for resident in self.motion.cell(nb.cell) {
-                let j = resident.ball as usize;
-                if j == i {
-                    continue;
-                }
-                let m = &resident.motion;
-                let p = m.at(now);
-                let d: [f64; N] =
-                    std::array::from_fn(|k| (p[k] + f64::from(nb.shift[k]) * size[k]) - a[k]);
-                let dv: [f64; N] = std::array::from_fn(|k| m.velocity[k] - v[k]);
-                let t = contact_time_or_nan(&d, &dv, r + m.radius);
-                // NaN: no contact (never better).
-                if !t.is_nan() && better(&best, t) {
-                    let count = self.count[j];
-                    // The image in unwrapped coordinates: s - w_j + w_i (module docs).
-                    let shift = std::array::from_fn(|k| {
-                        nb.shift[k]
-                            .wrapping_sub(self.wraps[j][k])
-                            .wrapping_add(self.wraps[i][k])
-                    });
-                    offer(
-                        &mut best,
-                        t,
-                        What::Ball {
-                            j: j as u32,
-                            count,
-                            shift,
-                        },
-                    );
-                }
-            }
-            if !obstacles {
-                return;
-            }
-            for &o in &self.fixed_members[nb.cell] {
-                let b = self.obstacle_image(o as usize, &nb.shift);
-                let d: [f64; N] = std::array::from_fn(|k| b[k] - a[k]);
-                let dv: [f64; N] = std::array::from_fn(|k| -v[k]);
-                if let Some(t) = contact_time(&d, &dv, r + self.obstacles[o as usize].radius) {
-                    offer(&mut best, t, What::Obstacle { o, shift: nb.shift });
-                }
-            }
-        });
-        for (b, boundary) in self.table.boundaries.iter().enumerate() {
-            // Right after a contact with b: a convex b cannot be met again, a container not at
-            // the same instant (a graze within rounding would repeat forever at t = 0).
-            let repeat = self.last[i] == b as u32 + 1;
-            if repeat && boundary.shape.convex_from_outside() {
-                continue;
-            }
-            if let Some(t) = boundary.shape.contact_time(&a, &v, r) {
-                if !(repeat && t == 0.0) {
-                    offer(&mut best, t, What::Boundary { b: b as u32 });
-                }
-            }
-        }
-        for k in 0..N {
-            let w = self.grid.width[k];
-            if !self.grid.periodic[k] {
-                let wall = if self.table.boxed {
-                    exit_time(a[k], v[k], r, self.grid.size[k] - r)
-                } else {
-                    None
-                };
-                if let Some((t, upper)) = wall {
-                    offer(
-                        &mut best,
-                        t,
-                        What::Wall {
-                            axis: k as u8,
-                            upper,
-                        },
-                    );
-                }
-                if self.grid.n[k] == 1 {
-                    continue;
-                }
-            }
-            let lo = c[k] as f64 * w;
-            if let Some((t, up)) = exit_time(a[k], v[k], lo, lo + w) {
-                let last = c[k] + 1 == self.grid.n[k];
-                let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
-                if !blocked {
-                    offer(&mut best, t, What::Cell { axis: k as u8, up });
-                }
-            }
-        }
-        match best {
-            Some((t, what)) => {
-                self.queue.set(i, self.now + t);
-                self.next[i] = what;
-            }
-            None => self.queue.remove(i),
-        }
-    }
-
-    fn cross(&mut self, i: usize, axis: usize, up: bool) {
-        self.advance(i);
-        let c = self.cell[i];
-        let n = self.grid.n[axis];
-        let size = self.grid.size[axis];
-        let mut c2 = c;
-        if up {
-            c2[axis] = (c[axis] + 1) % n;
-            if c2[axis] == 0 {
-                self.motion.get_mut(i).pos[axis] -= size;
-                self.wraps[i][axis] = self.wraps[i][axis].wrapping_add(1);
-            }
-        } else {
-            c2[axis] = (c[axis] + n - 1) % n;
-            if c[axis] == 0 {
-                self.motion.get_mut(i).pos[axis] += size;
-                self.wraps[i][axis] = self.wraps[i][axis].wrapping_sub(1);
-            }
-        }
-        self.cell[i] = c2;
-        self.motion.relocate(i, self.grid.flat(&c2));
-        self.crossings += 1;
     }
 
     /// Process queue entries until the next contact at or before the absolute time `until`,
@@ -621,32 +446,35 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 }
                 return Step::Until;
             }
+            if time > self.rebase_at {
+                self.rebase(self.rebase_at, true);
+                continue;
+            }
             // Ball i's event stays in the queue until every branch below re-predicts i.
             let what = self.next[i];
             self.now = self.now.max(time);
-            if self.clock_due() {
-                self.rebase();
-            }
             match what {
                 What::Cell { axis, up } => {
                     self.cross(i, axis as usize, up);
-                    self.predict(i);
+                    self.predict_after_crossing(i, axis as usize, up);
                     self.quiet += 1;
                 }
                 What::Ball { j, count, .. } if count != self.count[j as usize] => {
                     self.predict(i);
                     self.quiet += 1;
                 }
-                What::Ball { j, shift, .. } => {
-                    return Step::Contact(self.ball_ball(i, j as usize, &shift))
+                What::Ball { j, image, .. } => {
+                    return Step::Contact(self.ball_ball(i, j as usize, &image, time))
                 }
                 What::Wall { axis, upper } => {
-                    return Step::Contact(self.ball_wall(i, axis as usize, upper))
+                    return Step::Contact(self.ball_wall(i, axis as usize, upper, time))
                 }
-                What::Obstacle { o, shift } => {
-                    return Step::Contact(self.ball_obstacle(i, o as usize, &shift))
+                What::Obstacle { o, image } => {
+                    return Step::Contact(self.ball_obstacle(i, o as usize, &image, time))
                 }
-                What::Boundary { b } => return Step::Contact(self.ball_boundary(i, b as usize)),
+                What::Boundary { b } => {
+                    return Step::Contact(self.ball_boundary(i, b as usize, time))
+                }
             }
         }
     }

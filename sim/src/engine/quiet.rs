@@ -2,6 +2,7 @@
 //! contact can come ([`NoContact`]) and the travel since the last contact.
 
 use super::{Simulation, Step};
+use crate::canonical::rebase_at;
 use crate::no_contact::{Flight, NoContact};
 use crate::PairKernels;
 
@@ -78,23 +79,19 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.state[i].velocity.iter().map(|x| x * x).sum()
     }
 
-    /// Whether the local clock must be re-based: `v_max^2 t^2 > (16 w_min)^2`.
-    pub(super) fn clock_due(&self) -> bool {
-        self.speed2 * self.now * self.now > self.span2
-    }
-
-    /// Move the clock's origin to now: move every centre to now (orientations keep their
-    /// flight time for later), shift the queue's times by `-now` (rebuilding the calendar;
-    /// no allocation: its lists are reused) and restart the local clock at 0.
-    pub(super) fn rebase(&mut self) {
-        let t = self.now;
+    /// Re-base the clock at local time `t` (the canonical time of [`crate::canonical`]): every
+    /// record moves to `t` and folds into the box, the origin moves by `t` (a compensated
+    /// sum), the local clock restarts at 0, and every ball is predicted again from its moved
+    /// record (the queue's widths chosen again for the current event rate). `O(balls)`
+    /// predictions, once per `CLOCK_CELLS` cell widths travelled by the fastest ball. `quiet`:
+    /// no contact since the last re-basing.
+    pub(super) fn rebase(&mut self, t: f64, quiet: bool) {
         let mut speed2: f64 = 0.0;
         for i in 0..self.len() {
-            self.fly(i);
+            self.move_record(i, t);
             self.motion.get_mut(i).since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
-        self.queue.rebuild(t);
         // origin + origin_low += t, compensated (Knuth's two-sum).
         let sum = self.origin + t;
         let b = sum - self.origin;
@@ -102,8 +99,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.origin = sum;
         self.origin_low += error;
         self.last_contact -= t;
-        self.now = 0.0;
+        self.now = (self.now - t).max(0.0);
         self.speed2 = speed2;
+        self.quiet_rebases = if quiet { self.quiet_rebases + 1 } else { 0 };
+        self.rebase_at = rebase_at(self.span2, speed2, self.quiet_rebases, self.any_periodic());
+        for i in 0..self.len() {
+            self.predict(i);
+        }
+        self.queue.rebuild(0.0);
         self.rebases += 1;
     }
 }

@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""noslip's event loop beside F. Smallenburg's EDMD, side by side in alternated rounds.
+
+The peer (Eur. Phys. J. E 45, 22 (2022); github.com/FSmallenburg/EDMD) is never vendored:
+give the path of a checkout. Its ``Cell`` and ``Single`` variants are compiled here, in a
+temporary directory, with the flags of their own Makefiles (``-Ofast -funroll-loops
+-march=native``), each source included unchanged by a small harness that sets ``N``,
+``packfrac`` and the FCC start (``initialconfig = 1``), runs ``warm`` collisions, then times
+one stretch of ``contacts`` collisions with ``clock()`` (the process's CPU time).
+
+noslip's side is ``sim/examples/event_rate`` (built here in release) on the 3D gas of the
+same ``N`` and ``phi``, smooth contacts (as the peer's), one stretch per round.
+
+Each round runs noslip, Cell and Single once per ``(N, phi)``, and the rounds alternate
+(noslip, peer, noslip, peer, ...); the table gives the median and the min-max of microseconds
+per collision over the rounds, and noslip's speed over the best variant's.
+
+Usage::
+
+    scripts/peer_edmd.py PATH/TO/EDMD [--balls 4000,32000,108000]
+        [--phi 0.1,0.2,0.3,0.4] [--rounds 3] [--contacts C] [--no-slip]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+
+HARNESS = r"""
+#define main peer_original_main
+#include "{source}"
+#undef main
+#include <time.h>
+
+int main(int argc, char **argv)
+{{
+    N = atoi(argv[1]);
+    packfrac = atof(argv[2]);
+    long warm = atol(argv[3]), contacts = atol(argv[4]);
+    initialconfig = 1;
+    makesnapshots = 0;
+    init();
+    unsigned int start = colcounter;
+    while ((long)(colcounter - start) < warm) step();
+    start = colcounter;
+    clock_t t0 = clock();
+    while ((long)(colcounter - start) < contacts) step();
+    double seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    fprintf(stderr, "PEER %.6f\n", 1e6 * seconds / (double)(colcounter - start));
+    return 0;
+}}
+"""
+
+
+def build_peer(checkout: Path, variant: str, work: Path) -> Path:
+    """Compile one variant of the peer with its Makefile's flags; the binary's path."""
+    source = checkout / variant / f"md{variant}.c"
+    if not source.exists():
+        sys.exit(f"{source}: not found (give the path of an EDMD checkout)")
+    harness = work / f"harness_{variant}.c"
+    harness.write_text(HARNESS.format(source=source))
+    binary = work / f"peer_{variant}"
+    flags = ["-Ofast", "-funroll-loops", "-march=native", "-w"]
+    command = ["gcc", *flags, f"-I{source.parent}", str(harness), "-o", str(binary), "-lm"]
+    subprocess.run(command, check=True)
+    return binary
+
+
+def run_peer(binary: Path, n: int, phi: float, warm: int, contacts: int) -> float:
+    """Microseconds per collision of one timed stretch."""
+    with tempfile.TemporaryDirectory() as cwd:
+        out = subprocess.run(
+            [str(binary), str(n), str(phi), str(warm), str(contacts)],
+            cwd=cwd,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+    line = [x for x in out.stderr.splitlines() if x.startswith("PEER ")][-1]
+    return float(line.split()[1])
+
+
+def run_noslip(n: int, phi: float, warm: int, contacts: int, smooth: bool) -> float:
+    """Microseconds per contact of one timed stretch of ``event_rate``."""
+    binary = REPO / "target" / "release" / "examples" / "event_rate"
+    args = [str(binary), "--dims", "3", "--balls", str(n), "--phi", str(phi), "--runs", "1"]
+    args += ["--warm", str(warm), "--contacts", str(contacts)]
+    if smooth:
+        args.append("--smooth")
+    out = subprocess.run(args, capture_output=True, text=True, check=True).stdout
+    row = out.splitlines()[-1].split()
+    if "skipped:" in row:
+        sys.exit(f"event_rate: {out}")
+    return float(row[4])
+
+
+def spread(xs: list[float]) -> str:
+    """``median (min-max)``."""
+    return f"{statistics.median(xs):.2f} ({min(xs):.2f}-{max(xs):.2f})"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("checkout", type=Path)
+    parser.add_argument("--balls", default="4000,32000,108000")
+    parser.add_argument("--phi", default="0.1,0.2,0.3,0.4")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--contacts", type=int, default=None)
+    parser.add_argument("--no-slip", action="store_true", help="noslip's contacts no-slip")
+    a = parser.parse_args()
+    balls = [int(x) for x in a.balls.split(",")]
+    phis = [float(x) for x in a.phi.split(",")]
+    subprocess.run(
+        ["cargo", "build", "--release", "-q", "-p", "noslip-sim", "--example", "event_rate"],
+        cwd=REPO,
+        check=True,
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        work = Path(tmp)
+        peers = {v: build_peer(a.checkout.resolve(), v, work) for v in ("Cell", "Single")}
+        times: dict[tuple[int, float, str], list[float]] = {}
+        for r in range(a.rounds):
+            for n in balls:
+                warm = max(2 * n, 100_000)
+                contacts = a.contacts or max(n, 200_000)
+                for phi in phis:
+                    order = ["noslip", "Cell", "Single"]
+                    if r % 2:
+                        order.reverse()
+                    for who in order:
+                        if who == "noslip":
+                            t = run_noslip(n, phi, warm, contacts, not a.no_slip)
+                        else:
+                            t = run_peer(peers[who], n, phi, warm, contacts)
+                        times.setdefault((n, phi, who), []).append(t)
+                        print(f"round {r + 1}: N {n} phi {phi} {who}: {t:.3f} us", file=sys.stderr)
+    kind = "no-slip" if a.no_slip else "smooth"
+    load = os.getloadavg()
+    print(f"# us per collision, medians (min-max) of {a.rounds} alternated rounds; noslip {kind}")
+    print(f"# load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at the end")
+    print("| N | phi | noslip | peer Cell | peer Single | noslip / best peer (speed) |")
+    print("|---:|---:|---:|---:|---:|---:|")
+    for n in balls:
+        for phi in phis:
+            ours, cell, single = (times[(n, phi, w)] for w in ("noslip", "Cell", "Single"))
+            best = min(statistics.median(cell), statistics.median(single))
+            ratio = best / statistics.median(ours)
+            print(f"| {n} | {phi} | {spread(ours)} | {spread(cell)} | {spread(single)} | {ratio:.2f} |")
+
+
+if __name__ == "__main__":
+    main()

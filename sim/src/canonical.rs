@@ -1,0 +1,240 @@
+//! Canonical contact times: every contact time is a function of the flight records of the
+//! bodies that meet, never of when or by whom it was predicted, so that any correct engine
+//! (the cell engine of [`crate::engine`], the all-pairs reference of the tests) computes the
+//! same bits, takes the same contacts in the same order and writes the same event log, byte
+//! for byte (docs/engine.md, "Canonical contact times").
+//!
+//! **Records.** Ball `i`'s record ([`Motion`]) is its centre `a_i` at local time `t_i`, its
+//! velocity `u_i` and radius `R_i`. A record moves only at a contact of `i` (to the contact's
+//! time) and at a re-basing of the clock (every record, to the re-basing's time); there its
+//! centre is folded into the box on periodic axes ([`fold`]). Cell crossings and periodic
+//! wraps do not move it: between record moves an engine may count the wraps `W_i` so that the
+//! centre in the box is `a_i + (t - t_i) u_i - W_i L`.
+//!
+//! **Images.** A partner or obstacle is named with its image `k` in `Z^n`, in box lengths, in
+//! record coordinates: ball `j`'s image `k` is `a_j + k L` on the clock of `j`'s record.
+//!
+//! **Pair time** ([`pair_time`]). For balls `i < j` (body 1 is the lower index, whichever ball
+//! predicts the pair) and an image `k` of `j`:
+//! `t_ref = max(t_i, t_j)`, `p_i = a_i + (t_ref - t_i) u_i` (and `p_j`),
+//! `d = (p_j + k L) - p_i`, `dv = u_j - u_i`, `sigma = R_i + R_j`, and the time is
+//! `t_ref + tau(d, dv, sigma)`, `tau` the earlier root of [`crate::predict::contact_time`].
+//!
+//! **Fixed bodies.** An obstacle at centre `c` and image `k`: `d = (c + k L) - a_i`,
+//! `dv = -u_i`, time `t_i + tau` ([`obstacle_time`]). A box wall or a table boundary: the
+//! time the record's flight from `a_i` at `t_i` meets it, plus `t_i`.
+//!
+//! **Order** ([`Key`]). Events are taken in the order of `(t, key)`: the key orders the
+//! events of one time by their lowest ball, then their kind (ball, wall, obstacle, boundary),
+//! then the other body (the higher ball, the wall's side, the obstacle, the boundary), then
+//! the image. Cell crossings (an engine's own, moving no record) come after every contact of
+//! their time.
+//!
+//! **Re-basing.** The clock is re-based at local time `T = sqrt(span^2 / v^2)` ([`rebase_at`]):
+//! `span` is a number of the narrowest cell widths of the grid rule (`crate::cells`), `v^2`
+//! the bound of the squared speeds, exact at the last re-basing and raised at each contact;
+//! a contact whose time is already past the lowered `T` re-bases at its own time. Before any
+//! event later than `T` every record moves to `T`, the clock restarts at 0, and every event is
+//! predicted again. A table without a periodic axis may have its next contact arbitrarily far
+//! ahead (a ball leaving an open wedge almost along its wall) with no event in between: after
+//! [`QUIET_REBASES`] re-basings in a row without a contact each interval doubles, so such a
+//! flight takes a logarithmic number of re-basings, not one per span (on a periodic axis the
+//! interval stays, to bound the wraps `W_i` between record moves).
+
+use crate::motion::Motion;
+use crate::predict::{contact_time, contact_time_or_nan};
+
+/// The time at which balls `lo < hi` meet, `hi` at image `image` (module docs); NaN if they
+/// never do. `size` is the box (its sides `L_k`; images are 0 on walled axes).
+#[inline]
+pub(crate) fn pair_time<const N: usize>(
+    lo: &Motion<N>,
+    hi: &Motion<N>,
+    image: &[i16; N],
+    size: &[f64; N],
+) -> f64 {
+    let t_ref = lo.since.max(hi.since);
+    let (p, q) = (lo.at(t_ref), hi.at(t_ref));
+    let d: [f64; N] = std::array::from_fn(|k| (q[k] + f64::from(image[k]) * size[k]) - p[k]);
+    let dv: [f64; N] = std::array::from_fn(|k| hi.velocity[k] - lo.velocity[k]);
+    t_ref + contact_time_or_nan(&d, &dv, lo.radius + hi.radius)
+}
+
+/// The normal of the contact of balls `lo < hi` (`hi` at image `image`) at local time `t`:
+/// `nu` along `(p_hi + k L) - p_lo`, the centres flown to `t`, as [`pair_time`] spells the
+/// difference (the caller normalises it).
+#[inline]
+pub(crate) fn pair_offset<const N: usize>(
+    lo: &Motion<N>,
+    hi: &Motion<N>,
+    image: &[i16; N],
+    size: &[f64; N],
+    t: f64,
+) -> [f64; N] {
+    let (p, q) = (lo.at(t), hi.at(t));
+    std::array::from_fn(|k| (q[k] + f64::from(image[k]) * size[k]) - p[k])
+}
+
+/// Obstacle `centre`, radius `radius`, at image `image`: the time ball `m` meets it (module
+/// docs), or `None`.
+#[inline]
+pub(crate) fn obstacle_time<const N: usize>(
+    m: &Motion<N>,
+    centre: &[f64; N],
+    radius: f64,
+    image: &[i16; N],
+    size: &[f64; N],
+) -> Option<f64> {
+    let b = obstacle_image(centre, image, size);
+    let d: [f64; N] = std::array::from_fn(|k| b[k] - m.pos[k]);
+    let dv: [f64; N] = std::array::from_fn(|k| -m.velocity[k]);
+    contact_time(&d, &dv, m.radius + radius).map(|tau| m.since + tau)
+}
+
+/// An obstacle's centre at image `image`: `c + k L`.
+#[inline]
+pub(crate) fn obstacle_image<const N: usize>(
+    centre: &[f64; N],
+    image: &[i16; N],
+    size: &[f64; N],
+) -> [f64; N] {
+    std::array::from_fn(|k| centre[k] + f64::from(image[k]) * size[k])
+}
+
+/// A centre folded into the box on the periodic axes: `x - floor(x / L) L` (in `[0, L]`,
+/// `L` itself only by rounding), other axes unchanged.
+#[inline]
+pub(crate) fn fold<const N: usize>(
+    x: &[f64; N],
+    size: &[f64; N],
+    periodic: &[bool; N],
+) -> [f64; N] {
+    std::array::from_fn(|k| {
+        if periodic[k] {
+            x[k] - (x[k] / size[k]).floor() * size[k]
+        } else {
+            x[k]
+        }
+    })
+}
+
+/// Re-basings in a row without a contact after which, on a table without a periodic axis,
+/// each interval is twice the last (module docs).
+pub(crate) const QUIET_REBASES: u32 = 8;
+
+/// The local time of the next re-basing: `sqrt(span2 / speed2)` (infinite at rest); after
+/// `quiet` re-basings without a contact, on a table without a periodic axis, that times
+/// `2^(quiet - QUIET_REBASES)` (module docs).
+#[inline]
+pub(crate) fn rebase_at(span2: f64, speed2: f64, quiet: u32, periodic: bool) -> f64 {
+    if speed2 <= 0.0 {
+        return f64::INFINITY;
+    }
+    let base = (span2 / speed2).sqrt();
+    if periodic || quiet <= QUIET_REBASES {
+        base
+    } else {
+        base * 2f64.powi((quiet - QUIET_REBASES).min(1024) as i32)
+    }
+}
+
+/// The order of the events of one time (module docs): `(lowest ball, kind, other body,
+/// image)` packed in a `u128`, compared as a number.
+pub(crate) type Key = u128;
+
+/// The event kinds, in their order at equal times.
+pub(crate) mod kind {
+    pub(crate) const BALL: u8 = 0;
+    pub(crate) const WALL: u8 = 1;
+    pub(crate) const OBSTACLE: u8 = 2;
+    pub(crate) const BOUNDARY: u8 = 3;
+    /// A cell crossing: after every contact of its time.
+    pub(crate) const CELL: u8 = 15;
+}
+
+/// The most `|k|` an image may have in a [`Key`] (10 bits an axis).
+pub(crate) const MAX_IMAGE: i16 = 511;
+
+/// The key of an event of ball `first` (the lowest ball of the event) of kind `kind` with
+/// body `other` at image `image` (module docs). Bits: `first` (32), `kind` (4), `other` (32),
+/// then 10 bits an axis for `k + 512` (60 bits for n <= 6).
+#[inline]
+pub(crate) fn key<const N: usize>(first: usize, kind: u8, other: u32, image: &[i16; N]) -> Key {
+    debug_assert!(N <= 6 && image.iter().all(|k| k.abs() <= MAX_IMAGE));
+    let mut packed: u128 = 0;
+    for &k in image {
+        packed = (packed << 10) | (k + 512) as u128;
+    }
+    packed <<= 10 * (6 - N as u32);
+    ((first as u128) << 96) | (u128::from(kind) << 92) | (u128::from(other) << 60) | packed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn m(pos: [f64; 2], since: f64, velocity: [f64; 2]) -> Motion<2> {
+        Motion {
+            pos,
+            since,
+            velocity,
+            radius: 0.5,
+        }
+    }
+
+    #[test]
+    fn a_pair_time_depends_on_the_records_only() {
+        // Balls 1 apart (contact distance 1) closing at 1 along x, their records at different
+        // times: the pair meets at t = 3 whichever record is later.
+        let a = m([0.0, 0.0], 1.0, [0.5, 0.0]);
+        let b = m([3.0, 0.0], 0.0, [-0.5, 0.0]);
+        // At t_ref = 1: a at 0, b at 2.5; gap 2.5 - 1 closes at 1: t = 1 + 1.5.
+        assert_eq!(pair_time(&a, &b, &[0, 0], &[10.0, 10.0]), 2.5);
+        // The image one box length down on x puts b at 2.5 - 10: they separate.
+        assert!(pair_time(&a, &b, &[-1, 0], &[10.0, 10.0]).is_nan());
+        // The offset at the contact is the contact distance.
+        assert_eq!(pair_offset(&a, &b, &[0, 0], &[10.0, 10.0], 2.5), [1.0, 0.0]);
+    }
+
+    #[test]
+    fn obstacles_are_met_from_the_record() {
+        let a = m([0.0, 0.0], 2.0, [1.0, 0.0]);
+        // Obstacle of radius 1 at x = 4 - 10 shifted by one box length: distance 4, reach 1.5.
+        let t = obstacle_time(&a, &[-6.0, 0.0], 1.0, &[1, 0], &[10.0, 10.0]);
+        assert_eq!(t, Some(2.0 + 2.5));
+        assert_eq!(
+            obstacle_time(&a, &[-6.0, 0.0], 1.0, &[0, 0], &[10.0, 10.0]),
+            None
+        );
+    }
+
+    #[test]
+    fn folding_puts_centres_in_the_box_on_periodic_axes_only() {
+        let size = [2.0, 2.0];
+        assert_eq!(fold(&[-0.5, -0.5], &size, &[true, false]), [1.5, -0.5]);
+        assert_eq!(fold(&[4.25, 1.0], &size, &[true, true]), [0.25, 1.0]);
+    }
+
+    #[test]
+    fn keys_order_by_lowest_ball_then_kind_then_other_then_image() {
+        let ball = key(3, kind::BALL, 9, &[0i16, 0]);
+        assert!(ball < key(3, kind::WALL, 0, &[0, 0]));
+        assert!(key(3, kind::BOUNDARY, 7, &[0, 0]) < key(4, kind::BALL, 5, &[0, 0]));
+        assert!(key(3, kind::BALL, 8, &[1, 1]) < ball);
+        assert!(key(3, kind::BALL, 9, &[-1, 0]) < ball);
+        assert!(ball < key(3, kind::BALL, 9, &[0, 1]));
+        assert!(key(3, kind::CELL, 0, &[0, 0]) > key(3, kind::BOUNDARY, u32::MAX, &[511, 511]));
+        // Six axes fill the 60 bits: the last axis still orders.
+        let six = |k: i16| key(0, kind::BALL, 1, &[0, 0, 0, 0, 0, k]);
+        assert!(six(-511) < six(0) && six(0) < six(511));
+    }
+
+    #[test]
+    fn rebasing_waits_for_motion_and_stretches_on_quiet_tables_without_periodic_axes() {
+        assert_eq!(rebase_at(16.0, 4.0, 0, true), 2.0);
+        assert_eq!(rebase_at(16.0, 0.0, 0, false), f64::INFINITY);
+        assert_eq!(rebase_at(16.0, 4.0, QUIET_REBASES, false), 2.0);
+        assert_eq!(rebase_at(16.0, 4.0, QUIET_REBASES + 3, false), 16.0);
+        assert_eq!(rebase_at(16.0, 4.0, QUIET_REBASES + 3, true), 2.0);
+    }
+}

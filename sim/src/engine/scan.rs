@@ -1,0 +1,267 @@
+//! Prediction: a ball's earliest event among its neighbour cells' balls and obstacles, the
+//! table's boundaries, the box walls and its cell's faces, every contact time canonical
+//! ([`crate::canonical`]); and the cell crossings, which move no record.
+
+use super::Simulation;
+use crate::canonical::{self, key, kind, obstacle_time, pair_time, Key};
+use crate::predict::exit_time;
+use crate::queue::What;
+use crate::PairKernels;
+
+/// The earliest event offered so far, least `(t, key)`.
+struct Best<const N: usize>(Option<(f64, Key, What<N>)>);
+
+impl<const N: usize> Best<N> {
+    /// Whether an event at `t` can beat the best (a tie is decided by the keys).
+    #[inline]
+    fn may_beat(&self, t: f64) -> bool {
+        self.0.as_ref().is_none_or(|&(b, _, _)| t <= b)
+    }
+
+    /// Offers an event at `t` with key `key` (the least `(t, key)` stays).
+    #[inline]
+    fn offer(&mut self, t: f64, key: impl FnOnce() -> Key, what: impl FnOnce() -> What<N>) {
+        match self.0 {
+            Some((b, _, _)) if t > b => {}
+            Some((b, k, _)) if t == b => {
+                let key = key();
+                if key < k {
+                    self.0 = Some((t, key, what()));
+                }
+            }
+            _ => self.0 = Some((t, key(), what())),
+        }
+    }
+}
+
+/// `-k`.
+#[inline]
+fn negated<const N: usize>(image: &[i16; N]) -> [i16; N] {
+    image.map(|k| -k)
+}
+
+/// A ball's best contact (any event but a crossing) found by its last scans: kept so that a
+/// crossing scans only the newly reached cells ([`Simulation::predict_after_crossing`]).
+pub(super) type Found<const N: usize> = Option<(f64, Key, What<N>)>;
+
+impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
+    /// Schedule ball `i`'s earliest event from a full scan of the cells within reach (its
+    /// record does not move).
+    pub(super) fn predict(&mut self, i: usize) {
+        let mut best = Best::<N>(None);
+        let c = self.cell[i];
+        self.scan(i, &mut best, |grid, f| grid.for_neighbours(&c, f));
+        self.fixed_bodies(i, &mut best);
+        self.schedule(i, best);
+    }
+
+    /// Schedule ball `i`'s earliest event after it crossed into its cell along `axis` (moving
+    /// `up` or down): its best contact so far, if still valid (a partner's counter unchanged),
+    /// against the newly reached layer of cells only: every contact time is canonical, so the
+    /// cells it saw before would give the same times again. A stale best contact needs the full
+    /// scan (the second best was not kept).
+    pub(super) fn predict_after_crossing(&mut self, i: usize, axis: usize, up: bool) {
+        let kept = self.found[i];
+        if let Some((_, _, What::Ball { j, count, .. })) = kept {
+            if count != self.count[j as usize] {
+                return self.predict(i);
+            }
+        }
+        let mut best = Best::<N>(kept);
+        let c = self.cell[i];
+        let step = if up { 1 } else { -1 };
+        self.scan(i, &mut best, |grid, f| grid.for_layer(&c, axis, step, f));
+        self.schedule(i, best);
+    }
+
+    /// Keeps `best` as ball `i`'s best contact and schedules the earlier of it and the next
+    /// crossing of its cell's faces.
+    fn schedule(&mut self, i: usize, mut best: Best<N>) {
+        self.found[i] = best.0;
+        self.crossing(i, &mut best);
+        match best.0 {
+            Some((t, key, what)) => {
+                self.queue.set(i, t, key);
+                self.next[i] = what;
+            }
+            None => self.queue.remove(i),
+        }
+    }
+
+    /// Offers ball `i`'s contacts with the balls and obstacles of the cells `cells` lists.
+    #[inline]
+    fn scan(
+        &self,
+        i: usize,
+        best: &mut Best<N>,
+        cells: impl Fn(&crate::cells::Grid<N>, &mut dyn FnMut(crate::cells::Neighbour<N>)),
+    ) {
+        let m = *self.motion.get(i);
+        let w_i = self.motion.wraps(i);
+        let size = self.grid.size;
+        if self.prefetch {
+            // Start the loads of the cells' lists together, in two rounds (the headers, then
+            // the records they point to), instead of one after another as the scan meets them.
+            cells(&self.grid, &mut |nb| self.motion.prefetch_header(nb.cell));
+            cells(&self.grid, &mut |nb| self.motion.prefetch_list(nb.cell));
+        }
+        let obstacles = !self.obstacles.is_empty();
+        cells(&self.grid, &mut |nb| {
+            for resident in self.motion.cell(nb.cell) {
+                let j = resident.ball as usize;
+                if j == i {
+                    continue;
+                }
+                // j's image in i's record coordinates: s - W_j + W_i.
+                let image: [i16; N] =
+                    std::array::from_fn(|k| i16::from(nb.shift[k]) - resident.wraps[k] + w_i[k]);
+                let (lo, hi, lo_image) = if i < j {
+                    (&m, &resident.motion, image)
+                } else {
+                    (&resident.motion, &m, negated(&image))
+                };
+                let t = pair_time(lo, hi, &lo_image, &size);
+                // NaN: no contact (never better).
+                if !t.is_nan() && best.may_beat(t) {
+                    best.offer(
+                        t,
+                        || key(i.min(j), kind::BALL, i.max(j) as u32, &lo_image),
+                        || What::Ball {
+                            j: j as u32,
+                            count: self.count[j],
+                            image,
+                        },
+                    );
+                }
+            }
+            if !obstacles {
+                return;
+            }
+            for &o in &self.fixed_members[nb.cell] {
+                let image: [i16; N] = std::array::from_fn(|k| i16::from(nb.shift[k]) + w_i[k]);
+                let f = &self.obstacles[o as usize];
+                if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, &size) {
+                    best.offer(
+                        t,
+                        || key(i, kind::OBSTACLE, o, &image),
+                        || What::Obstacle { o, image },
+                    );
+                }
+            }
+        });
+    }
+
+    /// Offers ball `i`'s contacts with the table's boundaries and the box walls.
+    fn fixed_bodies(&self, i: usize, best: &mut Best<N>) {
+        let m = self.motion.get(i);
+        for (b, boundary) in self.table.boundaries.iter().enumerate() {
+            // Right after a contact with b: a convex b cannot be met again, a container not at
+            // the same instant (a graze within rounding would repeat forever at t = 0).
+            let repeat = self.last[i] == b as u32 + 1;
+            if repeat && boundary.shape.convex_from_outside() {
+                continue;
+            }
+            if let Some(tau) = boundary.shape.contact_time(&m.pos, &m.velocity, m.radius) {
+                if !(repeat && tau == 0.0) {
+                    best.offer(
+                        m.since + tau,
+                        || key(i, kind::BOUNDARY, b as u32, &[0; N]),
+                        || What::Boundary { b: b as u32 },
+                    );
+                }
+            }
+        }
+        if !self.table.boxed {
+            return;
+        }
+        for k in (0..N).filter(|&k| !self.grid.periodic[k]) {
+            let wall = exit_time(
+                m.pos[k],
+                m.velocity[k],
+                m.radius,
+                self.grid.size[k] - m.radius,
+            );
+            if let Some((tau, upper)) = wall {
+                best.offer(
+                    m.since + tau,
+                    || key(i, kind::WALL, 2 * k as u32 + u32::from(upper), &[0; N]),
+                    || What::Wall {
+                        axis: k as u8,
+                        upper,
+                    },
+                );
+            }
+        }
+    }
+
+    /// Offers ball `i`'s next crossing of its cell's faces.
+    fn crossing(&self, i: usize, best: &mut Best<N>) {
+        let m = self.motion.get(i);
+        let w_i = self.motion.wraps(i);
+        let c = self.cell[i];
+        for k in 0..N {
+            if !self.grid.periodic[k] && self.grid.n[k] == 1 {
+                continue;
+            }
+            let w = self.grid.width[k];
+            // The cell's faces in record coordinates: c w + W L.
+            let lo = c[k] as f64 * w + f64::from(w_i[k]) * self.grid.size[k];
+            if let Some((tau, up)) = exit_time(m.pos[k], m.velocity[k], lo, lo + w) {
+                let last = c[k] + 1 == self.grid.n[k];
+                let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
+                if !blocked {
+                    best.offer(
+                        m.since + tau,
+                        || key(i, kind::CELL, 2 * k as u32 + u32::from(up), &[0; N]),
+                        || What::Cell { axis: k as u8, up },
+                    );
+                }
+            }
+        }
+    }
+
+    /// Ball `i` crosses its cell's face along `axis`: it moves to the next cell (wrapping on a
+    /// periodic axis, counted in `W_i`); its record does not move.
+    pub(super) fn cross(&mut self, i: usize, axis: usize, up: bool) {
+        let c = self.cell[i];
+        let n = self.grid.n[axis];
+        let mut c2 = c;
+        if up {
+            c2[axis] = (c[axis] + 1) % n;
+            if c2[axis] == 0 {
+                self.motion.wraps_mut(i)[axis] += 1;
+            }
+        } else {
+            c2[axis] = (c[axis] + n - 1) % n;
+            if c[axis] == 0 {
+                self.motion.wraps_mut(i)[axis] -= 1;
+            }
+        }
+        self.cell[i] = c2;
+        self.motion.relocate(i, self.grid.flat(&c2));
+        self.crossings += 1;
+    }
+
+    /// Moves ball `i`'s record to local time `t` (a contact of `i`, or a re-basing): its
+    /// centre flown there and folded into the box ([`canonical::fold`]), its orientation's
+    /// flight time noted, no wraps since, and the cell of the folded centre.
+    pub(super) fn move_record(&mut self, i: usize, t: f64) {
+        let (size, periodic) = (self.grid.size, self.periodic());
+        let m = self.motion.get_mut(i);
+        let dt = t - m.since;
+        m.pos = canonical::fold(&m.at(t), &size, &periodic);
+        m.since = t;
+        let pos = m.pos;
+        if self.orientation.is_some() {
+            self.unturned[i] += dt;
+        }
+        *self.motion.wraps_mut(i) = [0; N];
+        if self.table.boxed {
+            let c = self.grid.cell_of(&pos);
+            if c != self.cell[i] {
+                self.cell[i] = c;
+                self.motion.relocate(i, self.grid.flat(&c));
+            }
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! The cell engine's event log equals the all-pairs reference's, byte for byte (issue 30):
+//! every shipped scene (gases in n = 2..6 in periodic, walled and mixed boxes; the Sinai
+//! table's obstacle; tables of every kind: polygons, containers, walls, sectors, an open
+//! wedge), each also with every contact smooth, and a dense and a dilute gas of two species.
+
+use super::Reference;
+use crate::run::event_json;
+use crate::setup::setup;
+use crate::table::ContactKind;
+use crate::{GenericKernels, Setup, Simulation, Step};
+use collision_core::{Generated, Kernel};
+use noslip_scene::Scene;
+use std::path::Path;
+
+/// Contacts compared per scene.
+const CONTACTS: usize = 10_000;
+
+/// The first `contacts` lines of both logs (fewer if the run ends: then both must end), and
+/// the cell engine's re-basings (a comparison that never re-based would not test them).
+fn compare<const N: usize, const S: usize>(name: &str, setup: Setup<N, S>, contacts: usize) -> u64
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let kernels = GenericKernels {
+        species: setup.species.clone(),
+    };
+    let clock = std::time::Instant::now();
+    let mut fast = Simulation::new(setup.clone(), kernels.clone()).unwrap();
+    let mut reference = Reference::new(setup, kernels);
+    for index in 1..=contacts as u64 {
+        let fast_event = loop {
+            match fast.step(f64::INFINITY) {
+                Step::Contact(e) => break Some(e),
+                Step::Never(_) => break None,
+                Step::Quiet { .. } | Step::Until => {}
+            }
+        };
+        let reference_event = reference.next_contact();
+        let line =
+            |e: &Option<crate::Event<N, S>>| e.as_ref().map(|e| event_json(index, e).to_string());
+        let (a, b) = (line(&fast_event), line(&reference_event));
+        assert_eq!(a, b, "{name}: contact {index}");
+        if a.is_none() {
+            break;
+        }
+    }
+    eprintln!(
+        "{name}: {} contacts, {} re-basings, {:.2} s",
+        fast.contacts(),
+        fast.rebases(),
+        clock.elapsed().as_secs_f64()
+    );
+    fast.rebases()
+}
+
+/// Every contact of the table smooth.
+fn smooth<const N: usize, const S: usize>(mut setup: Setup<N, S>) -> Setup<N, S> {
+    let table = &mut setup.table;
+    table.ball_contact = ContactKind::Smooth;
+    table.box_contact = ContactKind::Smooth;
+    table.obstacle_contact = vec![ContactKind::Smooth; setup.obstacles.len()];
+    for b in &mut table.boundaries {
+        b.contact = ContactKind::Smooth;
+    }
+    setup
+}
+
+fn both<const N: usize, const S: usize>(name: &str, scene: &Scene) -> u64
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let start = setup::<N, S>(scene).unwrap();
+    compare(&format!("{name} (smooth)"), smooth(start.clone()), CONTACTS);
+    compare(name, start, CONTACTS)
+}
+
+fn run_scene(name: &str, text: &str) -> u64 {
+    let scene = Scene::from_toml(text, name).unwrap();
+    collision_core::with_dim!(
+        scene.dim,
+        |N, S| both::<N, S>(name, &scene),
+        unreachable!("dim {}", scene.dim)
+    )
+}
+
+/// The shipped scenes, each run by one of the tests below (the gases alone: they take most
+/// of the time, and the tests run in parallel).
+const GASES: [&str; 5] = ["gas2d", "gas3d", "gas4d", "gas5d", "gas6d"];
+const TABLES: [&str; 10] = [
+    "circle",
+    "cube3d",
+    "disk_between_walls",
+    "sector",
+    "sinai",
+    "sinai_square",
+    "sphere3d",
+    "strip",
+    "triangle",
+    "wedge",
+];
+
+/// Runs shipped scenes; the number of them whose cell engine re-based.
+fn shipped(names: &[&str]) -> usize {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    names
+        .iter()
+        .filter(|name| {
+            let text = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
+            run_scene(name, &text) > 0
+        })
+        .count()
+}
+
+#[test]
+fn every_shipped_scene_is_compared() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let mut present: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    present.sort();
+    let mut listed: Vec<&str> = GASES.iter().chain(&TABLES).copied().collect();
+    listed.sort();
+    assert_eq!(present, listed);
+}
+
+#[test]
+fn the_shipped_tables_log_the_same_bytes_in_both_engines() {
+    // Every table but the open wedge (3 contacts, then it escapes) re-bases.
+    assert_eq!(shipped(&TABLES), TABLES.len() - 1);
+}
+
+#[test]
+fn the_shipped_gases_in_2d_and_3d_log_the_same_bytes_in_both_engines() {
+    shipped(&GASES[..2]);
+}
+
+#[test]
+fn the_shipped_gases_in_4d_to_6d_log_the_same_bytes_in_both_engines() {
+    // Their contacts come fast enough that 10^4 of them take a few re-basings.
+    assert_eq!(shipped(&GASES[2..]), 3);
+}
+
+/// A two-species 2D gas at packing fraction 0.40 (dense: many contacts per crossing)
+/// and the same balls in a box 30 times wider (dilute: many crossings and wraps per contact).
+#[test]
+fn dense_and_dilute_gases_log_the_same_bytes_in_both_engines() {
+    for (name, side) in [("dense", "14"), ("dilute", "360")] {
+        let text = format!(
+            r#"
+dim = 2
+[box]
+size = [{side}, {side}]
+boundary = ["periodic", "periodic"]
+[[species]]
+mass = 3
+radius = 1
+count = 10
+[[species]]
+mass = 1
+radius = "1/2"
+count = 60
+[random]
+seed = 5
+speed = 1
+spin = 1
+"#
+        );
+        run_scene(name, &text);
+    }
+}
