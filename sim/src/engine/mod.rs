@@ -18,8 +18,9 @@
 //! - a ball-ball event whose partner's counter changed is no longer an event: the owner is
 //!   re-predicted (its record is unchanged, so no event of it was missed);
 //! - a cell crossing moves the ball to the next cell (counting a wrap on a periodic axis) and
-//!   re-predicts it against its new neighbours; its record does not move, so the times it
-//!   finds are the ones any other prediction finds;
+//!   re-predicts it: its best contact so far (kept per ball, valid while that partner's
+//!   counter is unchanged) against the newly reached layer of cells only (`scan.rs`); its
+//!   record does not move, so the times it finds are the ones any other prediction finds;
 //! - a contact moves the records of the balls involved to its time, applies the pair's map
 //!   (body 1 the lower index), bumps the counters and re-predicts them.
 //!
