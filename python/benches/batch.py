@@ -1,47 +1,59 @@
-"""collide_batch against the Rust batch kernel and a vectorised NumPy peer, side by side.
+"""collide_batch against the copy floor, the Rust batch path and a vectorised NumPy peer.
 
-    python python/benches/batch.py [--rows 1000000] [--dims 3] [--repeats 7] [--threads]
+    python python/benches/batch.py [--rows 1000000] [--dims 2 3] [--rounds 5]
+        [--threads] [--validated] [--compare OTHER/_native.abi3.so]
 
 On the same random contacts (both bodies free, float64, C-contiguous), in ns per contact,
-the median of `repeats` rounds, each round running every contender once in turn (so that a
-change of the machine's load hits them alike):
-- `rust rows`: the reference, the Rust batch kernel from the same row-major arrays into
-  row-major outputs through collision-core's batch API (fill_from_rows, Exec::free,
-  write_rows, chunks of 512 rows), timed in Rust (noslip.batch.reference_seconds); its
-  outputs are allocated once and reused (`rust rows`, the reference of `out=`) or new on
-  each run, allocated as NumPy allocates a large array (`rust rows, new`: the reference of
-  new arrays, paying the same first touch);
-- `copy floor`: every input element read once and every output element written once, in
-  Rust (no implementation on these arrays can do with less memory traffic);
-- `rust kernel`: Exec::free alone on the rows already in its blocked layout (the floor: the
-  row-major arrays neither read nor written);
-- `collide_batch`: noslip.collide_batch on the NumPy arrays, into new arrays (which it must
-  allocate and touch for the first time) and into reused arrays (`out=`, as the reference),
-  each without and with validation (the default);
+medians with min-max over `rounds` alternated rounds: every round runs each contender once
+in turn, so that a change of the shared machine's load hits them alike. Ratios are the
+median (min-max) of the ratios within each round.
+
+- `copy`, `copy new`: the copy floor, in Rust: every input element read once and every
+  output element written once (each body's states copied from its input), into reused
+  output arrays, or into new ones allocated as NumPy allocates a large array (anonymous
+  `mmap` advised for huge pages), which pays the first touch of new pages as a call
+  returning new arrays must;
+- `np copy`, `np copy new`: the same floor written with NumPy (`np.copyto` into the reused
+  arrays, `np.array(..., copy=True)` for new ones, `sum` of the rest);
+- `kernel`: `Exec::free` alone on the rows already in its blocked layout;
+- `steps`: the Rust batch path before issue 30: chunks of 512 rows gathered into a
+  `FreeBatch` (`fill_from_rows`), run by `Exec::free`, scattered by `write_rows`;
+- `rust rows`, `rust rows new`: the Rust batch path, `Exec::free_rows` (a few blocks at a
+  time gathered, run and scattered, each step compiled for the run-time ISA), into reused
+  outputs (the reference of `out=`) or new ones (the reference of new arrays);
+- `out=`, `new`: `noslip.collide_batch(..., validate=False)` into reused arrays or
+  returning new ones (the unvalidated path the targets are about);
 - `numpy`: the closed form of docs/derivation.md section 8 written with NumPy array
-  operations (checked against the package first), new arrays as collide_batch's default.
+  operations (checked against the package first), new arrays;
+- `--validated`: `collide_batch` with validation (each row through `collide`), `out=`;
+- `--compare`: another build's native module (e.g. the wheel before a change), its
+  `collide_batch` timed in the same rounds (`before out=`, `before new`).
 
 The default is one thread for everything, timed in CPU seconds of the calling thread
-(CLOCK_THREAD_CPUTIME_ID: time.thread_time here, clock_gettime in Rust): on a shared, loaded machine
-these move far less than the wall clock. `--threads` runs the package and the reference on
-rayon's default pool instead (wall clock) and adds the time of two Python threads each
-running a serial batch on half the rows over the same two calls in sequence (the GIL is
-released: about 0.5 with two free cores).
+(CLOCK_THREAD_CPUTIME_ID: time.thread_time here, clock_gettime in Rust): on a shared, loaded
+machine these move far less than the wall clock. `--threads` runs the package and the Rust
+references on rayon's default pool instead (wall clock).
 """
 
 from __future__ import annotations
 
 import argparse
-import threading
+import importlib.machinery
+import importlib.util
 import time
+from types import ModuleType
+from typing import Any, Callable
 
 import numpy as np
 
 import noslip
-from noslip.batch import reference_seconds
+from noslip.batch import _body, reference_seconds
+
+Bodies = list[dict[str, np.ndarray]]
 
 
-def contacts(rng, rows, n):
+def contacts(rng: np.random.Generator, rows: int, n: int) -> tuple[np.ndarray, Bodies]:
+    """Random approaching contacts of two free balls, one per row."""
     nu = rng.normal(size=(rows, n))
     nu /= np.linalg.norm(nu, axis=1, keepdims=True)
     bodies = []
@@ -59,7 +71,7 @@ def contacts(rng, rows, n):
     return nu, bodies
 
 
-def numpy_peer(nu, bodies):
+def numpy_peer(nu: np.ndarray, bodies: Bodies) -> tuple[dict[str, np.ndarray], ...]:
     """The closed form (docs/derivation.md section 8), vectorised over rows:
     c = R1 U1 nu + R2 U2 nu, d_n = (u2 - u1).nu, t = u2 - u1 - d_n nu - c,
     D = w1 g2 (1 + g1) + w2 g1 (1 + g2), P = d_n/(w1 + w2) nu + g1 g2/D t,
@@ -87,33 +99,78 @@ def numpy_peer(nu, bodies):
     )
 
 
-def main():
+def numpy_copy(nu: np.ndarray, bodies: Bodies, out: Any = None) -> float:
+    """The copy floor in NumPy: the normals and parameters summed, each body's states copied
+    into `out` (reused arrays) or into new arrays."""
+    total = float(nu.sum())
+    for b in range(2):
+        for key in ("inv_mass", "radius", "gamma2"):
+            total += float(bodies[b][key].sum())
+        for key in ("angular_velocity", "velocity"):
+            if out is None:
+                np.array(bodies[b][key], copy=True)
+            else:
+                np.copyto(out[b][key], bodies[b][key])
+    return total
+
+
+def load_native(path: str) -> ModuleType:
+    """Another build's native module (`_native.abi3.so`), under a name of its own."""
+    loader = importlib.machinery.ExtensionFileLoader("_native", path)
+    spec = importlib.util.spec_from_file_location("_native", path, loader=loader)
+    assert spec is not None
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+def summary(values: list[float], digits: int = 1) -> str:
+    v = sorted(values)
+    return f"{v[len(v) // 2]:.{digits}f} ({v[0]:.{digits}f}-{v[-1]:.{digits}f})"
+
+
+def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--rows", type=int, default=1_000_000)
-    ap.add_argument("--dims", type=int, nargs="+", default=[3])
-    ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--dims", type=int, nargs="+", default=[2, 3])
+    ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--threads", action="store_true")
+    ap.add_argument("--validated", action="store_true")
+    ap.add_argument("--compare", metavar="SO", help="another build's _native.abi3.so")
     args = ap.parse_args()
     parallel = args.threads
     clock = time.perf_counter if parallel else time.thread_time
+    other = load_native(args.compare) if args.compare else None
 
-    def seconds(f):
+    def seconds(f: Callable[[], Any]) -> float:
         t = clock()
         f()
         return clock() - t
 
     print(
-        f"isa {noslip.isa()}, {args.rows} contacts, median of {args.repeats} rounds, "
-        f"ns per contact, {'rayon threads, wall clock' if parallel else 'one thread, CPU time'}"
+        f"isa {noslip.isa()}, {args.rows} contacts, {args.rounds} alternated rounds, ns per "
+        f"contact, median (min-max), "
+        f"{'rayon threads, wall clock' if parallel else 'one thread, CPU time'}"
     )
-    head = [
-        "n", "copy floor", "rust kernel", "rust rows", "rust rows, new", "new", "new, validated",
-        "out=", "out=, validated", "numpy peer", "out=, validated / rust rows",
-        "new, validated / rust rows, new",
-        "numpy / new, validated", "numpy / copy floor",
-    ] + (["2 threads / sequential"] if parallel else [])
-    print("| " + " | ".join(head) + " |")
-    print("|" + "---:|" * len(head))
+    times = [
+        "copy", "copy new", "np copy", "np copy new", "kernel", "steps", "rust rows",
+        "rust rows new", "out=", "new",
+    ]
+    times += (["before out=", "before new"] if other else []) + ["numpy"]
+    times += ["out=, validated"] if args.validated else []
+    ratios = {
+        "out= / np copy": ("out=", "np copy"),
+        "new / np copy new": ("new", "np copy new"),
+        "out= / copy": ("out=", "copy"),
+        "new / copy new": ("new", "copy new"),
+        "out= / rust rows": ("out=", "rust rows"),
+        "new / rust rows new": ("new", "rust rows new"),
+        "rust rows / copy": ("rust rows", "copy"),
+        "numpy / copy": ("numpy", "copy"),
+    }
+    if other:
+        ratios["out= / before out="] = ("out=", "before out=")
+        ratios["new / before new"] = ("new", "before new")
     for n in args.dims:
         rng = np.random.default_rng(n)
         nu, bodies = contacts(rng, args.rows, n)
@@ -126,54 +183,51 @@ def main():
             for key in ("angular_velocity", "velocity"):
                 err = np.abs(ours[b][key] - peer[b][key]).max()
                 assert err < 1e-12, (n, b, key, err)
-        out = noslip.collide_batch(nu, bodies)  # allocated and touched once, then reused
-        half = [{key: v[: args.rows // 2] for key, v in b.items()} for b in bodies]
-
-        def run_half():
-            noslip.collide_batch(nu[: args.rows // 2], half, validate=False, parallel=False)
-
-        def sequential():
-            run_half()
-            run_half()
-
-        def threaded():
-            ts = [threading.Thread(target=run_half) for _ in range(2)]
-            for th in ts:
-                th.start()
-            for th in ts:
-                th.join()
-
-        keys = (
-            "copy", "rows", "rows_new", "kernel", "new", "new_v", "out", "out_v", "numpy",
-            "seq", "thr",
-        )
-        t = {key: [] for key in keys}
+        out = noslip.collide_batch(nu, bodies, validate=False)  # touched once, then reused
         batch = noslip.collide_batch
-        for _ in range(args.repeats):
+        t: dict[str, list[float]] = {key: [] for key in times}
+        native_args = None
+        if other:
+            f64 = np.dtype(np.float64)
+            b1, b2 = (_body(bodies[b], b, f64, nu.shape) for b in range(2))
+            before_out = tuple(np.empty_like(out[b][key]) for b in range(2)
+                               for key in ("angular_velocity", "velocity"))
+            native_args = (nu, b1, b2)
+            # The other build gives the same bits (both are the scalar kernel's).
+            got = other.collide_batch_f64(nu, b1, b2, False, parallel)
+            want = (out[0]["angular_velocity"], out[0]["velocity"],
+                    out[1]["angular_velocity"], out[1]["velocity"])
+            assert all(np.array_equal(g, w) for g, w in zip(got, want)), "builds differ"
+        for _ in range(args.rounds):
             ref = reference_seconds(nu, bodies, 1, parallel)
-            t["rows"] += ref["rows"]
-            t["rows_new"] += ref["rows_new"]
-            t["kernel"] += ref["kernel"]
-            t["copy"] += ref["copy"]
+            for key, name in [("copy", "copy"), ("copy_new", "copy new"), ("kernel", "kernel"),
+                              ("steps", "steps"), ("rows", "rust rows"),
+                              ("rows_new", "rust rows new")]:
+                t[name] += ref[key]
+            t["np copy"].append(seconds(lambda: numpy_copy(nu, bodies, out)))
+            t["np copy new"].append(seconds(lambda: numpy_copy(nu, bodies)))
+            t["out="].append(seconds(
+                lambda: batch(nu, bodies, validate=False, parallel=parallel, out=out)))
             t["new"].append(seconds(lambda: batch(nu, bodies, validate=False, parallel=parallel)))
-            t["new_v"].append(seconds(lambda: batch(nu, bodies, parallel=parallel)))
-            t["out"].append(
-                seconds(lambda: batch(nu, bodies, validate=False, parallel=parallel, out=out))
-            )
-            t["out_v"].append(seconds(lambda: batch(nu, bodies, parallel=parallel, out=out)))
+            if other and native_args:
+                t["before out="].append(seconds(lambda: other.collide_batch_f64(
+                    *native_args, False, parallel, before_out)))
+                t["before new"].append(seconds(
+                    lambda: other.collide_batch_f64(*native_args, False, parallel)))
             t["numpy"].append(seconds(lambda: numpy_peer(nu, bodies)))
-            if parallel:
-                t["seq"].append(seconds(sequential))
-                t["thr"].append(seconds(threaded))
-        m = {key: float(np.median(v)) * 1e9 / args.rows for key, v in t.items() if v}
+            if args.validated:
+                t["out=, validated"].append(
+                    seconds(lambda: batch(nu, bodies, parallel=parallel, out=out)))
+        ns = {key: [x * 1e9 / args.rows for x in v] for key, v in t.items()}
+        print(f"\nn = {n}")
+        print("| " + " | ".join(times) + " |")
+        print("|" + "---:|" * len(times))
+        print("| " + " | ".join(summary(ns[key]) for key in times) + " |")
+        print("| " + " | ".join(ratios) + " |")
+        print("|" + "---:|" * len(ratios))
         cells = [
-            f"{n}", f"{m['copy']:.1f}", f"{m['kernel']:.1f}", f"{m['rows']:.1f}",
-            f"{m['rows_new']:.1f}",
-            f"{m['new']:.1f}",
-            f"{m['new_v']:.1f}", f"{m['out']:.1f}", f"{m['out_v']:.1f}", f"{m['numpy']:.0f}",
-            f"{m['out_v'] / m['rows']:.2f}", f"{m['new_v'] / m['rows_new']:.2f}",
-            f"{m['numpy'] / m['new_v']:.1f}", f"{m['numpy'] / m['copy']:.1f}",
-        ] + ([f"{m['thr'] / m['seq']:.2f}"] if parallel else [])
+            summary([a / b for a, b in zip(ns[num], ns[den])], 2) for num, den in ratios.values()
+        ]
         print("| " + " | ".join(cells) + " |")
 
 

@@ -215,24 +215,29 @@ def reference_seconds(
     ``parallel`` on rayon's threads, in wall-clock seconds; else on the calling thread, in
     its CPU seconds (Linux; a loaded machine disturbs them far less).
 
-    - ``"rows"``: collision-core's batch API from the same row-major arrays into row-major
-      outputs: chunks of rows on rayon's threads, each gathered into a ``FreeBatch``
-      (``fill_from_rows``), run by ``Exec::free`` (run-time ISA) and scattered into the
-      outputs (``PairBatch::write_rows``); no validation. The outputs are allocated and
-      touched once before the timed runs and reused (``collide_batch`` returns new arrays
-      and pays their first touch).
-    - ``"rows_new"``: the same into new output memory on each run, allocated as NumPy
-      allocates a large array (``mmap``, advised for huge pages): it pays the first touch, as
-      ``collide_batch`` does when it returns new arrays.
-    - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in its
-      blocked batch: the kernel's floor, the row-major arrays neither read nor written.
-    - ``"copy"``: the memory floor of any implementation on these arrays: every input element
-      read once and every output element written once (each body's states copied from its
-      input), in one pass, chunk by chunk as ``"rows"``.
+    Returns
+    -------
+    dict of str to list of float
+        - ``"rows"``: collision-core's batch path from the same row-major arrays into
+          row-major outputs, ``Exec::free_rows`` (a few blocks at a time gathered, run by the
+          kernel and scattered, each step compiled for the run-time ISA); no validation.
+          The outputs are allocated and touched once before the timed runs and reused: the
+          reference of ``collide_batch(..., out=)``.
+        - ``"rows_new"``: the same into new output memory on each run, allocated as NumPy
+          allocates a large array (``mmap``, advised for huge pages): it pays the first
+          touch, as ``collide_batch`` does when it returns new arrays.
+        - ``"steps"``: the three steps before ``free_rows``: chunks of 512 rows gathered
+          into a ``FreeBatch`` (``fill_from_rows``), run by ``Exec::free`` and scattered
+          (``PairBatch::write_rows``), into reused outputs.
+        - ``"copy"``: the copy floor of any implementation on these arrays: every input
+          element read once and every output element written once (each body's states
+          copied from its input), in one pass, into reused outputs.
+        - ``"copy_new"``: the same into new output memory on each run (as ``"rows_new"``).
+        - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in
+          its blocked batch: the kernel without the row-major arrays.
     """
     normal = np.asarray(normal)
     b1, b2 = (
         _body(bodies[b], b, np.dtype(np.float64), normal.shape) for b in range(2)
     )
-    rows, rows_new, kernel, copy = _native.reference_seconds(normal, b1, b2, repeats, parallel)
-    return {"rows": rows, "rows_new": rows_new, "kernel": kernel, "copy": copy}
+    return dict(_native.reference_seconds(normal, b1, b2, repeats, parallel))

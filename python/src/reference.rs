@@ -1,24 +1,27 @@
 //! The benchmark's references for `collide_batch` (python/benches/batch.py): the Rust
-//! batch kernel timed in Rust on the same `float64` rows, two ways.
+//! batch path and the memory floor, timed in Rust on the same `float64` rows.
 //!
 //! - `rows`: what a Rust program with the same row-major arrays does with
-//!   `collision_core::batch` at its best: chunks of rows (split across rayon's threads, or
-//!   on the calling thread when serial), each
-//!   gathered into a `FreeBatch` (`fill_from_rows`), run by `Exec::free` (run-time ISA) and
-//!   scattered into row-major output arrays (`PairBatch::write_rows`); no validation. The
-//!   output arrays are allocated and touched once, before the timed runs, and reused: a
-//!   Rust program can keep them, while `collide_batch` must return new arrays, whose first
-//!   touch (the kernel's page faults and zeroing, about 200 bytes a contact in 3D) it pays
-//!   and this reference does not. The ratio to it is the target's.
+//!   `collision_core::batch` at its best: `Exec::free_rows` (a pass of a few blocks at a
+//!   time gathered from the arrays, run and scattered into row-major outputs, each step
+//!   compiled for the run-time ISA; split across rayon's threads, or on the calling thread
+//!   when serial); no validation. The output arrays are allocated and touched once, before
+//!   the timed runs, and reused: the reference of `collide_batch(..., out=)`.
 //! - `rows_new`: the same into new output memory on each run, allocated as NumPy allocates
-//!   a large array (`mmap`, advised for huge pages), so that it pays the first touch as
-//!   `collide_batch` does when it returns new arrays.
-//! - `copy`: the memory floor of any implementation on these arrays: every input element
-//!   read once (summed) and every output element written once (each body's angular
-//!   velocity and velocity copied from its input), in one pass, chunk by chunk as `rows`.
-//! - `kernel`: `Exec::auto().free` alone (rayon threads, or serial) on the rows laid out once, untimed,
-//!   in its blocked batch, into a reused output batch: the kernel's floor, without reading
-//!   or writing the row-major arrays.
+//!   a large array (`mmap`, advised for huge pages), so that it pays the first touch (the
+//!   kernel's page faults and zeroing) as `collide_batch` does when it returns new arrays:
+//!   the reference of new arrays.
+//! - `steps`: the three steps a program ran before `free_rows`: chunks of 512 rows, each
+//!   gathered into a `FreeBatch` (`fill_from_rows`), run by `Exec::free` and scattered
+//!   (`PairBatch::write_rows`), into reused outputs.
+//! - `copy`: the copy floor of any implementation on these arrays: every input element read
+//!   once (summed) and every output element written once (each body's angular velocity and
+//!   velocity copied from its input), in one pass, chunk by chunk, into reused outputs.
+//! - `copy_new`: the same into new output memory on each run, allocated as for `rows_new`:
+//!   the copy floor of a call that returns new arrays.
+//! - `kernel`: `Exec::auto().free` alone (rayon threads, or serial) on the rows laid out
+//!   once, untimed, in its blocked batch, into a reused output batch: the kernel without
+//!   reading or writing the row-major arrays.
 //!
 //! Serial runs are timed in CPU time of the calling thread (`CLOCK_THREAD_CPUTIME_ID`), which a loaded machine disturbs far less than the wall
 //! clock; parallel runs in wall-clock time.
@@ -29,11 +32,13 @@ use collision_core::batch::{share_rows, BatchKernel, Exec, FreeBatch, FreeRows, 
 use collision_core::Generated;
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
+use std::collections::BTreeMap;
 use std::sync::Mutex;
 use std::time::Instant;
 
-/// The seconds of each run of the references: `rows`, `rows_new`, `kernel`, `copy`.
-type Seconds = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+/// The seconds of each run of each reference, by name (`rows`, `rows_new`, `steps`,
+/// `copy`, `copy_new`, `kernel`).
+type Seconds = BTreeMap<&'static str, Vec<f64>>;
 
 /// New output memory as NumPy gets it for a large array: anonymous pages from `mmap`
 /// (glibc's `malloc` above its threshold), advised for transparent huge pages
@@ -93,7 +98,7 @@ type OutChunk<'a> = (
 /// Rows per chunk of the `rows` reference (runs of whole chunks are shared between threads).
 const CHUNK: usize = 512;
 
-/// The seconds of each of `repeats` runs of the references, `(rows, kernel, copy)`, on the same
+/// The seconds of each of `repeats` runs of each reference on the same
 /// `float64` rows (every body must move: `inv_mass > 0`). Arrays must be C-contiguous.
 /// With `parallel` on rayon's threads (wall clock), else on the calling thread (its CPU
 /// time).
@@ -123,7 +128,7 @@ pub fn reference_seconds(
     seconds.map_err(input_error)
 }
 
-/// Both references' seconds per run.
+/// Every reference's seconds per run.
 fn time_both<const N: usize, const S: usize>(
     rows: &FreeRows<'_, f64>,
     repeats: usize,
@@ -147,60 +152,62 @@ where
             thread_seconds() - t
         }
     };
-    let mut outputs = [
-        vec![0.0; len * N * N],
-        vec![0.0; len * N],
-        vec![0.0; len * N * N],
-        vec![0.0; len * N],
-    ];
-    rows_to_rows::<N, S>(rows, outputs.each_mut().map(|v| v.as_mut_slice()), parallel);
-    let mut rows_seconds = Vec::with_capacity(repeats);
-    for _ in 0..repeats {
-        rows_seconds.push(time(&mut || {
-            rows_to_rows::<N, S>(rows, outputs.each_mut().map(|v| v.as_mut_slice()), parallel);
-            std::hint::black_box(&outputs);
-        }));
-    }
     let exec = if parallel {
         Exec::auto()
     } else {
         Exec::auto().serial()
     };
+    let sizes = [len * N * N, len * N, len * N * N, len * N];
+    let mut outputs = sizes.map(|k| vec![0.0; k]);
+    let free_rows = |out: [&mut [f64]; 4]| {
+        let [s1, v1, s2, v2] = out;
+        exec.free_rows::<f64, N, S>(rows, state_rows_mut([s1, s2], [v1, v2]));
+    };
+    free_rows(outputs.each_mut().map(|v| v.as_mut_slice()));
+    let mut seconds = Seconds::new();
+    let mut timed = |name: &'static str, f: &mut dyn FnMut()| {
+        let runs = (0..repeats).map(|_| time(&mut *f)).collect();
+        seconds.insert(name, runs);
+    };
+    timed("rows", &mut || {
+        free_rows(outputs.each_mut().map(|v| v.as_mut_slice()));
+        std::hint::black_box(&outputs);
+    });
+    timed("rows_new", &mut || {
+        let mut fresh = sizes.map(Fresh::new);
+        free_rows(fresh.each_mut().map(Fresh::slice));
+        std::hint::black_box(&fresh);
+    });
+    timed("steps", &mut || {
+        steps_to_rows::<N, S>(rows, outputs.each_mut().map(|v| v.as_mut_slice()), parallel);
+        std::hint::black_box(&outputs);
+    });
+    timed("copy", &mut || {
+        std::hint::black_box(copy_floor::<N>(
+            rows,
+            outputs.each_mut().map(|v| v.as_mut_slice()),
+            parallel,
+        ));
+        std::hint::black_box(&outputs);
+    });
+    timed("copy_new", &mut || {
+        let mut fresh = sizes.map(Fresh::new);
+        std::hint::black_box(copy_floor::<N>(
+            rows,
+            fresh.each_mut().map(Fresh::slice),
+            parallel,
+        ));
+        std::hint::black_box(&fresh);
+    });
     let mut batch = FreeBatch::<f64, N, S>::with_capacity(len);
     batch.fill_from_rows(rows, 0..len);
     let mut out = PairBatch::<f64, N, S>::new();
     exec.free::<f64, N, S>(&batch, &mut out);
-    let kernel_seconds = (0..repeats)
-        .map(|_| {
-            time(&mut || {
-                exec.free::<f64, N, S>(&batch, &mut out);
-                std::hint::black_box(&out);
-            })
-        })
-        .collect();
-    let copy_seconds = (0..repeats)
-        .map(|_| {
-            time(&mut || {
-                std::hint::black_box(copy_floor::<N>(
-                    rows,
-                    outputs.each_mut().map(|v| v.as_mut_slice()),
-                    parallel,
-                ));
-                std::hint::black_box(&outputs);
-            })
-        })
-        .collect();
-    let sizes = [len * N * N, len * N, len * N * N, len * N];
-    let fresh_seconds = (0..repeats)
-        .map(|_| {
-            time(&mut || {
-                let mut fresh = sizes.map(Fresh::new);
-                rows_to_rows::<N, S>(rows, fresh.each_mut().map(Fresh::slice), parallel);
-                std::hint::black_box(&fresh);
-            })
-        })
-        .collect();
-    Ok((rows_seconds, fresh_seconds, kernel_seconds, copy_seconds))
+    timed("kernel", &mut || {
+        exec.free::<f64, N, S>(&batch, &mut out);
+        std::hint::black_box(&out);
+    });
+    Ok(seconds)
 }
 
 /// CPU seconds this thread has run: `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, the clock of
@@ -219,6 +226,21 @@ fn thread_seconds() -> f64 {
     }
 }
 
+/// The sum of `x` with eight accumulators: vectorised, so that summing the inputs costs no
+/// more than reading them (a single running sum is one dependent add per element, 4 cycles
+/// each: it made this floor 1.9x NumPy's own copy at n = 2).
+fn sum(x: &[f64]) -> f64 {
+    let mut acc = [0.0; 8];
+    let chunks = x.chunks_exact(8);
+    let rest: f64 = chunks.remainder().iter().sum();
+    for c in chunks {
+        for (a, y) in acc.iter_mut().zip(c) {
+            *a += y;
+        }
+    }
+    acc.iter().sum::<f64>() + rest
+}
+
 /// The `copy` floor: per chunk of [`CHUNK`] rows, the sum of its normals and parameters, and
 /// each body's angular velocities and velocities copied into the outputs
 /// `[spin_1, velocity_1, spin_2, velocity_2]`; on rayon's threads (`parallel`) or this one.
@@ -233,26 +255,26 @@ fn copy_floor<const N: usize>(
         || (),
         |(), (c, (((s1, s2), v1), v2))| {
             let range = c * CHUNK..c * CHUNK + v1.len() / N;
-            let mut sum: f64 = rows.nu[range.start * N..range.end * N].iter().sum();
+            let mut total = sum(&rows.nu[range.start * N..range.end * N]);
             for b in rows.balls {
                 for p in [b.inv_mass, b.radius, b.gamma2] {
                     // A shared parameter (one value) is read once.
                     let rows = if p.len() == 1 { 0..1 } else { range.clone() };
-                    sum += p[rows].iter().sum::<f64>();
+                    total += sum(&p[rows]);
                 }
             }
             for (state, (spin, velocity)) in rows.states.iter().zip([(s1, v1), (s2, v2)]) {
                 spin.copy_from_slice(&state.spin[range.start * N * N..range.end * N * N]);
                 velocity.copy_from_slice(&state.velocity[range.start * N..range.end * N]);
             }
-            sum
+            total
         },
     )
 }
 
-/// The `rows` reference, into the row-major outputs `[spin_1, velocity_1, spin_2,
+/// The `steps` reference, into the row-major outputs `[spin_1, velocity_1, spin_2,
 /// velocity_2]`, chunk by chunk on rayon's threads (`parallel`) or on this thread.
-fn rows_to_rows<const N: usize, const S: usize>(
+fn steps_to_rows<const N: usize, const S: usize>(
     rows: &FreeRows<'_, f64>,
     out: [&mut [f64]; 4],
     parallel: bool,

@@ -111,6 +111,41 @@ pub(crate) fn run_on<B, O>(isa: Isa, job: &impl Job<B, O>, blocks: &[B], out: &m
     }
 }
 
+/// Work compiled for one instruction-set level at a time, as the kernels are: `run::<W>` is
+/// `#[inline(always)]` in its implementations, so [`at_level`] compiles it inside each level's
+/// `#[target_feature]` wrapper, where LLVM vectorises it for that level (the gather and
+/// scatter of row-major arrays, `rows/`). `W` is the level's lane width.
+pub(crate) trait AtLevel {
+    /// What the work returns.
+    type Output;
+    /// The work, at lane width `W`.
+    fn run<const W: usize>(self) -> Self::Output;
+}
+
+/// Run `work` compiled for `isa` when this CPU has it, else for the baseline (as [`run_on`]).
+#[inline(always)]
+pub(crate) fn at_level<J: AtLevel>(isa: Isa, work: J) -> J::Output {
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    match isa {
+        // SAFETY: the CPU has AVX-512F, AVX2 and FMA (checked just now by `is_available`).
+        Isa::Avx512 if isa.is_available() => unsafe { x86::avx512_work(work) },
+        // SAFETY: the CPU has AVX2 and FMA (as above).
+        Isa::Avx2 if isa.is_available() => unsafe { x86::avx2_work(work) },
+        _ => baseline_work(work),
+    }
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    {
+        let _ = isa;
+        baseline_work(work)
+    }
+}
+
+/// [`AtLevel`] work at the baseline level, in a function of its own.
+#[inline(never)]
+fn baseline_work<J: AtLevel>(work: J) -> J::Output {
+    work.run::<BASELINE_WIDTH>()
+}
+
 /// The baseline level: the default target (x86-64: SSE2), [`BASELINE_WIDTH`] lanes at a
 /// time.
 #[inline(never)]
@@ -120,7 +155,21 @@ fn baseline<B, O>(job: &impl Job<B, O>, blocks: &[B], out: &mut [O]) {
 
 #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
 mod x86 {
-    use super::Job;
+    use super::{AtLevel, Job};
+
+    /// # Safety
+    /// The CPU must support AVX2 and FMA.
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn avx2_work<J: AtLevel>(work: J) -> J::Output {
+        work.run::<{ super::AVX2_WIDTH }>()
+    }
+
+    /// # Safety
+    /// The CPU must support AVX-512F, AVX2 and FMA.
+    #[target_feature(enable = "avx512f,avx2,fma")]
+    pub(super) unsafe fn avx512_work<J: AtLevel>(work: J) -> J::Output {
+        work.run::<{ super::AVX512_WIDTH }>()
+    }
 
     /// # Safety
     /// The CPU must support AVX2 and FMA.

@@ -193,7 +193,7 @@ impl Exec {
 
     /// Whether a batch of `blocks` blocks of inputs `B` and outputs `O` is split.
     #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
-    fn splits<B, O>(&self, blocks: usize) -> bool {
+    pub(super) fn splits<B, O>(&self, blocks: usize) -> bool {
         match self.split {
             None => false,
             Some(Split::Contacts(from)) => blocks * super::LANES >= from,
@@ -243,7 +243,7 @@ fn states_for<T: Scalar, const N: usize, const S: usize>(
 }
 
 /// The jobs: one kernel each, with the parameters shared by the call.
-struct Free;
+pub(super) struct Free;
 
 impl<T, const N: usize, const S: usize> Job<FreeLanes<T, N, S>, [StateLanes<T, N, S>; 2]> for Free
 where

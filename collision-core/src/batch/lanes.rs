@@ -1,12 +1,23 @@
 //! The blocked (AoSoA) layout: `LANES` contacts side by side, every scalar field a
 //! `[T; LANES]` lane array, so that lane `l` of a block is one contact and the batch
 //! kernels read and write whole lane arrays with plain vector loads and stores.
+//!
+//! Every block type ([`StateLanes`], [`ContactLanes`], [`FreeLanes`], [`FixedLanes`]) is
+//! aligned to a 64-byte cache line, so that an `f64` lane array *is* one cache line and an
+//! AVX-512 load or store of it touches one line, not two. (A vector of blocks used to get
+//! `malloc`'s 16-byte alignment, every lane array straddled two lines, and the in-cache
+//! kernels at n = 6 ran about 1.2x slower; docs/batch.md.) In `f64` the alignment adds no
+//! padding (every block is a whole number of lane arrays of 64 bytes); in `f32` (32-byte lane
+//! arrays) a state block with an odd number of lane arrays (n = 2, 5, 6) is padded by 32 bytes.
 
 use crate::{Ball, BodyState};
 
 /// Contacts per block. 8 lanes of `f64` fill one AVX-512 register, two AVX2 registers or
 /// four SSE2 registers; a lane array of `f64` is one 64-byte cache line.
 pub const LANES: usize = 8;
+
+/// The alignment of every block type: one cache line.
+pub const BLOCK_ALIGN: usize = 64;
 
 /// One scalar field of `LANES` contacts.
 pub type Lanes<T> = [T; LANES];
@@ -118,6 +129,7 @@ impl<T: Clone> Lanewise for BallLanes<T> {
 
 /// The states of `LANES` bodies ([`BodyState`]'s fields, lane by lane).
 #[derive(Clone, Debug, PartialEq)]
+#[repr(align(64))]
 pub struct StateLanes<T, const N: usize, const S: usize> {
     /// Compact skew entries `U_ij`, `i < j`, each a lane array.
     pub spin: [Lanes<T>; S],
@@ -159,6 +171,7 @@ pub struct Contact<T, const N: usize, const S: usize> {
 
 /// [`Contact`]s of `LANES` contacts: the block of the shared-parameter kernels.
 #[derive(Clone, Debug, PartialEq)]
+#[repr(align(64))]
 pub struct ContactLanes<T, const N: usize, const S: usize> {
     /// The components of `nu`, each a lane array.
     pub nu: [Lanes<T>; N],
@@ -191,6 +204,7 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for ContactLanes<T, N, S
 /// `LANES` contacts of two free balls, each with its own ball parameters: the block of the
 /// per-contact `free` kernel. One lane is `(contact, [ball1, ball2])`.
 #[derive(Clone, Debug, PartialEq)]
+#[repr(align(64))]
 pub struct FreeLanes<T, const N: usize, const S: usize> {
     /// The contacts' normals and states.
     pub contact: ContactLanes<T, N, S>,
@@ -221,6 +235,7 @@ impl<T: Clone, const N: usize, const S: usize> Lanewise for FreeLanes<T, N, S> {
 /// own parameters: the block of the per-contact `fixed` kernel. One lane is
 /// `(contact, radius1, ball2)`; the immovable body enters through its radius alone.
 #[derive(Clone, Debug, PartialEq)]
+#[repr(align(64))]
 pub struct FixedLanes<T, const N: usize, const S: usize> {
     /// The contacts' normals and states.
     pub contact: ContactLanes<T, N, S>,

@@ -54,6 +54,7 @@
 mod container;
 mod dispatch;
 mod exec;
+mod kept;
 pub mod kernels;
 pub mod lanes;
 mod prefetch;
@@ -70,10 +71,13 @@ pub use exec::{BatchError, Exec, PARALLEL_FROM_BYTES};
 pub use kernels::BatchKernel;
 pub use lanes::{
     BallLanes, Contact, ContactLanes, FixedLanes, FreeLanes, Lane, Lanes, Lanewise, StateLanes,
-    LANES,
+    BLOCK_ALIGN, LANES,
 };
 pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
-pub use rows::{BallRows, FreeRows, StateRows, StateRowsMut};
+pub use rows::{
+    BallRows, FreeRows, StateRows, StateRowsMut, ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES,
+    ROWS_PASS_BYTES_OUT_OF_CACHE, STREAM_FROM_BYTES,
+};
 #[cfg(feature = "parallel")]
 pub use share::share_rows;
 

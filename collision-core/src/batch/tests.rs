@@ -450,3 +450,31 @@ fn lanes_are_checked_and_isas_reported_as_available() {
     assert!(Isa::Baseline.is_available());
     assert_eq!(Exec::auto().isa(), Isa::detect());
 }
+
+#[test]
+fn blocks_are_cache_line_aligned_without_padding_in_f64() {
+    // Alignment: an `f64` lane array is one cache line, so a vector load of it touches one.
+    assert_eq!(std::mem::align_of::<FreeLanes<f64, 6, 15>>(), BLOCK_ALIGN);
+    assert_eq!(std::mem::align_of::<FixedLanes<f32, 2, 1>>(), BLOCK_ALIGN);
+    assert_eq!(std::mem::align_of::<ContactLanes<f64, 3, 3>>(), BLOCK_ALIGN);
+    assert_eq!(std::mem::align_of::<StateLanes<f64, 5, 10>>(), BLOCK_ALIGN);
+    // No padding in f64: every block is its lane arrays, 64 bytes each.
+    let lane = std::mem::size_of::<Lanes<f64>>();
+    assert_eq!(std::mem::size_of::<StateLanes<f64, 2, 1>>(), 3 * lane);
+    assert_eq!(
+        std::mem::size_of::<FreeLanes<f64, 6, 15>>(),
+        (6 + 2 * 21 + 6) * lane
+    );
+    assert_eq!(
+        std::mem::size_of::<FixedLanes<f64, 4, 6>>(),
+        (4 + 2 * 10 + 4) * lane
+    );
+    // And the blocks of a batch start on a cache line, whatever `malloc` would give.
+    for len in [1, 9, 1000] {
+        let batch: FreeBatch<f64, 3, 3> =
+            sample::<f64, 3, 3>(len as u64, len, |r, lo, hi| r.random_range(lo..hi))
+                .into_iter()
+                .collect();
+        assert_eq!(batch.blocks().as_ptr() as usize % BLOCK_ALIGN, 0);
+    }
+}

@@ -13,7 +13,8 @@
 //! (issue 26). Both now come from `collide`, bit for bit, whatever the range checks of
 //! `collide` become: they are called, not copied.
 
-use super::inputs::{nu_row, put, Inputs, Outputs};
+use super::inputs::{nu_row, Inputs};
+use super::outputs::{put, Outputs};
 use collision_core::{collide, BodyState, Generated, Kernel, Scalar};
 use collision_core::{BodyField, Field};
 use noslip_case::CaseError;

@@ -1,8 +1,9 @@
-//! The inputs and outputs of a batch as arrays: shapes checked, one row's normal, balls and
-//! states read out of them, one row's states written back.
+//! The inputs of a batch as arrays: shapes checked, one row's normal, balls and states
+//! read out of them (as row-major slices for `collision_core::batch::FreeRows` when they
+//! are C-contiguous).
 
 use crate::error::input_error;
-use collision_core::batch::{BallRows, FreeRows, StateRows, StateRowsMut};
+use collision_core::batch::{BallRows, FreeRows, StateRows};
 use collision_core::{Ball, BodyState, Scalar};
 use numpy::ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use pyo3::prelude::*;
@@ -32,13 +33,6 @@ pub(crate) struct Inputs<'a, T> {
     pub(super) dim: usize,
     pub(super) nu: ArrayView2<'a, T>,
     pub(super) bodies: [BodyArrays<'a, T>; 2],
-}
-
-/// The output arrays' memory: per body, the `(N, n, n)` angular velocities and the `(N, n)`
-/// velocities, row-major.
-pub(super) struct Outputs<'a, T> {
-    pub(super) spin: [&'a mut [T]; 2],
-    pub(super) velocity: [&'a mut [T]; 2],
 }
 
 pub(super) fn shape_error(field: &str, expected: String, got: &[usize]) -> PyErr {
@@ -182,61 +176,10 @@ impl<T: Scalar + Copy> BodyArrays<'_, T> {
     }
 }
 
-/// Both bodies' row-major outputs, as `PairBatch::write_rows` takes them.
-pub(crate) fn state_rows_mut<'a, T>(
-    [s1, s2]: [&'a mut [T]; 2],
-    [v1, v2]: [&'a mut [T]; 2],
-) -> [StateRowsMut<'a, T>; 2] {
-    [
-        StateRowsMut {
-            spin: s1,
-            velocity: v1,
-        },
-        StateRowsMut {
-            spin: s2,
-            velocity: v2,
-        },
-    ]
-}
-
-/// The compact entries as a full skew matrix, row-major, `m_cr = 0 - m_rc` (so a zero entry
-/// is `+0` on both sides, as `noslip collide` prints it).
-pub(super) fn write_state<T: Scalar + Copy, const N: usize, const S: usize>(
-    s: &BodyState<T, N, S>,
-    pairs: &[(usize, usize); S],
-    spin: &mut [T],
-    velocity: &mut [T],
-) {
-    for (r, row) in spin.chunks_exact_mut(N).enumerate() {
-        row[r] = T::zero();
-    }
-    for (&(r, c), &x) in pairs.iter().zip(&s.spin) {
-        spin[r * N + c] = x;
-        spin[c * N + r] = T::zero() - x;
-    }
-    velocity.copy_from_slice(&s.velocity);
-}
-
 /// Row `i`'s normal `nu`.
 pub(super) fn nu_row<T: Copy, const N: usize>(input: &Inputs<'_, T>, i: usize) -> [T; N] {
     match input.nu.as_slice() {
         Some(nu) => std::array::from_fn(|k| nu[i * N + k]),
         None => std::array::from_fn(|k| input.nu[[i, k]]),
     }
-}
-
-/// Write body `body`'s state into local row `j` of `out`.
-pub(super) fn put<T: Scalar + Copy, const N: usize, const S: usize>(
-    out: &mut Outputs<'_, T>,
-    j: usize,
-    body: usize,
-    s: &BodyState<T, N, S>,
-    pairs: &[(usize, usize); S],
-) {
-    write_state(
-        s,
-        pairs,
-        &mut out.spin[body][j * N * N..(j + 1) * N * N],
-        &mut out.velocity[body][j * N..(j + 1) * N],
-    );
 }

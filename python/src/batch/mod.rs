@@ -1,142 +1,39 @@
 //! `noslip.collide_batch`: the collision map on every row of NumPy arrays, with the GIL
-//! released and the rows split across rayon's threads, chunk by chunk ([`CHUNK`] rows).
+//! released and the rows split across rayon's threads in runs of whole chunks (`run.rs`).
 //!
 //! - With `validate` (the default), each row goes through `collision_core::collide`
 //!   itself (`checked.rs`): accepted or refused, and its result rounded, exactly as
 //!   `noslip.collide` does it; the first bad row's error names the row and the field.
 //! - Without, the batch kernels run the rows (`unchecked.rs`: blocks of 8 contacts, the
 //!   instruction set chosen at run time): `collision_core::collide_unchecked`'s result bit
-//!   for bit. Row-major arrays (NumPy's default) are gathered straight into the kernel's
-//!   lane arrays and scattered straight into the outputs; other strides go row by row.
-//!   Beyond the outputs, memory is the scratch: about `CHUNK` x 0.25 kB per running thread,
-//!   whatever the number of rows, kept by that thread between calls.
+//!   for bit. Row-major arrays (NumPy's default) go through `Exec::free_rows`, which
+//!   gathers a few blocks at a time straight from the arrays, runs them and scatters them
+//!   straight into the outputs, each step compiled for the CPU's instruction set; other
+//!   strides go row by row. Beyond the outputs, memory is the scratch: about `CHUNK` x
+//!   0.25 kB per running thread, whatever the number of rows, kept by that thread between
+//!   calls.
 //!
 //! The inputs' shapes are checked and their rows read by `inputs.rs`. The outputs are new
-//! arrays, or the caller's (`out=`: shapes and layout checked, borrowed read-write, so an
-//! output sharing memory with an input or another output is refused).
+//! arrays, or the caller's (`out=`, `outputs.rs`: shapes and layout checked, borrowed
+//! read-write, so an output sharing memory with an input or another output is refused).
 
 mod checked;
 mod inputs;
+mod outputs;
+mod run;
 mod unchecked;
 
 use crate::error::input_error;
-use checked::{run_chunk_checked, RowError};
-use collision_core::batch::{share_rows, BatchKernel, Exec};
-use collision_core::{skew_pairs, Generated, Kernel, RefArith, Scalar};
-use inputs::{shape_error, Outputs};
-pub(crate) use inputs::{state_rows_mut, BodyViews, Inputs};
+use collision_core::batch::Exec;
+use collision_core::{RefArith, Scalar};
+pub(crate) use inputs::{BodyViews, Inputs};
 use num_traits::Float;
-use numpy::{
-    Element, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
-    PyReadonlyArray3, PyUntypedArrayMethods,
-};
+use numpy::{Element, PyArray2, PyArray3, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
+pub(crate) use outputs::state_rows_mut;
+use outputs::{borrow_out, check_out, OutIn, Outputs};
 use pyo3::prelude::*;
-use std::sync::Mutex;
-use unchecked::{run_chunk, run_chunk_rows, Scratch};
-
-/// Rows per chunk: 64 blocks of 8, whose scratch (inputs and outputs in the blocked
-/// layout, 30 to 130 kB for n = 2..6 in `f64`) stays in the core's L2 cache between the
-/// gather, the kernel and the scatter.
-pub const CHUNK: usize = 512;
-
-/// `m`'s guard, also after a panic elsewhere (the first error stays usable).
-fn lock<X>(m: &Mutex<X>) -> std::sync::MutexGuard<'_, X> {
-    m.lock().unwrap_or_else(|p| p.into_inner())
-}
-
-/// Rows per run of a split batch of `chunks` chunks of `chunk` rows: whole chunks, about
-/// four runs per rayon thread (one run per chunk when there are fewer chunks) and at most
-/// [`RUN_CHUNKS`] chunks a run, so that a thread that wakes late still finds runs to take and
-/// the threads finish within one short run of each other.
-pub(crate) fn piece_rows(chunks: usize, chunk: usize) -> usize {
-    let pieces = (4 * rayon::current_num_threads()).clamp(1, chunks.max(1));
-    chunks.div_ceil(pieces).min(RUN_CHUNKS) * chunk
-}
-
-/// The most chunks in a run of a split batch: 8 chunks of 512 rows, 0.1-0.4 ms at n = 3..6.
-/// A run costs two thread-local lookups of a scratch and one atomic step, far below that.
-const RUN_CHUNKS: usize = 8;
-
-/// The whole batch, into `out` (`rows` rows), chunk by chunk; shared with rayon's threads
-/// when `parallel` and there is more than one chunk.
-fn run_all<T, const N: usize, const S: usize>(
-    input: &Inputs<'_, T>,
-    validate: bool,
-    parallel: bool,
-    out: Outputs<'_, T>,
-) -> Result<(), String>
-where
-    T: Scalar + Float + Send + Sync,
-    for<'x> &'x T: RefArith<T>,
-    Generated: BatchKernel<T, N, S> + Kernel<T::Unbounded, N, S>,
-{
-    let exec = Exec::auto().serial();
-    let pairs: [(usize, usize); S] = {
-        let all: Vec<(usize, usize)> = skew_pairs(N).collect();
-        std::array::from_fn(|k| all[k])
-    };
-    let rows = input.rows();
-    let Outputs {
-        spin: [s1, s2],
-        velocity: [v1, v2],
-    } = out;
-    // A piece: consecutive chunks run on one thread with one scratch.
-    let piece = |start: usize,
-                 scratch: &mut Scratch<T, N, S>,
-                 s1: &mut [T],
-                 s2: &mut [T],
-                 v1: &mut [T],
-                 v2: &mut [T]| {
-        let (spin_len, vel_len) = (CHUNK * N * N, CHUNK * N);
-        s1.chunks_mut(spin_len)
-            .zip(s2.chunks_mut(spin_len))
-            .zip(v1.chunks_mut(vel_len))
-            .zip(v2.chunks_mut(vel_len))
-            .enumerate()
-            .try_for_each(|(c, (((s1, s2), v1), v2))| {
-                let out = Outputs {
-                    spin: [s1, s2],
-                    velocity: [v1, v2],
-                };
-                let start = start + c * CHUNK;
-                match &rows {
-                    _ if validate => return run_chunk_checked(input, start, out, &pairs),
-                    Some(rows) => run_chunk_rows(&exec, input, rows, start, out, scratch, &pairs),
-                    None => run_chunk(&exec, input, start, out, scratch, &pairs),
-                }
-                Ok(())
-            })
-    };
-    let chunks = input.rows.div_ceil(CHUNK);
-    let first_error = if parallel && chunks > 1 {
-        // Runs of whole chunks, a few per thread, shared between this thread and rayon's
-        // others without handing the batch over (`share_rows`); the first row's error wins.
-        let first_error = Mutex::new(None::<RowError>);
-        share_rows(
-            [s1, s2, v1, v2],
-            [N * N, N * N, N, N],
-            piece_rows(chunks, CHUNK),
-            &|first, [s1, s2, v1, v2]| {
-                let mut scratch = Scratch::<T, N, S>::take();
-                let result = piece(first, &mut scratch, s1, s2, v1, v2);
-                scratch.give_back();
-                if let Err(e) = result {
-                    let mut kept = lock(&first_error);
-                    if kept.as_ref().is_none_or(|k| e.0 < k.0) {
-                        *kept = Some(e);
-                    }
-                }
-            },
-        );
-        first_error.into_inner().unwrap_or_else(|p| p.into_inner())
-    } else {
-        let mut scratch = Scratch::<T, N, S>::take();
-        let result = piece(0, &mut scratch, s1, s2, v1, v2);
-        scratch.give_back();
-        result.err()
-    };
-    first_error.map_or(Ok(()), |(_, m)| Err(m))
-}
+pub(crate) use run::piece_rows;
+use run::run_all;
 
 /// One body's arrays as Python passes them: `angular_velocity`, `velocity`, `inv_mass`,
 /// `radius`, `gamma2`.
@@ -164,66 +61,6 @@ pub(crate) fn views<'a, T: Element>(b: &'a BodyIn<'_, T>) -> BodyViews<'a, T> {
         b.3.as_array(),
         b.4.as_array(),
     )
-}
-
-/// Output arrays a caller passes in (`out=`): body 1's and body 2's angular velocities
-/// `(N, n, n)` and velocities `(N, n)`, C-contiguous and writeable.
-pub(crate) type OutIn<'py, T> = (
-    Bound<'py, PyArray3<T>>,
-    Bound<'py, PyArray2<T>>,
-    Bound<'py, PyArray3<T>>,
-    Bound<'py, PyArray2<T>>,
-);
-
-/// The caller's output arrays' shapes and layout (`out[b].angular_velocity`,
-/// `out[b].velocity` named in the error); whether they can be written is checked when they
-/// are borrowed.
-fn check_out<T: Element>(out: &OutIn<'_, T>, rows: usize, n: usize) -> PyResult<()> {
-    let (s1, v1, s2, v2) = out;
-    for (b, spin, velocity) in [(0, s1, v1), (1, s2, v2)] {
-        for (key, want, got, contiguous) in [
-            (
-                "angular_velocity",
-                vec![rows, n, n],
-                spin.shape(),
-                spin.is_c_contiguous(),
-            ),
-            (
-                "velocity",
-                vec![rows, n],
-                velocity.shape(),
-                velocity.is_c_contiguous(),
-            ),
-        ] {
-            let field = format!("out[{b}].{key}");
-            if got != want.as_slice() {
-                return Err(shape_error(&field, format!("{want:?}"), got));
-            }
-            if !contiguous {
-                return Err(input_error(format!(
-                    "{field}: must be C-contiguous (the rows are written in place)"
-                )));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// A read-write borrow of output `field`: refused (naming it) when the array is read-only
-/// or shares memory with an input (borrowed read-only) or another output.
-fn borrow_out<'py, T: Element, D: numpy::ndarray::Dimension>(
-    array: &Bound<'py, numpy::PyArray<T, D>>,
-    field: &str,
-) -> PyResult<numpy::PyReadwriteArray<'py, T, D>> {
-    array.try_readwrite().map_err(|e| {
-        input_error(match e {
-            numpy::BorrowError::NotWriteable => format!("{field}: must be writeable"),
-            _ => format!(
-                "{field}: shares memory with an input or another output (the outputs must \
-                 be arrays of their own)"
-            ),
-        })
-    })
 }
 
 fn collide_batch<'py, T>(

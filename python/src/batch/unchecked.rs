@@ -7,11 +7,12 @@
 //! whose state then comes back unchanged), `free` otherwise; so a row's result is
 //! `collide_unchecked`'s bit for bit.
 
-use super::inputs::{nu_row, put, state_rows_mut, Inputs, Outputs};
-use super::CHUNK;
+use super::inputs::{nu_row, Inputs};
+use super::outputs::{put, state_rows_mut, Outputs};
+use super::run::CHUNK;
 use collision_core::batch::BatchKernel;
+use collision_core::batch::FreeRows;
 use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
-use collision_core::batch::{FreeRows, LANES};
 use collision_core::{BodyState, Generated, RefArith, Scalar};
 use num_traits::Float;
 use std::any::Any;
@@ -146,9 +147,11 @@ fn run_fixed<T, const N: usize, const S: usize>(
 }
 
 /// Rows `start..start + out.velocity[0].len() / N` of the batch, from row-major arrays:
-/// gathered into the scratch's lane arrays, run by `free`, scattered into `out`; then the
-/// rows with an immovable body are run again by `fixed` and overwritten.
-pub(super) fn run_chunk_rows<T, const N: usize, const S: usize>(
+/// every row run by `free` straight from the arrays into `out` (`Exec::free_rows`: a pass of
+/// a few blocks at a time, gathered, run and scattered by code compiled for the CPU's
+/// instruction set); then the rows with an immovable body, [`CHUNK`] rows at a time, run
+/// again by `fixed` and overwritten.
+pub(super) fn run_rows<T, const N: usize, const S: usize>(
     exec: &Exec,
     input: &Inputs<'_, T>,
     rows: &FreeRows<'_, T>,
@@ -161,31 +164,34 @@ pub(super) fn run_chunk_rows<T, const N: usize, const S: usize>(
     for<'x> &'x T: RefArith<T>,
     Generated: BatchKernel<T, N, S>,
 {
-    let range = start..start + out.velocity[0].len() / N;
-    sc.free.fill_from_rows(rows, range.clone());
-    let lane_rows = |k: usize| (0..LANES).map(move |l| (l, range.start + k * LANES + l));
-    exec.free(&sc.free, &mut sc.pairs);
+    let len = out.velocity[0].len() / N;
     {
         let Outputs {
             spin: [s1, s2],
             velocity: [v1, v2],
         } = &mut out;
-        sc.pairs.write_rows(state_rows_mut([s1, s2], [v1, v2]));
+        let part = rows.slice::<N>(start..start + len);
+        exec.free_rows(&part, state_rows_mut([s1, s2], [v1, v2]));
     }
-    // The rows with an immovable body (`inv_mass = 0` in a lane of the gathered batch).
-    sc.fixed.clear();
-    sc.fixed_rows.clear();
+    // The rows with an immovable body (`inv_mass = 0`); none to look for when both
+    // bodies share a finite mass.
+    let [w1, w2] = rows.balls.each_ref().map(|b| b.inv_mass);
     let zero = T::zero();
-    for (k, block) in sc.free.blocks().iter().enumerate() {
-        let [b1, b2] = &block.balls;
-        for (l, i) in lane_rows(k).take_while(|&(_, i)| i < range.end) {
-            if b1.inv_mass[l] == zero || b2.inv_mass[l] == zero {
-                let fixed = (&mut sc.fixed, &mut sc.fixed_rows);
-                push_fixed(input, i, i - range.start, fixed, pairs);
+    let immovable = |w: &[T], i: usize| w[if w.len() == 1 { 0 } else { i }] == zero;
+    if w1.len() == 1 && w2.len() == 1 && w1[0] != zero && w2[0] != zero {
+        return;
+    }
+    for first in (0..len).step_by(CHUNK) {
+        sc.fixed.clear();
+        sc.fixed_rows.clear();
+        for j in first..(first + CHUNK).min(len) {
+            let i = start + j;
+            if immovable(w1, i) || immovable(w2, i) {
+                push_fixed(input, i, j, (&mut sc.fixed, &mut sc.fixed_rows), pairs);
             }
         }
+        run_fixed(exec, input, start, &mut out, sc, pairs);
     }
-    run_fixed(exec, input, start, &mut out, sc, pairs);
 }
 
 /// Rows `start..start + out.velocity[0].len() / N` of the batch, from arrays of any

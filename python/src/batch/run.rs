@@ -1,0 +1,127 @@
+//! The whole batch, chunk by chunk ([`CHUNK`] rows), on the calling thread or shared with
+//! rayon's threads in runs of whole chunks (`collision_core::batch::share_rows`); each run
+//! validated row by row (`checked.rs`), or run by the batch kernels (`unchecked.rs`: straight
+//! from row-major arrays, or row by row from others).
+
+use super::checked::{run_chunk_checked, RowError};
+use super::inputs::Inputs;
+use super::outputs::Outputs;
+use super::unchecked::{run_chunk, run_rows, Scratch};
+use collision_core::batch::{share_rows, BatchKernel, Exec};
+use collision_core::{skew_pairs, Generated, Kernel, RefArith, Scalar};
+use num_traits::Float;
+use std::sync::Mutex;
+
+/// Rows per chunk: the unit of the split between threads (runs of whole chunks), of the
+/// validated rows' first error, and of the scratch of the rows with an immovable body and of
+/// arrays that are not row-major (64 blocks of 8, 30 to 130 kB in `f64`, in the core's L2
+/// cache).
+pub(super) const CHUNK: usize = 512;
+
+/// `m`'s guard, also after a panic elsewhere (the first error stays usable).
+fn lock<X>(m: &Mutex<X>) -> std::sync::MutexGuard<'_, X> {
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// Rows per run of a split batch of `chunks` chunks of `chunk` rows: whole chunks, about
+/// four runs per rayon thread (one run per chunk when there are fewer chunks) and at most
+/// [`RUN_CHUNKS`] chunks a run, so that a thread that wakes late still finds runs to take and
+/// the threads finish within one short run of each other.
+pub(crate) fn piece_rows(chunks: usize, chunk: usize) -> usize {
+    let pieces = (4 * rayon::current_num_threads()).clamp(1, chunks.max(1));
+    chunks.div_ceil(pieces).min(RUN_CHUNKS) * chunk
+}
+
+/// The most chunks in a run of a split batch: 8 chunks of 512 rows, 0.1-0.4 ms at n = 3..6.
+/// A run costs two thread-local lookups of a scratch and one atomic step, far below that.
+const RUN_CHUNKS: usize = 8;
+
+/// The whole batch, into `out` (`rows` rows), chunk by chunk; shared with rayon's threads
+/// when `parallel` and there is more than one chunk.
+pub(super) fn run_all<T, const N: usize, const S: usize>(
+    input: &Inputs<'_, T>,
+    validate: bool,
+    parallel: bool,
+    out: Outputs<'_, T>,
+) -> Result<(), String>
+where
+    T: Scalar + Float + Send + Sync,
+    for<'x> &'x T: RefArith<T>,
+    Generated: BatchKernel<T, N, S> + Kernel<T::Unbounded, N, S>,
+{
+    let exec = Exec::auto().serial();
+    let pairs: [(usize, usize); S] = {
+        let all: Vec<(usize, usize)> = skew_pairs(N).collect();
+        std::array::from_fn(|k| all[k])
+    };
+    let rows = input.rows();
+    let Outputs {
+        spin: [s1, s2],
+        velocity: [v1, v2],
+    } = out;
+    // A piece: consecutive chunks run on one thread with one scratch. Row-major arrays
+    // without validation go through the batch kernels in one call (`run_rows`), the others
+    // chunk by chunk.
+    let piece = |start: usize,
+                 scratch: &mut Scratch<T, N, S>,
+                 s1: &mut [T],
+                 s2: &mut [T],
+                 v1: &mut [T],
+                 v2: &mut [T]| {
+        if let (false, Some(rows)) = (validate, &rows) {
+            let out = Outputs {
+                spin: [s1, s2],
+                velocity: [v1, v2],
+            };
+            run_rows(&exec, input, rows, start, out, scratch, &pairs);
+            return Ok(());
+        }
+        let (spin_len, vel_len) = (CHUNK * N * N, CHUNK * N);
+        s1.chunks_mut(spin_len)
+            .zip(s2.chunks_mut(spin_len))
+            .zip(v1.chunks_mut(vel_len))
+            .zip(v2.chunks_mut(vel_len))
+            .enumerate()
+            .try_for_each(|(c, (((s1, s2), v1), v2))| {
+                let out = Outputs {
+                    spin: [s1, s2],
+                    velocity: [v1, v2],
+                };
+                let start = start + c * CHUNK;
+                if validate {
+                    return run_chunk_checked(input, start, out, &pairs);
+                }
+                run_chunk(&exec, input, start, out, scratch, &pairs);
+                Ok(())
+            })
+    };
+    let chunks = input.rows.div_ceil(CHUNK);
+    let first_error = if parallel && chunks > 1 {
+        // Runs of whole chunks, a few per thread, shared between this thread and rayon's
+        // others without handing the batch over (`share_rows`); the first row's error wins.
+        let first_error = Mutex::new(None::<RowError>);
+        share_rows(
+            [s1, s2, v1, v2],
+            [N * N, N * N, N, N],
+            piece_rows(chunks, CHUNK),
+            &|first, [s1, s2, v1, v2]| {
+                let mut scratch = Scratch::<T, N, S>::take();
+                let result = piece(first, &mut scratch, s1, s2, v1, v2);
+                scratch.give_back();
+                if let Err(e) = result {
+                    let mut kept = lock(&first_error);
+                    if kept.as_ref().is_none_or(|k| e.0 < k.0) {
+                        *kept = Some(e);
+                    }
+                }
+            },
+        );
+        first_error.into_inner().unwrap_or_else(|p| p.into_inner())
+    } else {
+        let mut scratch = Scratch::<T, N, S>::take();
+        let result = piece(0, &mut scratch, s1, s2, v1, v2);
+        scratch.give_back();
+        result.err()
+    };
+    first_error.map_or(Ok(()), |(_, m)| Err(m))
+}
