@@ -14,11 +14,11 @@
 //! **Images.** A partner or obstacle is named with its image `k` in `Z^n`, in box lengths, in
 //! record coordinates: ball `j`'s image `k` is `a_j + k L` on the clock of `j`'s record.
 //!
-//! **Pair time** ([`pair_time`]). For balls `i < j` (body 1 is the lower index, whichever ball
-//! predicts the pair) and an image `k` of `j`:
+//! **Pair time** ([`pair_time`]). For balls `i` and `j` and an image `k` of `j`:
 //! `t_ref = max(t_i, t_j)`, `p_i = a_i + (t_ref - t_i) u_i` (and `p_j`),
-//! `d = (p_j + k L) - p_i`, `dv = u_j - u_i`, `sigma = R_i + R_j`, and the time is
-//! `t_ref + tau(d, dv, sigma)`, `tau` the earlier root of [`crate::predict::contact_time`].
+//! `d = (p_j - p_i) + k L`, `dv = u_j - u_i`, `sigma = R_i + R_j`, and the time is
+//! `t_ref + tau(d, dv, sigma)`, `tau` the earlier root of [`crate::predict::contact_time`]:
+//! the same bits from `(j, i, -k)`. At the contact, body 1 is the lower index.
 //!
 //! **Fixed bodies.** An obstacle at centre `c` and image `k`: `d = (c + k L) - a_i`,
 //! `dv = -u_i`, time `t_i + tau` ([`obstacle_time`]). A box wall or a table boundary: the
@@ -44,35 +44,44 @@
 use crate::motion::Motion;
 use crate::predict::{contact_time, contact_time_or_nan};
 
-/// The time at which balls `lo < hi` meet, `hi` at image `image` (module docs); NaN if they
-/// never do. `size` is the box (its sides `L_k`; images are 0 on walled axes).
+/// The time at which balls `a` and `b` meet, `b` at image `image` (box lengths, whole
+/// numbers; module docs); NaN if they never do. `size` is the box (its sides `L_k`; images
+/// are 0 on walled axes). The offset is spelled `(q - p) + k L`, so that
+/// `pair_time(b, a, -k)` is the same number, bit for bit: IEEE rounding is symmetric, every
+/// sign flips and the contact time's dot products do not see it. An engine need not order
+/// the pair to get the canonical time.
 #[inline]
 pub(crate) fn pair_time<const N: usize>(
-    lo: &Motion<N>,
-    hi: &Motion<N>,
-    image: &[i16; N],
+    a: &Motion<N>,
+    b: &Motion<N>,
+    image: &[f64; N],
     size: &[f64; N],
 ) -> f64 {
-    let t_ref = lo.since.max(hi.since);
-    let (p, q) = (lo.at(t_ref), hi.at(t_ref));
-    let d: [f64; N] = std::array::from_fn(|k| (q[k] + f64::from(image[k]) * size[k]) - p[k]);
-    let dv: [f64; N] = std::array::from_fn(|k| hi.velocity[k] - lo.velocity[k]);
-    t_ref + contact_time_or_nan(&d, &dv, lo.radius + hi.radius)
+    let t_ref = a.since.max(b.since);
+    let d = pair_offset(a, b, image, size, t_ref);
+    let dv: [f64; N] = std::array::from_fn(|k| b.velocity[k] - a.velocity[k]);
+    t_ref + contact_time_or_nan(&d, &dv, a.radius + b.radius)
 }
 
-/// The normal of the contact of balls `lo < hi` (`hi` at image `image`) at local time `t`:
-/// `nu` along `(p_hi + k L) - p_lo`, the centres flown to `t`, as [`pair_time`] spells the
-/// difference (the caller normalises it).
+/// The offset `(p_b - p_a) + k L` of balls `a` and `b` (`b` at image `image`) at local time
+/// `t`, the centres flown there: the difference [`pair_time`] solves from, and along which the
+/// contact's normal lies (the caller normalises it).
 #[inline]
 pub(crate) fn pair_offset<const N: usize>(
-    lo: &Motion<N>,
-    hi: &Motion<N>,
-    image: &[i16; N],
+    a: &Motion<N>,
+    b: &Motion<N>,
+    image: &[f64; N],
     size: &[f64; N],
     t: f64,
 ) -> [f64; N] {
-    let (p, q) = (lo.at(t), hi.at(t));
-    std::array::from_fn(|k| (q[k] + f64::from(image[k]) * size[k]) - p[k])
+    let (p, q) = (a.at(t), b.at(t));
+    std::array::from_fn(|k| (q[k] - p[k]) + image[k] * size[k])
+}
+
+/// An image as whole numbers of box lengths in `f64` (exact).
+#[inline]
+pub(crate) fn image_f64<const N: usize>(image: &[i16; N]) -> [f64; N] {
+    image.map(f64::from)
 }
 
 /// Obstacle `centre`, radius `radius`, at image `image`: the time ball `m` meets it (module
@@ -189,11 +198,44 @@ mod tests {
         let a = m([0.0, 0.0], 1.0, [0.5, 0.0]);
         let b = m([3.0, 0.0], 0.0, [-0.5, 0.0]);
         // At t_ref = 1: a at 0, b at 2.5; gap 2.5 - 1 closes at 1: t = 1 + 1.5.
-        assert_eq!(pair_time(&a, &b, &[0, 0], &[10.0, 10.0]), 2.5);
+        assert_eq!(pair_time(&a, &b, &[0.0, 0.0], &[10.0, 10.0]), 2.5);
         // The image one box length down on x puts b at 2.5 - 10: they separate.
-        assert!(pair_time(&a, &b, &[-1, 0], &[10.0, 10.0]).is_nan());
+        assert!(pair_time(&a, &b, &[-1.0, 0.0], &[10.0, 10.0]).is_nan());
         // The offset at the contact is the contact distance.
-        assert_eq!(pair_offset(&a, &b, &[0, 0], &[10.0, 10.0], 2.5), [1.0, 0.0]);
+        assert_eq!(
+            pair_offset(&a, &b, &[0.0, 0.0], &[10.0, 10.0], 2.5),
+            [1.0, 0.0]
+        );
+    }
+
+    #[test]
+    fn a_pair_time_is_the_same_bits_from_either_ball() {
+        // Records at odd times and places, images across a periodic box of odd sides: the
+        // time from (a, b, k) and from (b, a, -k) are the same number.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let size = [3.7, 5.3];
+        let mut met = 0;
+        for _ in 0..100_000 {
+            let mut m = || Motion {
+                pos: [size[0] * next(), size[1] * next()],
+                since: 10.0 * next(),
+                velocity: [2.0 * next() - 1.0, 2.0 * next() - 1.0],
+                radius: 0.2 + 0.5 * next(),
+            };
+            let (a, b) = (m(), m());
+            let k = [(3.0 * next()).floor() - 1.0, (3.0 * next()).floor() - 1.0];
+            let forward = pair_time(&a, &b, &k, &size);
+            let back = pair_time(&b, &a, &k.map(|x| -x), &size);
+            assert_eq!(forward.to_bits(), back.to_bits(), "{a:?} {b:?} {k:?}");
+            met += usize::from(!forward.is_nan());
+        }
+        assert!(met > 2_000, "{met}");
     }
 
     #[test]

@@ -183,7 +183,7 @@ impl<const N: usize> Grid<N> {
     /// of the offsets `[-K_0, K_0] x .. x [-K_{n-1}, K_{n-1}]` with the last axis fastest
     /// (offsets outside a walled side skipped). No division: per axis, the at most `2 K_k + 1`
     /// cells (and shifts, `floor((c_k + delta) / n_k)`) are listed first, then combined.
-    #[inline]
+    #[cfg(test)]
     pub(crate) fn for_neighbours(&self, c: &[usize; N], f: impl FnMut(Neighbour<N>)) {
         self.for_cells(c, None, f);
     }
@@ -192,7 +192,7 @@ impl<const N: usize> Grid<N> {
     /// to `c` (`step` = +1 or -1 along `axis`): the layer of offset `step K_axis` along `axis`,
     /// every offset within reach along the others, in [`Grid::for_neighbours`]' order. With
     /// the cells within reach of the cell left, they are every cell within reach of `c`.
-    #[inline]
+    #[cfg(test)]
     pub(crate) fn for_layer(
         &self,
         c: &[usize; N],
@@ -200,13 +200,19 @@ impl<const N: usize> Grid<N> {
         step: i64,
         f: impl FnMut(Neighbour<N>),
     ) {
-        self.for_cells(c, Some((axis, step * self.reach[axis])), f);
+        self.for_cells(c, Some(self.layer(axis, step)), f);
+    }
+
+    /// The restriction of [`Grid::for_cells`] to the layer of [`Grid::for_layer`].
+    #[inline]
+    pub(crate) fn layer(&self, axis: usize, step: i64) -> (usize, i64) {
+        (axis, step * self.reach[axis])
     }
 
     /// [`Grid::for_neighbours`], or with `only = (axis, delta)` the offset `delta` alone along
     /// `axis`.
     #[inline]
-    fn for_cells(
+    pub(crate) fn for_cells(
         &self,
         c: &[usize; N],
         only: Option<(usize, i64)>,

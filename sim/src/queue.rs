@@ -134,8 +134,8 @@ impl Calendar {
         let (x, y) = (&self.slots[a as usize], &self.slots[b as usize]);
         x.time
             .total_cmp(&y.time)
-            .then(x.key.cmp(&y.key))
-            .then(a.cmp(&b))
+            .then_with(|| x.key.cmp(&y.key))
+            .then_with(|| a.cmp(&b))
             .is_lt()
     }
 

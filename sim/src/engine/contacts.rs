@@ -2,7 +2,7 @@
 //! the contact normal, the counters, and the re-prediction of the balls involved.
 
 use super::{Contact, Event, Simulation};
-use crate::canonical::{obstacle_image, pair_offset, rebase_at};
+use crate::canonical::{image_f64, obstacle_image, pair_offset, rebase_at};
 use crate::no_contact::QUIET_BOX_LENGTHS;
 use crate::normal::unit;
 use crate::orientation::{exp_skew, mul};
@@ -61,7 +61,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let d = pair_offset(
             self.motion.get(lo),
             self.motion.get(hi),
-            &image,
+            &image_f64(&image),
             &self.grid.size,
             t,
         );

@@ -27,7 +27,7 @@
 //! **Layout.** What a prediction reads of every neighbour (its record and its wraps) is stored
 //! by cell (`Residents`, `residents.rs`): a cell's records are one list, and a byte per cell
 //! says whether it is empty, so a scan of the `3^n` cells within reach
-//! (`Grid::for_neighbours`, no division) reads one list per occupied cell. The velocity there
+//! (`Grid::for_cells`, no division) reads one list per occupied cell. The velocity there
 //! is a copy of the ball's state's, written at each contact. Contact times in the scan are
 //! taken without branches (`predict::contact_time_or_nan`, the same bits as
 //! `contact_time`). The calendar's lists, the cells' lists and the scan reuse their memory:

@@ -50,7 +50,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     pub(super) fn predict(&mut self, i: usize) {
         let mut best = Best::<N>(None);
         let c = self.cell[i];
-        self.scan(i, &mut best, |grid, f| grid.for_neighbours(&c, f));
+        self.scan(i, &mut best, &c, None);
         self.fixed_bodies(i, &mut best);
         self.schedule(i, best);
     }
@@ -69,8 +69,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let mut best = Best::<N>(kept);
         let c = self.cell[i];
-        let step = if up { 1 } else { -1 };
-        self.scan(i, &mut best, |grid, f| grid.for_layer(&c, axis, step, f));
+        let layer = self.grid.layer(axis, if up { 1 } else { -1 });
+        self.scan(i, &mut best, &c, Some(layer));
         self.schedule(i, best);
     }
 
@@ -88,41 +88,39 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
     }
 
-    /// Offers ball `i`'s contacts with the balls and obstacles of the cells `cells` lists.
+    /// Offers ball `i`'s contacts with the balls and obstacles of the cells within reach of
+    /// cell `c`, or of its layer `only` ([`crate::cells::Grid::for_cells`]).
     #[inline]
-    fn scan(
-        &self,
-        i: usize,
-        best: &mut Best<N>,
-        cells: impl Fn(&crate::cells::Grid<N>, &mut dyn FnMut(crate::cells::Neighbour<N>)),
-    ) {
+    fn scan(&self, i: usize, best: &mut Best<N>, c: &[usize; N], only: Option<(usize, i64)>) {
         let m = *self.motion.get(i);
         let w_i = self.motion.wraps(i);
         let size = self.grid.size;
         if self.prefetch {
             // Start the loads of the cells' lists together, in two rounds (the headers, then
             // the records they point to), instead of one after another as the scan meets them.
-            cells(&self.grid, &mut |nb| self.motion.prefetch_header(nb.cell));
-            cells(&self.grid, &mut |nb| self.motion.prefetch_list(nb.cell));
+            let grid = &self.grid;
+            grid.for_cells(c, only, |nb| self.motion.prefetch_header(nb.cell));
+            grid.for_cells(c, only, |nb| self.motion.prefetch_list(nb.cell));
         }
         let obstacles = !self.obstacles.is_empty();
-        cells(&self.grid, &mut |nb| {
+        self.grid.for_cells(c, only, |nb| {
+            // The cell's image in i's record coordinates, s + W_i (whole numbers in f64).
+            let base: [f64; N] =
+                std::array::from_fn(|k| f64::from(nb.shift[k]) + f64::from(w_i[k]));
             for resident in self.motion.cell(nb.cell) {
                 let j = resident.ball as usize;
                 if j == i {
                     continue;
                 }
-                // j's image in i's record coordinates: s - W_j + W_i.
-                let image: [i16; N] =
-                    std::array::from_fn(|k| i16::from(nb.shift[k]) - resident.wraps[k] + w_i[k]);
-                let (lo, hi, lo_image) = if i < j {
-                    (&m, &resident.motion, image)
-                } else {
-                    (&resident.motion, &m, negated(&image))
-                };
-                let t = pair_time(lo, hi, &lo_image, &size);
+                // j's image in i's record coordinates: s - W_j + W_i (exact in f64).
+                let image: [f64; N] =
+                    std::array::from_fn(|k| base[k] - f64::from(resident.wraps[k]));
+                // The same bits as from j's side (canonical::pair_time): no ordering here.
+                let t = pair_time(&m, &resident.motion, &image, &size);
                 // NaN: no contact (never better).
                 if !t.is_nan() && best.may_beat(t) {
+                    let image: [i16; N] = image.map(|k| k as i16);
+                    let lo_image = if i < j { image } else { negated(&image) };
                     best.offer(
                         t,
                         || key(i.min(j), kind::BALL, i.max(j) as u32, &lo_image),

@@ -13,7 +13,8 @@
 //! ball) skipped at their pop.
 
 use crate::canonical::{
-    self, key, kind, obstacle_image, obstacle_time, pair_offset, pair_time, rebase_at, Key,
+    self, image_f64, key, kind, obstacle_image, obstacle_time, pair_offset, pair_time, rebase_at,
+    Key,
 };
 use crate::cells::Grid;
 use crate::engine::{Contact, Event, CLOCK_CELLS};
@@ -241,7 +242,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             let dv = std::array::from_fn(|k| b.velocity[k] - a.velocity[k]);
             let sigma = a.radius + b.radius;
             for image in self.images(&offset, &dv, sigma, (self.now - t_ref, h - t_ref)) {
-                let t = pair_time(a, b, &image, &self.size);
+                let t = pair_time(a, b, &image_f64(&image), &self.size);
                 if !t.is_nan() {
                     let own = if i == lo { image } else { image.map(|k| -k) };
                     let next = Next::Ball {
@@ -348,7 +349,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         } else {
             (j, i, image.map(|k| -k))
         };
-        let d = pair_offset(&self.records[lo], &self.records[hi], &image, &self.size, t);
+        let (a, b) = (&self.records[lo], &self.records[hi]);
+        let d = pair_offset(a, b, &image_f64(&image), &self.size, t);
         let nu = unit(d);
         self.move_record(lo, t);
         self.move_record(hi, t);
