@@ -117,7 +117,8 @@ mod tests {
     /// The closest-approach form spelled with early returns, as the docs state it.
     fn branchy<const N: usize>(d: &[f64; N], dv: &[f64; N], sigma: f64) -> Option<f64> {
         let (a, b) = dots(d, dv);
-        if !(b < 0.0) {
+        // Not approaching (or NaN).
+        if b.partial_cmp(&0.0) != Some(std::cmp::Ordering::Less) {
             return None;
         }
         let inv_a = 1.0 / a;

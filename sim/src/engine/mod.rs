@@ -2,7 +2,7 @@
 //!
 //! State: per ball its flight record (`Motion`: centre `a_i` at its own time `t_i`, velocity,
 //! radius), which moves only at its contacts and at re-basings of the clock
-//! ([`crate::canonical`]), its velocity state, species, cell, a collision counter `count_i`
+//! (`canonical.rs`), its velocity state, species, cell, a collision counter `count_i`
 //! that increases whenever its velocity changes, and its wraps `W_i` across periodic faces
 //! since its record moved, so that its centre in the box is `a_i + (t - t_i) u_i - W_i L`.
 //! Every contact time is canonical: a function of the records of the bodies that meet, so
@@ -45,7 +45,7 @@
 //!
 //! **Clock.** Times are kept on a local clock `t` whose origin (an absolute time, kept as a
 //! compensated sum) is moved forward ("re-based") at the canonical time
-//! `T = CLOCK_CELLS w_min / v_max` ([`crate::canonical::rebase_at`]; `v_max` an upper bound of
+//! `T = CLOCK_CELLS w_min / v_max` (`canonical::rebase_at`; `v_max` an upper bound of
 //! the speeds, `w_min` the narrowest cell, lowered by a contact that raises `v_max`, doubled
 //! after quiet re-basings on a table without a periodic axis): every record moves to `T`,
 //! folded into the box, the clock restarts at 0 and every ball is predicted again (the
