@@ -2,7 +2,7 @@
 
 use crate::case::{join, Case};
 use crate::error::{kind, CaseError};
-use crate::keys::{first_repeated_key, PathStep};
+use crate::keys::{first_repeated_key, has_every_key, PathStep};
 use crate::number::InputScalar;
 use crate::output::render;
 use crate::solve::solve;
@@ -100,8 +100,10 @@ where
 /// first invalid case; nothing is output then.
 pub fn collide_json(input: &str, mode: Mode) -> Result<String, RunError> {
     let value: Value = serde_json::from_str(input).map_err(RunError::Json)?;
-    if let Some(path) = first_repeated_key(input) {
-        return Err(repeated_key(&value, &path));
+    if !has_every_key(input, &value) {
+        if let Some(path) = first_repeated_key(input) {
+            return Err(repeated_key(&value, &path));
+        }
     }
     let one = |i: usize, case: &Value| {
         match mode {

@@ -37,6 +37,12 @@ pub trait InputScalar: Scalar {
     fn parse_number(text: &str) -> Result<Self, String>;
     /// The value as JSON output; `None` if it is not finite.
     fn to_json(&self) -> Option<Value>;
+    /// The output of `0 - x` given `json`, the output of `x` (`0 - x`, not `-x`: a zero stays
+    /// `+0` in floats); `None` if it is not finite.
+    fn negated_json(x: &Self, json: &Value) -> Option<Value> {
+        let _ = json;
+        (Self::zero() - x.clone()).to_json()
+    }
     /// Whether `x`, read from `text`, is a nonzero number that lies below the normal range
     /// of the type: it was rounded to a subnormal or to zero, with an absolute error of up to
     /// half the smallest subnormal (`2^-1075` in `f64`) instead of `eps/2` of itself. Never
@@ -56,6 +62,19 @@ impl InputScalar for Exact {
     /// A reduced rational as a string: `"-3/5"`, `"2"`.
     fn to_json(&self) -> Option<Value> {
         Some(Value::String(self.to_string()))
+    }
+
+    /// The text of `x` with its sign turned (`0 - x = -x`; `0` stays `0`), without printing
+    /// the rational again.
+    fn negated_json(x: &Self, json: &Value) -> Option<Value> {
+        let Value::String(text) = json else {
+            return (Self::zero() - x.clone()).to_json();
+        };
+        Some(Value::String(match text.strip_prefix('-') {
+            Some(positive) => positive.to_string(),
+            None if x.is_zero() => text.clone(),
+            None => format!("-{text}"),
+        }))
     }
 
     fn below_normal(_: &str, _: &Self) -> bool {
@@ -271,6 +290,10 @@ fn exact(scanned: &Scanned<'_>, text: &str) -> Result<Exact, String> {
             numer,
             denom,
         } => {
+            if let (Some(p), Some(q)) = (small(numer), small(denom).filter(|&q| q != 0)) {
+                let value = Exact::from_ratio(p, q);
+                return Ok(if negative { -value } else { value });
+            }
             // The scanner let only ASCII digits through: `None` means a zero denominator.
             let Some(value) = Exact::from_decimal(numer, denom) else {
                 return Err(format!("zero denominator in {}", quote(text, QUOTE_CHARS)));
@@ -301,6 +324,9 @@ fn exact(scanned: &Scanned<'_>, text: &str) -> Result<Exact, String> {
                 return Err(out_of_range());
             }
             let shift = e - frac.len() as i64;
+            if let Some(value) = small_decimal(int, frac, shift) {
+                return Ok(if negative { -value } else { value });
+            }
             // 10^|shift| in digits: a 1 and |shift| zeros.
             let power = format!("1{}", "0".repeat(shift.unsigned_abs() as usize));
             let value = if shift >= 0 {
@@ -313,6 +339,32 @@ fn exact(scanned: &Scanned<'_>, text: &str) -> Result<Exact, String> {
         }
     };
     Ok(if negative { -value } else { value })
+}
+
+/// The value of a string of at most 18 ASCII digits (below `10^18`, so it fits an `i64`);
+/// `None` for a longer one.
+fn small(digits: &str) -> Option<i64> {
+    (digits.len() <= 18).then(|| {
+        digits
+            .bytes()
+            .fold(0i64, |v, d| v * 10 + i64::from(d - b'0'))
+    })
+}
+
+/// `int.frac 10^(shift + |frac|)`, that is the integer of the digits `int frac` times
+/// `10^shift`, when those digits and `10^|shift|` fit in 18 digits: the same reduced
+/// rational as from the digit strings, without parsing big integers. `None` otherwise.
+fn small_decimal(int: &str, frac: &str, shift: i64) -> Option<Exact> {
+    if int.len() + frac.len() > 18 || shift.unsigned_abs() > 18 {
+        return None;
+    }
+    let mantissa = small(int)? * 10i64.pow(frac.len() as u32) + small(frac)?;
+    let power = 10i64.pow(shift.unsigned_abs() as u32);
+    if shift >= 0 {
+        mantissa.checked_mul(power).map(Exact::from_integer)
+    } else {
+        Some(Exact::from_ratio(mantissa, power))
+    }
 }
 
 /// `x` is a non-negative integer literal (for `dim`): its value, saturating at `usize::MAX`;

@@ -57,16 +57,16 @@ fn spin<T: InputScalar>(
             if out.spin.len() != dim * (dim - 1) / 2 {
                 return Err(internal("spin length"));
             }
-            let mut m = vec![vec![T::zero(); dim]; dim];
+            // Each entry above the diagonal is printed once; the one below is its negation,
+            // `0 - x` ([`InputScalar::negated_json`]).
+            let zero = number(&T::zero(), field)?;
+            let mut m = vec![vec![zero; dim]; dim];
             for ((r, c), x) in skew_pairs(dim).zip(&out.spin) {
-                m[r][c] = x.clone();
-                // 0 - x, not -x: a zero entry stays +0 on both sides in floats.
-                m[c][r] = T::zero() - x.clone();
+                let upper = number(x, field)?;
+                m[c][r] = T::negated_json(x, &upper).ok_or_else(|| internal("negation"))?;
+                m[r][c] = upper;
             }
-            m.iter()
-                .map(|row| numbers(row, field))
-                .collect::<Result<_, _>>()
-                .map(Value::Array)
+            Ok(Value::Array(m.into_iter().map(Value::Array).collect()))
         }
     }
 }

@@ -54,6 +54,24 @@ pub fn skew_entries<T: Scalar, R: AsRef<[T]>>(
             ),
         ));
     }
+    if T::EXACT {
+        // No allowance: the checks below with a tolerance of 0, `U_ii = 0` and `U_ij = -U_ji`,
+        // compared without arithmetic; the kept entry `(U_ij - U_ji)/2` is then `U_ij`.
+        let at = |i: usize, j: usize| &matrix[i].as_ref()[j];
+        if let Some(i) = (0..n).find(|&i| !at(i, i).is_zero()) {
+            return Err(InputError::new(
+                field,
+                format!("not skew: diagonal entry ({i},{i}) is not 0"),
+            ));
+        }
+        if let Some((i, j)) = skew_pairs(n).find(|&(i, j)| *at(i, j) != -at(j, i).clone()) {
+            return Err(InputError::new(
+                field,
+                format!("not skew: entries ({i},{j}) and ({j},{i}) are not opposite"),
+            ));
+        }
+        return Ok(skew_pairs(n).map(|(i, j)| at(i, j).clone()).collect());
+    }
     // In the unbounded type: U_ij + U_ji and U_ij - U_ji do not overflow.
     let at = |i: usize, j: usize| matrix[i].as_ref()[j].unbounded();
     let scale = matrix
@@ -199,6 +217,34 @@ mod tests {
         );
         let diag = [[q(1, 10), q(0, 1)], [q(0, 1), q(0, 1)]];
         assert!(State2::from_matrix(0, &diag, [q(0, 1), q(0, 1)]).is_err());
+    }
+
+    /// Exact arithmetic checks without sums (`U_ii = 0`, `U_ij = -U_ji`) and keeps `U_ij`:
+    /// the same entries and the same errors as the general rule with a tolerance of 0.
+    #[test]
+    fn exact_skew_check_is_the_rule_without_allowance() {
+        let m = [
+            [q(0, 1), q(1, 3), q(-2, 7)],
+            [q(-1, 3), q(0, 1), q(3, 5)],
+            [q(2, 7), q(-3, 5), q(0, 1)],
+        ];
+        let s = State3::from_matrix(0, &m, [q(0, 1), q(0, 1), q(0, 1)]).unwrap();
+        assert_eq!(s.spin_matrix(), m);
+        assert_eq!(s.spin.to_vec(), skew_entries::<Exact, _>(0, &m).unwrap());
+        let mut off = m.clone();
+        off[2][1] = q(-3, 5) + q(1, 1_000_000_000_000);
+        let e = State3::from_matrix(1, &off, [q(0, 1), q(0, 1), q(0, 1)]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "body 2 spin: not skew: entries (1,2) and (2,1) are not opposite"
+        );
+        let mut diag = m.clone();
+        diag[1][1] = q(-1, 1_000_000_000_000);
+        let e = State3::from_matrix(0, &diag, [q(0, 1), q(0, 1), q(0, 1)]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "body 1 spin: not skew: diagonal entry (1,1) is not 0"
+        );
     }
 
     #[test]

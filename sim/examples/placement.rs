@@ -1,9 +1,11 @@
 //! Seconds to place `N` balls against `N`: `cargo run --release -p noslip-sim --example
-//! placement -- [MAX_N]` times `setup()` (the range checks and the placement of
-//! `noslip_sim::setup`) for disks (2D) and spheres (3D) of radius 1/2 in a periodic cube
-//! sized for packing fractions 0.1 to 0.4, random and lattice placement, `N` from `10^4` up
-//! to `MAX_N` (default `10^6`) by factors of 10, and prints one line per run: dimension,
-//! placement, fraction, `N`, seconds of wall clock, microseconds per ball. Random placement
+//! placement -- [MAX_N [DIM [PLACEMENT [FRACTION]]]]` times `setup()` (the range checks and
+//! the placement of `noslip_sim::setup`) for disks (2D) and spheres (3D) of radius 1/2 in a
+//! periodic cube sized for packing fractions 0.1 to 0.4, random and lattice placement, `N`
+//! from `10^4` up to `MAX_N` (default `10^6`) by factors of 10, and prints one line per run:
+//! dimension, placement, fraction, `N`, seconds of wall clock, microseconds per ball. `DIM`,
+//! `PLACEMENT` and `FRACTION` keep only the runs with that dimension, placement and fraction
+//! (`-- 1000000 3 random 0.3` times that one case); `-` keeps all. Random placement
 //! is skipped beyond random sequential saturation (`noslip_sim::setup::saturation`: 0.54 in
 //! 2D, 0.39 in 3D), where it would spend its whole attempt budget (`AVERAGE_ATTEMPTS` per
 //! ball) before refusing; an error prints its start instead of a time.
@@ -39,13 +41,22 @@ fn time<const N: usize, const S: usize>(text: &str) -> Result<f64, String> {
 }
 
 fn main() {
-    let max: usize = std::env::args()
-        .nth(1)
+    let args: Vec<String> = std::env::args().collect();
+    let max: usize = args
+        .get(1)
         .map_or(1_000_000, |s| s.parse().expect("MAX_N: a whole number"));
+    // A filter: keep a run if the argument is absent, `-`, or equal to the run's value.
+    let keep = |k: usize, value: &str| args.get(k).is_none_or(|a| a == "-" || a == value);
     println!("dim placement fraction N seconds us/ball");
     for dim in [2, 3] {
         for placement in ["random", "lattice"] {
             for fraction in [0.1, 0.2, 0.3, 0.4] {
+                if !keep(2, &dim.to_string())
+                    || !keep(3, placement)
+                    || !keep(4, &fraction.to_string())
+                {
+                    continue;
+                }
                 if placement == "random" && fraction > saturation(dim) {
                     println!("{dim} {placement} {fraction} - beyond saturation");
                     continue;

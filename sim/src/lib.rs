@@ -19,17 +19,18 @@
 //! happen again ([`no_contact`]).
 //!
 //! Around the engine: [`setup`] turns a validated scene (`noslip-scene`) into a [`Setup`],
-//! checked in the f64 arithmetic the engine uses ([`range`]) and placed in O(N) ([`place`]);
-//! [`run`] runs it to its limits, writing the event log ([`log`], [`run::event_json`]) and
-//! keeping bounded traces ([`trace`]) for the pictures ([`plot`]). This crate must not
-//! parse command lines, print, or write files other than through the writers it is given:
-//! that is the `noslip` command's business.
+//! checked in the f64 arithmetic the engine uses ([`range`]) and placed in O(N) ([`place`],
+//! [`cover`], [`sequential`]); [`run`] runs it to its limits, writing the event log ([`log`],
+//! [`run::event_json`]) and keeping bounded traces ([`trace`]) for the pictures ([`plot`]).
+//! This crate must not parse command lines, print, or write files other than through the
+//! writers it is given: that is the `noslip` command's business.
 
 #![warn(missing_docs, unreachable_pub)]
 
 pub mod boundary_map;
 mod canonical;
 mod cells;
+pub mod cover;
 pub mod dilute;
 pub mod engine;
 pub mod lattice;
@@ -52,6 +53,7 @@ pub mod range;
 mod reference;
 mod residents;
 pub mod run;
+pub mod sequential;
 pub mod setup;
 pub mod smooth;
 pub mod table;

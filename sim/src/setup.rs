@@ -2,10 +2,12 @@
 //! ([`crate::range`]), species, obstacles, the explicit balls and the seeded random placement
 //! ([`crate::place`]).
 
+use crate::cover::Cover;
 use crate::lattice::{self, Shuffle};
 use crate::normal::unit;
 use crate::place::Cells;
 use crate::range::{check_scene, check_start};
+use crate::sequential::{Batch, Region};
 use crate::table::{Boundary as TableBoundary, Shape, Table};
 use crate::{Body, FixedBall, Setup};
 use collision_core::rng::Rng;
@@ -21,41 +23,6 @@ pub fn f(x: &BigRational) -> f64 {
 
 fn array<const M: usize>(v: &[BigRational]) -> [f64; M] {
     std::array::from_fn(|k| f(&v[k]))
-}
-
-/// A random centre for a ball of radius `r`: each coordinate uniform in `[0, L_k)` on a
-/// periodic axis, in `[r, L_k - r)` between walls.
-fn random_position<const N: usize>(
-    rng: &mut Rng,
-    size: &[f64; N],
-    periodic: &[bool; N],
-    r: f64,
-) -> [f64; N] {
-    std::array::from_fn(|a| {
-        if periodic[a] {
-            rng.uniform(0.0, size[a])
-        } else {
-            rng.uniform(r, size[a] - r)
-        }
-    })
-}
-
-/// Squared distance with the minimum image on periodic axes.
-fn distance2<const N: usize>(
-    a: &[f64; N],
-    b: &[f64; N],
-    size: &[f64; N],
-    periodic: &[bool; N],
-) -> f64 {
-    (0..N)
-        .map(|k| {
-            let mut d = (a[k] - b[k]).abs();
-            if periodic[k] {
-                d = d.min(size[k] - d);
-            }
-            d * d
-        })
-        .sum()
 }
 
 /// A unit normal from the scene's nonzero `normal`: its components rounded once when it is
@@ -293,7 +260,9 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 /// while they are not inside the table's other boundaries (a gap below 0, or a centre inside a
 /// polygon obstacle; checked against every boundary)
 /// or overlap a placed ball or an obstacle (found with a [`Cells`] grid, so each test
-/// visits only the cells around the candidate), at most [`ATTEMPTS`] times in a row and
+/// visits only the cells around the candidate, after the [`Cover`] of wholly excluded voxels
+/// and with the draws made a batch ahead, [`crate::sequential`]: neither changes which
+/// centre is kept), at most [`ATTEMPTS`] times in a row and
 /// [`AVERAGE_ATTEMPTS`] per ball overall; balls that would fill more than the box are refused
 /// before any attempt. With `random.placement = "lattice"` the centres are instead sites of
 /// the widest [`crate::lattice`] with enough sites clear of the table's boundaries, the
@@ -348,15 +317,34 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
         .filter(|&k| per_species[k] > 0)
         .map(|k| species[k].radius)
         .fold(0.0, f64::max);
+    // Room for every ball at once (at most `noslip_scene::MAX_BALLS`), not grown by copies.
+    bodies.reserve_exact(scene.ball_count() - bodies.len());
     let mut balls = Cells::new(size, periodic, 2.0 * r_max, scene.ball_count());
     for b in &bodies {
-        balls.insert(&b.position);
+        balls.insert(&b.position, species[b.species].radius);
     }
     let obstacle_max = obstacles.iter().map(|o| o.radius).fold(0.0, f64::max);
     let mut fixed = Cells::new(size, periodic, r_max + obstacle_max, obstacles.len());
     for o in &obstacles {
-        fixed.insert(&o.position);
+        fixed.insert(&o.position, o.radius);
     }
+    // The voxels every random candidate of radius at least `r_min` in them would overlap.
+    let random_count: usize = scene.species.iter().map(|s| s.count).sum();
+    let r_min = (0..species.len())
+        .filter(|&k| scene.species[k].count > 0)
+        .map(|k| species[k].radius)
+        .fold(f64::INFINITY, f64::min);
+    let mut cover = match scene.random.placement {
+        Placement::Random => Cover::new(size, periodic, 2.0 * r_min, random_count),
+        Placement::Lattice => Cover::new(size, periodic, 0.0, 0),
+    };
+    for b in &bodies {
+        cover.mark(&b.position, r_min + species[b.species].radius);
+    }
+    for o in &obstacles {
+        cover.mark(&o.position, r_min + o.radius);
+    }
+    let mut unmarked: Option<([f64; N], f64)> = None;
     // The polygon obstacles (their edges' gaps say nothing of a centre deep inside).
     let mut polygons: Vec<Vec<[f64; 2]>> = Vec::new();
     let mut seen = Vec::new();
@@ -380,20 +368,8 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     let in_table = |p: &[f64; N], r: f64| {
         table.boundaries.iter().all(|b| b.shape.gap(p, r) >= 0.0)
             && !polygons.iter().any(|v| inside_polygon(v, p))
-            && fixed.all_near(p, |o| {
-                let o = &obstacles[o];
-                let s = r + o.radius;
-                distance2(p, &o.position, &size, &periodic) >= s * s
-            })
+            && fixed.clear_of(p, r)
     };
-    let clear_balls = |balls: &Cells<N>, bodies: &[Body<N, S>], p: &[f64; N], r: f64| {
-        balls.all_near(p, |i| {
-            let b = &bodies[i];
-            let s = r + species[b.species].radius;
-            distance2(p, &b.position, &size, &periodic) >= s * s
-        })
-    };
-    let random_count: usize = scene.species.iter().map(|s| s.count).sum();
     let last = (0..scene.species.len())
         .rev()
         .find(|&k| scene.species[k].count > 0)
@@ -402,8 +378,7 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     // its sites drawn in a seeded random order.
     let mut sites = match scene.random.placement {
         Placement::Lattice if random_count > 0 => {
-            let usable =
-                |p: &[f64; N]| in_table(p, r_max) && clear_balls(&balls, &bodies, p, r_max);
+            let usable = |p: &[f64; N]| in_table(p, r_max) && balls.clear_of(p, r_max);
             let all_usable = bodies.is_empty()
                 && obstacles.is_empty()
                 && table.boundaries.is_empty()
@@ -415,6 +390,9 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
         _ => None,
     };
     let (mut attempts, mut placed_random) = (0usize, 0usize);
+    // Draws made ahead for the next ball: as many as the last one took (a draw made ahead of
+    // the kept one is wasted).
+    let (mut ahead, mut batch) = (1, Batch::default());
     let too_full = |k: usize, placed: usize, why: String| {
         format!(
             "species[{k}].count: placed {placed} of {} balls, then {why}: the box is too full \
@@ -437,7 +415,7 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                         continue;
                     };
                     let p = lattice.position(&index);
-                    if in_table(&p, r_max) && clear_balls(&balls, &bodies, &p, r_max) {
+                    if in_table(&p, r_max) && balls.clear_of(&p, r_max) {
                         found = Some(p);
                         break;
                     }
@@ -454,15 +432,16 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                     let why = format!("{attempts} attempts (over {AVERAGE_ATTEMPTS} per ball)");
                     return Err(too_full(k, placed, why));
                 }
-                let mut found = None;
-                for _ in 0..ATTEMPTS {
-                    attempts += 1;
-                    let p = random_position(&mut rng, &size, &periodic, r);
-                    if clear_balls(&balls, &bodies, &p, r) && in_table(&p, r) {
-                        found = Some(p);
-                        break;
-                    }
-                }
+                let region = Region {
+                    size,
+                    periodic,
+                    cover: &cover,
+                    balls: &balls,
+                    inside: &in_table,
+                };
+                let (found, spent) = region.draw(&mut batch, &mut rng, r, ATTEMPTS, ahead);
+                attempts += spent;
+                ahead = spent;
                 let Some(position) = found else {
                     let why = format!("{ATTEMPTS} random positions in a row overlapped");
                     return Err(too_full(k, placed, why));
@@ -473,7 +452,13 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
             let mut uniform = |scale: f64| scale * rng.uniform(-1.0, 1.0);
             let velocity = std::array::from_fn(|_| uniform(speed));
             let spin = std::array::from_fn(|_| uniform(spin));
-            balls.insert(&position);
+            balls.insert(&position, r);
+            // The cover marks a ball once the next one is drawn: its words are fetched now,
+            // and the draws meanwhile are tested in full where it would have covered them.
+            if let Some((p, e)) = unmarked.replace((position, r_min + r)) {
+                cover.mark(&p, e);
+            }
+            cover.prefetch_around(&position, r_min + r);
             bodies.push(Body {
                 species: k,
                 position,
@@ -497,6 +482,8 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::place::distance2;
+    use crate::sequential::random_position;
 
     /// The placement rule tested against every placed ball and obstacle (the `O(N^2)` form
     /// the grid replaces), drawing from the same stream: the centres must be the same bits.
@@ -646,7 +633,7 @@ mod tests {
         same_placement::<2, 1>(
             "dim = 2\n[box]\nsize = [30, 20]\nboundary = [\"wall\", \"periodic\"]\n\
              [[species]]\nmass = 2\nradius = 1\ncount = 30\n\
-             [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 150\n\
+             [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 200\n\
              [[obstacle]]\nposition = [15, 0]\nradius = 3\n\
              [[ball]]\nspecies = 0\nposition = [2, 2]\nvelocity = [1, 0]\n[random]\nseed = 9\n",
         );
@@ -661,6 +648,19 @@ mod tests {
         same_placement::<3, 3>(
             "dim = 3\n[box]\nsize = [\"2.2\", \"1.5\", 8]\nboundary = [\"periodic\", \"periodic\", \"wall\"]\n\
              [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 12\n[random]\nseed = 2\n",
+        );
+        // Near saturation in 3D (0.3 of the box; the cover refuses most draws, the batches
+        // run ahead), then two species with walls and an obstacle: the cover marks with
+        // the smaller radius, so the larger species' draws often need the full test.
+        same_placement::<3, 3>(
+            "dim = 3\n[box]\nsize = [9, 9, 9]\nboundary = [\"periodic\", \"periodic\", \"periodic\"]\n\
+             [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 420\n[random]\nseed = 5\n",
+        );
+        same_placement::<3, 3>(
+            "dim = 3\n[box]\nsize = [9, 9, 7]\nboundary = [\"periodic\", \"wall\", \"periodic\"]\n\
+             [[species]]\nmass = 2\nradius = \"3/4\"\ncount = 30\n\
+             [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 200\n\
+             [[obstacle]]\nposition = [4, 4, 3]\nradius = \"3/2\"\n[random]\nseed = 6\n",
         );
         same_placement::<6, 15>(
             "dim = 6\n[box]\nsize = [3, 3, 3, 3, 3, 4]\nboundary = [\"periodic\", \"periodic\", \"periodic\", \"periodic\", \"periodic\", \"wall\"]\n\

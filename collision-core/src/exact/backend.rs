@@ -5,6 +5,7 @@
 use dashu_int::IBig;
 use dashu_ratio::{RBig, Relaxed};
 use std::cmp::Ordering;
+use std::fmt;
 
 mod sealed {
     pub trait Sealed {}
@@ -43,6 +44,17 @@ pub trait Backend: sealed::Sealed + Clone + Send + Sync + 'static {
     fn sign(a: &Self) -> Ordering;
     /// Numerator and denominator of the reduced fraction (`q > 0`), in decimal.
     fn parts(a: &Self) -> (String, String);
+    /// `p`, or `p/q` when `q > 1`, of the reduced fraction, written into `f` (whose width
+    /// and precision are unset).
+    fn write(a: &Self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (p, q) = Self::parts(a);
+        f.write_str(&p)?;
+        if q != "1" {
+            f.write_str("/")?;
+            f.write_str(&q)?;
+        }
+        Ok(())
+    }
     /// The nearest `f64` (ties to even); `±inf` beyond its range.
     fn to_f64(a: &Self) -> f64;
 }
@@ -101,6 +113,15 @@ impl Backend for RBig {
     }
     fn parts(a: &Self) -> (String, String) {
         (a.numerator().to_string(), a.denominator().to_string())
+    }
+    /// The digits go straight into `f`, with no string of their own.
+    fn write(a: &Self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(a.numerator(), f)?;
+        if !a.denominator().is_one() {
+            f.write_str("/")?;
+            fmt::Display::fmt(a.denominator(), f)?;
+        }
+        Ok(())
     }
     fn to_f64(a: &Self) -> f64 {
         a.to_f64().value()

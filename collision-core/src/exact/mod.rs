@@ -170,6 +170,9 @@ impl ExactRelaxed {
 impl<B: Backend> fmt::Display for Rational<B> {
     /// `p` for integers, else `p/q`, reduced, `q > 0`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if f.width().is_none() && f.precision().is_none() {
+            return B::write(&self.0, f);
+        }
         let (p, q) = self.parts();
         if q == "1" {
             f.pad(&p)
