@@ -147,6 +147,26 @@ pub(crate) fn rebase_at(span2: f64, speed2: f64, quiet: u32, periodic: bool) -> 
     }
 }
 
+/// The clock's origin moved on by `t`: `(origin, low) + t` as a compensated sum (Knuth's
+/// two-sum), so that absolute times `origin + (low + t_local)` stay exact to the last bits
+/// over any number of re-basings.
+#[inline]
+pub(crate) fn moved_origin(origin: f64, low: f64, t: f64) -> (f64, f64) {
+    let sum = origin + t;
+    let b = sum - origin;
+    let error = (origin - (sum - b)) + (t - b);
+    (sum, low + error)
+}
+
+/// The largest contact distance of balls of radius at most `r_ball` and obstacles of radius
+/// at most `r_obstacle`, the cell rule's `d_max` (at least the least positive `f64`).
+#[inline]
+pub(crate) fn d_max(r_ball: f64, r_obstacle: f64) -> f64 {
+    (2.0 * r_ball)
+        .max(r_ball + r_obstacle)
+        .max(f64::MIN_POSITIVE)
+}
+
 /// The order of the events of one time (module docs): `(lowest ball, kind, other body,
 /// image)` packed in a `u128`, compared as a number.
 pub(crate) type Key = u128;

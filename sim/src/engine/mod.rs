@@ -85,7 +85,7 @@ mod scan;
 
 pub use events::{Contact, Event, SetupError, Step};
 
-use super::canonical::rebase_at;
+use super::canonical::{d_max, rebase_at};
 use super::cells::Grid;
 use super::motion::Motion;
 use super::no_contact::{NoContact, QUIET_BOX_LENGTHS};
@@ -192,9 +192,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             r_ball = r_ball.max(s.radius);
         }
         let r_obstacle = obstacles.iter().fold(0.0f64, |m, o| m.max(o.radius));
-        let d_max = (2.0 * r_ball)
-            .max(r_ball + r_obstacle)
-            .max(f64::MIN_POSITIVE);
+        let d_max = d_max(r_ball, r_obstacle);
         let grid = if table.boxed {
             Grid::new(size, periodic, d_max, bodies.len() + obstacles.len())?
         } else {

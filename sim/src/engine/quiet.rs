@@ -2,7 +2,7 @@
 //! contact can come ([`NoContact`]) and the travel since the last contact.
 
 use super::{Simulation, Step};
-use crate::canonical::rebase_at;
+use crate::canonical::{moved_origin, rebase_at};
 use crate::no_contact::{Flight, NoContact};
 use crate::PairKernels;
 
@@ -92,12 +92,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             self.motion.get_mut(i).since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
-        // origin + origin_low += t, compensated (Knuth's two-sum).
-        let sum = self.origin + t;
-        let b = sum - self.origin;
-        let error = (self.origin - (sum - b)) + (t - b);
-        self.origin = sum;
-        self.origin_low += error;
+        (self.origin, self.origin_low) = moved_origin(self.origin, self.origin_low, t);
         self.last_contact -= t;
         self.now = (self.now - t).max(0.0);
         self.speed2 = speed2;

@@ -118,9 +118,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             .map(|b| species[b.species].radius)
             .fold(0.0, f64::max);
         let r_obstacle = obstacles.iter().fold(0.0f64, |m, o| m.max(o.radius));
-        let d_max = (2.0 * r_ball)
-            .max(r_ball + r_obstacle)
-            .max(f64::MIN_POSITIVE);
+        let d_max = canonical::d_max(r_ball, r_obstacle);
         let grid = if table.boxed {
             Grid::new(size, periodic, d_max, bodies.len() + obstacles.len()).unwrap()
         } else {
@@ -439,11 +437,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             self.move_record(i, t);
             self.records[i].since = 0.0;
         }
-        let sum = self.origin + t;
-        let b = sum - self.origin;
-        let error = (self.origin - (sum - b)) + (t - b);
-        self.origin = sum;
-        self.origin_low += error;
+        (self.origin, self.origin_low) = canonical::moved_origin(self.origin, self.origin_low, t);
         self.now = (self.now - t).max(0.0);
         self.speed2 = (0..self.records.len())
             .map(|i| self.speed2_of(i))
