@@ -127,6 +127,19 @@ pub(crate) fn fold<const N: usize>(
     })
 }
 
+/// The local clock is re-based when the fastest ball could have moved this many widths of
+/// the narrowest cell on it (module docs). Then a ball wraps at most `CLOCK_CELLS + 1` times
+/// between two moves of its record, so every image fits a [`key`].
+pub(crate) const CLOCK_CELLS: f64 = 128.0;
+
+/// `span^2` of the re-basing time: `(CLOCK_CELLS w_min)^2`, `w_min` the narrowest of the
+/// grid rule's cell widths `width` (`crate::cells`).
+#[inline]
+pub(crate) fn clock_span2<const N: usize>(width: &[f64; N]) -> f64 {
+    let w_min = width.iter().copied().fold(f64::INFINITY, f64::min);
+    (CLOCK_CELLS * w_min).powi(2)
+}
+
 /// Re-basings in a row without a contact after which, on a table without a periodic axis,
 /// each interval is twice the last (module docs).
 pub(crate) const QUIET_REBASES: u32 = 8;

@@ -85,7 +85,7 @@ mod scan;
 
 pub use events::{Contact, Event, SetupError, Step};
 
-use super::canonical::{d_max, rebase_at};
+use super::canonical::{clock_span2, d_max, rebase_at};
 use super::cells::Grid;
 use super::motion::Motion;
 use super::no_contact::{NoContact, QUIET_BOX_LENGTHS};
@@ -102,11 +102,6 @@ use collision_core::{Ball, BodyState};
 /// a core's L2 cache. Below it the lists are cached and the extra passes cost more than they
 /// save (docs/benchmarks.md, "The event loop").
 const PREFETCH_FROM: usize = 1 << 16;
-
-/// The local clock is re-based when the fastest ball could have moved this many widths of
-/// the narrowest cell on it (module docs). Then a ball wraps at most `CLOCK_CELLS + 1` times
-/// between two moves of its record, so every image fits a key ([`crate::canonical::key`]).
-pub(crate) const CLOCK_CELLS: f64 = 128.0;
 
 /// An event-driven simulation; see the module docs.
 pub struct Simulation<const N: usize, const S: usize, K> {
@@ -145,7 +140,7 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     origin_low: f64,
     /// An upper bound of `|u_i|^2` (exact at the last rebase).
     speed2: f64,
-    /// `(CLOCK_CELLS w_min)^2`.
+    /// `(CLOCK_CELLS w_min)^2` ([`clock_span2`]).
     span2: f64,
     /// The local time of the next re-basing ([`crate::canonical::rebase_at`]).
     rebase_at: f64,
@@ -224,7 +219,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let n = bodies.len();
         let prefetch = grid.cells() >= PREFETCH_FROM;
-        let w_min = grid.width.iter().copied().fold(f64::INFINITY, f64::min);
+        let span2 = clock_span2(&grid.width);
         let mut sim = Simulation {
             kernels,
             species,
@@ -254,7 +249,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             origin: 0.0,
             origin_low: 0.0,
             speed2: 0.0,
-            span2: (CLOCK_CELLS * w_min).powi(2),
+            span2,
             rebase_at: f64::INFINITY,
             quiet_rebases: 0,
             last_contact: 0.0,

@@ -17,7 +17,7 @@ use crate::canonical::{
     Key,
 };
 use crate::cells::Grid;
-use crate::engine::{Contact, Event, CLOCK_CELLS};
+use crate::engine::{Contact, Event};
 use crate::motion::Motion;
 use crate::normal::unit;
 use crate::predict::exit_time;
@@ -124,7 +124,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         } else {
             Grid::single(size)
         };
-        let w_min = grid.width.iter().copied().fold(f64::INFINITY, f64::min);
         let periodic = if table.boxed { periodic } else { [false; N] };
         let n = bodies.len();
         let mut sim = Reference {
@@ -154,7 +153,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             origin: 0.0,
             origin_low: 0.0,
             speed2: 0.0,
-            span2: (CLOCK_CELLS * w_min).powi(2),
+            span2: canonical::clock_span2(&grid.width),
             rebase_at: f64::INFINITY,
             quiet_rebases: 0,
         };
