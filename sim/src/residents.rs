@@ -1,11 +1,20 @@
 //! The balls' flight records stored by cell: the records of a cell's balls are one contiguous
-//! list, so the neighbour scan reads a list per cell instead of one record per ball it meets
-//! (at large `N` each of those was a cache miss).
+//! list, and the lists lie in one array (the slab) in the order of the cells' flat indices,
+//! so the neighbour scan reads a few stretches of memory (in 3D, nine rows of three adjacent
+//! cells) instead of one allocation per cell or one record per ball it meets; each of those
+//! was a cache miss, the most expensive part of a prediction from a few thousand balls up.
 //!
-//! Each ball knows its cell and its slot in the cell's list. A ball leaving a cell is
-//! swap-removed (the cell's last ball takes its slot) and appended to its new cell: the order
-//! of every list is the order in which a plain list of ball indices kept by the same moves
-//! would hold them, so scans meet the balls in the same order as such a list.
+//! **Room.** Cell `c`'s list is `slab[start_c .. start_c + len_c]`, with room for `cap_c`
+//! records. [`Residents::compact`] lays every list out again in cell order with room for one
+//! more record than it holds (an empty cell gets room for one); the engine compacts at every
+//! re-basing. A ball arriving in a full cell moves that cell's list to the end of the slab
+//! with twice the room (its old place is left unused); when the unused places outnumber the
+//! used ones the slab is compacted at once, so memory stays `O(balls + cells)`.
+//!
+//! **Order.** A ball leaving a cell is swap-removed (the cell's last ball takes its slot) and
+//! appended to its new cell; moves and compaction keep each list's order: the order of every
+//! list is the order in which a plain list of ball indices kept by the same moves would hold
+//! them, so scans meet the balls in the same order as such a list.
 
 use crate::motion::Motion;
 use collision_core::batch::prefetch;
@@ -22,32 +31,58 @@ pub(crate) struct Resident<const N: usize> {
     pub ball: u32,
 }
 
+/// Where a cell's list lies in the slab: `slab[start .. start + len]`, room for `cap`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Span {
+    start: u32,
+    len: u32,
+    cap: u32,
+}
+
 /// Every ball's flight record, by cell (module docs).
 #[derive(Debug)]
 pub(crate) struct Residents<const N: usize> {
-    cells: Vec<Vec<Resident<N>>>,
-    /// Per cell: whether it holds a ball. Compact (one byte a cell, where a list's header
-    /// takes 24), so a scan skips the empty cells (most of them in a dilute gas) without
-    /// reading their lists' headers.
-    occupied: Vec<bool>,
-    /// Per ball: its cell's flat index and its slot in that cell's list.
+    /// The lists, with their room and the places left by lists that moved.
+    slab: Vec<Resident<N>>,
+    /// Per cell: its list's place in the slab.
+    spans: Vec<Span>,
+    /// Per ball: its cell's flat index and its record's index in the slab.
     home: Vec<(u32, u32)>,
+    /// The room of the lists, `sum_c cap_c` (the rest of the slab is unused).
+    room: usize,
+}
+
+/// A placeholder for a slot no ball holds.
+fn vacant<const N: usize>() -> Resident<N> {
+    Resident {
+        motion: Motion {
+            pos: [0.0; N],
+            since: 0.0,
+            velocity: [0.0; N],
+            radius: 0.0,
+        },
+        wraps: [0; N],
+        ball: u32::MAX,
+    }
 }
 
 impl<const N: usize> Residents<N> {
     /// No balls yet, `cells` empty cells.
     pub(crate) fn new(cells: usize) -> Self {
-        Residents {
-            cells: vec![Vec::new(); cells],
-            occupied: vec![false; cells],
+        let mut residents = Residents {
+            slab: Vec::new(),
+            spans: vec![Span::default(); cells],
             home: Vec::new(),
-        }
+            room: 0,
+        };
+        residents.compact();
+        residents
     }
 
     /// Adds the next ball (index `len()`) to `cell`.
     pub(crate) fn push(&mut self, cell: usize, motion: Motion<N>) {
         let ball = self.home.len() as u32;
-        self.home.push((cell as u32, self.cells[cell].len() as u32));
+        self.home.push((cell as u32, u32::MAX));
         self.append(
             cell,
             Resident {
@@ -58,17 +93,66 @@ impl<const N: usize> Residents<N> {
         );
     }
 
-    /// Appends `resident` to `cell`'s list, growing it by one record when full (a list's
-    /// capacity is the most balls its cell has held: a cell of a dilute gas holds one or two,
-    /// and the default growth to 4 records would spread the records over 2-4 times the
-    /// memory); a list never shrinks, so this allocates only while a cell reaches a new most.
+    /// Appends `resident` to `cell`'s list, moving the list to the end of the slab with twice
+    /// the room when it is full (module docs).
     fn append(&mut self, cell: usize, resident: Resident<N>) {
-        let list = &mut self.cells[cell];
-        if list.len() == list.capacity() {
-            list.reserve_exact(1);
+        if self.spans[cell].len == self.spans[cell].cap {
+            self.regrow(cell);
         }
-        list.push(resident);
-        self.occupied[cell] = true;
+        let span = &mut self.spans[cell];
+        let at = (span.start + span.len) as usize;
+        span.len += 1;
+        self.slab[at] = resident;
+        self.home[resident.ball as usize].1 = at as u32;
+    }
+
+    /// Moves full `cell`'s list to the end of the slab with room for `2 len + 1`, or
+    /// compacts the slab if the unused places would outnumber the used ones.
+    fn regrow(&mut self, cell: usize) {
+        let span = self.spans[cell];
+        let cap = 2 * span.len + 1;
+        if self.slab.len() + cap as usize > 2 * (self.room + cap as usize) {
+            // Compaction leaves room for one more in every list.
+            return self.compact();
+        }
+        let start = self.slab.len();
+        let (from, len) = (span.start as usize, span.len as usize);
+        self.slab.extend_from_within(from..from + len);
+        self.slab.resize(start + cap as usize, vacant());
+        for (k, r) in self.slab[start..start + len].iter().enumerate() {
+            self.home[r.ball as usize].1 = (start + k) as u32;
+        }
+        self.room += (cap - span.cap) as usize;
+        self.spans[cell] = Span {
+            start: start as u32,
+            len: span.len,
+            cap,
+        };
+    }
+
+    /// Lays every list out again in the order of the cells, each with room for one more
+    /// record than it holds (module docs). `O(balls + cells)`.
+    pub(crate) fn compact(&mut self) {
+        let room: usize = self.spans.iter().map(|s| s.len as usize + 1).sum();
+        let mut slab = Vec::with_capacity(room);
+        for span in self.spans.iter_mut() {
+            let (from, len) = (span.start as usize, span.len as usize);
+            let start = slab.len();
+            slab.extend_from_slice(&self.slab[from..from + len]);
+            slab.push(vacant());
+            *span = Span {
+                start: start as u32,
+                len: len as u32,
+                cap: len as u32 + 1,
+            };
+        }
+        for (k, r) in slab.iter().enumerate() {
+            if r.ball != u32::MAX {
+                self.home[r.ball as usize].1 = k as u32;
+            }
+        }
+        self.slab = slab;
+        self.room = room;
     }
 
     /// The number of balls.
@@ -79,19 +163,21 @@ impl<const N: usize> Residents<N> {
     /// The balls of cell `cell`, in their order.
     #[inline]
     pub(crate) fn cell(&self, cell: usize) -> &[Resident<N>] {
-        if self.occupied[cell] {
-            &self.cells[cell]
-        } else {
-            &[]
-        }
+        let span = self.spans[cell];
+        let start = span.start as usize;
+        &self.slab[start..start + span.len as usize]
     }
 
-    /// Asks the CPU to start loading what a scan of `cell` reads first: its occupancy byte
-    /// and its list's header (a hint: nothing changes, and it is free if they are cached).
+    /// Every ball, cell after cell (in the slab's order).
+    pub(crate) fn in_cell_order(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.spans.len()).flat_map(|c| self.cell(c).iter().map(|r| r.ball as usize))
+    }
+
+    /// Asks the CPU to start loading what a scan of `cell` reads first: its list's place
+    /// (a hint: nothing changes, and it is free if it is cached).
     #[inline]
     pub(crate) fn prefetch_header(&self, cell: usize) {
-        prefetch(Some(&self.occupied[cell]));
-        prefetch(Some(&self.cells[cell]));
+        prefetch(Some(&self.spans[cell]));
     }
 
     /// Asks the CPU to start loading `cell`'s first record, if it has one.
@@ -103,8 +189,7 @@ impl<const N: usize> Residents<N> {
     /// Ball `ball`'s flight.
     #[inline]
     pub(crate) fn get(&self, ball: usize) -> &Motion<N> {
-        let (c, s) = self.home[ball];
-        &self.cells[c as usize][s as usize].motion
+        &self.slab[self.home[ball].1 as usize].motion
     }
 
     /// Ball `ball`'s flight, to change.
@@ -116,8 +201,7 @@ impl<const N: usize> Residents<N> {
     /// Ball `ball`'s wraps since its record moved.
     #[inline]
     pub(crate) fn wraps(&self, ball: usize) -> [i16; N] {
-        let (c, s) = self.home[ball];
-        self.cells[c as usize][s as usize].wraps
+        self.slab[self.home[ball].1 as usize].wraps
     }
 
     /// Ball `ball`'s wraps, to change.
@@ -127,20 +211,21 @@ impl<const N: usize> Residents<N> {
     }
 
     fn resident_mut(&mut self, ball: usize) -> &mut Resident<N> {
-        let (c, s) = self.home[ball];
-        &mut self.cells[c as usize][s as usize]
+        &mut self.slab[self.home[ball].1 as usize]
     }
 
     /// Moves ball `ball` to cell `to`: swap-removed from its cell, appended to `to`.
     pub(crate) fn relocate(&mut self, ball: usize, to: usize) {
-        let (c, s) = self.home[ball];
-        let list = &mut self.cells[c as usize];
-        let resident = list.swap_remove(s as usize);
-        if let Some(moved) = list.get(s as usize) {
-            self.home[moved.ball as usize].1 = s;
+        let (c, at) = self.home[ball];
+        let span = &mut self.spans[c as usize];
+        let last = (span.start + span.len - 1) as usize;
+        span.len -= 1;
+        let resident = self.slab[at as usize];
+        if last != at as usize {
+            self.slab[at as usize] = self.slab[last];
+            self.home[self.slab[at as usize].ball as usize].1 = at;
         }
-        self.occupied[c as usize] = !list.is_empty();
-        self.home[ball] = (to as u32, self.cells[to].len() as u32);
+        self.home[ball].0 = to as u32;
         self.append(to, resident);
     }
 }
@@ -185,11 +270,15 @@ mod tests {
             lists[to].push(b as u32);
             home[b] = to;
             residents.get_mut(b).since += 1.0;
+            if state % 97 == 0 {
+                residents.compact();
+            }
         }
+        let order: Vec<u32> = residents.in_cell_order().map(|b| b as u32).collect();
+        assert_eq!(order, lists.concat());
         for (c, list) in lists.iter().enumerate() {
             let got: Vec<u32> = residents.cell(c).iter().map(|r| r.ball).collect();
             assert_eq!(&got, list);
-            assert_eq!(residents.occupied[c], !list.is_empty());
         }
         for b in 0..40 {
             assert_eq!(residents.get(b).pos, motion(b as f64).pos);

@@ -262,10 +262,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         };
         sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
         sim.rebase_at = rebase_at(sim.span2, sim.speed2, 0, sim.any_periodic());
-        for i in 0..n {
-            sim.predict(i);
-        }
-        sim.queue.rebuild(0.0);
+        sim.predict_all();
         Ok(sim)
     }
 

@@ -98,10 +98,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.speed2 = speed2;
         self.quiet_rebases = if quiet { self.quiet_rebases + 1 } else { 0 };
         self.rebase_at = rebase_at(self.span2, speed2, self.quiet_rebases, self.any_periodic());
-        for i in 0..self.len() {
-            self.predict(i);
-        }
-        self.queue.rebuild(0.0);
+        self.predict_all();
         self.rebases += 1;
     }
 }

@@ -55,6 +55,18 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.schedule(i, best);
     }
 
+    /// Lays the records out in cell order ([`crate::residents::Residents::compact`]) and
+    /// predicts every ball, cell after cell (so that neighbouring predictions read the same
+    /// lists), then sizes the calendar for them: the start and every re-basing.
+    pub(super) fn predict_all(&mut self) {
+        self.motion.compact();
+        let order: Vec<usize> = self.motion.in_cell_order().collect();
+        for i in order {
+            self.predict(i);
+        }
+        self.queue.rebuild(0.0);
+    }
+
     /// Schedule ball `i`'s earliest event after it crossed into its cell along `axis` (moving
     /// `up` or down): its best contact so far, if still valid (a partner's counter unchanged),
     /// against the newly reached layer of cells only: every contact time is canonical, so the
