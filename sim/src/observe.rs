@@ -23,6 +23,20 @@ pub struct Observables<const N: usize, const S: usize> {
     pub angular_momentum: [f64; S],
 }
 
+/// One ball's kinetic energy `1/2 m (|u|^2 + 2 lambda sum_{i<j} U_ij^2)`, `m = 1/w`: the
+/// term [`Observables::of`] sums (the same bits, so that a sum of these in the balls' order
+/// is its `energy`).
+#[inline]
+pub fn energy_of<const N: usize, const S: usize>(
+    ball: &Ball<f64>,
+    s: &BodyState<f64, N, S>,
+) -> f64 {
+    let m = 1.0 / ball.inv_mass;
+    let u2: f64 = s.velocity.iter().map(|x| x * x).sum();
+    let spin2: f64 = s.spin.iter().map(|x| x * x).sum();
+    0.5 * m * (u2 + 2.0 * ball.lambda() * spin2)
+}
+
 impl<const N: usize, const S: usize> Observables<N, S> {
     /// The totals over `balls`, each given as (parameters, centre `a`, state).
     pub fn of<'a>(
@@ -36,9 +50,7 @@ impl<const N: usize, const S: usize> Observables<N, S> {
         for (ball, a, s) in balls {
             let m = 1.0 / ball.inv_mass;
             let lambda = ball.lambda();
-            let u2: f64 = s.velocity.iter().map(|x| x * x).sum();
-            let spin2: f64 = s.spin.iter().map(|x| x * x).sum();
-            o.energy += 0.5 * m * (u2 + 2.0 * lambda * spin2);
+            o.energy += energy_of(ball, s);
             for k in 0..N {
                 o.momentum[k] += m * s.velocity[k];
             }

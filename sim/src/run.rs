@@ -312,7 +312,7 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             tracer.contact(at(&contact_point(&e, species, sim)));
         }
         if done % every == 0 {
-            let energy = sim.observables().energy;
+            let energy = sim.energy();
             let drift = (energy - start.energy) / start.energy;
             drift_max = drift_max.max(drift.abs());
             samples.push((done, drift));

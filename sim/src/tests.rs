@@ -343,3 +343,30 @@ fn prefetching_changes_no_event() {
     assert!(plain.iter().any(|e| e.contains("Wall")));
     assert_eq!(plain, run(true));
 }
+
+#[test]
+fn the_energy_alone_is_the_observables_energy_bit_for_bit() {
+    // `energy` skips the positions, not a term: along a run of spinning disks of unequal
+    // speeds, its bits are those of `observables().energy` at every sampled contact.
+    let bodies: Vec<Body<2, 1>> = (0..100)
+        .zip(spread::<2>(100, -1.0, 1.0))
+        .map(|(b, v)| Body {
+            state: BodyState {
+                spin: [v[0] - 0.3 * v[1]],
+                velocity: v,
+            },
+            ..disk([(2 * (b % 10) + 1) as f64, (2 * (b / 10) + 1) as f64], v)
+        })
+        .collect();
+    let mut sim = sim2([20.0, 20.0], [true, true], vec![], bodies);
+    for k in 0..2000 {
+        let Step::Contact(_) = sim.step(f64::INFINITY) else {
+            panic!("contact {k}")
+        };
+        if k % 100 == 0 {
+            let (alone, all) = (sim.energy(), sim.observables().energy);
+            assert_eq!(alone.to_bits(), all.to_bits(), "contact {k}");
+            assert!(alone > 0.0);
+        }
+    }
+}
