@@ -184,6 +184,16 @@ pub(crate) fn d_max(r_ball: f64, r_obstacle: f64) -> f64 {
 /// image)` packed in a `u128`, compared as a number.
 pub(crate) type Key = u128;
 
+/// The canonical order of events: by time, then by key (module docs). Every engine takes its
+/// events in this order (the cell engine's calendar and scan, the reference's heap and scan),
+/// so exactly simultaneous events are taken alike. Times are never NaN here (`total_cmp`
+/// orders them as `<` does, `-0` never occurs: a time is a record time `>= 0` plus a
+/// flight `>= 0`).
+#[inline]
+pub(crate) fn order(a: (f64, Key), b: (f64, Key)) -> std::cmp::Ordering {
+    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
+}
+
 /// The event kinds, in their order at equal times.
 pub(crate) mod kind {
     pub(crate) const BALL: u8 = 0;

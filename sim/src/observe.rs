@@ -27,7 +27,7 @@ pub struct Observables<const N: usize, const S: usize> {
 /// term [`Observables::of`] sums (the same bits, so that a sum of these in the balls' order
 /// is its `energy`).
 #[inline]
-pub fn energy_of<const N: usize, const S: usize>(
+pub(crate) fn energy_of<const N: usize, const S: usize>(
     ball: &Ball<f64>,
     s: &BodyState<f64, N, S>,
 ) -> f64 {

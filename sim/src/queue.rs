@@ -20,7 +20,7 @@
 //! the next event, `h` is a few and the overflow small: the cost per event does not grow
 //! with the number of balls. Nothing is allocated once the lists have grown.
 
-use crate::canonical::Key;
+use crate::canonical::{order, Key};
 
 /// What ball `i` will meet.
 #[derive(Clone, Copy, Debug)]
@@ -132,9 +132,7 @@ impl Calendar {
 
     fn less(&self, a: u32, b: u32) -> bool {
         let (x, y) = (&self.slots[a as usize], &self.slots[b as usize]);
-        x.time
-            .total_cmp(&y.time)
-            .then_with(|| x.key.cmp(&y.key))
+        order((x.time, x.key), (y.time, y.key))
             .then_with(|| a.cmp(&b))
             .is_lt()
     }

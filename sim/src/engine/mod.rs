@@ -25,15 +25,16 @@
 //!   (body 1 the lower index), bumps the counters and re-predicts them.
 //!
 //! **Layout.** What a prediction reads of every neighbour (its record and its wraps) is stored
-//! by cell (`Residents`, `residents.rs`): a cell's records are one list, and a byte per cell
-//! says whether it is empty, so a scan of the `3^n` cells within reach
-//! (`Grid::for_cells`, no division) reads one list per occupied cell. The velocity there
+//! by cell (`Residents`, `residents.rs`): a cell's records are one list, and the lists lie in
+//! one slab in the order of the cells, laid out again at the start and at every re-basing
+//! (which also predict the balls cell after cell), so a scan of the `3^n` cells within reach
+//! (`Grid::for_cells`, no division) reads a few stretches of memory. The velocity there
 //! is a copy of the ball's state's, written at each contact. Contact times in the scan are
 //! taken without branches (`predict::contact_time_or_nan`, the same bits as
-//! `contact_time`). The calendar's lists, the cells' lists and the scan reuse their memory:
+//! `contact_time`). The calendar's lists, the slab and the scan reuse their memory:
 //! nothing is allocated per event once they have grown. When the cell list outgrows the
 //! caches (`PREFETCH_FROM` cells, 2^16), a prediction first prefetches the neighbour cells'
-//! list headers, then their first records, so that the cache misses of the `3^n` cells
+//! places in the slab, then their first records, so that the cache misses of the `3^n` cells
 //! overlap instead of following one another; the scan itself is the same.
 //!
 //! **Images.** A ball-ball entry stores its partner's image in the owner's record

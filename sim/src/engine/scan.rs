@@ -3,7 +3,7 @@
 //! ([`crate::canonical`]); and the cell crossings, which move no record.
 
 use super::Simulation;
-use crate::canonical::{self, key, kind, obstacle_time, pair_time, Key};
+use crate::canonical::{self, key, kind, obstacle_time, order, pair_time, Key};
 use crate::predict::exit_time;
 use crate::queue::What;
 use crate::PairKernels;
@@ -24,8 +24,9 @@ impl<const N: usize> Best<N> {
         match self.0 {
             Some((b, _, _)) if t > b => {}
             Some((b, k, _)) if t == b => {
+                // The key is made only for a tie (canonical::order).
                 let key = key();
-                if key < k {
+                if order((t, key), (b, k)).is_lt() {
                     self.0 = Some((t, key, what()));
                 }
             }

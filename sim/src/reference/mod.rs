@@ -13,8 +13,8 @@
 //! ball) skipped at their pop.
 
 use crate::canonical::{
-    self, image_f64, key, kind, obstacle_image, obstacle_time, pair_offset, pair_time, rebase_at,
-    Key,
+    self, image_f64, key, kind, obstacle_image, obstacle_time, order, pair_offset, pair_time,
+    rebase_at, Key,
 };
 use crate::cells::Grid;
 use crate::engine::{Contact, Event};
@@ -67,9 +67,7 @@ impl PartialOrd for Entry {
 
 impl Ord for Entry {
     fn cmp(&self, other: &Self) -> Ordering {
-        self.0
-            .total_cmp(&other.0)
-            .then(self.1.cmp(&other.1))
+        order((self.0, self.1), (other.0, other.1))
             .then(self.2.cmp(&other.2))
             .then(self.3.cmp(&other.3))
     }
@@ -226,7 +224,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         let h = self.now + self.horizon();
         let mut best: Option<(f64, Key, Next<N>)> = None;
         let mut offer = |t: f64, key: Key, next: Next<N>| {
-            if best.is_none_or(|(b, k, _)| t < b || (t == b && key < k)) {
+            if best.is_none_or(|(b, k, _)| order((t, key), (b, k)).is_lt()) {
                 best = Some((t, key, next));
             }
         };
