@@ -19,6 +19,9 @@ Usage::
 
     scripts/peer_edmd.py PATH/TO/EDMD [--balls 4000,32000,108000]
         [--phi 0.1,0.2,0.3,0.4] [--rounds 3] [--contacts C] [--no-slip]
+
+A second table gives each program's peak resident memory and, between successive ``N``, the
+bytes each added ball costs.
 """
 
 from __future__ import annotations
@@ -73,32 +76,43 @@ def build_peer(checkout: Path, variant: str, work: Path) -> Path:
     return binary
 
 
-def run_peer(binary: Path, n: int, phi: float, warm: int, contacts: int) -> float:
-    """Microseconds per collision of one timed stretch."""
+def run_measured(args: list[str], cwd: str | None = None) -> tuple[str, str, int]:
+    """Run ``args``; its standard output and error, and its peak resident memory in bytes
+    (``ru_maxrss`` of this child alone, from ``wait4``; the output goes through files so that
+    nothing but ``wait4`` reaps the child)."""
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        child = subprocess.Popen(args, cwd=cwd, stdout=out, stderr=err, text=True)
+        _, status, usage = os.wait4(child.pid, 0)
+        child.returncode = os.waitstatus_to_exitcode(status)
+        out.seek(0)
+        err.seek(0)
+        stdout, stderr = out.read(), err.read()
+    if child.returncode != 0:
+        sys.exit(f"{args[0]} failed ({child.returncode}): {stderr}")
+    return stdout, stderr, usage.ru_maxrss * 1024
+
+
+def run_peer(binary: Path, n: int, phi: float, warm: int, contacts: int) -> tuple[float, int]:
+    """Microseconds per collision of one timed stretch, and the peak memory in bytes."""
     with tempfile.TemporaryDirectory() as cwd:
-        out = subprocess.run(
-            [str(binary), str(n), str(phi), str(warm), str(contacts)],
-            cwd=cwd,
-            capture_output=True,
-            text=True,
-            check=True,
-        )
-    line = [x for x in out.stderr.splitlines() if x.startswith("PEER ")][-1]
-    return float(line.split()[1])
+        _, err, peak = run_measured([str(binary), str(n), str(phi), str(warm), str(contacts)], cwd)
+    line = [x for x in err.splitlines() if x.startswith("PEER ")][-1]
+    return float(line.split()[1]), peak
 
 
-def run_noslip(n: int, phi: float, warm: int, contacts: int, smooth: bool) -> float:
-    """Microseconds per contact of one timed stretch of ``event_rate``."""
+def run_noslip(n: int, phi: float, warm: int, contacts: int, smooth: bool) -> tuple[float, int]:
+    """Microseconds per contact of one timed stretch of ``event_rate``, and the peak memory
+    in bytes."""
     binary = REPO / "target" / "release" / "examples" / "event_rate"
     args = [str(binary), "--dims", "3", "--balls", str(n), "--phi", str(phi), "--runs", "1"]
     args += ["--warm", str(warm), "--contacts", str(contacts)]
     if smooth:
         args.append("--smooth")
-    out = subprocess.run(args, capture_output=True, text=True, check=True).stdout
+    out, _, peak = run_measured(args)
     row = out.splitlines()[-1].split()
     if "skipped:" in row:
         sys.exit(f"event_rate: {out}")
-    return float(row[4])
+    return float(row[4]), peak
 
 
 def spread(xs: list[float]) -> str:
@@ -126,6 +140,7 @@ def main() -> None:
         work = Path(tmp)
         peers = {v: build_peer(a.checkout.resolve(), v, work) for v in ("Cell", "Single")}
         times: dict[tuple[int, float, str], list[float]] = {}
+        peaks: dict[tuple[int, float, str], int] = {}
         for r in range(a.rounds):
             for n in balls:
                 warm = max(2 * n, 100_000)
@@ -136,10 +151,11 @@ def main() -> None:
                         order.reverse()
                     for who in order:
                         if who == "noslip":
-                            t = run_noslip(n, phi, warm, contacts, not a.no_slip)
+                            t, peak = run_noslip(n, phi, warm, contacts, not a.no_slip)
                         else:
-                            t = run_peer(peers[who], n, phi, warm, contacts)
+                            t, peak = run_peer(peers[who], n, phi, warm, contacts)
                         times.setdefault((n, phi, who), []).append(t)
+                        peaks[(n, phi, who)] = max(peaks.get((n, phi, who), 0), peak)
                         print(f"round {r + 1}: N {n} phi {phi} {who}: {t:.3f} us", file=sys.stderr)
     kind = "no-slip" if a.no_slip else "smooth"
     load = os.getloadavg()
@@ -153,7 +169,23 @@ def main() -> None:
             best = min(statistics.median(cell), statistics.median(single))
             ratio = best / statistics.median(ours)
             print(f"| {n} | {phi} | {spread(ours)} | {spread(cell)} | {spread(single)} | {ratio:.2f} |")
-
+    print()
+    print("# peak resident memory (ru_maxrss, MiB; it counts the forking Python too, about")
+    print("# 15 MiB), and bytes per ball added from the previous N (the memory a ball costs)")
+    print("| N | phi | noslip | peer Cell | peer Single |")
+    print("|---:|---:|---:|---:|---:|")
+    who = ("noslip", "Cell", "Single")
+    for phi in phis:
+        for k, n in enumerate(balls):
+            cells = []
+            for w in who:
+                cell = f"{peaks[(n, phi, w)] / 2**20:.0f} MiB"
+                if k > 0:
+                    m = balls[k - 1]
+                    per = (peaks[(n, phi, w)] - peaks[(m, phi, w)]) / (n - m)
+                    cell += f", {per:.0f} B/ball"
+                cells.append(cell)
+            print(f"| {n} | {phi} | " + " | ".join(cells) + " |")
 
 if __name__ == "__main__":
     main()

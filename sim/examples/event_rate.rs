@@ -16,7 +16,8 @@
 //! timed over `runs` stretches of `C` contacts each (default `max(N, 2 10^5)`); printed: the
 //! median (and min, max) of contacts per second of this thread's CPU time
 //! (`/proc/thread-self/schedstat` on Linux, steadier than the wall clock on a shared machine;
-//! the wall clock elsewhere), its inverse in µs per contact, and the cell crossings per contact.
+//! the wall clock elsewhere), its inverse in µs per contact, the cell crossings per contact, the build time and the
+//! stale ball-ball events per contact (a partner's contact came first: a full rescan each).
 //! `--smooth` makes the ball-ball contacts smooth (specular, as in hard-sphere codes); the
 //! default is no-slip, through the generic generated kernels.
 
@@ -134,6 +135,8 @@ struct Rates {
     rates: Vec<f64>,
     /// Cell crossings per contact over the timed runs.
     crossings: f64,
+    /// Stale ball-ball events (a full rescan each) per contact over the timed runs.
+    stale: f64,
     /// Seconds to build the simulation (placement and first predictions).
     build: f64,
 }
@@ -177,7 +180,7 @@ where
     if !advance(&mut sim, warm) {
         return Err("the gas stopped during the warm-up".into());
     }
-    let crossings0 = sim.crossings();
+    let (crossings0, stale0) = (sim.crossings(), sim.stale_events());
     let mut rates = Vec::new();
     for _ in 0..opts.runs {
         let t0 = seconds(&clock);
@@ -187,10 +190,13 @@ where
         rates.push(contacts as f64 / (seconds(&clock) - t0));
     }
     rates.sort_by(f64::total_cmp);
-    let crossings = (sim.crossings() - crossings0) as f64 / (contacts * opts.runs as u64) as f64;
+    let timed = (contacts * opts.runs as u64) as f64;
+    let crossings = (sim.crossings() - crossings0) as f64 / timed;
+    let stale = (sim.stale_events() - stale0) as f64 / timed;
     Ok(Rates {
         rates,
         crossings,
+        stale,
         build,
     })
 }
@@ -257,8 +263,17 @@ fn options() -> Options {
 fn main() {
     let opts = options();
     println!(
-        "{:>3} {:>8} {:>5} {:>12} {:>9} {:>12} {:>12} {:>10} {:>8}",
-        "dim", "N", "phi", "contacts/s", "us/cont", "min/s", "max/s", "cross/con", "build s"
+        "{:>3} {:>8} {:>5} {:>12} {:>9} {:>12} {:>12} {:>10} {:>8} {:>10}",
+        "dim",
+        "N",
+        "phi",
+        "contacts/s",
+        "us/cont",
+        "min/s",
+        "max/s",
+        "cross/con",
+        "build s",
+        "stale/con"
     );
     for &dim in &opts.dims {
         for &balls in &opts.balls {
@@ -275,12 +290,13 @@ fn main() {
                     Ok(r) => {
                         let median = r.rates[r.rates.len() / 2];
                         println!(
-                            "{dim:>3} {balls:>8} {phi:>5} {median:>12.0} {:>9.3} {:>12.0} {:>12.0} {:>10.3} {:>8.2}",
+                            "{dim:>3} {balls:>8} {phi:>5} {median:>12.0} {:>9.3} {:>12.0} {:>12.0} {:>10.3} {:>8.2} {:>10.3}",
                             1e6 / median,
                             r.rates[0],
                             r.rates[r.rates.len() - 1],
                             r.crossings,
-                            r.build
+                            r.build,
+                            r.stale
                         );
                     }
                     Err(e) => println!("{dim:>3} {balls:>8} {phi:>5} skipped: {e}"),

@@ -157,6 +157,8 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     next_notice: f64,
     contacts: u64,
     crossings: u64,
+    /// Ball-ball events found stale (the partner's counter changed) so far.
+    stale: u64,
     rebases: u64,
 }
 
@@ -259,6 +261,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             next_notice: QUIET_BOX_LENGTHS,
             contacts: 0,
             crossings: 0,
+            stale: 0,
             rebases: 0,
         };
         sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
@@ -304,6 +307,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Cell crossings processed so far.
     pub fn crossings(&self) -> u64 {
         self.crossings
+    }
+
+    /// Ball-ball events found stale so far: the partner's counter had changed, so the owner
+    /// was predicted again (a full scan).
+    pub fn stale_events(&self) -> u64 {
+        self.stale
     }
 
     /// The number of balls.
@@ -461,6 +470,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                     self.quiet += 1;
                 }
                 What::Ball { j, count, .. } if count != self.count[j as usize] => {
+                    self.stale += 1;
                     self.predict(i);
                     self.quiet += 1;
                 }
