@@ -18,7 +18,7 @@ per collision over the rounds, and noslip's speed over the best variant's.
 Usage::
 
     scripts/peer_edmd.py PATH/TO/EDMD [--balls 4000,32000,108000]
-        [--phi 0.1,0.2,0.3,0.4] [--rounds 3] [--contacts C] [--no-slip]
+        [--phi 0.1,0.2,0.3,0.4] [--rounds 3] [--contacts C] [--no-slip] [--noslip BINARY]
 
 A second table gives each program's peak resident memory and, between successive ``N``, the
 bytes each added ball costs.
@@ -100,10 +100,11 @@ def run_peer(binary: Path, n: int, phi: float, warm: int, contacts: int) -> tupl
     return float(line.split()[1]), peak
 
 
-def run_noslip(n: int, phi: float, warm: int, contacts: int, smooth: bool) -> tuple[float, int]:
+def run_noslip(
+    binary: Path, n: int, phi: float, warm: int, contacts: int, smooth: bool
+) -> tuple[float, int]:
     """Microseconds per contact of one timed stretch of ``event_rate``, and the peak memory
     in bytes."""
-    binary = REPO / "target" / "release" / "examples" / "event_rate"
     args = [str(binary), "--dims", "3", "--balls", str(n), "--phi", str(phi), "--runs", "1"]
     args += ["--warm", str(warm), "--contacts", str(contacts)]
     if smooth:
@@ -128,14 +129,22 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--contacts", type=int, default=None)
     parser.add_argument("--no-slip", action="store_true", help="noslip's contacts no-slip")
+    parser.add_argument(
+        "--noslip",
+        type=Path,
+        default=None,
+        help="an event_rate binary to time (default: the repository's, built in release here)",
+    )
     a = parser.parse_args()
     balls = [int(x) for x in a.balls.split(",")]
     phis = [float(x) for x in a.phi.split(",")]
-    subprocess.run(
-        ["cargo", "build", "--release", "-q", "-p", "noslip-sim", "--example", "event_rate"],
-        cwd=REPO,
-        check=True,
-    )
+    ours = a.noslip or REPO / "target" / "release" / "examples" / "event_rate"
+    if a.noslip is None:
+        subprocess.run(
+            ["cargo", "build", "--release", "-q", "-p", "noslip-sim", "--example", "event_rate"],
+            cwd=REPO,
+            check=True,
+        )
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         peers = {v: build_peer(a.checkout.resolve(), v, work) for v in ("Cell", "Single")}
@@ -151,7 +160,7 @@ def main() -> None:
                         order.reverse()
                     for who in order:
                         if who == "noslip":
-                            t, peak = run_noslip(n, phi, warm, contacts, not a.no_slip)
+                            t, peak = run_noslip(ours, n, phi, warm, contacts, not a.no_slip)
                         else:
                             t, peak = run_peer(peers[who], n, phi, warm, contacts)
                         times.setdefault((n, phi, who), []).append(t)
