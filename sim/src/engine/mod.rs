@@ -33,7 +33,7 @@
 //! taken without branches (`predict::contact_time_or_nan`, the same bits as
 //! `contact_time`). The calendar's lists, the slab and the scan reuse their memory:
 //! nothing is allocated per event once they have grown. When the cell list outgrows the
-//! caches (`PREFETCH_FROM` cells, 2^16), a prediction first prefetches the neighbour cells'
+//! caches (`PREFETCH_FROM_BYTES` of slab, 4 MiB), a prediction first prefetches the neighbour cells'
 //! places in the slab, then their first records, so that the cache misses of the `3^n` cells
 //! overlap instead of following one another; the scan itself is the same.
 //!
@@ -93,16 +93,16 @@ use super::no_contact::{NoContact, QUIET_BOX_LENGTHS};
 use super::observe::Observables;
 use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::queue::{Calendar, What};
-use super::residents::Residents;
+use super::residents::{Resident, Residents};
 use super::table::{ContactKind, Geometry, Table};
 use super::{Body, FixedBall, PairKernels, Setup};
 use collision_core::{Ball, BodyState};
 
-/// The number of cells from which a prediction prefetches its neighbour cells' lists: a
-/// list header and a record per occupied cell, about 2 MiB of cell list from here, more than
-/// a core's L2 cache. Below it the lists are cached and the extra passes cost more than they
-/// save (docs/benchmarks.md, "The event loop").
-const PREFETCH_FROM: usize = 1 << 16;
+/// The size of the slab of records (`(balls + cells)` records: each list has room for one
+/// more) from which a prediction prefetches its neighbour cells' lists: 4 MiB, several times a
+/// core's L2 cache. Below it the lists are mostly cached and the extra passes cost more than
+/// they save; above it they save up to half the time (docs/benchmarks.md, "The slab").
+const PREFETCH_FROM_BYTES: usize = 4 << 20;
 
 /// An event-driven simulation; see the module docs.
 pub struct Simulation<const N: usize, const S: usize, K> {
@@ -128,7 +128,7 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     orientation: Option<Vec<Matrix<N>>>,
     unturned: Vec<f64>,
     /// Whether a prediction prefetches its neighbour cells' lists: a cell list larger than
-    /// the caches ([`PREFETCH_FROM`]).
+    /// the caches ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
     /// Per ball: the time of its pending event (`Calendar`) and what it is (`next`).
     queue: Calendar,
@@ -221,7 +221,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             fixed_members[grid.flat(&c)].push(o as u32);
         }
         let n = bodies.len();
-        let prefetch = grid.cells() >= PREFETCH_FROM;
+        let slab = (bodies.len() + grid.cells()) * std::mem::size_of::<Resident<N>>();
+        let prefetch = slab >= PREFETCH_FROM_BYTES;
         let span2 = clock_span2(&grid.width);
         let mut sim = Simulation {
             kernels,
