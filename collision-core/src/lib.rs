@@ -56,6 +56,7 @@ pub mod linalg;
 pub mod literal;
 mod normal;
 pub mod reference;
+mod restitution;
 pub mod rng;
 mod scalar;
 mod state;
@@ -71,8 +72,9 @@ pub use error::{BodyField, Field, InputError};
 #[cfg(feature = "num-rational")]
 pub use exact::ExactNumRational;
 pub use exact::{collide_exact, Exact, ExactRelaxed, Relaxing};
-pub use kernels::{Generated, Kernel};
+pub use kernels::{Generated, Kernel, RoughKernel};
 pub use normal::stereographic_normal;
+pub use restitution::Restitution;
 pub use scalar::{RefArith, Scalar};
 pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};
 pub use wide::{Binary, Wide};
