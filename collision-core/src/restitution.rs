@@ -9,6 +9,17 @@
 //! by one impulse at the contact point. `(1, 1)` is the no-slip map, `(1, -1)` the smooth
 //! (specular) one. The generated kernels `kernels::dN::rough::{free, fixed, ..}` take a
 //! `&Restitution<T>` beside the balls.
+//!
+//! ```
+//! use collision_core::{kernels::d3, Ball, Restitution, State3};
+//! // A ball falling onto a wall (body 1, immovable, below: nu points up).
+//! let ball: Ball<f64> = Ball { inv_mass: 1.0, radius: 1.0, gamma2: 0.4 };
+//! let law = Restitution::new(0.9, 0.5).unwrap();
+//! let falling = State3::from_omega([0.0, 0.0, 2.0], [0.0, -1.0, 0.0]);
+//! let after = d3::rough::fixed(&[0.0, 1.0, 0.0], &1.0, &ball, &law, &State3::zero(), &falling);
+//! assert!((after.velocity[1] - 0.9).abs() < 1e-15); // dn+ = -e dn (one rounding of 1.9 - 1)
+//! assert!(Restitution::new(1.5, 0.0).is_err()); // e out of [0, 1]
+//! ```
 
 use crate::error::{Field, InputError};
 use crate::scalar::Scalar;
