@@ -1,6 +1,7 @@
 //! Generates the kernels of the enabled dimensions (features `d2`..`d6`) into OUT_DIR (see
-//! noslip-codegen): the scalar `kernels_{n}.rs`, the batch `batch_{n}.rs`, and `dims.rs`, the
-//! one table of dimensions every crate dispatches on (`for_each_dim!`, `with_dim!`).
+//! noslip-codegen): the scalar `kernels_{n}.rs`, the rough-ball `rough_{n}.rs`, the batch
+//! `batch_{n}.rs`, and `dims.rs`, the one table of dimensions every crate dispatches on
+//! (`for_each_dim!`, `with_dim!`).
 use std::path::PathBuf;
 
 fn main() {
@@ -11,6 +12,10 @@ fn main() {
     noslip_codegen::generate_into(&out_dir, dims.iter().copied(), "crate")
         .expect("write generated kernels to OUT_DIR");
     for &dim in &dims {
+        let rough = noslip_codegen::generate_rough(dim, "crate");
+        let path = out_dir.join(noslip_codegen::rough_file_name(dim));
+        noslip_codegen::write_if_changed(&path, &rough.source)
+            .expect("write generated rough-ball kernels to OUT_DIR");
         let module = noslip_codegen::batch::generate(dim, "crate");
         let path = out_dir.join(noslip_codegen::batch::file_name(dim));
         noslip_codegen::write_if_changed(&path, &module.source)

@@ -11,8 +11,11 @@
 
 mod backend;
 
-use backend::{c_source, cc, compare, draw, records, run, rust_results, scratch, Float, KERNELS};
-use collision_core::{Generated, Kernel, Scalar};
+use backend::{
+    c_source, cc, compare, draw, records, run, rust_results, rust_rough_results, scratch, Float,
+    KERNELS, LAWS, ROUGH_KERNELS,
+};
+use collision_core::{Generated, Kernel, Restitution, RoughKernel, Scalar};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
 use noslip_codegen::backend::{file_name, generate, Lang};
@@ -69,6 +72,60 @@ fn run_c<T: Float>(exe: &Path, n: usize, kernel: &str, input: &Path) -> Vec<T> {
     values
 }
 
+/// Run rough kernel `kernel` of dimension `n` in format `T` under `(e, beta)` on `input`.
+fn run_c_rough<T: Float>(
+    exe: &Path,
+    n: usize,
+    kernel: &str,
+    law: (f64, f64),
+    input: &Path,
+) -> Vec<T> {
+    let output = input.with_extension(format!("{kernel}.out"));
+    run(Command::new(exe)
+        .arg(n.to_string())
+        .arg(kernel)
+        .arg(<T as Scalar>::NAME)
+        .arg(input)
+        .arg(&output)
+        .arg(law.0.to_string())
+        .arg(law.1.to_string()));
+    let values = T::from_bytes(&std::fs::read(&output).unwrap());
+    std::fs::remove_file(&output).unwrap();
+    values
+}
+
+/// Compare every rough kernel in format `T` under each of [`LAWS`] on `cases`; the failures.
+fn check_rough_format<T: Float, const N: usize, const S: usize>(
+    dir: &Path,
+    exes: &[(&str, PathBuf)],
+    cases: &[(Regime, Case<T, N, S>)],
+) -> Vec<String>
+where
+    Generated: RoughKernel<T, N, S>,
+{
+    let input = dir.join(format!("rough_{N}_{}.bin", <T as Scalar>::NAME));
+    std::fs::write(&input, records(cases)).unwrap();
+    let mut failures = Vec::new();
+    for law in LAWS {
+        let exact = Restitution::new(T::from_f64(law.0), T::from_f64(law.1)).expect("in range");
+        for kernel in ROUGH_KERNELS {
+            let rust = rust_rough_results(kernel, &exact, cases);
+            for (config, exe) in exes {
+                let c = run_c_rough::<T>(exe, N, kernel, law, &input);
+                let what = format!(
+                    "n = {N}, {kernel} {} (e, beta) = {law:?} (cc {config})",
+                    <T as Scalar>::NAME
+                );
+                if let Err(e) = compare(&what, cases, &rust, &c) {
+                    failures.push(e);
+                }
+            }
+        }
+    }
+    std::fs::remove_file(&input).unwrap();
+    failures
+}
+
 /// Compare every kernel in format `T` on `cases` for each compiled harness; the failures.
 fn check_format<T: Float, const N: usize, const S: usize>(
     dir: &Path,
@@ -123,6 +180,37 @@ fn c_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
         failures.extend(collision_core::with_dim!(
             n,
             |N, S| check_dim::<N, S>(&dir, &exes, CASES),
+            unreachable!("DIMS lists the compiled dimensions")
+        ));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Cases per dimension, rough kernel, law and format.
+const ROUGH_CASES: usize = 20_000;
+
+/// The rough-ball kernels of the C header return the Rust rough kernels' bits, under each of
+/// [`LAWS`], on the same regimes, in both compiler configurations.
+#[test]
+fn c_rough_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
+    let dir = scratch("c-backend-rough");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+    let exes: Vec<(&str, PathBuf)> = CONFIGS
+        .iter()
+        .enumerate()
+        .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("harness{k}"))))
+        .collect();
+    let mut failures = Vec::new();
+    for n in collision_core::DIMS.iter().copied() {
+        failures.extend(collision_core::with_dim!(
+            n,
+            |N, S| {
+                let cases = draw::<N, S>(ROUGH_CASES, 24 + N as u64);
+                let mut f = check_rough_format(&dir, &exes, &cases.f64);
+                f.extend(check_rough_format(&dir, &exes, &cases.f32));
+                f
+            },
             unreachable!("DIMS lists the compiled dimensions")
         ));
     }

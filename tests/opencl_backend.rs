@@ -10,11 +10,12 @@
 
 mod backend;
 
-use backend::{compare, draw, opencl, records, rust_results, scratch, Float, KERNELS};
-use collision_core::{Generated, Kernel, Scalar};
+use backend::{compare, draw, opencl, records, rust_results, scratch, Float, KERNELS, LAWS};
+use collision_core::{BodyState, Generated, Kernel, Restitution, RoughKernel, Scalar};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
 use noslip_codegen::backend::{file_name, generate, Lang};
+use std::fmt::Write;
 use std::path::Path;
 
 const CASES: usize = 100_000;
@@ -105,6 +106,163 @@ fn opencl_kernels_are_bit_identical_to_the_rust_kernels() {
         failures.extend(collision_core::with_dim!(
             n,
             |N, S| check::<N, S>(&dir),
+            unreachable!("a compiled dimension")
+        ));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Cases per dimension, rough kernel and format.
+const ROUGH_CASES: usize = 20_000;
+
+/// The law of case `k`: the [`LAWS`] in turn, so every law meets every regime.
+fn law_of<T: Float>(k: usize) -> Restitution<T> {
+    let (e, beta) = LAWS[k % LAWS.len()];
+    Restitution::new(T::from_f64(e), T::from_f64(beta)).expect("in range")
+}
+
+/// One rough kernel of dimension `N` in format `T`: its input records (the batch kernel's
+/// parameters in order, `law` per record) and the Rust results, as the host's list mode
+/// reads and writes them.
+fn rough_records<T: Float, const N: usize, const S: usize>(
+    kernel: &str,
+    cases: &[(Regime, Case<T, N, S>)],
+) -> (Vec<u8>, Vec<T>)
+where
+    Generated: RoughKernel<T, N, S>,
+{
+    let (mut bytes, mut rust) = (Vec::new(), Vec::new());
+    let state = |s: &BodyState<T, N, S>| {
+        s.spin
+            .iter()
+            .chain(&s.velocity)
+            .copied()
+            .collect::<Vec<T>>()
+    };
+    for (k, (_, c)) in cases.iter().enumerate() {
+        let law = law_of::<T>(k);
+        let (nu, [b1, b2], [s1, s2]) = (&c.nu, c.ball_refs(), c.state_refs());
+        let ball = |b: &collision_core::Ball<T>| vec![b.inv_mass, b.radius, b.gamma2];
+        let first: Vec<T> = if kernel.contains("fixed") {
+            vec![b1.radius]
+        } else {
+            ball(b1)
+        };
+        let values = nu
+            .iter()
+            .copied()
+            .chain(first)
+            .chain(ball(b2))
+            .chain([law.e, law.beta])
+            .chain(state(s1))
+            .chain(state(s2));
+        for v in values {
+            bytes.extend(v.bytes());
+        }
+        let out: Vec<BodyState<T, N, S>> = match kernel {
+            "rough_free" => Generated::rough_free(nu, b1, b2, &law, s1, s2).to_vec(),
+            "rough_free_fma" => Generated::rough_free_fma(nu, b1, b2, &law, s1, s2).to_vec(),
+            "rough_fixed" => vec![Generated::rough_fixed(nu, &b1.radius, b2, &law, s1, s2)],
+            _ => vec![Generated::rough_fixed_fma(nu, &b1.radius, b2, &law, s1, s2)],
+        };
+        for b in &out {
+            rust.extend(state(b));
+        }
+    }
+    (bytes, rust)
+}
+
+/// The host's list lines (written with the case files) or the comparison, for dimension `N`.
+fn rough_dim<const N: usize, const S: usize>(dir: &Path, list: Option<&mut String>) -> Vec<String>
+where
+    Generated: RoughKernel<f64, N, S> + RoughKernel<f32, N, S>,
+{
+    let cases = draw::<N, S>(ROUGH_CASES, 240 + N as u64);
+    let mut failures = Vec::new();
+    let mut list = list;
+    for kernel in backend::ROUGH_KERNELS {
+        failures.extend(rough_format(dir, kernel, &cases.f64, list.as_deref_mut()));
+        failures.extend(rough_format(dir, kernel, &cases.f32, list.as_deref_mut()));
+    }
+    failures
+}
+
+fn rough_format<T: Float, const N: usize, const S: usize>(
+    dir: &Path,
+    kernel: &str,
+    cases: &[(Regime, Case<T, N, S>)],
+    list: Option<&mut String>,
+) -> Vec<String>
+where
+    Generated: RoughKernel<T, N, S>,
+{
+    let format = <T as Scalar>::NAME;
+    let name = format!("noslip_d{N}_{kernel}_{format}");
+    let (bytes, rust) = rough_records(kernel, cases);
+    let state = S + N;
+    match list {
+        Some(list) => {
+            std::fs::write(dir.join(format!("{name}.bin")), bytes).unwrap();
+            let (first, outs) = if kernel.contains("fixed") {
+                (1, format!("{state}"))
+            } else {
+                (3, format!("{state},{state}"))
+            };
+            let _ = writeln!(
+                list,
+                "{format} {name} {N},{first},3,2,{state},{state} {outs}"
+            );
+            Vec::new()
+        }
+        None => {
+            let out = dir.join(format!("{name}.out"));
+            let cl = match std::fs::read(&out) {
+                Ok(b) => T::from_bytes(&b),
+                Err(e) => return vec![format!("{}: {e}", out.display())],
+            };
+            let what = format!("n = {N}, {kernel} {format} (OpenCL, laws {LAWS:?})");
+            compare(&what, cases, &rust, &cl)
+                .err()
+                .into_iter()
+                .collect()
+        }
+    }
+}
+
+/// The rough-ball batch kernels return the Rust rough kernels' bits, each record under one of
+/// [`LAWS`] (the law is a per-contact array of the batch kernel).
+#[test]
+fn opencl_rough_kernels_are_bit_identical_to_the_rust_kernels() {
+    let dir = scratch("opencl-backend-rough");
+    let source = dir.join(file_name(Lang::OpenCl));
+    std::fs::write(&source, generate(Lang::OpenCl, &[2, 3, 4, 5, 6])).unwrap();
+    const TEST: &str = "OpenCL rough-kernel faithfulness test";
+    if let Err(why) = opencl::clang_check(&source) {
+        return opencl::skip(TEST, &why);
+    }
+    let host = match opencl::build_host(&dir) {
+        Ok(host) => host,
+        Err(why) => return opencl::skip(TEST, &why),
+    };
+    let mut list = String::new();
+    for n in collision_core::DIMS.iter().copied() {
+        collision_core::with_dim!(
+            n,
+            |N, S| rough_dim::<N, S>(&dir, Some(&mut list)),
+            unreachable!("a compiled dimension")
+        );
+    }
+    let list_file = dir.join("rough.txt");
+    std::fs::write(&list_file, list).unwrap();
+    if let Err(why) = opencl::run_host(&host, &source, &dir, Some(&list_file)) {
+        return opencl::skip(TEST, &why);
+    }
+    let mut failures = Vec::new();
+    for n in collision_core::DIMS.iter().copied() {
+        failures.extend(collision_core::with_dim!(
+            n,
+            |N, S| rough_dim::<N, S>(&dir, None),
             unreachable!("a compiled dimension")
         ));
     }

@@ -11,9 +11,12 @@
 //!              "velocity": ["0","0","0"]}]}
 //! ```
 //!
+//! An optional `contact` key gives the contact law ([`crate::contact`]; no-slip by default).
+//!
 //! Sizes are checked against `dim` before any number is read, and `dim` is bounded by
 //! [`MAX_DIM`], so nothing of size `dim` is built from a short input.
 
+use crate::contact::{contact_from_json, Contact};
 use crate::error::{clip, kind, quote, CaseError};
 use crate::number::{integer_literal, read, scalar_from_json, InputScalar};
 use crate::tiny::Tiny;
@@ -28,7 +31,7 @@ use serde_json::{Map, Value};
 pub const MAX_DIM: usize = 16;
 
 /// The keys of a case.
-pub const CASE_KEYS: [&str; 3] = ["dim", "normal", "bodies"];
+pub const CASE_KEYS: [&str; 4] = ["dim", "normal", "bodies", "contact"];
 /// The keys of a body.
 pub const BODY_KEYS: [&str; 7] = [
     "mass",
@@ -77,6 +80,8 @@ pub struct Case<T> {
     pub normal: Vec<T>,
     /// `bodies`: body 1 and body 2.
     pub bodies: [BodyInput<T>; 2],
+    /// `contact`: the contact law, no-slip unless given ([`crate::contact`]).
+    pub contact: Contact<T>,
 }
 
 /// `path.key`, the key quoted unless it is plain (letters, digits, `_`).
@@ -390,10 +395,12 @@ impl<T: InputScalar> Case<T> {
             BodyInput::from_json(&list[1], 1, dim, floats, &mut tiny)?,
         ];
         tiny.check(&bodies)?;
+        let contact = contact_from_json(obj.get("contact"), floats)?;
         Ok(Case {
             dim,
             normal,
             bodies,
+            contact,
         })
     }
 }

@@ -37,6 +37,8 @@ pub fn path(field: Field) -> String {
         Field::Body(i, f) => format!("bodies[{i}].{}", key(f)),
         Field::Bodies => "bodies".into(),
         Field::RelativeVelocity => "bodies[*].velocity".into(),
+        Field::RestitutionE => "contact.e".into(),
+        Field::RestitutionBeta => "contact.beta".into(),
         _ => field.to_string(),
     }
 }

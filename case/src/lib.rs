@@ -7,7 +7,7 @@
 //!
 //! - [`number`]: the number formats (decimals, rationals) and how `f64` and exact
 //!   rationals read and print them.
-//! - [`case`]: the input schema of a case.
+//! - [`case`]: the input schema of a case; [`contact`]: its optional contact law.
 //! - [`keys`]: keys given twice (which `serde_json::Value` would drop silently).
 //! - [`solve`]: validation with readable messages, and the dispatch over `dim` to the
 //!   generated kernels (2..=6) or the general-n reference.
@@ -19,6 +19,7 @@
 
 pub mod case;
 pub mod collide;
+pub mod contact;
 pub mod error;
 pub mod keys;
 pub mod number;

@@ -6,12 +6,13 @@
 //! case into its types.
 
 use crate::case::{BodyInput, Case, Spin};
+use crate::contact::Contact;
 use crate::error::CaseError;
 use crate::number::InputScalar;
 use collision_core::reference::state_len;
 use collision_core::{
-    collide, collide_general, skew_entries, Ball, BodyState, Generated, Kernel, RefArith, State2,
-    State3,
+    collide, collide_general, collide_rough, skew_entries, Ball, BodyState, Generated, Kernel,
+    RefArith, RoughKernel, State2, State3,
 };
 use nalgebra::DVector;
 
@@ -35,6 +36,16 @@ where
         ball(case.dim, &case.bodies[0], 0)?,
         ball(case.dim, &case.bodies[1], 1)?,
     ];
+    if case.contact != Contact::NoSlip && !collision_core::DIMS.contains(&case.dim) {
+        return Err(CaseError::new(
+            "contact",
+            format!(
+                "the rough-ball law has kernels for dim in {:?} only, got dim = {}",
+                collision_core::DIMS,
+                case.dim
+            ),
+        ));
+    }
     collision_core::with_dim!(
         case.dim,
         |N, S| solve_kernel::<T, N, S>(case, &balls),
@@ -99,12 +110,16 @@ fn solve_kernel<T, const N: usize, const S: usize>(
 ) -> Result<[BodyOutput<T>; 2], CaseError>
 where
     T: InputScalar,
-    Generated: Kernel<T::Unbounded, N, S>,
+    Generated: Kernel<T::Unbounded, N, S> + RoughKernel<T::Unbounded, N, S>,
 {
     let states: [BodyState<T, N, S>; 2] = [state(&case.bodies[0], 0)?, state(&case.bodies[1], 1)?];
     let balls = [&balls[0], &balls[1]];
     let nu: [T; N] = array(case.normal.clone())?;
-    let out = collide(&nu, balls, [&states[0], &states[1]])?;
+    let states = [&states[0], &states[1]];
+    let out = match &case.contact {
+        Contact::NoSlip => collide(&nu, balls, states)?,
+        Contact::Rough(law) => collide_rough(&nu, balls, law, states)?,
+    };
     Ok(out.map(|s| BodyOutput {
         spin: s.spin.to_vec(),
         velocity: s.velocity.to_vec(),

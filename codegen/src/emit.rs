@@ -7,7 +7,7 @@
 //! `Copy` floats and heap-allocated rationals.
 
 use crate::ir::{Id, Node};
-use crate::model::{self, names, skew_pairs, KernelGraph, Variant};
+use crate::model::{names, skew_pairs, KernelGraph, Law, Variant};
 use crate::program::{Op, Operand, Program};
 use crate::schedule::{OpCount, Schedule};
 use num_bigint::BigInt;
@@ -231,6 +231,22 @@ fn ball_pattern(body: usize, live: &BTreeSet<String>) -> TokenStream {
     quote!(Ball { #(#bound,)* #rest })
 }
 
+/// `Restitution { e, beta }`, binding the live ones.
+fn restitution_pattern(live: &BTreeSet<String>) -> TokenStream {
+    let fields = [names::restitution_e(), names::restitution_beta()];
+    let bound: Vec<TokenStream> = fields
+        .iter()
+        .filter(|n| live.contains(*n))
+        .map(|n| {
+            // The input names are the field names: shorthand patterns.
+            let n = ident(n);
+            quote!(#n)
+        })
+        .collect();
+    let rest = (bound.len() < fields.len()).then(|| quote!(..));
+    quote!(Restitution { #(#bound,)* #rest })
+}
+
 /// A formula file as a Markdown text block (split into doc lines by [`description`]).
 fn text_block(formulas: &str) -> String {
     format!("```text\n{formulas}```")
@@ -238,21 +254,42 @@ fn text_block(formulas: &str) -> String {
 
 pub(crate) fn description(kernel: &KernelGraph) -> Vec<String> {
     let n = kernel.dim;
-    let mut lines = match kernel.variant {
-        Variant::Free => vec![
+    let mut lines = match (kernel.law, kernel.variant) {
+        (Law::Rough, Variant::Free) => vec![
+            format!("Rough-ball collision of two free balls in R^{n} with normal restitution `e` and"),
+            "tangential restitution `beta` (`docs/derivation.md` §15): returns `[body 1, body 2]`.".into(),
+            String::new(),
+            text_block(Law::Rough.closed_form(Variant::Free)),
+            String::new(),
+            "`w_i` = `inv_mass` (0: immovable), `g_i` = `gamma2` = 2 lambda_i / R_i^2;".into(),
+            "`e` in `[0, 1]`, `beta` in `[-1, 1]`: `(1, 1)` is the no-slip map [`super::free`]".into(),
+            "(the same values, bit for bit, also in floats), `(1, -1)` the smooth one. Energy change".into(),
+            "`-(1 - e^2) dn^2 / (2 (w_1 + w_2)) - (1 - beta^2) g_1 g_2 |t|^2 / (2 D)`.".into(),
+            "Requires `D > 0` and `w_1 + w_2 > 0`, as [`super::free`].".into(),
+        ],
+        (Law::Rough, Variant::Fixed) => vec![
+            format!("Rough-ball collision in R^{n} of a free ball (body 2) with an immovable one (body 1),"),
+            "normal restitution `e`, tangential restitution `beta`: returns body 2 after contact.".into(),
+            "The `w_1 -> 0` limit of [`free`]; body 2's mass drops out.".into(),
+            String::new(),
+            text_block(Law::Rough.closed_form(Variant::Fixed)),
+            String::new(),
+            "Finite for every `gamma2` in `[0, 2/n]`; `(e, beta) = (1, 1)` is [`super::fixed`].".into(),
+        ],
+        (Law::NoSlip, Variant::Free) => vec![
             format!("No-slip collision of two free balls in R^{n}: returns `[body 1, body 2]` after contact."),
             String::new(),
-            text_block(model::CLOSED_FORM_FREE),
+            text_block(Law::NoSlip.closed_form(Variant::Free)),
             String::new(),
             "`w_i` = `inv_mass` (0: immovable), `g_i` = `gamma2` = 2 lambda_i / R_i^2.".into(),
             "Finite for an immovable body with `gamma2 > 0` and for one point mass (`gamma2 = 0`)".into(),
             "on a movable body; requires `D > 0` and `w_1 + w_2 > 0` (the checked `collide` ensures it).".into(),
         ],
-        Variant::Fixed => vec![
+        (Law::NoSlip, Variant::Fixed) => vec![
             format!("No-slip collision in R^{n} of a free ball (body 2) with an immovable one (body 1):"),
             "returns body 2 after contact. The `w_1 -> 0` limit of [`free`]; body 2's mass drops out.".into(),
             String::new(),
-            text_block(model::CLOSED_FORM_FIXED),
+            text_block(Law::NoSlip.closed_form(Variant::Fixed)),
             String::new(),
             "Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).".into(),
         ],
@@ -403,7 +440,11 @@ pub fn emit_kernel_as(kernel: &KernelGraph, arith: Arith) -> EmittedKernel {
             "exact in rationals). Same formula, same operation order otherwise.".into(),
             String::new(),
             "Always inlined, so it is compiled with its caller's target features:".into(),
-            "`collision_core::collide_unchecked_fma` calls it from a function compiled with".into(),
+            match kernel.law {
+                Law::NoSlip => "`collision_core::collide_unchecked_fma` calls it from a function compiled with",
+                Law::Rough => "call it from a function compiled with (as `collision_core::collide_unchecked_fma` does)",
+            }
+            .into(),
             "`#[target_feature(enable = \"fma\")]` when the CPU has FMA (run-time detection)."
                 .into(),
             "Called from code compiled without FMA, `f64::mul_add` is a libm call: the same".into(),
@@ -420,19 +461,27 @@ pub fn emit_kernel_as(kernel: &KernelGraph, arith: Arith) -> EmittedKernel {
     doc.push(format!("Ops: {ops}; {terms} intermediate terms."));
     let doc = doc_lines(&doc);
 
+    // The rough law's parameters follow the balls: `law: &Restitution<T>`.
+    let (law_param, law_prologue) = match kernel.law {
+        Law::NoSlip => (quote!(), quote!()),
+        Law::Rough => {
+            let pattern = restitution_pattern(live);
+            (quote!(law: &Restitution<T>,), quote!(let #pattern = law;))
+        }
+    };
     let (params, prologue, ret_ty, ret) = match kernel.variant {
         Variant::Free => {
             let ball1 = ball_pattern(1, live);
             (
-                quote!(nu: &[T; #nl], ball1: &Ball<T>, ball2: &Ball<T>, state1: &#state_ty, state2: &#state_ty),
-                quote!(let #ball1 = ball1; let #ball2 = ball2;),
+                quote!(nu: &[T; #nl], ball1: &Ball<T>, ball2: &Ball<T>, #law_param state1: &#state_ty, state2: &#state_ty),
+                quote!(let #ball1 = ball1; let #ball2 = ball2; #law_prologue),
                 quote!([#state_ty; 2]),
                 quote!([#(#bodies),*]),
             )
         }
         Variant::Fixed => (
-            quote!(nu: &[T; #nl], radius1: &T, ball2: &Ball<T>, state1: &#state_ty, state2: &#state_ty),
-            quote!(let #ball2 = ball2;),
+            quote!(nu: &[T; #nl], radius1: &T, ball2: &Ball<T>, #law_param state1: &#state_ty, state2: &#state_ty),
+            quote!(let #ball2 = ball2; #law_prologue),
             quote!(#state_ty),
             quote!(#(#bodies)*),
         ),
@@ -517,6 +566,30 @@ pub fn header(dim: usize, kernels: &[EmittedKernel]) -> String {
         ));
     }
     h
+}
+
+/// The header of a generated rough-ball file (`rough_{dim}.rs`): provenance and costs.
+pub fn rough_header(dim: usize, kernels: &[EmittedKernel]) -> String {
+    let mut h = format!(
+        "// @generated by noslip-codegen from the general SO(n) formulas (codegen/src/model.rs).\n\
+         // Do not edit: it is rewritten by collision-core's build.rs.\n\
+         // Rough-ball (e, beta) collision kernels for n = {dim}.\n"
+    );
+    for k in kernels {
+        h.push_str(&format!(
+            "// {}: {}; {} intermediate terms.\n",
+            k.arith.function_name(k.variant),
+            k.ops,
+            k.terms
+        ));
+    }
+    h
+}
+
+/// The `use` line of a rough-ball module: the runtime types and `Restitution`.
+pub fn rough_imports(crate_path: &str) -> TokenStream {
+    let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
+    quote!(use #path::{Ball, BodyState, RefArith, Restitution, Scalar};)
 }
 
 /// Parse emitted items into a `syn::File`. Panics with the offending source when the

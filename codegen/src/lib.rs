@@ -36,7 +36,7 @@ pub mod specialise;
 pub mod straight_line;
 
 pub use emit::Arith;
-pub use model::Variant;
+pub use model::{Law, Variant};
 pub use schedule::OpCount;
 
 use std::io;
@@ -120,6 +120,55 @@ pub fn generate(dim: usize, crate_path: &str) -> Module {
             })
             .collect(),
     }
+}
+
+/// Generate the rough-ball kernels (run-time restitutions `e`, `beta`;
+/// `docs/derivation.md` §15) for dimension `dim`: `free`, `fixed`, `free_fma`,
+/// `fixed_fma`, through the same pipeline as [`generate`], as one formatted file
+/// ([`rough_file_name`]) that `collision-core` includes as `kernels::dN::rough`.
+///
+/// Panics if the emission is not valid Rust or not straight-line: both are generator bugs.
+pub fn generate_rough(dim: usize, crate_path: &str) -> Module {
+    let kernels: Vec<emit::EmittedKernel> = Arith::ALL
+        .iter()
+        .flat_map(|&arith| {
+            Variant::ALL
+                .iter()
+                .map(move |&v| emit::emit_kernel_as(&model::build_rough(dim, v), arith))
+        })
+        .collect();
+    let imports = emit::rough_imports(crate_path);
+    let items = kernels.iter().map(|k| &k.tokens);
+    let file = emit::parse(quote::quote!(#imports #(#items)*));
+    let violations = straight_line::check(&file);
+    assert!(
+        violations.is_empty(),
+        "generated rough kernels for n = {dim} are not straight-line: {violations:?}"
+    );
+    let source = format!(
+        "{}\n{}",
+        emit::rough_header(dim, &kernels),
+        prettyplease::unparse(&file)
+    );
+    Module {
+        dim,
+        source,
+        kernels: kernels
+            .iter()
+            .map(|k| KernelSummary {
+                dim: k.dim,
+                variant: k.variant,
+                arith: k.arith,
+                ops: k.ops,
+                terms: k.terms,
+            })
+            .collect(),
+    }
+}
+
+/// The file name of dimension `dim`'s rough-ball module: `rough_{dim}.rs`.
+pub fn rough_file_name(dim: usize) -> String {
+    format!("rough_{dim}.rs")
 }
 
 /// The file name of dimension `dim`'s module: `kernels_{dim}.rs`.

@@ -25,6 +25,15 @@
 //!
 //! These two text blocks ([`CLOSED_FORM_FREE`], [`CLOSED_FORM_FIXED`]) are written once, in
 //! `codegen/src/closed_form/`; the generated kernels' doc comments are made from them.
+//!
+//! The rough-ball family ([`Law::Rough`], `docs/derivation.md` §15) is the same builder with
+//! the normal part of `P` scaled by `h_n = (1 + e)/2` and its tangential part (and so the
+//! angular updates) by `h_t = (1 + beta)/2`, `e` and `beta` two more kernel inputs
+//! ([`CLOSED_FORM_ROUGH_FREE`], [`CLOSED_FORM_ROUGH_FIXED`]). At `(e, beta) = (1, 1)` both
+//! factors are exactly 1, so the rough kernel computes the no-slip kernel's operations plus
+//! multiplications by 1: the same values, bit for bit, in floats too (plain arithmetic; of
+//! the FMA forms only `free`, since the no-slip `fixed` shares `nu_k dn` with the slip and so
+//! cannot fuse it into `P`, while the rough one fuses `nu_k (h_n dn)`).
 
 use crate::ir::{Graph, Id};
 
@@ -33,6 +42,55 @@ pub const CLOSED_FORM_FREE: &str = include_str!("closed_form/free.txt");
 
 /// The `fixed` map (body 1 immovable: `w_1 = 0`, `w_2 = 1`, `g_1 = 1`), likewise.
 pub const CLOSED_FORM_FIXED: &str = include_str!("closed_form/fixed.txt");
+
+/// The rough-ball free map (`docs/derivation.md` §15), likewise.
+pub const CLOSED_FORM_ROUGH_FREE: &str = include_str!("closed_form/rough_free.txt");
+
+/// The rough-ball `fixed` map, likewise.
+pub const CLOSED_FORM_ROUGH_FIXED: &str = include_str!("closed_form/rough_fixed.txt");
+
+/// The contact law a kernel implements.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Law {
+    /// The no-slip map: the metric reflection across `G_q` (`kernels::dN::free`, ...).
+    NoSlip,
+    /// The rough-ball family with run-time normal and tangential restitution `(e, beta)`:
+    /// `dn+ = -e dn`, `t+ = -beta t` (`kernels::dN::rough::free`, ...).
+    Rough,
+}
+
+impl Law {
+    /// The closed form of `variant` under this law, as the kernels' docs state it.
+    pub fn closed_form(self, variant: Variant) -> &'static str {
+        match (self, variant) {
+            (Law::NoSlip, Variant::Free) => CLOSED_FORM_FREE,
+            (Law::NoSlip, Variant::Fixed) => CLOSED_FORM_FIXED,
+            (Law::Rough, Variant::Free) => CLOSED_FORM_ROUGH_FREE,
+            (Law::Rough, Variant::Fixed) => CLOSED_FORM_ROUGH_FIXED,
+        }
+    }
+}
+
+/// The DAG nodes of the rough law's parameters: the normal restitution `e` in `[0, 1]` and
+/// the tangential restitution `beta` in `[-1, 1]` (inputs, or constants where a caller
+/// fixes them).
+#[derive(Clone, Copy, Debug)]
+pub struct RestitutionInputs {
+    /// `e`: `dn+ = -e dn`.
+    pub e: Id,
+    /// `beta`: `t+ = -beta t`.
+    pub beta: Id,
+}
+
+impl RestitutionInputs {
+    /// The named inputs `e` and `beta`.
+    pub fn symbolic(g: &mut Graph) -> Self {
+        RestitutionInputs {
+            e: g.input(names::restitution_e()),
+            beta: g.input(names::restitution_beta()),
+        }
+    }
+}
 
 /// Which bodies can move.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -90,6 +148,14 @@ pub mod names {
     pub fn gamma2(body: usize) -> String {
         format!("gamma2_{body}")
     }
+    /// `e`: the normal restitution of the rough law.
+    pub fn restitution_e() -> String {
+        "e".into()
+    }
+    /// `beta`: the tangential restitution of the rough law.
+    pub fn restitution_beta() -> String {
+        "beta".into()
+    }
 }
 
 /// One body's post-collision state as DAG nodes.
@@ -110,6 +176,8 @@ pub struct KernelGraph {
     pub dim: usize,
     /// Which bodies move.
     pub variant: Variant,
+    /// The contact law.
+    pub law: Law,
     /// The DAG, holding the inputs, every intermediate and the outputs.
     pub graph: Graph,
     /// The bodies the kernel returns: both for [`Variant::Free`], body 2 for [`Variant::Fixed`].
@@ -225,15 +293,72 @@ pub fn build(n: usize, variant: Variant) -> KernelGraph {
     KernelGraph {
         dim: n,
         variant,
+        law: Law::NoSlip,
         graph,
         outputs,
     }
+}
+
+/// Build the rough-ball kernel (run-time `e`, `beta`) for dimension `n >= 2`.
+pub fn build_rough(n: usize, variant: Variant) -> KernelGraph {
+    let mut graph = Graph::new();
+    let inputs = symbolic_inputs(&mut graph, n, variant);
+    let law = RestitutionInputs::symbolic(&mut graph);
+    let outputs = build_rough_on(&mut graph, &inputs, variant, law);
+    KernelGraph {
+        dim: n,
+        variant,
+        law: Law::Rough,
+        graph,
+        outputs,
+    }
+}
+
+/// The kernel of `law` for dimension `n` (`build` or `build_rough`).
+pub fn build_law(n: usize, variant: Variant, law: Law) -> KernelGraph {
+    match law {
+        Law::NoSlip => build(n, variant),
+        Law::Rough => build_rough(n, variant),
+    }
+}
+
+/// The rough-ball map of `inputs` with restitutions `law` as nodes of `g`
+/// (`docs/derivation.md` §15): [`build_on`]'s map with `P_n` scaled by `h_n = (1 + e)/2`,
+/// `P_t` and the angular coefficients by `h_t = (1 + beta)/2`.
+pub fn build_rough_on(
+    g: &mut Graph,
+    inputs: &KernelInputs,
+    variant: Variant,
+    law: RestitutionInputs,
+) -> Vec<BodyOutput> {
+    let one = g.int(1);
+    let half = g.constant(num_rational::BigRational::new(1.into(), 2.into()));
+    let h = |g: &mut Graph, x: Id, label: &str| {
+        let one_x = g.add(one, x);
+        let h = g.mul(half, one_x);
+        g.label(h, label);
+        h
+    };
+    let h_n = h(g, law.e, "h_n");
+    let h_t = h(g, law.beta, "h_t");
+    build_scaled_on(g, inputs, variant, Some((h_n, h_t)))
 }
 
 /// The collision map of `inputs` as nodes of `g` (both bodies for [`Variant::Free`], body 2
 /// for [`Variant::Fixed`]). The dimension is `inputs.nu.len()`. Used by [`build`], and by
 /// the verifier to compose the map with itself or substitute limits.
 pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<BodyOutput> {
+    build_scaled_on(g, inputs, variant, None)
+}
+
+/// The map with `P_n` scaled by `h.0` and `P_t`, `rho_1`, `rho_2` by `h.1` (the rough law),
+/// or unscaled (`None`: no-slip, no node added).
+fn build_scaled_on(
+    g: &mut Graph,
+    inputs: &KernelInputs,
+    variant: Variant,
+    h: Option<(Id, Id)>,
+) -> Vec<BodyOutput> {
     let n = inputs.nu.len();
     assert!(n >= 2, "the collision map needs n >= 2");
     let nu = &inputs.nu;
@@ -276,6 +401,16 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
     let w_sum = g.add(w1, w2);
     let p_n = g.div(dn, w_sum);
     g.label(p_n, "p_n");
+    let scaled = |g: &mut Graph, x: Id, k: usize, label: &str| match h {
+        None => x,
+        Some(h) => {
+            let factor = if k == 0 { h.0 } else { h.1 };
+            let y = g.mul(x, factor);
+            g.label(y, label);
+            y
+        }
+    };
+    let p_n = scaled(g, p_n, 0, "pe_n");
     let d = {
         let one_g1 = g.add(one, g1);
         let one_g2 = g.add(one, g2);
@@ -289,6 +424,7 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
     let g1g2 = g.mul(g1, g2);
     let p_t = g.div(g1g2, d);
     g.label(p_t, "p_t");
+    let p_t = scaled(g, p_t, 1, "pe_t");
     let p: Vec<Id> = (0..n)
         .map(|k| {
             let x = g.mul(p_n, nu[k]);
@@ -322,6 +458,7 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
         let den = g.mul(body.radius, d);
         let rho = g.div(num, den);
         g.label(rho, format!("rho{index}"));
+        let rho = scaled(g, rho, 1, &format!("rhoe{index}"));
         let spin = body
             .spin
             .iter()

@@ -2,7 +2,7 @@
 //! counts of every kernel are checked in; a change to the generator shows up as a diff.
 //! Regenerate with `UPDATE_GOLDEN=1 cargo test -p noslip-codegen --test golden`.
 
-use noslip_codegen::{generate, straight_line, Arith, Variant, DIMS};
+use noslip_codegen::{generate, generate_rough, straight_line, Arith, Variant, DIMS};
 use noslip_verify::diff::unified;
 use std::path::PathBuf;
 
@@ -119,4 +119,58 @@ fn benchmarks_page_quotes_the_generated_op_counts() {
         })
         .collect();
     assert_eq!(quoted, generated, "docs/benchmarks.md's op counts");
+}
+
+#[test]
+fn emitted_text_of_the_2d_rough_kernels() {
+    compare("rough_2.rs", &generate_rough(2, "crate").source);
+}
+
+/// The rough-ball kernels' costs: the no-slip kernel's, plus `h_n`, `h_t` (one addition and
+/// one multiplication each) and the scaled `P_n`, `P_t` and `rho_i` (one multiplication
+/// each), checked in a table of their own.
+#[test]
+fn op_counts_of_every_rough_kernel() {
+    let mut table = String::from("# dim variant: ops; intermediate terms\n");
+    for dim in DIMS {
+        for k in generate_rough(dim, "crate").kernels {
+            table.push_str(&format!(
+                "{dim} rough::{}: {}; {} terms\n",
+                k.name(),
+                k.ops,
+                k.terms
+            ));
+        }
+    }
+    compare("rough_op_counts.txt", &table);
+}
+
+#[test]
+fn rough_kernels_cost_the_no_slip_ones_plus_the_scaling() {
+    for dim in DIMS {
+        let plain = generate(dim, "crate").kernels;
+        let rough = generate_rough(dim, "crate").kernels;
+        for (p, r) in plain.iter().zip(&rough) {
+            assert_eq!((p.variant, p.arith), (r.variant, r.arith));
+            if p.arith == Arith::Plain {
+                // h_n, h_t: 2 add + 2 mul; P_n, P_t: 2 mul; rho_1 (free), rho_2: 1 or 2 mul.
+                // `fixed` also computes `nu_k (h_n dn)`, n products, where the no-slip
+                // kernel reuses the slip's `nu_k dn`.
+                let extra = match p.variant {
+                    Variant::Free => 2,
+                    Variant::Fixed => 1 + dim,
+                };
+                assert_eq!(r.ops.add, p.ops.add + 2, "n = {dim}, {:?}", p.variant);
+                assert_eq!(
+                    r.ops.mul,
+                    p.ops.mul + 4 + extra,
+                    "n = {dim}, {:?}",
+                    p.variant
+                );
+                assert_eq!(r.ops.div, p.ops.div, "n = {dim}, {:?}", p.variant);
+            }
+        }
+        let file = syn::parse_file(&generate_rough(dim, "crate").source).expect("parses");
+        assert_eq!(straight_line::check(&file), vec![], "n = {dim}");
+    }
 }

@@ -8,7 +8,10 @@ use crate::{Ball, BodyState, Scalar};
 use nalgebra::DVector;
 
 mod fma;
+mod rough;
+
 pub use fma::{collide_unchecked_fma, fma_in_hardware};
+pub use rough::{collide_rough, collide_rough_unchecked};
 
 /// The post-collision states of two balls in contact at normal `nu` (unit, from body 1's
 /// centre to body 2's), after validating every input:

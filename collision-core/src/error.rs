@@ -54,6 +54,10 @@ pub enum Field {
     Bodies,
     /// The relative velocity of the bodies (separating).
     RelativeVelocity,
+    /// The normal restitution `e` of the rough law ([`crate::Restitution`]).
+    RestitutionE,
+    /// The tangential restitution `beta` of the rough law ([`crate::Restitution`]).
+    RestitutionBeta,
 }
 
 impl fmt::Display for Field {
@@ -64,6 +68,8 @@ impl fmt::Display for Field {
             Field::Body(i, field) => write!(f, "body {} {}", i + 1, field.name()),
             Field::Bodies => f.write_str("both bodies"),
             Field::RelativeVelocity => f.write_str("relative velocity"),
+            Field::RestitutionE => f.write_str("restitution e"),
+            Field::RestitutionBeta => f.write_str("restitution beta"),
         }
     }
 }

@@ -56,6 +56,7 @@ pub mod linalg;
 pub mod literal;
 mod normal;
 pub mod reference;
+mod restitution;
 pub mod rng;
 mod scalar;
 mod state;
@@ -63,16 +64,17 @@ mod wide;
 
 pub use ball::{Ball, Inertia, Mass};
 pub use collide::{
-    collide, collide_general, collide_unchecked, collide_unchecked_fma, fma_in_hardware, validate,
-    validate_parts,
+    collide, collide_general, collide_rough, collide_rough_unchecked, collide_unchecked,
+    collide_unchecked_fma, fma_in_hardware, validate, validate_parts,
 };
 pub use dims::DIMS;
 pub use error::{BodyField, Field, InputError};
 #[cfg(feature = "num-rational")]
 pub use exact::ExactNumRational;
 pub use exact::{collide_exact, Exact, ExactRelaxed, Relaxing};
-pub use kernels::{Generated, Kernel};
+pub use kernels::{Generated, Kernel, RoughKernel};
 pub use normal::stereographic_normal;
+pub use restitution::Restitution;
 pub use scalar::{RefArith, Scalar};
 pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};
 pub use wide::{Binary, Wide};

@@ -169,3 +169,63 @@ pub fn collide<T: Scalar, const N: usize, const S: usize>(
 ) -> Result<[BodyState<T, N, S>; 2], InputError> {
     collide_coords(nu, balls, &coords(states)).map(|xi| from_coords(&xi))
 }
+
+/// The rough-ball map (`docs/derivation.md` §15) on coordinates, from the definitions: the
+/// slip `s = (M B)^T xi` (`p . s = <B p, xi>`), its target `s+ = -e (s . nu) nu - beta (s -
+/// (s . nu) nu)`, and the one impulse at `Q` that reaches it, `xi+ = xi + B p` with
+/// `(B^T M B) p = s+ - s`. Shares no formula with the generated kernels. Inputs are
+/// checked as in [`collide_coords`]; `law` is not range-checked (the map is defined for
+/// every `(e, beta)`).
+pub fn collide_rough_coords<T: Scalar>(
+    nu: &[T],
+    balls: [&Ball<T>; 2],
+    law: &crate::Restitution<T>,
+    xi: &DVector<T>,
+) -> Result<DVector<T>, InputError> {
+    let n = nu.len();
+    let s = n * (n - 1) / 2;
+    if xi.len() != state_len(n) {
+        return Err(InputError::new(
+            Field::Dim,
+            "state length does not match the normal",
+        ));
+    }
+    let part =
+        |b: usize, k: usize, len: usize| &xi.as_slice()[b * (s + n) + k..b * (s + n) + k + len];
+    validate_parts(
+        nu,
+        balls,
+        [
+            (part(0, 0, s), part(0, s, n)),
+            (part(1, 0, s), part(1, s, n)),
+        ],
+    )?;
+    let b = impulse_basis(nu, balls)?;
+    let mb = momentum_basis(nu, [&balls[0].radius, &balls[1].radius]);
+    let gram = b.transpose() * &mb;
+    let slip = mb.transpose() * xi;
+    let normal = DVector::from_iterator(n, nu.iter().cloned());
+    let dn = slip.dot(&normal);
+    let tangential = &slip - &normal * dn.clone();
+    let target = &normal * (-(law.e.clone() * dn)) - tangential * law.beta.clone();
+    let p = solve(&gram, &(target - slip)).ok_or_else(|| {
+        InputError::new(
+            Field::Bodies,
+            format!(
+                "the general-n reference failed in {}: its Gram solve overflowed at these extreme parameters; exact arithmetic computes it",
+                T::NAME
+            ),
+        )
+    })?;
+    Ok(xi + b * p)
+}
+
+/// [`collide_rough_coords`] on per-body states.
+pub fn collide_rough<T: Scalar, const N: usize, const S: usize>(
+    nu: &[T; N],
+    balls: [&Ball<T>; 2],
+    law: &crate::Restitution<T>,
+    states: [&BodyState<T, N, S>; 2],
+) -> Result<[BodyState<T, N, S>; 2], InputError> {
+    collide_rough_coords(nu, balls, law, &coords(states)).map(|xi| from_coords(&xi))
+}

@@ -13,7 +13,7 @@
 pub mod opencl;
 
 use collision_core::rng::Rng;
-use collision_core::{BodyState, Generated, Kernel, Scalar};
+use collision_core::{BodyState, Generated, Kernel, Restitution, RoughKernel, Scalar};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
 use std::path::{Path, PathBuf};
@@ -178,6 +178,48 @@ where
             "free_fma" => Generated::free_fma(nu, b1, b2, s1, s2).to_vec(),
             "fixed" => vec![Generated::fixed(nu, &b1.radius, b2, s1, s2)],
             "fixed_fma" => vec![Generated::fixed_fma(nu, &b1.radius, b2, s1, s2)],
+            _ => panic!("no kernel {kernel}"),
+        };
+        for b in &bodies {
+            out.extend(state(b));
+        }
+    }
+    out
+}
+
+/// The rough-ball kernels of each dimension, as the harnesses name them.
+pub const ROUGH_KERNELS: [&str; 4] = [
+    "rough_free",
+    "rough_fixed",
+    "rough_free_fma",
+    "rough_fixed_fma",
+];
+
+/// The laws `(e, beta)` the rough kernels are compared under: inside the ranges, and the
+/// ends (the smooth member `(1, -1)`, `e = 0`). Each is exact in `f32` and `f64` and prints
+/// as a shortest round-trip decimal, so the harness's `strtod`/`strtof` reads the same value.
+pub const LAWS: [(f64, f64); 3] = [(0.9, 0.4), (0.0, -1.0), (0.3, -0.7)];
+
+/// The Rust rough kernel `kernel` (one of [`ROUGH_KERNELS`]) under `law` on every case,
+/// flattened as the harness writes its results.
+pub fn rust_rough_results<T: Float, const N: usize, const S: usize>(
+    kernel: &str,
+    law: &Restitution<T>,
+    cases: &[(Regime, Case<T, N, S>)],
+) -> Vec<T>
+where
+    Generated: RoughKernel<T, N, S>,
+{
+    let mut out = Vec::new();
+    for (_, c) in cases {
+        let (nu, [b1, b2], [s1, s2]) = (&c.nu, c.ball_refs(), c.state_refs());
+        let bodies: Vec<BodyState<T, N, S>> = match kernel {
+            "rough_free" => Generated::rough_free(nu, b1, b2, law, s1, s2).to_vec(),
+            "rough_free_fma" => Generated::rough_free_fma(nu, b1, b2, law, s1, s2).to_vec(),
+            "rough_fixed" => vec![Generated::rough_fixed(nu, &b1.radius, b2, law, s1, s2)],
+            "rough_fixed_fma" => {
+                vec![Generated::rough_fixed_fma(nu, &b1.radius, b2, law, s1, s2)]
+            }
             _ => panic!("no kernel {kernel}"),
         };
         for b in &bodies {

@@ -1,9 +1,11 @@
 /* The faithfulness harness of the C back end (tests/c_backend.rs): runs one generated kernel
  * on every record of an input file and writes its outputs.
  *
- *   harness N KERNEL PRECISION IN OUT
+ *   harness N KERNEL PRECISION IN OUT [E BETA]
  *
- * KERNEL is free, fixed, free_fma or fixed_fma; PRECISION f64 or f32. IN holds records of
+ * KERNEL is free, fixed, free_fma or fixed_fma, or one of them prefixed rough_ (the
+ * rough-ball kernels, which then take law = {E, BETA}, read with strtod or strtof, so that a
+ * shortest round-trip decimal gives the exact value); PRECISION f64 or f32. IN holds records of
  * the precision's type, native byte order: nu[N], ball1[3], ball2[3], state1[S+N],
  * state2[S+N] (ball = inv_mass, radius, gamma2; state = spin, velocity). OUT receives per
  * record out1[S+N] and out2[S+N] (free) or out2[S+N] (fixed; its radius1 is ball1[1]).
@@ -36,6 +38,40 @@
         out_len = count * out_rec * sizeof(T);                                    \
     } while (0)
 
+#define LOOP_ROUGH_FREE(T, FN, N, S, LAW)                                        \
+    do {                                                                          \
+        const size_t rec = (N) + 6 + 2 * ((S) + (N)), out_rec = 2 * ((S) + (N)); \
+        const T *x = (const T *)in;                                               \
+        T *y = (T *)out;                                                          \
+        for (size_t c = 0; c < count; c++, x += rec, y += out_rec)                \
+            FN(x, x + (N), x + (N) + 3, LAW, x + (N) + 6, x + (N) + 6 + (S) + (N), \
+               y, y + (S) + (N));                                                 \
+        out_len = count * out_rec * sizeof(T);                                    \
+    } while (0)
+
+#define LOOP_ROUGH_FIXED(T, FN, N, S, LAW)                                       \
+    do {                                                                          \
+        const size_t rec = (N) + 6 + 2 * ((S) + (N)), out_rec = (S) + (N);       \
+        const T *x = (const T *)in;                                               \
+        T *y = (T *)out;                                                          \
+        for (size_t c = 0; c < count; c++, x += rec, y += out_rec)                \
+            FN(x, x[(N) + 1], x + (N) + 3, LAW, x + (N) + 6,                      \
+               x + (N) + 6 + (S) + (N), y);                                       \
+        out_len = count * out_rec * sizeof(T);                                    \
+    } while (0)
+
+#define ROUGH(N, S)                                                                                            \
+    if (n == (N)) {                                                                                            \
+        if (f64 && !strcmp(kernel, "rough_free")) LOOP_ROUGH_FREE(double, noslip_d##N##_rough_free_f64, N, S, law64); \
+        if (f64 && !strcmp(kernel, "rough_fixed")) LOOP_ROUGH_FIXED(double, noslip_d##N##_rough_fixed_f64, N, S, law64); \
+        if (f64 && !strcmp(kernel, "rough_free_fma")) LOOP_ROUGH_FREE(double, noslip_d##N##_rough_free_fma_f64, N, S, law64); \
+        if (f64 && !strcmp(kernel, "rough_fixed_fma")) LOOP_ROUGH_FIXED(double, noslip_d##N##_rough_fixed_fma_f64, N, S, law64); \
+        if (!f64 && !strcmp(kernel, "rough_free")) LOOP_ROUGH_FREE(float, noslip_d##N##_rough_free_f32, N, S, law32); \
+        if (!f64 && !strcmp(kernel, "rough_fixed")) LOOP_ROUGH_FIXED(float, noslip_d##N##_rough_fixed_f32, N, S, law32); \
+        if (!f64 && !strcmp(kernel, "rough_free_fma")) LOOP_ROUGH_FREE(float, noslip_d##N##_rough_free_fma_f32, N, S, law32); \
+        if (!f64 && !strcmp(kernel, "rough_fixed_fma")) LOOP_ROUGH_FIXED(float, noslip_d##N##_rough_fixed_fma_f32, N, S, law32); \
+    }
+
 #define DIM(N, S)                                                                        \
     if (n == (N)) {                                                                      \
         const size_t rec = (N) + 6 + 2 * ((S) + (N));                                   \
@@ -63,10 +99,14 @@ static void *read_all(const char *path, size_t *len) {
 }
 
 int main(int argc, char **argv) {
-    if (argc != 6) {
-        fprintf(stderr, "usage: harness N KERNEL PRECISION IN OUT\n");
+    if (argc != 6 && argc != 8) {
+        fprintf(stderr, "usage: harness N KERNEL PRECISION IN OUT [E BETA]\n");
         return 2;
     }
+    const double law64[2] = {argc == 8 ? strtod(argv[6], NULL) : 1.0,
+                             argc == 8 ? strtod(argv[7], NULL) : 1.0};
+    const float law32[2] = {argc == 8 ? strtof(argv[6], NULL) : 1.0f,
+                            argc == 8 ? strtof(argv[7], NULL) : 1.0f};
     const int n = atoi(argv[1]);
     const char *kernel = argv[2];
     const int f64 = !strcmp(argv[3], "f64");
@@ -83,6 +123,16 @@ int main(int argc, char **argv) {
     DIM(4, 6)
     DIM(5, 10)
     DIM(6, 15)
+    {
+        /* count from the same record layout; the rough kernels read law after the balls. */
+        const size_t s_of[7] = {0, 0, 1, 3, 6, 10, 15};
+        if (n >= 2 && n <= 6) count = in_len / (((size_t)n + 6 + 2 * (s_of[n] + (size_t)n)) * size);
+    }
+    ROUGH(2, 1)
+    ROUGH(3, 3)
+    ROUGH(4, 6)
+    ROUGH(5, 10)
+    ROUGH(6, 15)
     if (out_len == 0) {
         fprintf(stderr, "harness: no kernel %s for n = %d in %s, or no records\n", kernel, n, argv[3]);
         return 2;

@@ -62,7 +62,7 @@ pub fn equal(g: &mut Graph, a: &[StateIds; 2], b: &[StateIds; 2]) -> Vec<Id> {
 
 /// Contact-point velocities `V_1(Q) = R_1 U_1 nu + u_1`, `V_2(Q) = -R_2 U_2 nu + u_2`;
 /// returns `V_2(Q) - V_1(Q)`.
-fn slip(g: &mut Graph, inputs: &KernelInputs, s: &[StateIds; 2]) -> Vec<Id> {
+pub fn slip(g: &mut Graph, inputs: &KernelInputs, s: &[StateIds; 2]) -> Vec<Id> {
     let n = inputs.nu.len();
     let [b1, b2] = &inputs.bodies;
     let u1nu = skew_times(g, n, &s[0].spin, &inputs.nu);
@@ -140,7 +140,7 @@ pub fn reflection(
 
 /// Twice the kinetic energy of the movable bodies: `sum_i m_i [g_i R_i^2 |U_i|^2 + |u_i|^2]`
 /// (`2 lambda = g R^2`; `Tr(U U^T) = 2 sum_{i<j} U_ij^2`), `m_i = 1 / w_i`.
-fn energy(g: &mut Graph, inputs: &KernelInputs, s: &[StateIds; 2], bodies: &[usize]) -> Id {
+pub fn energy(g: &mut Graph, inputs: &KernelInputs, s: &[StateIds; 2], bodies: &[usize]) -> Id {
     let one = g.int(1);
     let terms: Vec<Id> = bodies
         .iter()

@@ -1,13 +1,14 @@
 //! Runs every check for the chosen dimensions and variants and collects the results.
 
 use crate::checks::identity::{self, Identity};
+use crate::checks::rough::{self, RoughIdentity};
 use crate::checks::sequence::{self, Limit};
 use crate::checks::{inertia, structure};
 use crate::report::{CheckResult, Proof};
 use crate::sample::SET_SIZE;
 use crate::under_test::{generated, ExactKernel};
 use collision_core::rng::Rng;
-use collision_core::{Exact, Generated, Kernel};
+use collision_core::{Exact, ExactRelaxed, Generated, Kernel, RoughKernel};
 use noslip_codegen::model::Variant;
 use std::time::Instant;
 
@@ -59,9 +60,46 @@ pub fn sz_bound(degree: u64, points: usize) -> f64 {
 pub fn checks_per_dim() -> usize {
     Variant::ALL
         .iter()
-        .map(|&v| Identity::for_variant(v).len() + 2)
+        .map(|&v| Identity::for_variant(v).len() + 2 + RoughIdentity::for_variant(v).len())
         .sum::<usize>()
         + 3
+}
+
+/// The identity checks of the rough-ball kernels of `variant` (docs/derivation.md §15).
+pub fn rough_checks<const N: usize, const S: usize>(
+    variant: Variant,
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+) -> Vec<CheckResult>
+where
+    Generated: RoughKernel<ExactRelaxed, N, S> + Kernel<ExactRelaxed, N, S>,
+{
+    RoughIdentity::for_variant(variant)
+        .iter()
+        .enumerate()
+        .map(|(k, &check)| {
+            let seed = opts.seed + 100 + k as u64;
+            let (outcome, seconds) =
+                timed(|| rough::run::<N, S>(variant, check, opts.points, seed));
+            let degree = rough::degree(N, variant, check);
+            let r = CheckResult {
+                dim: N,
+                variant: RoughIdentity::variant_name(variant),
+                check: check.name().into(),
+                passed: outcome.is_ok(),
+                points: opts.points,
+                proof: Proof::Identity {
+                    degree,
+                    set_size: SET_SIZE,
+                    bound: sz_bound(degree, opts.points),
+                },
+                detail: outcome.err().unwrap_or_default(),
+                seconds,
+            };
+            progress(&r);
+            r
+        })
+        .collect()
 }
 
 fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
@@ -115,7 +153,9 @@ pub fn run_dim<const N: usize, const S: usize>(
     progress: &mut dyn FnMut(&CheckResult),
 ) -> Vec<CheckResult>
 where
-    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
+    Generated: Kernel<Exact, N, S>
+        + Kernel<collision_core::ExactRelaxed, N, S>
+        + RoughKernel<ExactRelaxed, N, S>,
 {
     let mut out = Vec::new();
     for variant in Variant::ALL {
@@ -212,6 +252,9 @@ where
     };
     progress(&r);
     out.push(r);
+    for variant in Variant::ALL {
+        out.extend(rough_checks::<N, S>(variant, opts, progress));
+    }
     out
 }
 

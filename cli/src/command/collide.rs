@@ -45,6 +45,11 @@ Input (one case; body 1 of the formulas is bodies[0], body 2 is bodies[1]):
                     J = [[0,-1],[1,0]]); in 3D also a 3-vector omega (U x = omega x x).
                     The output uses the same form, per body.
     velocity        u, the centre velocity: n numbers
+  contact           optional, the contact law (docs/derivation.md §15): \"no-slip\" (the
+                    default), \"smooth\" (specular), or {{\"e\": .., \"beta\": ..}}, the
+                    rough-ball law: the normal slip of the contact point becomes -e times
+                    itself (e in [0, 1]) and its tangential slip -beta times itself (beta in
+                    [-1, 1]); (1, 1) is no-slip, (1, -1) smooth. dim 2..=6 only.
   Unknown keys and keys given twice are errors. The bodies must approach or graze:
   (u_2 - u_1) . nu <= 0. At most one body may be immovable, and at most one movable body a
   point mass (lambda = 0).

@@ -20,6 +20,7 @@
 //! ```text
 //! free : (nu[N], ball1[3], ball2[3], state1[S+N], state2[S+N], out1[S+N], out2[S+N])
 //! fixed: (nu[N], radius1,  ball2[3], state1[S+N], state2[S+N], out2[S+N])
+//! rough_free, rough_fixed: the same with law[2] = {e, beta} after ball2
 //! ball = {inv_mass, radius, gamma2}; state = {U_01, U_02, .., U_(n-2)(n-1), u_0, .., u_(n-1)}
 //! ```
 //!
@@ -32,7 +33,7 @@ mod c;
 pub use c::{OpenCl, C};
 
 use crate::emit::Arith;
-use crate::model::{self, names, skew_pairs, Variant};
+use crate::model::{self, names, skew_pairs, Law, Variant};
 use crate::program::{Op, Operand, Program};
 use crate::schedule::OpCount;
 use crate::DIMS;
@@ -309,27 +310,33 @@ fn nu_elems(n: usize) -> Vec<String> {
 /// storage order and the op counts.
 fn generic_doc(
     n: usize,
-    variant: Variant,
+    (law, variant): (Law, Variant),
     arith: Arith,
     ops: OpCount,
     terms: usize,
 ) -> Vec<String> {
-    let mut doc = match variant {
-        Variant::Free => vec![
+    let mut doc = match (law, variant) {
+        (Law::NoSlip, Variant::Free) => vec![
             format!("No-slip collision of two free balls in R^{n}: writes body 1 to out1, body 2 to out2."),
             String::new(),
         ],
-        Variant::Fixed => vec![
+        (Law::NoSlip, Variant::Fixed) => vec![
             format!("No-slip collision in R^{n} of a free ball (body 2) with an immovable one (body 1):"),
             "writes body 2 to out2 (body 1 is unchanged). Reads radius1 and ball2's radius, gamma2.".into(),
             String::new(),
         ],
+        (Law::Rough, Variant::Free) => vec![
+            format!("Rough-ball collision of two free balls in R^{n}, law = {{e, beta}} (docs/derivation.md §15):"),
+            "writes body 1 to out1, body 2 to out2. (e, beta) = (1, 1) is the no-slip kernel, (1, -1) the smooth map.".into(),
+            String::new(),
+        ],
+        (Law::Rough, Variant::Fixed) => vec![
+            format!("Rough-ball collision in R^{n} of a free ball (body 2) with an immovable one (body 1),"),
+            "law = {e, beta}: writes body 2 to out2 (body 1 is unchanged).".into(),
+            String::new(),
+        ],
     };
-    let formula = match variant {
-        Variant::Free => model::CLOSED_FORM_FREE,
-        Variant::Fixed => model::CLOSED_FORM_FIXED,
-    };
-    doc.extend(formula.lines().map(|l| format!("    {l}")));
+    doc.extend(law.closed_form(variant).lines().map(|l| format!("    {l}")));
     doc.push(String::new());
     doc.push("w_i = inv_mass, g_i = gamma2 = 2 lambda_i / R_i^2 in [0, 2/n]; ball = {inv_mass, radius, gamma2}.".into());
     doc.push(format!(
@@ -345,6 +352,9 @@ fn generic_doc(
         "0 <= gamma2 <= 2/n, radius > 0, inv_mass >= 0, (u_2 - u_1) . nu <= 0 (approach or graze);"
             .into(),
     );
+    if law == Law::Rough {
+        doc.push("0 <= e <= 1, -1 <= beta <= 1 (collision_core::Restitution::new);".into());
+    }
     if variant == Variant::Free {
         doc.push(
             "w_1 + w_2 > 0 and D > 0 (not both immovable, not both movable point masses).".into(),
@@ -362,12 +372,29 @@ fn generic_doc(
 /// The generic kernels of dimension `n`: each variant in each arithmetic, as in the Rust
 /// module `kernels::dN` (`free`, `fixed`, `free_fma`, `fixed_fma`).
 pub fn generic_units(n: usize) -> Vec<Unit> {
+    law_units(n, Law::NoSlip)
+}
+
+/// The rough-ball kernels of dimension `n` (`noslip_dN_rough_free`, ...), as in the Rust
+/// module `kernels::dN::rough`: the generic kernels' parameters with `law = {e, beta}` after
+/// the balls.
+pub fn rough_units(n: usize) -> Vec<Unit> {
+    law_units(n, Law::Rough)
+}
+
+fn law_units(n: usize, law: Law) -> Vec<Unit> {
+    let law_param = || {
+        Param::Array(
+            "law",
+            vec![names::restitution_e(), names::restitution_beta()],
+        )
+    };
     Arith::ALL
         .iter()
         .flat_map(|&arith| {
             Variant::ALL.iter().map(move |&variant| {
-                let program = Program::lower(&model::build(n, variant), arith);
-                let params = match variant {
+                let program = Program::lower(&model::build_law(n, variant, law), arith);
+                let mut params = match variant {
                     Variant::Free => vec![
                         Param::Array("nu", nu_elems(n)),
                         Param::Array("ball1", ball_elems(1)),
@@ -386,9 +413,16 @@ pub fn generic_units(n: usize) -> Vec<Unit> {
                         Param::Out("out2", 2),
                     ],
                 };
-                let doc = generic_doc(n, variant, arith, program.ops, program.terms());
+                let prefix = match law {
+                    Law::NoSlip => "",
+                    Law::Rough => {
+                        params.insert(3, law_param());
+                        "rough_"
+                    }
+                };
+                let doc = generic_doc(n, (law, variant), arith, program.ops, program.terms());
                 Unit {
-                    name: format!("noslip_d{n}_{}", arith.function_name(variant)),
+                    name: format!("noslip_d{n}_{prefix}{}", arith.function_name(variant)),
                     program,
                     params,
                     doc,
@@ -467,7 +501,20 @@ pub fn source(lang: &dyn Language, guard: &str, about: &str, units: &[Unit]) -> 
         "Same operations in the same order as the Rust kernels (collision_core::kernels): bit-identical",
         "results under IEEE arithmetic without contraction (tests/c_backend.rs).",
     ];
-    for l in abi.iter().map(|l| l.to_string()).chain(lang.notes()) {
+    // The rough-ball kernels' parameters, where the file has them.
+    let rough = units
+        .iter()
+        .any(|u| u.params.iter().any(|p| matches!(p, Param::Array("law", _))))
+        .then_some(
+            "  rough_*: the same, with law[2] = {e, beta} after ball2 (docs/derivation.md §15).",
+        );
+    let abi = abi
+        .iter()
+        .take(4)
+        .copied()
+        .chain(rough)
+        .chain(abi.iter().skip(4).copied());
+    for l in abi.map(|l| l.to_string()).chain(lang.notes()) {
         s.push_str(format!("// {l}").trim_end());
         s.push('\n');
     }
@@ -504,7 +551,10 @@ pub fn generate(lang: Lang, dims: &[usize]) -> String {
         dims.iter().all(|d| DIMS.contains(d)),
         "dimensions must be in {DIMS:?}: {dims:?}"
     );
-    let units: Vec<Unit> = dims.iter().flat_map(|&n| generic_units(n)).collect();
+    let units: Vec<Unit> = dims
+        .iter()
+        .flat_map(|&n| generic_units(n).into_iter().chain(rough_units(n)))
+        .collect();
     let list = dims
         .iter()
         .map(usize::to_string)

@@ -143,6 +143,7 @@ pub fn build(set: &PairSet, pair: Pair) -> KernelGraph {
     KernelGraph {
         dim: n,
         variant: variant(pair),
+        law: model::Law::NoSlip,
         graph: g,
         outputs,
     }

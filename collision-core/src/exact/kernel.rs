@@ -5,8 +5,8 @@
 
 use super::{Exact, ExactRelaxed};
 use crate::collide::collide_unchecked;
-use crate::kernels::{Generated, Kernel};
-use crate::{Ball, BodyState};
+use crate::kernels::{Generated, Kernel, RoughKernel};
+use crate::{Ball, BodyState, Restitution};
 
 /// The generated kernels in exact arithmetic, run relaxed and reduced at the end:
 /// `Relaxing: Kernel<Exact, N, S>` wherever `Generated: Kernel<ExactRelaxed, N, S>`.
@@ -100,6 +100,79 @@ where
         state2: &BodyState<Exact, N, S>,
     ) -> BodyState<Exact, N, S> {
         Self::fixed(nu, radius1, ball2, state1, state2)
+    }
+}
+
+fn law(l: &Restitution<Exact>) -> Restitution<ExactRelaxed> {
+    Restitution {
+        e: l.e.relax(),
+        beta: l.beta.relax(),
+    }
+}
+
+/// The rough-ball kernels the same way: `Relaxing: RoughKernel<Exact, N, S>`.
+impl<const N: usize, const S: usize> RoughKernel<Exact, N, S> for Relaxing
+where
+    Generated: RoughKernel<ExactRelaxed, N, S>,
+{
+    fn rough_free(
+        nu: &[Exact; N],
+        ball1: &Ball<Exact>,
+        ball2: &Ball<Exact>,
+        l: &Restitution<Exact>,
+        state1: &BodyState<Exact, N, S>,
+        state2: &BodyState<Exact, N, S>,
+    ) -> [BodyState<Exact, N, S>; 2] {
+        let out = Generated::rough_free(
+            &normal(nu),
+            &ball(ball1),
+            &ball(ball2),
+            &law(l),
+            &state(state1),
+            &state(state2),
+        );
+        [reduced(&out[0]), reduced(&out[1])]
+    }
+
+    fn rough_fixed(
+        nu: &[Exact; N],
+        radius1: &Exact,
+        ball2: &Ball<Exact>,
+        l: &Restitution<Exact>,
+        state1: &BodyState<Exact, N, S>,
+        state2: &BodyState<Exact, N, S>,
+    ) -> BodyState<Exact, N, S> {
+        let out = Generated::rough_fixed(
+            &normal(nu),
+            &radius1.relax(),
+            &ball(ball2),
+            &law(l),
+            &state(state1),
+            &state(state2),
+        );
+        reduced(&out)
+    }
+
+    fn rough_free_fma(
+        nu: &[Exact; N],
+        ball1: &Ball<Exact>,
+        ball2: &Ball<Exact>,
+        l: &Restitution<Exact>,
+        state1: &BodyState<Exact, N, S>,
+        state2: &BodyState<Exact, N, S>,
+    ) -> [BodyState<Exact, N, S>; 2] {
+        Self::rough_free(nu, ball1, ball2, l, state1, state2)
+    }
+
+    fn rough_fixed_fma(
+        nu: &[Exact; N],
+        radius1: &Exact,
+        ball2: &Ball<Exact>,
+        l: &Restitution<Exact>,
+        state1: &BodyState<Exact, N, S>,
+        state2: &BodyState<Exact, N, S>,
+    ) -> BodyState<Exact, N, S> {
+        Self::rough_fixed(nu, radius1, ball2, l, state1, state2)
     }
 }
 

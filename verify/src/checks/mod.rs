@@ -3,6 +3,7 @@
 
 pub mod identity;
 pub mod inertia;
+pub mod rough;
 pub mod sequence;
 pub mod specialised;
 pub mod structure;
