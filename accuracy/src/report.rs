@@ -332,10 +332,8 @@ where
         passed: true,
     };
     let mut cases32 = Vec::new();
-    let proven: Vec<Option<ProvenBound>> = Method::ALL
-        .iter()
-        .map(|&m| ProvenBound::of(N, m))
-        .collect();
+    let proven: Vec<Option<ProvenBound>> =
+        Method::ALL.iter().map(|&m| ProvenBound::of(N, m)).collect();
     for (index, case) in cases.iter().enumerate() {
         let exact_case = case.to_exact();
         let exact = exact_result(&exact_case);

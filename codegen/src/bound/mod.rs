@@ -24,6 +24,7 @@
 //! [`BodyBound::relative_energy_error`].
 
 pub mod format;
+pub mod gappa;
 pub mod propagate;
 pub mod round;
 
@@ -99,7 +100,8 @@ impl BodyBound {
 
     /// A lower bound of the exact body's `|x|_E` over the box (0 if it can vanish).
     pub fn energy_norm_lower(&self, lambda: f64) -> f64 {
-        let parts = |it: std::slice::Iter<'_, Enclosed>| it.map(|e| e.value.mig()).collect::<Vec<_>>();
+        let parts =
+            |it: std::slice::Iter<'_, Enclosed>| it.map(|e| e.value.mig()).collect::<Vec<_>>();
         let (s, v) = (parts(self.spin.iter()), parts(self.velocity.iter()));
         weighted_norm_down(2.0 * lambda, &s, &v)
     }
@@ -177,6 +179,59 @@ pub struct Bounds {
     pub bodies: Vec<BodyBound>,
 }
 
+impl Bounds {
+    /// The bounds over the union of two boxes: per output, the larger error bounds and the
+    /// hull of the enclosures.
+    pub fn join(&self, other: &Bounds) -> Bounds {
+        let one = |a: &Enclosed, b: &Enclosed| Enclosed {
+            value: Interval::new(a.value.lo.min(b.value.lo), a.value.hi.max(b.value.hi)),
+            error: a.error.max(b.error),
+            relative: a.relative.max(b.relative),
+        };
+        let bodies = self
+            .bodies
+            .iter()
+            .zip(&other.bodies)
+            .map(|(a, b)| BodyBound {
+                body: a.body,
+                spin: a.spin.iter().zip(&b.spin).map(|(x, y)| one(x, y)).collect(),
+                velocity: a
+                    .velocity
+                    .iter()
+                    .zip(&b.velocity)
+                    .map(|(x, y)| one(x, y))
+                    .collect(),
+            })
+            .collect();
+        Bounds { bodies }
+    }
+}
+
+/// `r` cut into `k` adjacent pieces (see [`KernelBound::analyse_split`]).
+fn split(r: InputRange, k: usize) -> Vec<InputRange> {
+    let (lo, hi) = (r.value.lo, r.value.hi);
+    if k == 1 || lo >= hi {
+        return vec![r];
+    }
+    let at = |i: usize| {
+        if i == 0 {
+            lo
+        } else if i == k {
+            hi
+        } else if lo > 0.0 {
+            lo * (hi / lo).powf(i as f64 / k as f64)
+        } else {
+            lo + (hi - lo) * (i as f64 / k as f64)
+        }
+    };
+    (0..k)
+        .map(|i| InputRange {
+            value: Interval::new(at(i), at(i + 1)),
+            relative_error: r.relative_error,
+        })
+        .collect()
+}
+
 /// One kernel (dimension, variant, plain or fused, format), ready to bound over any box.
 #[derive(Clone, Debug)]
 pub struct KernelBound {
@@ -218,13 +273,13 @@ impl KernelBound {
     pub fn analyse(&self, inputs: &[InputRange]) -> Bounds {
         let given: Vec<Enclosed> = inputs
             .iter()
-            .map(|r| Enclosed {
-                value: r.value,
-                error: if r.relative_error == 0.0 {
+            .map(|r| {
+                let error = if r.relative_error == 0.0 {
                     0.0
                 } else {
                     mul_up(r.value.mag(), r.relative_error)
-                },
+                };
+                Enclosed::new(r.value, error, r.relative_error)
             })
             .collect();
         let values = self.compiled.run(self.format, &given);
@@ -239,6 +294,44 @@ impl KernelBound {
             })
             .collect();
         Bounds { bodies }
+    }
+
+    /// The bounds over the box `inputs`, split into sub-boxes: input `k` into `pieces[k]`
+    /// intervals (geometric when the range is positive, else of equal width; adjacent
+    /// pieces share their float end, so they cover the range). Per output, the largest
+    /// error and the hull of the enclosures over the sub-boxes: a bound over the whole box,
+    /// tighter than [`KernelBound::analyse`] where the rules lose the correlation between
+    /// inputs (the kernels' quotients of parameters).
+    pub fn analyse_split(&self, inputs: &[InputRange], pieces: &[usize]) -> Bounds {
+        assert_eq!(inputs.len(), pieces.len(), "one piece count per input");
+        let parts: Vec<Vec<InputRange>> = inputs
+            .iter()
+            .zip(pieces)
+            .map(|(r, &k)| split(*r, k.max(1)))
+            .collect();
+        let mut index = vec![0usize; parts.len()];
+        let mut joined: Option<Bounds> = None;
+        loop {
+            let sub: Vec<InputRange> = index.iter().zip(&parts).map(|(&i, p)| p[i]).collect();
+            let b = self.analyse(&sub);
+            joined = Some(match joined {
+                None => b,
+                Some(j) => j.join(&b),
+            });
+            // The next index, odometer-style.
+            let mut k = 0;
+            loop {
+                if k == index.len() {
+                    return joined.expect("at least one sub-box");
+                }
+                index[k] += 1;
+                if index[k] < parts[k].len() {
+                    break;
+                }
+                index[k] = 0;
+                k += 1;
+            }
+        }
     }
 
     /// The bounds over the box given by name (`range(name)` for each input).

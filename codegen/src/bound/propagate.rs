@@ -1,27 +1,38 @@
-//! The rules: how an enclosure of the exact value and a bound on the absolute error pass
-//! through one operation of a kernel ([`crate::program::Op`]).
+//! The rules: how an enclosure of the exact value and bounds on the absolute and relative
+//! error pass through one operation of a kernel ([`crate::program::Op`]).
 //!
 //! Each value `x` of the kernel (an input, a constant, a step) carries an interval `[x]`
-//! holding its exact value `x` (the DAG evaluated exactly on the real inputs) and a number
-//! `e_x >= |x^ - x|`, where `x^` is the value the float kernel computes. Write `X = max |[x]|`,
-//! and `r(s)` for the rounding of a real of magnitude at most `s`
-//! ([`super::Format::rounding`]: `u 2^floor(log2 s)`, at least `u 2^e_min`, infinite where
-//! it could overflow). Then, with `s` the bound on the magnitude of the exact operation on
-//! the computed operands:
+//! holding its exact value `x` (the DAG evaluated exactly on the real inputs), a number
+//! `e_x >= |x^ - x|`, where `x^` is the value the float kernel computes, and a number
+//! `r_x >= |x^ - x| / |x|` (infinite when not known). Write `X = max |[x]|`,
+//! `m(x) = min |[x]|`, and `rnd(s)` for the rounding of a real of magnitude at most `s`
+//! ([`super::Format::rounding`]: `u 2^floor(log2 s)`, at least `u 2^e_min`; infinite where
+//! it could overflow).
+//!
+//! **Before rounding**, the operation applied to the computed operands differs from the
+//! exact one by at most `E` (absolute) and `R` (relative):
 //!
 //! ```text
-//! a +- b        e = e_a + e_b + r(s),                 s = |[a +- b]| + e_a + e_b
-//! a * b         e = A e_b + B e_a + e_a e_b + r(s),   s = |[a b]| + A e_b + B e_a + e_a e_b
-//!               (r = 0 when a or b is an exact constant +-2^k, k >= 0)
-//! a / b         e = q + r(s),  q = (e_a + |[a/b]| e_b) / (min |[b]| - e_b),  s = |[a/b]| + q
-//!               (infinite unless min |[b]| > e_b)
-//! fma(a, b, c)  e = A e_b + B e_a + e_a e_b + e_c + r(s)   (one rounding), likewise
-//! -a            e = e_a
+//! a +- b        E = e_a + e_b                        R = max(r_a, r_b) if the two terms have one sign
+//! a * b         E = A e_b + B e_a + e_a e_b          R = r_a + r_b + r_a r_b
+//! a / b         E = (e_a + |[a/b]| e_b) / (m(b) - e_b)   R = (r_a + r_b) / (1 - r_b)
+//! fma(a, b, c)  E = A e_b + B e_a + e_a e_b + e_c     R as for the sum of the product and c
+//! -a            E = e_a                              R = r_a
 //! ```
 //!
-//! The division rule: `a^/b^ - a/b = (eps_a - (a/b) eps_b) / b^` with `|b^| >= |b| - e_b`.
-//! Every sum and product above is rounded upward ([`super::round`]), and every interval
-//! outward, so no rule's own arithmetic underestimates.
+//! (the division: `a^/b^ - a/b = (eps_a - (a/b) eps_b) / b^`, `|b^| >= |b| - e_b`; `E` is
+//! infinite unless `m(b) > e_b`). Each also gives the other: `R <= E / m`, `E <= R X`.
+//! **The rounding** of a result of magnitude at most `s = min(X + E, X (1 + R))` adds
+//! `rnd(s)` to `E` (nothing for a product by an exact constant `+-2^k`, `k >= 0`), and turns
+//! `R` into `R + u + R u` when the result is at least `2^e_min` in magnitude (the standard
+//! model `(1 + delta)`, `|delta| <= u`, holds in the normal range), else into the bound
+//! derived from `E`. An `s` reaching the largest finite value makes both infinite.
+//!
+//! The relative bounds keep a box's bound tight through the kernels' quotients (`D`,
+//! `p_t`, `rho_i` have relative errors of a few `u` whatever the box), where the absolute
+//! rule alone would divide the numerator's largest error by the divisor's smallest value.
+//! Every sum and product in the rules is rounded upward ([`super::round`]), and every
+//! interval outward, so no rule's own arithmetic underestimates.
 
 use super::format::Format;
 use super::round::{add_up, div_up, mul_up, sub_down, Interval};
@@ -36,12 +47,45 @@ pub struct Enclosed {
     pub value: Interval,
     /// At least `|computed - exact|`.
     pub error: f64,
+    /// At least `|computed - exact| / |exact|` (`+inf` when not known).
+    pub relative: f64,
 }
 
 impl Enclosed {
     /// A value with no error.
     pub fn exact(value: Interval) -> Enclosed {
-        Enclosed { value, error: 0.0 }
+        Enclosed {
+            value,
+            error: 0.0,
+            relative: 0.0,
+        }
+    }
+
+    /// A value with absolute error at most `error` and relative error at most `relative`,
+    /// each tightened by the other.
+    pub fn new(value: Interval, error: f64, relative: f64) -> Enclosed {
+        let mut e = Enclosed {
+            value,
+            error,
+            relative,
+        };
+        e.tighten();
+        e
+    }
+
+    fn tighten(&mut self) {
+        let (mag, mig) = (self.value.mag(), self.value.mig());
+        if self.error.is_nan() || self.relative.is_nan() {
+            self.error = f64::INFINITY;
+            self.relative = f64::INFINITY;
+            return;
+        }
+        if self.relative.is_finite() {
+            self.error = self.error.min(mul_up(self.relative, mag));
+        }
+        if mig > 0.0 && self.error.is_finite() {
+            self.relative = self.relative.min(div_up(self.error, mig));
+        }
     }
 }
 
@@ -102,10 +146,7 @@ impl Compiled {
                     Enclosed::exact(Interval::point(f))
                 } else {
                     let value = Interval::new(super::round::down(f), super::round::up(f));
-                    Enclosed {
-                        value,
-                        error: format.rounding(value.mag()),
-                    }
+                    Enclosed::new(value, format.rounding(value.mag()), f64::INFINITY)
                 }
             })
             .collect();
@@ -151,42 +192,42 @@ impl Compiled {
         v.extend_from_slice(&self.constants);
         for rule in &self.rules {
             let next = match *rule {
-                Rule::Add(a, b) => sum(format, v[a], v[b], v[a].value.add(v[b].value)),
-                Rule::Sub(a, b) => sum(format, v[a], v[b], v[a].value.sub(v[b].value)),
+                Rule::Add(a, b) => {
+                    let value = v[a].value.add(v[b].value);
+                    let same = one_sign(v[a].value, v[b].value);
+                    sum(format, v[a], v[b], value, same)
+                }
+                Rule::Sub(a, b) => {
+                    let value = v[a].value.sub(v[b].value);
+                    let same = one_sign(v[a].value, v[b].value.neg());
+                    sum(format, v[a], v[b], value, same)
+                }
                 Rule::Neg(a) => Enclosed {
                     value: v[a].value.neg(),
-                    error: v[a].error,
+                    ..v[a]
                 },
                 Rule::Mul(a, b) => {
                     let value = v[a].value.mul(v[b].value);
-                    let e = product_error(v[a], v[b]);
-                    let s = add_up(value.mag(), e);
                     let exact = self.exact_scale[a] || self.exact_scale[b];
-                    // An exact scaling rounds only if it overflows.
-                    let r = match (exact, s < format.max()) {
-                        (true, true) => 0.0,
-                        (true, false) => f64::INFINITY,
-                        (false, _) => format.rounding(s),
-                    };
-                    Enclosed {
-                        value,
-                        error: add_up(e, r),
-                    }
+                    let (e, r) = product_error(v[a], v[b]);
+                    rounded(format, value, e, r, exact)
                 }
                 Rule::Div(a, b) => quotient(format, v[a], v[b]),
                 Rule::Fused(a, b, c, sign) => {
                     let p = v[a].value.mul(v[b].value);
-                    let value = match sign {
-                        FusedSign::MulAdd => p.add(v[c].value),
-                        FusedSign::MulSub => p.sub(v[c].value),
-                        FusedSign::NegMulAdd => v[c].value.sub(p),
+                    let (value, same) = match sign {
+                        FusedSign::MulAdd => (p.add(v[c].value), one_sign(p, v[c].value)),
+                        FusedSign::MulSub => (p.sub(v[c].value), one_sign(p, v[c].value.neg())),
+                        FusedSign::NegMulAdd => (v[c].value.sub(p), one_sign(p.neg(), v[c].value)),
                     };
-                    let e = add_up(product_error(v[a], v[b]), v[c].error);
-                    let s = add_up(value.mag(), e);
-                    Enclosed {
-                        value,
-                        error: add_up(e, format.rounding(s)),
-                    }
+                    let (pe, pr) = product_error(v[a], v[b]);
+                    let e = add_up(pe, v[c].error);
+                    let r = if same {
+                        pr.max(v[c].relative)
+                    } else {
+                        f64::INFINITY
+                    };
+                    rounded(format, value, e, r, false)
                 }
             };
             v.push(next);
@@ -195,42 +236,88 @@ impl Compiled {
     }
 }
 
-/// `a +- b`, given the enclosure of the exact result.
-fn sum(format: Format, a: Enclosed, b: Enclosed, value: Interval) -> Enclosed {
-    let e = add_up(a.error, b.error);
-    let s = add_up(value.mag(), e);
-    Enclosed {
-        value,
-        error: add_up(e, format.rounding(s)),
+/// Whether every element of `a` and of `b` has one sign (so `|a + b| = |a| + |b|`).
+fn one_sign(a: Interval, b: Interval) -> bool {
+    (a.lo >= 0.0 && b.lo >= 0.0) || (a.hi <= 0.0 && b.hi <= 0.0)
+}
+
+/// The result of an operation with error `e` (absolute) and `r` (relative) before its
+/// rounding, rounded once (or not at all when `exact`): see the module docs.
+fn rounded(format: Format, value: Interval, e: f64, r: f64, exact: bool) -> Enclosed {
+    let pre = Enclosed::new(value, e, r);
+    let (mag, mig) = (value.mag(), value.mig());
+    let s = add_up(mag, pre.error).min(mul_up(mag, add_up(1.0, pre.relative)));
+    if !(s < format.max()) {
+        return Enclosed::new(value, f64::INFINITY, f64::INFINITY);
+    }
+    if exact {
+        return pre;
+    }
+    let error = add_up(pre.error, format.rounding(s));
+    // The smallest magnitude the rounded operand can have.
+    let low = sub_down(mig, pre.error).max(mul_down_nonneg(mig, sub_down(1.0, pre.relative)));
+    let u = format.unit_roundoff();
+    let relative = if low >= 2f64.powi(format.min_exponent) {
+        add_up(add_up(pre.relative, u), mul_up(pre.relative, u))
+    } else {
+        f64::INFINITY
+    };
+    Enclosed::new(value, error, relative)
+}
+
+/// Lower bound of `a b` for `a >= 0`, or 0 when `b < 0`.
+fn mul_down_nonneg(a: f64, b: f64) -> f64 {
+    if b <= 0.0 {
+        0.0
+    } else {
+        super::round::down(a * b).max(0.0)
     }
 }
 
-/// `|a^ b^ - a b| <= A e_b + B e_a + e_a e_b`.
-fn product_error(a: Enclosed, b: Enclosed) -> f64 {
+/// `a +- b` (the enclosure given), `same`: whether the two terms have one sign.
+fn sum(format: Format, a: Enclosed, b: Enclosed, value: Interval, same: bool) -> Enclosed {
+    let e = add_up(a.error, b.error);
+    let r = if same {
+        a.relative.max(b.relative)
+    } else {
+        f64::INFINITY
+    };
+    rounded(format, value, e, r, false)
+}
+
+/// `|a^ b^ - a b| <= A e_b + B e_a + e_a e_b`, relative `r_a + r_b + r_a r_b`.
+fn product_error(a: Enclosed, b: Enclosed) -> (f64, f64) {
+    let r = add_up(
+        add_up(a.relative, b.relative),
+        mul_up(a.relative, b.relative),
+    );
     if a.error == 0.0 && b.error == 0.0 {
-        return 0.0;
+        return (0.0, r);
     }
     let cross = add_up(
         mul_up(a.value.mag(), b.error),
         mul_up(b.value.mag(), a.error),
     );
-    add_up(cross, mul_up(a.error, b.error))
+    (add_up(cross, mul_up(a.error, b.error)), r)
 }
 
 /// `a / b`: see the module docs.
 fn quotient(format: Format, a: Enclosed, b: Enclosed) -> Enclosed {
     let value = a.value.div(b.value);
+    if !value.is_bounded() {
+        return Enclosed::new(value, f64::INFINITY, f64::INFINITY);
+    }
     let room = sub_down(b.value.mig(), b.error);
-    if !(room > 0.0) || !value.is_bounded() {
-        return Enclosed {
-            value,
-            error: f64::INFINITY,
-        };
-    }
-    let q = div_up(add_up(a.error, mul_up(value.mag(), b.error)), room);
-    let s = add_up(value.mag(), q);
-    Enclosed {
-        value,
-        error: add_up(q, format.rounding(s)),
-    }
+    let e = if room > 0.0 {
+        div_up(add_up(a.error, mul_up(value.mag(), b.error)), room)
+    } else {
+        f64::INFINITY
+    };
+    let below = sub_down(1.0, b.relative);
+    let r = if below > 0.0 {
+        div_up(add_up(a.relative, b.relative), below)
+    } else {
+        f64::INFINITY
+    };
+    rounded(format, value, e, r, false)
 }

@@ -148,7 +148,12 @@ impl Interval {
         if !self.is_bounded() || !b.is_bounded() {
             return Interval::ENTIRE;
         }
-        let p = [self.lo * b.lo, self.lo * b.hi, self.hi * b.lo, self.hi * b.hi];
+        let p = [
+            self.lo * b.lo,
+            self.lo * b.hi,
+            self.hi * b.lo,
+            self.hi * b.hi,
+        ];
         let lo = p.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         Interval::new(down(lo), up(hi))
@@ -160,7 +165,12 @@ impl Interval {
         if !self.is_bounded() || !b.is_bounded() || b.mig() == 0.0 {
             return Interval::ENTIRE;
         }
-        let p = [self.lo / b.lo, self.lo / b.hi, self.hi / b.lo, self.hi / b.hi];
+        let p = [
+            self.lo / b.lo,
+            self.lo / b.hi,
+            self.hi / b.lo,
+            self.hi / b.hi,
+        ];
         let lo = p.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         Interval::new(down(lo), up(hi))

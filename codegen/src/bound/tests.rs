@@ -242,7 +242,10 @@ fn inputs_given_rounded_raise_the_bound() {
             r
         }
     });
-    for (a, b) in exact.bodies[0].components().zip(rounded.bodies[0].components()) {
+    for (a, b) in exact.bodies[0]
+        .components()
+        .zip(rounded.bodies[0].components())
+    {
         assert!(b.error > a.error);
     }
 }
@@ -273,10 +276,7 @@ fn possible_overflow_or_a_vanishing_divisor_gives_no_bound() {
 
 #[test]
 fn the_energy_norm_bound_is_the_componentwise_one_weighted() {
-    let e = |error: f64, x: f64| Enclosed {
-        value: Interval::point(x),
-        error,
-    };
+    let e = |error: f64, x: f64| Enclosed::new(Interval::point(x), error, f64::INFINITY);
     let b = BodyBound {
         body: 2,
         spin: vec![e(3.0, 1.0)],
