@@ -51,14 +51,16 @@ impl Format {
 
     /// An upper bound of `|RN(x) - x|` for every real `x` with `|x| <= x_max < max()`:
     /// `u 2^floor(log2 x_max)`, or `u 2^e_min` below the normal range (half the spacing of
-    /// the floats around `x`; the subnormal spacing is `2u 2^e_min`). `+inf` when `x_max`
-    /// reaches [`Format::max`], where rounding may overflow.
+    /// the floats around `x`; the subnormal spacing is `2u 2^e_min`), and never more than
+    /// `x_max` itself (0 is a float, so the nearest float is no farther than 0: an exact zero
+    /// rounds exactly). `+inf` when `x_max` reaches [`Format::max`], where rounding may
+    /// overflow.
     pub fn rounding(self, x_max: f64) -> f64 {
         if x_max.is_nan() || x_max >= self.max() {
             return f64::INFINITY;
         }
         let tiny = 2f64.powi(self.min_exponent);
-        mul_up(self.unit_roundoff(), pow2_floor(x_max).max(tiny))
+        mul_up(self.unit_roundoff(), pow2_floor(x_max).max(tiny)).min(x_max)
     }
 
     /// The format's value nearest to `c` as an `f64`, and whether it equals `c` exactly.
@@ -121,6 +123,7 @@ mod tests {
         assert!(Format::F64.rounding(1.5) >= u && Format::F64.rounding(1.5) <= u * (1.0 + 1e-15));
         assert!(Format::F64.rounding(f64::MAX).is_infinite());
         assert!(Format::F32.rounding(1e39).is_infinite());
-        assert!(Format::F64.rounding(0.0) > 0.0);
+        assert_eq!(Format::F64.rounding(0.0), 0.0);
+        assert_eq!(Format::F32.rounding(1e-50), 1e-50);
     }
 }
