@@ -155,7 +155,8 @@ fn check_one<const N: usize, const S: usize>(
             method.name(),
             b + 1
         );
-        if std::env::var_os("NOSLIP_BOUND_SHOW").is_some() && proven > 1e6 && seen.bound_max <= 1e6 {
+        if std::env::var_os("NOSLIP_BOUND_SHOW").is_some() && proven > 1e6 && seen.bound_max <= 1e6
+        {
             println!(
                 "n = {N} {}: body {} proven {proven:e} eps, measured {measured:e} eps, components {components:?}, exact {:?}, computed {computed:?}, case {ran_on:?}",
                 method.name(),

@@ -193,32 +193,32 @@ impl Compiled {
         for rule in &self.rules {
             let next = match *rule {
                 Rule::Add(a, b) => {
-                    let value = v[a].value.add(v[b].value);
+                    let value = v[a].value + v[b].value;
                     let same = one_sign(v[a].value, v[b].value);
                     sum(format, v[a], v[b], value, same)
                 }
                 Rule::Sub(a, b) => {
-                    let value = v[a].value.sub(v[b].value);
-                    let same = one_sign(v[a].value, v[b].value.neg());
+                    let value = v[a].value - v[b].value;
+                    let same = one_sign(v[a].value, -v[b].value);
                     sum(format, v[a], v[b], value, same)
                 }
                 Rule::Neg(a) => Enclosed {
-                    value: v[a].value.neg(),
+                    value: -v[a].value,
                     ..v[a]
                 },
                 Rule::Mul(a, b) => {
-                    let value = v[a].value.mul(v[b].value);
+                    let value = v[a].value * v[b].value;
                     let exact = self.exact_scale[a] || self.exact_scale[b];
                     let (e, r) = product_error(v[a], v[b]);
                     rounded(format, value, e, r, exact)
                 }
                 Rule::Div(a, b) => quotient(format, v[a], v[b]),
                 Rule::Fused(a, b, c, sign) => {
-                    let p = v[a].value.mul(v[b].value);
+                    let p = v[a].value * v[b].value;
                     let (value, same) = match sign {
-                        FusedSign::MulAdd => (p.add(v[c].value), one_sign(p, v[c].value)),
-                        FusedSign::MulSub => (p.sub(v[c].value), one_sign(p, v[c].value.neg())),
-                        FusedSign::NegMulAdd => (v[c].value.sub(p), one_sign(p.neg(), v[c].value)),
+                        FusedSign::MulAdd => (p + v[c].value, one_sign(p, v[c].value)),
+                        FusedSign::MulSub => (p - v[c].value, one_sign(p, -v[c].value)),
+                        FusedSign::NegMulAdd => (v[c].value - p, one_sign(-p, v[c].value)),
                     };
                     let (pe, pr) = product_error(v[a], v[b]);
                     let e = add_up(pe, v[c].error);
@@ -247,7 +247,7 @@ fn rounded(format: Format, value: Interval, e: f64, r: f64, exact: bool) -> Encl
     let pre = Enclosed::new(value, e, r);
     let (mag, mig) = (value.mag(), value.mig());
     let s = add_up(mag, pre.error).min(mul_up(mag, add_up(1.0, pre.relative)));
-    if !(s < format.max()) {
+    if s.is_nan() || s >= format.max() {
         return Enclosed::new(value, f64::INFINITY, f64::INFINITY);
     }
     if exact {
@@ -303,7 +303,7 @@ fn product_error(a: Enclosed, b: Enclosed) -> (f64, f64) {
 
 /// `a / b`: see the module docs.
 fn quotient(format: Format, a: Enclosed, b: Enclosed) -> Enclosed {
-    let value = a.value.div(b.value);
+    let value = a.value / b.value;
     if !value.is_bounded() {
         return Enclosed::new(value, f64::INFINITY, f64::INFINITY);
     }

@@ -127,24 +127,36 @@ impl Interval {
     pub fn is_bounded(self) -> bool {
         self.lo.is_finite() && self.hi.is_finite()
     }
+}
 
+impl std::ops::Add for Interval {
+    type Output = Interval;
     /// `{a + b}`, outward.
-    pub fn add(self, b: Interval) -> Interval {
+    fn add(self, b: Interval) -> Interval {
         Interval::new(down(self.lo + b.lo), up(self.hi + b.hi))
     }
+}
 
+impl std::ops::Sub for Interval {
+    type Output = Interval;
     /// `{a - b}`, outward.
-    pub fn sub(self, b: Interval) -> Interval {
+    fn sub(self, b: Interval) -> Interval {
         Interval::new(down(self.lo - b.hi), up(self.hi - b.lo))
     }
+}
 
+impl std::ops::Neg for Interval {
+    type Output = Interval;
     /// `{-a}` (exact).
-    pub fn neg(self) -> Interval {
+    fn neg(self) -> Interval {
         Interval::new(-self.hi, -self.lo)
     }
+}
 
+impl std::ops::Mul for Interval {
+    type Output = Interval;
     /// `{a b}`, outward; unbounded operands give [`Interval::ENTIRE`].
-    pub fn mul(self, b: Interval) -> Interval {
+    fn mul(self, b: Interval) -> Interval {
         if !self.is_bounded() || !b.is_bounded() {
             return Interval::ENTIRE;
         }
@@ -158,10 +170,13 @@ impl Interval {
         let hi = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         Interval::new(down(lo), up(hi))
     }
+}
 
+impl std::ops::Div for Interval {
+    type Output = Interval;
     /// `{a / b}`, outward; [`Interval::ENTIRE`] when `b` contains 0 or an operand is
     /// unbounded.
-    pub fn div(self, b: Interval) -> Interval {
+    fn div(self, b: Interval) -> Interval {
         if !self.is_bounded() || !b.is_bounded() || b.mig() == 0.0 {
             return Interval::ENTIRE;
         }
@@ -211,15 +226,15 @@ mod tests {
     fn intervals_enclose_their_sets() {
         let a = Interval::new(-1.0, 2.0);
         let b = Interval::new(3.0, 4.0);
-        let p = a.mul(b);
+        let p = a * b;
         assert!(p.lo <= -4.0 && p.hi >= 8.0);
-        let q = a.div(b);
+        let q = a / b;
         assert!(q.lo <= -1.0 / 3.0 && q.hi >= 0.5);
-        assert_eq!(b.div(a), Interval::ENTIRE);
+        assert_eq!(b / a, Interval::ENTIRE);
         assert_eq!(a.mag(), 2.0);
         assert_eq!(a.mig(), 0.0);
         assert_eq!(b.mig(), 3.0);
-        let d = b.sub(a);
+        let d = b - a;
         assert!(d.lo <= 1.0 && d.hi >= 5.0);
     }
 }
