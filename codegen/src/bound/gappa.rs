@@ -87,3 +87,43 @@ pub fn script(program: &Program, format: &str, ranges: &[InputRange], outputs: &
     );
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::emit::Arith;
+    use crate::model::{self, Variant};
+
+    #[test]
+    fn the_script_has_both_programs_the_box_and_one_goal_per_output() {
+        for arith in Arith::ALL {
+            let p = Program::lower(&model::build(2, Variant::Fixed), arith);
+            let ranges: Vec<InputRange> = p
+                .inputs
+                .iter()
+                .map(|_| InputRange::range(-1.0, 1.0))
+                .collect();
+            let s = script(&p, "ieee_64", &ranges, &[0, 1, 2]);
+            let rounded = s.lines().filter(|l| l.contains(" rnd= ")).count();
+            let exact = s.lines().filter(|l| l.starts_with("X_")).count();
+            let negations = p
+                .steps
+                .iter()
+                .filter(|st| matches!(st.op, Op::Neg(_)))
+                .count();
+            // Every operation once rounded (a negation is exact) and once exact.
+            assert_eq!(rounded + negations, p.steps.len());
+            assert_eq!(exact, p.steps.len());
+            for name in &p.inputs {
+                assert!(s.contains(&format!("{name} in [-1e0, 1e0]")), "{name}");
+            }
+            assert_eq!(s.matches("| in ?").count(), 3);
+            if arith == Arith::Fma {
+                // A fused step is one rounding of the whole a * b + c.
+                assert!(s
+                    .lines()
+                    .any(|l| l.contains(" rnd= ") && l.contains(" * ") && l.contains(" + ")));
+            }
+        }
+    }
+}
