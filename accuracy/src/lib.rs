@@ -11,6 +11,7 @@
 //! - [`batched`]: the batch variant's cases, split into `free` and `fixed` batches as
 //!   `collide` dispatches them.
 //! - [`measure`]: bits of error, normwise error in each body's energy norm, conditioning.
+//! - [`proven`]: the proven rounding-error bound of a case, in the measured figure.
 //! - [`report`]: one report run; [`render`]: Markdown and JSON; [`plot`]: the SVG plot.
 
 #![warn(missing_docs, unreachable_pub)]
@@ -21,6 +22,7 @@ pub mod dense;
 pub mod measure;
 pub mod method;
 pub mod plot;
+pub mod proven;
 pub mod regime;
 pub mod render;
 pub mod report;

@@ -235,6 +235,7 @@ fn summary(m: &mut String, report: &AccuracyReport) {
          and of the two (the rounding part, which must stay within 64 eps: no jump at the limit).\n",
         report.dims.first().map_or(0, |d| d.continuity.cases)
     );
+    tightness(m, report);
     let _ = writeln!(
         m,
         "| n | mass: f64 | mass: exact | mass: rounding | gamma: f64 | gamma: exact | gamma: rounding |\n|---|---:|---:|---:|---:|---:|---:|"
@@ -257,6 +258,48 @@ fn summary(m: &mut String, report: &AccuracyReport) {
         );
     }
     let _ = writeln!(m);
+}
+
+/// The proven bounds' tightness: per kernel, n and regime, the largest proven bound over the
+/// largest measured error.
+fn tightness(m: &mut String, report: &AccuracyReport) {
+    let _ = writeln!(
+        m,
+        "**Proven bounds** (`noslip_codegen::bound`, docs/accuracy.md): for every case, a \
+         rigorous bound of each movable body's normwise error, derived from the kernel's \
+         operations under the standard model of rounding (running error analysis of that \
+         call, evaluated in upward-rounded arithmetic). Cell: largest bound / largest \
+         measured error over the regime's cases (the tightness; 1 would be exact), and the \
+         largest bound in eps. A measured error above its bound fails the report.\n"
+    );
+    let regimes: Vec<&str> = report.dims[0]
+        .regimes
+        .iter()
+        .map(|r| r.name.as_str())
+        .collect();
+    for method in [Method::F64, Method::F64Fma, Method::F32] {
+        let _ = writeln!(m, "{}:\n", method.name());
+        let _ = writeln!(m, "| n | {} |", regimes.join(" | "));
+        let _ = writeln!(m, "|---|{}", "---|".repeat(regimes.len()));
+        for d in &report.dims {
+            let cells: Vec<String> = d
+                .regimes
+                .iter()
+                .map(|r| {
+                    let v = r.variants.iter().find(|v| v.variant == method);
+                    match v.and_then(|v| Some((v.tightness()?, v.proven_eps?.max, v))) {
+                        Some((t, p, v)) => {
+                            let broken = if v.proven_broken > 0 { " BROKEN" } else { "" };
+                            format!("{t:.1}x ({p:.1}){broken}")
+                        }
+                        None => "-".into(),
+                    }
+                })
+                .collect();
+            let _ = writeln!(m, "| {} | {} |", d.dim, cells.join(" | "));
+        }
+        let _ = writeln!(m);
+    }
 }
 
 fn time_cell(v: &MethodResult) -> (String, String) {
@@ -300,11 +343,11 @@ fn regime(m: &mut String, r: &RegimeResult) {
     );
     let _ = writeln!(
         m,
-        "| variant | ops | time (median) | spread | bits mean | bits p99 | bits max | normwise mean | p99 | max (eps) | dominant output (mean bits) | cases |"
+        "| variant | ops | time (median) | spread | bits mean | bits p99 | bits max | normwise mean | p99 | max (eps) | proven max (eps) | proven / max | dominant output (mean bits) | cases |"
     );
     let _ = writeln!(
         m,
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
     );
     for v in &r.variants {
         let (t, spread) = time_cell(v);
@@ -320,11 +363,19 @@ fn regime(m: &mut String, r: &RegimeResult) {
         for (why, n) in &v.unsupported {
             let _ = write!(cases, ", {n} refused: {why}");
         }
+        if v.proven_unbounded > 0 {
+            let _ = write!(cases, ", {} without a finite bound", v.proven_unbounded);
+        }
+        if v.proven_broken > 0 {
+            let _ = write!(cases, ", {} ABOVE THE PROVEN BOUND", v.proven_broken);
+        }
+        let proven = v.proven_eps.map_or("-".into(), |p| format!("{:.2}", p.max));
+        let tight = v.tightness().map_or("-".into(), |t| format!("{t:.1}"));
         let (b, e) = (&v.bits, &v.normwise_eps);
         let _ = writeln!(
             m,
-            "| {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} |",
-            v.name, ops, t, spread, b.mean, b.p99, b.max, e.mean, e.p99, e.max, dominant, cases
+            "| {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} |",
+            v.name, ops, t, spread, b.mean, b.p99, b.max, e.mean, e.p99, e.max, proven, tight, dominant, cases
         );
     }
     let _ = writeln!(m);

@@ -4,6 +4,7 @@
 use crate::case::{component_names, Case};
 use crate::measure::{bits, conditioning, exact_result, lambda, normwise, Float, Truth};
 use crate::method::{Method, Outcome};
+use crate::proven::ProvenBound;
 use crate::regime::Regime;
 use crate::timing::Timing;
 use collision_core::rng::Rng;
@@ -114,6 +115,24 @@ pub struct MethodResult {
     pub dominant: Option<(String, f64)>,
     /// Normwise error per movable body, in units of the format's epsilon.
     pub normwise_eps: Stats,
+    /// The proven bound of the normwise error per movable body, in eps (the generated float
+    /// kernels only; see [`crate::proven`]): its statistics over the bodies with a finite
+    /// bound.
+    pub proven_eps: Option<Stats>,
+    /// Bodies whose proven bound is infinite (a divisor or an overflow it cannot exclude).
+    pub proven_unbounded: usize,
+    /// Bodies whose measured error exceeds the proven bound (allowing the measure's own
+    /// rounding, relative `2^-40`): a defect of the bound. Must be 0.
+    pub proven_broken: usize,
+}
+
+impl MethodResult {
+    /// The tightness of the proven bound: its largest value over the measured largest
+    /// error (`None` without a bound or with no error measured).
+    pub fn tightness(&self) -> Option<f64> {
+        let p = self.proven_eps?;
+        (self.normwise_eps.max > 0.0).then(|| p.max / self.normwise_eps.max)
+    }
 }
 
 /// How the generated `f64` kernel meets its bound in one regime.
@@ -173,6 +192,9 @@ pub struct DimResult {
 struct Acc {
     bits: Vec<Vec<f64>>,
     normwise: Vec<f64>,
+    proven: Vec<f64>,
+    proven_unbounded: usize,
+    proven_broken: usize,
     non_finite: usize,
     evaluated: usize,
     unsupported: BTreeMap<String, usize>,
@@ -204,6 +226,32 @@ impl Acc {
         })
     }
 
+    /// The proven bounds of the bodies whose errors [`Acc::record`] returned, for the
+    /// inputs the kernel ran on (`ran_on`, widened to `f64`; `case`, the same exactly).
+    fn record_proven<const N: usize, const S: usize>(
+        &mut self,
+        proven: &ProvenBound,
+        errors: [Option<f64>; 2],
+        ran_on: &Case<f64, N, S>,
+        case: &Case<Exact, N, S>,
+    ) {
+        let lambdas = [lambda(&case.balls[0]), lambda(&case.balls[1])];
+        let bounds = proven.body_bounds(ran_on, lambdas);
+        for (err, bound) in errors.iter().zip(bounds) {
+            let (Some(err), Some(bound)) = (*err, bound) else {
+                continue;
+            };
+            if bound.is_finite() {
+                self.proven.push(bound);
+            } else {
+                self.proven_unbounded += 1;
+            }
+            if err > bound * (1.0 + 2f64.powi(-40)) {
+                self.proven_broken += 1;
+            }
+        }
+    }
+
     fn result(
         self,
         variant: Method,
@@ -231,6 +279,9 @@ impl Acc {
             bits: Stats::of(&all),
             dominant,
             normwise_eps: Stats::of(&self.normwise),
+            proven_eps: (!self.proven.is_empty()).then(|| Stats::of(&self.proven)),
+            proven_unbounded: self.proven_unbounded,
+            proven_broken: self.proven_broken,
         }
     }
 }
@@ -281,6 +332,8 @@ where
         passed: true,
     };
     let mut cases32 = Vec::new();
+    let proven: Vec<Option<ProvenBound>> =
+        Method::ALL.iter().map(|&m| ProvenBound::of(N, m)).collect();
     for (index, case) in cases.iter().enumerate() {
         let exact_case = case.to_exact();
         let exact = exact_result(&exact_case);
@@ -321,10 +374,16 @@ where
                 Outcome::Unsupported(why) => *a.unsupported.entry(why).or_insert(0) += 1,
                 Outcome::Done(r) if variant == Method::F32 => {
                     let (t32, c32) = truth32.as_ref().expect("f32 ran on representable inputs");
-                    a.record::<f32, N, S>(&r, t32, c32);
+                    let errs = a.record::<f32, N, S>(&r, t32, c32);
+                    if let (Some(p), Ok(ran_on)) = (&proven[i], &case32) {
+                        a.record_proven(p, errs, &ran_on.map(|&x| f64::from(x)), c32);
+                    }
                 }
                 Outcome::Done(r) => {
                     let errs = a.record::<f64, N, S>(&r, &truth, &exact_case);
+                    if let Some(p) = &proven[i] {
+                        a.record_proven(p, errs, case, &exact_case);
+                    }
                     if variant != Method::F64 {
                         continue;
                     }
@@ -350,6 +409,8 @@ where
         }
     }
     stability.passed = stability.non_finite == 0 && stability.over_conditioning == 0;
+    let proven_broken: usize = acc.values().map(|a| a.proven_broken).sum();
+    stability.passed &= proven_broken == 0;
 
     let batch: Vec<Case<f64, N, S>> = cases.iter().take(opts.batch).cloned().collect();
     let batch32: Vec<Case<f32, N, S>> = cases32.iter().take(opts.batch).cloned().collect();

@@ -24,6 +24,7 @@
 
 pub mod backend;
 pub mod batch;
+pub mod bound;
 pub mod emit;
 pub mod fuse;
 pub mod ir;
