@@ -10,7 +10,6 @@ use noslip_scene::Scene;
 use noslip_sim::boundary_map::{self, BoundaryMap};
 use noslip_sim::log::LogFile;
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
-use noslip_sim::portrait::{portrait_png, portrait_svg};
 use noslip_sim::run::{self, Limits, Progress, Summary};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
@@ -37,8 +36,9 @@ set in --out, and a kill at any moment leaves the log and the set of one run).
 body: event, time, ball, kind, id, contact point, boundary coordinate, angles of incidence
 and reflection, normal velocity, tangential velocity and spin before and after, scaled spin;
 see docs/tables.md), complete or absent like the log, and into --out each body's phase
-portraits, portrait-KIND-ID.svg and .png (coordinate against angle of reflection, tangential
-velocity against scaled spin gamma R c, after each contact). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
+portraits, portrait-KIND-ID.svg and .png (Birkhoff coordinates: coordinate against the sine
+of the angle of reflection; tangential velocity against scaled spin gamma R c; after each
+contact; titled, with axes, units and a legend; the SVG's scatter an embedded image). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
 and post states; the log appears complete at the end of the run or not at all (if it
 cannot be written, the run still ends, prints and writes its summary, and exits 1).
 
@@ -226,11 +226,7 @@ where
     let mut portraits = Vec::new();
     let map_failed = match (map, &args.boundary_map) {
         (Some(map), Some(p)) => {
-            portraits = map
-                .points
-                .iter()
-                .map(|(b, pts)| (*b, pts.clone()))
-                .collect();
+            portraits = map.portraits(sim.table());
             map.finish().and_then(|file| file.finish()).err().map(|e| {
                 Failure::output(format!(
                     "cannot write the boundary map {}: {e} (none was left; the summary was \
@@ -274,23 +270,13 @@ where
         set.write("trajectories.svg", picture.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
     }
-    for (body, points) in &portraits {
-        let (kind, id) = body.kind_id();
+    for portrait in &portraits {
+        let (kind, id) = portrait.body.kind_id();
         let name = format!("portrait-{kind}-{id}");
-        let svg = staged(
-            portrait_svg(
-                &format!(
-                    "{title}: {kind} {id}, {} contacts (after each)",
-                    points.len()
-                ),
-                points,
-                N == 2,
-            ),
-            &format!("{name}.svg"),
-        )?;
+        let svg = staged(portrait.svg(&title), &format!("{name}.svg"))?;
         set.write(&format!("{name}.svg"), svg.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
-        set.write(&format!("{name}.png"), &portrait_png(points, N == 2))
+        set.write(&format!("{name}.png"), &portrait.png(&title))
             .map_err(|e| crate::exit::publish_failure(&e))?;
     }
     set.commit().map_err(|e| crate::exit::publish_failure(&e))?;
