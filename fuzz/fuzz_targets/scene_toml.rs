@@ -32,7 +32,6 @@ use noslip_codegen::specialise::generate;
 use noslip_scene::Scene;
 use noslip_sim::boundary_map::{self, BoundaryMap};
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
-use noslip_sim::portrait::{portrait_png, portrait_svg};
 use noslip_sim::run::{run_observed, Limits};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
@@ -130,9 +129,9 @@ where
         },
     )
     .expect("a sink cannot fail");
-    for points in map.points.values() {
-        portrait_svg("fuzz.toml", points, N == 2).expect("a string cannot fail");
-        portrait_png(points, N == 2);
+    for portrait in map.portraits(sim.table()) {
+        portrait.svg("fuzz.toml").expect("a string cannot fail");
+        portrait.png("fuzz.toml");
     }
     for (name, x) in [
         ("energy_start", summary.energy_start),

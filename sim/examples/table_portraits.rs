@@ -4,8 +4,8 @@
 //! produces.
 
 use noslip_scene::Scene;
-use noslip_sim::boundary_map::portrait_points;
-use noslip_sim::portrait::{portrait_png, DOCS_EVENTS, DOCS_TABLES};
+use noslip_sim::boundary_map::portraits;
+use noslip_sim::portrait::{DOCS_EVENTS, DOCS_TABLES};
 use noslip_sim::setup::setup;
 use std::path::Path;
 
@@ -13,16 +13,16 @@ fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     for name in DOCS_TABLES {
         let scene = Scene::from_file(&root.join(format!("scenes/{name}.toml"))).unwrap();
-        let points = collision_core::with_dim!(
+        let portraits = collision_core::with_dim!(
             scene.dim,
-            |N, S| portrait_points::<N, S>(setup::<N, S>(&scene).unwrap(), DOCS_EVENTS).unwrap(),
+            |N, S| portraits::<N, S>(setup::<N, S>(&scene).unwrap(), DOCS_EVENTS).unwrap(),
             unreachable!()
         );
-        for (body, points) in points {
-            let (kind, id) = body.kind_id();
+        for portrait in portraits {
+            let (kind, id) = portrait.body.kind_id();
             let file = root.join(format!("docs/tables/{name}-{kind}-{id}.png"));
-            std::fs::write(&file, portrait_png(&points, scene.dim == 2)).unwrap();
-            println!("{} ({} points)", file.display(), points.len());
+            std::fs::write(&file, portrait.png(&format!("{name}.toml"))).unwrap();
+            println!("{} ({} points)", file.display(), portrait.points.len());
         }
     }
 }

@@ -25,6 +25,7 @@
 //!   is `m/2 (u_n^2 + u_t^2 + (gamma R c)^2)`, so the no-slip map acts on `(u_t, gamma R c)`
 //!   as an orthogonal map (a reflection) and its invariant lines and circles show undistorted.
 
+use crate::portrait::{Axes, Portrait};
 use crate::run::contact_point;
 use crate::table::{Shape, Table};
 use crate::{Contact, Event, PairKernels, Simulation};
@@ -244,11 +245,14 @@ pub const PORTRAIT_POINTS: usize = 200_000;
 
 /// Writes the CSV as the run goes, and keeps each body's points (up to [`PORTRAIT_POINTS`])
 /// for its phase portraits: `(coordinate, reflection)` and `(tangential_post,
-/// scaled_spin_post)`, the outgoing state.
+/// scaled_spin_post)`, the outgoing state. (A Parquet boundary map is written beside one
+/// whose CSV goes to `io::sink()`: the `noslip-columnar` crate.)
 pub struct BoundaryMap<W: Write> {
     out: W,
-    /// Per body, the points of both portraits.
+    /// Per body, the points of both portraits (the first [`PORTRAIT_POINTS`]).
     pub points: std::collections::BTreeMap<Body, Vec<[f64; 4]>>,
+    /// Per body, its contacts (all of them, drawn or not).
+    pub counts: std::collections::BTreeMap<Body, u64>,
 }
 
 impl<W: Write> BoundaryMap<W> {
@@ -258,12 +262,14 @@ impl<W: Write> BoundaryMap<W> {
         Ok(BoundaryMap {
             out,
             points: Default::default(),
+            counts: Default::default(),
         })
     }
 
     /// Write `row` and keep its portrait points.
     pub fn push(&mut self, row: &Row) -> io::Result<()> {
         writeln!(self.out, "{}", line(row))?;
+        *self.counts.entry(row.body).or_default() += 1;
         let points = self.points.entry(row.body).or_default();
         if points.len() < PORTRAIT_POINTS {
             points.push([
@@ -276,6 +282,19 @@ impl<W: Write> BoundaryMap<W> {
         Ok(())
     }
 
+    /// Each body's portraits so far, its axes as `table` has it.
+    pub fn portraits<const N: usize>(&self, table: &Table<N>) -> Vec<Portrait> {
+        self.points
+            .iter()
+            .map(|(&body, points)| Portrait {
+                body,
+                axes: Axes::of(table, body),
+                count: self.counts.get(&body).copied().unwrap_or(0),
+                points: points.clone(),
+            })
+            .collect()
+    }
+
     /// The writer, flushed.
     pub fn finish(mut self) -> io::Result<W> {
         self.out.flush()?;
@@ -283,13 +302,13 @@ impl<W: Write> BoundaryMap<W> {
     }
 }
 
-/// The portrait points of every body of a run of `setup` (generic kernels) for `events`
-/// contacts (fewer if the run ends): what `noslip simulate --boundary-map` draws, without the
-/// CSV. The docs' pictures come from here (`examples/table_portraits.rs`).
-pub fn portrait_points<const N: usize, const S: usize>(
+/// The portraits of every body of a run of `setup` (generic kernels) for `events` contacts
+/// (fewer if the run ends): what `noslip simulate --boundary-map` draws, without the CSV. The
+/// docs' pictures come from here (`examples/table_portraits.rs`).
+pub fn portraits<const N: usize, const S: usize>(
     setup: crate::Setup<N, S>,
     events: u64,
-) -> io::Result<std::collections::BTreeMap<Body, Vec<[f64; 4]>>>
+) -> io::Result<Vec<Portrait>>
 where
     collision_core::Generated: collision_core::Kernel<f64, N, S>,
 {
@@ -317,7 +336,7 @@ where
             None => Ok(()),
         },
     )?;
-    Ok(map.points)
+    Ok(map.portraits(sim.table()))
 }
 
 #[cfg(test)]

@@ -46,6 +46,7 @@ pub mod place;
 pub mod plot;
 mod png;
 pub mod portrait;
+mod portrait_png;
 pub mod predict;
 mod queue;
 pub mod range;

@@ -11,6 +11,8 @@ pub(crate) struct Raster {
     pub height: usize,
     pub palette: Vec<[u8; 3]>,
     pub pixels: Vec<u8>,
+    /// Whether colour 0 is transparent (a `tRNS` chunk).
+    pub transparent: bool,
 }
 
 impl Raster {
@@ -21,6 +23,7 @@ impl Raster {
             height,
             palette,
             pixels: vec![0; width * height],
+            transparent: false,
         }
     }
 
@@ -40,6 +43,9 @@ impl Raster {
         ihdr.extend([8, 3, 0, 0, 0]); // 8 bits, indexed colour
         chunk(&mut out, b"IHDR", &ihdr);
         chunk(&mut out, b"PLTE", &self.palette.concat());
+        if self.transparent {
+            chunk(&mut out, b"tRNS", &[0]);
+        }
         let mut raw = Vec::with_capacity((self.width + 1) * self.height);
         for row in self.pixels.chunks(self.width) {
             raw.push(0); // filter: none

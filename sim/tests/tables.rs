@@ -411,25 +411,25 @@ fn reversal(name: &str, k: u64) {
 /// docs/tables/ byte for byte, and there is no other file there.
 #[test]
 fn the_docs_portraits_are_what_the_code_draws() {
-    use noslip_sim::boundary_map::portrait_points;
-    use noslip_sim::portrait::{portrait_png, DOCS_EVENTS, DOCS_TABLES};
+    use noslip_sim::boundary_map::portraits;
+    use noslip_sim::portrait::{DOCS_EVENTS, DOCS_TABLES};
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/tables");
     let mut expected = Vec::new();
     for name in DOCS_TABLES {
         let scene = scene(&format!("{name}.toml"));
-        let points = collision_core::with_dim!(
+        let portraits = collision_core::with_dim!(
             scene.dim,
-            |N, S| portrait_points::<N, S>(setup::<N, S>(&scene).unwrap(), DOCS_EVENTS).unwrap(),
+            |N, S| portraits::<N, S>(setup::<N, S>(&scene).unwrap(), DOCS_EVENTS).unwrap(),
             unreachable!()
         );
-        for (body, points) in points {
-            let (kind, id) = body.kind_id();
+        for portrait in portraits {
+            let (kind, id) = portrait.body.kind_id();
             let file = format!("{name}-{kind}-{id}.png");
             let shipped = std::fs::read(dir.join(&file)).unwrap_or_else(|e| {
                 panic!("{file}: {e} (cargo run --release -p noslip-sim --example table_portraits)")
             });
             assert!(
-                shipped == portrait_png(&points, scene.dim == 2),
+                shipped == portrait.png(&format!("{name}.toml")),
                 "{file} is stale: cargo run --release -p noslip-sim --example table_portraits"
             );
             expected.push(file);

@@ -6,11 +6,12 @@ use crate::publish::Staging;
 use collision_core::Generated;
 use collision_core::Kernel;
 use indicatif::{ProgressBar, ProgressStyle};
+use noslip_columnar::events::{event_row, events_table};
+use noslip_columnar::{self as columnar, is_parquet};
 use noslip_scene::Scene;
 use noslip_sim::boundary_map::{self, BoundaryMap};
 use noslip_sim::log::LogFile;
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
-use noslip_sim::portrait::{portrait_png, portrait_svg};
 use noslip_sim::run::{self, Limits, Progress, Summary};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
@@ -37,10 +38,14 @@ set in --out, and a kill at any moment leaves the log and the set of one run).
 body: event, time, ball, kind, id, contact point, boundary coordinate, angles of incidence
 and reflection, normal velocity, tangential velocity and spin before and after, scaled spin;
 see docs/tables.md), complete or absent like the log, and into --out each body's phase
-portraits, portrait-KIND-ID.svg and .png (coordinate against angle of reflection, tangential
-velocity against scaled spin gamma R c, after each contact). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
+portraits, portrait-KIND-ID.svg and .png (Birkhoff coordinates: coordinate against the sine
+of the angle of reflection; tangential velocity against scaled spin gamma R c; after each
+contact; titled, with axes, units and a legend; the SVG's scatter an embedded image). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
 and post states; the log appears complete at the end of the run or not at all (if it
 cannot be written, the run still ends, prints and writes its summary, and exits 1).
+A --log or --boundary-map FILE whose extension is .parquet is written as Apache Parquet
+instead (the same fields as typed columns, units in the metadata key noslip.units; see
+docs/scenes.md); outside --out it is published as events.parquet or boundary-map.parquet.
 
 A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, \"The
 scene in f64\") is refused with exit code 2, naming the field.";
@@ -57,10 +62,10 @@ pub struct Args {
     /// Stop at this simulated time (positive and finite).
     #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
-    /// Write every contact as a JSON line to this file.
+    /// Write every contact as a JSON line to this file (Parquet if it ends in .parquet).
     #[arg(long)]
     log: Option<PathBuf>,
-    /// Write the boundary map to this CSV file (one row per contact with a wall, container,
+    /// Write the boundary map to this CSV (or .parquet) file (one row per contact with a wall, container,
     /// obstacle or other boundary; docs/tables.md), and each boundary's phase portraits to
     /// --out as portrait-KIND-ID.svg and .png.
     #[arg(long, value_name = "FILE")]
@@ -159,16 +164,36 @@ where
         LogFile::create(&at)
             .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))
     };
+    // A `.parquet` log or map is a Parquet table written into the same atomic file.
     let mut log = match &args.log {
         Some(p) => Some(open(p, &members[0])?),
         None => None,
     };
-    let mut map = match &args.boundary_map {
-        Some(p) => Some(
-            BoundaryMap::new(open(p, &members[1])?, N)
+    let mut events_parquet = match (&args.log, &mut log) {
+        (Some(p), log @ Some(_)) if is_parquet(p) => Some(
+            events_table(log.take().expect("matched Some"), N)
                 .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
         ),
-        None => None,
+        _ => None,
+    };
+    let (mut map, mut map_parquet) = match &args.boundary_map {
+        Some(p) => {
+            let file = open(p, &members[1])?;
+            let cannot =
+                |e: std::io::Error| Failure::output(format!("cannot write {}: {e}", p.display()));
+            if is_parquet(p) {
+                (
+                    Some(BoundaryMap::new(Side::Sink, N).map_err(cannot)?),
+                    Some(columnar::boundary_map::table(file, N).map_err(cannot)?),
+                )
+            } else {
+                (
+                    Some(BoundaryMap::new(Side::File(file), N).map_err(cannot)?),
+                    None,
+                )
+            }
+        }
+        None => (None, None),
     };
     let progress = (!args.quiet).then(|| {
         let pb = ProgressBar::new(events.unwrap_or(0));
@@ -201,12 +226,20 @@ where
         &limits,
         log.as_mut().map(|w| w as &mut dyn Write),
         &mut report,
-        &mut |index, e, sim| match &mut map {
-            Some(m) => match boundary_map::row(index, e, sim, &species) {
-                Some(row) => m.push(&row),
-                None => Ok(()),
-            },
-            None => Ok(()),
+        &mut |index, e, sim| {
+            if let Some(table) = &mut events_parquet {
+                table.push(&event_row(index, e))?;
+            }
+            if let Some(row) = map
+                .as_ref()
+                .and_then(|_| boundary_map::row(index, e, sim, &species))
+            {
+                map.as_mut().expect("checked").push(&row)?;
+                if let Some(table) = &mut map_parquet {
+                    table.push(&columnar::boundary_map::cells(&row))?;
+                }
+            }
+            Ok(())
         },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
@@ -214,31 +247,32 @@ where
         pb.finish_and_clear();
     }
     // The log is complete or absent; its failure does not stop the summary and pictures.
-    let log_failed = match (log, &args.log) {
-        (Some(log), Some(p)) => log.finish().err().map(|e| {
-            Failure::output(format!(
-                "cannot write the events log {}: {e} (no log was left; the summary was written)",
-                p.display()
-            ))
-        }),
+    let log_done = match (log, events_parquet) {
+        (Some(log), _) => Some(log.finish()),
+        (None, Some(table)) => Some(table.finish().and_then(LogFile::finish)),
+        (None, None) => None,
+    };
+    let log_failed = match (log_done, &args.log) {
+        (Some(Err(e)), Some(p)) => Some(Failure::output(format!(
+            "cannot write the events log {}: {e} (no log was left; the summary was written)",
+            p.display()
+        ))),
         _ => None,
     };
     let mut portraits = Vec::new();
-    let map_failed = match (map, &args.boundary_map) {
-        (Some(map), Some(p)) => {
-            portraits = map
-                .points
-                .iter()
-                .map(|(b, pts)| (*b, pts.clone()))
-                .collect();
-            map.finish().and_then(|file| file.finish()).err().map(|e| {
-                Failure::output(format!(
-                    "cannot write the boundary map {}: {e} (none was left; the summary was \
-                     written)",
-                    p.display()
-                ))
-            })
+    let map_done = map.map(|map| {
+        portraits = map.portraits(sim.table());
+        let file = map.finish().and_then(Side::finish);
+        match map_parquet {
+            Some(table) => file.and(table.finish().and_then(LogFile::finish)),
+            None => file,
         }
+    });
+    let map_failed = match (map_done, &args.boundary_map) {
+        (Some(Err(e)), Some(p)) => Some(Failure::output(format!(
+            "cannot write the boundary map {}: {e} (none was left; the summary was written)",
+            p.display()
+        ))),
         _ => None,
     };
     let staged = |r: std::io::Result<String>, name: &str| {
@@ -274,29 +308,52 @@ where
         set.write("trajectories.svg", picture.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
     }
-    for (body, points) in &portraits {
-        let (kind, id) = body.kind_id();
+    for portrait in &portraits {
+        let (kind, id) = portrait.body.kind_id();
         let name = format!("portrait-{kind}-{id}");
-        let svg = staged(
-            portrait_svg(
-                &format!(
-                    "{title}: {kind} {id}, {} contacts (after each)",
-                    points.len()
-                ),
-                points,
-                N == 2,
-            ),
-            &format!("{name}.svg"),
-        )?;
+        let svg = staged(portrait.svg(&title), &format!("{name}.svg"))?;
         set.write(&format!("{name}.svg"), svg.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
-        set.write(&format!("{name}.png"), &portrait_png(points, N == 2))
+        set.write(&format!("{name}.png"), &portrait.png(&title))
             .map_err(|e| crate::exit::publish_failure(&e))?;
     }
     set.commit().map_err(|e| crate::exit::publish_failure(&e))?;
     print_summary(&summary)?;
     outln!("wrote {}", out.display())?;
     log_failed.or(map_failed).map_or(Ok(()), Err)
+}
+
+/// Where a CSV boundary map's text goes: its file, or nowhere (a Parquet map keeps the
+/// [`BoundaryMap`] only for its portraits).
+enum Side {
+    File(LogFile),
+    Sink,
+}
+
+impl Side {
+    /// Publish the file (see [`LogFile::finish`]).
+    fn finish(self) -> std::io::Result<()> {
+        match self {
+            Side::File(f) => f.finish(),
+            Side::Sink => Ok(()),
+        }
+    }
+}
+
+impl Write for Side {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            Side::File(f) => f.write(buf),
+            Side::Sink => Ok(buf.len()),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            Side::File(f) => f.flush(),
+            Side::Sink => Ok(()),
+        }
+    }
 }
 
 /// `p` without its `.` components: two spellings of one path compare equal lexically.
@@ -327,8 +384,12 @@ const SET_FILES: [&str; 4] = [
 fn side_members(args: &Args, out: &Path) -> Result<[Option<String>; 2], Failure> {
     let mut members = [None, None];
     let sides = [
-        ("--log", &args.log, "events.jsonl"),
-        ("--boundary-map", &args.boundary_map, "boundary-map.csv"),
+        ("--log", &args.log, ["events.jsonl", "events.parquet"]),
+        (
+            "--boundary-map",
+            &args.boundary_map,
+            ["boundary-map.csv", "boundary-map.parquet"],
+        ),
     ];
     for (i, (option, path, outside)) in sides.into_iter().enumerate() {
         let Some(p) = path else { continue };
@@ -344,7 +405,7 @@ fn side_members(args: &Args, out: &Path) -> Result<[Option<String>; 2], Failure>
                     out.display()
                 )))
             }
-            _ => outside.to_string(),
+            _ => outside[usize::from(is_parquet(p))].to_string(),
         };
         if SET_FILES.contains(&member.as_str()) || member.starts_with("portrait-") {
             return Err(Failure::bad_input(format!(
