@@ -15,6 +15,7 @@
 //!   `orbits` (the periodic orbits of a one-ball table).
 //! - [`checks`]: `verify` and `report`, their reports as JSON text.
 //! - [`error`]: `InputError`, a `ValueError` whose message names the field.
+//! - [`signals`]: Ctrl-C in the long loops (`simulate`, `lyapunov`, `orbits`, `verify`).
 
 #![warn(missing_docs, unreachable_pub)]
 
@@ -25,6 +26,7 @@ pub mod dynamics;
 pub mod error;
 pub mod reference;
 pub mod scene;
+pub mod signals;
 pub mod simulate;
 
 use pyo3::prelude::*;
@@ -38,6 +40,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::collide_batch_f32, m)?)?;
     m.add_function(wrap_pyfunction!(reference::reference_seconds, m)?)?;
     m.add_function(wrap_pyfunction!(batch::isa, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::params::batch_params_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::params::batch_params_f32, m)?)?;
     m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::lyapunov, m)?)?;
@@ -45,5 +49,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(checks::verify, m)?)?;
     m.add_function(wrap_pyfunction!(checks::report, m)?)?;
     m.add("DIMS", collision_core::DIMS.to_vec())?;
+    // The package's version: the crate's, which python/pyproject.toml repeats (a test
+    // checks they agree).
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -20,6 +20,7 @@
 mod checked;
 mod inputs;
 mod outputs;
+pub mod params;
 mod run;
 mod unchecked;
 
