@@ -34,8 +34,8 @@ fn check_dims(dims: &[Bound<'_, PyAny>]) -> PyResult<Vec<usize>> {
     Ok(dims)
 }
 
-/// The exact verification of the generated kernels of `dims`, `points` random points per
-/// identity: `verify.json`'s text.
+/// The exact verification of the generated kernels of ``dims``, ``points`` random points per
+/// identity: ``verify.json``'s text.
 #[pyfunction]
 #[pyo3(signature = (dims, points))]
 pub fn verify(
@@ -72,8 +72,8 @@ pub fn verify(
     }
 }
 
-/// The accuracy report of `dims`, `samples` cases per dimension and regime, seed `seed`:
-/// `report.json`'s text.
+/// The accuracy report of ``dims``, ``samples`` cases per dimension and regime, seed ``seed``:
+/// ``report.json``'s text.
 #[pyfunction]
 #[pyo3(signature = (dims, samples, seed))]
 pub fn report(

@@ -71,7 +71,7 @@ fn estimates<'py>(
     )
 }
 
-/// Lyapunov exponents of `scene` (see the Python docstring of `noslip.lyapunov`).
+/// Lyapunov exponents of ``scene`` (see the Python docstring of ``noslip.lyapunov``).
 #[pyfunction]
 #[pyo3(signature = (scene, events, k, method, seed, blocks, every, contact))]
 #[allow(clippy::too_many_arguments)]
@@ -163,10 +163,10 @@ pub fn lyapunov<'py>(
     Ok(out)
 }
 
-/// The periodic orbits of period `period` of a one-ball table (see the Python docstring of
-/// `noslip.orbits`): `orbits.json`'s text. `starts` are rationals or decimals as text.
-/// `max_contacts` bounds the search's work as `noslip orbits --max-contacts` does (default
-/// [`DEFAULT_MAX_CONTACTS`]): the search stops there and `orbits.json` says so (`stopped`).
+/// The periodic orbits of period ``period`` of a one-ball table (see the Python docstring of
+/// ``noslip.orbits``): ``orbits.json``'s text. ``starts`` are rationals or decimals as text.
+/// ``max_contacts`` bounds the search's work as ``noslip orbits --max-contacts`` does (default
+/// ``DEFAULT_MAX_CONTACTS``): the search stops there and ``orbits.json`` says so (``stopped``).
 #[pyfunction]
 #[pyo3(signature = (scene, period, starts, grid, contact, max_contacts=None))]
 pub fn orbits(

@@ -8,7 +8,7 @@
 //!   validation), in `f64` or exact rationals.
 //! - [`batch`]: a batch of collisions on NumPy arrays, the GIL released, rayon threads, the
 //!   batch kernels' run-time ISA dispatch.
-//! - [`reference`]: the benchmark's Rust references for `collide_batch`, timed in Rust.
+//! - [`reference`](mod@reference): the benchmark's Rust references for `collide_batch`, timed in Rust.
 //! - [`scene`]: the `Scene` class (TOML text, file or dict; picklable).
 //! - [`simulate`]: a run of a scene, its events log and energy samples as NumPy arrays.
 //! - [`dynamics`]: `lyapunov` (the exponents of a scene and their running estimate) and

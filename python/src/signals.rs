@@ -4,7 +4,7 @@
 //! Python runs its signal handlers only in the main thread and only when asked
 //! (`PyErr_CheckSignals`); a native loop that never asks is deaf to Ctrl-C. The hook is
 //! asked up to millions of times a second, so it counts calls and reads the clock every
-//! [`Signals::every`] calls; once [`CHECK_PERIOD`] has passed since the last look it takes
+//! `every` calls (see [`Signals::new`]); once [`CHECK_PERIOD`] has passed since the last look it takes
 //! the GIL and runs the handlers. An exception they raise (`KeyboardInterrupt`) is kept,
 //! the hook answers "stop" from then on, and the binding raises the exception once the
 //! loop has returned, discarding the partial result.

@@ -294,12 +294,12 @@ fn time_of(t: f64) -> PyResult<f64> {
     check_time(t).map_err(|m| input_error(format!("time: {m}")))
 }
 
-/// Run `scene` to `events` contacts or simulated `time` (the scene's `[simulation]`
-/// defaults, else 100000 contacts); keep the events log when `log`, the boundary map when
-/// `boundary_map`, their memory at most `max_memory` bytes (refused up front when `events`
-/// is known, else the run stops with an error at the cap). Returns a dict: `summary` (JSON
-/// text of the simulator's summary), `energy` (event counts and relative drifts of the
-/// samples), `events` (the log's columns as arrays), `boundary_map`.
+/// Run ``scene`` to ``events`` contacts or simulated ``time`` (the scene's ``[simulation]``
+/// defaults, else 100000 contacts); keep the events log when ``log``, the boundary map when
+/// ``boundary_map``, their memory at most ``max_memory`` bytes (refused up front when ``events``
+/// is known, else the run stops with an error at the cap). Returns a dict: ``summary`` (JSON
+/// text of the simulator's summary), ``energy`` (event counts and relative drifts of the
+/// samples), ``events`` (the log's columns as arrays), ``boundary_map``.
 #[pyfunction]
 #[pyo3(signature = (scene, events, time, log, boundary_map, max_memory))]
 pub fn simulate<'py>(

@@ -290,6 +290,10 @@ def _public():
         obj = getattr(noslip, name)
         if callable(obj) or inspect.ismodule(obj):
             yield name, obj
+    for name in dir(noslip._native):
+        obj = getattr(noslip._native, name)
+        if callable(obj) and not name.startswith("_"):
+            yield f"_native.{name}", obj
 
 
 @pytest.mark.parametrize("name,obj", list(_public()))
