@@ -32,7 +32,11 @@ CALLS = {
 }
 
 CHILD = """
-import sys, time
+import signal, sys, time
+# Python raises KeyboardInterrupt on SIGINT only if SIGINT was not ignored when it started; a
+# test run started in the background by a non-interactive shell (`scripts/test &`) passes the
+# children SIGINT ignored. Install Python's own handler, as an interactive session has it.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import noslip
 SCENE = noslip.Scene.from_file(sys.argv[1])
 print("start", flush=True)
