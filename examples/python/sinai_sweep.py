@@ -13,8 +13,10 @@ written beside the store.
 """
 
 import argparse
+import importlib
 from functools import partial
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -22,7 +24,7 @@ import noslip
 from noslip.tables import sinai_lyapunov
 
 
-def main():
+def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--store", default="out/sweep/sinai")
     ap.add_argument("--scheduler", default=None)
@@ -30,23 +32,23 @@ def main():
     args = ap.parse_args()
 
     grid = {
-        "gamma2": np.linspace(0.0, 1.0, 9).tolist(),
-        "radius": np.linspace(0.05, 0.4, 8).tolist(),
+        "gamma2": np.linspace(0.0, 1.0, 9),
+        "radius": np.linspace(0.05, 0.4, 8),
     }
-    client = None
+    client: Any = None
     if args.scheduler:
-        from dask.distributed import Client
-
-        client = Client(args.scheduler)
+        # dask.distributed and matplotlib are untyped: used through Any.
+        distributed: Any = importlib.import_module("dask.distributed")
+        client = distributed.Client(args.scheduler)
     exponent = partial(sinai_lyapunov, events=args.events)
+    # Grid values as NumPy arrays are fine: points are keyed by value.
     frame = noslip.sweep(exponent, grid, client=client, store=args.store)
     table = frame.pivot(index="gamma2", columns="radius", values="lyapunov")
     print(table.round(3).to_string())
     try:
-        import matplotlib
-
+        matplotlib: Any = importlib.import_module("matplotlib")
         matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt: Any = importlib.import_module("matplotlib.pyplot")
     except ImportError:
         print("matplotlib is not installed: no plot")
         return

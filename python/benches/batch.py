@@ -47,7 +47,7 @@ from typing import Any, Callable
 import numpy as np
 
 import noslip
-from noslip.batch import _body, reference_seconds
+from noslip.batch import _body_arrays, _parse_body, reference_seconds
 
 Bodies = list[dict[str, np.ndarray]]
 
@@ -189,7 +189,8 @@ def main() -> None:
         native_args = None
         if other:
             f64 = np.dtype(np.float64)
-            b1, b2 = (_body(bodies[b], b, f64, nu.shape) for b in range(2))
+            b1, b2 = (_body_arrays(_parse_body(bodies[b], b), b, f64, *nu.shape, False)
+                      for b in range(2))
             before_out = tuple(np.empty_like(out[b][key]) for b in range(2)
                                for key in ("angular_velocity", "velocity"))
             native_args = (nu, b1, b2)

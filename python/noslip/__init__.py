@@ -15,10 +15,14 @@ generated, exactly verified Rust kernels of the ``noslip`` workspace.
 - :func:`sweep`: a function over a parameter grid as Dask tasks, streamed to a store.
 - :class:`InputError`: bad input (a ``ValueError`` naming the field).
 
+``noslip.__version__`` is the package's version. Long native calls (:func:`simulate`,
+:func:`lyapunov`, :func:`orbits`, :func:`verify`) stop on Ctrl-C with
+``KeyboardInterrupt``, discarding their partial results.
+
 See ``docs/python.md``.
 """
 
-from noslip._native import DIMS, InputError, Scene
+from noslip._native import DIMS, InputError, Scene, __version__
 from noslip.batch import collide_batch, isa
 from noslip.case import collide
 from noslip.checks import report, verify
@@ -28,6 +32,7 @@ from noslip.sweep import sweep
 from noslip import tables
 
 __all__ = [
+    "__version__",
     "DIMS",
     "InputError",
     "LyapunovResult",

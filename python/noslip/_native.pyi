@@ -7,6 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 DIMS: list[int]
+__version__: str
 
 class InputError(ValueError):
     """Bad input: the message names the field (``bodies[1].gamma2: ...``)."""
@@ -19,7 +20,7 @@ _BodyArrays = tuple[
 _BatchOut = tuple[npt.NDArray[Any], npt.NDArray[Any], npt.NDArray[Any], npt.NDArray[Any]]
 
 def collide_batch_f64(
-    normal: npt.NDArray[np.float64],
+    normal: npt.NDArray[Any],
     body1: _BodyArrays,
     body2: _BodyArrays,
     validate: bool,
@@ -27,7 +28,7 @@ def collide_batch_f64(
     out: _BatchOut | None = None,
 ) -> _BatchOut: ...
 def collide_batch_f32(
-    normal: npt.NDArray[np.float32],
+    normal: npt.NDArray[Any],
     body1: _BodyArrays,
     body2: _BodyArrays,
     validate: bool,
@@ -42,6 +43,22 @@ def reference_seconds(
     parallel: bool = True,
 ) -> dict[str, list[float]]: ...
 def isa() -> str: ...
+def batch_params_f64(
+    dim: int,
+    body: int,
+    mass: npt.NDArray[np.float64] | None,
+    radius: npt.NDArray[np.float64],
+    lambda_: npt.NDArray[np.float64] | None,
+    distribution: str | None,
+) -> tuple[npt.NDArray[np.float64] | None, npt.NDArray[np.float64] | None]: ...
+def batch_params_f32(
+    dim: int,
+    body: int,
+    mass: npt.NDArray[np.float32] | None,
+    radius: npt.NDArray[np.float32],
+    lambda_: npt.NDArray[np.float32] | None,
+    distribution: str | None,
+) -> tuple[npt.NDArray[np.float32] | None, npt.NDArray[np.float32] | None]: ...
 def lyapunov(
     scene: Scene,
     events: int,
@@ -79,6 +96,8 @@ class Scene:
     def description(self) -> str: ...
     @property
     def balls(self) -> int: ...
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
 
 def simulate(
     scene: Scene,

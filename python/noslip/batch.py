@@ -2,46 +2,116 @@
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Sequence
+from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from noslip import _native
-from noslip._native import InputError
+from noslip._native import DIMS, InputError
 
 __all__ = ["collide_batch", "isa", "BODY_KEYS"]
 
-#: The keys of a body in :func:`collide_batch`: its states and the kernel's parameters.
-BODY_KEYS = ("angular_velocity", "velocity", "inv_mass", "radius", "gamma2")
+#: The keys of a body in :func:`collide_batch`, those of :func:`noslip.collide`: the states,
+#: ``radius``, one of ``mass`` / ``inv_mass`` and at most one of ``lambda`` / ``gamma2`` /
+#: ``distribution`` (uniform when none is given).
+BODY_KEYS = (
+    "angular_velocity",
+    "velocity",
+    "mass",
+    "inv_mass",
+    "radius",
+    "lambda",
+    "gamma2",
+    "distribution",
+)
+
+#: The keys of which a body gives exactly one (the mass), and at most one (the inertia).
+_MASS_KEYS = ("mass", "inv_mass")
+_INERTIA_KEYS = ("lambda", "gamma2", "distribution")
+
+_Array = npt.NDArray[Any]
+_BodyArrays = Tuple[_Array, _Array, _Array, _Array, _Array]
 
 
-def _shapes(shape: tuple[int, ...]) -> dict[str, str]:
-    """The expected shape of each body key, as text, for ``normal``'s shape ``(N, n)``."""
-    rows, n = shape if len(shape) == 2 else ("N", "n")
-    return {
-        "angular_velocity": f"({rows}, {n}, {n})",
-        "velocity": f"({rows}, {n})",
-        "inv_mass": f"({rows},) or a scalar",
-        "radius": f"({rows},) or a scalar",
-        "gamma2": f"({rows},) or a scalar",
-    }
+def _shape_text(shape: Tuple[Union[int, str], ...]) -> str:
+    """A shape as NumPy prints it: ``(5, 3)``, ``(5,)``."""
+    if len(shape) == 1:
+        return f"({shape[0]},)"
+    return "(" + ", ".join(str(k) for k in shape) + ")"
 
 
-#: The number of dimensions of each body key's array (a scalar parameter made 1-D).
-_NDIM = {"angular_velocity": 3, "velocity": 2, "inv_mass": 1, "radius": 1, "gamma2": 1}
+def _shape_error(field: str, expected: str, got: Tuple[int, ...]) -> InputError:
+    """The package's one shape message: ``field: expected shape (5, 3), got (6, 3)``."""
+    return InputError(f"{field}: expected shape {expected}, got {_shape_text(got)}")
 
 
-def _body(body: Mapping[str, Any], b: int, dtype: np.dtype, shape: tuple[int, ...]) -> tuple:
-    """Body ``b``'s five arrays in the native order, each of ``dtype`` (``normal``'s) and
-    with the number of dimensions its key needs; ``shape`` is ``normal``'s, for the
-    message (the sizes are checked natively, naming the field too).
+def _numeric(x: Any, field: str) -> Any:
+    """``x`` as :func:`numpy.result_type` takes it: an ndarray or NumPy scalar as it is, a
+    Python int or float as it is (a "weak" scalar: it takes the arrays' float type, as in
+    ufuncs), anything else (lists, nested sequences) through :func:`numpy.asarray`; the
+    mass ``"inf"`` (as :func:`noslip.collide` spells it) is ``inf``."""
+    if isinstance(x, str) and field.endswith(".mass") and x.strip().lower() == "inf":
+        return float("inf")
+    if isinstance(x, (np.ndarray, np.generic)) or (
+        isinstance(x, (int, float)) and not isinstance(x, bool)
+    ):
+        return x
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"{field}: expected numbers, got {type(x).__name__} ({e})") from None
+    return a
 
-    Raises
-    ------
-    InputError
-        A missing or unknown key, a wrong dtype or a wrong number of dimensions, naming
-        ``bodies[b].key``.
-    """
+
+def _check_kind(x: Any, field: str) -> None:
+    """Refuse a value no float type holds (naming the field): complex, text, objects, and
+    ``longdouble`` (the kernels run in float64 at most; casting would round it)."""
+    dt = np.asarray(x).dtype if not isinstance(x, (int, float)) else np.dtype(type(x))
+    if dt.kind not in "biuf" or (dt.kind == "f" and dt.itemsize > 8):
+        raise InputError(
+            f"{field}: dtype {dt} cannot be cast to float64 or float32 without loss (give "
+            "real numbers: bools, ints or floats up to float64)"
+        )
+
+
+def result_dtype(values: Sequence[Tuple[str, Any]]) -> np.dtype[Any]:
+    """The float type a batch of these inputs runs in, as a ufunc casts them: the
+    :func:`numpy.result_type` of every input (Python scalars are "weak": they take the
+    arrays' type), then ``float32`` if that is ``float32`` or ``float16``, else ``float64``
+    (ints and bools, as ``np.true_divide`` makes them ``float64``; mixed ``float32`` and
+    ``float64`` give ``float64``)."""
+    for field, x in values:
+        _check_kind(x, field)
+    common = np.result_type(*(x for _, x in values))
+    if common.kind == "f" and common.itemsize <= 4:
+        return np.dtype(np.float32)
+    return np.dtype(np.float64)
+
+
+def _cast(x: Any, dtype: np.dtype[Any], field: str) -> _Array:
+    """``x`` as an array of ``dtype``: the same array when it already is one (read in place,
+    no copy), else a converted copy; a finite value beyond float32's range is named, not
+    made infinite."""
+    if isinstance(x, np.ndarray) and x.dtype == dtype:
+        return x
+    with np.errstate(over="ignore", invalid="ignore"):
+        a = np.asarray(x).astype(dtype)
+    if dtype == np.float32:
+        wide = np.asarray(x, dtype=np.float64)
+        beyond = np.isinf(a) & np.isfinite(wide)
+        if np.any(beyond):
+            raise InputError(
+                f"{field}: {wide[beyond].flat[0]!r} is beyond the range of float32 (the inputs' "
+                "common type)"
+            )
+    return a
+
+
+def _parse_body(body: Any, b: int) -> Dict[str, Any]:
+    """Body ``b``'s keys checked (a mapping; no unknown key; the states, ``radius`` and a
+    mass present; at most one mass and one inertia key) and its numbers as
+    :func:`_numeric` makes them (``distribution`` kept as text)."""
     if not isinstance(body, Mapping):
         raise InputError(f"bodies[{b}]: expected a mapping with keys {', '.join(BODY_KEYS)}")
     unknown = [k for k in body if k not in BODY_KEYS]
@@ -49,50 +119,106 @@ def _body(body: Mapping[str, Any], b: int, dtype: np.dtype, shape: tuple[int, ..
         raise InputError(
             f"bodies[{b}].{unknown[0]}: unknown key (the keys are: {', '.join(BODY_KEYS)})"
         )
-    arrays = []
-    for key in BODY_KEYS:
+    for key in ("angular_velocity", "velocity", "radius"):
         if key not in body:
             raise InputError(f"bodies[{b}].{key}: missing (required)")
-        x = body[key]
-        if isinstance(x, np.ndarray) and x.ndim > 0:
-            a = x
+    masses = [k for k in _MASS_KEYS if k in body]
+    if not masses:
+        raise InputError(f"bodies[{b}].mass: missing (give mass, or inv_mass = 1/mass)")
+    if len(masses) > 1:
+        raise InputError(f"bodies[{b}].inv_mass: conflicts with mass: give one of them")
+    inertia = [k for k in _INERTIA_KEYS if k in body]
+    if len(inertia) > 1:
+        raise InputError(
+            f"bodies[{b}].{inertia[1]}: conflicts with {inertia[0]}: give at most one of "
+            "lambda, gamma2, distribution"
+        )
+    out: Dict[str, Any] = {}
+    for key, x in body.items():
+        if key == "distribution":
+            if not isinstance(x, str):
+                raise InputError(
+                    f"bodies[{b}].distribution: expected \"uniform\" or \"shell\", got "
+                    f"{type(x).__name__}"
+                )
+            out[key] = x
         else:
-            a = np.asarray(x)
-            if a.ndim == 0:
-                # A scalar parameter, shared by every row: rounded once to the batch's dtype
-                # (a finite number beyond float32's range is named, not made infinite).
-                with np.errstate(over="ignore"):
-                    a = a.astype(dtype).reshape(1)
-                if a.dtype.kind == "f" and np.isinf(a[0]) and np.isfinite(np.asarray(x, float)):
-                    raise InputError(f"bodies[{b}].{key}: {x!r} is beyond the range of {dtype}")
-        if a.dtype != dtype:
-            raise InputError(
-                f"bodies[{b}].{key}: dtype {a.dtype}, expected {dtype} (the dtype of normal; "
-                "arrays are read in place, never converted)"
-            )
-        if a.ndim != _NDIM[key]:
-            got = "a scalar" if np.ndim(x) == 0 else str(a.shape)
-            raise InputError(f"bodies[{b}].{key}: expected shape {_shapes(shape)[key]}, got {got}")
-        arrays.append(a)
-    return tuple(arrays)
+            out[key] = _numeric(x, f"bodies[{b}].{key}")
+    return out
+
+
+#: The number of dimensions of each array a body needs, per row.
+_ROW_NDIM = {"angular_velocity": 2, "velocity": 1}
+
+
+def _body_arrays(
+    body: Dict[str, Any], b: int, dtype: np.dtype[Any], rows: int, n: int, single: bool
+) -> _BodyArrays:
+    """Body ``b``'s five arrays in the native order (``angular_velocity``, ``velocity``,
+    ``inv_mass``, ``radius``, ``gamma2``), each of ``dtype`` with the dimensions its key
+    needs; ``mass``, ``lambda`` and ``distribution`` turned into ``inv_mass`` and ``gamma2``
+    by :func:`noslip.collide`'s ball constructor (natively, row by row). ``single``: one
+    contact (a 1-D normal), the states without their row axis."""
+    lead: Tuple[int, ...] = () if single else (rows,)
+    lead_text: Tuple[Union[int, str], ...] = () if single else (rows,)
+    states = []
+    for key in ("angular_velocity", "velocity"):
+        field = f"bodies[{b}].{key}"
+        a = _cast(body[key], dtype, field)
+        want = lead + (n,) * _ROW_NDIM[key]
+        if a.ndim != len(want):
+            raise _shape_error(field, _shape_text(lead_text + (n,) * _ROW_NDIM[key]), a.shape)
+        states.append(a if not single else a.reshape((1,) + a.shape))
+    params: Dict[str, _Array] = {}
+    for key in ("mass", "inv_mass", "radius", "lambda", "gamma2"):
+        if key not in body:
+            continue
+        field = f"bodies[{b}].{key}"
+        a = _cast(body[key], dtype, field)
+        if a.ndim == 0:
+            a = a.reshape(1)
+        elif single or a.ndim != 1 or len(a) not in (1, rows):
+            expected = "a scalar" if single else f"({rows},) or a scalar"
+            raise _shape_error(field, expected, a.shape)
+        params[key] = a
+    needs_ball = "mass" in body or "lambda" in body or "gamma2" not in body
+    if needs_ball:
+        convert = _native.batch_params_f64 if dtype == np.float64 else _native.batch_params_f32
+        distribution = body.get("distribution")
+        if "lambda" not in body and "gamma2" not in body and distribution is None:
+            distribution = "uniform"
+        inv_mass, gamma2 = convert(
+            n, b, params.get("mass"), params["radius"], params.get("lambda"), distribution
+        )
+        if inv_mass is not None:
+            params["inv_mass"] = inv_mass
+        if gamma2 is not None:
+            params["gamma2"] = gamma2
+    return (
+        states[0],
+        states[1],
+        params["inv_mass"],
+        params["radius"],
+        params["gamma2"],
+    )
 
 
 def collide_batch(
-    normal: np.ndarray,
+    normal: npt.ArrayLike,
     bodies: Sequence[Mapping[str, Any]],
     *,
     validate: bool = True,
     parallel: bool = True,
-    out: Sequence[Mapping[str, np.ndarray]] | None = None,
-) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
+    out: Optional[Sequence[Mapping[str, _Array]]] = None,
+) -> Tuple[Dict[str, _Array], Dict[str, _Array]]:
     """The no-slip collision map on every row of a batch.
 
     Row ``k`` is one contact: ``xi_k+ = 2 P_G(q_k) xi_k - xi_k`` (see :func:`noslip.collide`).
     With ``validate`` (the default) every row goes through :func:`noslip.collide`'s own
     checked path (the checks and the rounding allowance, the kernel run with an unbounded
     exponent, the results rounded back or refused when they do not fit): each row is
-    accepted or refused as ``collide`` does it and its result is ``collide``'s bit for bit
-    (the batch takes ``inv_mass`` where ``collide`` takes ``mass``). Without it the
+    accepted or refused as ``collide`` does it and its result is ``collide``'s bit for bit.
+    Without it the
     generated batch kernels run the rows (blocks of 8 contacts, vectorised with the
     instruction set chosen at run time, :func:`isa`): each row is bit for bit the scalar
     kernel's result (``collide_unchecked`` in Rust), which is ``collide``'s only where the
@@ -112,15 +238,30 @@ def collide_batch(
     go row by row. Memory beyond the new output arrays is a scratch of one chunk (15 to
     130 kB) per running thread, which that thread keeps for its next call.
 
+    **Types**: the inputs are cast as a ufunc casts them. The batch runs in ``float32`` when
+    :func:`numpy.result_type` of every input is ``float32`` (or ``float16``), else in
+    ``float64`` (ints and bools, or ``float32`` mixed with ``float64``); Python scalars take
+    the arrays' type. Arrays already of that type are read in place; others are converted
+    (a copy). Complex, text, object and ``longdouble`` inputs are refused, naming the field.
+
     Parameters
     ----------
-    normal : ndarray, shape (N, n), float64 or float32
-        The unit normals ``nu``, from body 1's centre to body 2's; n in 2..6.
-    bodies : two mappings of arrays of ``normal``'s dtype
-        ``angular_velocity``: ``(N, n, n)`` skew matrices ``U``; ``velocity``: ``(N, n)``;
-        the kernel's parameters ``inv_mass`` (``1/m``, 0 for an immovable body), ``radius``
-        ``R > 0`` and ``gamma2 = 2 lambda / R^2`` in ``[0, 2/n]`` (``2/(n+2)`` uniform,
-        ``2/n`` a shell; ``I/(m R^2)`` in 3D), each ``(N,)`` or a scalar shared by all rows.
+    normal : array_like, shape (N, n) or (n,)
+        The unit normals ``nu``, from body 1's centre to body 2's; n in 2..6 (the
+        dimensions with batch kernels; :func:`noslip.collide` takes n up to 16). A 1-D
+        normal is one contact: the states are then ``(n, n)`` and ``(n,)``, the parameters
+        scalars, and so are the results.
+    bodies : two mappings
+        The keys of :func:`noslip.collide`: ``angular_velocity``, ``(N, n, n)`` skew
+        matrices ``U``; ``velocity``, ``(N, n)``; ``radius`` ``R > 0``; ``mass`` (``inf``
+        for an immovable body) or ``inv_mass`` (``1/m``, 0 immovable); at most one of
+        ``lambda`` (in ``[0, R^2/n]``), ``gamma2 = 2 lambda / R^2`` (in ``[0, 2/n]``;
+        ``I/(m R^2)`` in 3D) or ``distribution`` (``"uniform"``, the default, ``2/(n+2)``;
+        ``"shell"``, ``2/n``). Each parameter is ``(N,)`` or a scalar shared by all rows.
+        ``mass``, ``lambda`` and ``distribution`` are turned into the kernels' ``inv_mass``
+        and ``gamma2`` row by row by the constructor :func:`noslip.collide` builds its balls
+        with (``Ball::new``: the same numbers, bit for bit, and the same checks, with or
+        without ``validate``).
     validate : bool
         Check every row as :func:`noslip.collide` does (finite; unit normal; valid balls;
         skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``; a result that fits the float
@@ -132,7 +273,8 @@ def collide_batch(
         is released either way).
     out : two mappings of arrays, optional
         Arrays to write the results into instead of new ones, as NumPy's ``out=``: per body
-        ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)`` of ``normal``'s dtype,
+        ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)`` (``(n, n)`` and
+        ``(n,)`` for one contact) of the batch's dtype,
         C-contiguous, writeable, sharing no memory with the inputs or each other (a loop
         that keeps them allocates nothing and skips the first touch of new memory). On an
         error they may hold some rows' results.
@@ -140,8 +282,9 @@ def collide_batch(
     Returns
     -------
     (dict, dict)
-        Per body, ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)``: new arrays,
-        or those of ``out``.
+        Per body, ``angular_velocity`` ``(N, n, n)`` and ``velocity`` ``(N, n)`` (one
+        contact: ``(n, n)`` and ``(n,)``), of the batch's dtype: new arrays, or those of
+        ``out``.
 
     Raises
     ------
@@ -149,30 +292,61 @@ def collide_batch(
         A wrong shape or dtype (naming the field, ``out[1].velocity`` for an output), or
         with ``validate`` the first bad row: ``row 17: bodies[1].gamma2: ...``.
     """
-    normal = np.asarray(normal)
-    if normal.dtype not in (np.float64, np.float32):
-        raise InputError(f"normal: dtype must be float64 or float32, got {normal.dtype}")
-    if normal.ndim != 2:
-        raise InputError(f"normal: expected shape (N, n), got {normal.shape}")
-    if not isinstance(bodies, Sequence) or len(bodies) != 2:
+    nu = _numeric(normal, "normal")
+    if np.ndim(nu) not in (1, 2):
+        raise _shape_error("normal", "(N, n) or (n,)", np.shape(nu))
+    single = np.ndim(nu) == 1
+    rows, n = (1, np.shape(nu)[0]) if single else np.shape(nu)
+    if n not in DIMS:
+        raise InputError(
+            f"normal: expected shape (N, n) with n in {DIMS[0]}..={DIMS[-1]} (the dimensions "
+            "with batch kernels; noslip.collide takes n up to 16), got "
+            f"{_shape_text(np.shape(nu))}"
+        )
+    if isinstance(bodies, (str, bytes, Mapping)) or not isinstance(bodies, Sequence):
         raise InputError("bodies: expected two bodies (a sequence of two mappings)")
-    b1, b2 = (_body(bodies[b], b, normal.dtype, normal.shape) for b in range(2))
-    run = _native.collide_batch_f64 if normal.dtype == np.float64 else _native.collide_batch_f32
-    arrays = None if out is None else _out(out, normal.dtype, normal.shape)
-    s1, v1, s2, v2 = run(normal, b1, b2, validate, parallel, arrays)
+    if len(bodies) != 2:
+        raise InputError(f"bodies: expected two bodies, got {len(bodies)}")
+    parsed = [_parse_body(bodies[b], b) for b in range(2)]
+    dtype = result_dtype(
+        [("normal", nu)]
+        + [
+            (f"bodies[{b}].{k}", x)
+            for b, body in enumerate(parsed)
+            for k, x in body.items()
+            if k != "distribution"
+        ]
+    )
+    nu = _cast(nu, dtype, "normal")
+    if single:
+        nu = nu.reshape(1, n)
+    b1, b2 = (_body_arrays(parsed[b], b, dtype, rows, n, single) for b in range(2))
+    run = _native.collide_batch_f64 if dtype == np.float64 else _native.collide_batch_f32
+    arrays = None if out is None else _out(out, dtype, rows, n, single)
+    s1, v1, s2, v2 = run(nu, b1, b2, validate, parallel, arrays)
+    if out is not None:
+        return (
+            {"angular_velocity": out[0]["angular_velocity"], "velocity": out[0]["velocity"]},
+            {"angular_velocity": out[1]["angular_velocity"], "velocity": out[1]["velocity"]},
+        )
+    if single:
+        s1, v1, s2, v2 = s1[0], v1[0], s2[0], v2[0]
     return (
         {"angular_velocity": s1, "velocity": v1},
         {"angular_velocity": s2, "velocity": v2},
     )
 
 
-def _out(out: Sequence[Mapping[str, np.ndarray]], dtype: np.dtype, shape: tuple[int, ...]) -> tuple:
+def _out(
+    out: Sequence[Mapping[str, _Array]], dtype: np.dtype[Any], rows: int, n: int, single: bool
+) -> Tuple[_Array, _Array, _Array, _Array]:
     """``out``'s four arrays in the native order, each checked to be an ndarray of ``dtype``
-    with the number of dimensions its key needs (``shape``, ``normal``'s, is for the
-    message; sizes, layout and overlaps are checked natively, naming the field too)."""
-    rows, n = shape
+    with the number of dimensions its key needs (sizes, layout and overlaps are checked
+    natively, naming the field too); for one contact (``single``) each gets its row axis
+    back as a view (a C-contiguous array is required first, or the view would be a copy)."""
     if isinstance(out, Mapping) or not isinstance(out, Sequence) or len(out) != 2:
         raise InputError("out: expected two mappings (one per body), as collide_batch returns")
+    lead: Tuple[int, ...] = () if single else (rows,)
     arrays = []
     for b, body in enumerate(out):
         if not isinstance(body, Mapping):
@@ -183,20 +357,28 @@ def _out(out: Sequence[Mapping[str, np.ndarray]], dtype: np.dtype, shape: tuple[
                 f"out[{b}].{unknown[0]}: unknown key (the keys are: angular_velocity, velocity)"
             )
         for key in ("angular_velocity", "velocity"):
+            field = f"out[{b}].{key}"
             if key not in body:
-                raise InputError(f"out[{b}].{key}: missing (required)")
+                raise InputError(f"{field}: missing (required)")
             a = body[key]
             if not isinstance(a, np.ndarray):
-                raise InputError(f"out[{b}].{key}: expected a NumPy array, got {type(a).__name__}")
+                raise InputError(f"{field}: expected a NumPy array, got {type(a).__name__}")
             if a.dtype != dtype:
                 raise InputError(
-                    f"out[{b}].{key}: dtype {a.dtype}, expected {dtype} (the dtype of normal)"
+                    f"{field}: dtype {a.dtype}, expected {dtype} (the batch's dtype, "
+                    "np.result_type of the inputs)"
                 )
-            want = [rows, n, n] if key == "angular_velocity" else [rows, n]
-            if a.ndim != len(want):
-                raise InputError(f"out[{b}].{key}: expected shape {want}, got {list(a.shape)}")
+            want = lead + (n,) * _ROW_NDIM[key]
+            if a.shape != want:
+                raise _shape_error(field, _shape_text(want), a.shape)
+            if single:
+                if not a.flags.c_contiguous:
+                    raise InputError(
+                        f"{field}: must be C-contiguous (the rows are written in place)"
+                    )
+                a = a.reshape((1,) + a.shape)
             arrays.append(a)
-    return tuple(arrays)
+    return (arrays[0], arrays[1], arrays[2], arrays[3])
 
 
 def isa() -> str:
@@ -205,7 +387,7 @@ def isa() -> str:
 
 
 def reference_seconds(
-    normal: np.ndarray,
+    normal: npt.ArrayLike,
     bodies: Sequence[Mapping[str, Any]],
     repeats: int = 5,
     parallel: bool = True,
@@ -236,8 +418,10 @@ def reference_seconds(
         - ``"kernel"``: ``Exec::auto().free`` alone on the rows laid out once, untimed, in
           its blocked batch: the kernel without the row-major arrays.
     """
-    normal = np.asarray(normal)
+    nu = np.asarray(normal, dtype=np.float64)
+    rows, n = nu.shape
+    f64 = np.dtype(np.float64)
     b1, b2 = (
-        _body(bodies[b], b, np.dtype(np.float64), normal.shape) for b in range(2)
+        _body_arrays(_parse_body(bodies[b], b), b, f64, rows, n, False) for b in range(2)
     )
-    return dict(_native.reference_seconds(normal, b1, b2, repeats, parallel))
+    return dict(_native.reference_seconds(nu, b1, b2, repeats, parallel))

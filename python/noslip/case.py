@@ -7,7 +7,9 @@ import math
 import numbers
 from decimal import Decimal
 from fractions import Fraction
-from typing import Any, Mapping, Sequence
+from typing import Any, Dict, List, Mapping, Sequence
+
+import numpy as np
 
 from noslip._native import InputError, collide_case
 
@@ -44,7 +46,7 @@ def _to_json(x: Any, path: str, exact: bool) -> Any:
     if isinstance(x, (str, bool)) or x is None:
         return x
     if isinstance(x, Mapping):
-        out = {}
+        out: Dict[str, Any] = {}
         for k, v in x.items():
             if not isinstance(k, str):
                 raise InputError(f"{path or 'case'}: keys must be strings, got {k!r}")
@@ -58,13 +60,18 @@ def _to_json(x: Any, path: str, exact: bool) -> Any:
 
 
 def _from_json(x: Any, exact: bool) -> Any:
-    if isinstance(x, list):
-        return [_from_json(v, exact) for v in x]
+    """The output's numbers: exact ``"p/q"`` strings as ``Fraction``\\ s (lists of them,
+    NumPy having no exact rational dtype), floats as ``float64`` arrays where they are
+    vectors or matrices (a 2D spin given as a number stays a ``float``)."""
     if isinstance(x, dict):
         return {k: _from_json(v, exact) for k, v in x.items()}
-    if exact and isinstance(x, str):
-        return Fraction(x)
-    return x
+    if exact:
+        if isinstance(x, list):
+            return [_from_json(v, exact) for v in x]
+        return Fraction(x) if isinstance(x, str) else x
+    if isinstance(x, list):
+        return np.array(x, dtype=np.float64)
+    return float(x)
 
 
 def collide(
@@ -73,7 +80,7 @@ def collide(
     *,
     dim: int | None = None,
     exact: bool = False,
-) -> list[dict[str, Any]]:
+) -> List[Dict[str, Any]]:
     """The post-collision states of two balls in contact.
 
     The no-slip collision map: the state ``xi = (U_1, u_1, U_2, u_2)`` jumps to
@@ -106,8 +113,10 @@ def collide(
     Returns
     -------
     list of two dicts
-        Each body's ``angular_velocity`` (in the form given) and ``velocity`` after the
-        collision: floats, or ``Fraction``\\ s with ``exact=True``.
+        Each body's ``angular_velocity`` (in the form given: an ``(n, n)`` matrix, a number
+        in 2D, an ``(3,)`` vector ``omega`` in 3D) and ``velocity`` ``(n,)`` after the
+        collision: NumPy ``float64`` arrays (a number as a ``float``), or with
+        ``exact=True`` ``Fraction``\\ s in lists (NumPy has no exact rational dtype).
 
     Raises
     ------
@@ -128,4 +137,4 @@ def collide(
     }
     text = json.dumps(_to_json(case, "", exact), allow_nan=False)
     out = json.loads(collide_case(text, exact))
-    return _from_json(out["bodies"], exact)
+    return [_from_json(body, exact) for body in out["bodies"]]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import json
-from typing import Any, Iterable
+from typing import Any, Dict, Iterable
 
 from noslip import _native
 from noslip._native import InputError
@@ -36,8 +36,14 @@ def verify(dims: Iterable[int] = (2, 3, 4, 5, 6), points: int = 16) -> dict[str,
         ``verify.json``'s content: ``results`` (one dict per check: ``dim``, ``variant``,
         ``check``, ``passed``, ``detail``, its proof and bound), ``seed``, ``points``,
         ``seconds``; and ``passed``, whether every check passed.
+
+    Raises
+    ------
+    KeyboardInterrupt
+        Ctrl-C (SIGINT): Python's signals are looked at before each point of each identity
+        check (once 50 ms have passed); the partial results are discarded.
     """
-    out = json.loads(_native.verify(_dims(dims), points))
+    out: Dict[str, Any] = json.loads(_native.verify(_dims(dims), points))
     out["passed"] = all(r["passed"] for r in out["results"])
     return out
 
@@ -56,4 +62,5 @@ def report(dims: Iterable[int] = (2, 3), samples: int = 200, seed: int = 1) -> d
         ``report.json``'s content (``dims``: per dimension, per regime, per variant, the
         errors and timings; ``options``; ``provenance``).
     """
-    return json.loads(_native.report(_dims(dims), samples, seed))
+    out: Dict[str, Any] = json.loads(_native.report(_dims(dims), samples, seed))
+    return out

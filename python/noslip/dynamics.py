@@ -7,12 +7,14 @@ import json
 from dataclasses import dataclass, field
 from fractions import Fraction
 from numbers import Rational
-from typing import Sequence
+from typing import Any, List, Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 from noslip import _native
-from noslip._native import InputError, Scene
+from noslip._args import SceneLike, as_scene
+from noslip._native import InputError
 
 __all__ = ["ExactReturn", "LyapunovResult", "Orbit", "OrbitsResult", "lyapunov", "orbits"]
 
@@ -75,18 +77,8 @@ class LyapunovResult:
         return float(self.per_time[0])
 
 
-def _scene(scene: Scene | str | dict) -> Scene:
-    if isinstance(scene, str):
-        return Scene(scene)
-    if isinstance(scene, dict):
-        return Scene.from_dict(scene)
-    if not isinstance(scene, Scene):
-        raise InputError(f"scene: expected a Scene, TOML text or a dict, got {type(scene).__name__}")
-    return scene
-
-
 def lyapunov(
-    scene: Scene | str | dict,
+    scene: SceneLike,
     events: int = 100_000,
     *,
     k: int | None = None,
@@ -122,8 +114,11 @@ def lyapunov(
     InputError
         A bad scene (naming the place) or argument (naming it), or a run that cannot be
         measured (no contact, a singular tangent map at a grazing contact).
+    KeyboardInterrupt
+        Ctrl-C (SIGINT) during the run: Python's signals are looked at before every contact
+        (every 256, once 50 ms have passed); the partial run is discarded.
     """
-    out = _native.lyapunov(_scene(scene), events, k, method, seed, blocks, every, contact)
+    out = _native.lyapunov(as_scene(scene), events, k, method, seed, blocks, every, contact)
     per_time, per_time_error = out["per_time"]
     per_contact, per_contact_error = out["per_contact"]
     s, s_error = out["sum"]
@@ -219,11 +214,17 @@ class OrbitsResult:
     stopped: str | None
 
 
+def _shape_text(shape: tuple[int, ...]) -> str:
+    return f"({shape[0]},)" if len(shape) == 1 else "(" + ", ".join(map(str, shape)) + ")"
+
+
 def _number(x: object, where: str) -> str:
-    if isinstance(x, bool):
+    if isinstance(x, (bool, np.bool_)):
         raise InputError(f"{where}: expected a number, got {x!r}")
     if isinstance(x, Rational):
         return f"{x.numerator}/{x.denominator}"
+    if isinstance(x, np.floating):
+        x = float(x)
     if isinstance(x, float):
         # Its shortest decimal, read exactly as the command reads it (0.1 is 1/10).
         return repr(x)
@@ -233,10 +234,10 @@ def _number(x: object, where: str) -> str:
 
 
 def orbits(
-    scene: Scene | str | dict,
+    scene: SceneLike,
     period: int,
     *,
-    starts: Sequence[Sequence[object]] | None = None,
+    starts: Sequence[Sequence[object]] | npt.NDArray[Any] | None = None,
     grid: int | None = None,
     contact: str | None = None,
     max_contacts: int | None = None,
@@ -252,7 +253,7 @@ def orbits(
     strings or floats, read as their shortest decimal; moved along the normal onto the
     nearest boundary), or ``grid=M`` (2D: ``M`` points on each boundary x ``M`` outgoing
     angles x ``M`` spins, at unit speed), or by default the scene's ball after its first
-    contact. For a rational start on a table with rational contact times (flat walls), the
+    contact. ``starts`` may be a ``(K, 2n + S)`` NumPy array. For a rational start on a table with rational contact times (flat walls), the
     return map and the characteristic polynomial of its linearisation are also computed in
     exact rationals. ``max_contacts`` bounds the search's work as ``noslip orbits
     --max-contacts`` does (default 5e7 contacts, a minute or two): at the bound the search
@@ -264,16 +265,30 @@ def orbits(
     InputError
         A bad scene (naming the place) or argument (``period``, ``starts[i]``, ``grid``,
         ``contact``, ``max_contacts``).
+    KeyboardInterrupt
+        Ctrl-C (SIGINT) during the search: Python's signals are looked at before each
+        start (its exact return map, then its Newton search); the orbits found so far are
+        discarded. One start's work is bounded by ``period`` and Newton's steps.
     """
+    if isinstance(starts, np.ndarray):
+        # An array of starts, (K, 2n + S): its rows as lists of Python numbers (NumPy's
+        # truth value of an array is ambiguous, and its rows are not Sequences).
+        if starts.ndim != 2:
+            raise InputError(
+                f"starts: expected shape (K, 2n + S), got {_shape_text(starts.shape)}"
+            )
+        starts = starts.tolist()
     if isinstance(starts, (str, bytes)) or not isinstance(starts, (Sequence, type(None))):
         raise InputError(f"starts: expected a sequence of starts, got {type(starts).__name__}")
-    given = []
-    for i, z in enumerate(starts or []):
+    given: List[List[str]] = []
+    for i, z in enumerate([] if starts is None else starts):
+        if isinstance(z, np.ndarray):
+            z = z.tolist()
         if isinstance(z, (str, bytes)) or not isinstance(z, Sequence):
             raise InputError(f"starts[{i}]: expected a sequence of 2n + S numbers")
         given.append([_number(x, f"starts[{i}][{k}]") for k, x in enumerate(z)])
     report = json.loads(
-        _native.orbits(_scene(scene), period, given, grid, contact, max_contacts)
+        _native.orbits(as_scene(scene), period, given, grid, contact, max_contacts)
     )
     found = [
         Orbit(

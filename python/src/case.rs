@@ -4,7 +4,7 @@
 //! The Python layer turns its arguments into that format's JSON (floats as JSON numbers in
 //! their shortest round-trip text, `Fraction`s and decimal strings as strings), so a case
 //! means the same thing from Python and from the command line, bit for bit; in `f64` the
-//! JSON numbers are read as the floats they were ([`noslip_case::Case::from_floats`]), so a
+//! JSON numbers are read as the floats they were ([`noslip_case::case::Case::from_floats`]), so a
 //! subnormal float is taken as it is, where the command refuses a decimal that would round
 //! below the normal range.
 
@@ -15,8 +15,8 @@ use noslip_case::CaseError;
 use pyo3::prelude::*;
 use serde_json::Value;
 
-/// Collide one case given as JSON text; return the output JSON text (the `noslip collide`
-/// output of that case). `exact`: exact rationals (output numbers are `"p/q"` strings).
+/// Collide one case given as JSON text; return the output JSON text (the ``noslip collide``
+/// output of that case). ``exact``: exact rationals (output numbers are ``"p/q"`` strings).
 #[pyfunction]
 #[pyo3(signature = (case, exact))]
 pub fn collide_case(py: Python<'_>, case: &str, exact: bool) -> PyResult<String> {

@@ -3,6 +3,7 @@
 //! their reports returned as the JSON text those commands write (the Python layer parses it).
 
 use crate::error::{input_error, unsigned};
+use crate::signals::Signals;
 use noslip_accuracy::{
     check_samples, dim_result, AccuracyReport, Options as ReportOptions, Provenance, MAX_SAMPLES,
 };
@@ -33,8 +34,8 @@ fn check_dims(dims: &[Bound<'_, PyAny>]) -> PyResult<Vec<usize>> {
     Ok(dims)
 }
 
-/// The exact verification of the generated kernels of `dims`, `points` random points per
-/// identity: `verify.json`'s text.
+/// The exact verification of the generated kernels of ``dims``, ``points`` random points per
+/// identity: ``verify.json``'s text.
 #[pyfunction]
 #[pyo3(signature = (dims, points))]
 pub fn verify(
@@ -49,9 +50,13 @@ pub fn verify(
         points,
         ..VerifyOptions::default()
     };
-    Ok(py.detach(|| {
+    // Asked before each point of each identity (milliseconds each in exact rationals): the
+    // clock is read every time.
+    let signals = Signals::new(1);
+    let interrupted = || signals.interrupted();
+    let json = py.detach(|| {
         let start = Instant::now();
-        let results = suite::run(&dims, &opts, &mut |_| {});
+        let results = suite::run_interruptible(&dims, &opts, &mut |_| {}, &interrupted);
         Report {
             tool: format!("noslip-python {}", env!("CARGO_PKG_VERSION")),
             seed: opts.seed,
@@ -60,11 +65,15 @@ pub fn verify(
             seconds: start.elapsed().as_secs_f64(),
         }
         .to_json()
-    }))
+    });
+    match signals.raised() {
+        Some(e) => Err(e),
+        None => Ok(json),
+    }
 }
 
-/// The accuracy report of `dims`, `samples` cases per dimension and regime, seed `seed`:
-/// `report.json`'s text.
+/// The accuracy report of ``dims``, ``samples`` cases per dimension and regime, seed ``seed``:
+/// ``report.json``'s text.
 #[pyfunction]
 #[pyo3(signature = (dims, samples, seed))]
 pub fn report(

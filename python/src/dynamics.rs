@@ -6,10 +6,15 @@
 
 use crate::error::{input_error, unsigned, unsigned_opt};
 use crate::scene::Scene;
+use crate::signals::Signals;
 use collision_core::Generated;
 use noslip_dynamics::lyapunov::stats::Estimate;
-use noslip_dynamics::lyapunov::{qr, two_trajectory, Dim, Options, Spectrum, MAX_BLOCKS};
-use noslip_dynamics::orbits::search::{search, Search, SearchError, DEFAULT_MAX_CONTACTS};
+use noslip_dynamics::lyapunov::{
+    qr_interruptible, two_trajectory_interruptible, Dim, Options, Spectrum, MAX_BLOCKS,
+};
+use noslip_dynamics::orbits::search::{
+    search_interruptible, Search, SearchError, DEFAULT_MAX_CONTACTS,
+};
 use noslip_dynamics::Law;
 use noslip_scene::parse_exact;
 use noslip_sim::setup::setup;
@@ -21,15 +26,17 @@ fn spectrum<const N: usize, const S: usize>(
     scene: &noslip_scene::Scene,
     options: &Options,
     two: bool,
+    signals: &Signals,
 ) -> Result<Spectrum, String>
 where
     Generated: Dim<N, S>,
 {
     let setup = setup::<N, S>(scene).map_err(|e| format!("{}: {e}", scene.origin))?;
+    let interrupted = || signals.interrupted();
     let result = if two {
-        two_trajectory(setup, options)
+        two_trajectory_interruptible(setup, options, &interrupted)
     } else {
-        qr(setup, options)
+        qr_interruptible(setup, options, &interrupted)
     };
     // The engine's messages name the command's options (`--k`, `--events`): here they are
     // the keyword arguments of the same names.
@@ -64,7 +71,7 @@ fn estimates<'py>(
     )
 }
 
-/// Lyapunov exponents of `scene` (see the Python docstring of `noslip.lyapunov`).
+/// Lyapunov exponents of ``scene`` (see the Python docstring of ``noslip.lyapunov``).
 #[pyfunction]
 #[pyo3(signature = (scene, events, k, method, seed, blocks, every, contact))]
 #[allow(clippy::too_many_arguments)]
@@ -112,15 +119,20 @@ pub fn lyapunov<'py>(
     };
     let scene = &scene.get().inner;
     let n = scene.dim;
-    let s = py
-        .detach(|| {
-            collision_core::with_dim!(
-                n,
-                |N, S| spectrum::<N, S>(scene, &options, two),
-                Err(format!("{}: dimension {n} has no kernels", scene.origin))
-            )
-        })
-        .map_err(input_error)?;
+    // Asked before every contact (a few µs each with the tangent maps): the clock is read
+    // every 256.
+    let signals = Signals::new(256);
+    let s = py.detach(|| {
+        collision_core::with_dim!(
+            n,
+            |N, S| spectrum::<N, S>(scene, &options, two, &signals),
+            Err(format!("{}: dimension {n} has no kernels", scene.origin))
+        )
+    });
+    if let Some(e) = signals.raised() {
+        return Err(e);
+    }
+    let s = s.map_err(input_error)?;
     let out = PyDict::new(py);
     out.set_item("method", s.method)?;
     out.set_item("contact", contact.unwrap_or("scene"))?;
@@ -151,10 +163,10 @@ pub fn lyapunov<'py>(
     Ok(out)
 }
 
-/// The periodic orbits of period `period` of a one-ball table (see the Python docstring of
-/// `noslip.orbits`): `orbits.json`'s text. `starts` are rationals or decimals as text.
-/// `max_contacts` bounds the search's work as `noslip orbits --max-contacts` does (default
-/// [`DEFAULT_MAX_CONTACTS`]): the search stops there and `orbits.json` says so (`stopped`).
+/// The periodic orbits of period ``period`` of a one-ball table (see the Python docstring of
+/// ``noslip.orbits``): ``orbits.json``'s text. ``starts`` are rationals or decimals as text.
+/// ``max_contacts`` bounds the search's work as ``noslip orbits --max-contacts`` does (default
+/// ``DEFAULT_MAX_CONTACTS``): the search stops there and ``orbits.json`` says so (``stopped``).
 #[pyfunction]
 #[pyo3(signature = (scene, period, starts, grid, contact, max_contacts=None))]
 pub fn orbits(
@@ -193,15 +205,22 @@ pub fn orbits(
     };
     let scene = &scene.get().inner;
     let n = scene.dim;
-    let report = py
-        .detach(|| {
-            collision_core::with_dim!(
-                n,
-                |N, S| search::<N, S>(scene, &ask).map_err(|e| message(&e)),
-                Err(format!("{}: dimension {n} has no kernels", scene.origin))
-            )
-        })
-        .map_err(input_error)?;
+    // Asked before each start (milliseconds to a second of Newton's method each): the
+    // clock is read every time.
+    let signals = Signals::new(1);
+    let interrupted = || signals.interrupted();
+    let report = py.detach(|| {
+        collision_core::with_dim!(
+            n,
+            |N, S| search_interruptible::<N, S>(scene, &ask, &mut |_| {}, &interrupted)
+                .map_err(|e| message(&e)),
+            Err(format!("{}: dimension {n} has no kernels", scene.origin))
+        )
+    });
+    if let Some(e) = signals.raised() {
+        return Err(e);
+    }
+    let report = report.map_err(input_error)?;
     serde_json::to_string(&report).map_err(|e| input_error(format!("internal error: {e}")))
 }
 

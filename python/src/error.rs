@@ -8,7 +8,7 @@ create_exception!(
     noslip,
     InputError,
     PyValueError,
-    "Bad input: the message names the field (`bodies[1].gamma2: ...`, `row 17: normal: ...`)."
+    "Bad input (a ``ValueError``): the message names the field (``bodies[1].gamma2: ...``, ``row 17: normal: ...``)."
 );
 
 /// An [`InputError`] with `message`.

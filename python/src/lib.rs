@@ -8,13 +8,14 @@
 //!   validation), in `f64` or exact rationals.
 //! - [`batch`]: a batch of collisions on NumPy arrays, the GIL released, rayon threads, the
 //!   batch kernels' run-time ISA dispatch.
-//! - [`reference`]: the benchmark's Rust references for `collide_batch`, timed in Rust.
+//! - [`reference`](mod@reference): the benchmark's Rust references for `collide_batch`, timed in Rust.
 //! - [`scene`]: the `Scene` class (TOML text, file or dict; picklable).
 //! - [`simulate`]: a run of a scene, its events log and energy samples as NumPy arrays.
 //! - [`dynamics`]: `lyapunov` (the exponents of a scene and their running estimate) and
 //!   `orbits` (the periodic orbits of a one-ball table).
 //! - [`checks`]: `verify` and `report`, their reports as JSON text.
 //! - [`error`]: `InputError`, a `ValueError` whose message names the field.
+//! - [`signals`]: Ctrl-C in the long loops (`simulate`, `lyapunov`, `orbits`, `verify`).
 
 #![warn(missing_docs, unreachable_pub)]
 
@@ -25,6 +26,7 @@ pub mod dynamics;
 pub mod error;
 pub mod reference;
 pub mod scene;
+pub mod signals;
 pub mod simulate;
 
 use pyo3::prelude::*;
@@ -38,6 +40,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::collide_batch_f32, m)?)?;
     m.add_function(wrap_pyfunction!(reference::reference_seconds, m)?)?;
     m.add_function(wrap_pyfunction!(batch::isa, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::params::batch_params_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::params::batch_params_f32, m)?)?;
     m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::lyapunov, m)?)?;
@@ -45,5 +49,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(checks::verify, m)?)?;
     m.add_function(wrap_pyfunction!(checks::report, m)?)?;
     m.add("DIMS", collision_core::DIMS.to_vec())?;
+    // The package's version: the crate's, which python/pyproject.toml repeats (a test
+    // checks they agree).
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -98,9 +98,9 @@ type OutChunk<'a> = (
 /// Rows per chunk of the `rows` reference (runs of whole chunks are shared between threads).
 const CHUNK: usize = 512;
 
-/// The seconds of each of `repeats` runs of each reference on the same
-/// `float64` rows (every body must move: `inv_mass > 0`). Arrays must be C-contiguous.
-/// With `parallel` on rayon's threads (wall clock), else on the calling thread (its CPU
+/// The seconds of each of ``repeats`` runs of each reference on the same
+/// ``float64`` rows (every body must move: ``inv_mass > 0``). Arrays must be C-contiguous.
+/// With ``parallel`` on rayon's threads (wall clock), else on the calling thread (its CPU
 /// time).
 #[pyfunction]
 #[pyo3(signature = (normal, body1, body2, repeats, parallel=true))]

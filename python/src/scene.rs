@@ -7,7 +7,18 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::{Path, PathBuf};
 
-/// A validated scene and the TOML text it was read from.
+/// A validated scene (the TOML format of ``noslip simulate``) and the text it was read from.
+///
+/// Made from TOML text (``Scene(text)``), a file (``Scene.from_file``) or a dict
+/// (``Scene.from_dict``); pickles as its text and origin (a Dask worker rebuilds the same
+/// scene), and compares equal to a scene of the same text and origin.
+///
+/// Parameters
+/// ----------
+/// text : str
+///     The scene as TOML.
+/// origin : str
+///     The scene's name in messages (default ``"<string>"``).
 #[pyclass(module = "noslip._native", frozen)]
 pub struct Scene {
     text: String,
@@ -294,7 +305,26 @@ fn dict_error(
     emitted: &Emitter,
     big_ints: &[(String, String)],
 ) -> noslip_scene::SceneError {
-    if let Some(path) = offset_of(&emitted.text, &e.place).and_then(|o| emitted.path_at(o)) {
+    let offset = offset_of(&emitted.text, &e.place);
+    // A missing field is reported at the table that lacks it (the top-level table starts at
+    // byte 0, where the first key also starts): name the field itself, `species` or
+    // `box.boundary`, not the first key of the table (`dim`).
+    let missing = e
+        .message
+        .strip_prefix("missing field `")
+        .and_then(|rest| rest.strip_suffix('`'))
+        .map(str::to_string);
+    if let (Some(field), Some(o)) = (&missing, offset) {
+        let table = if o == 0 {
+            ""
+        } else {
+            emitted.path_at(o).unwrap_or("")
+        };
+        e.place = join(table, field);
+        e.message = "missing (a required field)".to_string();
+        return e;
+    }
+    if let Some(path) = offset.and_then(|o| emitted.path_at(o)) {
         e.place = path.to_string();
     } else if e.place.starts_with("line ") {
         e.place = "scene".to_string();
@@ -317,11 +347,23 @@ fn dict_error(
 
 #[pymethods]
 impl Scene {
-    /// A scene from TOML `text`; `origin` names it in messages. Text that fails to parse
-    /// and looks like a file name (one line, ending in `.toml` or naming a file) gets a
-    /// hint to use `Scene.from_file`.
+    /// A scene from TOML text.
+    ///
+    /// Parameters
+    /// ----------
+    /// text : str
+    ///     The scene as TOML (the format of ``noslip simulate``, ``docs/scenes.md``).
+    /// origin : str
+    ///     The scene's name in messages (default ``"<string>"``).
+    ///
+    /// Raises
+    /// ------
+    /// InputError
+    ///     A bad scene, naming the place (``<string>: line 3, column 1: ...``). Text that
+    ///     looks like a file name (one line, ending in ``.toml`` or naming a file) gets a hint
+    ///     to use ``Scene.from_file``.
     #[new]
-    #[pyo3(signature = (text, origin = "<string>".to_string()))]
+    #[pyo3(signature = (text, origin = "<string>".to_string()), text_signature = "(text, origin='<string>')")]
     fn new(text: String, origin: String) -> PyResult<Self> {
         let inner = parse(&text, &origin)?;
         Ok(Scene {
@@ -331,8 +373,24 @@ impl Scene {
         })
     }
 
-    /// A scene from a TOML file (at most 16 MiB, as for `noslip simulate`).
+    /// A scene from a TOML file.
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     The file (at most 16 MiB, as for ``noslip simulate``).
+    ///
+    /// Returns
+    /// -------
+    /// Scene
+    ///     The scene, its ``origin`` the path.
+    ///
+    /// Raises
+    /// ------
+    /// InputError
+    ///     A file that cannot be read, or a bad scene naming the place.
     #[staticmethod]
+    #[pyo3(text_signature = "(path)")]
     fn from_file(path: PathBuf) -> PyResult<Self> {
         let inner =
             noslip_scene::Scene::from_file(&path).map_err(|e| input_error(e.to_string()))?;
@@ -345,12 +403,29 @@ impl Scene {
         })
     }
 
-    /// A scene from a dict with the TOML file's structure (`{"dim": 2, "box": {...},
-    /// "species": [...], ...}`); exact numbers as strings (`"1/20"`) or `Fraction`s. Errors
-    /// name the dict path (`<dict>: species[0].mass: ...`); containers nested more than
-    /// [`MAX_DICT_DEPTH`] deep (or inside themselves) are refused.
+    /// A scene from a dict with the TOML file's structure.
+    ///
+    /// Parameters
+    /// ----------
+    /// scene : dict
+    ///     ``{"dim": 2, "box": {...}, "species": [...], ...}``: dicts, lists, tuples, bools,
+    ///     ints, floats and strings; exact numbers as strings (``"1/20"``) or ``Fraction``.
+    /// origin : str
+    ///     The scene's name in messages (default ``"<dict>"``).
+    ///
+    /// Returns
+    /// -------
+    /// Scene
+    ///     The scene; its ``toml`` is the text written from the dict.
+    ///
+    /// Raises
+    /// ------
+    /// InputError
+    ///     A bad scene, naming the dict path (``<dict>: species[0].mass: ...``, a missing
+    ///     field by its own path: ``<dict>: species: missing (a required field)``);
+    ///     containers nested more than 64 deep (or inside themselves) are refused.
     #[staticmethod]
-    #[pyo3(signature = (scene, origin = "<dict>".to_string()))]
+    #[pyo3(signature = (scene, origin = "<dict>".to_string()), text_signature = "(scene, origin='<dict>')")]
     fn from_dict(scene: &Bound<'_, PyDict>, origin: String) -> PyResult<Self> {
         let mut reader = DictReader {
             origin: &origin,
@@ -370,31 +445,31 @@ impl Scene {
         })
     }
 
-    /// The TOML text of the scene.
+    /// str: the TOML text of the scene.
     #[getter]
     fn toml(&self) -> &str {
         &self.text
     }
 
-    /// Where the scene came from (a file name, `<string>`, `<dict>`).
+    /// str: where the scene came from (a file name, ``<string>``, ``<dict>``).
     #[getter]
     fn origin(&self) -> &str {
         &self.origin
     }
 
-    /// The dimension `n`.
+    /// int: the dimension ``n``.
     #[getter]
     fn dim(&self) -> usize {
         self.inner.dim
     }
 
-    /// The scene's `description`.
+    /// str: the scene's ``description``.
     #[getter]
     fn description(&self) -> &str {
         &self.inner.description
     }
 
-    /// The number of balls.
+    /// int: the number of balls.
     #[getter]
     fn balls(&self) -> usize {
         self.inner.ball_count()
@@ -408,12 +483,29 @@ impl Scene {
         ))
     }
 
+    /// Two scenes are equal when their TOML text and origin are: a pickle round trip (which
+    /// rebuilds the scene from both) gives an equal scene.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Scene>()
+            .is_ok_and(|o| o.get().text == self.text && o.get().origin == self.origin)
+    }
+
+    /// The hash of the TOML text and origin (equal scenes hash alike).
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        (&self.text, &self.origin).hash(&mut h);
+        h.finish()
+    }
+
     fn __repr__(&self) -> String {
         format!(
-            "Scene(origin={:?}, dim={}, balls={})",
+            "Scene(origin={:?}, dim={}, balls={}, description={:?})",
             self.origin,
             self.inner.dim,
-            self.inner.ball_count()
+            self.inner.ball_count(),
+            self.inner.description
         )
     }
 }

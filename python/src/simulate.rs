@@ -8,6 +8,7 @@
 
 use crate::error::{input_error, unsigned_opt};
 use crate::scene::Scene;
+use crate::signals::Signals;
 use collision_core::{Generated, Kernel};
 use noslip_sim::boundary_map::{self, Row};
 use noslip_sim::run::{check_time, run_observed, Limits, Summary, Trace};
@@ -40,10 +41,14 @@ struct Keep {
 /// message naming the argument).
 const CAPPED: &str = "the records reached the memory cap";
 
+/// The error of a run stopped by a signal (the handler's exception is raised instead).
+const INTERRUPTED: &str = "interrupted";
+
 fn run_dim<const N: usize, const S: usize>(
     scene: &noslip_scene::Scene,
     limits: &Limits,
     keep: Keep,
+    signals: &Signals,
 ) -> Result<Run, RunError>
 where
     Generated: Kernel<f64, N, S>,
@@ -76,11 +81,15 @@ where
             if index > keep.contacts {
                 return Err(std::io::Error::other(CAPPED));
             }
+            if signals.interrupted() {
+                return Err(std::io::Error::other(INTERRUPTED));
+            }
             Ok(())
         },
     )
     .map_err(|e| match e.to_string().as_str() {
         CAPPED => RunError::Capped(sim.now()),
+        INTERRUPTED => RunError::Interrupted,
         _ => RunError::Input(format!("internal error: the log in memory failed: {e}")),
     })?;
     Ok(Run {
@@ -91,11 +100,12 @@ where
     })
 }
 
-/// Why a run gave no result: bad input (the message), or the memory cap reached at this
-/// simulated time.
+/// Why a run gave no result: bad input (the message), the memory cap reached at this
+/// simulated time, or a signal handler's exception (Ctrl-C).
 enum RunError {
     Input(String),
     Capped(f64),
+    Interrupted,
 }
 
 /// The events log as the simulator writes it (JSON lines), read into [`Columns`] line by
@@ -284,12 +294,12 @@ fn time_of(t: f64) -> PyResult<f64> {
     check_time(t).map_err(|m| input_error(format!("time: {m}")))
 }
 
-/// Run `scene` to `events` contacts or simulated `time` (the scene's `[simulation]`
-/// defaults, else 100000 contacts); keep the events log when `log`, the boundary map when
-/// `boundary_map`, their memory at most `max_memory` bytes (refused up front when `events`
-/// is known, else the run stops with an error at the cap). Returns a dict: `summary` (JSON
-/// text of the simulator's summary), `energy` (event counts and relative drifts of the
-/// samples), `events` (the log's columns as arrays), `boundary_map`.
+/// Run ``scene`` to ``events`` contacts or simulated ``time`` (the scene's ``[simulation]``
+/// defaults, else 100000 contacts); keep the events log when ``log``, the boundary map when
+/// ``boundary_map``, their memory at most ``max_memory`` bytes (refused up front when ``events``
+/// is known, else the run stops with an error at the cap). Returns a dict: ``summary`` (JSON
+/// text of the simulator's summary), ``energy`` (event counts and relative drifts of the
+/// samples), ``events`` (the log's columns as arrays), ``boundary_map``.
 #[pyfunction]
 #[pyo3(signature = (scene, events, time, log, boundary_map, max_memory))]
 pub fn simulate<'py>(
@@ -354,17 +364,24 @@ pub fn simulate<'py>(
         traced: 0,
         contact_points: 0,
     };
+    // Asked after each contact; the clock is read every 1024 contacts (under a
+    // millisecond of work).
+    let signals = Signals::new(1024);
     let done = py.detach(|| {
         collision_core::with_dim!(
             n,
-            |N, S| run_dim::<N, S>(scene, &limits, keep),
+            |N, S| run_dim::<N, S>(scene, &limits, keep, &signals),
             Err(RunError::Input(format!(
                 "{}: dimension {n} has no kernels",
                 scene.origin
             )))
         )
     });
+    if let Some(e) = signals.raised() {
+        return Err(e);
+    }
     let done = done.map_err(|e| match e {
+        RunError::Interrupted => input_error("internal error: interrupted without a signal"),
         RunError::Input(m) => input_error(m),
         RunError::Capped(t) => input_error(format!(
             "time: the run to t = {} with {} reached max_memory = {max_memory} bytes after \

@@ -210,12 +210,13 @@ def test_shapes_and_dtypes_are_checked_naming_the_field():
     wrong = [dict(bodies[0]), dict(bodies[1], velocity=bodies[1]["velocity"][:, :2])]
     with pytest.raises(noslip.InputError, match=r"^bodies\[1\]\.velocity: expected shape \(10, 3\)"):
         noslip.collide_batch(nu, wrong)
-    wrong = [dict(bodies[0], radius=bodies[0]["radius"].astype(np.float32)), bodies[1]]
-    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.radius: dtype float32"):
-        noslip.collide_batch(nu, wrong)
-    with pytest.raises(noslip.InputError, match=r"^normal: dtype"):
-        noslip.collide_batch(nu.astype(int), bodies)
-    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.mass: unknown key"):
+    # Types are cast as ufuncs cast them (test_numpy_feel.py); what no float type holds is
+    # refused, naming the field.
+    with pytest.raises(noslip.InputError, match=r"^normal: dtype complex128"):
+        noslip.collide_batch(nu.astype(complex), bodies)
+    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.spin: unknown key"):
+        noslip.collide_batch(nu, [dict(bodies[0], spin=1.0), bodies[1]])
+    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.inv_mass: conflicts with mass"):
         noslip.collide_batch(nu, [dict(bodies[0], mass=1.0), bodies[1]])
     with pytest.raises(noslip.InputError, match=r"normal: expected shape \(N, n\) with n in"):
         noslip.collide_batch(np.zeros((4, 7)), bodies)
@@ -414,7 +415,7 @@ def test_arrays_with_the_wrong_number_of_dimensions_are_named():
         (1, "velocity", np.zeros((10, 3, 1)),
          r"^bodies\[1\]\.velocity: expected shape \(10, 3\), got \(10, 3, 1\)$"),
         (0, "angular_velocity", 0.0,
-         r"^bodies\[0\]\.angular_velocity: expected shape \(10, 3, 3\), got a scalar$"),
+         r"^bodies\[0\]\.angular_velocity: expected shape \(10, 3, 3\), got \(\)$"),
     ]
     for b, key, value, message in cases:
         given = [dict(body) for body in bodies]
@@ -423,7 +424,7 @@ def test_arrays_with_the_wrong_number_of_dimensions_are_named():
             noslip.collide_batch(nu, given)
     out = noslip.collide_batch(nu, bodies)
     out[1]["velocity"] = np.zeros(10)
-    message = r"^out\[1\]\.velocity: expected shape \[10, 3\], got \[10\]$"
+    message = r"^out\[1\]\.velocity: expected shape \(10, 3\), got \(10,\)$"
     with pytest.raises(noslip.InputError, match=message):
         noslip.collide_batch(nu, bodies, out=out)
 

@@ -14,6 +14,8 @@ CASES = cases(seed=13, per_dim=6)
 
 
 def flat(x):
+    if hasattr(x, "tolist"):  # collide's float results are NumPy arrays
+        x = x.tolist()
     if isinstance(x, list):
         return [y for v in x for y in flat(v)]
     if isinstance(x, dict):

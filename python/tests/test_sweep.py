@@ -46,10 +46,10 @@ def test_a_killed_worker_loses_nothing(serial, tmp_path):
 
         def kill_after_first_part():
             deadline = time.time() + 120
-            while time.time() < deadline and not list(store.glob("part-*.csv")):
+            while time.time() < deadline and not list(store.glob("part-*.parquet")):
                 time.sleep(0.01)
             os.kill(pids[0], signal.SIGKILL)
-            killed.append(len(list(store.glob("part-*.csv"))))
+            killed.append(len(list(store.glob("part-*.parquet"))))
 
         killer = threading.Thread(target=kill_after_first_part)
         killer.start()
@@ -67,7 +67,7 @@ def test_a_killed_worker_loses_nothing(serial, tmp_path):
     assert pids[0] not in alive
     assert len(result) == 24
     pd.testing.assert_frame_equal(result, serial, check_exact=True)
-    assert len(list(store.glob("part-*.csv"))) == 24
+    assert len(list(store.glob("part-*.parquet"))) == 24
 
 
 def test_a_rerun_with_the_store_computes_only_missing_points(serial, tmp_path):

@@ -119,12 +119,33 @@ pub fn identity_checks<const N: usize, const S: usize>(
 where
     Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
 {
+    identity_checks_interruptible(kernel, variant, opts, progress, &|| false)
+}
+
+/// [`identity_checks`], asking `interrupted` before each point (see [`run_interruptible`]).
+fn identity_checks_interruptible<const N: usize, const S: usize>(
+    kernel: &ExactKernel<N, S>,
+    variant: Variant,
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+    interrupted: &dyn Fn() -> bool,
+) -> Vec<CheckResult>
+where
+    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
+{
     Identity::for_variant(variant)
         .iter()
         .enumerate()
         .map(|(k, &check)| {
             let (outcome, seconds) = timed(|| {
-                identity::run::<N, S>(kernel, variant, check, opts.points, opts.seed + k as u64)
+                identity::run::<N, S>(
+                    kernel,
+                    variant,
+                    check,
+                    opts.points,
+                    opts.seed + k as u64,
+                    interrupted,
+                )
             });
             let degree = identity::degree(N, variant, check);
             let r = CheckResult {
@@ -147,10 +168,11 @@ where
         .collect()
 }
 
-/// Every check for dimension `N`.
+/// Every check for dimension `N`; `interrupted` as in [`run_interruptible`].
 pub fn run_dim<const N: usize, const S: usize>(
     opts: &Options,
     progress: &mut dyn FnMut(&CheckResult),
+    interrupted: &dyn Fn() -> bool,
 ) -> Vec<CheckResult>
 where
     Generated: Kernel<Exact, N, S>
@@ -159,11 +181,12 @@ where
 {
     let mut out = Vec::new();
     for variant in Variant::ALL {
-        out.extend(identity_checks::<N, S>(
+        out.extend(identity_checks_interruptible::<N, S>(
             generated::<N, S>(variant).as_ref(),
             variant,
             opts,
             progress,
+            interrupted,
         ));
         let mut rng = Rng::new(opts.seed ^ (N as u64) << 8);
         let mut decomposition = Ok(());
@@ -264,11 +287,24 @@ pub fn run(
     opts: &Options,
     progress: &mut dyn FnMut(&CheckResult),
 ) -> Vec<CheckResult> {
+    run_interruptible(dims, opts, progress, &|| false)
+}
+
+/// [`run`], asking `interrupted` before each point of each identity check (a front end's
+/// Ctrl-C: Python checks its signals there). Once it says stop, each identity check left
+/// fails at once ("interrupted at point k") and the results are to be discarded; the other
+/// checks (decomposition, limits, inertia) are not asked, each takes well under a second.
+pub fn run_interruptible(
+    dims: &[usize],
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+    interrupted: &dyn Fn() -> bool,
+) -> Vec<CheckResult> {
     dims.iter()
         .flat_map(|&n| {
             collision_core::with_dim!(
                 n,
-                |N, S| run_dim::<N, S>(opts, progress),
+                |N, S| run_dim::<N, S>(opts, progress, interrupted),
                 panic!(
                     "dimension {n} has no generated kernels ({:?})",
                     collision_core::DIMS

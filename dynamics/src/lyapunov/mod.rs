@@ -10,6 +10,10 @@
 //!
 //! Both report per unit time and per contact (all contacts of the scene), with the standard
 //! error over blocks ([`stats`]) after a warm-up block that is not measured.
+//!
+//! [`qr_interruptible`] and [`two_trajectory_interruptible`] take an [`Interrupted`] hook,
+//! asked before every contact (a front end's Ctrl-C: Python checks its signals there); the
+//! run then ends with [`LyapunovError::Interrupted`] and no result.
 
 pub mod cost;
 mod qr;
@@ -17,8 +21,18 @@ pub mod stats;
 pub mod touch;
 mod two;
 
-pub use qr::{choice, qr};
-pub use two::{two_trajectory, D0};
+pub use qr::{choice, qr, qr_interruptible};
+pub use two::{two_trajectory, two_trajectory_interruptible, D0};
+
+/// A caller's request to stop a long run: asked before every contact, `true` ends the run
+/// with [`LyapunovError::Interrupted`]. It is called millions of times a second, so it must
+/// be cheap (a counter, a clock read every few thousand calls).
+pub type Interrupted<'a> = &'a (dyn Fn() -> bool + Sync);
+
+/// The hook of a run that is never interrupted.
+pub fn never() -> bool {
+    false
+}
 
 use crate::law::Law;
 use collision_core::{Ball, BodyState, Generated, Kernel};
@@ -151,6 +165,8 @@ pub enum LyapunovError {
         /// The contact at which it was found.
         at: u64,
     },
+    /// The caller's [`Interrupted`] hook asked the run to stop.
+    Interrupted,
 }
 
 impl fmt::Display for LyapunovError {
@@ -209,6 +225,7 @@ impl fmt::Display for LyapunovError {
                 "the two trajectories met different contacts near contact {at}: renormalise more \
                  often (--every)"
             ),
+            LyapunovError::Interrupted => write!(f, "interrupted"),
         }
     }
 }
@@ -218,12 +235,17 @@ impl std::error::Error for LyapunovError {}
 /// The next contact of the engine. A quiet notice is passed over unless the run should stop
 /// there by the rule `simulate` stops by ([`noslip_sim::run::quiet_stop`]: the reach of
 /// [`noslip_sim::run::MAX_QUIET_BOX_LENGTHS`] spent, or a periodic gas too dilute to meet
-/// within it), so a flight along a corridor cannot hold a run for ever.
+/// within it), so a flight along a corridor cannot hold a run for ever. `interrupted` is
+/// asked first, and again at each quiet notice.
 fn next_contact<const N: usize, const S: usize, K: noslip_sim::PairKernels<f64, N, S>>(
     sim: &mut Simulation<N, S, K>,
     species: &[Ball<f64>],
+    interrupted: Interrupted<'_>,
 ) -> Result<Event<N, S>, LyapunovError> {
     loop {
+        if interrupted() {
+            return Err(LyapunovError::Interrupted);
+        }
         match sim.step(f64::INFINITY) {
             Step::Contact(e) => return Ok(e),
             Step::Never(why) => return Err(LyapunovError::NoContact(why.to_string())),

@@ -11,7 +11,9 @@
 use super::cost::{self, Choice};
 use super::stats::Blocks;
 use super::touch::{touch, Touch};
-use super::{next_contact, Dim, LyapunovError, Options, Plan, Running, Spectrum};
+use super::{
+    never, next_contact, Dim, Interrupted, LyapunovError, Options, Plan, Running, Spectrum,
+};
 use crate::law::{Law, LawKernels};
 use crate::tangent::{block_len, boundary_contact, flight, pair_contact};
 use collision_core::rng::Rng;
@@ -95,6 +97,19 @@ pub fn qr<const N: usize, const S: usize>(
 where
     Generated: Dim<N, S>,
 {
+    qr_interruptible(setup, options, &never)
+}
+
+/// [`qr`], asking `interrupted` before every contact ([`LyapunovError::Interrupted`] when it
+/// says stop).
+pub fn qr_interruptible<const N: usize, const S: usize>(
+    setup: Setup<N, S>,
+    options: &Options,
+    interrupted: Interrupted<'_>,
+) -> Result<Spectrum, LyapunovError>
+where
+    Generated: Dim<N, S>,
+{
     let plan = Plan::new(options)?;
     let species = setup.species.clone();
     let kinds: Vec<usize> = setup.bodies.iter().map(|b| b.species).collect();
@@ -125,7 +140,7 @@ where
     let fly =
         |v: &mut [f64], b: usize, dt: f64| flight::<f64, N>(&mut v[b * len..(b + 1) * len], &dt);
     for c in 1..=plan.events {
-        let e = next_contact(&mut sim, &species)?;
+        let e = next_contact(&mut sim, &species, interrupted)?;
         let law = Law::from(sim.contact_kind(&e.contact));
         match touch(&e.contact, sim.geometry(&e.contact), radius) {
             Touch::Boundary { ball, geometry } => {

@@ -10,7 +10,10 @@
 
 use super::stats::Blocks;
 use super::touch::unordered;
-use super::{next_contact, push_state, Dim, LyapunovError, Options, Plan, Running, Spectrum};
+use super::{
+    never, next_contact, push_state, Dim, Interrupted, LyapunovError, Options, Plan, Running,
+    Spectrum,
+};
 use crate::law::{Law, LawKernels};
 use collision_core::rng::Rng;
 use collision_core::{BodyState, Generated};
@@ -33,6 +36,19 @@ const SLACK: usize = 16;
 pub fn two_trajectory<const N: usize, const S: usize>(
     setup: Setup<N, S>,
     options: &Options,
+) -> Result<Spectrum, LyapunovError>
+where
+    Generated: Dim<N, S>,
+{
+    two_trajectory_interruptible(setup, options, &never)
+}
+
+/// [`two_trajectory`], asking `interrupted` before every contact of either run
+/// ([`LyapunovError::Interrupted`] when it says stop).
+pub fn two_trajectory_interruptible<const N: usize, const S: usize>(
+    setup: Setup<N, S>,
+    options: &Options,
+    interrupted: Interrupted<'_>,
 ) -> Result<Spectrum, LyapunovError>
 where
     Generated: Dim<N, S>,
@@ -73,7 +89,7 @@ where
         let (mut a, mut b): (Vec<Contact>, Vec<Contact>) = (Vec::new(), Vec::new());
         let mut t = 0.0;
         for _ in 0..every.min(plan.events - c) {
-            let e = next_contact(&mut reference, &kernels.species)?;
+            let e = next_contact(&mut reference, &kernels.species, interrupted)?;
             a.push(unordered(&e.contact));
             t = e.time;
             c += 1;
@@ -81,7 +97,7 @@ where
         let mut second_time = offset;
         loop {
             while b.len() < a.len() {
-                let e = next_contact(&mut second, &kernels.species)?;
+                let e = next_contact(&mut second, &kernels.species, interrupted)?;
                 b.push(unordered(&e.contact));
                 second_time = offset + e.time;
             }
@@ -91,7 +107,7 @@ where
             if a.len() > every as usize + SLACK || c >= plan.events {
                 return Err(LyapunovError::Diverged { at: c });
             }
-            let e = next_contact(&mut reference, &kernels.species)?;
+            let e = next_contact(&mut reference, &kernels.species, interrupted)?;
             a.push(unordered(&e.contact));
             t = e.time;
             c += 1;

@@ -94,6 +94,8 @@ pub enum SearchError {
     /// The scene is not a one-ball table, or its ball never touches it (the message starts
     /// with the scene's origin).
     Scene(String),
+    /// The caller's hook asked the search to stop ([`search_interruptible`]).
+    Interrupted,
 }
 
 impl SearchError {
@@ -104,7 +106,7 @@ impl SearchError {
             SearchError::From { index, .. } => Some(format!("from[{index}]")),
             SearchError::Grid(_) => Some("grid".into()),
             SearchError::MaxContacts(_) => Some("max-contacts".into()),
-            SearchError::Scene(_) => None,
+            SearchError::Scene(_) | SearchError::Interrupted => None,
         }
     }
 
@@ -116,6 +118,7 @@ impl SearchError {
             | SearchError::MaxContacts(m)
             | SearchError::Scene(m) => m,
             SearchError::From { message, .. } => message,
+            SearchError::Interrupted => "interrupted",
         }
     }
 }
@@ -150,6 +153,25 @@ pub fn search_observed<const N: usize, const S: usize>(
     scene: &Scene,
     ask: &Search,
     progress: &mut dyn FnMut(Progress),
+) -> Result<Report, SearchError>
+where
+    Generated: Kernel<f64, N, S>
+        + Kernel<Dual<f64>, N, S>
+        + Kernel<Exact, N, S>
+        + Kernel<Dual<Exact>, N, S>,
+{
+    search_interruptible::<N, S>(scene, ask, progress, &|| false)
+}
+
+/// [`search_observed`], asking `interrupted` before each start's exact return map and
+/// before each start's Newton search ([`SearchError::Interrupted`] when it says stop: a
+/// front end's Ctrl-C). One start's work between two asks is bounded by `period` and
+/// Newton's steps, not by the number of starts.
+pub fn search_interruptible<const N: usize, const S: usize>(
+    scene: &Scene,
+    ask: &Search,
+    progress: &mut dyn FnMut(Progress),
+    interrupted: &(dyn Fn() -> bool + Sync),
 ) -> Result<Report, SearchError>
 where
     Generated: Kernel<f64, N, S>
@@ -196,6 +218,9 @@ where
             )));
         }
         starts.push(zf);
+        if interrupted() {
+            return Err(SearchError::Interrupted);
+        }
         exact_reports.push(one.exact.as_ref().and_then(|table| {
             exact_start::<N, S>(table, z).and_then(|s| exact(table, &s, ask.period).ok())
         }));
@@ -236,6 +261,9 @@ where
     let (mut misses, mut tried, mut stopped) = (0, 0, None);
     let mut budget = Budget::new(ask.max_contacts);
     for z in &starts {
+        if interrupted() {
+            return Err(SearchError::Interrupted);
+        }
         match newton_within::<N, S>(f, z, ask.period, &mut budget) {
             Ok(o) => merge(f, &mut found, o),
             Err(Miss::Budget) => {

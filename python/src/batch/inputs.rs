@@ -35,8 +35,27 @@ pub(crate) struct Inputs<'a, T> {
     pub(super) bodies: [BodyArrays<'a, T>; 2],
 }
 
+/// A shape as NumPy prints it: `(5, 3)`, `(5,)`, `()`.
+pub(super) fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [one] => format!("({one},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// The one shape message of the package: `field: expected shape (5, 3), got (6, 3)`.
 pub(super) fn shape_error(field: &str, expected: String, got: &[usize]) -> PyErr {
-    input_error(format!("{field}: expected shape {expected}, got {got:?}"))
+    input_error(format!(
+        "{field}: expected shape {expected}, got {}",
+        shape_text(got)
+    ))
 }
 
 impl<'a, T: Copy> Inputs<'a, T> {
@@ -44,9 +63,11 @@ impl<'a, T: Copy> Inputs<'a, T> {
         let (rows, dim) = nu.dim();
         if !collision_core::DIMS.contains(&dim) {
             return Err(input_error(format!(
-                "normal: expected shape (N, n) with n in {:?} (the batch kernels), got {:?}",
-                collision_core::DIMS,
-                nu.shape()
+                "normal: expected shape (N, n) with n in {}..={} (the dimensions with batch \
+                 kernels; noslip.collide takes n up to 16), got {}",
+                collision_core::DIMS[0],
+                collision_core::DIMS[collision_core::DIMS.len() - 1],
+                shape_text(nu.shape())
             )));
         }
         let mut checked = Vec::with_capacity(2);

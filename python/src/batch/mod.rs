@@ -20,6 +20,7 @@
 mod checked;
 mod inputs;
 mod outputs;
+pub mod params;
 mod run;
 mod unchecked;
 
@@ -125,7 +126,7 @@ where
     Ok((s1, v1, s2, v2))
 }
 
-/// `collide_batch` on `float64` arrays (see the Python docstring).
+/// ``collide_batch`` on ``float64`` arrays (see the Python docstring).
 #[pyfunction]
 #[pyo3(signature = (normal, body1, body2, validate, parallel, out=None))]
 pub fn collide_batch_f64<'py>(
@@ -140,7 +141,7 @@ pub fn collide_batch_f64<'py>(
     collide_batch::<f64>(py, normal, body1, body2, validate, parallel, out)
 }
 
-/// `collide_batch` on `float32` arrays (see the Python docstring).
+/// ``collide_batch`` on ``float32`` arrays (see the Python docstring).
 #[pyfunction]
 #[pyo3(signature = (normal, body1, body2, validate, parallel, out=None))]
 pub fn collide_batch_f32<'py>(
@@ -155,7 +156,7 @@ pub fn collide_batch_f32<'py>(
     collide_batch::<f32>(py, normal, body1, body2, validate, parallel, out)
 }
 
-/// The instruction set the batch kernels run on here (`Exec::auto`): `sse2`, `avx2`, `avx512`.
+/// The instruction set the batch kernels run on here (``Exec::auto``): ``sse2``, ``avx2``, ``avx512``.
 #[pyfunction]
 pub fn isa() -> &'static str {
     Exec::auto().isa().name()

@@ -2,7 +2,7 @@
 //! output memory as row-major slices, and one row's states written into it as full skew
 //! matrices.
 
-use super::inputs::shape_error;
+use super::inputs::{shape_error, shape_text};
 use crate::error::input_error;
 use collision_core::batch::StateRowsMut;
 use collision_core::{BodyState, Scalar};
@@ -47,7 +47,7 @@ pub(super) fn check_out<T: Element>(out: &OutIn<'_, T>, rows: usize, n: usize) -
         ] {
             let field = format!("out[{b}].{key}");
             if got != want.as_slice() {
-                return Err(shape_error(&field, format!("{want:?}"), got));
+                return Err(shape_error(&field, shape_text(&want), got));
             }
             if !contiguous {
                 return Err(input_error(format!(

@@ -259,13 +259,16 @@ fn input_name(g: &Graph, id: Id) -> String {
     }
 }
 
-/// Run `identity` at `points` random points; returns the first failure.
+/// Run `identity` at `points` random points; returns the first failure. `interrupted` is
+/// asked before each point (a front end's Ctrl-C): when it says stop, the check fails with
+/// "interrupted at point k" and the caller discards the run.
 pub fn run<const N: usize, const S: usize>(
     kernel: &ExactKernel<N, S>,
     variant: Variant,
     identity: Identity,
     points: usize,
     seed: u64,
+    interrupted: &dyn Fn() -> bool,
 ) -> Result<(), String>
 where
     Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
@@ -273,6 +276,9 @@ where
     let free = generated::<N, S>(Variant::Free);
     let mut rng = Rng::new(seed);
     for k in 0..points {
+        if interrupted() {
+            return Err(format!("interrupted at point {k}"));
+        }
         let p = point::<N, S>(&mut rng, variant == Variant::Fixed);
         check_at(kernel, free.as_ref(), variant, identity, &p)
             .map_err(|e| format!("point {k}: {e}"))?;
@@ -291,7 +297,7 @@ mod tests {
         for variant in Variant::ALL {
             let kernel = generated::<N, S>(variant);
             for &identity in Identity::for_variant(variant) {
-                run::<N, S>(kernel.as_ref(), variant, identity, 1, 7)
+                run::<N, S>(kernel.as_ref(), variant, identity, 1, 7, &|| false)
                     .unwrap_or_else(|e| panic!("n = {N} {variant:?} {identity:?}: {e}"));
                 let d = degree(N, variant, identity);
                 assert!(d > 0 && d < 100_000, "degree {d}");
