@@ -65,11 +65,13 @@ pub fn checks_per_dim() -> usize {
         + 3
 }
 
-/// The identity checks of the rough-ball kernels of `variant` (docs/derivation.md §15).
+/// The identity checks of the rough-ball kernels of `variant` (docs/derivation.md §15),
+/// asking `interrupted` before each point (see [`run_interruptible`]).
 pub fn rough_checks<const N: usize, const S: usize>(
     variant: Variant,
     opts: &Options,
     progress: &mut dyn FnMut(&CheckResult),
+    interrupted: &dyn Fn() -> bool,
 ) -> Vec<CheckResult>
 where
     Generated: RoughKernel<ExactRelaxed, N, S> + Kernel<ExactRelaxed, N, S>,
@@ -80,7 +82,7 @@ where
         .map(|(k, &check)| {
             let seed = opts.seed + 100 + k as u64;
             let (outcome, seconds) =
-                timed(|| rough::run::<N, S>(variant, check, opts.points, seed));
+                timed(|| rough::run::<N, S>(variant, check, opts.points, seed, interrupted));
             let degree = rough::degree(N, variant, check);
             let r = CheckResult {
                 dim: N,
@@ -276,7 +278,7 @@ where
     progress(&r);
     out.push(r);
     for variant in Variant::ALL {
-        out.extend(rough_checks::<N, S>(variant, opts, progress));
+        out.extend(rough_checks::<N, S>(variant, opts, progress, interrupted));
     }
     out
 }

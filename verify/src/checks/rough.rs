@@ -391,18 +391,23 @@ where
 }
 
 /// Run `identity` at `points` random points (`e`, `beta` drawn like every other input unless
-/// the identity fixes them); returns the first failure.
+/// the identity fixes them); returns the first failure. `interrupted` is asked before each
+/// point: once it says stop the check fails at once ("interrupted at point k").
 pub fn run<const N: usize, const S: usize>(
     variant: Variant,
     identity: RoughIdentity,
     points: usize,
     seed: u64,
+    interrupted: &dyn Fn() -> bool,
 ) -> Result<(), String>
 where
     Generated: RoughKernel<ExactRelaxed, N, S> + Kernel<ExactRelaxed, N, S>,
 {
     let mut rng = Rng::new(seed);
     for k in 0..points {
+        if interrupted() {
+            return Err(format!("interrupted at point {k}"));
+        }
         let p = point::<N, S>(&mut rng, variant == Variant::Fixed);
         let (e, beta) = (element(&mut rng), element(&mut rng));
         let law = match identity.law() {
@@ -427,7 +432,7 @@ mod tests {
     {
         for variant in Variant::ALL {
             for &identity in RoughIdentity::for_variant(variant) {
-                run::<N, S>(variant, identity, 2, 11)
+                run::<N, S>(variant, identity, 2, 11, &|| false)
                     .unwrap_or_else(|e| panic!("n = {N} {variant:?} {identity:?}: {e}"));
                 let d = degree(N, variant, identity);
                 assert!(d > 0 && d < 100_000, "degree {d}");
