@@ -86,25 +86,43 @@ pub struct Module {
 ///
 /// Panics if the emission is not valid Rust or not straight-line: both are generator bugs.
 pub fn generate(dim: usize, crate_path: &str) -> Module {
+    assemble(
+        dim,
+        model::build,
+        emit::runtime_imports(crate_path),
+        emit::header,
+        "kernels",
+    )
+}
+
+/// Every variant of `build` in every [`Arith`], emitted after `imports`, checked to be valid
+/// straight-line Rust (panics otherwise, naming the `family`: a generator bug), formatted
+/// under `header`: the pipeline [`generate`] and [`generate_rough`] share.
+fn assemble(
+    dim: usize,
+    build: fn(usize, Variant) -> model::KernelGraph,
+    imports: proc_macro2::TokenStream,
+    header: fn(usize, &[emit::EmittedKernel]) -> String,
+    family: &str,
+) -> Module {
     let kernels: Vec<emit::EmittedKernel> = Arith::ALL
         .iter()
         .flat_map(|&arith| {
             Variant::ALL
                 .iter()
-                .map(move |&v| emit::emit_kernel_as(&model::build(dim, v), arith))
+                .map(move |&v| emit::emit_kernel_as(&build(dim, v), arith))
         })
         .collect();
-    let imports = emit::runtime_imports(crate_path);
     let items = kernels.iter().map(|k| &k.tokens);
     let file = emit::parse(quote::quote!(#imports #(#items)*));
     let violations = straight_line::check(&file);
     assert!(
         violations.is_empty(),
-        "generated kernels for n = {dim} are not straight-line: {violations:?}"
+        "generated {family} for n = {dim} are not straight-line: {violations:?}"
     );
     let source = format!(
         "{}\n{}",
-        emit::header(dim, &kernels),
+        header(dim, &kernels),
         prettyplease::unparse(&file)
     );
     Module {
@@ -130,41 +148,13 @@ pub fn generate(dim: usize, crate_path: &str) -> Module {
 ///
 /// Panics if the emission is not valid Rust or not straight-line: both are generator bugs.
 pub fn generate_rough(dim: usize, crate_path: &str) -> Module {
-    let kernels: Vec<emit::EmittedKernel> = Arith::ALL
-        .iter()
-        .flat_map(|&arith| {
-            Variant::ALL
-                .iter()
-                .map(move |&v| emit::emit_kernel_as(&model::build_rough(dim, v), arith))
-        })
-        .collect();
-    let imports = emit::rough_imports(crate_path);
-    let items = kernels.iter().map(|k| &k.tokens);
-    let file = emit::parse(quote::quote!(#imports #(#items)*));
-    let violations = straight_line::check(&file);
-    assert!(
-        violations.is_empty(),
-        "generated rough kernels for n = {dim} are not straight-line: {violations:?}"
-    );
-    let source = format!(
-        "{}\n{}",
-        emit::rough_header(dim, &kernels),
-        prettyplease::unparse(&file)
-    );
-    Module {
+    assemble(
         dim,
-        source,
-        kernels: kernels
-            .iter()
-            .map(|k| KernelSummary {
-                dim: k.dim,
-                variant: k.variant,
-                arith: k.arith,
-                ops: k.ops,
-                terms: k.terms,
-            })
-            .collect(),
-    }
+        model::build_rough,
+        emit::rough_imports(crate_path),
+        emit::rough_header,
+        "rough kernels",
+    )
 }
 
 /// The file name of dimension `dim`'s rough-ball module: `rough_{dim}.rs`.

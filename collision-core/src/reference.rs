@@ -117,13 +117,20 @@ pub fn momentum_basis<T: Scalar>(nu: &[T], radii: [&T; 2]) -> DMatrix<T> {
     impulse_columns(nu.len(), nu, [coef(radii[0]), coef(radii[1])])
 }
 
-/// The collision map on coordinates, any `n >= 2`, after the checks of
-/// [`crate::collide`].
-pub fn collide_coords<T: Scalar>(
+/// What both maps solve with: the impulse basis `B`, the momentum basis `M B` and the Gram
+/// matrix `B^T M B`.
+struct GramSystem<T: Scalar> {
+    b: DMatrix<T>,
+    mb: DMatrix<T>,
+    gram: DMatrix<T>,
+}
+
+/// The checks of [`crate::collide`] on the coordinates `xi`, then the [`GramSystem`].
+fn gram_system<T: Scalar>(
     nu: &[T],
     balls: [&Ball<T>; 2],
     xi: &DVector<T>,
-) -> Result<DVector<T>, InputError> {
+) -> Result<GramSystem<T>, InputError> {
     let n = nu.len();
     let s = n * (n - 1) / 2;
     if xi.len() != state_len(n) {
@@ -145,6 +152,17 @@ pub fn collide_coords<T: Scalar>(
     let b = impulse_basis(nu, balls)?;
     let mb = momentum_basis(nu, [&balls[0].radius, &balls[1].radius]);
     let gram = b.transpose() * &mb;
+    Ok(GramSystem { b, mb, gram })
+}
+
+/// The collision map on coordinates, any `n >= 2`, after the checks of
+/// [`crate::collide`].
+pub fn collide_coords<T: Scalar>(
+    nu: &[T],
+    balls: [&Ball<T>; 2],
+    xi: &DVector<T>,
+) -> Result<DVector<T>, InputError> {
+    let GramSystem { b, mb, gram } = gram_system(nu, balls, xi)?;
     let rhs = mb.transpose() * xi;
     // B^T M B is positive definite for valid inputs; in floats the elimination can still
     // overflow at extreme parameters.
@@ -182,29 +200,9 @@ pub fn collide_rough_coords<T: Scalar>(
     law: &crate::Restitution<T>,
     xi: &DVector<T>,
 ) -> Result<DVector<T>, InputError> {
-    let n = nu.len();
-    let s = n * (n - 1) / 2;
-    if xi.len() != state_len(n) {
-        return Err(InputError::new(
-            Field::Dim,
-            "state length does not match the normal",
-        ));
-    }
-    let part =
-        |b: usize, k: usize, len: usize| &xi.as_slice()[b * (s + n) + k..b * (s + n) + k + len];
-    validate_parts(
-        nu,
-        balls,
-        [
-            (part(0, 0, s), part(0, s, n)),
-            (part(1, 0, s), part(1, s, n)),
-        ],
-    )?;
-    let b = impulse_basis(nu, balls)?;
-    let mb = momentum_basis(nu, [&balls[0].radius, &balls[1].radius]);
-    let gram = b.transpose() * &mb;
+    let GramSystem { b, mb, gram } = gram_system(nu, balls, xi)?;
     let slip = mb.transpose() * xi;
-    let normal = DVector::from_iterator(n, nu.iter().cloned());
+    let normal = DVector::from_iterator(nu.len(), nu.iter().cloned());
     let dn = slip.dot(&normal);
     let tangential = &slip - &normal * dn.clone();
     let target = &normal * (-(law.e.clone() * dn)) - tangential * law.beta.clone();
