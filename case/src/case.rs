@@ -16,8 +16,9 @@
 //! Sizes are checked against `dim` before any number is read, and `dim` is bounded by
 //! [`MAX_DIM`], so nothing of size `dim` is built from a short input.
 
+pub use crate::body::{BodyInput, Spin};
 use crate::contact::{contact_from_json, Contact};
-use crate::error::{clip, kind, quote, CaseError};
+use crate::error::{clip, join, kind, quote, CaseError};
 use crate::number::{integer_literal, read, scalar_from_json, InputScalar};
 use crate::tiny::Tiny;
 use collision_core::{Inertia, Mass};
@@ -44,32 +45,6 @@ pub const BODY_KEYS: [&str; 7] = [
 ];
 const INERTIA_KEYS: [&str; 3] = ["lambda", "gamma2", "distribution"];
 
-/// The angular velocity as given: the form is kept for the output.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Spin<T> {
-    /// The full `n x n` matrix, row by row.
-    Matrix(Vec<Vec<T>>),
-    /// 2D only: `U = c J`, `J = [[0, -1], [1, 0]]`.
-    Scalar(T),
-    /// 3D only: `U x = omega x x`.
-    Omega([T; 3]),
-}
-
-/// One body as given.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BodyInput<T> {
-    /// `mass`: a number, or `"inf"` for an immovable body.
-    pub mass: Mass<T>,
-    /// `radius`: `R`.
-    pub radius: T,
-    /// From `lambda`, `gamma2` or `distribution` (uniform when none is given).
-    pub inertia: Inertia<T>,
-    /// `angular_velocity`: `U`, in the form given.
-    pub spin: Spin<T>,
-    /// `velocity`: the centre velocity `u`.
-    pub velocity: Vec<T>,
-}
-
 /// One case as given; `normal` and `velocity` have length `dim`, a `Matrix` spin is
 /// `dim x dim`.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,21 +57,6 @@ pub struct Case<T> {
     pub bodies: [BodyInput<T>; 2],
     /// `contact`: the contact law, no-slip unless given ([`crate::contact`]).
     pub contact: Contact<T>,
-}
-
-/// `path.key`, the key quoted unless it is plain (letters, digits, `_`).
-pub(crate) fn join(path: &str, key: &str) -> String {
-    let simple = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    let key = if simple {
-        key.to_string()
-    } else {
-        quote(key, 40)
-    };
-    if path.is_empty() {
-        key
-    } else {
-        format!("{path}.{key}")
-    }
 }
 
 fn object<'a>(

@@ -1,6 +1,7 @@
 //! The whole input: one case or an array of cases, in, and the same shape out.
 
-use crate::case::{join, Case};
+use crate::case::Case;
+use crate::error::join;
 use crate::error::{kind, CaseError};
 use crate::keys::{first_repeated_key, has_every_key, PathStep};
 use crate::number::InputScalar;

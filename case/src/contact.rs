@@ -11,7 +11,7 @@
 //! checked by collision-core (`Restitution::new`), whose error names `contact.e` or
 //! `contact.beta`.
 
-use crate::case::join;
+use crate::error::join;
 use crate::error::{kind, quote, CaseError};
 use crate::number::{scalar_from_json, InputScalar};
 use collision_core::Restitution;

@@ -108,3 +108,18 @@ pub fn kind(v: &serde_json::Value) -> &'static str {
         serde_json::Value::Object(_) => "an object",
     }
 }
+
+/// `path.key`, the key quoted unless it is plain (letters, digits, `_`).
+pub(crate) fn join(path: &str, key: &str) -> String {
+    let simple = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let key = if simple {
+        key.to_string()
+    } else {
+        quote(key, 40)
+    };
+    if path.is_empty() {
+        key
+    } else {
+        format!("{path}.{key}")
+    }
+}

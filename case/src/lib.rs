@@ -17,6 +17,7 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+mod body;
 pub mod case;
 pub mod collide;
 pub mod contact;

@@ -17,7 +17,7 @@
 //! always taken; body scalars below the range are refused on their own, see
 //! [`crate::number::scalar_from_json`].)
 
-use crate::case::{BodyInput, Spin};
+use crate::body::{BodyInput, Spin};
 use crate::error::CaseError;
 use crate::number::{InputScalar, SUBNORMAL_ERROR};
 

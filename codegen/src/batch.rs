@@ -46,7 +46,8 @@
 //!   computed once per call, before the block loop, by the same operations; only the
 //!   per-contact rest runs in the lane loop.
 
-use crate::emit::{self, ident, lit, Namer};
+use crate::bindings::{self, ident, lit, Namer};
+use crate::emit;
 use crate::ir::{Graph, Id, Node};
 use crate::model::{self, names, skew_pairs, KernelGraph, Variant};
 use crate::pressure;
@@ -314,7 +315,7 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
         .map(bind);
     let constants = sched.constants.iter().map(|&id| {
         let name = namer.binding(id);
-        let value = emit::const_value(kernel.graph.as_const(id).expect("constant"));
+        let value = bindings::const_value(kernel.graph.as_const(id).expect("constant"));
         quote!(let #name: T = #value;)
     });
     let hoisted_steps = hoisted.iter().map(|&id| emit::step(&namer, id));

@@ -22,8 +22,10 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+pub mod arith;
 pub mod backend;
 pub mod batch;
+mod bindings;
 pub mod bound;
 pub mod emit;
 pub mod fuse;
@@ -36,7 +38,7 @@ pub mod schedule;
 pub mod specialise;
 pub mod straight_line;
 
-pub use emit::Arith;
+pub use arith::Arith;
 pub use model::{Law, Variant};
 pub use schedule::OpCount;
 

@@ -2,13 +2,14 @@
 //! back end emits from (Rust in [`crate::emit`], C and OpenCL C in [`crate::backend`]).
 //!
 //! [`Program::lower`] schedules the DAG ([`crate::schedule`]), plans the multiply-add fusion
-//! for [`Arith::Fma`] ([`crate::fuse`]) and names every binding ([`crate::emit`]'s namer):
+//! for [`Arith::Fma`] ([`crate::fuse`]) and names every binding (`crate::bindings`'s namer):
 //! constants first, then one [`Step`] per operation in schedule order, then the outputs. A back
 //! end only spells these steps in its language; it never reorders, regroups or re-fuses them,
 //! so every language evaluates the same operations in the same order, and a float kernel
 //! rounds the same way in each (given IEEE `+ - * /` and a correctly rounded `fma`).
 
-use crate::emit::{Arith, Namer};
+use crate::arith::Arith;
+use crate::bindings::Namer;
 use crate::fuse::{fuse, Fused, Fusion};
 use crate::ir::{Id, Node};
 use crate::model::{KernelGraph, Variant};

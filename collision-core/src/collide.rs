@@ -1,6 +1,6 @@
 //! The checked entry point: validate, then run the generated kernel of the dimension.
 
-use crate::checked;
+use crate::checked::{self, validate_parts};
 use crate::error::{Field, InputError};
 use crate::kernels::{Generated, Kernel};
 use crate::reference;
@@ -171,16 +171,6 @@ where
     } else {
         Generated::free(nu, b1, b2, s1, s2)
     }
-}
-
-/// The checks of [`collide`], for any `n` (the reference uses them too). A quantity within
-/// [the rounding allowance](crate::allowance) of its bound passes.
-pub fn validate_parts<T: Scalar>(
-    nu: &[T],
-    balls: [&Ball<T>; 2],
-    states: [(&[T], &[T]); 2],
-) -> Result<(), InputError> {
-    checked::prepare(nu, balls, states).map(|_| ())
 }
 
 /// The checks of [`collide`].

@@ -51,6 +51,7 @@ mod checked;
 mod collide;
 mod error;
 pub mod exact;
+mod float;
 pub mod kernels;
 pub mod linalg;
 pub mod literal;
@@ -63,9 +64,10 @@ mod state;
 mod wide;
 
 pub use ball::{Ball, Inertia, Mass};
+pub use checked::validate_parts;
 pub use collide::{
     collide, collide_general, collide_rough, collide_rough_unchecked, collide_unchecked,
-    collide_unchecked_fma, fma_in_hardware, validate, validate_parts,
+    collide_unchecked_fma, fma_in_hardware, validate,
 };
 pub use dims::DIMS;
 pub use error::{BodyField, Field, InputError};

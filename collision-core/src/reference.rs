@@ -21,7 +21,7 @@
 //! and the fallback for `n > 6`. It needs `lambda > 0` for each movable body (the point-mass
 //! limit is a property of the kernels, checked by the verifier).
 
-use crate::collide::validate_parts;
+use crate::checked::validate_parts;
 use crate::error::{BodyField, Field, InputError};
 use crate::linalg::solve;
 use crate::state::skew_pairs;

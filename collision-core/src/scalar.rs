@@ -1,7 +1,5 @@
 //! The scalar types the generated kernels run on: `f32`, `f64` and exact rationals.
 
-use crate::allowance::ULPS;
-use crate::wide::Wide;
 use num_traits::{One, Signed, Zero};
 use std::fmt::{Debug, Display};
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -95,78 +93,6 @@ pub trait Scalar:
     fn from_literal(x64: f64, x32: f32, num: &str, den: &str) -> Self;
 }
 
-impl Scalar for f64 {
-    const NAME: &'static str = "f64";
-    fn show(&self) -> String {
-        format!("{self:?}")
-    }
-    const EXACT: bool = false;
-    #[inline(always)]
-    fn from_ratio(num: i64, den: i64) -> Self {
-        num as f64 / den as f64
-    }
-    fn is_finite(&self) -> bool {
-        f64::is_finite(*self)
-    }
-    fn to_f64(&self) -> f64 {
-        *self
-    }
-    fn rounding_slack() -> Self {
-        f64::from(ULPS) * f64::EPSILON
-    }
-    type Unbounded = Wide<f64>;
-    fn unbounded(&self) -> Wide<f64> {
-        Wide::from(*self)
-    }
-    fn from_unbounded(x: &Wide<f64>) -> Self {
-        x.round()
-    }
-    #[inline(always)]
-    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
-        a.mul_add(*b, *c)
-    }
-    #[inline(always)]
-    fn from_literal(x64: f64, _: f32, _: &str, _: &str) -> Self {
-        x64
-    }
-}
-
-impl Scalar for f32 {
-    const NAME: &'static str = "f32";
-    fn show(&self) -> String {
-        format!("{self:?}")
-    }
-    const EXACT: bool = false;
-    #[inline(always)]
-    fn from_ratio(num: i64, den: i64) -> Self {
-        num as f32 / den as f32
-    }
-    fn is_finite(&self) -> bool {
-        f32::is_finite(*self)
-    }
-    fn to_f64(&self) -> f64 {
-        f64::from(*self)
-    }
-    fn rounding_slack() -> Self {
-        ULPS as f32 * f32::EPSILON
-    }
-    type Unbounded = Wide<f32>;
-    fn unbounded(&self) -> Wide<f32> {
-        Wide::from(*self)
-    }
-    fn from_unbounded(x: &Wide<f32>) -> Self {
-        x.round()
-    }
-    #[inline(always)]
-    fn mul_add(a: &Self, b: &Self, c: &Self) -> Self {
-        a.mul_add(*b, *c)
-    }
-    #[inline(always)]
-    fn from_literal(_: f64, x32: f32, _: &str, _: &str) -> Self {
-        x32
-    }
-}
-
 /// The rounding allowance of a quantity of scale `s`: `rounding_slack() |s|`.
 pub(crate) fn allowance<T: Scalar>(s: &T) -> T {
     T::rounding_slack() * s.abs()
@@ -213,9 +139,5 @@ mod tests {
         assert_eq!(allowance(&-2.0f64), 16.0 * f64::EPSILON);
         assert_eq!(allowance(&1.0f32), 8.0 * f32::EPSILON);
         assert_eq!(allowance(&Exact::from_ratio(1, 3)), Exact::zero());
-        assert_eq!(
-            <Wide<f64> as Scalar>::rounding_slack().round(),
-            f64::rounding_slack()
-        );
     }
 }

@@ -17,6 +17,7 @@
 #![warn(missing_docs, unreachable_pub)]
 
 mod convex;
+mod ctx;
 mod number;
 mod pairs;
 pub mod raw;

@@ -9,8 +9,8 @@
 //! first vertex). That index is the boundary id of the simulator's events.
 
 use crate::convex::{cross, strictly_convex, NotConvex};
+use crate::ctx::Ctx;
 use crate::raw::{ContactKind, RawScene, RawWedge};
-use crate::validate::Ctx;
 use crate::{Number, SceneError};
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};

@@ -1,55 +1,17 @@
 //! Semantic checks of a parsed scene, in exact rationals. Each error names its key path.
 
+use crate::ctx::Ctx;
 use crate::raw::{ContactKind, Distribution, RawBall, RawScene, RawSpecies, RawSpin};
 use crate::table::{self, Shape};
 use crate::{
-    BallSpec, Boundary, Number, Obstacle, Placement, Random, RunDefaults, Scene, SceneError,
-    Species, MAX_BALLS,
+    BallSpec, Boundary, Obstacle, Placement, Random, RunDefaults, Scene, SceneError, Species,
+    MAX_BALLS,
 };
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
 type Q = BigRational;
-
-/// The scene file being validated, for errors that name their place in it.
-pub(crate) struct Ctx<'a> {
-    pub(crate) origin: &'a str,
-}
-
-impl Ctx<'_> {
-    /// The error `origin: place: message`.
-    pub(crate) fn err(&self, place: impl Into<String>, message: impl Into<String>) -> SceneError {
-        SceneError {
-            origin: self.origin.to_string(),
-            place: place.into(),
-            message: message.into(),
-        }
-    }
-
-    /// The vector at `place`, which must have `dim` components.
-    pub(crate) fn vector(
-        &self,
-        place: &str,
-        v: &[Number],
-        dim: usize,
-    ) -> Result<Vec<Q>, SceneError> {
-        if v.len() != dim {
-            return Err(self.err(
-                place,
-                format!("has {} components, expected dim = {dim}", v.len()),
-            ));
-        }
-        Ok(v.iter().map(|x| x.0.clone()).collect())
-    }
-
-    fn positive(&self, place: &str, x: &Number) -> Result<Q, SceneError> {
-        if !x.0.is_positive() {
-            return Err(self.err(place, format!("must be positive, got {}", x.0)));
-        }
-        Ok(x.0.clone())
-    }
-}
 
 fn q(n: i64) -> Q {
     Q::from_integer(n.into())

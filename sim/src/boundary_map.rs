@@ -25,39 +25,12 @@
 //!   is `m/2 (u_n^2 + u_t^2 + (gamma R c)^2)`, so the no-slip map acts on `(u_t, gamma R c)`
 //!   as an orthogonal map (a reflection) and its invariant lines and circles show undistorted.
 
+pub use crate::immovable::Body;
 use crate::portrait::{Axes, Portrait};
 use crate::run::contact_point;
 use crate::table::{Shape, Table};
 use crate::{Contact, Event, PairKernels, Simulation};
 use std::io::{self, Write};
-
-/// Which immovable body a row is about.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Body {
-    /// A boundary of [`Table::boundaries`], by id.
-    Boundary(usize),
-    /// A wall of the box: axis, and the upper one (at `L_k`) if `true`.
-    BoxWall(usize, bool),
-    /// A fixed ball obstacle, by index.
-    Obstacle(usize),
-}
-
-impl Body {
-    /// The CSV's `kind` and `id` (a box wall's id is `2 axis + upper`).
-    pub fn kind_id(self) -> (&'static str, usize) {
-        match self {
-            Body::Boundary(b) => ("boundary", b),
-            Body::BoxWall(k, upper) => ("box-wall", 2 * k + usize::from(upper)),
-            Body::Obstacle(o) => ("obstacle", o),
-        }
-    }
-
-    /// A file-name stem: `boundary3`, `box-wall1`, `obstacle0`.
-    pub fn stem(self) -> String {
-        let (kind, id) = self.kind_id();
-        format!("{kind}{id}")
-    }
-}
 
 /// One row of the boundary map (see the module docs for each quantity).
 #[derive(Clone, Debug, PartialEq)]

@@ -29,7 +29,7 @@
 //! arranged by hand to come after more than 1000 box lengths in such a dilute box (a relative
 //! flight winding almost rationally onto the partner) is not waited for.
 
-use crate::run::MAX_QUIET_BOX_LENGTHS;
+use crate::no_contact::MAX_QUIET_BOX_LENGTHS;
 use crate::setup::log_unit_ball;
 use crate::{PairKernels, Simulation};
 use collision_core::Ball;

@@ -33,11 +33,14 @@ mod cells;
 pub mod cover;
 pub mod dilute;
 pub mod engine;
+mod extent;
+mod immovable;
 pub mod lattice;
 #[cfg(test)]
 mod lattice_tests;
 pub mod log;
 mod motion;
+mod nearest;
 pub mod no_contact;
 mod normal;
 mod observe;

@@ -16,6 +16,13 @@ use std::fmt;
 /// [`super::Step::Quiet`] reports it (then again at twice, four times ... that).
 pub const QUIET_BOX_LENGTHS: f64 = 1000.0;
 
+/// A contact-free stretch this long, in box lengths flown by every moving ball, ends the run
+/// (exit 0, [`crate::run::Summary::stopped`] says why): stepping cell by cell cannot reach a contact that
+/// far, and a flight this long has probability about `1e-12` per contact even in an
+/// infinite-horizon (Sinai) table, whose free paths `L` have `P(> L) ~ 1/L^2`. It is the
+/// 11th quiet notice (1000, 2000, .. 1 024 000 box lengths).
+pub const MAX_QUIET_BOX_LENGTHS: f64 = 1.0e6;
+
 /// The most box traversals of a closed relative orbit that [`NoContact::Separated`] follows.
 const MAX_WINDINGS: u64 = 64;
 

@@ -10,12 +10,10 @@
 //! under 1 MB at any count (`sim/tests/portraits.rs`). The PNG is the same picture drawn in
 //! an 8 x 8 bitmap font (`sim/src/portrait_png.rs`).
 
-use crate::boundary_map::Body;
+use crate::immovable::Body;
 use crate::png::Raster;
 use crate::table::{Shape, Table};
 use plotters::prelude::*;
-
-pub use crate::portrait_png::portrait_png;
 
 /// The shipped tables whose portraits docs/tables.md shows (`scenes/NAME.toml`), written by
 /// `examples/table_portraits.rs` to `docs/tables/NAME-KIND-ID.png`.
@@ -136,12 +134,6 @@ impl Portrait {
     pub fn svg(&self, scene: &str) -> std::io::Result<String> {
         let legend = Axes::legend(self.body, self.count, self.points.len());
         portrait_svg(&self.title(scene), &legend, &self.points, &self.axes)
-    }
-
-    /// The PNG ([`portrait_png`]) for a run of `scene`.
-    pub fn png(&self, scene: &str) -> Vec<u8> {
-        let legend = Axes::legend(self.body, self.count, self.points.len());
-        portrait_png(&self.title(scene), &legend, &self.points, &self.axes)
     }
 }
 

@@ -4,7 +4,7 @@
 //! stack, no image crate; the PNG is written by `sim/src/png.rs`.
 
 use crate::png::Raster;
-use crate::portrait::{density, ranges, tick_label, Axes, SHADES};
+use crate::portrait::{density, ranges, tick_label, Axes, Portrait, SHADES};
 
 /// The side of a panel's plotting area, pixels.
 const PANEL: usize = 400;
@@ -78,7 +78,7 @@ pub(crate) fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
 
 /// The PNG of both portraits of one boundary: `title` and `legend` above two 400 x 400
 /// panels with their axes (see [`Axes::labels`]); each pixel's shade counts the contacts in it.
-pub fn portrait_png(title: &str, legend: &str, points: &[[f64; 4]], axes: &Axes) -> Vec<u8> {
+pub(crate) fn portrait_png(title: &str, legend: &str, points: &[[f64; 4]], axes: &Axes) -> Vec<u8> {
     let width = 2 * (LEFT + PANEL + RIGHT);
     let height = TOP + PANEL + BOTTOM;
     let mut palette = vec![[255, 255, 255], [0, 0, 0]];
@@ -152,6 +152,14 @@ pub fn portrait_png(title: &str, legend: &str, points: &[[f64; 4]], axes: &Axes)
         );
     }
     raster.png()
+}
+
+impl Portrait {
+    /// The PNG for a run of `scene`: the two panels with title, legend, axes and labels.
+    pub fn png(&self, scene: &str) -> Vec<u8> {
+        let legend = Axes::legend(self.body, self.count, self.points.len());
+        portrait_png(&self.title(scene), &legend, &self.points, &self.axes)
+    }
 }
 
 #[cfg(test)]

@@ -37,7 +37,7 @@
 //! two changes no digit of a run, so a scene far from 1 in every unit is fine as long as the
 //! products above stay in range.
 
-use crate::setup::f;
+use crate::nearest::f;
 use crate::{Observables, Setup};
 use noslip_scene::Scene;
 use num_rational::BigRational;
@@ -190,8 +190,8 @@ pub fn check_scene(scene: &Scene) -> Result<Scales, String> {
     }
     let mut side_max = (0.0f64, 0);
     if scene.size.is_empty() {
-        // No box: the table's extent (setup::extent) plays the box's part.
-        let (lo, size) = crate::setup::extent_dyn(scene);
+        // No box: the table's extent (`crate::extent`) plays the box's part.
+        let (lo, size) = crate::extent::extent_dyn(scene);
         let side = size.iter().copied().fold(0.0, f64::max);
         let corner = lo.iter().map(|x| x.abs()).fold(0.0, f64::max);
         side_max.0 = side.max(corner);

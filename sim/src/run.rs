@@ -10,12 +10,7 @@ use serde_json::{json, Value};
 use std::io::{self, Write};
 use std::time::Instant;
 
-/// A contact-free stretch this long, in box lengths flown by every moving ball, ends the run
-/// (exit 0, [`Summary::stopped`] says why): stepping cell by cell cannot reach a contact that
-/// far, and a flight this long has probability about `1e-12` per contact even in an
-/// infinite-horizon (Sinai) table, whose free paths `L` have `P(> L) ~ 1/L^2`. It is the
-/// 11th quiet notice (1000, 2000, .. 1 024 000 box lengths).
-pub const MAX_QUIET_BOX_LENGTHS: f64 = 1.0e6;
+pub use crate::no_contact::MAX_QUIET_BOX_LENGTHS;
 
 /// What a run tells its caller as it goes (a progress bar, a notice).
 #[derive(Clone, Copy, Debug, PartialEq)]

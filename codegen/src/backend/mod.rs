@@ -32,7 +32,7 @@ mod c;
 
 pub use c::{OpenCl, C};
 
-use crate::emit::Arith;
+use crate::arith::Arith;
 use crate::model::{self, names, skew_pairs, Law, Variant};
 use crate::program::{Op, Operand, Program};
 use crate::schedule::OpCount;

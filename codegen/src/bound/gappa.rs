@@ -91,7 +91,7 @@ pub fn script(program: &Program, format: &str, ranges: &[InputRange], outputs: &
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::emit::Arith;
+    use crate::arith::Arith;
     use crate::model::{self, Variant};
 
     #[test]

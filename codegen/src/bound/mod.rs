@@ -32,7 +32,7 @@ pub use format::Format;
 pub use propagate::Enclosed;
 pub use round::Interval;
 
-use crate::emit::Arith;
+use crate::arith::Arith;
 use crate::model::{self, Variant};
 use crate::program::Program;
 use propagate::Compiled;

@@ -24,7 +24,8 @@ mod range;
 pub use config::{compile_scenes, Config};
 pub use range::{check_ranges, ConstantOutOfRange, GenerateError};
 
-use crate::emit::{self, array_pattern, doc_lines, ident, lit, state_pattern, EmittedBody};
+use crate::bindings::{ident, lit};
+use crate::emit::{self, array_pattern, doc_lines, state_pattern, EmittedBody};
 use crate::ir::{Graph, Id};
 use crate::model::{self, names, skew_pairs, BodyInputs, KernelGraph, KernelInputs, Variant};
 use crate::schedule::OpCount;

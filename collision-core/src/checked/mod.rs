@@ -20,6 +20,17 @@ use num_traits::{One, Zero};
 
 mod blame;
 
+/// The checks of [`crate::collide()`], for any `n` (the reference uses them too): the
+/// checked path's preparation, its result dropped. A quantity within [the rounding
+/// allowance](crate::allowance) of its bound passes.
+pub fn validate_parts<T: Scalar>(
+    nu: &[T],
+    balls: [&Ball<T>; 2],
+    states: [(&[T], &[T]); 2],
+) -> Result<(), InputError> {
+    prepare(nu, balls, states).map(|_| ())
+}
+
 /// The inputs of a collision after the checks, in `W` (the `Unbounded` of the input type):
 /// `nu` renormalised, `gamma2` clamped to `[0, 2/n]`, a grazing relative velocity's normal
 /// part removed.
