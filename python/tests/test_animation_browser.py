@@ -8,7 +8,8 @@ the CLI, runs its script in virtual time and reports the page's state.
   frame (``#frame``) the second time.
 - What is drawn changes: screenshots of two frames differ.
 
-Without a Chromium the tests are skipped, saying so."""
+Without a Chromium these are skipped, saying so. And without a browser: the page of
+``noslip.simulate(..., html=True)`` is the CLI's, byte for byte."""
 
 import re
 import shutil
@@ -17,6 +18,7 @@ from pathlib import Path
 
 import pytest
 
+import noslip
 from conftest import run_cli
 
 BROWSERS = ("chromium", "chromium-browser", "google-chrome")
@@ -141,3 +143,14 @@ def test_two_frames_look_different(page: Path, tmp_path: Path) -> None:
         assert data.startswith(b"\x89PNG\r\n\x1a\n")
         shots.append(data)
     assert shots[0] != shots[1]
+
+
+def test_python_page_is_the_clis(cli: Path, tmp_path: Path) -> None:
+    root = Path(__file__).resolve().parents[2]
+    scene = root / "scenes" / "cube3d.toml"
+    html = tmp_path / "set" / "cube3d.html"
+    out = str(tmp_path / "set")
+    run_cli(cli, "simulate", str(scene), "--events", "700", "--out", out, "--html", str(html))
+    page = noslip.simulate(scene, events=700, html=True).html
+    assert page is not None and page == html.read_text()
+    assert noslip.simulate(scene, events=10).html is None
