@@ -64,6 +64,7 @@ def chromium(page: str, profile: Path, *flags: str) -> subprocess.CompletedProce
         "--headless",
         "--no-sandbox",  # CI runs as root
         "--disable-gpu",
+        "--disable-dev-shm-usage",  # containers' small /dev/shm
         "--no-first-run",
         "--enable-logging=stderr",
         "--v=0",
