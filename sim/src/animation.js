@@ -98,9 +98,6 @@
       ctx.clip();
     }
     drawTable();
-    for (let b = 0; b < Math.min(B, D.trails.length ? D.trails[0].length : 0); b++) {
-      drawTrail(f, b);
-    }
     const order = [];
     for (let b = 0; b < B; b++) {
       order.push(ball(f, b));
@@ -114,7 +111,8 @@
       ctx.beginPath();
       ctx.arc(X(p.x), Y(p.y), r, 0, 2 * Math.PI);
       ctx.fillStyle = palette[D.species[p.b] % palette.length];
-      ctx.globalAlpha = 0.85;
+      // In 3D the far balls are paler: a depth cue.
+      ctx.globalAlpha = C === 5 ? 0.35 + 0.55 * (D.depth[1] - p.depth) / (D.depth[1] - D.depth[0] || 1) : 0.85;
       ctx.fill();
       ctx.globalAlpha = 1;
       ctx.strokeStyle = "#000";
@@ -127,6 +125,10 @@
       ctx.strokeStyle = "#fff";
       ctx.lineWidth = Math.max(1, r / 5);
       ctx.stroke();
+    }
+    // Trails over the balls, so that none is hidden in a crowd.
+    for (let b = 0; b < Math.min(B, D.trails.length ? D.trails[0].length : 0); b++) {
+      drawTrail(f, b);
     }
     ctx.restore();
   }
