@@ -13,6 +13,8 @@ generated, exactly verified Rust kernels of the ``noslip`` workspace.
   :func:`orbits`: periodic orbits of a one-ball table, with their stability.
 - :func:`verify`, :func:`report`: the exact verification and the accuracy report.
 - :func:`sweep`: a function over a parameter grid as Dask tasks, streamed to a store.
+- :func:`read_log`, :func:`read_boundary_map`: ``noslip simulate``'s Parquet outputs as
+  pandas DataFrames, units in ``attrs`` (pyarrow, the ``sweep`` extra).
 - :class:`InputError`: bad input (a ``ValueError`` naming the field).
 
 ``noslip.__version__`` is the package's version. Long native calls (:func:`simulate`,
@@ -26,6 +28,7 @@ from noslip._native import DIMS, InputError, Scene, __version__
 from noslip.batch import collide_batch, isa
 from noslip.case import collide
 from noslip.checks import report, verify
+from noslip.columnar import read_boundary_map, read_log
 from noslip.dynamics import LyapunovResult, OrbitsResult, lyapunov, orbits
 from noslip.simulate import SimulationResult, simulate
 from noslip.sweep import sweep
@@ -44,6 +47,8 @@ __all__ = [
     "isa",
     "lyapunov",
     "orbits",
+    "read_boundary_map",
+    "read_log",
     "report",
     "simulate",
     "sweep",

@@ -58,12 +58,15 @@ class SimulationResult:
         ``|u - (u . nu) nu|``), ``spin`` and ``spin_post`` (2D ``c`` of ``U = c J``; nD
         the norm of the entries ``U_ij``, ``i < j``), ``scaled_spin`` and ``_post``
         ``sqrt(2 lambda)`` times the spin. Empty without ``boundary_map``.
+    html : str or None
+        The animation page (``html=True``), else None.
     """
 
     summary: dict[str, Any]
     energy: dict[str, npt.NDArray[Any]]
     events: dict[str, npt.NDArray[Any]] = field(repr=False)
     boundary_map: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
+    html: str | None = field(repr=False, default=None)
 
     def __repr__(self) -> str:
         s = self.summary
@@ -88,6 +91,7 @@ def simulate(
     log: bool = False,
     boundary_map: bool = False,
     max_memory: int = MAX_MEMORY,
+    html: bool = False,
 ) -> SimulationResult:
     """Run a scene with the event-driven simulator of ``noslip simulate``.
 
@@ -118,6 +122,11 @@ def simulate(
     max_memory : int
         The cap, in bytes, on the records kept (``log``, ``boundary_map``); default
         :data:`MAX_MEMORY`, 1 GiB.
+    html : bool
+        Keep the run as the animation page of ``noslip simulate --html``,
+        :attr:`SimulationResult.html`: one self-contained HTML document (under about 2 MB
+        whatever the run; ``docs/animation.md``). In a notebook, show it with
+        ``IPython.display.HTML`` in an ``<iframe srcdoc=...>``.
 
     Raises
     ------
@@ -129,11 +138,17 @@ def simulate(
         contacts once 50 ms have passed, so it stops within about 0.1 s; the partial run is
         discarded.
     """
-    out = _native.simulate(as_scene(scene), events, time, log, boundary_map, max_memory)
+    out = _native.simulate(
+        as_scene(scene), events, time, log, boundary_map, max_memory, html
+    )
     summary = json.loads(out["summary"])
     energy = dict(out["energy"])
     energy["energy"] = summary["energy_start"] * (1.0 + energy["drift"])
     bmap = {k: np.asarray(v) for k, v in out["boundary_map"].items()}
     return SimulationResult(
-        summary=summary, energy=energy, events=dict(out["events"]), boundary_map=bmap
+        summary=summary,
+        energy=energy,
+        events=dict(out["events"]),
+        boundary_map=bmap,
+        html=out["html"],
     )

@@ -4,7 +4,8 @@
 //! The events log is the simulator's own JSON-lines log (`noslip_sim::run::event_json`),
 //! read back into columns: the same numbers, bit for bit (shortest round-trip text). The
 //! boundary map is `noslip_sim::boundary_map::row` of each contact with an immovable body,
-//! as `noslip simulate --boundary-map` writes it, in the CSV's columns.
+//! as `noslip simulate --boundary-map` writes it, in the CSV's columns. With `html`, the run
+//! as the animation page of `noslip simulate --html` (`noslip_sim::animation`).
 
 use crate::error::{input_error, unsigned_opt};
 use crate::scene::Scene;
@@ -26,6 +27,7 @@ struct Run {
     trace: Trace,
     columns: Columns,
     rows: Vec<Row>,
+    html: Option<String>,
 }
 
 /// What a run keeps of each contact, and at most how many contacts' worth.
@@ -33,6 +35,8 @@ struct Run {
 struct Keep {
     log: bool,
     map: bool,
+    /// Record the animation page (bounded by its own caps, outside `max_memory`).
+    html: bool,
     /// The most contacts whose records fit the memory cap (`u64::MAX` keeping nothing).
     contacts: u64,
 }
@@ -68,6 +72,12 @@ where
     };
     let writer: Option<&mut dyn std::io::Write> = if keep.log { Some(&mut lines) } else { None };
     let mut rows = Vec::new();
+    let title = std::path::Path::new(&scene.origin)
+        .file_name()
+        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+    let mut recorder = keep
+        .html
+        .then(|| noslip_sim::animation::Recorder::new(&sim, &species, &title));
     let (summary, trace) = run_observed(
         &mut sim,
         &species,
@@ -77,6 +87,9 @@ where
         &mut |index, e, sim| {
             if keep.map {
                 rows.extend(boundary_map::row(index, e, sim, &species));
+            }
+            if let Some(r) = &mut recorder {
+                r.observe(index, e, sim, &species);
             }
             if index > keep.contacts {
                 return Err(std::io::Error::other(CAPPED));
@@ -97,6 +110,7 @@ where
         trace,
         columns: lines.columns,
         rows,
+        html: recorder.map(|r| noslip_sim::animation_page::html(&r.finish(&sim))),
     })
 }
 
@@ -299,9 +313,11 @@ fn time_of(t: f64) -> PyResult<f64> {
 /// ``boundary_map``, their memory at most ``max_memory`` bytes (refused up front when ``events``
 /// is known, else the run stops with an error at the cap). Returns a dict: ``summary`` (JSON
 /// text of the simulator's summary), ``energy`` (event counts and relative drifts of the
-/// samples), ``events`` (the log's columns as arrays), ``boundary_map``.
+/// samples), ``events`` (the log's columns as arrays), ``boundary_map``, ``html`` (the
+/// animation page with ``html``, else None).
 #[pyfunction]
-#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory))]
+#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false))]
+#[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
     scene: &Bound<'py, Scene>,
@@ -310,6 +326,7 @@ pub fn simulate<'py>(
     log: bool,
     boundary_map: bool,
     max_memory: Option<Bound<'py, PyAny>>,
+    html: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let events = unsigned_opt(events.as_ref(), "events", 1, u64::MAX)?;
     let time = time.map(time_of).transpose()?;
@@ -332,6 +349,7 @@ pub fn simulate<'py>(
     let keep = Keep {
         log,
         map: boundary_map,
+        html,
         contacts: max_memory.checked_div(per_contact).unwrap_or(u64::MAX),
     };
     let kept = || {
@@ -430,5 +448,6 @@ pub fn simulate<'py>(
     out.set_item("energy", energy)?;
     out.set_item("events", ev)?;
     out.set_item("boundary_map", map_columns(py, &done.rows, n)?)?;
+    out.set_item("html", done.html)?;
     Ok(out)
 }

@@ -21,12 +21,15 @@
 //! Around the engine: [`setup`] turns a validated scene (`noslip-scene`) into a [`Setup`],
 //! checked in the f64 arithmetic the engine uses ([`range`]) and placed in O(N) ([`place`],
 //! [`cover`], [`sequential`]); [`run`] runs it to its limits, writing the event log ([`log`],
-//! [`run::event_json`]) and keeping bounded traces ([`trace`]) for the pictures ([`plot`]).
+//! [`run::event_json`]) and keeping bounded traces ([`trace`]) for the pictures ([`plot`]) and the browser
+//! animation ([`animation`], [`animation_page`]).
 //! This crate must not parse command lines, print, or write files other than through the
 //! writers it is given: that is the `noslip` command's business.
 
 #![warn(missing_docs, unreachable_pub)]
 
+pub mod animation;
+pub mod animation_page;
 pub mod boundary_map;
 mod canonical;
 mod cells;

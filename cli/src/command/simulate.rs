@@ -9,6 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use noslip_columnar::events::{event_row, events_table};
 use noslip_columnar::{self as columnar, is_parquet};
 use noslip_scene::Scene;
+use noslip_sim::animation::Recorder;
 use noslip_sim::boundary_map::{self, BoundaryMap};
 use noslip_sim::log::LogFile;
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
@@ -17,6 +18,8 @@ use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Setup, Simulation};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+mod html;
 
 pub(crate) const LONG_ABOUT: &str = "\
 Run a scene (TOML, see docs/scenes.md): an event-driven simulation of rigid balls with
@@ -46,6 +49,12 @@ cannot be written, the run still ends, prints and writes its summary, and exits 
 A --log or --boundary-map FILE whose extension is .parquet is written as Apache Parquet
 instead (the same fields as typed columns, units in the metadata key noslip.units; see
 docs/scenes.md); outside --out it is published as events.parquet or boundary-map.parquet.
+--html FILE writes the run as an animation: one self-contained HTML page (no network) that
+plays the balls with a mark showing each one's spin, trails, the time, play/pause and a
+slider, and for a one-ball table the phase portrait with the current contact highlighted;
+2D, and the first three coordinates projected beyond; frames and balls capped so the page
+stays under about 2 MB (docs/animation.md). It belongs to the set as --log does (outside
+--out it is published as animation.html).
 
 A scene whose numbers leave the f64 range the engine needs (see docs/scenes.md, \"The
 scene in f64\") is refused with exit code 2, naming the field.";
@@ -70,6 +79,9 @@ pub struct Args {
     /// --out as portrait-KIND-ID.svg and .png.
     #[arg(long, value_name = "FILE")]
     boundary_map: Option<PathBuf>,
+    /// Write the run as an animation, one self-contained HTML page (docs/animation.md).
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
     /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -152,6 +164,10 @@ where
     // and the boundary map are members of the set, published with it: `--log OUT/NAME` as
     // NAME, a file outside --out as a link to its member (`publish::link`).
     let members = side_members(args, &out)?;
+    let html_member = match &args.html {
+        Some(p) => Some(html::member(args, p, &out, &members)?),
+        None => None,
+    };
     let mut set = Staging::new(&out).map_err(|e| crate::exit::publish_failure(&e))?;
     let mut open = |p: &PathBuf, member: &Option<String>| {
         let at = match member {
@@ -220,6 +236,13 @@ where
         }
         _ => {}
     };
+    let title = Path::new(&scene.origin)
+        .file_name()
+        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+    let mut recorder = args
+        .html
+        .as_ref()
+        .map(|_| Recorder::new(&sim, &species, &title));
     let (summary, trace) = run::run_observed(
         &mut sim,
         &species,
@@ -227,6 +250,9 @@ where
         log.as_mut().map(|w| w as &mut dyn Write),
         &mut report,
         &mut |index, e, sim| {
+            if let Some(r) = &mut recorder {
+                r.observe(index, e, sim, &species);
+            }
             if let Some(table) = &mut events_parquet {
                 table.push(&event_row(index, e))?;
             }
@@ -281,9 +307,6 @@ where
     let json = serde_json::to_string_pretty(&summary).expect("summary serialises") + "\n";
     set.write("summary.json", json.as_bytes())
         .map_err(|e| crate::exit::publish_failure(&e))?;
-    let title = Path::new(&scene.origin)
-        .file_name()
-        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
     let energy = staged(
         energy_svg(&format!("{title}: energy drift"), &trace),
         "energy.svg",
@@ -316,6 +339,10 @@ where
             .map_err(|e| crate::exit::publish_failure(&e))?;
         set.write(&format!("{name}.png"), &portrait.png(&title))
             .map_err(|e| crate::exit::publish_failure(&e))?;
+    }
+    if let (Some(r), Some(p), Some(m)) = (recorder, &args.html, &html_member) {
+        let page = noslip_sim::animation_page::html(&r.finish(&sim));
+        html::publish(&mut set, p, m, &page)?;
     }
     set.commit().map_err(|e| crate::exit::publish_failure(&e))?;
     print_summary(&summary)?;

@@ -1,0 +1,108 @@
+//! `noslip simulate --html FILE`: the animation page is published with the set (a member,
+//! or a link to `animation.html` from outside `--out`), holds its data and names nothing
+//! outside itself; bad `--html` paths are refused with exit 2 before any run. (The page
+//! itself is played in a real browser by python/tests/test_animation_browser.py.)
+
+mod support;
+
+use std::path::Path;
+use support::{noslip, run_ok, temp};
+
+fn simulate(scene: &str, out: &Path, html: &Path) -> std::process::Output {
+    noslip()
+        .args(["simulate", scene, "--quiet", "--events", "500"])
+        .arg("--out")
+        .arg(out)
+        .arg("--html")
+        .arg(html)
+        .output()
+        .unwrap()
+}
+
+fn check_page(page: &str, title: &str) {
+    assert!(page.starts_with("<!DOCTYPE html>"));
+    assert!(page.contains(&format!("<h1>{title}</h1>")));
+    assert!(page.contains("<script id=\"noslip-data\" type=\"application/json\">{"));
+    assert!(page.contains("\"pos\":\""), "the frames are embedded");
+    for outside in ["http:", "https:", "src=", "<link", "url("] {
+        assert!(!page.contains(outside), "the page names {outside}");
+    }
+}
+
+#[test]
+fn the_page_is_a_member_of_the_set_or_a_link_to_it() {
+    let dir = temp("html");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // Directly in --out: the member under its own name.
+    let out = dir.join("sinai");
+    let o = simulate("scenes/sinai.toml", &out, &out.join("play.html"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let page = std::fs::read_to_string(out.join("play.html")).unwrap();
+    check_page(&page, "sinai.toml");
+    assert!(
+        page.contains("id=\"portrait\""),
+        "a one-ball table has its portrait"
+    );
+    // Outside --out: a link to the set's animation.html; a 3D gas, no portrait.
+    let out3 = dir.join("gas3d");
+    let outside = dir.join("gas3d.html");
+    run_ok(
+        noslip()
+            .args([
+                "simulate",
+                "scenes/gas3d.toml",
+                "--quiet",
+                "--events",
+                "300",
+            ])
+            .arg("--out")
+            .arg(&out3)
+            .arg("--html")
+            .arg(&outside),
+    );
+    let member = std::fs::read_to_string(out3.join("animation.html")).unwrap();
+    assert_eq!(std::fs::read_to_string(&outside).unwrap(), member);
+    assert!(std::fs::symlink_metadata(&outside)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    check_page(&member, "gas3d.toml");
+    assert!(!member.contains("id=\"portrait\""));
+    assert!(member.contains("\"channels\":5"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_html_paths_are_refused_naming_the_option() {
+    let dir = temp("html-bad");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("set");
+    let cases: [(&Path, &[&str]); 4] = [
+        (&out.join("deeper/a.html"), &[]),
+        (&out.join("summary.json"), &[]),
+        (Path::new("scenes/sinai.toml"), &[]),
+        (&dir.join("log.jsonl"), &["--log"]),
+    ];
+    for (html, extra) in cases {
+        let mut c = noslip();
+        c.args(["simulate", "scenes/sinai.toml", "--quiet", "--events", "10"])
+            .arg("--out")
+            .arg(&out)
+            .arg("--html")
+            .arg(html);
+        for option in extra.iter() {
+            c.arg(option).arg(html);
+        }
+        let o = c.output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{html:?}: {err}");
+        assert!(err.contains("--html"), "{html:?}: {err}");
+        assert!(
+            !out.exists(),
+            "a refused path costs no run and writes nothing"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
