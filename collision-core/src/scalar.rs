@@ -168,6 +168,35 @@ impl Scalar for f32 {
 }
 
 /// The rounding allowance of a quantity of scale `s`: `rounding_slack() |s|`.
+/// The two operations the Walton kernels (`kernels::dN::walton`) add to a [`Scalar`]: the
+/// square root and a branch-free select (`docs/derivation.md` §15.1).
+pub trait ScalarRoot: Scalar {
+    /// `sqrt(a)`, `a >= 0`: correctly rounded in floats (IEEE); in exact rationals the root
+    /// when `a` is the square of a rational, else rounded (see [`crate::exact`]).
+    fn sqrt(a: &Self) -> Self;
+    /// `a` if `x < y`, else `b`: no rounding, and in floats compiled as a compare and a
+    /// select rather than a branch where the target has one.
+    fn select_lt(x: &Self, y: &Self, a: &Self, b: &Self) -> Self {
+        if x < y {
+            a.clone()
+        } else {
+            b.clone()
+        }
+    }
+}
+
+impl ScalarRoot for f64 {
+    fn sqrt(a: &Self) -> Self {
+        a.sqrt()
+    }
+}
+
+impl ScalarRoot for f32 {
+    fn sqrt(a: &Self) -> Self {
+        a.sqrt()
+    }
+}
+
 pub(crate) fn allowance<T: Scalar>(s: &T) -> T {
     T::rounding_slack() * s.abs()
 }

@@ -49,6 +49,14 @@ macro_rules! arithmetic {
                     Op::MulAdd(a, b, c) => at(a).mul_add(at(b), at(c)),
                     Op::MulSub(a, b, c) => at(a).mul_add(at(b), -at(c)),
                     Op::NegMulAdd(a, b, c) => (-at(a)).mul_add(at(b), at(c)),
+                    Op::Sqrt(a) => at(a).sqrt(),
+                    Op::SelectLt([x, y, a, b]) => {
+                        if at(x) < at(y) {
+                            at(a)
+                        } else {
+                            at(b)
+                        }
+                    }
                 }
             }
         }
@@ -104,6 +112,14 @@ fn run_exact(p: &Program, input: &dyn Fn(&str) -> f64) -> Vec<BigRational> {
             Op::MulAdd(a, b, c) => at(a) * at(b) + at(c),
             Op::MulSub(a, b, c) => at(a) * at(b) - at(c),
             Op::NegMulAdd(a, b, c) => at(c) - at(a) * at(b),
+            Op::Sqrt(a) => crate::ir::rational_sqrt(&at(a)).expect("a rational root"),
+            Op::SelectLt([x, y, a, b]) => {
+                if at(x) < at(y) {
+                    at(a)
+                } else {
+                    at(b)
+                }
+            }
         };
         steps.push(v);
     }
