@@ -537,17 +537,25 @@ pub fn source(lang: &dyn Language, guard: &str, about: &str, units: &[Unit]) -> 
         "results under IEEE arithmetic without contraction (tests/c_backend.rs).",
     ];
     // The rough-ball kernels' parameters, where the file has them.
-    let rough = units
-        .iter()
-        .any(|u| u.params.iter().any(|p| matches!(p, Param::Array("law", _))))
-        .then_some(
-            "  rough_*: the same, with law[2] = {e, beta} after ball2 (docs/derivation.md §15).",
-        );
+    let has_law = |fields: usize| {
+        units.iter().any(|u| {
+            u.params
+                .iter()
+                .any(|p| matches!(p, Param::Array("law", f) if f.len() == fields))
+        })
+    };
+    let rough = has_law(2).then_some(
+        "  rough_*: the same, with law[2] = {e, beta} after ball2 (docs/derivation.md §15).",
+    );
+    let walton = has_law(3).then_some(
+        "  walton_*: the same, with law[3] = {e, mu, beta0} after ball2 (docs/derivation.md §15.1).",
+    );
     let abi = abi
         .iter()
         .take(4)
         .copied()
         .chain(rough)
+        .chain(walton)
         .chain(abi.iter().skip(4).copied());
     for l in abi.map(|l| l.to_string()).chain(lang.notes()) {
         s.push_str(format!("// {l}").trim_end());
@@ -588,7 +596,12 @@ pub fn generate(lang: Lang, dims: &[usize]) -> String {
     );
     let units: Vec<Unit> = dims
         .iter()
-        .flat_map(|&n| generic_units(n).into_iter().chain(rough_units(n)))
+        .flat_map(|&n| {
+            generic_units(n)
+                .into_iter()
+                .chain(rough_units(n))
+                .chain(walton_units(n))
+        })
         .collect();
     let list = dims
         .iter()
