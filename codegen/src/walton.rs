@@ -160,9 +160,9 @@ mod tests {
         BigRational::new(p.into(), d.into())
     }
 
-    /// 2D, fixed: `a = 1`, `g_1 g_2 = g_2`, `D = 1 + g_2`; the slip is `t = (u_2x - R_2 U_2 ...)`.
-    /// The factor evaluated exactly on both sides of the switch, against the definition
-    /// `h = min(h_0, mu h_n D |dn| / (g_2 |t|))` computed here by hand.
+    /// 2D, fixed (`a = 1`, `g_1 g_2 = g_2`, `D = 1 + g_2`): the factor `h_t` evaluated
+    /// exactly below, on and above the switch, against the definition
+    /// `h_t = min(h_0, mu h_n D |dn| / (g_2 |t|))` worked out by hand.
     #[test]
     fn the_factor_is_min_of_sticking_and_coulomb() {
         let mut g = Graph::new();

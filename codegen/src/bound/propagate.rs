@@ -310,14 +310,17 @@ fn product_error(a: Enclosed, b: Enclosed) -> (f64, f64) {
 }
 
 /// `sqrt(a)`: `sqrt(a (1 + d)) = sqrt(a) sqrt(1 + d)` and `|sqrt(1 + d) - 1| <= |d|` for
-/// `|d| <= 1`, so `R = r_a` before the rounding (infinite unless `r_a <= 1`); an operand
-/// that may be negative gives no bound.
+/// `|d| <= 1`, so `R = r_a` before the rounding (infinite unless `r_a <= 1`); and
+/// `|sqrt(x) - sqrt(y)| <= sqrt(|x - y|)`, so `E = sqrt(e_a)`. The exact argument is taken to
+/// be `>= 0` (the Walton kernels' one root is of a ratio of squares), so an enclosure's lower
+/// end below 0 (outward rounding around 0) is raised to 0; an enclosure wholly below 0 gives
+/// no bound.
 fn root(format: Format, a: Enclosed) -> Enclosed {
-    if a.value.lo < 0.0 || !a.value.is_bounded() {
+    if a.value.hi < 0.0 || !a.value.is_bounded() {
         return Enclosed::new(a.value, f64::INFINITY, f64::INFINITY);
     }
     let value = Interval::new(
-        super::round::sqrt_down(a.value.lo),
+        super::round::sqrt_down(a.value.lo.max(0.0)),
         super::round::sqrt_up(a.value.hi),
     );
     let r = if a.relative <= 1.0 {
@@ -325,7 +328,7 @@ fn root(format: Format, a: Enclosed) -> Enclosed {
     } else {
         f64::INFINITY
     };
-    rounded(format, value, f64::INFINITY, r, false)
+    rounded(format, value, super::round::sqrt_up(a.error), r, false)
 }
 
 /// `if x < y { a } else { b }` (no rounding): when the enclosures and errors of `x` and `y`
