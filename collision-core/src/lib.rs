@@ -66,7 +66,8 @@ mod wide;
 pub use ball::{Ball, Inertia, Mass};
 pub use collide::{
     collide, collide_general, collide_rough, collide_rough_unchecked, collide_unchecked,
-    collide_unchecked_fma, fma_in_hardware, validate, validate_parts,
+    collide_unchecked_fma, collide_walton, collide_walton_unchecked, fma_in_hardware, validate,
+    validate_parts,
 };
 pub use dims::DIMS;
 pub use error::{BodyField, Field, InputError};
