@@ -199,6 +199,16 @@ fn op_counts_of_every_walton_kernel() {
                 k.name()
             );
             assert_eq!(k.ops.div, r.ops.div + 1, "n = {dim}, {}", k.name());
+            if k.arith == Arith::Plain {
+                // |t|^2: n products, n - 1 sums; the two sides, rho and h_t: 10 products
+                // (9 in `fixed`, where its constants fold). docs/kernels.md quotes these.
+                let products = match k.variant {
+                    Variant::Free => 10 + dim,
+                    Variant::Fixed => 9 + dim,
+                };
+                assert_eq!(k.ops.add, r.ops.add + dim - 1, "n = {dim}, {}", k.name());
+                assert_eq!(k.ops.mul, r.ops.mul + products, "n = {dim}, {}", k.name());
+            }
             table.push_str(&format!(
                 "{dim} walton::{}: {}; {} terms\n",
                 k.name(),
