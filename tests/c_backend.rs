@@ -12,10 +12,10 @@
 mod backend;
 
 use backend::{
-    c_source, cc, compare, draw, records, run, rust_results, rust_rough_results, scratch, Float,
-    KERNELS, LAWS, ROUGH_KERNELS,
+    c_source, cc, compare, draw, records, run, rust_results, rust_rough_results,
+    rust_walton_results, scratch, Float, KERNELS, LAWS, ROUGH_KERNELS, WALTON_KERNELS, WALTON_LAWS,
 };
-use collision_core::{Generated, Kernel, Restitution, RoughKernel, Scalar};
+use collision_core::{Generated, Kernel, Restitution, RoughKernel, Scalar, Walton, WaltonKernel};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
 use noslip_codegen::backend::{file_name, generate, Lang};
@@ -72,14 +72,9 @@ fn run_c<T: Float>(exe: &Path, n: usize, kernel: &str, input: &Path) -> Vec<T> {
     values
 }
 
-/// Run rough kernel `kernel` of dimension `n` in format `T` under `(e, beta)` on `input`.
-fn run_c_rough<T: Float>(
-    exe: &Path,
-    n: usize,
-    kernel: &str,
-    law: (f64, f64),
-    input: &Path,
-) -> Vec<T> {
+/// Run rough or Walton kernel `kernel` of dimension `n` in format `T` under `law`
+/// (`(e, beta)` or `(e, mu, beta0)`) on `input`.
+fn run_c_rough<T: Float>(exe: &Path, n: usize, kernel: &str, law: &[f64], input: &Path) -> Vec<T> {
     let output = input.with_extension(format!("{kernel}.out"));
     run(Command::new(exe)
         .arg(n.to_string())
@@ -87,8 +82,7 @@ fn run_c_rough<T: Float>(
         .arg(<T as Scalar>::NAME)
         .arg(input)
         .arg(&output)
-        .arg(law.0.to_string())
-        .arg(law.1.to_string()));
+        .args(law.iter().map(f64::to_string)));
     let values = T::from_bytes(&std::fs::read(&output).unwrap());
     std::fs::remove_file(&output).unwrap();
     values
@@ -111,9 +105,43 @@ where
         for kernel in ROUGH_KERNELS {
             let rust = rust_rough_results(kernel, &exact, cases);
             for (config, exe) in exes {
-                let c = run_c_rough::<T>(exe, N, kernel, law, &input);
+                let c = run_c_rough::<T>(exe, N, kernel, &[law.0, law.1], &input);
                 let what = format!(
                     "n = {N}, {kernel} {} (e, beta) = {law:?} (cc {config})",
+                    <T as Scalar>::NAME
+                );
+                if let Err(e) = compare(&what, cases, &rust, &c) {
+                    failures.push(e);
+                }
+            }
+        }
+    }
+    std::fs::remove_file(&input).unwrap();
+    failures
+}
+
+/// Compare every Walton kernel in format `T` under each of [`WALTON_LAWS`] on `cases`; the
+/// failures.
+fn check_walton_format<T: Float, const N: usize, const S: usize>(
+    dir: &Path,
+    exes: &[(&str, PathBuf)],
+    cases: &[(Regime, Case<T, N, S>)],
+) -> Vec<String>
+where
+    Generated: WaltonKernel<T, N, S>,
+{
+    let input = dir.join(format!("walton_{N}_{}.bin", <T as Scalar>::NAME));
+    std::fs::write(&input, records(cases)).unwrap();
+    let mut failures = Vec::new();
+    for law in WALTON_LAWS {
+        let [e, mu, beta0] = law.map(T::from_f64);
+        let typed = Walton::new(e, mu, beta0).expect("in range");
+        for kernel in WALTON_KERNELS {
+            let rust = rust_walton_results(kernel, &typed, cases);
+            for (config, exe) in exes {
+                let c = run_c_rough::<T>(exe, N, kernel, &law, &input);
+                let what = format!(
+                    "n = {N}, {kernel} {} (e, mu, beta0) = {law:?} (cc {config})",
                     <T as Scalar>::NAME
                 );
                 if let Err(e) = compare(&what, cases, &rust, &c) {
@@ -209,6 +237,38 @@ fn c_rough_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
                 let cases = draw::<N, S>(ROUGH_CASES, 24 + N as u64);
                 let mut f = check_rough_format(&dir, &exes, &cases.f64);
                 f.extend(check_rough_format(&dir, &exes, &cases.f32));
+                f
+            },
+            unreachable!("DIMS lists the compiled dimensions")
+        ));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The Walton kernels of the C header (a square root and two selects each) return the Rust
+/// Walton kernels' bits, under each of [`WALTON_LAWS`], on the same regimes, in both
+/// compiler configurations.
+#[test]
+fn c_walton_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
+    // Half the rough test's cases: the comparison's cost, not its reach, differs (the same
+    // regimes, every law, both configurations).
+    const WALTON_CASES: usize = ROUGH_CASES / 2;
+    let dir = scratch("c-backend-walton");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+    let exes: Vec<(&str, PathBuf)> = CONFIGS
+        .iter()
+        .enumerate()
+        .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("harness{k}"))))
+        .collect();
+    let mut failures = Vec::new();
+    for n in collision_core::DIMS.iter().copied() {
+        failures.extend(collision_core::with_dim!(
+            n,
+            |N, S| {
+                let cases = draw::<N, S>(WALTON_CASES, 44 + N as u64);
+                let mut f = check_walton_format(&dir, &exes, &cases.f64);
+                f.extend(check_walton_format(&dir, &exes, &cases.f32));
                 f
             },
             unreachable!("DIMS lists the compiled dimensions")

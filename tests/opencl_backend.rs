@@ -10,8 +10,12 @@
 
 mod backend;
 
-use backend::{compare, draw, opencl, records, rust_results, scratch, Float, KERNELS, LAWS};
-use collision_core::{BodyState, Generated, Kernel, Restitution, RoughKernel, Scalar};
+use backend::{
+    compare, draw, opencl, records, rust_results, scratch, Float, KERNELS, LAWS, WALTON_LAWS,
+};
+use collision_core::{
+    BodyState, Generated, Kernel, Restitution, RoughKernel, Scalar, Walton, WaltonKernel,
+};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
 use noslip_codegen::backend::{file_name, generate, Lang};
@@ -122,26 +126,32 @@ fn law_of<T: Float>(k: usize) -> Restitution<T> {
     Restitution::new(T::from_f64(e), T::from_f64(beta)).expect("in range")
 }
 
-/// One rough kernel of dimension `N` in format `T`: its input records (the batch kernel's
-/// parameters in order, `law` per record) and the Rust results, as the host's list mode
-/// reads and writes them.
-fn rough_records<T: Float, const N: usize, const S: usize>(
+/// The law of case `k` for the Walton kernels: the [`WALTON_LAWS`] in turn.
+fn walton_law_of<T: Float>(k: usize) -> Walton<T> {
+    let [e, mu, beta0] = WALTON_LAWS[k % WALTON_LAWS.len()].map(T::from_f64);
+    Walton::new(e, mu, beta0).expect("in range")
+}
+
+/// The flattened state `(U, u)`.
+fn flat<T: Float, const N: usize, const S: usize>(s: &BodyState<T, N, S>) -> Vec<T> {
+    s.spin
+        .iter()
+        .chain(&s.velocity)
+        .copied()
+        .collect::<Vec<T>>()
+}
+
+/// One kernel of dimension `N` in format `T` with a per-contact law: its input records (the
+/// batch kernel's parameters in order, `law(k)` for record `k`) and the Rust results
+/// (`run(k, case)`), as the host's list mode reads and writes them.
+fn law_records<T: Float, const N: usize, const S: usize>(
     kernel: &str,
     cases: &[(Regime, Case<T, N, S>)],
-) -> (Vec<u8>, Vec<T>)
-where
-    Generated: RoughKernel<T, N, S>,
-{
+    law: impl Fn(usize) -> Vec<T>,
+    run: impl Fn(usize, &Case<T, N, S>) -> Vec<BodyState<T, N, S>>,
+) -> (Vec<u8>, Vec<T>) {
     let (mut bytes, mut rust) = (Vec::new(), Vec::new());
-    let state = |s: &BodyState<T, N, S>| {
-        s.spin
-            .iter()
-            .chain(&s.velocity)
-            .copied()
-            .collect::<Vec<T>>()
-    };
     for (k, (_, c)) in cases.iter().enumerate() {
-        let law = law_of::<T>(k);
         let (nu, [b1, b2], [s1, s2]) = (&c.nu, c.ball_refs(), c.state_refs());
         let ball = |b: &collision_core::Ball<T>| vec![b.inv_mass, b.radius, b.gamma2];
         let first: Vec<T> = if kernel.contains("fixed") {
@@ -154,52 +164,145 @@ where
             .copied()
             .chain(first)
             .chain(ball(b2))
-            .chain([law.e, law.beta])
-            .chain(state(s1))
-            .chain(state(s2));
+            .chain(law(k))
+            .chain(flat(s1))
+            .chain(flat(s2));
         for v in values {
             bytes.extend(v.bytes());
         }
-        let out: Vec<BodyState<T, N, S>> = match kernel {
-            "rough_free" => Generated::rough_free(nu, b1, b2, &law, s1, s2).to_vec(),
-            "rough_free_fma" => Generated::rough_free_fma(nu, b1, b2, &law, s1, s2).to_vec(),
-            "rough_fixed" => vec![Generated::rough_fixed(nu, &b1.radius, b2, &law, s1, s2)],
-            _ => vec![Generated::rough_fixed_fma(nu, &b1.radius, b2, &law, s1, s2)],
-        };
-        for b in &out {
-            rust.extend(state(b));
+        for b in &run(k, c) {
+            rust.extend(flat(b));
         }
     }
     (bytes, rust)
 }
 
-/// The host's list lines (written with the case files) or the comparison, for dimension `N`.
+/// One rough kernel: [`law_records`] under [`law_of`].
+fn rough_records<T: Float, const N: usize, const S: usize>(
+    kernel: &str,
+    cases: &[(Regime, Case<T, N, S>)],
+) -> (Vec<u8>, Vec<T>)
+where
+    Generated: RoughKernel<T, N, S>,
+{
+    let law = |k: usize| {
+        let l = law_of::<T>(k);
+        vec![l.e, l.beta]
+    };
+    law_records(kernel, cases, law, |k, c| {
+        let law = law_of::<T>(k);
+        let (nu, [b1, b2], [s1, s2]) = (&c.nu, c.ball_refs(), c.state_refs());
+        match kernel {
+            "rough_free" => Generated::rough_free(nu, b1, b2, &law, s1, s2).to_vec(),
+            "rough_free_fma" => Generated::rough_free_fma(nu, b1, b2, &law, s1, s2).to_vec(),
+            "rough_fixed" => vec![Generated::rough_fixed(nu, &b1.radius, b2, &law, s1, s2)],
+            _ => vec![Generated::rough_fixed_fma(nu, &b1.radius, b2, &law, s1, s2)],
+        }
+    })
+}
+
+/// One Walton kernel: [`law_records`] under [`walton_law_of`].
+fn walton_records<T: Float, const N: usize, const S: usize>(
+    kernel: &str,
+    cases: &[(Regime, Case<T, N, S>)],
+) -> (Vec<u8>, Vec<T>)
+where
+    Generated: WaltonKernel<T, N, S>,
+{
+    let law = |k: usize| {
+        let l = walton_law_of::<T>(k);
+        vec![l.e, l.mu, l.beta0]
+    };
+    law_records(kernel, cases, law, |k, c| {
+        let law = walton_law_of::<T>(k);
+        let (nu, [b1, b2], [s1, s2]) = (&c.nu, c.ball_refs(), c.state_refs());
+        match kernel {
+            "walton_free" => Generated::walton_free(nu, b1, b2, &law, s1, s2).to_vec(),
+            "walton_free_fma" => Generated::walton_free_fma(nu, b1, b2, &law, s1, s2).to_vec(),
+            "walton_fixed" => vec![Generated::walton_fixed(nu, &b1.radius, b2, &law, s1, s2)],
+            _ => vec![Generated::walton_fixed_fma(
+                nu, &b1.radius, b2, &law, s1, s2,
+            )],
+        }
+    })
+}
+
+/// The host's list lines (written with the case files) or the comparison, for dimension `N`:
+/// every rough and Walton kernel in both formats.
 fn rough_dim<const N: usize, const S: usize>(dir: &Path, list: Option<&mut String>) -> Vec<String>
 where
-    Generated: RoughKernel<f64, N, S> + RoughKernel<f32, N, S>,
+    Generated: RoughKernel<f64, N, S>
+        + RoughKernel<f32, N, S>
+        + WaltonKernel<f64, N, S>
+        + WaltonKernel<f32, N, S>,
 {
     let cases = draw::<N, S>(ROUGH_CASES, 240 + N as u64);
     let mut failures = Vec::new();
     let mut list = list;
     for kernel in backend::ROUGH_KERNELS {
-        failures.extend(rough_format(dir, kernel, &cases.f64, list.as_deref_mut()));
-        failures.extend(rough_format(dir, kernel, &cases.f32, list.as_deref_mut()));
+        let (f64s, f32s) = (&cases.f64, &cases.f32);
+        let r64 = rough_records(kernel, f64s);
+        let r32 = rough_records(kernel, f32s);
+        let laws = format!("laws {LAWS:?}");
+        failures.extend(law_format(
+            dir,
+            kernel,
+            f64s,
+            r64,
+            2,
+            &laws,
+            list.as_deref_mut(),
+        ));
+        failures.extend(law_format(
+            dir,
+            kernel,
+            f32s,
+            r32,
+            2,
+            &laws,
+            list.as_deref_mut(),
+        ));
+    }
+    for kernel in backend::WALTON_KERNELS {
+        let (f64s, f32s) = (&cases.f64, &cases.f32);
+        let r64 = walton_records(kernel, f64s);
+        let r32 = walton_records(kernel, f32s);
+        let laws = format!("laws {WALTON_LAWS:?}");
+        failures.extend(law_format(
+            dir,
+            kernel,
+            f64s,
+            r64,
+            3,
+            &laws,
+            list.as_deref_mut(),
+        ));
+        failures.extend(law_format(
+            dir,
+            kernel,
+            f32s,
+            r32,
+            3,
+            &laws,
+            list.as_deref_mut(),
+        ));
     }
     failures
 }
 
-fn rough_format<T: Float, const N: usize, const S: usize>(
+/// Write one kernel's records and its list line (`list` given), or compare the host's
+/// results with `records`' Rust ones; `law_len` is the law's length, `laws` says which.
+fn law_format<T: Float, const N: usize, const S: usize>(
     dir: &Path,
     kernel: &str,
     cases: &[(Regime, Case<T, N, S>)],
+    (bytes, rust): (Vec<u8>, Vec<T>),
+    law_len: usize,
+    laws: &str,
     list: Option<&mut String>,
-) -> Vec<String>
-where
-    Generated: RoughKernel<T, N, S>,
-{
+) -> Vec<String> {
     let format = <T as Scalar>::NAME;
     let name = format!("noslip_d{N}_{kernel}_{format}");
-    let (bytes, rust) = rough_records(kernel, cases);
     let state = S + N;
     match list {
         Some(list) => {
@@ -211,7 +314,7 @@ where
             };
             let _ = writeln!(
                 list,
-                "{format} {name} {N},{first},3,2,{state},{state} {outs}"
+                "{format} {name} {N},{first},3,{law_len},{state},{state} {outs}"
             );
             Vec::new()
         }
@@ -221,7 +324,7 @@ where
                 Ok(b) => T::from_bytes(&b),
                 Err(e) => return vec![format!("{}: {e}", out.display())],
             };
-            let what = format!("n = {N}, {kernel} {format} (OpenCL, laws {LAWS:?})");
+            let what = format!("n = {N}, {kernel} {format} (OpenCL, {laws})");
             compare(&what, cases, &rust, &cl)
                 .err()
                 .into_iter()
@@ -230,8 +333,8 @@ where
     }
 }
 
-/// The rough-ball batch kernels return the Rust rough kernels' bits, each record under one of
-/// [`LAWS`] (the law is a per-contact array of the batch kernel).
+/// The rough-ball and Walton batch kernels return the Rust kernels' bits, each record under
+/// one of [`LAWS`] or [`WALTON_LAWS`] (the law is a per-contact array of the batch kernel).
 #[test]
 fn opencl_rough_kernels_are_bit_identical_to_the_rust_kernels() {
     let dir = scratch("opencl-backend-rough");

@@ -39,6 +39,8 @@ pub fn path(field: Field) -> String {
         Field::RelativeVelocity => "bodies[*].velocity".into(),
         Field::RestitutionE => "contact.e".into(),
         Field::RestitutionBeta => "contact.beta".into(),
+        Field::FrictionMu => "contact.mu".into(),
+        Field::WaltonBeta0 => "contact.beta0".into(),
         _ => field.to_string(),
     }
 }

@@ -32,7 +32,7 @@ pub const MAX_EXACT_EXPONENT: u64 = 1000;
 const QUOTE_CHARS: usize = 40;
 
 /// A scalar the `collide` command can read from and print to JSON.
-pub trait InputScalar: Scalar {
+pub trait InputScalar: Scalar<Unbounded: collision_core::ScalarRoot> {
     /// The number `text` spells (see the module documentation); the error is a message.
     fn parse_number(text: &str) -> Result<Self, String>;
     /// The value as JSON output; `None` if it is not finite.

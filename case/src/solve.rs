@@ -11,8 +11,8 @@ use crate::error::CaseError;
 use crate::number::InputScalar;
 use collision_core::reference::state_len;
 use collision_core::{
-    collide, collide_general, collide_rough, skew_entries, Ball, BodyState, Generated, Kernel,
-    RefArith, RoughKernel, State2, State3,
+    collide, collide_general, collide_rough, collide_walton, skew_entries, Ball, BodyState,
+    Generated, Kernel, RefArith, RoughKernel, State2, State3, WaltonKernel,
 };
 use nalgebra::DVector;
 
@@ -40,7 +40,7 @@ where
         return Err(CaseError::new(
             "contact",
             format!(
-                "the rough-ball law has kernels for dim in {:?} only, got dim = {}",
+                "the rough-ball and Walton laws have kernels for dim in {:?} only, got dim = {}",
                 collision_core::DIMS,
                 case.dim
             ),
@@ -110,7 +110,9 @@ fn solve_kernel<T, const N: usize, const S: usize>(
 ) -> Result<[BodyOutput<T>; 2], CaseError>
 where
     T: InputScalar,
-    Generated: Kernel<T::Unbounded, N, S> + RoughKernel<T::Unbounded, N, S>,
+    Generated: Kernel<T::Unbounded, N, S>
+        + RoughKernel<T::Unbounded, N, S>
+        + WaltonKernel<T::Unbounded, N, S>,
 {
     let states: [BodyState<T, N, S>; 2] = [state(&case.bodies[0], 0)?, state(&case.bodies[1], 1)?];
     let balls = [&balls[0], &balls[1]];
@@ -119,6 +121,7 @@ where
     let out = match &case.contact {
         Contact::NoSlip => collide(&nu, balls, states)?,
         Contact::Rough(law) => collide_rough(&nu, balls, law, states)?,
+        Contact::Walton(law) => collide_walton(&nu, balls, law, states)?,
     };
     Ok(out.map(|s| BodyOutput {
         spin: s.spin.to_vec(),

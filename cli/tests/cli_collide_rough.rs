@@ -121,6 +121,10 @@ fn bad_laws_are_refused_naming_the_field() {
         (&["collide"], json!({"e": "NaN", "beta": 0}), "contact.e", "not a finite number"),
         (&["collide", "--exact"], json!({"e": "1/2"}), "contact.beta", "missing"),
         (&["collide", "--exact"], json!({"e": "1/2", "beta": "0", "mu": "1"}), "contact.mu", "unknown key"),
+        (&["collide", "--exact"], json!({"e": "1/2", "mu": "-1", "beta0": "0"}), "contact.mu", "must be finite and >= 0, got -1"),
+        (&["collide"], json!({"e": 0.5, "mu": 0.1, "beta0": 1.5}), "contact.beta0", "must be in [-1, 1], got 1.5"),
+        (&["collide"], json!({"e": 0.5, "mu": "NaN", "beta0": 0}), "contact.mu", "not a finite number"),
+        (&["collide", "--exact"], json!({"e": "1/2", "mu": "1"}), "contact.beta0", "missing"),
         (&["collide", "--exact"], json!("rough"), "contact", "expected \"no-slip\", \"smooth\" or an object"),
         (&["collide", "--exact"], json!(1), "contact", "got a number"),
     ];
@@ -136,6 +140,23 @@ fn bad_laws_are_refused_naming_the_field() {
             "{law}: {err:?} does not start with {head:?}"
         );
         assert!(err.contains(what), "{law}: {err:?} does not say {what:?}");
+    }
+}
+
+/// The Walton law (docs/derivation.md §15.1) on the example: with `mu = 0` the tangential
+/// impulse is zero whenever the contact slips (`beta = -1`), so the output is the rough law's
+/// at `(e, -1)`; with `mu` large it sticks, and the output is the rough law's at `beta0`.
+#[test]
+fn the_walton_law_is_the_rough_law_at_its_beta() {
+    let exact = &["collide", "--exact"][..];
+    for (mu, beta) in [("0", "-1"), ("1000", "1/3")] {
+        let walton = json!({"e": "1/2", "mu": mu, "beta0": "1/3"});
+        let rough = json!({"e": "1/2", "beta": beta});
+        assert_eq!(
+            collide(exact, &example(Some(walton))),
+            collide(exact, &example(Some(rough))),
+            "mu = {mu}"
+        );
     }
 }
 

@@ -128,10 +128,7 @@ fn uniform_nodes(graph: &Graph, shared: &BTreeSet<String>) -> Vec<bool> {
         let u = match graph.node(Id(index as u32)) {
             Node::Input(input) => shared.contains(&input.0),
             Node::Const(_) => true,
-            Node::Neg(a) => uniform[a.0 as usize],
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                uniform[a.0 as usize] && uniform[b.0 as usize]
-            }
+            node => node.operands().all(|a| uniform[a.0 as usize]),
         };
         uniform.push(u);
     }
@@ -193,6 +190,8 @@ fn count(graph: &Graph, ids: &[Id]) -> OpCount {
             Node::Mul(..) => ops.mul += 1,
             Node::Div(..) => ops.div += 1,
             Node::Neg(..) => ops.neg += 1,
+            Node::Sqrt(..) => ops.sqrt += 1,
+            Node::SelectLt(..) => ops.select += 1,
             Node::Input(_) | Node::Const(_) => {}
         }
     }
@@ -483,6 +482,8 @@ mod tests {
             div: a.div + b.div,
             neg: a.neg + b.neg,
             fma: a.fma + b.fma,
+            sqrt: a.sqrt + b.sqrt,
+            select: a.select + b.select,
         }
     }
 

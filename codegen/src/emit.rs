@@ -104,6 +104,25 @@ fn restitution_pattern(live: &BTreeSet<String>) -> TokenStream {
     quote!(Restitution { #(#bound,)* #rest })
 }
 
+/// `Walton { e, mu, beta0 }`, binding the live ones.
+fn walton_pattern(live: &BTreeSet<String>) -> TokenStream {
+    let fields = [
+        names::restitution_e(),
+        names::friction_mu(),
+        names::walton_beta0(),
+    ];
+    let bound: Vec<TokenStream> = fields
+        .iter()
+        .filter(|n| live.contains(*n))
+        .map(|n| {
+            let n = ident(n);
+            quote!(#n)
+        })
+        .collect();
+    let rest = (bound.len() < fields.len()).then(|| quote!(..));
+    quote!(Walton { #(#bound,)* #rest })
+}
+
 /// A formula file as a Markdown text block (split into doc lines by [`description`]).
 fn text_block(formulas: &str) -> String {
     format!("```text\n{formulas}```")
@@ -132,6 +151,26 @@ pub(crate) fn description(kernel: &KernelGraph) -> Vec<String> {
             text_block(Law::Rough.closed_form(Variant::Fixed)),
             String::new(),
             "Finite for every `gamma2` in `[0, 2/n]`; `(e, beta) = (1, 1)` is [`super::fixed`].".into(),
+        ],
+        (Law::Walton, Variant::Free) => vec![
+            format!("Walton-law collision of two free balls in R^{n}: normal restitution `e`, friction"),
+            "coefficient `mu`, tangential restitution `beta = min(beta0, beta_C)`, where `beta_C` makes".into(),
+            "the tangential impulse `mu` times the normal one (`docs/derivation.md` §15.1): returns".into(),
+            "`[body 1, body 2]`.".into(),
+            String::new(),
+            text_block(Law::Walton.closed_form(Variant::Free)),
+            String::new(),
+            "While sticking (`C >= L`, including `t = 0`) the outputs are [`super::rough::free`]'s at".into(),
+            "`beta = beta0`, bit for bit. Requires `D > 0` and `w_1 + w_2 > 0`, as [`super::free`], and".into(),
+            "`L` and `C` finite (floats: `|t|`, `|dn|` far below the square root of the largest value).".into(),
+        ],
+        (Law::Walton, Variant::Fixed) => vec![
+            format!("Walton-law collision in R^{n} of a free ball (body 2) with an immovable one (body 1):"),
+            "returns body 2 after contact. The `w_1 -> 0` limit of [`free`].".into(),
+            String::new(),
+            text_block(Law::Walton.closed_form(Variant::Fixed)),
+            String::new(),
+            "While sticking the outputs are [`super::rough::fixed`]'s at `beta = beta0`, bit for bit.".into(),
         ],
         (Law::NoSlip, Variant::Free) => vec![
             format!("No-slip collision of two free balls in R^{n}: returns `[body 1, body 2]` after contact."),
@@ -226,6 +265,14 @@ pub fn emit_body_as(kernel: &KernelGraph, arith: Arith) -> EmittedBody {
             Op::MulAdd(a, b, c) => fused_call(quote!(mul_add), [a, b, c].map(operand)),
             Op::MulSub(a, b, c) => fused_call(quote!(mul_sub), [a, b, c].map(operand)),
             Op::NegMulAdd(a, b, c) => fused_call(quote!(neg_mul_add), [a, b, c].map(operand)),
+            Op::Sqrt(a) => {
+                let a = operand(a);
+                quote!(T::sqrt(#a))
+            }
+            Op::SelectLt(ids) => {
+                let [x, y, a, b] = ids.each_ref().map(operand);
+                quote!(T::select_lt(#x, #y, #a, #b))
+            }
         };
         quote!(let #name: T = #expr;)
     });
@@ -299,7 +346,7 @@ pub fn emit_kernel_as(kernel: &KernelGraph, arith: Arith) -> EmittedKernel {
             "Always inlined, so it is compiled with its caller's target features:".into(),
             match kernel.law {
                 Law::NoSlip => "`collision_core::collide_unchecked_fma` calls it from a function compiled with",
-                Law::Rough => "call it from a function compiled with (as `collision_core::collide_unchecked_fma` does)",
+                Law::Rough | Law::Walton => "call it from a function compiled with (as `collision_core::collide_unchecked_fma` does)",
             }
             .into(),
             "`#[target_feature(enable = \"fma\")]` when the CPU has FMA (run-time detection)."
@@ -325,6 +372,15 @@ pub fn emit_kernel_as(kernel: &KernelGraph, arith: Arith) -> EmittedKernel {
             let pattern = restitution_pattern(live);
             (quote!(law: &Restitution<T>,), quote!(let #pattern = law;))
         }
+        Law::Walton => {
+            let pattern = walton_pattern(live);
+            (quote!(law: &Walton<T>,), quote!(let #pattern = law;))
+        }
+    };
+    // The Walton kernels take a square root and select: `T: ScalarRoot`.
+    let scalar = match kernel.law {
+        Law::Walton => quote!(ScalarRoot),
+        Law::NoSlip | Law::Rough => quote!(Scalar),
     };
     let (params, prologue, ret_ty, ret) = match kernel.variant {
         Variant::Free => {
@@ -348,7 +404,7 @@ pub fn emit_kernel_as(kernel: &KernelGraph, arith: Arith) -> EmittedKernel {
         #doc
         #inline
         #[allow(non_snake_case, clippy::too_many_arguments)]
-        pub fn #fn_name<T: Scalar>(#params) -> #ret_ty
+        pub fn #fn_name<T: #scalar>(#params) -> #ret_ty
         where
             for<'a> &'a T: RefArith<T>,
         {
@@ -385,6 +441,14 @@ pub(crate) fn step(namer: &Namer<'_>, id: Id) -> TokenStream {
         Node::Neg(a) => {
             let a = namer.operand(*a);
             quote!(-#a)
+        }
+        Node::Sqrt(a) => {
+            let a = namer.operand(*a);
+            quote!(T::sqrt(#a))
+        }
+        Node::SelectLt(ids) => {
+            let [x, y, a, b] = ids.map(|id| namer.operand(id));
+            quote!(T::select_lt(#x, #y, #a, #b))
         }
         Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
     };
@@ -423,6 +487,14 @@ pub fn rough_header(dim: usize, kernels: &[EmittedKernel]) -> String {
     )
 }
 
+/// The header of a generated Walton file (`walton_{dim}.rs`): provenance and costs.
+pub fn walton_header(dim: usize, kernels: &[EmittedKernel]) -> String {
+    titled_header(
+        &format!("Walton (e, mu, beta0) collision kernels for n = {dim}."),
+        kernels,
+    )
+}
+
 /// Provenance, the file's `title`, and a line per kernel: its name, operation count and
 /// intermediate terms.
 fn titled_header(title: &str, kernels: &[EmittedKernel]) -> String {
@@ -446,6 +518,12 @@ fn titled_header(title: &str, kernels: &[EmittedKernel]) -> String {
 pub fn rough_imports(crate_path: &str) -> TokenStream {
     let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
     quote!(use #path::{Ball, BodyState, RefArith, Restitution, Scalar};)
+}
+
+/// The `use` line of a Walton module: the runtime types, `ScalarRoot` and `Walton`.
+pub fn walton_imports(crate_path: &str) -> TokenStream {
+    let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
+    quote!(use #path::{Ball, BodyState, RefArith, ScalarRoot, Walton};)
 }
 
 /// Parse emitted items into a `syn::File`. Panics with the offending source when the

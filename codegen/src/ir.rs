@@ -51,19 +51,23 @@ pub enum Node {
     Div(Id, Id),
     /// `-a`.
     Neg(Id),
+    /// `sqrt(a)`, `a >= 0`: the Walton law's one root (`docs/derivation.md` §15.1).
+    Sqrt(Id),
+    /// `if x < y { a } else { b }`, `[x, y, a, b]`: a branch-free select (both arms are
+    /// computed; the comparison picks one).
+    SelectLt([Id; 4]),
 }
 
 impl Node {
     /// The operands, in order (`a` then `b`; none for an input or a constant).
     pub fn operands(&self) -> impl Iterator<Item = Id> {
-        let (a, b) = match *self {
-            Node::Input(_) | Node::Const(_) => (None, None),
-            Node::Neg(a) => (Some(a), None),
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                (Some(a), Some(b))
-            }
+        let ids = match *self {
+            Node::Input(_) | Node::Const(_) => vec![],
+            Node::Neg(a) | Node::Sqrt(a) => vec![a],
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => vec![a, b],
+            Node::SelectLt(ids) => ids.to_vec(),
         };
-        a.into_iter().chain(b)
+        ids.into_iter()
     }
 }
 
@@ -290,6 +294,26 @@ impl Graph {
         self.intern(Node::Neg(a))
     }
 
+    /// `sqrt(a)`: folded for a constant that is the square of a rational; the builder
+    /// guarantees `a >= 0` wherever the kernel is defined.
+    pub fn sqrt(&mut self, a: Id) -> Id {
+        if let Some(root) = self.as_const(a).and_then(rational_sqrt) {
+            return self.constant(root);
+        }
+        self.intern(Node::Sqrt(a))
+    }
+
+    /// `if x < y { a } else { b }`: folded when `x` and `y` are constants or `a == b`.
+    pub fn select_lt(&mut self, x: Id, y: Id, a: Id, b: Id) -> Id {
+        if a == b {
+            return a;
+        }
+        if let (Some(p), Some(q)) = (self.as_const(x), self.as_const(y)) {
+            return if p < q { a } else { b };
+        }
+        self.intern(Node::SelectLt([x, y, a, b]))
+    }
+
     /// `sum_k terms[k]`, left to right (so the rounding order is the order given).
     pub fn sum(&mut self, terms: impl IntoIterator<Item = Id>) -> Id {
         let zero = self.int(0);
@@ -306,7 +330,8 @@ impl Graph {
     /// Exact values of every node, in id order. `input` gives each input's value; `rewrite`
     /// may replace a node's value, given the values of the nodes before it (the verifier
     /// corrupts kernels with it on purpose; `|_, _, _| None` evaluates the DAG as built).
-    /// Errors name a missing input or a division by zero.
+    /// Errors name a missing input or a division by zero; a [`Node::Sqrt`] is an error here
+    /// (see [`Graph::eval_all_rooted`]).
     ///
     /// `T` is any exact field whose values parse from `p/q` (the DAG's constants are written
     /// so): `BigRational`, `collision_core::Exact`.
@@ -316,7 +341,26 @@ impl Graph {
         rewrite: &Rewrite<'_, T>,
     ) -> Result<Vec<T>, String>
     where
-        T: Clone + Zero + FromStr,
+        T: Clone + Zero + FromStr + PartialOrd + std::fmt::Display,
+        for<'a> &'a T: Add<&'a T, Output = T>
+            + Sub<&'a T, Output = T>
+            + Mul<&'a T, Output = T>
+            + Div<&'a T, Output = T>
+            + Neg<Output = T>,
+    {
+        self.eval_all_rooted(input, rewrite, &|_| None)
+    }
+
+    /// [`Graph::eval_all`] where a [`Node::Sqrt`] takes `root`, the exact square root
+    /// (`None` when it is not rational: an error, since every value here is exact).
+    pub fn eval_all_rooted<T>(
+        &self,
+        input: &dyn Fn(&str) -> Option<T>,
+        rewrite: &Rewrite<'_, T>,
+        root: &dyn Fn(&T) -> Option<T>,
+    ) -> Result<Vec<T>, String>
+    where
+        T: Clone + Zero + FromStr + PartialOrd + std::fmt::Display,
         for<'a> &'a T: Add<&'a T, Output = T>
             + Sub<&'a T, Output = T>
             + Mul<&'a T, Output = T>
@@ -344,6 +388,12 @@ impl Graph {
                         Node::Div(_, b) if at(b).is_zero() => return Err("division by zero".into()),
                         Node::Div(a, b) => at(a) / at(b),
                         Node::Neg(a) => -at(a),
+                        Node::SelectLt([x, y, a, b]) => {
+                            if at(x) < at(y) { at(a) } else { at(b) }.clone()
+                        }
+                        Node::Sqrt(a) => root(at(a)).ok_or_else(|| {
+                            format!("the square root of {} is not rational", at(a))
+                        })?,
                     }
                 }
             };
@@ -351,6 +401,16 @@ impl Graph {
         }
         Ok(values)
     }
+}
+
+/// The square root of `x` if it is the square of a rational (numerator and denominator
+/// perfect squares), else `None`.
+pub fn rational_sqrt(x: &BigRational) -> Option<BigRational> {
+    if x.is_negative() {
+        return None;
+    }
+    let (p, q) = (x.numer().sqrt(), x.denom().sqrt());
+    (&p * &p == *x.numer() && &q * &q == *x.denom()).then(|| BigRational::new(p, q))
 }
 
 #[cfg(test)]

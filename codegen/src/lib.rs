@@ -37,6 +37,7 @@ pub mod program;
 pub mod schedule;
 pub mod specialise;
 pub mod straight_line;
+pub mod walton;
 
 pub use arith::Arith;
 pub use model::{Law, Variant};
@@ -157,6 +158,27 @@ pub fn generate_rough(dim: usize, crate_path: &str) -> Module {
         emit::rough_header,
         "rough kernels",
     )
+}
+
+/// Generate the Walton kernels (run-time `e`, `mu`, `beta0`; `docs/derivation.md` §15.1)
+/// for dimension `dim`: `free`, `fixed`, `free_fma`, `fixed_fma`, through the same pipeline
+/// as [`generate`], as one formatted file ([`walton_file_name`]) that `collision-core`
+/// includes as `kernels::dN::walton`.
+///
+/// Panics if the emission is not valid Rust or not straight-line: both are generator bugs.
+pub fn generate_walton(dim: usize, crate_path: &str) -> Module {
+    assemble(
+        dim,
+        walton::build_walton,
+        emit::walton_imports(crate_path),
+        emit::walton_header,
+        "Walton kernels",
+    )
+}
+
+/// The file name of dimension `dim`'s Walton module: `walton_{dim}.rs`.
+pub fn walton_file_name(dim: usize) -> String {
+    format!("walton_{dim}.rs")
 }
 
 /// The file name of dimension `dim`'s rough-ball module: `rough_{dim}.rs`.

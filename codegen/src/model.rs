@@ -57,6 +57,9 @@ pub enum Law {
     /// The rough-ball family with run-time normal and tangential restitution `(e, beta)`:
     /// `dn+ = -e dn`, `t+ = -beta t` (`kernels::dN::rough::free`, ...).
     Rough,
+    /// The Walton law with run-time `(e, mu, beta0)`: the rough law with
+    /// `beta = min(beta0, beta_Coulomb)` (`kernels::dN::walton::free`, ...; [`crate::walton`]).
+    Walton,
 }
 
 impl Law {
@@ -67,6 +70,8 @@ impl Law {
             (Law::NoSlip, Variant::Fixed) => CLOSED_FORM_FIXED,
             (Law::Rough, Variant::Free) => CLOSED_FORM_ROUGH_FREE,
             (Law::Rough, Variant::Fixed) => CLOSED_FORM_ROUGH_FIXED,
+            (Law::Walton, Variant::Free) => crate::walton::CLOSED_FORM_WALTON_FREE,
+            (Law::Walton, Variant::Fixed) => crate::walton::CLOSED_FORM_WALTON_FIXED,
         }
     }
 }
@@ -155,6 +160,14 @@ pub mod names {
     /// `beta`: the tangential restitution of the rough law.
     pub fn restitution_beta() -> String {
         "beta".into()
+    }
+    /// `mu`: the friction coefficient of the Walton law.
+    pub fn friction_mu() -> String {
+        "mu".into()
+    }
+    /// `beta0`: the Walton law's tangential restitution while sticking.
+    pub fn walton_beta0() -> String {
+        "beta0".into()
     }
 }
 
@@ -319,6 +332,7 @@ pub fn build_law(n: usize, variant: Variant, law: Law) -> KernelGraph {
     match law {
         Law::NoSlip => build(n, variant),
         Law::Rough => build_rough(n, variant),
+        Law::Walton => crate::walton::build_walton(n, variant),
     }
 }
 
@@ -351,19 +365,13 @@ pub fn build_on(g: &mut Graph, inputs: &KernelInputs, variant: Variant) -> Vec<B
     build_scaled_on(g, inputs, variant, None)
 }
 
-/// The map with `P_n` scaled by `h.0` and `P_t`, `rho_1`, `rho_2` by `h.1` (the rough law),
-/// or unscaled (`None`: no-slip, no node added).
-fn build_scaled_on(
-    g: &mut Graph,
-    inputs: &KernelInputs,
-    variant: Variant,
-    h: Option<(Id, Id)>,
-) -> Vec<BodyOutput> {
+/// The normal and tangential slip of the contact point, `(dn, t)`:
+/// `c = (R_1 U_1 + R_2 U_2) nu`, `dn = (u_2 - u_1) . nu`, `t = u_2 - u_1 - dn nu - c`
+/// (labelled `c_k`, `du_k`, `dn`, `t_k`).
+pub(crate) fn slip(g: &mut Graph, inputs: &KernelInputs) -> (Id, Vec<Id>) {
     let n = inputs.nu.len();
-    assert!(n >= 2, "the collision map needs n >= 2");
     let nu = &inputs.nu;
     let [b1, b2] = &inputs.bodies;
-
     // c = R_1 U_1 nu + R_2 U_2 nu = (R_1 U_1 + R_2 U_2) nu: one skew product, not two.
     let w: Vec<Id> = b1
         .spin
@@ -394,9 +402,47 @@ fn build_scaled_on(
         .collect();
     label_all(g, &t, "t");
 
-    // P = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t
+    (dn, t)
+}
+
+/// `D = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2)` (labelled `d`).
+pub(crate) fn denominator(g: &mut Graph, inputs: &KernelInputs) -> Id {
+    let [b1, b2] = &inputs.bodies;
     let (w1, w2, g1, g2) = (b1.inv_mass, b2.inv_mass, b1.gamma2, b2.gamma2);
     let one = g.int(1);
+    let d = {
+        let one_g1 = g.add(one, g1);
+        let one_g2 = g.add(one, g2);
+        let x = g.mul(w1, g2);
+        let x = g.mul(x, one_g1);
+        let y = g.mul(w2, g1);
+        let y = g.mul(y, one_g2);
+        g.add(x, y)
+    };
+    g.label(d, "d");
+    d
+}
+
+/// The map with `P_n` scaled by `h.0` and `P_t`, `rho_1`, `rho_2` by `h.1` (the rough law),
+/// or unscaled (`None`: no-slip, no node added).
+pub(crate) fn build_scaled_on(
+    g: &mut Graph,
+    inputs: &KernelInputs,
+    variant: Variant,
+    h: Option<(Id, Id)>,
+) -> Vec<BodyOutput> {
+    let n = inputs.nu.len();
+    assert!(n >= 2, "the collision map needs n >= 2");
+    let nu = &inputs.nu;
+    let [b1, b2] = &inputs.bodies;
+
+    let (dn, t) = slip(g, inputs);
+
+    // P = dn / (w_1 + w_2) nu + (g_1 g_2 / D) t
+    let (w1, w2, g1, g2) = (b1.inv_mass, b2.inv_mass, b1.gamma2, b2.gamma2);
+    // The constant 1 is interned here, before `D` ([`denominator`]) uses it, so that node
+    // ids, and with them the operand order of `1 + g_i`, are those of the generated goldens.
+    g.int(1);
     let two = g.int(2);
     let w_sum = g.add(w1, w2);
     let p_n = g.div(dn, w_sum);
@@ -411,16 +457,7 @@ fn build_scaled_on(
         }
     };
     let p_n = scaled(g, p_n, 0, "pe_n");
-    let d = {
-        let one_g1 = g.add(one, g1);
-        let one_g2 = g.add(one, g2);
-        let x = g.mul(w1, g2);
-        let x = g.mul(x, one_g1);
-        let y = g.mul(w2, g1);
-        let y = g.mul(y, one_g2);
-        g.add(x, y)
-    };
-    g.label(d, "d");
+    let d = denominator(g, inputs);
     let g1g2 = g.mul(g1, g2);
     let p_t = g.div(g1g2, d);
     g.label(p_t, "p_t");

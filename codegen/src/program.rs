@@ -28,7 +28,8 @@ pub enum Operand {
     Step(usize),
 }
 
-/// One operation. Each rounds once in floats: `+ - * /` as IEEE, the fused ones as `fma`.
+/// One operation. Each rounds once in floats: `+ - * /` and `sqrt` as IEEE, the fused ones
+/// as `fma`; a select does not round.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Op {
     /// `a + b`.
@@ -47,6 +48,10 @@ pub enum Op {
     MulSub(Operand, Operand, Operand),
     /// `fma(-a, b, c) = c - a b`.
     NegMulAdd(Operand, Operand, Operand),
+    /// `sqrt(a)`, correctly rounded (IEEE).
+    Sqrt(Operand),
+    /// `[x, y, a, b]`: `a` if `x < y`, else `b`; exact (no rounding).
+    SelectLt([Operand; 4]),
 }
 
 /// A named exact constant.
@@ -168,6 +173,8 @@ impl Program {
                         Node::Mul(a, b) => Op::Mul(operand(a), operand(b)),
                         Node::Div(a, b) => Op::Div(operand(a), operand(b)),
                         Node::Neg(a) => Op::Neg(operand(a)),
+                        Node::Sqrt(a) => Op::Sqrt(operand(a)),
+                        Node::SelectLt(ids) => Op::SelectLt(ids.map(operand)),
                         Node::Input(_) | Node::Const(_) => unreachable!("not a step"),
                     },
                 };
@@ -238,7 +245,8 @@ mod tests {
             for (k, s) in p.steps.iter().enumerate() {
                 let operands: Vec<&Operand> = match &s.op {
                     Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => vec![a, b],
-                    Op::Neg(a) => vec![a],
+                    Op::Neg(a) | Op::Sqrt(a) => vec![a],
+                    Op::SelectLt(ids) => ids.iter().collect(),
                     Op::MulAdd(a, b, c) | Op::MulSub(a, b, c) | Op::NegMulAdd(a, b, c) => {
                         vec![a, b, c]
                     }

@@ -18,12 +18,16 @@ pub struct OpCount {
     pub neg: usize,
     /// Fused multiply-adds (FMA kernels only): `a b + c` with one rounding.
     pub fma: usize,
+    /// Square roots (the Walton kernels only).
+    pub sqrt: usize,
+    /// Selects `if x < y { a } else { b }` (the Walton kernels only).
+    pub select: usize,
 }
 
 impl OpCount {
     /// All operations together (a fused multiply-add counts as one).
     pub fn total(&self) -> usize {
-        self.add + self.mul + self.div + self.neg + self.fma
+        self.add + self.mul + self.div + self.neg + self.fma + self.sqrt + self.select
     }
 }
 
@@ -31,6 +35,10 @@ impl fmt::Display for OpCount {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.fma > 0 {
             write!(f, "{} fma, ", self.fma)?;
+        }
+        // Only where there are any, so that the other kernels' headers read as before.
+        if self.sqrt > 0 || self.select > 0 {
+            write!(f, "{} sqrt, {} select, ", self.sqrt, self.select)?;
         }
         write!(
             f,
@@ -87,6 +95,8 @@ pub fn schedule(graph: &Graph, roots: impl IntoIterator<Item = Id>) -> Schedule 
                     Node::Mul(..) => out.ops.mul += 1,
                     Node::Div(..) => out.ops.div += 1,
                     Node::Neg(..) => out.ops.neg += 1,
+                    Node::Sqrt(..) => out.ops.sqrt += 1,
+                    Node::SelectLt(..) => out.ops.select += 1,
                     Node::Input(_) | Node::Const(_) => unreachable!(),
                 }
                 out.steps.push(id);
@@ -117,7 +127,7 @@ mod tests {
                 mul: 1,
                 div: 0,
                 neg: 1,
-                fma: 0,
+                ..OpCount::default()
             }
         );
         assert_eq!(sched.inputs.len(), 2);

@@ -63,6 +63,17 @@ fn is_fused_call(call: &syn::ExprCall) -> bool {
     ) && call.args.len() == 3
 }
 
+/// `T::sqrt(a)` or `T::select_lt(x, y, a, b)`: the Walton kernels' root and branch-free
+/// select (`collision_core::ScalarRoot`).
+fn is_root_or_select_call(call: &syn::ExprCall) -> bool {
+    let path = call_path(call);
+    match path.iter().map(String::as_str).collect::<Vec<_>>()[..] {
+        ["T", "sqrt"] => call.args.len() == 1,
+        ["T", "select_lt"] => call.args.len() == 4,
+        _ => false,
+    }
+}
+
 fn is_from_ratio_call(call: &syn::ExprCall) -> bool {
     let segments = call_path(call);
     let literal_int = |e: &Expr| match e {
@@ -153,6 +164,7 @@ impl<'ast> Visit<'ast> for Checker {
             Expr::Array(_) | Expr::Struct(_) => visit::visit_expr(self, expr),
             Expr::Call(c) if is_from_ratio_call(c) => {}
             Expr::Call(c) if is_fused_call(c) => visit::visit_expr_call(self, c),
+            Expr::Call(c) if is_root_or_select_call(c) => visit::visit_expr_call(self, c),
             Expr::MethodCall(m) if m.method == "clone" && m.args.is_empty() => {
                 self.visit_expr(&m.receiver)
             }

@@ -9,9 +9,11 @@ use nalgebra::DVector;
 
 mod fma;
 mod rough;
+mod walton;
 
 pub use fma::{collide_unchecked_fma, fma_in_hardware};
 pub use rough::{collide_rough, collide_rough_unchecked};
+pub use walton::{collide_walton, collide_walton_unchecked};
 
 /// The post-collision states of two balls in contact at normal `nu` (unit, from body 1's
 /// centre to body 2's), after validating every input:

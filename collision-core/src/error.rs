@@ -58,6 +58,10 @@ pub enum Field {
     RestitutionE,
     /// The tangential restitution `beta` of the rough law ([`crate::Restitution`]).
     RestitutionBeta,
+    /// The friction coefficient `mu` of the Walton law ([`crate::Walton`]).
+    FrictionMu,
+    /// The sticking tangential restitution `beta0` of the Walton law ([`crate::Walton`]).
+    WaltonBeta0,
 }
 
 impl fmt::Display for Field {
@@ -70,6 +74,8 @@ impl fmt::Display for Field {
             Field::RelativeVelocity => f.write_str("relative velocity"),
             Field::RestitutionE => f.write_str("restitution e"),
             Field::RestitutionBeta => f.write_str("restitution beta"),
+            Field::FrictionMu => f.write_str("friction mu"),
+            Field::WaltonBeta0 => f.write_str("restitution beta0"),
         }
     }
 }

@@ -2,7 +2,7 @@
 //! unbounded-exponent form [`Wide`] for the checked path.
 
 use crate::allowance::ULPS;
-use crate::scalar::Scalar;
+use crate::scalar::{Scalar, ScalarRoot};
 use crate::wide::Wide;
 
 impl Scalar for f64 {
@@ -74,6 +74,18 @@ impl Scalar for f32 {
     #[inline(always)]
     fn from_literal(_: f64, x32: f32, _: &str, _: &str) -> Self {
         x32
+    }
+}
+
+impl ScalarRoot for f64 {
+    fn sqrt(a: &Self) -> Self {
+        a.sqrt()
+    }
+}
+
+impl ScalarRoot for f32 {
+    fn sqrt(a: &Self) -> Self {
+        a.sqrt()
     }
 }
 

@@ -61,22 +61,24 @@ mod restitution;
 pub mod rng;
 mod scalar;
 mod state;
+mod walton;
 mod wide;
 
 pub use ball::{Ball, Inertia, Mass};
 pub use checked::validate_parts;
 pub use collide::{
     collide, collide_general, collide_rough, collide_rough_unchecked, collide_unchecked,
-    collide_unchecked_fma, fma_in_hardware, validate,
+    collide_unchecked_fma, collide_walton, collide_walton_unchecked, fma_in_hardware, validate,
 };
 pub use dims::DIMS;
 pub use error::{BodyField, Field, InputError};
 #[cfg(feature = "num-rational")]
 pub use exact::ExactNumRational;
 pub use exact::{collide_exact, Exact, ExactRelaxed, Relaxing};
-pub use kernels::{Generated, Kernel, RoughKernel};
+pub use kernels::{Generated, Kernel, RoughKernel, WaltonKernel};
 pub use normal::stereographic_normal;
 pub use restitution::Restitution;
-pub use scalar::{RefArith, Scalar};
+pub use scalar::{RefArith, Scalar, ScalarRoot};
 pub use state::{skew_entries, skew_pairs, BodyState, State2, State3, State4, State5, State6};
+pub use walton::Walton;
 pub use wide::{Binary, Wide};

@@ -61,7 +61,7 @@ impl<T: Scalar> Restitution<T> {
     }
 }
 
-fn check<T: Scalar>(
+pub(crate) fn check<T: Scalar>(
     x: &T,
     (lo, hi): (&T, &T),
     range: &str,

@@ -93,6 +93,23 @@ pub trait Scalar:
     fn from_literal(x64: f64, x32: f32, num: &str, den: &str) -> Self;
 }
 
+/// The two operations the Walton kernels (`kernels::dN::walton`) add to a [`Scalar`]: the
+/// square root and a branch-free select (`docs/derivation.md` §15.1).
+pub trait ScalarRoot: Scalar {
+    /// `sqrt(a)`, `a >= 0`: correctly rounded in floats (IEEE); in exact rationals the root
+    /// when `a` is the square of a rational, else rounded (see [`crate::exact`]).
+    fn sqrt(a: &Self) -> Self;
+    /// `a` if `x < y`, else `b`: no rounding, and in floats compiled as a compare and a
+    /// select rather than a branch where the target has one.
+    fn select_lt(x: &Self, y: &Self, a: &Self, b: &Self) -> Self {
+        if x < y {
+            a.clone()
+        } else {
+            b.clone()
+        }
+    }
+}
+
 /// The rounding allowance of a quantity of scale `s`: `rounding_slack() |s|`.
 pub(crate) fn allowance<T: Scalar>(s: &T) -> T {
     T::rounding_slack() * s.abs()

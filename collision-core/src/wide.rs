@@ -10,7 +10,7 @@
 //! (`R_2 U_2` for a huge radius, `rho_2 ~ 1/(R_2 D)` for the same, `D` for tiny inverse masses)
 //! overflows or underflows; only the result is rounded to `F`, and refused if it does not fit.
 
-use crate::scalar::Scalar;
+use crate::scalar::{Scalar, ScalarRoot};
 use num_traits::{Num, One, Signed, Zero};
 use std::cmp::Ordering;
 use std::fmt;
@@ -52,6 +52,8 @@ pub trait Binary:
     fn finite(self) -> bool;
     /// `a b + c` with one rounding.
     fn fma(a: Self, b: Self, c: Self) -> Self;
+    /// The correctly rounded square root (NaN below 0).
+    fn root(self) -> Self;
     /// The literal of a generated constant in this format.
     fn literal(x64: f64, x32: f32) -> Self;
     /// `x` rounded to this format (`f64` input).
@@ -105,6 +107,11 @@ macro_rules! binary {
             #[inline]
             fn fma(a: Self, b: Self, c: Self) -> Self {
                 a.mul_add(b, c)
+            }
+
+            #[inline]
+            fn root(self) -> Self {
+                self.sqrt()
             }
 
             #[inline]
@@ -175,6 +182,19 @@ impl<F: Binary> Wide<F> {
             // |x| < 2^(k - 1): rounds to zero.
             self.m * F::zero()
         }
+    }
+
+    /// `sqrt(x)`, correctly rounded: `x = m 2^(2k + r)`, `r` in `{0, 1}`, has the root
+    /// `sqrt(m 2^r) 2^k`, one rounding of `F`'s square root scaled exactly. Zero, infinity
+    /// and NaN as `F`'s, and NaN below 0.
+    pub(crate) fn sqrt(self) -> Self {
+        if self.special() || self.m < F::zero() {
+            return Wide::scaled(self.m.root(), 0);
+        }
+        let (k, r) = (self.e.div_euclid(2), self.e.rem_euclid(2));
+        let two = F::one() + F::one();
+        let m = if r == 1 { self.m * two } else { self.m };
+        Wide::scaled(m.root(), k)
     }
 
     /// `|x| < |y|`, for finite non-zero values.
@@ -476,6 +496,12 @@ impl<F: Binary> Scalar for Wide<F> {
 
     fn from_literal(x64: f64, x32: f32, _: &str, _: &str) -> Self {
         Wide::from(F::literal(x64, x32))
+    }
+}
+
+impl<F: Binary> ScalarRoot for Wide<F> {
+    fn sqrt(a: &Self) -> Self {
+        a.sqrt()
     }
 }
 

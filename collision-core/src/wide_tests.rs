@@ -175,3 +175,42 @@ fn display_shows_the_magnitude() {
         .to_string()
         .starts_with("-1.0000"));
 }
+
+/// `Wide`'s root is `F`'s in range (both correctly rounded), and out of range `sqrt` of
+/// the correctly rounded square of `a` is `|a|` exactly, as in IEEE arithmetic without
+/// overflow or underflow.
+#[test]
+fn wide_roots_are_correctly_rounded() {
+    let bits = |x: Wide<f64>| x.round().to_bits();
+    for a in [
+        0.0,
+        5e-324,
+        1e-310,
+        0.3,
+        1.0,
+        2.0,
+        3.0,
+        7.5,
+        1e300,
+        f64::MAX,
+    ] {
+        assert_eq!(
+            bits(ScalarRoot::sqrt(&Wide::from(a))),
+            a.sqrt().to_bits(),
+            "{a:e}"
+        );
+        for b in [a, -a] {
+            let w = Wide::from(b);
+            assert_eq!(
+                bits(ScalarRoot::sqrt(&(w * w))),
+                a.to_bits(),
+                "sqrt({b:e}^2)"
+            );
+        }
+    }
+    assert!(ScalarRoot::sqrt(&Wide::from(-1.0f64)).round().is_nan());
+    assert_eq!(
+        bits(ScalarRoot::sqrt(&Wide::from(f64::INFINITY))),
+        f64::INFINITY.to_bits()
+    );
+}

@@ -80,15 +80,20 @@ def collide(
     *,
     dim: int | None = None,
     exact: bool = False,
+    contact: str | Mapping[str, Any] | None = None,
 ) -> List[Dict[str, Any]]:
     """The post-collision states of two balls in contact.
 
-    The no-slip collision map: the state ``xi = (U_1, u_1, U_2, u_2)`` jumps to
+    By default the no-slip collision map: the state ``xi = (U_1, u_1, U_2, u_2)`` jumps to
     ``xi+ = 2 P_G xi - xi``, its reflection in the kinetic-energy metric across the
     subspace ``G`` of velocities with no slip at the contact point
     ``V_1(Q) = U_1 (R_1 nu) + u_1 = U_2 (-R_2 nu) + u_2``. It conserves the kinetic energy
     ``sum_i m_i (|u_i|^2 + lambda_i |U_i|_F^2) / 2``, the linear momentum and each body's
-    angular momentum about the contact point.
+    angular momentum about the contact point. ``contact`` selects another law of the
+    rough-ball family (docs/derivation.md §15): one impulse at the contact point that turns
+    the slip's normal part ``dn`` into ``-e dn`` and its tangential part ``t`` into
+    ``-beta t``; it conserves both momenta and loses
+    ``(1 - e^2) dn^2 / (2 a) + (1 - beta^2) |t|^2 / (2 b)`` of energy.
 
     Parameters
     ----------
@@ -109,6 +114,15 @@ def collide(
         Compute in exact rationals: numbers must be ints, ``Fraction``\\ s or strings
         (``"3/5"``, ``"0.1"`` = 1/10); results are ``Fraction``\\ s. Otherwise ``float64``:
         bit for bit what ``noslip collide`` prints for the same case.
+    contact : str or mapping, optional
+        The contact law, as the case format's ``contact`` key: ``"no-slip"`` (the default),
+        ``"smooth"`` (``(e, beta) = (1, -1)``), ``{"e": e, "beta": beta}`` (the rough-ball
+        law, ``e`` in ``[0, 1]``, ``beta`` in ``[-1, 1]``) or ``{"e": e, "mu": mu, "beta0":
+        beta0}`` (the Walton law, docs/derivation.md §15.1: ``beta = min(beta0, beta_C)``,
+        ``beta_C`` the ``beta`` of sliding with ``|J_t| = mu |J_n|``; ``mu >= 0``, ``beta0``
+        in ``[-1, 1]``). Numbers as everywhere else (exact mode: no floats). In exact mode a
+        sliding Walton contact whose slip ``|t|`` is irrational takes its one square root to
+        256 bits (docs/derivation.md §15.1); it is exact wherever ``|t|`` is rational.
 
     Returns
     -------
@@ -121,8 +135,10 @@ def collide(
     Raises
     ------
     InputError
-        A bad case; the message names the field (``bodies[1].gamma2: ...``): the bodies must
-        approach or graze, ``(u_2 - u_1) . nu <= 0``.
+        A bad case; the message names the field (``bodies[1].gamma2: ...``,
+        ``contact.mu: ...``): the bodies must approach or graze, ``(u_2 - u_1) . nu <= 0``;
+        ``e`` outside ``[0, 1]``, ``beta`` or ``beta0`` outside ``[-1, 1]``, a negative
+        ``mu`` and NaN are refused.
     """
     if dim is None:
         if isinstance(normal, (str, bytes, Mapping)) or not hasattr(normal, "__len__"):
@@ -130,11 +146,13 @@ def collide(
                 f"normal: expected a sequence of n numbers, got {type(normal).__name__}"
             )
         dim = len(normal)
-    case = {
+    case: Dict[str, Any] = {
         "dim": dim,
         "normal": normal,
         "bodies": bodies,
     }
+    if contact is not None:
+        case["contact"] = contact
     text = json.dumps(_to_json(case, "", exact), allow_nan=False)
     out = json.loads(collide_case(text, exact))
     return [_from_json(body, exact) for body in out["bodies"]]

@@ -13,7 +13,9 @@
 pub mod opencl;
 
 use collision_core::rng::Rng;
-use collision_core::{BodyState, Generated, Kernel, Restitution, RoughKernel, Scalar};
+use collision_core::{
+    BodyState, Generated, Kernel, Restitution, RoughKernel, ScalarRoot, Walton, WaltonKernel,
+};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
 use std::path::{Path, PathBuf};
@@ -23,7 +25,7 @@ use std::process::Command;
 pub const KERNELS: [&str; 4] = ["free", "fixed", "free_fma", "fixed_fma"];
 
 /// A float format the kernels run in, seen through its bits (`Scalar::NAME` is `f64`, `f32`).
-pub trait Float: Scalar + Copy {
+pub trait Float: ScalarRoot + Copy {
     /// Its bytes in native order.
     fn bytes(self) -> Vec<u8>;
     /// The values of a file of native-order bytes.
@@ -219,6 +221,48 @@ where
             "rough_fixed" => vec![Generated::rough_fixed(nu, &b1.radius, b2, law, s1, s2)],
             "rough_fixed_fma" => {
                 vec![Generated::rough_fixed_fma(nu, &b1.radius, b2, law, s1, s2)]
+            }
+            _ => panic!("no kernel {kernel}"),
+        };
+        for b in &bodies {
+            out.extend(state(b));
+        }
+    }
+    out
+}
+
+/// The Walton kernels of each dimension, as the harnesses name them.
+pub const WALTON_KERNELS: [&str; 4] = [
+    "walton_free",
+    "walton_fixed",
+    "walton_free_fma",
+    "walton_fixed_fma",
+];
+
+/// The laws `(e, mu, beta0)` the Walton kernels are compared under: inside the ranges, and
+/// the ends (`mu = 0`, `beta0 = 1`, `e = 0`); over the regimes' contacts some stick and some
+/// slide. Decimal as [`LAWS`].
+pub const WALTON_LAWS: [[f64; 3]; 3] = [[0.9, 0.3, 0.5], [1.0, 0.0, 1.0], [0.0, 2.0, -0.2]];
+
+/// The Rust Walton kernel `kernel` (one of [`WALTON_KERNELS`]) under `law` on every case,
+/// flattened as the harness writes its results.
+pub fn rust_walton_results<T: Float, const N: usize, const S: usize>(
+    kernel: &str,
+    law: &Walton<T>,
+    cases: &[(Regime, Case<T, N, S>)],
+) -> Vec<T>
+where
+    Generated: WaltonKernel<T, N, S>,
+{
+    let mut out = Vec::new();
+    for (_, c) in cases {
+        let (nu, [b1, b2], [s1, s2]) = (&c.nu, c.ball_refs(), c.state_refs());
+        let bodies: Vec<BodyState<T, N, S>> = match kernel {
+            "walton_free" => Generated::walton_free(nu, b1, b2, law, s1, s2).to_vec(),
+            "walton_free_fma" => Generated::walton_free_fma(nu, b1, b2, law, s1, s2).to_vec(),
+            "walton_fixed" => vec![Generated::walton_fixed(nu, &b1.radius, b2, law, s1, s2)],
+            "walton_fixed_fma" => {
+                vec![Generated::walton_fixed_fma(nu, &b1.radius, b2, law, s1, s2)]
             }
             _ => panic!("no kernel {kernel}"),
         };

@@ -1,11 +1,12 @@
 /* The faithfulness harness of the C back end (tests/c_backend.rs): runs one generated kernel
  * on every record of an input file and writes its outputs.
  *
- *   harness N KERNEL PRECISION IN OUT [E BETA]
+ *   harness N KERNEL PRECISION IN OUT [E BETA | E MU BETA0]
  *
  * KERNEL is free, fixed, free_fma or fixed_fma, or one of them prefixed rough_ (the
- * rough-ball kernels, which then take law = {E, BETA}, read with strtod or strtof, so that a
- * shortest round-trip decimal gives the exact value); PRECISION f64 or f32. IN holds records of
+ * rough-ball kernels, which then take law = {E, BETA}) or walton_ (the Walton kernels, law =
+ * {E, MU, BETA0}); the law is read with strtod or strtof, so that a shortest round-trip
+ * decimal gives the exact value. PRECISION f64 or f32. IN holds records of
  * the precision's type, native byte order: nu[N], ball1[3], ball2[3], state1[S+N],
  * state2[S+N] (ball = inv_mass, radius, gamma2; state = spin, velocity). OUT receives per
  * record out1[S+N] and out2[S+N] (free) or out2[S+N] (fixed; its radius1 is ball1[1]).
@@ -72,6 +73,18 @@
         if (!f64 && !strcmp(kernel, "rough_fixed_fma")) LOOP_ROUGH_FIXED(float, noslip_d##N##_rough_fixed_fma_f32, N, S, law32); \
     }
 
+#define WALTON(N, S)                                                                                           \
+    if (n == (N)) {                                                                                            \
+        if (f64 && !strcmp(kernel, "walton_free")) LOOP_ROUGH_FREE(double, noslip_d##N##_walton_free_f64, N, S, law64); \
+        if (f64 && !strcmp(kernel, "walton_fixed")) LOOP_ROUGH_FIXED(double, noslip_d##N##_walton_fixed_f64, N, S, law64); \
+        if (f64 && !strcmp(kernel, "walton_free_fma")) LOOP_ROUGH_FREE(double, noslip_d##N##_walton_free_fma_f64, N, S, law64); \
+        if (f64 && !strcmp(kernel, "walton_fixed_fma")) LOOP_ROUGH_FIXED(double, noslip_d##N##_walton_fixed_fma_f64, N, S, law64); \
+        if (!f64 && !strcmp(kernel, "walton_free")) LOOP_ROUGH_FREE(float, noslip_d##N##_walton_free_f32, N, S, law32); \
+        if (!f64 && !strcmp(kernel, "walton_fixed")) LOOP_ROUGH_FIXED(float, noslip_d##N##_walton_fixed_f32, N, S, law32); \
+        if (!f64 && !strcmp(kernel, "walton_free_fma")) LOOP_ROUGH_FREE(float, noslip_d##N##_walton_free_fma_f32, N, S, law32); \
+        if (!f64 && !strcmp(kernel, "walton_fixed_fma")) LOOP_ROUGH_FIXED(float, noslip_d##N##_walton_fixed_fma_f32, N, S, law32); \
+    }
+
 #define DIM(N, S)                                                                        \
     if (n == (N)) {                                                                      \
         const size_t rec = (N) + 6 + 2 * ((S) + (N));                                   \
@@ -99,14 +112,17 @@ static void *read_all(const char *path, size_t *len) {
 }
 
 int main(int argc, char **argv) {
-    if (argc != 6 && argc != 8) {
-        fprintf(stderr, "usage: harness N KERNEL PRECISION IN OUT [E BETA]\n");
+    if (argc != 6 && argc != 8 && argc != 9) {
+        fprintf(stderr, "usage: harness N KERNEL PRECISION IN OUT [E BETA | E MU BETA0]\n");
         return 2;
     }
-    const double law64[2] = {argc == 8 ? strtod(argv[6], NULL) : 1.0,
-                             argc == 8 ? strtod(argv[7], NULL) : 1.0};
-    const float law32[2] = {argc == 8 ? strtof(argv[6], NULL) : 1.0f,
-                            argc == 8 ? strtof(argv[7], NULL) : 1.0f};
+    /* The law's parameters in order (rough: e, beta; Walton: e, mu, beta0). */
+    double law64[3] = {1.0, 1.0, 1.0};
+    float law32[3] = {1.0f, 1.0f, 1.0f};
+    for (int k = 6; k < argc; k++) {
+        law64[k - 6] = strtod(argv[k], NULL);
+        law32[k - 6] = strtof(argv[k], NULL);
+    }
     const int n = atoi(argv[1]);
     const char *kernel = argv[2];
     const int f64 = !strcmp(argv[3], "f64");
@@ -133,6 +149,11 @@ int main(int argc, char **argv) {
     ROUGH(4, 6)
     ROUGH(5, 10)
     ROUGH(6, 15)
+    WALTON(2, 1)
+    WALTON(3, 3)
+    WALTON(4, 6)
+    WALTON(5, 10)
+    WALTON(6, 15)
     if (out_len == 0) {
         fprintf(stderr, "harness: no kernel %s for n = %d in %s, or no records\n", kernel, n, argv[3]);
         return 2;

@@ -58,6 +58,24 @@ pub fn degrees(g: &Graph) -> Vec<Degree> {
                 }
             }
             Node::Neg(a) => at(a),
+            // The value is one of the two arms, on each side of the comparison.
+            Node::SelectLt([_, _, a, b]) => {
+                let (a, b) = (at(a), at(b));
+                Degree {
+                    num: a.num.max(b.num),
+                    den: a.den.max(b.den),
+                }
+            }
+            // Where the verifier evaluates a root, its argument is the square of a rational
+            // function of the sample's variables (it draws such points: `crate::sample`), a
+            // square's numerator and denominator of half the degrees.
+            Node::Sqrt(a) => {
+                let a = at(a);
+                Degree {
+                    num: a.num.div_ceil(2),
+                    den: a.den.div_ceil(2),
+                }
+            }
         };
         d.push(x);
     }

@@ -3,18 +3,21 @@
 use crate::checks::identity::{self, Identity};
 use crate::checks::rough::{self, RoughIdentity};
 use crate::checks::sequence::{self, Limit};
+use crate::checks::walton::{self, WaltonIdentity};
 use crate::checks::{inertia, structure};
 use crate::report::{CheckResult, Proof};
 use crate::sample::SET_SIZE;
 use crate::under_test::{generated, ExactKernel};
 use collision_core::rng::Rng;
-use collision_core::{Exact, ExactRelaxed, Generated, Kernel, RoughKernel};
+use collision_core::{Exact, ExactRelaxed, Generated, Kernel, RoughKernel, WaltonKernel};
 use noslip_codegen::model::Variant;
 use std::time::Instant;
 
 /// The most random points per identity check a run takes: at the default 16 the
-/// Schwartz-Zippel bound is already below `1e-38` for every check (docs/verification.md), and
-/// each point costs about a sixteenth of the default run.
+/// Schwartz-Zippel bound is already below `1e-35` for every no-slip and rough check, and below
+/// `1e-37` for the Walton kernels' central identities (docs/verification.md §3b; their derived
+/// sliding identities, of loose degree bounds, are weaker), and each point costs about a
+/// sixteenth of the default run.
 pub const MAX_POINTS: usize = 1024;
 
 /// `points` if it is in `1..=`[`MAX_POINTS`] (0 would check nothing), else the reason, for
@@ -60,7 +63,12 @@ pub fn sz_bound(degree: u64, points: usize) -> f64 {
 pub fn checks_per_dim() -> usize {
     Variant::ALL
         .iter()
-        .map(|&v| Identity::for_variant(v).len() + 2 + RoughIdentity::for_variant(v).len())
+        .map(|&v| {
+            Identity::for_variant(v).len()
+                + 2
+                + RoughIdentity::for_variant(v).len()
+                + WaltonIdentity::for_variant(v).len()
+        })
         .sum::<usize>()
         + 3
 }
@@ -87,6 +95,46 @@ where
             let r = CheckResult {
                 dim: N,
                 variant: RoughIdentity::variant_name(variant),
+                check: check.name().into(),
+                passed: outcome.is_ok(),
+                points: opts.points,
+                proof: Proof::Identity {
+                    degree,
+                    set_size: SET_SIZE,
+                    bound: sz_bound(degree, opts.points),
+                },
+                detail: outcome.err().unwrap_or_default(),
+                seconds,
+            };
+            progress(&r);
+            r
+        })
+        .collect()
+}
+
+/// The identity checks of the Walton kernels of `variant` (docs/derivation.md §15.1), on
+/// each side of the sticking/sliding switch ([`walton`]), asking `interrupted` before each
+/// point.
+pub fn walton_checks<const N: usize, const S: usize>(
+    variant: Variant,
+    opts: &Options,
+    progress: &mut dyn FnMut(&CheckResult),
+    interrupted: &dyn Fn() -> bool,
+) -> Vec<CheckResult>
+where
+    Generated: WaltonKernel<Exact, N, S>,
+{
+    WaltonIdentity::for_variant(variant)
+        .iter()
+        .enumerate()
+        .map(|(k, &check)| {
+            let seed = opts.seed + 200 + k as u64;
+            let (outcome, seconds) =
+                timed(|| walton::run::<N, S>(variant, check, opts.points, seed, interrupted));
+            let degree = walton::degree(N, variant, check);
+            let r = CheckResult {
+                dim: N,
+                variant: WaltonIdentity::variant_name(variant),
                 check: check.name().into(),
                 passed: outcome.is_ok(),
                 points: opts.points,
@@ -179,7 +227,8 @@ pub fn run_dim<const N: usize, const S: usize>(
 where
     Generated: Kernel<Exact, N, S>
         + Kernel<collision_core::ExactRelaxed, N, S>
-        + RoughKernel<ExactRelaxed, N, S>,
+        + RoughKernel<ExactRelaxed, N, S>
+        + WaltonKernel<Exact, N, S>,
 {
     let mut out = Vec::new();
     for variant in Variant::ALL {
@@ -279,6 +328,9 @@ where
     out.push(r);
     for variant in Variant::ALL {
         out.extend(rough_checks::<N, S>(variant, opts, progress, interrupted));
+    }
+    for variant in Variant::ALL {
+        out.extend(walton_checks::<N, S>(variant, opts, progress, interrupted));
     }
     out
 }

@@ -49,7 +49,10 @@ Input (one case; body 1 of the formulas is bodies[0], body 2 is bodies[1]):
                     default), \"smooth\" (specular), or {{\"e\": .., \"beta\": ..}}, the
                     rough-ball law: the normal slip of the contact point becomes -e times
                     itself (e in [0, 1]) and its tangential slip -beta times itself (beta in
-                    [-1, 1]); (1, 1) is no-slip, (1, -1) smooth. dim 2..=6 only.
+                    [-1, 1]); (1, 1) is no-slip, (1, -1) smooth. Or {{\"e\": .., \"mu\": ..,
+                    \"beta0\": ..}}, the Walton law (§15.1): beta = min(beta0, beta_C), beta_C
+                    the beta of sliding at |J_t| = mu |J_n| (mu >= 0, beta0 in [-1, 1]).
+                    dim 2..=6 only.
   Unknown keys and keys given twice are errors. The bodies must approach or graze:
   (u_2 - u_1) . nu <= 0. At most one body may be immovable, and at most one movable body a
   point mass (lambda = 0).

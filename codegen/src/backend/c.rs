@@ -27,6 +27,13 @@ impl Language for C {
         }
     }
 
+    fn sqrt(&self, p: Precision) -> &'static str {
+        match p {
+            Precision::F64 => "sqrt",
+            Precision::F32 => "sqrtf",
+        }
+    }
+
     fn body_prologue(&self) -> &'static str {
         "NOSLIP_FP_CONTRACT_OFF"
     }
@@ -114,6 +121,10 @@ impl Language for OpenCl {
 
     fn fma(&self, _: Precision) -> &'static str {
         "fma"
+    }
+
+    fn sqrt(&self, _: Precision) -> &'static str {
+        "sqrt"
     }
 
     fn body_prologue(&self) -> &'static str {

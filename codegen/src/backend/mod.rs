@@ -145,6 +145,8 @@ pub trait Language {
     fn qualifiers(&self) -> &'static str;
     /// The correctly rounded fused multiply-add of precision `p`: `fma`, `fmaf`.
     fn fma(&self, p: Precision) -> &'static str;
+    /// The correctly rounded square root of precision `p`: `sqrt`, `sqrtf`.
+    fn sqrt(&self, p: Precision) -> &'static str;
     /// The first line of every function body (a pragma or macro), or `""`.
     fn body_prologue(&self) -> &'static str;
     /// The file's start after the common header comment: include guard, includes, pragmas.
@@ -195,6 +197,8 @@ fn expression(lang: &dyn Language, program: &Program, op: &Op, p: Precision) -> 
         Op::MulAdd(a, b, c) => format!("{fma}({}, {}, {})", o(a), o(b), o(c)),
         Op::MulSub(a, b, c) => format!("{fma}({}, {}, -{})", o(a), o(b), o(c)),
         Op::NegMulAdd(a, b, c) => format!("{fma}(-{}, {}, {})", o(a), o(b), o(c)),
+        Op::Sqrt(a) => format!("{}({})", lang.sqrt(p), o(a)),
+        Op::SelectLt([x, y, a, b]) => format!("{} < {} ? {} : {}", o(x), o(y), o(a), o(b)),
     }
 }
 
@@ -335,6 +339,16 @@ fn generic_doc(
             "law = {e, beta}: writes body 2 to out2 (body 1 is unchanged).".into(),
             String::new(),
         ],
+        (Law::Walton, Variant::Free) => vec![
+            format!("Walton-law collision of two free balls in R^{n}, law = {{e, mu, beta0}} (docs/derivation.md §15.1):"),
+            "writes body 1 to out1, body 2 to out2. beta = min(beta0, beta_C); while sticking the rough kernel at beta0.".into(),
+            String::new(),
+        ],
+        (Law::Walton, Variant::Fixed) => vec![
+            format!("Walton-law collision in R^{n} of a free ball (body 2) with an immovable one (body 1),"),
+            "law = {e, mu, beta0}: writes body 2 to out2 (body 1 is unchanged).".into(),
+            String::new(),
+        ],
     };
     doc.extend(law.closed_form(variant).lines().map(|l| format!("    {l}")));
     doc.push(String::new());
@@ -354,6 +368,9 @@ fn generic_doc(
     );
     if law == Law::Rough {
         doc.push("0 <= e <= 1, -1 <= beta <= 1 (collision_core::Restitution::new);".into());
+    }
+    if law == Law::Walton {
+        doc.push("0 <= e <= 1, mu >= 0, -1 <= beta0 <= 1 (collision_core::Walton::new);".into());
     }
     if variant == Variant::Free {
         doc.push(
@@ -382,12 +399,26 @@ pub fn rough_units(n: usize) -> Vec<Unit> {
     law_units(n, Law::Rough)
 }
 
+/// The Walton kernels of dimension `n` (`noslip_dN_walton_free`, ...), as in the Rust
+/// module `kernels::dN::walton`: the generic kernels' parameters with
+/// `law = {e, mu, beta0}` after the balls.
+pub fn walton_units(n: usize) -> Vec<Unit> {
+    law_units(n, Law::Walton)
+}
+
 fn law_units(n: usize, law: Law) -> Vec<Unit> {
     let law_param = || {
-        Param::Array(
-            "law",
-            vec![names::restitution_e(), names::restitution_beta()],
-        )
+        let fields = match law {
+            Law::Walton => vec![
+                names::restitution_e(),
+                names::friction_mu(),
+                names::walton_beta0(),
+            ],
+            Law::NoSlip | Law::Rough => {
+                vec![names::restitution_e(), names::restitution_beta()]
+            }
+        };
+        Param::Array("law", fields)
     };
     Arith::ALL
         .iter()
@@ -418,6 +449,10 @@ fn law_units(n: usize, law: Law) -> Vec<Unit> {
                     Law::Rough => {
                         params.insert(3, law_param());
                         "rough_"
+                    }
+                    Law::Walton => {
+                        params.insert(3, law_param());
+                        "walton_"
                     }
                 };
                 let doc = generic_doc(n, (law, variant), arith, program.ops, program.terms());
@@ -502,17 +537,25 @@ pub fn source(lang: &dyn Language, guard: &str, about: &str, units: &[Unit]) -> 
         "results under IEEE arithmetic without contraction (tests/c_backend.rs).",
     ];
     // The rough-ball kernels' parameters, where the file has them.
-    let rough = units
-        .iter()
-        .any(|u| u.params.iter().any(|p| matches!(p, Param::Array("law", _))))
-        .then_some(
-            "  rough_*: the same, with law[2] = {e, beta} after ball2 (docs/derivation.md §15).",
-        );
+    let has_law = |fields: usize| {
+        units.iter().any(|u| {
+            u.params
+                .iter()
+                .any(|p| matches!(p, Param::Array("law", f) if f.len() == fields))
+        })
+    };
+    let rough = has_law(2).then_some(
+        "  rough_*: the same, with law[2] = {e, beta} after ball2 (docs/derivation.md §15).",
+    );
+    let walton = has_law(3).then_some(
+        "  walton_*: the same, with law[3] = {e, mu, beta0} after ball2 (docs/derivation.md §15.1).",
+    );
     let abi = abi
         .iter()
         .take(4)
         .copied()
         .chain(rough)
+        .chain(walton)
         .chain(abi.iter().skip(4).copied());
     for l in abi.map(|l| l.to_string()).chain(lang.notes()) {
         s.push_str(format!("// {l}").trim_end());
@@ -553,7 +596,12 @@ pub fn generate(lang: Lang, dims: &[usize]) -> String {
     );
     let units: Vec<Unit> = dims
         .iter()
-        .flat_map(|&n| generic_units(n).into_iter().chain(rough_units(n)))
+        .flat_map(|&n| {
+            generic_units(n)
+                .into_iter()
+                .chain(rough_units(n))
+                .chain(walton_units(n))
+        })
         .collect();
     let list = dims
         .iter()

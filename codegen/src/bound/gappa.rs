@@ -47,6 +47,9 @@ pub fn script(program: &Program, format: &str, ranges: &[InputRange], outputs: &
                 Op::MulAdd(a, b, c) => format!("{} * {} + {}", o(a), o(b), o(c)),
                 Op::MulSub(a, b, c) => format!("{} * {} - {}", o(a), o(b), o(c)),
                 Op::NegMulAdd(a, b, c) => format!("{} - {} * {}", o(c), o(a), o(b)),
+                Op::Sqrt(a) => format!("sqrt({})", o(a)),
+                // Gappa has no select; the scripts are written for the no-slip kernels.
+                Op::SelectLt(_) => panic!("a Gappa script of a kernel with a select (Walton)"),
             };
             let name = if exact { "X_" } else { "f_" };
             let eq = if exact || matches!(st.op, Op::Neg(_)) {

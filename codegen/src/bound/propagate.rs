@@ -99,6 +99,10 @@ pub(crate) enum Rule {
     Neg(usize),
     /// `a b + c`, `a b - c`, `c - a b`: the sign only matters for the enclosure.
     Fused(usize, usize, usize, FusedSign),
+    /// `sqrt(a)`.
+    Sqrt(usize),
+    /// `if x < y { a } else { b }`.
+    SelectLt([usize; 4]),
 }
 
 /// Which fused form.
@@ -162,6 +166,8 @@ impl Compiled {
                 Op::MulAdd(a, b, c) => Rule::Fused(at(a), at(b), at(c), FusedSign::MulAdd),
                 Op::MulSub(a, b, c) => Rule::Fused(at(a), at(b), at(c), FusedSign::MulSub),
                 Op::NegMulAdd(a, b, c) => Rule::Fused(at(a), at(b), at(c), FusedSign::NegMulAdd),
+                Op::Sqrt(a) => Rule::Sqrt(at(a)),
+                Op::SelectLt(ids) => Rule::SelectLt(ids.each_ref().map(&at)),
             })
             .collect();
         let outputs = program
@@ -229,6 +235,8 @@ impl Compiled {
                     };
                     rounded(format, value, e, r, false)
                 }
+                Rule::Sqrt(a) => root(format, v[a]),
+                Rule::SelectLt([x, y, a, b]) => select(v[x], v[y], v[a], v[b]),
             };
             v.push(next);
         }
@@ -299,6 +307,46 @@ fn product_error(a: Enclosed, b: Enclosed) -> (f64, f64) {
         mul_up(b.value.mag(), a.error),
     );
     (add_up(cross, mul_up(a.error, b.error)), r)
+}
+
+/// `sqrt(a)`: `sqrt(a (1 + d)) = sqrt(a) sqrt(1 + d)` and `|sqrt(1 + d) - 1| <= |d|` for
+/// `|d| <= 1`, so `R = r_a` before the rounding (infinite unless `r_a <= 1`); and
+/// `|sqrt(x) - sqrt(y)| <= sqrt(|x - y|)`, so `E = sqrt(e_a)`. The exact argument is taken to
+/// be `>= 0` (the Walton kernels' one root is of a ratio of squares), so an enclosure's lower
+/// end below 0 (outward rounding around 0) is raised to 0; an enclosure wholly below 0 gives
+/// no bound.
+fn root(format: Format, a: Enclosed) -> Enclosed {
+    if a.value.hi < 0.0 || !a.value.is_bounded() {
+        return Enclosed::new(a.value, f64::INFINITY, f64::INFINITY);
+    }
+    let value = Interval::new(
+        super::round::sqrt_down(a.value.lo.max(0.0)),
+        super::round::sqrt_up(a.value.hi),
+    );
+    let r = if a.relative <= 1.0 {
+        a.relative
+    } else {
+        f64::INFINITY
+    };
+    rounded(format, value, super::round::sqrt_up(a.error), r, false)
+}
+
+/// `if x < y { a } else { b }` (no rounding): when the enclosures and errors of `x` and `y`
+/// decide the comparison for the computed and the exact values alike, the chosen operand;
+/// otherwise either may be computed and either be exact, so the value is the hull and the
+/// error at most the larger operand error plus the hull's width.
+fn select(x: Enclosed, y: Enclosed, a: Enclosed, b: Enclosed) -> Enclosed {
+    let below = add_up(add_up(x.value.hi, x.error), y.error) < y.value.lo;
+    let above = sub_down(sub_down(x.value.lo, x.error), y.error) >= y.value.hi;
+    if below {
+        return a;
+    }
+    if above {
+        return b;
+    }
+    let hull = Interval::new(a.value.lo.min(b.value.lo), a.value.hi.max(b.value.hi));
+    let width = super::round::up(hull.hi - hull.lo);
+    Enclosed::new(hull, add_up(a.error.max(b.error), width), f64::INFINITY)
 }
 
 /// `a / b`: see the module docs.

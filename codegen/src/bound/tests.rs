@@ -49,6 +49,14 @@ macro_rules! arithmetic {
                     Op::MulAdd(a, b, c) => at(a).mul_add(at(b), at(c)),
                     Op::MulSub(a, b, c) => at(a).mul_add(at(b), -at(c)),
                     Op::NegMulAdd(a, b, c) => (-at(a)).mul_add(at(b), at(c)),
+                    Op::Sqrt(a) => at(a).sqrt(),
+                    Op::SelectLt([x, y, a, b]) => {
+                        if at(x) < at(y) {
+                            at(a)
+                        } else {
+                            at(b)
+                        }
+                    }
                 }
             }
         }
@@ -104,6 +112,14 @@ fn run_exact(p: &Program, input: &dyn Fn(&str) -> f64) -> Vec<BigRational> {
             Op::MulAdd(a, b, c) => at(a) * at(b) + at(c),
             Op::MulSub(a, b, c) => at(a) * at(b) - at(c),
             Op::NegMulAdd(a, b, c) => at(c) - at(a) * at(b),
+            Op::Sqrt(a) => crate::ir::rational_sqrt(&at(a)).expect("a rational root"),
+            Op::SelectLt([x, y, a, b]) => {
+                if at(x) < at(y) {
+                    at(a)
+                } else {
+                    at(b)
+                }
+            }
         };
         steps.push(v);
     }
@@ -121,8 +137,9 @@ fn run_exact(p: &Program, input: &dyn Fn(&str) -> f64) -> Vec<BigRational> {
 /// A typical input of the report (`m = 2^U(-2,2)`, `R = 2^U(-1,1)`, `gamma2 = (2/n) U(0,1]`,
 /// states `U(-1,1)`, a unit normal), scaled by `scale` for the states.
 fn sample(n: usize, rng: &mut Mix, scale: f64, name: &str) -> f64 {
-    let _ = n;
     match name {
+        // The Walton law's parameters: `mu` is set by the caller ([`check_with`]).
+        "e" | "beta0" => rng.uniform(-1.0, 1.0).abs(),
         _ if name.starts_with("inv_mass") => 2f64.powf(rng.uniform(-2.0, 2.0)),
         _ if name.starts_with("radius") => 2f64.powf(rng.uniform(-1.0, 1.0)),
         _ if name.starts_with("gamma2") => 2.0 / n as f64 * (1.0 - rng.uniform(0.0, 1.0)),
@@ -134,6 +151,18 @@ fn sample(n: usize, rng: &mut Mix, scale: f64, name: &str) -> f64 {
 /// of the point box and of the enclosing `box_of` box; returns the largest ratio
 /// error / point bound seen.
 fn check(program: &Program, format: Format, cases: usize, seed: u64, scale: f64) -> f64 {
+    check_with(program, format, cases, seed, scale, &[])
+}
+
+/// [`check`] with the inputs `fixed` set to the values given.
+fn check_with(
+    program: &Program,
+    format: Format,
+    cases: usize,
+    seed: u64,
+    scale: f64,
+    fixed: &[(&str, f64)],
+) -> f64 {
     let kb = KernelBound::new(program, format);
     let n = program.dim;
     let mut rng = Mix(seed);
@@ -144,6 +173,9 @@ fn check(program: &Program, format: Format, cases: usize, seed: u64, scale: f64)
             .iter()
             .map(|name| (name.clone(), sample(n, &mut rng, scale, name)))
             .collect();
+        for &(name, x) in fixed {
+            values.insert(name.to_string(), x);
+        }
         // A unit normal (rounded): normalise the nu components.
         let norm = (0..n)
             .map(|k| values[&format!("nu_{k}")].powi(2))
@@ -167,7 +199,8 @@ fn check(program: &Program, format: Format, cases: usize, seed: u64, scale: f64)
         assert_eq!(flat.len(), exact.len());
         for ((c, y), e) in computed.iter().zip(&exact).zip(&flat) {
             let err = (BigRational::from_f64(*c).unwrap() - y).abs();
-            let bound = BigRational::from_f64(e.error).unwrap();
+            let bound = BigRational::from_f64(e.error)
+                .unwrap_or_else(|| panic!("no bound: {:?} at {values:?}", e));
             assert!(err <= bound, "error {c} vs {y}: bound {}", e.error);
             let lo = BigRational::from_f64(e.value.lo).unwrap();
             let hi = BigRational::from_f64(e.value.hi).unwrap();
@@ -193,6 +226,27 @@ fn point_bounds_hold_for_every_small_kernel_and_format() {
                         // The bound is attained to within a modest factor somewhere.
                         assert!(worst > 0.0 && worst <= 1.0, "{n} {v:?} {arith:?} {worst}");
                     }
+                }
+            }
+        }
+    }
+}
+
+/// The rules of the Walton kernels' root and select hold where the exact root is rational:
+/// `mu = 0` (a sliding contact has `rho = 0/L = 0`, a sticking one `1/1`) and `mu = 10^6`
+/// (every contact sticks, `rho = 1`), both selects decided by the inputs' enclosures.
+#[test]
+fn point_bounds_hold_for_the_walton_kernels_where_the_root_is_rational() {
+    for v in Variant::ALL {
+        for arith in Arith::ALL {
+            let p = Program::lower(&crate::walton::build_walton(3, v), arith);
+            for format in [Format::F64, Format::F32] {
+                for mu in [0.0, 1e6] {
+                    let worst = check_with(&p, format, 20, 5, 1.0, &[("mu", mu)]);
+                    assert!(
+                        worst > 0.0 && worst <= 1.0,
+                        "{v:?} {arith:?} mu = {mu}: {worst}"
+                    );
                 }
             }
         }

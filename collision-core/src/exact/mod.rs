@@ -14,11 +14,13 @@
 mod backend;
 mod kernel;
 mod ops;
+mod root;
 #[cfg(test)]
 mod tests;
 
 pub use backend::Backend;
 pub use kernel::{collide_exact, Relaxing};
+pub use root::ROOT_BITS;
 
 use std::cmp::Ordering;
 use std::fmt;

@@ -15,11 +15,13 @@ use crate::{Ball, BodyState, RefArith, Scalar};
 #[cfg(test)]
 mod energy_drift;
 mod rough;
+mod walton;
 
 pub use rough::RoughKernel;
+pub use walton::WaltonKernel;
 
 macro_rules! generated {
-    ($($module:ident $feature:literal $n:literal $s:literal $file:literal $rough:literal;)*) => {$(
+    ($($module:ident $feature:literal $n:literal $s:literal $file:literal $rough:literal $walton:literal;)*) => {$(
         #[doc = concat!("Generated kernels for n = ", stringify!($n), ".")]
         #[cfg(feature = $feature)]
         pub mod $module {
@@ -30,10 +32,19 @@ macro_rules! generated {
             pub mod rough {
                 include!(concat!(env!("OUT_DIR"), "/", $rough));
             }
+
+            /// The Walton kernels (`e`, friction `mu`, sticking `beta0` as run-time
+            /// parameters; `docs/derivation.md` §15.1), generated like the rough ones.
+            pub mod walton {
+                include!(concat!(env!("OUT_DIR"), "/", $walton));
+            }
         }
 
         #[cfg(feature = $feature)]
         rough::rough_kernel_impl!($module $n $s);
+
+        #[cfg(feature = $feature)]
+        walton::walton_kernel_impl!($module $n $s);
 
         #[cfg(feature = $feature)]
         impl<T: Scalar> Kernel<T, $n, $s> for Generated
@@ -131,9 +142,9 @@ pub trait Kernel<T, const N: usize, const S: usize> {
 pub struct Generated;
 
 generated! {
-    d2 "d2" 2 1 "kernels_2.rs" "rough_2.rs";
-    d3 "d3" 3 3 "kernels_3.rs" "rough_3.rs";
-    d4 "d4" 4 6 "kernels_4.rs" "rough_4.rs";
-    d5 "d5" 5 10 "kernels_5.rs" "rough_5.rs";
-    d6 "d6" 6 15 "kernels_6.rs" "rough_6.rs";
+    d2 "d2" 2 1 "kernels_2.rs" "rough_2.rs" "walton_2.rs";
+    d3 "d3" 3 3 "kernels_3.rs" "rough_3.rs" "walton_3.rs";
+    d4 "d4" 4 6 "kernels_4.rs" "rough_4.rs" "walton_4.rs";
+    d5 "d5" 5 10 "kernels_5.rs" "rough_5.rs" "walton_5.rs";
+    d6 "d6" 6 15 "kernels_6.rs" "rough_6.rs" "walton_6.rs";
 }

@@ -7,3 +7,4 @@ pub mod rough;
 pub mod sequence;
 pub mod specialised;
 pub mod structure;
+pub mod walton;
