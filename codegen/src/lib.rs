@@ -30,6 +30,7 @@ pub mod bound;
 pub mod emit;
 pub mod fuse;
 pub mod ir;
+pub mod laws;
 pub mod literal;
 pub mod model;
 pub mod pressure;

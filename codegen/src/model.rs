@@ -49,6 +49,12 @@ pub const CLOSED_FORM_ROUGH_FREE: &str = include_str!("closed_form/rough_free.tx
 /// The rough-ball `fixed` map, likewise.
 pub const CLOSED_FORM_ROUGH_FIXED: &str = include_str!("closed_form/rough_fixed.txt");
 
+/// The Walton free map as the kernels' docs state it (a text block).
+pub const CLOSED_FORM_WALTON_FREE: &str = include_str!("closed_form/walton_free.txt");
+
+/// The Walton `fixed` map (body 1 immovable), likewise.
+pub const CLOSED_FORM_WALTON_FIXED: &str = include_str!("closed_form/walton_fixed.txt");
+
 /// The contact law a kernel implements.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Law {
@@ -70,8 +76,8 @@ impl Law {
             (Law::NoSlip, Variant::Fixed) => CLOSED_FORM_FIXED,
             (Law::Rough, Variant::Free) => CLOSED_FORM_ROUGH_FREE,
             (Law::Rough, Variant::Fixed) => CLOSED_FORM_ROUGH_FIXED,
-            (Law::Walton, Variant::Free) => crate::walton::CLOSED_FORM_WALTON_FREE,
-            (Law::Walton, Variant::Fixed) => crate::walton::CLOSED_FORM_WALTON_FIXED,
+            (Law::Walton, Variant::Free) => CLOSED_FORM_WALTON_FREE,
+            (Law::Walton, Variant::Fixed) => CLOSED_FORM_WALTON_FIXED,
         }
     }
 }
@@ -324,15 +330,6 @@ pub fn build_rough(n: usize, variant: Variant) -> KernelGraph {
         law: Law::Rough,
         graph,
         outputs,
-    }
-}
-
-/// The kernel of `law` for dimension `n` (`build` or `build_rough`).
-pub fn build_law(n: usize, variant: Variant, law: Law) -> KernelGraph {
-    match law {
-        Law::NoSlip => build(n, variant),
-        Law::Rough => build_rough(n, variant),
-        Law::Walton => crate::walton::build_walton(n, variant),
     }
 }
 

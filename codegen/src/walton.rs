@@ -26,12 +26,6 @@ use crate::model::{
     KernelInputs, Law, Variant,
 };
 
-/// The Walton free map as the kernels' docs state it (a text block).
-pub const CLOSED_FORM_WALTON_FREE: &str = include_str!("closed_form/walton_free.txt");
-
-/// The Walton `fixed` map (body 1 immovable), likewise.
-pub const CLOSED_FORM_WALTON_FIXED: &str = include_str!("closed_form/walton_fixed.txt");
-
 /// The DAG nodes of the Walton law's parameters: normal restitution `e` in `[0, 1]`,
 /// friction coefficient `mu >= 0`, sticking tangential restitution `beta0` in `[-1, 1]`.
 #[derive(Clone, Copy, Debug)]

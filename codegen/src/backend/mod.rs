@@ -33,7 +33,7 @@ mod c;
 pub use c::{OpenCl, C};
 
 use crate::arith::Arith;
-use crate::model::{self, names, skew_pairs, Law, Variant};
+use crate::model::{names, skew_pairs, Law, Variant};
 use crate::program::{Op, Operand, Program};
 use crate::schedule::OpCount;
 use crate::DIMS;
@@ -424,7 +424,7 @@ fn law_units(n: usize, law: Law) -> Vec<Unit> {
         .iter()
         .flat_map(|&arith| {
             Variant::ALL.iter().map(move |&variant| {
-                let program = Program::lower(&model::build_law(n, variant, law), arith);
+                let program = Program::lower(&crate::laws::build_law(n, variant, law), arith);
                 let mut params = match variant {
                     Variant::Free => vec![
                         Param::Array("nu", nu_elems(n)),

@@ -20,8 +20,10 @@ impl Exact {
     /// `sqrt(self)`, `self >= 0`: exact when `self` is the square of a rational
     /// ([`Exact::exact_sqrt`]), else `floor(sqrt(p q) 2^k) / (q 2^k)` for `self = p/q`
     /// reduced and `k =` [`ROOT_BITS`], below the root by less than `2^-k` of it (`p q >= 1`).
-    /// Panics for a negative value (the kernels' roots are of ratios of squares).
-    pub fn root(&self) -> Exact {
+    /// Panics for a negative value (the kernels' roots are of ratios of squares). Not named
+    /// `root`: `noslip_dynamics::root::Root::root` (`None` unless exact) is a trait method on
+    /// the same type, which an inherent `root` would silently shadow.
+    pub fn sqrt_rounded(&self) -> Exact {
         if let Some(r) = self.exact_sqrt() {
             return r;
         }
@@ -37,7 +39,7 @@ impl Exact {
 
 impl<B: Backend> ScalarRoot for Rational<B> {
     fn sqrt(a: &Self) -> Self {
-        a.reduced().root().convert()
+        a.reduced().sqrt_rounded().convert()
     }
 }
 
@@ -48,9 +50,9 @@ mod tests {
     #[test]
     fn squares_have_exact_roots_and_others_are_close_from_below() {
         let q = |p, d| Exact::checked_ratio(p, d).unwrap();
-        assert_eq!(q(9, 4).root(), q(3, 2));
-        assert_eq!(q(0, 1).root(), q(0, 1));
-        let r = q(2, 1).root();
+        assert_eq!(q(9, 4).sqrt_rounded(), q(3, 2));
+        assert_eq!(q(0, 1).sqrt_rounded(), q(0, 1));
+        let r = q(2, 1).sqrt_rounded();
         let err = &(&r * &r) - &q(2, 1);
         // r < sqrt 2 and r^2 > 2 (1 - 2^-255): the truncation, and nothing coarser.
         assert!(err < q(0, 1));
