@@ -35,6 +35,7 @@ pub mod program;
 pub mod schedule;
 pub mod specialise;
 pub mod straight_line;
+pub mod unbiased;
 
 pub use emit::Arith;
 pub use model::{Law, Variant};
