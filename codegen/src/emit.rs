@@ -188,6 +188,10 @@ pub(crate) fn description(kernel: &KernelGraph) -> Vec<String> {
             text_block(Law::NoSlip.closed_form(Variant::Fixed)),
             String::new(),
             "Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).".into(),
+            String::new(),
+            "The spin coefficient is `2 (1 - p) / R_2` of the rounded `p = g_2 / (1 + g_2)`, with".into(),
+            "`2 (1 - p)` carried as `head + tail` and `y_k = (head t_k + tail t_k) / R_2`, so the".into(),
+            "rounded map has no energy bias from its constants (`noslip_codegen::unbiased`).".into(),
         ],
     };
     lines.push(String::new());

@@ -38,6 +38,7 @@ pub mod program;
 pub mod schedule;
 pub mod specialise;
 pub mod straight_line;
+pub mod unbiased;
 pub mod walton;
 
 pub use arith::Arith;

@@ -36,6 +36,7 @@
 //! cannot fuse it into `P`, while the rough one fuses `nu_k (h_n dn)`).
 
 use crate::ir::{Graph, Id};
+use crate::unbiased;
 
 /// The free map as the kernels' docs state it (a text block, one formula a line).
 pub const CLOSED_FORM_FREE: &str = include_str!("closed_form/free.txt");
@@ -458,6 +459,7 @@ pub(crate) fn build_scaled_on(
     let g1g2 = g.mul(g1, g2);
     let p_t = g.div(g1g2, d);
     g.label(p_t, "p_t");
+    let p_t_unscaled = p_t;
     let p_t = scaled(g, p_t, 1, "pe_t");
     let p: Vec<Id> = (0..n)
         .map(|k| {
@@ -468,8 +470,32 @@ pub(crate) fn build_scaled_on(
         .collect();
     label_all(g, &p, "p");
 
+    // Body 2's spin increment of the `fixed` map with parameters as inputs:
+    // `nu ^ (rho' t)`, `rho' = 2 (1 - p) / R` of the rounded `p` (`crate::unbiased`), with
+    // `2 (1 - p)` carried as head + tail. With constant parameters (specialised kernels) the
+    // DAG folds `rho'` exactly, so they keep `rho (nu ^ t)`.
+    let unbiased = variant == Variant::Fixed
+        && !(g.as_const(p_t_unscaled).is_some() && g.as_const(b2.radius).is_some());
+    let fixed_increment = if unbiased {
+        let (head, tail) = unbiased::twice_one_minus(g, p_t_unscaled);
+        let head = scaled(g, head, 1, "q2e_head");
+        let tail = scaled(g, tail, 1, "q2e_tail");
+        let y = unbiased::scaled_slip(g, (head, tail), b2.radius, &t);
+        let x = wedge(g, n, nu, &y);
+        for (&id, (i, j)) in x.iter().zip(skew_pairs(n)) {
+            g.label(id, format!("nu_y_{i}{j}"));
+        }
+        Some(x)
+    } else {
+        None
+    };
+
     // nu ^ t, shared by both angular updates.
-    let nu_t = wedge(g, n, nu, &t);
+    let nu_t = if unbiased {
+        Vec::new()
+    } else {
+        wedge(g, n, nu, &t)
+    };
     for (&id, (i, j)) in nu_t.iter().zip(skew_pairs(n)) {
         g.label(id, format!("nu_t_{i}{j}"));
     }
@@ -487,6 +513,19 @@ pub(crate) fn build_scaled_on(
                 }
             })
             .collect();
+        if let Some(increment) = &fixed_increment {
+            let spin = body
+                .spin
+                .iter()
+                .zip(increment)
+                .map(|(&u, &x)| g.add(u, x))
+                .collect();
+            return BodyOutput {
+                body: index,
+                spin,
+                velocity,
+            };
+        }
         // U_i+ = U_i + (2 w_i g_j / (R_i D)) nu ^ t
         let num = g.mul(scale, other_g);
         let den = g.mul(body.radius, d);

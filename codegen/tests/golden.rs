@@ -56,12 +56,13 @@ fn op_counts_of_every_kernel() {
 #[test]
 fn divisions_do_not_grow_with_the_dimension() {
     // 1/(w_1 + w_2), g_1 g_2 / D and one per angular update (free); the fixed variant keeps
-    // only g_2 / (1 + g_2) and 2 / (R_2 (1 + g_2)).
+    // p = g_2 / (1 + g_2) and divides each component of y = 2 (1 - p) t / R_2 by R_2
+    // (`noslip_codegen::unbiased`): 1 + n.
     for dim in DIMS {
         for k in generate(dim, "crate").kernels {
             let expected = match k.variant {
                 Variant::Free => 4,
-                Variant::Fixed => 2,
+                Variant::Fixed => 1 + dim,
             };
             assert_eq!(k.ops.div, expected, "n = {dim}, {:?}", k.variant);
         }
@@ -155,12 +156,13 @@ fn rough_kernels_cost_the_no_slip_ones_plus_the_scaling() {
         for (p, r) in plain.iter().zip(&rough) {
             assert_eq!((p.variant, p.arith), (r.variant, r.arith));
             if p.arith == Arith::Plain {
-                // h_n, h_t: 2 add + 2 mul; P_n, P_t: 2 mul; rho_1 (free), rho_2: 1 or 2 mul.
-                // `fixed` also computes `nu_k (h_n dn)`, n products, where the no-slip
-                // kernel reuses the slip's `nu_k dn`.
+                // h_n, h_t: 2 add + 2 mul; P_n, P_t: 2 mul; rho_1, rho_2 (free): 2 mul, or
+                // the head and tail of `fixed`'s unbiased 2 (1 - p): 2 mul. `fixed` also
+                // computes `nu_k (h_n dn)`, n products, where the no-slip kernel reuses the
+                // slip's `nu_k dn`.
                 let extra = match p.variant {
                     Variant::Free => 2,
-                    Variant::Fixed => 1 + dim,
+                    Variant::Fixed => 2 + dim,
                 };
                 assert_eq!(r.ops.add, p.ops.add + 2, "n = {dim}, {:?}", p.variant);
                 assert_eq!(

@@ -44,7 +44,7 @@ fn verification_page_quotes_the_golden_degrees_and_bound() {
     let page = read("docs/verification.md");
     assert_eq!(number_after(&page, "$d$ ranges from ") as u64, least);
     assert_eq!(
-        number_after(&page, "(the smooth member,\n`rough fixed`, $n = 2$) to ") as u64,
+        number_after(&page, "(the smooth member,\n`rough free`, $n = 2$) to ") as u64,
         most
     );
     assert_eq!(number_after(&page, "is\n$(") as u64, most);

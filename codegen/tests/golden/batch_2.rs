@@ -2,9 +2,9 @@
 // batch form (codegen/src/batch.rs). Do not edit: it is rewritten by collision-core's build.rs.
 // No-slip collision batch kernels for n = 2, blocks of LANES contacts.
 // free: per contact 21 add, 31 mul, 4 div, 0 neg (56 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
-// fixed: per contact 15 add, 16 mul, 2 div, 0 neg (33 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
+// fixed: per contact 22 add, 21 mul, 3 div, 0 neg (46 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
 // free_shared: per contact 17 add, 20 mul, 1 div, 0 neg (38 total); per call 4 add, 11 mul, 3 div, 0 neg (18 total).
-// fixed_shared: per contact 14 add, 15 mul, 0 div, 0 neg (29 total); per call 1 add, 1 mul, 2 div, 0 neg (4 total).
+// fixed_shared: per contact 16 add, 18 mul, 2 div, 0 neg (36 total); per call 6 add, 3 mul, 1 div, 0 neg (10 total).
 
 use crate::batch::{
     prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance,
@@ -152,9 +152,13 @@ where
 ///
 /// Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).
 ///
+/// The spin coefficient is `2 (1 - p) / R_2` of the rounded `p = g_2 / (1 + g_2)`, with
+/// `2 (1 - p)` carried as `head + tail` and `y_k = (head t_k + tail t_k) / R_2`, so the
+/// rounded map has no energy bias from its constants (`noslip_codegen::unbiased`).
+///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
-/// Ops per contact: 15 add, 16 mul, 2 div, 0 neg (33 total).
+/// Ops per contact: 22 add, 21 mul, 3 div, 0 neg (46 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
 pub fn fixed<T: Scalar, const W: usize>(
@@ -167,6 +171,7 @@ where
     const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
     let lit_1: T = T::from_ratio(1, 1);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let ahead = prefetch_distance::<FixedLanes<T, 2, 1>>();
     for k in 0..blocks.len().min(out.len()) {
         prefetch(blocks.get(k + ahead));
@@ -206,20 +211,33 @@ where
                 let p_0: T = &tmp6 + &tmp10;
                 let tmp11: T = &t_1 * &p_t;
                 let p_1: T = &tmp8 + &tmp11;
-                let tmp12: T = nu_1 * &t_0;
-                let tmp13: T = nu_0 * &t_1;
-                let nu_t_01: T = &tmp12 - &tmp13;
-                let tmp14: T = &lit_2 * &p_0;
-                let tmp15: T = u2_0 - &tmp14;
-                post.velocity[0][l] = tmp15;
-                let tmp16: T = &lit_2 * &p_1;
-                let tmp17: T = u2_1 - &tmp16;
-                post.velocity[1][l] = tmp17;
-                let tmp18: T = radius2 * &d;
-                let rho2: T = &lit_2 / &tmp18;
-                let tmp19: T = &nu_t_01 * &rho2;
-                let tmp20: T = U2_01 + &tmp19;
-                post.spin[0][l] = tmp20;
+                let q_hi: T = &lit_1 - &p_t;
+                let tmp12: T = &lit_1 - &q_hi;
+                let q_lo: T = &tmp12 - &p_t;
+                let q2_head: T = &lit_1048575_524288 * &q_hi;
+                let tmp13: T = &lit_2 * &q_hi;
+                let tmp14: T = &tmp13 - &q2_head;
+                let tmp15: T = &lit_2 * &q_lo;
+                let q2_tail: T = &tmp14 + &tmp15;
+                let tmp16: T = &t_0 * &q2_head;
+                let tmp17: T = &t_0 * &q2_tail;
+                let tmp18: T = &tmp16 + &tmp17;
+                let y_0: T = &tmp18 / radius2;
+                let tmp19: T = &t_1 * &q2_head;
+                let tmp20: T = &t_1 * &q2_tail;
+                let tmp21: T = &tmp19 + &tmp20;
+                let y_1: T = &tmp21 / radius2;
+                let tmp22: T = nu_1 * &y_0;
+                let tmp23: T = nu_0 * &y_1;
+                let nu_y_01: T = &tmp22 - &tmp23;
+                let tmp24: T = &lit_2 * &p_0;
+                let tmp25: T = u2_0 - &tmp24;
+                post.velocity[0][l] = tmp25;
+                let tmp26: T = &lit_2 * &p_1;
+                let tmp27: T = u2_1 - &tmp26;
+                post.velocity[1][l] = tmp27;
+                let tmp28: T = U2_01 + &nu_y_01;
+                post.spin[0][l] = tmp28;
             }
         }
     }
@@ -369,10 +387,14 @@ where
 ///
 /// Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).
 ///
+/// The spin coefficient is `2 (1 - p) / R_2` of the rounded `p = g_2 / (1 + g_2)`, with
+/// `2 (1 - p)` carried as `head + tail` and `y_k = (head t_k + tail t_k) / R_2`, so the
+/// rounded map has no energy bias from its constants (`noslip_codegen::unbiased`).
+///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
-/// Ops per contact: 14 add, 15 mul, 0 div, 0 neg (29 total).
-/// Ops per call, on the shared parameters: 1 add, 1 mul, 2 div, 0 neg (4 total).
+/// Ops per contact: 16 add, 18 mul, 2 div, 0 neg (36 total).
+/// Ops per call, on the shared parameters: 6 add, 3 mul, 1 div, 0 neg (10 total).
 #[inline(always)]
 #[allow(non_snake_case, clippy::needless_range_loop)]
 pub fn fixed_shared<T: Scalar, const W: usize>(
@@ -390,10 +412,17 @@ where
     let radius2: &T = &ball2.radius.clone();
     let lit_1: T = T::from_ratio(1, 1);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let d: T = &lit_1 + gamma2_2;
     let p_t: T = gamma2_2 / &d;
-    let tmp18: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp18;
+    let q_hi: T = &lit_1 - &p_t;
+    let tmp12: T = &lit_1 - &q_hi;
+    let q_lo: T = &tmp12 - &p_t;
+    let q2_head: T = &lit_1048575_524288 * &q_hi;
+    let tmp13: T = &lit_2 * &q_hi;
+    let tmp14: T = &tmp13 - &q2_head;
+    let tmp15: T = &lit_2 * &q_lo;
+    let q2_tail: T = &tmp14 + &tmp15;
     let ahead = prefetch_distance::<ContactLanes<T, 2, 1>>();
     for k in 0..blocks.len().min(out.len()) {
         prefetch(blocks.get(k + ahead));
@@ -428,18 +457,25 @@ where
                 let p_0: T = &tmp6 + &tmp10;
                 let tmp11: T = &t_1 * &p_t;
                 let p_1: T = &tmp8 + &tmp11;
-                let tmp12: T = nu_1 * &t_0;
-                let tmp13: T = nu_0 * &t_1;
-                let nu_t_01: T = &tmp12 - &tmp13;
-                let tmp14: T = &lit_2 * &p_0;
-                let tmp15: T = u2_0 - &tmp14;
-                post.velocity[0][l] = tmp15;
-                let tmp16: T = &lit_2 * &p_1;
-                let tmp17: T = u2_1 - &tmp16;
-                post.velocity[1][l] = tmp17;
-                let tmp19: T = &nu_t_01 * &rho2;
-                let tmp20: T = U2_01 + &tmp19;
-                post.spin[0][l] = tmp20;
+                let tmp16: T = &t_0 * &q2_head;
+                let tmp17: T = &t_0 * &q2_tail;
+                let tmp18: T = &tmp16 + &tmp17;
+                let y_0: T = &tmp18 / radius2;
+                let tmp19: T = &t_1 * &q2_head;
+                let tmp20: T = &t_1 * &q2_tail;
+                let tmp21: T = &tmp19 + &tmp20;
+                let y_1: T = &tmp21 / radius2;
+                let tmp22: T = nu_1 * &y_0;
+                let tmp23: T = nu_0 * &y_1;
+                let nu_y_01: T = &tmp22 - &tmp23;
+                let tmp24: T = &lit_2 * &p_0;
+                let tmp25: T = u2_0 - &tmp24;
+                post.velocity[0][l] = tmp25;
+                let tmp26: T = &lit_2 * &p_1;
+                let tmp27: T = u2_1 - &tmp26;
+                post.velocity[1][l] = tmp27;
+                let tmp28: T = U2_01 + &nu_y_01;
+                post.spin[0][l] = tmp28;
             }
         }
     }

@@ -2,9 +2,9 @@
 // Do not edit: it is rewritten by collision-core's build.rs.
 // No-slip collision kernels for n = 2.
 // free: 21 add, 31 mul, 4 div, 0 neg (56 total); 56 intermediate terms.
-// fixed: 15 add, 16 mul, 2 div, 0 neg (33 total); 33 intermediate terms.
+// fixed: 22 add, 21 mul, 3 div, 0 neg (46 total); 46 intermediate terms.
 // free_fma: 16 fma, 5 add, 15 mul, 4 div, 0 neg (40 total); 40 intermediate terms.
-// fixed_fma: 10 fma, 5 add, 6 mul, 2 div, 0 neg (23 total); 23 intermediate terms.
+// fixed_fma: 13 fma, 9 add, 8 mul, 3 div, 0 neg (33 total); 33 intermediate terms.
 
 use crate::{Ball, BodyState, RefArith, Scalar};
 /// No-slip collision of two free balls in R^2: returns `[body 1, body 2]` after contact.
@@ -128,10 +128,14 @@ where
 ///
 /// Finite for every `gamma2` in `[0, 2/n]`, including a point mass (`gamma2 = 0`).
 ///
+/// The spin coefficient is `2 (1 - p) / R_2` of the rounded `p = g_2 / (1 + g_2)`, with
+/// `2 (1 - p)` carried as `head + tail` and `y_k = (head t_k + tail t_k) / R_2`, so the
+/// rounded map has no energy bias from its constants (`noslip_codegen::unbiased`).
+///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 /// Straight-line: no branches, loops or calls; all operations on references.
 ///
-/// Ops: 15 add, 16 mul, 2 div, 0 neg (33 total); 33 intermediate terms.
+/// Ops: 22 add, 21 mul, 3 div, 0 neg (46 total); 46 intermediate terms.
 #[inline]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed<T: Scalar>(
@@ -150,6 +154,7 @@ where
     let BodyState { spin: [U2_01], velocity: [u2_0, u2_1] } = state2;
     let lit_1: T = T::from_ratio(1, 1);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let tmp0: T = U1_01 * radius1;
     let tmp1: T = U2_01 * radius2;
     let tmp2: T = &tmp0 + &tmp1;
@@ -172,20 +177,33 @@ where
     let p_0: T = &tmp6 + &tmp10;
     let tmp11: T = &t_1 * &p_t;
     let p_1: T = &tmp8 + &tmp11;
-    let tmp12: T = nu_1 * &t_0;
-    let tmp13: T = nu_0 * &t_1;
-    let nu_t_01: T = &tmp12 - &tmp13;
-    let tmp14: T = &lit_2 * &p_0;
-    let tmp15: T = u2_0 - &tmp14;
-    let tmp16: T = &lit_2 * &p_1;
-    let tmp17: T = u2_1 - &tmp16;
-    let tmp18: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp18;
-    let tmp19: T = &nu_t_01 * &rho2;
-    let tmp20: T = U2_01 + &tmp19;
+    let q_hi: T = &lit_1 - &p_t;
+    let tmp12: T = &lit_1 - &q_hi;
+    let q_lo: T = &tmp12 - &p_t;
+    let q2_head: T = &lit_1048575_524288 * &q_hi;
+    let tmp13: T = &lit_2 * &q_hi;
+    let tmp14: T = &tmp13 - &q2_head;
+    let tmp15: T = &lit_2 * &q_lo;
+    let q2_tail: T = &tmp14 + &tmp15;
+    let tmp16: T = &t_0 * &q2_head;
+    let tmp17: T = &t_0 * &q2_tail;
+    let tmp18: T = &tmp16 + &tmp17;
+    let y_0: T = &tmp18 / radius2;
+    let tmp19: T = &t_1 * &q2_head;
+    let tmp20: T = &t_1 * &q2_tail;
+    let tmp21: T = &tmp19 + &tmp20;
+    let y_1: T = &tmp21 / radius2;
+    let tmp22: T = nu_1 * &y_0;
+    let tmp23: T = nu_0 * &y_1;
+    let nu_y_01: T = &tmp22 - &tmp23;
+    let tmp24: T = &lit_2 * &p_0;
+    let tmp25: T = u2_0 - &tmp24;
+    let tmp26: T = &lit_2 * &p_1;
+    let tmp27: T = u2_1 - &tmp26;
+    let tmp28: T = U2_01 + &nu_y_01;
     BodyState {
-        spin: [tmp20],
-        velocity: [tmp15, tmp17],
+        spin: [tmp28],
+        velocity: [tmp25, tmp27],
     }
 }
 /// [`free`] with every single-use product fused into the addition that consumes it
@@ -279,7 +297,7 @@ where
 /// Called from code compiled without FMA, `f64::mul_add` is a libm call: the same
 /// bits (both round once, correctly), several times slower.
 ///
-/// Ops: 10 fma, 5 add, 6 mul, 2 div, 0 neg (23 total); 23 intermediate terms.
+/// Ops: 13 fma, 9 add, 8 mul, 3 div, 0 neg (33 total); 33 intermediate terms.
 #[inline(always)]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed_fma<T: Scalar>(
@@ -298,6 +316,7 @@ where
     let BodyState { spin: [U2_01], velocity: [u2_0, u2_1] } = state2;
     let lit_1: T = T::from_ratio(1, 1);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let tmp0: T = U2_01 * radius2;
     let tmp1: T = T::mul_add(U1_01, radius1, &tmp0);
     let du_0: T = u2_0 - u1_0;
@@ -314,15 +333,25 @@ where
     let p_t: T = gamma2_2 / &d;
     let p_0: T = T::mul_add(&t_0, &p_t, &tmp3);
     let p_1: T = T::mul_add(&t_1, &p_t, &tmp5);
-    let tmp7: T = nu_1 * &t_0;
-    let nu_t_01: T = T::neg_mul_add(nu_0, &t_1, &tmp7);
-    let tmp8: T = T::neg_mul_add(&lit_2, &p_0, u2_0);
-    let tmp9: T = T::neg_mul_add(&lit_2, &p_1, u2_1);
-    let tmp10: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp10;
-    let tmp11: T = T::mul_add(&nu_t_01, &rho2, U2_01);
+    let q_hi: T = &lit_1 - &p_t;
+    let tmp7: T = &lit_1 - &q_hi;
+    let q_lo: T = &tmp7 - &p_t;
+    let q2_head: T = &lit_1048575_524288 * &q_hi;
+    let tmp8: T = T::mul_sub(&lit_2, &q_hi, &q2_head);
+    let q2_tail: T = T::mul_add(&lit_2, &q_lo, &tmp8);
+    let tmp9: T = &t_0 * &q2_tail;
+    let tmp10: T = T::mul_add(&t_0, &q2_head, &tmp9);
+    let y_0: T = &tmp10 / radius2;
+    let tmp11: T = &t_1 * &q2_tail;
+    let tmp12: T = T::mul_add(&t_1, &q2_head, &tmp11);
+    let y_1: T = &tmp12 / radius2;
+    let tmp13: T = nu_1 * &y_0;
+    let nu_y_01: T = T::neg_mul_add(nu_0, &y_1, &tmp13);
+    let tmp14: T = T::neg_mul_add(&lit_2, &p_0, u2_0);
+    let tmp15: T = T::neg_mul_add(&lit_2, &p_1, u2_1);
+    let tmp16: T = U2_01 + &nu_y_01;
     BodyState {
-        spin: [tmp11],
-        velocity: [tmp8, tmp9],
+        spin: [tmp16],
+        velocity: [tmp14, tmp15],
     }
 }

@@ -2,9 +2,9 @@
 // Do not edit: it is rewritten by collision-core's build.rs.
 // Rough-ball (e, beta) collision kernels for n = 2.
 // free: 23 add, 37 mul, 4 div, 0 neg (64 total); 64 intermediate terms.
-// fixed: 17 add, 23 mul, 2 div, 0 neg (42 total); 42 intermediate terms.
+// fixed: 24 add, 29 mul, 3 div, 0 neg (56 total); 56 intermediate terms.
 // free_fma: 16 fma, 7 add, 21 mul, 4 div, 0 neg (48 total); 48 intermediate terms.
-// fixed_fma: 12 fma, 5 add, 11 mul, 2 div, 0 neg (30 total); 30 intermediate terms.
+// fixed_fma: 15 fma, 9 add, 14 mul, 3 div, 0 neg (41 total); 41 intermediate terms.
 
 use crate::{Ball, BodyState, RefArith, Restitution, Scalar};
 /// Rough-ball collision of two free balls in R^2 with normal restitution `e` and
@@ -150,7 +150,7 @@ where
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 /// Straight-line: no branches, loops or calls; all operations on references.
 ///
-/// Ops: 17 add, 23 mul, 2 div, 0 neg (42 total); 42 intermediate terms.
+/// Ops: 24 add, 29 mul, 3 div, 0 neg (56 total); 56 intermediate terms.
 #[inline]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed<T: Scalar>(
@@ -172,6 +172,7 @@ where
     let lit_1: T = T::from_ratio(1, 1);
     let lit_1_2: T = T::from_ratio(1, 2);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let tmp0: T = &lit_1 + e;
     let h_n: T = &lit_1_2 * &tmp0;
     let tmp1: T = &lit_1 + beta;
@@ -202,21 +203,35 @@ where
     let tmp14: T = nu_1 * &pe_n;
     let tmp15: T = &t_1 * &pe_t;
     let p_1: T = &tmp14 + &tmp15;
-    let tmp16: T = nu_1 * &t_0;
-    let tmp17: T = nu_0 * &t_1;
-    let nu_t_01: T = &tmp16 - &tmp17;
-    let tmp18: T = &lit_2 * &p_0;
-    let tmp19: T = u2_0 - &tmp18;
-    let tmp20: T = &lit_2 * &p_1;
-    let tmp21: T = u2_1 - &tmp20;
-    let tmp22: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp22;
-    let rhoe2: T = &h_t * &rho2;
-    let tmp23: T = &nu_t_01 * &rhoe2;
-    let tmp24: T = U2_01 + &tmp23;
+    let q_hi: T = &lit_1 - &p_t;
+    let tmp16: T = &lit_1 - &q_hi;
+    let q_lo: T = &tmp16 - &p_t;
+    let q2_head: T = &lit_1048575_524288 * &q_hi;
+    let tmp17: T = &lit_2 * &q_hi;
+    let tmp18: T = &tmp17 - &q2_head;
+    let tmp19: T = &lit_2 * &q_lo;
+    let q2_tail: T = &tmp18 + &tmp19;
+    let q2e_head: T = &h_t * &q2_head;
+    let q2e_tail: T = &h_t * &q2_tail;
+    let tmp20: T = &t_0 * &q2e_head;
+    let tmp21: T = &t_0 * &q2e_tail;
+    let tmp22: T = &tmp20 + &tmp21;
+    let y_0: T = &tmp22 / radius2;
+    let tmp23: T = &t_1 * &q2e_head;
+    let tmp24: T = &t_1 * &q2e_tail;
+    let tmp25: T = &tmp23 + &tmp24;
+    let y_1: T = &tmp25 / radius2;
+    let tmp26: T = nu_1 * &y_0;
+    let tmp27: T = nu_0 * &y_1;
+    let nu_y_01: T = &tmp26 - &tmp27;
+    let tmp28: T = &lit_2 * &p_0;
+    let tmp29: T = u2_0 - &tmp28;
+    let tmp30: T = &lit_2 * &p_1;
+    let tmp31: T = u2_1 - &tmp30;
+    let tmp32: T = U2_01 + &nu_y_01;
     BodyState {
-        spin: [tmp24],
-        velocity: [tmp19, tmp21],
+        spin: [tmp32],
+        velocity: [tmp29, tmp31],
     }
 }
 /// [`free`] with every single-use product fused into the addition that consumes it
@@ -321,7 +336,7 @@ where
 /// Called from code compiled without FMA, `f64::mul_add` is a libm call: the same
 /// bits (both round once, correctly), several times slower.
 ///
-/// Ops: 12 fma, 5 add, 11 mul, 2 div, 0 neg (30 total); 30 intermediate terms.
+/// Ops: 15 fma, 9 add, 14 mul, 3 div, 0 neg (41 total); 41 intermediate terms.
 #[inline(always)]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed_fma<T: Scalar>(
@@ -343,6 +358,7 @@ where
     let lit_1: T = T::from_ratio(1, 1);
     let lit_1_2: T = T::from_ratio(1, 2);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let tmp0: T = &lit_1 + e;
     let h_n: T = &lit_1_2 * &tmp0;
     let tmp1: T = &lit_1 + beta;
@@ -365,16 +381,27 @@ where
     let p_0: T = T::mul_add(nu_0, &pe_n, &tmp7);
     let tmp8: T = &t_1 * &pe_t;
     let p_1: T = T::mul_add(nu_1, &pe_n, &tmp8);
-    let tmp9: T = nu_1 * &t_0;
-    let nu_t_01: T = T::neg_mul_add(nu_0, &t_1, &tmp9);
-    let tmp10: T = T::neg_mul_add(&lit_2, &p_0, u2_0);
-    let tmp11: T = T::neg_mul_add(&lit_2, &p_1, u2_1);
-    let tmp12: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp12;
-    let rhoe2: T = &h_t * &rho2;
-    let tmp13: T = T::mul_add(&nu_t_01, &rhoe2, U2_01);
+    let q_hi: T = &lit_1 - &p_t;
+    let tmp9: T = &lit_1 - &q_hi;
+    let q_lo: T = &tmp9 - &p_t;
+    let q2_head: T = &lit_1048575_524288 * &q_hi;
+    let tmp10: T = T::mul_sub(&lit_2, &q_hi, &q2_head);
+    let q2_tail: T = T::mul_add(&lit_2, &q_lo, &tmp10);
+    let q2e_head: T = &h_t * &q2_head;
+    let q2e_tail: T = &h_t * &q2_tail;
+    let tmp11: T = &t_0 * &q2e_tail;
+    let tmp12: T = T::mul_add(&t_0, &q2e_head, &tmp11);
+    let y_0: T = &tmp12 / radius2;
+    let tmp13: T = &t_1 * &q2e_tail;
+    let tmp14: T = T::mul_add(&t_1, &q2e_head, &tmp13);
+    let y_1: T = &tmp14 / radius2;
+    let tmp15: T = nu_1 * &y_0;
+    let nu_y_01: T = T::neg_mul_add(nu_0, &y_1, &tmp15);
+    let tmp16: T = T::neg_mul_add(&lit_2, &p_0, u2_0);
+    let tmp17: T = T::neg_mul_add(&lit_2, &p_1, u2_1);
+    let tmp18: T = U2_01 + &nu_y_01;
     BodyState {
-        spin: [tmp13],
-        velocity: [tmp10, tmp11],
+        spin: [tmp18],
+        velocity: [tmp16, tmp17],
     }
 }

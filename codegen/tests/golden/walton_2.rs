@@ -2,9 +2,9 @@
 // Do not edit: it is rewritten by collision-core's build.rs.
 // Walton (e, mu, beta0) collision kernels for n = 2.
 // free: 1 sqrt, 2 select, 24 add, 49 mul, 5 div, 0 neg (81 total); 81 intermediate terms.
-// fixed: 1 sqrt, 2 select, 18 add, 34 mul, 3 div, 0 neg (58 total); 58 intermediate terms.
+// fixed: 1 sqrt, 2 select, 25 add, 40 mul, 4 div, 0 neg (72 total); 72 intermediate terms.
 // free_fma: 17 fma, 1 sqrt, 2 select, 7 add, 32 mul, 5 div, 0 neg (64 total); 64 intermediate terms.
-// fixed_fma: 13 fma, 1 sqrt, 2 select, 5 add, 21 mul, 3 div, 0 neg (45 total); 45 intermediate terms.
+// fixed_fma: 16 fma, 1 sqrt, 2 select, 9 add, 24 mul, 4 div, 0 neg (56 total); 56 intermediate terms.
 
 use crate::{Ball, BodyState, RefArith, ScalarRoot, Walton};
 /// Walton-law collision of two free balls in R^2: normal restitution `e`, friction
@@ -172,7 +172,7 @@ where
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 /// Straight-line: no branches, loops or calls; all operations on references.
 ///
-/// Ops: 1 sqrt, 2 select, 18 add, 34 mul, 3 div, 0 neg (58 total); 58 intermediate terms.
+/// Ops: 1 sqrt, 2 select, 25 add, 40 mul, 4 div, 0 neg (72 total); 72 intermediate terms.
 #[inline]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed<T: ScalarRoot>(
@@ -194,6 +194,7 @@ where
     let lit_1: T = T::from_ratio(1, 1);
     let lit_1_2: T = T::from_ratio(1, 2);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let tmp0: T = &lit_1 + e;
     let h_n: T = &lit_1_2 * &tmp0;
     let tmp1: T = &lit_1 + beta0;
@@ -240,21 +241,35 @@ where
     let tmp22: T = nu_1 * &pe_n;
     let tmp23: T = &t_1 * &pe_t;
     let p_1: T = &tmp22 + &tmp23;
-    let tmp24: T = nu_1 * &t_0;
-    let tmp25: T = nu_0 * &t_1;
-    let nu_t_01: T = &tmp24 - &tmp25;
-    let tmp26: T = &lit_2 * &p_0;
-    let tmp27: T = u2_0 - &tmp26;
-    let tmp28: T = &lit_2 * &p_1;
-    let tmp29: T = u2_1 - &tmp28;
-    let tmp30: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp30;
-    let rhoe2: T = &h_t * &rho2;
-    let tmp31: T = &nu_t_01 * &rhoe2;
-    let tmp32: T = U2_01 + &tmp31;
+    let q_hi: T = &lit_1 - &p_t;
+    let tmp24: T = &lit_1 - &q_hi;
+    let q_lo: T = &tmp24 - &p_t;
+    let q2_head: T = &lit_1048575_524288 * &q_hi;
+    let tmp25: T = &lit_2 * &q_hi;
+    let tmp26: T = &tmp25 - &q2_head;
+    let tmp27: T = &lit_2 * &q_lo;
+    let q2_tail: T = &tmp26 + &tmp27;
+    let q2e_head: T = &h_t * &q2_head;
+    let q2e_tail: T = &h_t * &q2_tail;
+    let tmp28: T = &t_0 * &q2e_head;
+    let tmp29: T = &t_0 * &q2e_tail;
+    let tmp30: T = &tmp28 + &tmp29;
+    let y_0: T = &tmp30 / radius2;
+    let tmp31: T = &t_1 * &q2e_head;
+    let tmp32: T = &t_1 * &q2e_tail;
+    let tmp33: T = &tmp31 + &tmp32;
+    let y_1: T = &tmp33 / radius2;
+    let tmp34: T = nu_1 * &y_0;
+    let tmp35: T = nu_0 * &y_1;
+    let nu_y_01: T = &tmp34 - &tmp35;
+    let tmp36: T = &lit_2 * &p_0;
+    let tmp37: T = u2_0 - &tmp36;
+    let tmp38: T = &lit_2 * &p_1;
+    let tmp39: T = u2_1 - &tmp38;
+    let tmp40: T = U2_01 + &nu_y_01;
     BodyState {
-        spin: [tmp32],
-        velocity: [tmp27, tmp29],
+        spin: [tmp40],
+        velocity: [tmp37, tmp39],
     }
 }
 /// [`free`] with every single-use product fused into the addition that consumes it
@@ -375,7 +390,7 @@ where
 /// Called from code compiled without FMA, `f64::mul_add` is a libm call: the same
 /// bits (both round once, correctly), several times slower.
 ///
-/// Ops: 13 fma, 1 sqrt, 2 select, 5 add, 21 mul, 3 div, 0 neg (45 total); 45 intermediate terms.
+/// Ops: 16 fma, 1 sqrt, 2 select, 9 add, 24 mul, 4 div, 0 neg (56 total); 56 intermediate terms.
 #[inline(always)]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fixed_fma<T: ScalarRoot>(
@@ -397,6 +412,7 @@ where
     let lit_1: T = T::from_ratio(1, 1);
     let lit_1_2: T = T::from_ratio(1, 2);
     let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
     let tmp0: T = &lit_1 + e;
     let h_n: T = &lit_1_2 * &tmp0;
     let tmp1: T = &lit_1 + beta0;
@@ -434,16 +450,27 @@ where
     let p_0: T = T::mul_add(nu_0, &pe_n, &tmp14);
     let tmp15: T = &t_1 * &pe_t;
     let p_1: T = T::mul_add(nu_1, &pe_n, &tmp15);
-    let tmp16: T = nu_1 * &t_0;
-    let nu_t_01: T = T::neg_mul_add(nu_0, &t_1, &tmp16);
-    let tmp17: T = T::neg_mul_add(&lit_2, &p_0, u2_0);
-    let tmp18: T = T::neg_mul_add(&lit_2, &p_1, u2_1);
-    let tmp19: T = radius2 * &d;
-    let rho2: T = &lit_2 / &tmp19;
-    let rhoe2: T = &h_t * &rho2;
-    let tmp20: T = T::mul_add(&nu_t_01, &rhoe2, U2_01);
+    let q_hi: T = &lit_1 - &p_t;
+    let tmp16: T = &lit_1 - &q_hi;
+    let q_lo: T = &tmp16 - &p_t;
+    let q2_head: T = &lit_1048575_524288 * &q_hi;
+    let tmp17: T = T::mul_sub(&lit_2, &q_hi, &q2_head);
+    let q2_tail: T = T::mul_add(&lit_2, &q_lo, &tmp17);
+    let q2e_head: T = &h_t * &q2_head;
+    let q2e_tail: T = &h_t * &q2_tail;
+    let tmp18: T = &t_0 * &q2e_tail;
+    let tmp19: T = T::mul_add(&t_0, &q2e_head, &tmp18);
+    let y_0: T = &tmp19 / radius2;
+    let tmp20: T = &t_1 * &q2e_tail;
+    let tmp21: T = T::mul_add(&t_1, &q2e_head, &tmp20);
+    let y_1: T = &tmp21 / radius2;
+    let tmp22: T = nu_1 * &y_0;
+    let nu_y_01: T = T::neg_mul_add(nu_0, &y_1, &tmp22);
+    let tmp23: T = T::neg_mul_add(&lit_2, &p_0, u2_0);
+    let tmp24: T = T::neg_mul_add(&lit_2, &p_1, u2_1);
+    let tmp25: T = U2_01 + &nu_y_01;
     BodyState {
-        spin: [tmp20],
-        velocity: [tmp17, tmp18],
+        spin: [tmp25],
+        velocity: [tmp23, tmp24],
     }
 }
