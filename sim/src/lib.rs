@@ -33,10 +33,13 @@ mod cells;
 pub mod cover;
 pub mod dilute;
 pub mod engine;
+pub mod granular;
 pub mod lattice;
 #[cfg(test)]
 mod lattice_tests;
+pub mod law;
 pub mod log;
+pub mod maxwell;
 mod motion;
 pub mod no_contact;
 mod normal;
@@ -53,6 +56,7 @@ pub mod range;
 #[cfg(test)]
 mod reference;
 mod residents;
+pub mod rough;
 pub mod run;
 pub mod sequential;
 pub mod setup;
