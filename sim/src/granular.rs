@@ -27,7 +27,7 @@ use crate::observe::energy_of;
 use crate::{Contact, Event, PairKernels, Simulation};
 use collision_core::Ball;
 
-/// The contact kinds the losses are kept by, in the order of [`Sampler::lost`]: ball-ball,
+/// The contact kinds the losses are kept by, in the order of [`Row::lost`]: ball-ball,
 /// ball-wall (the box), ball-obstacle, ball-boundary (the table's other boundaries).
 pub const KINDS: [&str; 4] = ["ball_ball", "ball_wall", "ball_obstacle", "ball_boundary"];
 
@@ -38,7 +38,7 @@ pub struct Row {
     pub time: f64,
     /// Contacts so far.
     pub contacts: u64,
-    /// `T_tr`.
+    /// `T_tr` (`NaN` with a single ball: it has no translational degree of freedom left).
     pub t_tr: f64,
     /// `T_rot` (`NaN` when no ball has rotational degrees of freedom).
     pub t_rot: f64,
