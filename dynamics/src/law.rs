@@ -15,7 +15,7 @@
 //!   the very map the engine runs.
 //!
 //! Which law a contact follows is the scene's (`contact = "smooth"` per boundary, per
-//! obstacle and for ball pairs: [`noslip_sim::ContactKind`], converted by `From`), unless a
+//! obstacle and for ball pairs: [`noslip_sim::ContactKind`], converted by [`Law::of`]), unless a
 //! run overrides every contact's law.
 
 use collision_core::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};
@@ -31,17 +31,18 @@ pub enum Law {
     Smooth,
 }
 
-impl From<noslip_sim::ContactKind> for Law {
-    fn from(kind: noslip_sim::ContactKind) -> Law {
+impl Law {
+    /// The law of an elastic contact kind; `None` for a rough one (`e < 1` or `|beta| < 1`:
+    /// no tangent map here).
+    pub fn of(kind: noslip_sim::ContactKind) -> Option<Law> {
         match kind {
-            noslip_sim::ContactKind::NoSlip => Law::NoSlip,
-            noslip_sim::ContactKind::Smooth => Law::Smooth,
+            noslip_sim::ContactKind::NoSlip => Some(Law::NoSlip),
+            noslip_sim::ContactKind::Smooth => Some(Law::Smooth),
+            noslip_sim::ContactKind::Rough { .. } => None,
         }
     }
-}
 
-impl Law {
-    /// The scene's contact kind for this law (the inverse of `From<ContactKind>`).
+    /// The scene's contact kind for this law (the inverse of [`Law::of`]).
     pub fn kind(self) -> noslip_sim::ContactKind {
         match self {
             Law::NoSlip => noslip_sim::ContactKind::NoSlip,

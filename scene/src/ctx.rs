@@ -1,6 +1,7 @@
 //! Where validation is: the scene file's origin, errors that name their place in it, and the
 //! field readers every part of validation shares.
 
+use crate::raw::ContactKind;
 use crate::{Number, SceneError};
 use num_rational::BigRational;
 use num_traits::Signed;
@@ -36,6 +37,17 @@ impl Ctx<'_> {
             ));
         }
         Ok(v.iter().map(|x| x.0.clone()).collect())
+    }
+
+    /// The contact kind at `place`, checked and its elastic members named
+    /// ([`ContactKind::checked`]).
+    pub(crate) fn contact(
+        &self,
+        place: &str,
+        kind: &ContactKind,
+    ) -> Result<ContactKind, SceneError> {
+        kind.checked(place)
+            .map_err(|(at, message)| self.err(at, message))
     }
 
     pub(crate) fn positive(&self, place: &str, x: &Number) -> Result<Q, SceneError> {

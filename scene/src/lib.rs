@@ -16,6 +16,7 @@
 
 #![warn(missing_docs, unreachable_pub)]
 
+mod contact;
 mod convex;
 mod ctx;
 mod number;
@@ -115,6 +116,12 @@ pub struct Random {
     pub speed: BigRational,
     /// Skew entries of `U` are uniform in `[-spin, spin]`; `>= 0`, default 0.
     pub spin: BigRational,
+    /// `Some(T)` (`random.velocities = "maxwellian"`, `random.temperature`, `T > 0`, default
+    /// 1): instead of `speed` and `spin`, each velocity component is normal with mean 0 and
+    /// variance `T / m`, each skew entry `U_ij` (`i < j`) normal with variance `T / I`,
+    /// `I = 2 m lambda` (0 when `lambda = 0`): a Maxwellian at granular temperature `T` in
+    /// every translational and rotational degree of freedom (docs/granular.md).
+    pub temperature: Option<BigRational>,
 }
 
 /// Defaults of a run (the command line overrides them).
@@ -150,6 +157,10 @@ pub struct Scene {
     pub polygons: Vec<Vec<Vec<BigRational>>>,
     /// The contact kind of every ball-ball pair (`[contact] balls`).
     pub ball_contact: ContactKind,
+    /// The TC model's contact duration (`[contact] tc`, `> 0`): a contact of a ball within
+    /// `tc` of its previous contact is elastic (docs/granular.md). `None`: every contact
+    /// follows its law.
+    pub tc: Option<BigRational>,
     /// The species, indexed as in the file (`species[i]`).
     pub species: Vec<Species>,
     /// The explicitly placed balls (`[[ball]]`), in file order.

@@ -1,5 +1,6 @@
 //! The scene file as written: serde structures with unknown keys refused.
 
+pub use crate::contact::ContactKind;
 use crate::number::Number;
 use serde::Deserialize;
 
@@ -139,22 +140,9 @@ pub struct RawObstacle {
     pub position: Vec<Number>,
     /// `radius`: `> 0`.
     pub radius: Number,
-    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    /// `contact`: `"no-slip"` (default), `"smooth"` or `{ e = ..., beta = ... }`.
     #[serde(default)]
     pub contact: ContactKind,
-}
-
-/// How a ball and what it meets exchange momentum at a contact.
-#[derive(Deserialize, Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum ContactKind {
-    /// `"no-slip"`: the no-slip map (the generated kernels); the default.
-    #[default]
-    #[serde(rename = "no-slip")]
-    NoSlip,
-    /// `"smooth"`: specular, spins untouched (`u' = u - 2 (u . nu) nu` on an immovable
-    /// body; the elastic smooth-sphere map between balls).
-    #[serde(rename = "smooth")]
-    Smooth,
 }
 
 /// A `[[wall]]` table: the flat wall `(x - point) . normal = 0`, the table on the side
@@ -166,7 +154,7 @@ pub struct RawWall {
     pub point: Vec<Number>,
     /// `normal`: any nonzero vector into the table.
     pub normal: Vec<Number>,
-    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    /// `contact`: `"no-slip"` (default), `"smooth"` or `{ e = ..., beta = ... }`.
     #[serde(default)]
     pub contact: ContactKind,
 }
@@ -179,7 +167,7 @@ pub struct RawContainer {
     pub centre: Vec<Number>,
     /// `radius`: `> 0`.
     pub radius: Number,
-    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    /// `contact`: `"no-slip"` (default), `"smooth"` or `{ e = ..., beta = ... }`.
     #[serde(default)]
     pub contact: ContactKind,
 }
@@ -190,7 +178,7 @@ pub struct RawContainer {
 pub struct RawPolygon {
     /// `vertices`: at least 3 points, strictly convex.
     pub vertices: Vec<Vec<Number>>,
-    /// `contact`: `"no-slip"` (default) or `"smooth"`.
+    /// `contact`: `"no-slip"` (default), `"smooth"` or `{ e = ..., beta = ... }`.
     #[serde(default)]
     pub contact: ContactKind,
 }
@@ -206,7 +194,8 @@ pub struct RawTable {
     /// `[table.wedge]`: a 2D wedge.
     #[serde(default)]
     pub wedge: Option<RawWedge>,
-    /// `contact`: `"no-slip"` (default) or `"smooth"`, for every wall of the table.
+    /// `contact`: `"no-slip"` (default), `"smooth"` or `{ e = ..., beta = ... }`, for every
+    /// wall of the table.
     #[serde(default)]
     pub contact: ContactKind,
 }
@@ -231,9 +220,14 @@ pub struct RawWedge {
 #[derive(Deserialize, Debug, Default)]
 #[serde(deny_unknown_fields)]
 pub struct RawContact {
-    /// `balls`: the contact kind of every ball-ball pair (default `"no-slip"`).
+    /// `balls`: the contact kind of every ball-ball pair (default `"no-slip"`; or `"smooth"`,
+    /// or `{ e = ..., beta = ... }`).
     #[serde(default)]
     pub balls: ContactKind,
+    /// `tc`: the contact duration of the TC model (Luding & McNamara): a contact of a ball
+    /// within `tc` of its previous contact is elastic. `> 0`; absent: none.
+    #[serde(default)]
+    pub tc: Option<Number>,
 }
 
 /// The `[random]` table: the placement of the species' `count` balls.
@@ -249,6 +243,13 @@ pub struct RawRandom {
     /// `spin`: skew entries of `U` uniform in `[-spin, spin]` (default 0).
     #[serde(default)]
     pub spin: Option<Number>,
+    /// `velocities`: `"uniform"` (default: `speed`, `spin`) or `"maxwellian"` (`temperature`);
+    /// checked by validation.
+    #[serde(default)]
+    pub velocities: Option<String>,
+    /// `temperature`: of the Maxwellian velocities and spins (default 1).
+    #[serde(default)]
+    pub temperature: Option<Number>,
     /// `placement`: `"random"` (default) or `"lattice"`; checked by validation, so that a bad
     /// value is named by its key.
     #[serde(default)]

@@ -235,7 +235,7 @@ pub(crate) fn boundaries(
         nonzero(&ctx, &format!("{at}.normal"), &normal)?;
         out.push(TableBoundary {
             shape: Shape::Wall { point, normal },
-            contact: w.contact,
+            contact: ctx.contact(&format!("{at}.contact"), &w.contact)?,
             place: at,
             polygon: None,
         });
@@ -247,6 +247,7 @@ pub(crate) fn boundaries(
                 format!("a polygon or wedge table is 2D; dim = {n}"),
             ));
         }
+        let contact = ctx.contact("table.contact", &t.contact)?;
         match (&t.polygon, &t.wedge) {
             (Some(p), None) => {
                 let v = convex(&ctx, "table.polygon", p)?;
@@ -258,7 +259,7 @@ pub(crate) fn boundaries(
                             point: v[k].clone(),
                             normal: vec![-e[1].clone(), e[0].clone()],
                         },
-                        contact: t.contact,
+                        contact: contact.clone(),
                         place: format!("table.polygon[{k}]"),
                         polygon: Some((g, k)),
                     });
@@ -269,7 +270,7 @@ pub(crate) fn boundaries(
                 for (point, normal, place) in wedge(&ctx, w)? {
                     out.push(TableBoundary {
                         shape: Shape::Wall { point, normal },
-                        contact: t.contact,
+                        contact: contact.clone(),
                         place,
                         polygon: None,
                     });
@@ -294,7 +295,7 @@ pub(crate) fn boundaries(
                 centre,
                 radius: c.radius.0.clone(),
             },
-            contact: c.contact,
+            contact: ctx.contact(&format!("{at}.contact"), &c.contact)?,
             place: at,
             polygon: None,
         });
@@ -307,6 +308,7 @@ pub(crate) fn boundaries(
         let v = convex(&ctx, &format!("{at}.vertices"), &p.vertices)?;
         let g = polygons.len();
         let m = v.len();
+        let contact = ctx.contact(&format!("{at}.contact"), &p.contact)?;
         for k in 0..m {
             let (a, b) = (&v[k], &v[(k + 1) % m]);
             let e = sub(b, a);
@@ -316,7 +318,7 @@ pub(crate) fn boundaries(
                     to: b.clone(),
                     normal: vec![e[1].clone(), -e[0].clone()],
                 },
-                contact: p.contact,
+                contact: contact.clone(),
                 place: format!("{at}.vertices[{k}]"),
                 polygon: Some((g, k)),
             });
@@ -326,7 +328,7 @@ pub(crate) fn boundaries(
                 shape: Shape::Vertex {
                     point: point.clone(),
                 },
-                contact: p.contact,
+                contact: contact.clone(),
                 place: format!("{at}.vertices[{k}]"),
                 polygon: Some((g, k)),
             });

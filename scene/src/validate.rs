@@ -1,7 +1,7 @@
 //! Semantic checks of a parsed scene, in exact rationals. Each error names its key path.
 
 use crate::ctx::Ctx;
-use crate::raw::{ContactKind, Distribution, RawBall, RawScene, RawSpecies, RawSpin};
+use crate::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
 use crate::table::{self, Shape};
 use crate::{
     BallSpec, Boundary, Obstacle, Placement, Random, RunDefaults, Scene, SceneError, Species,
@@ -107,6 +107,40 @@ fn spin(ctx: &Ctx, at: &str, s: &Option<RawSpin>, n: usize) -> Result<Vec<Q>, Sc
                     _ => "",
                 }
             ),
+        )),
+    }
+}
+
+/// `random.temperature` when `random.velocities = "maxwellian"` (default 1, `> 0`; `speed` and
+/// `spin` then refused), `None` for `"uniform"` (the default; `temperature` then refused).
+fn temperature(ctx: &Ctx, raw: &RawScene) -> Result<Option<Q>, SceneError> {
+    let r = &raw.random;
+    match r.velocities.as_deref() {
+        None | Some("uniform") => match r.temperature {
+            Some(_) => Err(ctx.err(
+                "random.temperature",
+                "needs velocities = \"maxwellian\" (uniform velocities take speed and spin)",
+            )),
+            None => Ok(None),
+        },
+        Some("maxwellian") => {
+            if let Some(key) = [("speed", &r.speed), ("spin", &r.spin)]
+                .iter()
+                .find_map(|(k, v)| v.is_some().then_some(k))
+            {
+                return Err(ctx.err(
+                    format!("random.{key}"),
+                    "Maxwellian velocities take a temperature, not speed or spin",
+                ));
+            }
+            match &r.temperature {
+                Some(t) => Ok(Some(ctx.positive("random.temperature", t)?)),
+                None => Ok(Some(Q::one())),
+            }
+        }
+        Some(other) => Err(ctx.err(
+            "random.velocities",
+            format!("must be \"uniform\" or \"maxwellian\", got {other:?}"),
         )),
     }
 }
@@ -280,6 +314,11 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
             .spin
             .as_ref()
             .map_or_else(Q::zero, |x| x.0.clone()),
+        temperature: None,
+    };
+    let random = Random {
+        temperature: temperature(&ctx, &raw)?,
+        ..random
     };
     for (key, x) in [
         ("random.speed", &random.speed),
@@ -316,7 +355,11 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         simulation,
         boundaries,
         polygons,
-        ball_contact: raw.contact.balls,
+        ball_contact: ctx.contact("contact.balls", &raw.contact.balls)?,
+        tc: match &raw.contact.tc {
+            Some(tc) => Some(ctx.positive("contact.tc", tc)?),
+            None => None,
+        },
     };
     if scene.size.is_empty() {
         if let Some(k) = scene.species.iter().position(|s| s.count > 0) {
@@ -363,7 +406,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         scene.obstacles.push(Obstacle {
             position,
             radius,
-            contact: o.contact,
+            contact: ctx.contact(&format!("{at}.contact"), &o.contact)?,
         });
     }
     for (i, b) in raw.ball.iter().enumerate() {
@@ -444,11 +487,11 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         .filter(|&k| scene.species[k].gamma2.is_zero())
         .map(|k| per_species[k])
         .sum();
-    if points > 1 && scene.ball_contact == ContactKind::NoSlip {
+    if points > 1 && scene.ball_contact.tangential() {
         return Err(ctx.err(
             "species",
-            "two point masses (lambda = 0) could collide, where the no-slip map is undefined: \
-             at most one ball may have lambda = 0",
+            "two point masses (lambda = 0) could collide, where the no-slip map (and the rough \
+             one with beta > -1) is undefined: at most one ball may have lambda = 0",
         ));
     }
     if scene.ball_count() == 0 {

@@ -41,6 +41,7 @@ fn shipped_scenes_are_valid() {
             "gas4d",
             "gas5d",
             "gas6d",
+            "granular3d",
             "sector",
             "sinai",
             "sinai_square",

@@ -37,11 +37,14 @@ pub mod cover;
 pub mod dilute;
 pub mod engine;
 mod extent;
+pub mod granular;
 mod immovable;
 pub mod lattice;
 #[cfg(test)]
 mod lattice_tests;
+pub mod law;
 pub mod log;
+pub mod maxwell;
 mod motion;
 mod nearest;
 pub mod no_contact;
@@ -59,6 +62,7 @@ pub mod range;
 #[cfg(test)]
 mod reference;
 mod residents;
+pub mod rough;
 pub mod run;
 pub mod sequential;
 pub mod setup;

@@ -4,6 +4,7 @@
 
 use crate::cover::Cover;
 use crate::lattice::{self, Shuffle};
+use crate::law::ContactKind;
 use crate::normal::unit;
 use crate::place::Cells;
 use crate::range::{check_scene, check_start};
@@ -12,7 +13,7 @@ use crate::table::{Boundary as TableBoundary, Shape, Table};
 use crate::{Body, FixedBall, Setup};
 use collision_core::rng::Rng;
 use collision_core::{Ball, BodyState};
-use noslip_scene::{Boundary, ContactKind, Placement, Scene};
+use noslip_scene::{Boundary, Placement, Scene};
 use num_rational::BigRational;
 use num_traits::Zero;
 
@@ -114,7 +115,7 @@ pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
             let arc = b.polygon.map_or(0.0, |(g, k)| arcs[g][k]);
             TableBoundary {
                 shape,
-                contact: b.contact,
+                contact: ContactKind::from(&b.contact),
                 arc,
             }
         })
@@ -122,9 +123,14 @@ pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
     Table {
         boxed: !scene.size.is_empty(),
         boundaries,
-        obstacle_contact: scene.obstacles.iter().map(|o| o.contact).collect(),
-        ball_contact: scene.ball_contact,
+        obstacle_contact: scene
+            .obstacles
+            .iter()
+            .map(|o| ContactKind::from(&o.contact))
+            .collect(),
+        ball_contact: ContactKind::from(&scene.ball_contact),
         box_contact: ContactKind::NoSlip,
+        tc: scene.tc.as_ref().map_or(0.0, f),
         origin: extent::<N>(scene).0,
     }
 }
@@ -213,7 +219,9 @@ pub fn volume_fraction(scene: &Scene) -> f64 {
 /// obstacles and the explicit balls (for the largest radius), taken in a seeded random order
 /// ([`lattice::Shuffle`]); a count the densest such lattice cannot hold is refused. Then
 /// velocity components uniform in `[-speed, speed]`, skew entries of `U` uniform in `[-spin,
-/// spin]`; one ChaCha8 stream seeded with `random.seed`, species in order. Errors are
+/// spin]` (or, with `random.velocities = "maxwellian"`, normal at `random.temperature` in
+/// every degree of freedom, [`crate::maxwell`]); one ChaCha8 stream seeded with
+/// `random.seed`, species in order. Errors are
 /// `field: message`.
 pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S>, String> {
     assert_eq!(scene.dim, N, "scene dimension");
@@ -307,6 +315,7 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
     }
     let mut rng = Rng::new(scene.random.seed);
     let (speed, spin) = (f(&scene.random.speed), f(&scene.random.spin));
+    let temperature = scene.random.temperature.as_ref().map(f);
     // The tests of a centre `p` of radius `r`: inside the table's other boundaries, outside
     // the polygon obstacles, clear of the obstacles and (`clear_balls`) of the placed balls.
     let in_table = |p: &[f64; N], r: f64| {
@@ -393,9 +402,14 @@ pub fn setup<const N: usize, const S: usize>(scene: &Scene) -> Result<Setup<N, S
                 position
             };
             placed_random += 1;
-            let mut uniform = |scale: f64| scale * rng.uniform(-1.0, 1.0);
-            let velocity = std::array::from_fn(|_| uniform(speed));
-            let spin = std::array::from_fn(|_| uniform(spin));
+            let (velocity, spin) = match temperature {
+                Some(t) => crate::maxwell::draw(&mut rng, &species[k], t),
+                None => {
+                    let mut uniform = |scale: f64| scale * rng.uniform(-1.0, 1.0);
+                    let velocity = std::array::from_fn(|_| uniform(speed));
+                    (velocity, std::array::from_fn(|_| uniform(spin)))
+                }
+            };
             balls.insert(&position, r);
             // The cover marks a ball once the next one is drawn: its words are fetched now,
             // and the draws meanwhile are tested in full where it would have covered them.

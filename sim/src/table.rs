@@ -20,9 +20,9 @@
 //! `sim/src/table_tests.rs`). Curvature matters for the flight between contacts and for the
 //! derivative of the return map, not for the jump.
 
+pub use crate::law::ContactKind;
 use crate::normal::unit;
 use crate::predict::contact_time;
-pub use noslip_scene::ContactKind;
 
 /// The geometry of one boundary, in f64. Normals are unit vectors.
 #[derive(Clone, Debug, PartialEq)]
@@ -114,6 +114,8 @@ pub struct Table<const N: usize> {
     pub ball_contact: ContactKind,
     /// The contact kind of the box walls.
     pub box_contact: ContactKind,
+    /// The TC model's contact duration `t_c` ([`crate::law::tc_law`]); 0: none.
+    pub tc: f64,
     /// The lower corner of the region the pictures show, `[origin, origin + size]` (`size`
     /// of [`crate::Setup`]): 0 with a box.
     pub origin: [f64; N],
@@ -128,6 +130,7 @@ impl<const N: usize> Table<N> {
             obstacle_contact: Vec::new(),
             ball_contact: ContactKind::NoSlip,
             box_contact: ContactKind::NoSlip,
+            tc: 0.0,
             origin: [0.0; N],
         }
     }

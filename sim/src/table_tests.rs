@@ -240,7 +240,8 @@ fn the_engine_applies_the_fixed_map_at_the_normal_of_the_geometry() {
         ),
     ];
     for (shape, v) in cases {
-        for contact in [ContactKind::NoSlip, ContactKind::Smooth] {
+        let rough = ContactKind::Rough { e: 0.5, beta: 0.25 };
+        for contact in [ContactKind::NoSlip, ContactKind::Smooth, rough] {
             let e = first_contact(shape.clone(), contact, [0.0, 0.0], v);
             // The contact is at the contact distance, and nu is the geometry's unit normal.
             assert!(
@@ -253,6 +254,16 @@ fn the_engine_applies_the_fixed_map_at_the_normal_of_the_geometry() {
                     Generated::fixed(&e.nu, &1.0, &DISK, &BodyState::zero(), &e.pre[0])
                 }
                 ContactKind::Smooth => crate::smooth::fixed(&e.nu, &e.pre[0]),
+                ContactKind::Rough {
+                    e: restitution,
+                    beta,
+                } => {
+                    let law = collision_core::Restitution {
+                        e: restitution,
+                        beta,
+                    };
+                    crate::rough::fixed(&e.nu, &DISK, &law, &e.pre[0])
+                }
             };
             assert_eq!(e.post[0], expected, "{shape:?} {contact:?}");
         }

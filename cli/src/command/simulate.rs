@@ -11,6 +11,7 @@ use noslip_columnar::{self as columnar, is_parquet};
 use noslip_scene::Scene;
 use noslip_sim::animation::Recorder;
 use noslip_sim::boundary_map::{self, BoundaryMap};
+use noslip_sim::granular::Sampler;
 use noslip_sim::log::LogFile;
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
 use noslip_sim::run::{self, Limits, Progress, Summary};
@@ -24,7 +25,9 @@ mod html;
 pub(crate) const LONG_ABOUT: &str = "\
 Run a scene (TOML, see docs/scenes.md): an event-driven simulation of rigid balls with
 no-slip collisions. Balls fly freely between events; at each ball-ball, ball-wall or
-ball-obstacle contact the pair's state jumps by the no-slip map (the generated f64 kernels).
+ball-obstacle contact the pair's state jumps by its contact law: the no-slip map (the
+generated f64 kernels, the default), the smooth one, or the rough-ball law { e, beta } of
+granular gases, with the TC model against inelastic collapse (docs/granular.md).
 Contacts are found with a cell list and a priority queue; periodic axes use images.
 
 Stops after --events contacts (at least 1) or at --time (positive and finite; default: the
@@ -32,7 +35,9 @@ scene's [simulation] values, else 100000 events). Prints a summary (events, even
 second, kinetic energy and the drift of energy, linear and angular momentum relative to the
 start) and writes to --out, published as one set (the whole directory is replaced at once;
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
-drift over events) and, in 2D, trajectories.svg (a few balls' paths, cut at periodic wraps
+drift over events), with --observables DT observables.csv (granular temperatures,
+collision frequency and energy lost per contact kind every DT; docs/granular.md) and, in 2D,
+trajectories.svg (a few balls' paths, cut at periodic wraps
 and thinned, and the contact points). --log and --boundary-map belong to the set: a file
 directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
 or boundary-map.csv, the file becoming a link to it (so it always shows the log of the
@@ -82,6 +87,11 @@ pub struct Args {
     /// Write the run as an animation, one self-contained HTML page (docs/animation.md).
     #[arg(long, value_name = "FILE")]
     html: Option<PathBuf>,
+    /// Sample the granular-gas observables every DT of simulated time (translational and
+    /// rotational temperatures, collision frequency, energy lost per contact kind) into
+    /// --out as observables.csv, units in its header (docs/granular.md).
+    #[arg(long, value_name = "DT", allow_negative_numbers = true)]
+    observables: Option<f64>,
     /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -142,6 +152,15 @@ where
     };
     let mut sim = Simulation::new(setup, kernels)
         .map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
+    let mut sampler = match args.observables {
+        Some(dt) if !(dt > 0.0 && dt.is_finite()) => {
+            return Err(Failure::bad_input(format!(
+                "--observables: the interval must be positive and finite, got {dt}"
+            )))
+        }
+        Some(dt) => Some(Sampler::start(dt, &sim, &species)),
+        None => None,
+    };
     let mut events = args.events.or(scene.simulation.events);
     let time = args.time.or(scene.simulation.time.as_ref().map(f));
     if events.is_none() && time.is_none() {
@@ -253,6 +272,9 @@ where
             if let Some(r) = &mut recorder {
                 r.observe(index, e, sim, &species);
             }
+            if let Some(s) = &mut sampler {
+                s.contact(e, sim, &species);
+            }
             if let Some(table) = &mut events_parquet {
                 table.push(&event_row(index, e))?;
             }
@@ -307,6 +329,10 @@ where
     let json = serde_json::to_string_pretty(&summary).expect("summary serialises") + "\n";
     set.write("summary.json", json.as_bytes())
         .map_err(|e| crate::exit::publish_failure(&e))?;
+    if let Some(s) = &sampler {
+        set.write("observables.csv", s.csv().as_bytes())
+            .map_err(|e| crate::exit::publish_failure(&e))?;
+    }
     let energy = staged(
         energy_svg(&format!("{title}: energy drift"), &trace),
         "energy.svg",
@@ -397,11 +423,12 @@ fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
 }
 
 /// Files of every simulate set; a side output may not take their names.
-const SET_FILES: [&str; 4] = [
+const SET_FILES: [&str; 5] = [
     crate::publish::MARKER,
     "summary.json",
     "energy.svg",
     "trajectories.svg",
+    "observables.csv",
 ];
 
 /// The member of the set that `--log` and `--boundary-map` become: the file's own name

@@ -106,6 +106,9 @@ pub struct Spectrum {
 pub enum LyapunovError {
     /// The engine refused the setup.
     Setup(SetupError),
+    /// A contact followed a rough law (`e < 1` or `|beta| < 1`), which has no tangent map
+    /// here.
+    Rough,
     /// `k` is not in `1..=dimension`.
     K {
         /// The `k` asked for.
@@ -173,6 +176,12 @@ impl fmt::Display for LyapunovError {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
         match self {
             LyapunovError::Setup(e) => write!(f, "{e}"),
+            LyapunovError::Rough => write!(
+                f,
+                "a contact follows a rough law (e < 1 or |beta| < 1), which has no tangent map \
+                 here: Lyapunov spectra take no-slip and smooth contacts (or --contact for \
+                 every contact)"
+            ),
             LyapunovError::K { k, dimension } => {
                 write!(f, "--k: must be in 1..={dimension} (the phase-space dimension), got {k}")
             }

@@ -141,7 +141,7 @@ where
         |v: &mut [f64], b: usize, dt: f64| flight::<f64, N>(&mut v[b * len..(b + 1) * len], &dt);
     for c in 1..=plan.events {
         let e = next_contact(&mut sim, &species, interrupted)?;
-        let law = Law::from(sim.contact_kind(&e.contact));
+        let law = Law::of(sim.contact_kind(&e.contact)).ok_or(LyapunovError::Rough)?;
         match touch(&e.contact, sim.geometry(&e.contact), radius) {
             Touch::Boundary { ball, geometry } => {
                 let dt = e.time - since[ball];

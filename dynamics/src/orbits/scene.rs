@@ -63,6 +63,25 @@ pub fn table<const N: usize, const S: usize>(
             scene.origin
         ));
     }
+    let rough = |c: &noslip_scene::ContactKind| Law::of(c.into()).is_none();
+    let places = scene
+        .obstacles
+        .iter()
+        .enumerate()
+        .map(|(o, x)| (format!("obstacle[{o}]"), &x.contact));
+    let mut places = places.chain(
+        scene
+            .boundaries
+            .iter()
+            .map(|b| (b.place.clone(), &b.contact)),
+    );
+    if let (Some((place, _)), None) = (places.find(|(_, c)| rough(c)), law) {
+        return Err(format!(
+            "{}: {place}.contact: a rough law (e < 1 or |beta| < 1) has no exact return map \
+             here: orbits take no-slip and smooth contacts (or --contact for every contact)",
+            scene.origin
+        ));
+    }
     let exact = build::<Exact, N>(scene, law, &|x| x.clone());
     let float = build::<f64, N>(scene, law, &Scalar::to_f64).expect("f64 has every square root");
     let spec = &scene.balls[0];
@@ -94,7 +113,8 @@ fn build<T: Root, const N: usize>(
             .root()?;
         Some(std::array::from_fn(|k| n[k].clone() / len.clone()))
     };
-    let law_of = |kind: noslip_scene::ContactKind| law.unwrap_or(Law::from(kind));
+    // Rough laws were refused by `table`.
+    let law_of = |kind: &noslip_scene::ContactKind| law.or_else(|| Law::of(kind.into()));
     let mut boundaries = Vec::new();
     let mut laws = Vec::new();
     for (k, axis) in scene.boundary.iter().enumerate() {
@@ -126,7 +146,7 @@ fn build<T: Root, const N: usize>(
             centre: v(&o.position),
             radius: of(&exact_of(&o.radius)),
         });
-        laws.push(law_of(o.contact));
+        laws.push(law_of(&o.contact)?);
     }
     for b in &scene.boundaries {
         boundaries.push(match &b.shape {
@@ -148,7 +168,7 @@ fn build<T: Root, const N: usize>(
                 radius: T::zero(),
             },
         });
-        laws.push(law_of(b.contact));
+        laws.push(law_of(&b.contact)?);
     }
     let species = &scene.species[scene.balls[0].species];
     Some(Table {

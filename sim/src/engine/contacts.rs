@@ -1,13 +1,13 @@
-//! Resolving a contact: the pair's map (the generated no-slip kernel or the specular one) at
-//! the contact normal, the counters, and the re-prediction of the balls involved.
+//! Resolving a contact: the pair's map ([`crate::law`]: the generated no-slip kernel, the
+//! specular one or the rough one, under the TC model) at the contact normal, the counters,
+//! and the re-prediction of the balls involved.
 
 use super::{Contact, Event, Simulation};
 use crate::canonical::{image_f64, obstacle_image, pair_offset, rebase_at};
+use crate::law::{self, tc_law, ContactKind};
 use crate::no_contact::QUIET_BOX_LENGTHS;
 use crate::normal::unit;
 use crate::orientation::{exp_skew, mul};
-use crate::smooth;
-use crate::table::ContactKind;
 use crate::PairKernels;
 use collision_core::BodyState;
 
@@ -69,19 +69,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.settle(lo, t);
         self.settle(hi, t);
         let pre = [self.state[lo].clone(), self.state[hi].clone()];
-        let [s1, s2] = match self.table.ball_contact {
-            ContactKind::NoSlip => {
-                self.kernels
-                    .ball_ball(self.kind[lo], self.kind[hi], &nu, &pre[0], &pre[1])
-            }
-            ContactKind::Smooth => {
-                let (w1, w2) = (
-                    self.species[self.kind[lo]].inv_mass,
-                    self.species[self.kind[hi]].inv_mass,
-                );
-                smooth::pair(&nu, &w1, &w2, &pre[0], &pre[1])
-            }
-        };
+        let kind = self.law(self.table.ball_contact, [lo, hi], t);
+        let [s1, s2] = law::pair(
+            &self.kernels,
+            &self.species,
+            kind,
+            [self.kind[lo], self.kind[hi]],
+            &nu,
+            &pre,
+        );
         self.last[lo] = 0;
         self.last[hi] = 0;
         self.state[lo] = s1;
@@ -103,10 +99,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         });
         let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = match self.table.box_contact {
-            ContactKind::NoSlip => self.kernels.ball_wall(self.kind[i], axis, upper, &pre[0]),
-            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
-        };
+        let kind = self.law(self.table.box_contact, [i, i], t);
+        self.state[i] = self.fixed(kind, i, Some((axis, upper)), &nu, &pre[0]);
         self.last[i] = 0;
         let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
@@ -126,10 +120,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let nu = unit(std::array::from_fn(|k| p[k] - b[k]));
         self.settle(i, t);
         let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = match self.table.obstacle(o) {
-            ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
-            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
-        };
+        let kind = self.law(self.table.obstacle(o), [i, i], t);
+        self.state[i] = self.fixed(kind, i, None, &nu, &pre[0]);
         self.last[i] = 0;
         let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
@@ -142,16 +134,40 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let p = self.motion.get(i).at(t);
         let nu = self.table.boundaries[b].shape.normal(&p);
         self.settle(i, t);
-        let boundary = &self.table.boundaries[b];
         let pre = [self.state[i].clone(), self.state[i].clone()];
-        self.state[i] = match boundary.contact {
-            ContactKind::NoSlip => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
-            ContactKind::Smooth => smooth::fixed(&nu, &pre[0]),
-        };
+        let kind = self.law(self.table.boundaries[b].contact, [i, i], t);
+        self.state[i] = self.fixed(kind, i, None, &nu, &pre[0]);
         self.last[i] = b as u32 + 1;
         let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event
+    }
+
+    /// The law of a contact of `balls` at local time `t` whose kind is `kind`: under the TC
+    /// model ([`tc_law`]), from the balls' previous contact times.
+    fn law(&self, kind: ContactKind, balls: [usize; 2], t: f64) -> ContactKind {
+        let previous = balls.map(|b| self.previous[b]);
+        tc_law(kind, self.table.tc, self.absolute(t), previous)
+    }
+
+    /// Ball `i`'s state after a contact of law `kind` with an immovable body ([`law::fixed`]).
+    fn fixed(
+        &self,
+        kind: ContactKind,
+        i: usize,
+        wall: Option<(usize, bool)>,
+        nu: &[f64; N],
+        pre: &BodyState<f64, N, S>,
+    ) -> BodyState<f64, N, S> {
+        law::fixed(
+            &self.kernels,
+            &self.species,
+            kind,
+            self.kind[i],
+            wall,
+            nu,
+            pre,
+        )
     }
 
     pub(super) fn finish(
@@ -171,11 +187,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         self.contacts += 1;
         self.last_contact = t;
+        let time = self.absolute(t);
+        for b in balls {
+            self.previous[b] = time;
+        }
         self.quiet = 0;
         self.next_check = self.first_check();
         self.next_notice = QUIET_BOX_LENGTHS;
         Event {
-            time: self.absolute(t),
+            time,
             contact,
             nu,
             position: balls.map(|b| self.motion.get(b).pos),

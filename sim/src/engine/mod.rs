@@ -121,6 +121,9 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     motion: Residents<N>,
     state: Vec<BodyState<f64, N, S>>,
     count: Vec<u32>,
+    /// Per ball: the absolute time of its last contact (`-inf` before the first), for the
+    /// TC model ([`crate::law::tc_law`]).
+    previous: Vec<f64>,
     cell: Vec<[usize; N]>,
     fixed_members: Vec<Vec<u32>>,
     /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
@@ -235,6 +238,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             motion,
             state: bodies.into_iter().map(|b: Body<N, S>| b.state).collect(),
             count: vec![0; n],
+            previous: vec![f64::NEG_INFINITY; n],
             cell,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),

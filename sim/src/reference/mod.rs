@@ -18,11 +18,12 @@ use crate::canonical::{
 };
 use crate::cells::Grid;
 use crate::engine::{Contact, Event};
+use crate::law::{self, tc_law};
 use crate::motion::Motion;
 use crate::normal::unit;
 use crate::predict::exit_time;
-use crate::table::{ContactKind, Table};
-use crate::{smooth, FixedBall, PairKernels, Setup};
+use crate::table::Table;
+use crate::{FixedBall, PairKernels, Setup};
 use collision_core::{Ball, BodyState};
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
@@ -85,6 +86,8 @@ pub(crate) struct Reference<const N: usize, const S: usize, K> {
     records: Vec<Motion<N>>,
     state: Vec<BodyState<f64, N, S>>,
     count: Vec<u64>,
+    /// Per ball: the absolute time of its last contact (`-inf` before the first).
+    previous: Vec<f64>,
     last: Vec<u32>,
     next: Vec<(u64, Next<N>)>,
     heap: BinaryHeap<Reverse<Entry>>,
@@ -143,6 +146,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             size,
             periodic,
             count: vec![0; n],
+            previous: vec![f64::NEG_INFINITY; n],
             last: vec![0; n],
             next: vec![(0, Next::Again); n],
             heap: BinaryHeap::new(),
@@ -350,16 +354,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         self.move_record(lo, t);
         self.move_record(hi, t);
         let pre = [self.state[lo].clone(), self.state[hi].clone()];
-        let post = match self.table.ball_contact {
-            ContactKind::NoSlip => {
-                self.kernels
-                    .ball_ball(self.kind[lo], self.kind[hi], &nu, &pre[0], &pre[1])
-            }
-            ContactKind::Smooth => {
-                let w = |b: usize| self.species[self.kind[b]].inv_mass;
-                smooth::pair(&nu, &w(lo), &w(hi), &pre[0], &pre[1])
-            }
-        };
+        let kind = self.law(self.table.ball_contact, [lo, hi], t);
+        let species = [self.kind[lo], self.kind[hi]];
+        let post = law::pair(&self.kernels, &self.species, kind, species, &nu, &pre);
         self.last[lo] = 0;
         self.last[hi] = 0;
         self.finish(Contact::Ball { i: lo, j: hi }, nu, [lo, hi], pre, post, t)
@@ -374,18 +371,31 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             Contact::Boundary { boundary, .. } => self.table.boundaries[boundary].contact,
             Contact::Ball { .. } => unreachable!("a pair is not fixed"),
         };
-        let after = match (kind, contact) {
-            (ContactKind::Smooth, _) => smooth::fixed(&nu, &pre[0]),
-            (ContactKind::NoSlip, Contact::Wall { axis, upper, .. }) => {
-                self.kernels.ball_wall(self.kind[i], axis, upper, &pre[0])
-            }
-            (ContactKind::NoSlip, _) => self.kernels.ball_obstacle(self.kind[i], &nu, &pre[0]),
+        let kind = self.law(kind, [i, i], t);
+        let wall = match contact {
+            Contact::Wall { axis, upper, .. } => Some((axis, upper)),
+            _ => None,
         };
+        let after = law::fixed(
+            &self.kernels,
+            &self.species,
+            kind,
+            self.kind[i],
+            wall,
+            &nu,
+            &pre[0],
+        );
         self.last[i] = match contact {
             Contact::Boundary { boundary, .. } => boundary as u32 + 1,
             _ => 0,
         };
         self.finish(contact, nu, [i, i], pre, [after.clone(), after], t)
+    }
+
+    /// `kind` under the TC model for a contact of `balls` at local time `t`.
+    fn law(&self, kind: law::ContactKind, balls: [usize; 2], t: f64) -> law::ContactKind {
+        let time = self.origin + (self.origin_low + t);
+        tc_law(kind, self.table.tc, time, balls.map(|b| self.previous[b]))
     }
 
     fn finish(
@@ -407,8 +417,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         if balls[1] != balls[0] {
             self.count[balls[1]] += 1;
         }
+        let time = self.origin + (self.origin_low + t);
+        for b in balls {
+            self.previous[b] = time;
+        }
         let event = Event {
-            time: self.origin + (self.origin_low + t),
+            time,
             contact,
             nu,
             position: balls.map(|b| self.records[b].pos),

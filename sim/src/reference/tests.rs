@@ -99,6 +99,9 @@ const TABLES: [&str; 10] = [
     "wedge",
 ];
 
+/// The shipped granular gas (rough contacts, the TC model, a Maxwellian start).
+const GRANULAR: [&str; 1] = ["granular3d"];
+
 /// Runs shipped scenes; the number of them whose cell engine re-based.
 fn shipped(names: &[&str]) -> usize {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
@@ -121,7 +124,12 @@ fn every_shipped_scene_is_compared() {
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
     present.sort();
-    let mut listed: Vec<&str> = GASES.iter().chain(&TABLES).copied().collect();
+    let mut listed: Vec<&str> = GASES
+        .iter()
+        .chain(&TABLES)
+        .chain(&GRANULAR)
+        .copied()
+        .collect();
     listed.sort();
     assert_eq!(present, listed);
 }
@@ -135,6 +143,11 @@ fn the_shipped_tables_log_the_same_bytes_in_both_engines() {
 #[test]
 fn the_shipped_gases_in_2d_and_3d_log_the_same_bytes_in_both_engines() {
     shipped(&GASES[..2]);
+}
+
+#[test]
+fn the_shipped_granular_gas_logs_the_same_bytes_in_both_engines() {
+    shipped(&GRANULAR);
 }
 
 #[test]
@@ -169,5 +182,72 @@ spin = 1
 "#
         );
         run_scene(name, &text);
+    }
+}
+
+/// Rough gases (inelastic, every kind of contact with a rough law) under the TC model: a 2D
+/// gas in a walled box with a rough obstacle and a rough slanted wall, and a 3D periodic gas;
+/// `t_c` long enough that a good part of the contacts are made elastic by it. Mildly
+/// inelastic (`e` near 1) and about 20 contacts per ball: a cooled gas keeps only its centre
+/// of mass's motion (momentum is conserved), its balls drifting together with contacts ever
+/// rarer, which makes both engines re-base the clock many times per contact and the
+/// all-pairs reference slow.
+#[test]
+fn rough_gases_log_the_same_bytes_in_both_engines() {
+    let gas2d = r#"
+dim = 2
+[box]
+size = [16, 16]
+boundary = ["wall", "wall"]
+[[species]]
+mass = 3
+radius = 1
+count = 12
+[[species]]
+mass = 1
+radius = "1/2"
+count = 80
+[[obstacle]]
+position = [8, 8]
+radius = 2
+contact = { e = "0.9", beta = "0.4" }
+[[wall]]
+point = [0, 12]
+normal = [1, -1]
+contact = { e = "0.95", beta = "-0.5" }
+[contact]
+balls = { e = "0.95", beta = "0.3" }
+tc = "0.05"
+[random]
+seed = 11
+speed = 1
+spin = 1
+"#;
+    let gas3d = r#"
+dim = 3
+[box]
+size = [9, 9, 9]
+boundary = ["periodic", "periodic", "periodic"]
+[[species]]
+mass = 1
+radius = "1/2"
+count = 150
+[contact]
+balls = { e = "0.95", beta = "0.5" }
+tc = "0.02"
+[random]
+seed = 3
+speed = 1
+spin = 1
+"#;
+    for (name, text, contacts) in [("rough 2D", gas2d, CONTACTS), ("rough 3D", gas3d, 3_000)] {
+        let scene = Scene::from_toml(text, name).unwrap();
+        collision_core::with_dim!(
+            scene.dim,
+            |N, S| {
+                compare(name, setup::<N, S>(&scene).unwrap(), contacts);
+            },
+            unreachable!("dim {}", scene.dim)
+        );
     }
 }

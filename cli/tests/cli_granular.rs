@@ -1,0 +1,133 @@
+//! `noslip simulate --observables DT` on the shipped granular gas: the CSV's header with its
+//! units, one row per interval, the gas cooling, and bad intervals and laws refused (exit 2,
+//! the option or the field named).
+
+mod support;
+use support::{noslip, run_ok, temp};
+
+#[test]
+fn the_granular_gas_writes_its_observables() {
+    let dir = temp("granular");
+    run_ok(
+        noslip()
+            .args([
+                "simulate",
+                "scenes/granular3d.toml",
+                "--time",
+                "5",
+                "--observables",
+                "1",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&dir),
+    );
+    let csv = std::fs::read_to_string(dir.join("observables.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "time [T],contacts [1],T_tr [M L^2 T^-2],T_rot [M L^2 T^-2],energy [M L^2 T^-2],\
+         collision_frequency [T^-1],lost_ball_ball [M L^2 T^-2],lost_ball_wall [M L^2 T^-2],\
+         lost_ball_obstacle [M L^2 T^-2],lost_ball_boundary [M L^2 T^-2]"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    // A row at the start and at the first contact after each of t = 1, 2, 3, 4.
+    assert_eq!(rows.len(), 5, "{csv}");
+    let (first, last) = (&rows[0], &rows[4]);
+    // The Maxwellian start at temperature 1, 500 balls: within a few standard errors
+    // (sqrt(2 / (3 * 499)) = 3.7 % for T_tr, sqrt(2 / 1500) for T_rot).
+    assert!(
+        (first[2] - 1.0).abs() < 0.15 && (first[3] - 1.0).abs() < 0.15,
+        "{first:?}"
+    );
+    // It cools, and the ball-ball contacts took what it lost, to rounding: the bound of
+    // sim/tests/granular.rs, (64 C + 40 N_b) eps E_0 for C contacts (the CSV's shortest
+    // round-trip decimals are the f64 values).
+    assert!(last[4] < first[4] && last[6] > 0.0, "{last:?}");
+    let bound = (64.0 * last[1] + 40.0 * 500.0) * f64::EPSILON * first[4];
+    assert!(((first[4] - last[4]) - last[6]).abs() <= bound, "{last:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_intervals_and_laws_exit_2_naming_them() {
+    let out = noslip()
+        .args([
+            "simulate",
+            "scenes/granular3d.toml",
+            "--observables",
+            "0",
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("--observables: the interval must be positive"),
+        "{err}"
+    );
+    let dir = temp("granular-bad");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.toml");
+    let scene = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/granular3d.toml"),
+    )
+    .unwrap()
+    .replace("e = \"0.9\"", "e = \"1.2\"");
+    std::fs::write(&bad, scene).unwrap();
+    let out = noslip()
+        .args(["simulate", bad.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("bad.toml: contact.balls.e: must be in [0, 1], got 6/5"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The tangent maps of `lyapunov` and the exact return maps of `orbits` are those of the
+/// elastic laws: a scene with a rough law is refused (exit 2, the place named), not run with
+/// a wrong map.
+#[test]
+fn lyapunov_and_orbits_refuse_rough_laws() {
+    let dir = temp("granular-dynamics");
+    std::fs::create_dir_all(&dir).unwrap();
+    let triangle = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/triangle.toml"),
+    )
+    .unwrap()
+    .replace(
+        "[table]\n",
+        "[table]\ncontact = { e = \"0.9\", beta = \"0.5\" }\n",
+    );
+    let scene = dir.join("rough.toml");
+    std::fs::write(&scene, triangle).unwrap();
+    let path = scene.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec!["orbits", path, "--period", "3", "--grid", "1"],
+            "rough.toml: table.polygon[0].contact: a rough law",
+        ),
+        (
+            vec!["lyapunov", path, "--events", "100"],
+            "a contact follows a rough law",
+        ),
+    ] {
+        let out = noslip()
+            .args(&args)
+            .arg("--out")
+            .arg(dir.join("out"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

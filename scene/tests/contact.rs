@@ -1,0 +1,159 @@
+//! Rough-ball contact laws, the TC model's `tc` and Maxwellian starts in scene files: read
+//! exactly, elastic members named, bad values refused with the key named.
+
+use noslip_scene::{ContactKind, Scene};
+use num_rational::BigRational;
+
+const BASE: &str = r#"
+dim = 2
+[box]
+size = [10, 10]
+boundary = ["wall", "wall"]
+[[species]]
+mass = 1
+radius = "1/2"
+count = 3
+"#;
+
+fn scene(extra: &str) -> Result<Scene, String> {
+    Scene::from_toml(&format!("{BASE}{extra}"), "t.toml").map_err(|e| e.to_string())
+}
+
+fn q(text: &str) -> BigRational {
+    noslip_scene::parse_exact(text).unwrap()
+}
+
+#[test]
+fn rough_laws_are_read_exactly_everywhere() {
+    let s = scene(
+        "[contact]\nballs = { e = \"0.9\", beta = \"-1/3\" }\ntc = \"1e-6\"\n\
+         [[obstacle]]\nposition = [5, 5]\nradius = 1\ncontact = { e = 0.5, beta = 0 }\n\
+         [[wall]]\npoint = [0, 1]\nnormal = [0, 1]\ncontact = { e = 1, beta = 1 }\n",
+    );
+    // A box with walls and a [[wall]]: walls need no periodic axis, which BASE has not.
+    let s = s.unwrap();
+    assert_eq!(
+        s.ball_contact,
+        ContactKind::Rough {
+            e: q("9/10"),
+            beta: q("-1/3")
+        }
+    );
+    assert_eq!(s.tc, Some(q("1/1000000")));
+    assert_eq!(
+        s.obstacles[0].contact,
+        ContactKind::Rough {
+            e: q("1/2"),
+            beta: q("0")
+        }
+    );
+    // (1, 1) is the no-slip law by name, so it runs the no-slip path.
+    assert_eq!(s.boundaries[0].contact, ContactKind::NoSlip);
+    let smooth = scene("[contact]\nballs = { e = 1, beta = -1 }\n").unwrap();
+    assert_eq!(smooth.ball_contact, ContactKind::Smooth);
+    assert_eq!(smooth.tc, None);
+    // The defaults are unchanged.
+    assert_eq!(scene("").unwrap().ball_contact, ContactKind::NoSlip);
+}
+
+#[test]
+fn bad_laws_are_refused_naming_the_key() {
+    let cases = [
+        (
+            "[contact]\nballs = { e = 1.5, beta = 0 }\n",
+            "contact.balls.e",
+        ),
+        (
+            "[contact]\nballs = { e = 0.5, beta = \"-3/2\" }\n",
+            "contact.balls.beta",
+        ),
+        (
+            "[[obstacle]]\nposition = [5, 5]\nradius = 1\ncontact = { e = -0.1, beta = 0 }\n",
+            "obstacle[0].contact.e",
+        ),
+        (
+            "[[wall]]\npoint = [0, 1]\nnormal = [0, 1]\ncontact = { e = 0.5, beta = 2 }\n",
+            "wall[0].contact.beta",
+        ),
+        (
+            "[[container]]\ncentre = [5, 5]\nradius = 20\ncontact = { e = 2, beta = 0 }\n",
+            "container[0].contact.e",
+        ),
+        ("[contact]\ntc = 0\n", "contact.tc"),
+        ("[contact]\ntc = -1\n", "contact.tc"),
+    ];
+    for (extra, place) in cases {
+        let e = scene(extra).unwrap_err();
+        assert!(e.starts_with(&format!("t.toml: {place}: ")), "{extra}: {e}");
+    }
+    // NaN, a non-number, a missing or an unknown key, an unknown name: refused at parsing,
+    // with the line and what was expected.
+    for (extra, says) in [
+        (
+            "[contact]\nballs = { e = nan, beta = 0 }\n",
+            "must be finite",
+        ),
+        ("[contact]\nballs = { e = \"x\", beta = 0 }\n", "\"x\""),
+        ("[contact]\nballs = { e = 0.5 }\n", "missing field `beta`"),
+        (
+            "[contact]\nballs = { e = 0.5, beta = 0, mu = 1 }\n",
+            "unknown field `mu`",
+        ),
+        (
+            "[contact]\nballs = \"rough\"\n",
+            "unknown contact kind \"rough\"",
+        ),
+        (
+            "[contact]\nballs = 1\n",
+            "\"no-slip\", \"smooth\" or a table",
+        ),
+    ] {
+        let e = scene(extra).unwrap_err();
+        assert!(
+            e.starts_with("t.toml: line ") && e.contains(says),
+            "{extra}: {e}"
+        );
+    }
+}
+
+#[test]
+fn point_masses_are_refused_under_laws_with_a_tangential_part() {
+    let points = "[[species]]\nmass = 1\nradius = \"1/2\"\nlambda = 0\ncount = 2\n";
+    let e = scene(&format!(
+        "{points}[contact]\nballs = {{ e = 0.5, beta = 0 }}\n"
+    ))
+    .unwrap_err();
+    assert!(e.contains("t.toml: species: two point masses"), "{e}");
+    assert!(scene(&format!(
+        "{points}[contact]\nballs = {{ e = 0.5, beta = -1 }}\n"
+    ))
+    .is_ok());
+}
+
+#[test]
+fn maxwellian_starts_take_a_temperature() {
+    let s = scene("[random]\nvelocities = \"maxwellian\"\ntemperature = \"2/3\"\n").unwrap();
+    assert_eq!(s.random.temperature, Some(q("2/3")));
+    let s = scene("[random]\nvelocities = \"maxwellian\"\n").unwrap();
+    assert_eq!(s.random.temperature, Some(q("1")));
+    assert_eq!(scene("").unwrap().random.temperature, None);
+    for (extra, place) in [
+        ("[random]\ntemperature = 1\n", "random.temperature"),
+        (
+            "[random]\nvelocities = \"maxwellian\"\ntemperature = 0\n",
+            "random.temperature",
+        ),
+        (
+            "[random]\nvelocities = \"maxwellian\"\nspeed = 1\n",
+            "random.speed",
+        ),
+        (
+            "[random]\nvelocities = \"maxwellian\"\nspin = 1\n",
+            "random.spin",
+        ),
+        ("[random]\nvelocities = \"gauss\"\n", "random.velocities"),
+    ] {
+        let e = scene(extra).unwrap_err();
+        assert!(e.starts_with(&format!("t.toml: {place}: ")), "{extra}: {e}");
+    }
+}

@@ -1,0 +1,134 @@
+//! The contact laws the engines apply ([`ContactKind`]), the TC model's elastic contacts
+//! ([`tc_law`]), and the maps of each law (shared by the cell engine and the all-pairs
+//! reference, so that both write the same log).
+//!
+//! **The TC model** (Luding & McNamara, Granular Matter 1, 113 (1998)): dissipation is
+//! allowed only if the time between contacts exceeds a contact duration `t_c`. Here: a
+//! contact with a rough law whose ball (either ball of a pair) had its previous contact
+//! less than `t_c` before is elastic, and we take the elastic member `(e, beta) = (1, -1)`,
+//! the smooth map: no energy is lost and none moves between translation and rotation, so a
+//! cluster that would collapse inelastically passes its energy on as smooth elastic spheres
+//! do (docs/granular.md says why this member).
+
+use crate::{smooth, PairKernels};
+use collision_core::{Ball, BodyState, Restitution};
+
+/// How a ball and what it meets exchange momentum at a contact (the scene's
+/// `noslip_scene::ContactKind`, its numbers rounded to `f64`).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum ContactKind {
+    /// `"no-slip"`: the no-slip map (the generated kernels); the default.
+    #[default]
+    NoSlip,
+    /// `"smooth"`: specular, spins untouched.
+    Smooth,
+    /// The rough-ball law `dn+ = -e dn`, `t+ = -beta t` (`docs/derivation.md` §15):
+    /// `0 <= e <= 1`, `-1 <= beta <= 1` (from a scene, never exactly `(1, 1)` or `(1, -1)`:
+    /// those are the kinds above).
+    Rough {
+        /// Normal restitution `e`.
+        e: f64,
+        /// Tangential restitution `beta`.
+        beta: f64,
+    },
+}
+
+impl From<&noslip_scene::ContactKind> for ContactKind {
+    /// The scene's kind, `e` and `beta` rounded to the nearest `f64` (the scene names the
+    /// exact `(1, 1)` and `(1, -1)` as the no-slip and smooth kinds; a law that only rounds
+    /// to them stays rough, and the rough kernels give the no-slip and smooth maps' bits there).
+    fn from(kind: &noslip_scene::ContactKind) -> ContactKind {
+        match kind {
+            noslip_scene::ContactKind::NoSlip => ContactKind::NoSlip,
+            noslip_scene::ContactKind::Smooth => ContactKind::Smooth,
+            noslip_scene::ContactKind::Rough { e, beta } => ContactKind::Rough {
+                e: crate::setup::f(e),
+                beta: crate::setup::f(beta),
+            },
+        }
+    }
+}
+
+/// The law a contact at absolute time `time` follows under the TC model with contact
+/// duration `tc` (0: none), given the times of the previous contacts of its balls
+/// (`-inf` before the first): a rough law becomes [`ContactKind::Smooth`] when
+/// `time - previous < tc` for either ball; every other kind is kept.
+pub fn tc_law(kind: ContactKind, tc: f64, time: f64, previous: [f64; 2]) -> ContactKind {
+    match kind {
+        ContactKind::Rough { .. } if previous.iter().any(|&p| time - p < tc) => ContactKind::Smooth,
+        _ => kind,
+    }
+}
+
+/// Two balls' states after a contact of law `kind` (species `a`, `b`; `nu` from ball 1 to
+/// ball 2).
+pub(crate) fn pair<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    kernels: &K,
+    species: &[Ball<f64>],
+    kind: ContactKind,
+    [a, b]: [usize; 2],
+    nu: &[f64; N],
+    pre: &[BodyState<f64, N, S>; 2],
+) -> [BodyState<f64, N, S>; 2] {
+    match kind {
+        ContactKind::NoSlip => kernels.ball_ball(a, b, nu, &pre[0], &pre[1]),
+        ContactKind::Smooth => smooth::pair(
+            nu,
+            &species[a].inv_mass,
+            &species[b].inv_mass,
+            &pre[0],
+            &pre[1],
+        ),
+        ContactKind::Rough { e, beta } => crate::rough::pair(
+            nu,
+            &species[a],
+            &species[b],
+            &Restitution { e, beta },
+            &pre[0],
+            &pre[1],
+        ),
+    }
+}
+
+/// A ball's state (species `a`) after a contact of law `kind` with an immovable body at
+/// rest, `nu` from the body to the ball; `wall` is the box wall `(axis, upper)` when the body
+/// is one (its no-slip kernel is the one specialised to the axis).
+pub(crate) fn fixed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    kernels: &K,
+    species: &[Ball<f64>],
+    kind: ContactKind,
+    a: usize,
+    wall: Option<(usize, bool)>,
+    nu: &[f64; N],
+    pre: &BodyState<f64, N, S>,
+) -> BodyState<f64, N, S> {
+    match (kind, wall) {
+        (ContactKind::NoSlip, Some((axis, upper))) => kernels.ball_wall(a, axis, upper, pre),
+        (ContactKind::NoSlip, None) => kernels.ball_obstacle(a, nu, pre),
+        (ContactKind::Smooth, _) => smooth::fixed(nu, pre),
+        (ContactKind::Rough { e, beta }, _) => {
+            crate::rough::fixed(nu, &species[a], &Restitution { e, beta }, pre)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{tc_law, ContactKind};
+
+    #[test]
+    fn the_tc_model_makes_close_contacts_of_rough_laws_elastic() {
+        let rough = ContactKind::Rough { e: 0.5, beta: 0.2 };
+        let never = f64::NEG_INFINITY;
+        assert_eq!(tc_law(rough, 0.1, 1.0, [never, never]), rough);
+        assert_eq!(tc_law(rough, 0.1, 1.0, [0.95, never]), ContactKind::Smooth);
+        assert_eq!(tc_law(rough, 0.1, 1.0, [never, 0.95]), ContactKind::Smooth);
+        assert_eq!(tc_law(rough, 0.1, 1.0, [0.8, 0.5]), rough);
+        // No TC model (tc = 0): even a simultaneous contact keeps its law.
+        assert_eq!(tc_law(rough, 0.0, 1.0, [1.0, 1.0]), rough);
+        assert_eq!(
+            tc_law(ContactKind::NoSlip, 0.1, 1.0, [1.0, 1.0]),
+            ContactKind::NoSlip
+        );
+    }
+}
