@@ -42,8 +42,8 @@ impl From<&noslip_scene::ContactKind> for ContactKind {
             noslip_scene::ContactKind::NoSlip => ContactKind::NoSlip,
             noslip_scene::ContactKind::Smooth => ContactKind::Smooth,
             noslip_scene::ContactKind::Rough { e, beta } => ContactKind::Rough {
-                e: crate::setup::f(e),
-                beta: crate::setup::f(beta),
+                e: crate::nearest::f(e),
+                beta: crate::nearest::f(beta),
             },
         }
     }
