@@ -47,6 +47,27 @@ where
     T: Scalar,
     Generated: Kernel<T::Unbounded, N, S>,
 {
+    checked_map(nu, balls, states, |nu, balls, states| {
+        collide_unchecked(nu, balls, states)
+    })
+}
+
+/// The checked path around a collision map `map` of any law: the inputs checked and clamped
+/// ([`checked::prepare`]), moved into the unbounded-exponent arithmetic `T::Unbounded`, mapped,
+/// and the results rounded back where they fit ([`checked::round_results`]).
+pub(crate) fn checked_map<T, const N: usize, const S: usize>(
+    nu: &[T; N],
+    balls: [&Ball<T>; 2],
+    states: [&BodyState<T, N, S>; 2],
+    map: impl FnOnce(
+        &[T::Unbounded; N],
+        [&Ball<T::Unbounded>; 2],
+        [&BodyState<T::Unbounded, N, S>; 2],
+    ) -> [BodyState<T::Unbounded, N, S>; 2],
+) -> Result<[BodyState<T, N, S>; 2], InputError>
+where
+    T: Scalar,
+{
     let inputs = states.map(|s| (s.spin.as_slice(), s.velocity.as_slice()));
     let p = checked::prepare(nu, balls, inputs)?;
     let array = |v: &[T::Unbounded]| -> Vec<T::Unbounded> { v.to_vec() };
@@ -55,7 +76,7 @@ where
         spin: fixed_len(array(&p.spins[b])),
         velocity: fixed_len(array(&p.velocities[b])),
     });
-    let out = collide_unchecked(
+    let out = map(
         &nu_w,
         [&p.balls[0], &p.balls[1]],
         [&states_w[0], &states_w[1]],

@@ -2,8 +2,6 @@
 //! the unbounded-exponent arithmetic of [`collide`](super::collide), with the law
 //! `(e, mu, beta0)` checked by [`Walton::new`] and the kernels `kernels::dN::walton`.
 
-use super::fixed_len;
-use crate::checked;
 use crate::kernels::{Generated, WaltonKernel};
 use crate::{Ball, BodyState, InputError, Scalar, ScalarRoot, Walton};
 
@@ -22,37 +20,14 @@ where
     Generated: WaltonKernel<T::Unbounded, N, S>,
 {
     let law = Walton::new(law.e.clone(), law.mu.clone(), law.beta0.clone())?;
-    let inputs = states.map(|s| (s.spin.as_slice(), s.velocity.as_slice()));
-    let p = checked::prepare(nu, balls, inputs)?;
-    let array = |v: &[T::Unbounded]| -> Vec<T::Unbounded> { v.to_vec() };
-    let nu_w: [T::Unbounded; N] = fixed_len(array(&p.nu));
-    let states_w: [BodyState<T::Unbounded, N, S>; 2] = std::array::from_fn(|b| BodyState {
-        spin: fixed_len(array(&p.spins[b])),
-        velocity: fixed_len(array(&p.velocities[b])),
-    });
     let law_w = Walton {
         e: law.e.unbounded(),
         mu: law.mu.unbounded(),
         beta0: law.beta0.unbounded(),
     };
-    let out = collide_walton_unchecked(
-        &nu_w,
-        [&p.balls[0], &p.balls[1]],
-        &law_w,
-        [&states_w[0], &states_w[1]],
-    );
-    let results = [0, 1].map(|b| (out[b].spin.as_slice(), out[b].velocity.as_slice()));
-    let [(s1, v1), (s2, v2)] = checked::round_results(&p, results, inputs)?;
-    Ok([
-        BodyState {
-            spin: fixed_len(s1),
-            velocity: fixed_len(v1),
-        },
-        BodyState {
-            spin: fixed_len(s2),
-            velocity: fixed_len(v2),
-        },
-    ])
+    super::checked_map(nu, balls, states, |nu, balls, states| {
+        collide_walton_unchecked(nu, balls, &law_w, states)
+    })
 }
 
 /// The Walton kernels without checks, dispatched as
