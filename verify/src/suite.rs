@@ -92,20 +92,15 @@ where
             let (outcome, seconds) =
                 timed(|| rough::run::<N, S>(variant, check, opts.points, seed, interrupted));
             let degree = rough::degree(N, variant, check);
-            let r = CheckResult {
-                dim: N,
-                variant: RoughIdentity::variant_name(variant),
-                check: check.name().into(),
-                passed: outcome.is_ok(),
-                points: opts.points,
-                proof: Proof::Identity {
-                    degree,
-                    set_size: SET_SIZE,
-                    bound: sz_bound(degree, opts.points),
-                },
-                detail: outcome.err().unwrap_or_default(),
+            let r = identity_result(
+                N,
+                RoughIdentity::variant_name(variant),
+                check.name(),
+                opts.points,
+                degree,
+                outcome,
                 seconds,
-            };
+            );
             progress(&r);
             r
         })
@@ -132,24 +127,46 @@ where
             let (outcome, seconds) =
                 timed(|| walton::run::<N, S>(variant, check, opts.points, seed, interrupted));
             let degree = walton::degree(N, variant, check);
-            let r = CheckResult {
-                dim: N,
-                variant: WaltonIdentity::variant_name(variant),
-                check: check.name().into(),
-                passed: outcome.is_ok(),
-                points: opts.points,
-                proof: Proof::Identity {
-                    degree,
-                    set_size: SET_SIZE,
-                    bound: sz_bound(degree, opts.points),
-                },
-                detail: outcome.err().unwrap_or_default(),
+            let r = identity_result(
+                N,
+                WaltonIdentity::variant_name(variant),
+                check.name(),
+                opts.points,
+                degree,
+                outcome,
                 seconds,
-            };
+            );
             progress(&r);
             r
         })
         .collect()
+}
+
+/// The result of an identity check of `degree` at `points` random points: its
+/// Schwartz-Zippel bound `(degree / SET_SIZE)^points` ([`sz_bound`]) and its outcome.
+fn identity_result(
+    dim: usize,
+    variant: String,
+    check: &str,
+    points: usize,
+    degree: u64,
+    outcome: Result<(), String>,
+    seconds: f64,
+) -> CheckResult {
+    CheckResult {
+        dim,
+        variant,
+        check: check.into(),
+        passed: outcome.is_ok(),
+        points,
+        proof: Proof::Identity {
+            degree,
+            set_size: SET_SIZE,
+            bound: sz_bound(degree, points),
+        },
+        detail: outcome.err().unwrap_or_default(),
+        seconds,
+    }
 }
 
 fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
@@ -198,20 +215,15 @@ where
                 )
             });
             let degree = identity::degree(N, variant, check);
-            let r = CheckResult {
-                dim: N,
-                variant: variant.name().into(),
-                check: check.name().into(),
-                passed: outcome.is_ok(),
-                points: opts.points,
-                proof: Proof::Identity {
-                    degree,
-                    set_size: SET_SIZE,
-                    bound: sz_bound(degree, opts.points),
-                },
-                detail: outcome.err().unwrap_or_default(),
+            let r = identity_result(
+                N,
+                variant.name().into(),
+                check.name(),
+                opts.points,
+                degree,
+                outcome,
                 seconds,
-            };
+            );
             progress(&r);
             r
         })
