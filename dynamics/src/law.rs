@@ -32,13 +32,13 @@ pub enum Law {
 }
 
 impl Law {
-    /// The law of an elastic contact kind; `None` for a rough one (`e < 1` or `|beta| < 1`:
+    /// The law of an elastic contact kind; `None` for a rough or Walton one (`e < 1` or `|beta| < 1`:
     /// no tangent map here).
     pub fn of(kind: noslip_sim::ContactKind) -> Option<Law> {
         match kind {
             noslip_sim::ContactKind::NoSlip => Some(Law::NoSlip),
             noslip_sim::ContactKind::Smooth => Some(Law::Smooth),
-            noslip_sim::ContactKind::Rough { .. } => None,
+            noslip_sim::ContactKind::Rough { .. } | noslip_sim::ContactKind::Walton { .. } => None,
         }
     }
 

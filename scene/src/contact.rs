@@ -4,11 +4,15 @@
 //! `-beta` times itself, `0 <= e <= 1`, `-1 <= beta <= 1`. `(1, 1)` is the no-slip law and
 //! `(1, -1)` the smooth one; validation ([`ContactKind::checked`]) turns those two into
 //! [`ContactKind::NoSlip`] and [`ContactKind::Smooth`], so that an elastic member runs the
-//! very path (and gives the very bits) of the named kind.
+//! very path (and gives the very bits) of the named kind. The Walton law
+//! `contact = { e = ..., mu = ..., beta0 = ... }` (§15.1) takes `beta = min(beta0, beta_C)`,
+//! `beta_C` the restitution at which the tangential impulse is `mu` times the normal one:
+//! `mu >= 0`, `beta0` in `[-1, 1]`. With `mu = 0` or `beta0 = -1` its `beta` is `-1` at every
+//! contact, and validation names it the rough law `{ e, beta = -1 }` (smooth at `e = 1`).
 
 use crate::number::Number;
 use num_rational::BigRational;
-use num_traits::{One, Signed};
+use num_traits::{One, Signed, Zero};
 use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 use std::fmt;
@@ -31,6 +35,16 @@ pub enum ContactKind {
         /// `beta`: `t+ = -beta t`.
         beta: BigRational,
     },
+    /// `{ e = ..., mu = ..., beta0 = ... }`: the Walton law, exact; after validation
+    /// `mu > 0` and `beta0 > -1` (else it is the rough law `{ e, beta = -1 }`).
+    Walton {
+        /// `e`: `dn+ = -e dn`.
+        e: BigRational,
+        /// `mu`: the friction coefficient, `|J_t| <= mu |J_n|`.
+        mu: BigRational,
+        /// `beta0`: `t+ = -beta0 t` while the contact sticks.
+        beta0: BigRational,
+    },
 }
 
 impl ContactKind {
@@ -38,6 +52,31 @@ impl ContactKind {
     /// names `place.e` or `place.beta`) and its elastic members named: `(1, 1)` is
     /// [`ContactKind::NoSlip`], `(1, -1)` [`ContactKind::Smooth`].
     pub fn checked(&self, place: &str) -> Result<ContactKind, (String, String)> {
+        if let ContactKind::Walton { e, mu, beta0 } = self {
+            if mu.is_negative() {
+                return Err((format!("{place}.mu"), format!("must be >= 0, got {mu}")));
+            }
+            if beta0.abs() > BigRational::one() {
+                return Err((
+                    format!("{place}.beta0"),
+                    format!("must be in [-1, 1], got {beta0}"),
+                ));
+            }
+            if mu.is_zero() || beta0 == &-BigRational::one() {
+                let rough = ContactKind::Rough {
+                    e: e.clone(),
+                    beta: -BigRational::one(),
+                };
+                return rough.checked(place);
+            }
+            // e's range, as for the rough law (beta0 in range stands in for beta).
+            let as_rough = ContactKind::Rough {
+                e: e.clone(),
+                beta: beta0.clone(),
+            };
+            as_rough.checked(place)?;
+            return Ok(self.clone());
+        }
         let ContactKind::Rough { e, beta } = self else {
             return Ok(self.clone());
         };
@@ -65,16 +104,19 @@ impl ContactKind {
             ContactKind::NoSlip => true,
             ContactKind::Smooth => false,
             ContactKind::Rough { beta, .. } => beta != &-BigRational::one(),
+            ContactKind::Walton { .. } => true,
         }
     }
 }
 
-/// The rough law's table as written: `e` and `beta`, nothing else.
+/// A law's table as written: `e` and `beta` (rough), or `e`, `mu` and `beta0` (Walton).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawRough {
     e: Number,
-    beta: Number,
+    beta: Option<Number>,
+    mu: Option<Number>,
+    beta0: Option<Number>,
 }
 
 struct KindVisitor;
@@ -83,7 +125,9 @@ impl<'de> Visitor<'de> for KindVisitor {
     type Value = ContactKind;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(r#""no-slip", "smooth" or a table { e = ..., beta = ... }"#)
+        f.write_str(
+            r#""no-slip", "smooth", a table { e = ..., beta = ... } or { e = ..., mu = ..., beta0 = ... }"#,
+        )
     }
 
     fn visit_str<E: de::Error>(self, v: &str) -> Result<ContactKind, E> {
@@ -91,17 +135,27 @@ impl<'de> Visitor<'de> for KindVisitor {
             "no-slip" => Ok(ContactKind::NoSlip),
             "smooth" => Ok(ContactKind::Smooth),
             _ => Err(E::custom(format!(
-                r#"unknown contact kind {v:?}: expected "no-slip", "smooth" or a table {{ e = ..., beta = ... }}"#
+                r#"unknown contact kind {v:?}: expected "no-slip", "smooth", a table {{ e = ..., beta = ... }} or {{ e = ..., mu = ..., beta0 = ... }}"#
             ))),
         }
     }
 
     fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<ContactKind, A::Error> {
         let raw = RawRough::deserialize(de::value::MapAccessDeserializer::new(map))?;
-        Ok(ContactKind::Rough {
-            e: raw.e.0,
-            beta: raw.beta.0,
-        })
+        match (raw.beta, raw.mu, raw.beta0) {
+            (Some(beta), None, None) => Ok(ContactKind::Rough {
+                e: raw.e.0,
+                beta: beta.0,
+            }),
+            (None, Some(mu), Some(beta0)) => Ok(ContactKind::Walton {
+                e: raw.e.0,
+                mu: mu.0,
+                beta0: beta0.0,
+            }),
+            _ => Err(de::Error::custom(
+                "a contact table is { e = ..., beta = ... } (rough) or { e = ..., mu = ..., beta0 = ... } (Walton)",
+            )),
+        }
     }
 }
 
@@ -149,5 +203,31 @@ mod tests {
         assert!(!ContactKind::Smooth.tangential());
         assert!(!rough(q(1, 2), q(-1, 1)).tangential());
         assert!(rough(q(1, 2), q(-99, 100)).tangential());
+    }
+
+    fn walton(e: BigRational, mu: BigRational, beta0: BigRational) -> ContactKind {
+        ContactKind::Walton { e, mu, beta0 }
+    }
+
+    #[test]
+    fn walton_laws_are_checked_and_their_frictionless_members_named() {
+        let checked = |e, mu, beta0| walton(e, mu, beta0).checked("contact.balls");
+        assert_eq!(
+            checked(q(9, 10), q(1, 4), q(1, 2)).unwrap(),
+            walton(q(9, 10), q(1, 4), q(1, 2))
+        );
+        // mu = 0 or beta0 = -1: beta = -1 at every contact.
+        assert_eq!(
+            checked(q(9, 10), q(0, 1), q(1, 2)).unwrap(),
+            rough(q(9, 10), q(-1, 1))
+        );
+        assert_eq!(
+            checked(q(1, 1), q(1, 4), q(-1, 1)).unwrap(),
+            ContactKind::Smooth
+        );
+        let err = |e, mu, beta0| checked(e, mu, beta0).unwrap_err().0;
+        assert_eq!(err(q(9, 10), q(-1, 4), q(1, 2)), "contact.balls.mu");
+        assert_eq!(err(q(9, 10), q(1, 4), q(3, 2)), "contact.balls.beta0");
+        assert_eq!(err(q(3, 2), q(1, 4), q(1, 2)), "contact.balls.e");
     }
 }

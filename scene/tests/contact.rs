@@ -94,10 +94,17 @@ fn bad_laws_are_refused_naming_the_key() {
             "must be finite",
         ),
         ("[contact]\nballs = { e = \"x\", beta = 0 }\n", "\"x\""),
-        ("[contact]\nballs = { e = 0.5 }\n", "missing field `beta`"),
+        (
+            "[contact]\nballs = { e = 0.5 }\n",
+            "a contact table is { e = ..., beta = ... } (rough) or",
+        ),
         (
             "[contact]\nballs = { e = 0.5, beta = 0, mu = 1 }\n",
-            "unknown field `mu`",
+            "a contact table is { e = ..., beta = ... } (rough) or",
+        ),
+        (
+            "[contact]\nballs = { e = 0.5, beta = 0, nu = 1 }\n",
+            "unknown field `nu`",
         ),
         (
             "[contact]\nballs = \"rough\"\n",
@@ -105,7 +112,7 @@ fn bad_laws_are_refused_naming_the_key() {
         ),
         (
             "[contact]\nballs = 1\n",
-            "\"no-slip\", \"smooth\" or a table",
+            "\"no-slip\", \"smooth\", a table { e = ..., beta = ... } or",
         ),
     ] {
         let e = scene(extra).unwrap_err();
@@ -156,4 +163,36 @@ fn maxwellian_starts_take_a_temperature() {
         let e = scene(extra).unwrap_err();
         assert!(e.starts_with(&format!("t.toml: {place}: ")), "{extra}: {e}");
     }
+}
+
+#[test]
+fn walton_laws_are_read_exactly_and_bad_ones_refused_naming_the_key() {
+    let s = scene("[contact]\nballs = { e = \"0.9\", mu = \"1/4\", beta0 = \"0.5\" }\n").unwrap();
+    assert_eq!(
+        s.ball_contact,
+        ContactKind::Walton {
+            e: q("9/10"),
+            mu: q("1/4"),
+            beta0: q("1/2")
+        }
+    );
+    // Without friction the tangential restitution is -1 at every contact: the rough law.
+    let frictionless = scene("[contact]\nballs = { e = \"0.9\", mu = 0, beta0 = \"0.5\" }\n");
+    assert_eq!(
+        frictionless.unwrap().ball_contact,
+        ContactKind::Rough {
+            e: q("9/10"),
+            beta: q("-1")
+        }
+    );
+    let err = |extra: &str| scene(extra).unwrap_err();
+    let e = err("[contact]\nballs = { e = \"0.9\", mu = \"-0.1\", beta0 = \"0.5\" }\n");
+    assert!(e.contains("contact.balls.mu") && e.contains(">= 0"), "{e}");
+    let e = err("[contact]\nballs = { e = \"0.9\", mu = \"0.1\", beta0 = 2 }\n");
+    assert!(e.contains("contact.balls.beta0"), "{e}");
+    // Half of each form is neither.
+    let e = err("[contact]\nballs = { e = \"0.9\", mu = \"0.1\" }\n");
+    assert!(e.contains("mu = ..., beta0 = ..."), "{e}");
+    let e = err("[contact]\nballs = { e = \"0.9\", beta = \"0.1\", mu = \"0.1\" }\n");
+    assert!(e.contains("mu = ..., beta0 = ..."), "{e}");
 }

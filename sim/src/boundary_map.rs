@@ -406,7 +406,9 @@ mod tests {
                     assert!((slip(1) + slip(0)).abs() <= 8.0 * f64::EPSILON);
                     assert_ne!(r.reflection, r.incidence);
                 }
-                ContactKind::Rough { .. } => unreachable!("only the two kinds above are run"),
+                ContactKind::Rough { .. } | ContactKind::Walton { .. } => {
+                    unreachable!("only the two kinds above are run")
+                }
             }
         }
     }

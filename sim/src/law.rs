@@ -10,8 +10,9 @@
 //! cluster that would collapse inelastically passes its energy on as smooth elastic spheres
 //! do (docs/granular.md says why this member).
 
+use crate::rough::RoughLaw;
 use crate::{smooth, PairKernels};
-use collision_core::{Ball, BodyState, Restitution};
+use collision_core::{Ball, BodyState, Restitution, Walton};
 
 /// How a ball and what it meets exchange momentum at a contact (the scene's
 /// `noslip_scene::ContactKind`, its numbers rounded to `f64`).
@@ -31,6 +32,29 @@ pub enum ContactKind {
         /// Tangential restitution `beta`.
         beta: f64,
     },
+    /// The Walton law (`docs/derivation.md` §15.1): as [`ContactKind::Rough`] with
+    /// `beta = min(beta0, beta_C)`, `beta_C` the tangential restitution at which the
+    /// tangential impulse is `mu` times the normal one (sliding).
+    Walton {
+        /// Normal restitution `e`.
+        e: f64,
+        /// Friction coefficient `mu >= 0`.
+        mu: f64,
+        /// Tangential restitution `beta0` while the contact sticks.
+        beta0: f64,
+    },
+}
+
+impl ContactKind {
+    /// The rough law's parameters, for [`crate::rough`]; `None` for the no-slip and smooth
+    /// kinds.
+    fn rough_law(self) -> Option<RoughLaw> {
+        match self {
+            ContactKind::Rough { e, beta } => Some(RoughLaw::Constant(Restitution { e, beta })),
+            ContactKind::Walton { e, mu, beta0 } => Some(RoughLaw::Walton(Walton { e, mu, beta0 })),
+            ContactKind::NoSlip | ContactKind::Smooth => None,
+        }
+    }
 }
 
 impl From<&noslip_scene::ContactKind> for ContactKind {
@@ -45,6 +69,11 @@ impl From<&noslip_scene::ContactKind> for ContactKind {
                 e: crate::nearest::f(e),
                 beta: crate::nearest::f(beta),
             },
+            noslip_scene::ContactKind::Walton { e, mu, beta0 } => ContactKind::Walton {
+                e: crate::nearest::f(e),
+                mu: crate::nearest::f(mu),
+                beta0: crate::nearest::f(beta0),
+            },
         }
     }
 }
@@ -55,7 +84,11 @@ impl From<&noslip_scene::ContactKind> for ContactKind {
 /// `time - previous < tc` for either ball; every other kind is kept.
 pub fn tc_law(kind: ContactKind, tc: f64, time: f64, previous: [f64; 2]) -> ContactKind {
     match kind {
-        ContactKind::Rough { .. } if previous.iter().any(|&p| time - p < tc) => ContactKind::Smooth,
+        ContactKind::Rough { .. } | ContactKind::Walton { .. }
+            if previous.iter().any(|&p| time - p < tc) =>
+        {
+            ContactKind::Smooth
+        }
         _ => kind,
     }
 }
@@ -79,11 +112,11 @@ pub(crate) fn pair<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             &pre[0],
             &pre[1],
         ),
-        ContactKind::Rough { e, beta } => crate::rough::pair(
+        ContactKind::Rough { .. } | ContactKind::Walton { .. } => crate::rough::pair(
             nu,
             &species[a],
             &species[b],
-            &Restitution { e, beta },
+            &kind.rough_law().expect("a rough kind"),
             &pre[0],
             &pre[1],
         ),
@@ -106,9 +139,12 @@ pub(crate) fn fixed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         (ContactKind::NoSlip, Some((axis, upper))) => kernels.ball_wall(a, axis, upper, pre),
         (ContactKind::NoSlip, None) => kernels.ball_obstacle(a, nu, pre),
         (ContactKind::Smooth, _) => smooth::fixed(nu, pre),
-        (ContactKind::Rough { e, beta }, _) => {
-            crate::rough::fixed(nu, &species[a], &Restitution { e, beta }, pre)
-        }
+        (ContactKind::Rough { .. } | ContactKind::Walton { .. }, _) => crate::rough::fixed(
+            nu,
+            &species[a],
+            &kind.rough_law().expect("a rough kind"),
+            pre,
+        ),
     }
 }
 

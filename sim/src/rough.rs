@@ -4,10 +4,21 @@
 //! contact-point relative velocity, the impulse makes the normal part `g_n` become `-e g_n`
 //! and the tangential part `g_t` become `-beta g_t`; two balls lose
 //! `(1 - e^2) |g_n|^2 / (2 a) + (1 - beta^2) |g_t|^2 / (2 b)` of kinetic energy, with
-//! `a = w_1 + w_2`, `b = a + w_1 / gamma_1^2 + w_2 / gamma_2^2`.
+//! `a = w_1 + w_2`, `b = a + w_1 / gamma_1^2 + w_2 / gamma_2^2`. Under the Walton law
+//! (`kernels::dN::walton`, §15.1) `beta = min(beta0, beta_C)`, `beta_C` the tangential
+//! restitution at which the tangential impulse is `mu` times the normal one.
 
 use collision_core::kernels::{d2, d3, d4, d5, d6};
-use collision_core::{Ball, BodyState, Restitution};
+use collision_core::{Ball, BodyState, Restitution, Walton};
+
+/// A rough law's parameters: constant `(e, beta)`, or Walton's `(e, mu, beta0)`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RoughLaw {
+    /// `dn+ = -e dn`, `t+ = -beta t`.
+    Constant(Restitution<f64>),
+    /// `beta = min(beta0, beta_C)` (Coulomb friction `mu`).
+    Walton(Walton<f64>),
+}
 
 /// `x` as an array of length `M` (the same numbers: `M = N` wherever it is called).
 fn cast<const N: usize, const M: usize>(x: &[f64; N]) -> [f64; M] {
@@ -28,14 +39,17 @@ pub fn pair<const N: usize, const S: usize>(
     nu: &[f64; N],
     ball1: &Ball<f64>,
     ball2: &Ball<f64>,
-    law: &Restitution<f64>,
+    law: &RoughLaw,
     state1: &BodyState<f64, N, S>,
     state2: &BodyState<f64, N, S>,
 ) -> [BodyState<f64, N, S>; 2] {
     macro_rules! free {
         ($module:ident) => {{
-            let [a, b] =
-                $module::rough::free(&cast(nu), ball1, ball2, law, &state(state1), &state(state2));
+            let (nu, s1, s2) = (&cast(nu), &state(state1), &state(state2));
+            let [a, b] = match law {
+                RoughLaw::Constant(l) => $module::rough::free(nu, ball1, ball2, l, s1, s2),
+                RoughLaw::Walton(l) => $module::walton::free(nu, ball1, ball2, l, s1, s2),
+            };
             [state(&a), state(&b)]
         }};
     }
@@ -53,20 +67,17 @@ pub fn pair<const N: usize, const S: usize>(
 pub fn fixed<const N: usize, const S: usize>(
     nu: &[f64; N],
     ball: &Ball<f64>,
-    law: &Restitution<f64>,
+    law: &RoughLaw,
     s: &BodyState<f64, N, S>,
 ) -> BodyState<f64, N, S> {
     macro_rules! fixed {
-        ($module:ident) => {
-            state(&$module::rough::fixed(
-                &cast(nu),
-                &1.0,
-                ball,
-                law,
-                &BodyState::zero(),
-                &state(s),
-            ))
-        };
+        ($module:ident) => {{
+            let (nu, rest, s) = (&cast(nu), &BodyState::zero(), &state(s));
+            state(&match law {
+                RoughLaw::Constant(l) => $module::rough::fixed(nu, &1.0, ball, l, rest, s),
+                RoughLaw::Walton(l) => $module::walton::fixed(nu, &1.0, ball, l, rest, s),
+            })
+        }};
     }
     match N {
         2 => fixed!(d2),
@@ -79,8 +90,9 @@ pub fn fixed<const N: usize, const S: usize>(
 
 #[cfg(test)]
 mod tests {
+    use super::RoughLaw;
     use super::{fixed, pair};
-    use collision_core::{Ball, BodyState, Restitution};
+    use collision_core::{Ball, BodyState, Restitution, Walton};
 
     /// The contact-point relative velocity `g = (u_2 - R_2 U_2 nu) - (u_1 + R_1 U_1 nu)` in
     /// 3D, `U` from its compact entries `(U_01, U_02, U_12)`.
@@ -114,7 +126,7 @@ mod tests {
             radius: 0.7,
             gamma2: 0.6,
         };
-        let law = Restitution::new(0.7, 0.3).unwrap();
+        let law = RoughLaw::Constant(Restitution::new(0.7, 0.3).unwrap());
         let s1 = BodyState {
             spin: [0.3, -0.2, 0.5],
             velocity: [1.0, 0.2, 0.4],
@@ -137,5 +149,56 @@ mod tests {
         let after = fixed(&nu, &b2, &law, &s2);
         let un = |s: &BodyState<f64, 3, 3>| n(s.velocity);
         assert!((un(&after) + 0.7 * un(&s2)).abs() < 1e-14);
+    }
+
+    /// The Walton law through the same dispatch: with a friction coefficient far above the
+    /// slip's ratio the contact sticks and gives the constant law's bits at `beta0`; with a
+    /// small one it slides, and the tangential impulse on ball 2 is `mu` times the normal
+    /// one, to rounding (`1e-13` relative: a few hundred ulps of outputs of size 1).
+    #[test]
+    fn the_walton_law_sticks_or_slides_through_the_dispatch() {
+        let nu = [0.6, 0.0, 0.8];
+        let b1 = Ball {
+            inv_mass: 1.0,
+            radius: 1.0,
+            gamma2: 0.4,
+        };
+        let b2 = Ball {
+            inv_mass: 0.5,
+            radius: 0.7,
+            gamma2: 0.6,
+        };
+        let s1 = BodyState {
+            spin: [0.3, -0.2, 0.5],
+            velocity: [1.0, 0.2, 0.4],
+        };
+        let s2 = BodyState {
+            spin: [-0.1, 0.4, 0.2],
+            velocity: [-0.5, 0.3, -0.9],
+        };
+        let walton = |mu: f64| RoughLaw::Walton(Walton::new(0.7, mu, 0.3).unwrap());
+        let constant = RoughLaw::Constant(Restitution::new(0.7, 0.3).unwrap());
+        assert_eq!(
+            pair(&nu, &b1, &b2, &walton(1e6), &s1, &s2),
+            pair(&nu, &b1, &b2, &constant, &s1, &s2)
+        );
+        let mu = 0.05;
+        let [_, b] = pair(&nu, &b1, &b2, &walton(mu), &s1, &s2);
+        let j: Vec<f64> = (0..3)
+            .map(|k| (b.velocity[k] - s2.velocity[k]) / b2.inv_mass)
+            .collect();
+        let jn = j[0] * nu[0] + j[1] * nu[1] + j[2] * nu[2];
+        let jt2: f64 = (0..3).map(|k| (j[k] - jn * nu[k]).powi(2)).sum();
+        assert!(
+            (jt2.sqrt() - mu * jn.abs()).abs() < 1e-13 * jn.abs(),
+            "|J_t| {} against mu |J_n| {}",
+            jt2.sqrt(),
+            mu * jn.abs()
+        );
+        // Sliding is not sticking: the constant law's tangential impulse is larger.
+        assert_ne!(
+            pair(&nu, &b1, &b2, &walton(mu), &s1, &s2),
+            pair(&nu, &b1, &b2, &constant, &s1, &s2)
+        );
     }
 }

@@ -241,7 +241,12 @@ fn the_engine_applies_the_fixed_map_at_the_normal_of_the_geometry() {
     ];
     for (shape, v) in cases {
         let rough = ContactKind::Rough { e: 0.5, beta: 0.25 };
-        for contact in [ContactKind::NoSlip, ContactKind::Smooth, rough] {
+        let walton = ContactKind::Walton {
+            e: 0.5,
+            mu: 0.1,
+            beta0: 0.25,
+        };
+        for contact in [ContactKind::NoSlip, ContactKind::Smooth, rough, walton] {
             let e = first_contact(shape.clone(), contact, [0.0, 0.0], v);
             // The contact is at the contact distance, and nu is the geometry's unit normal.
             assert!(
@@ -258,10 +263,22 @@ fn the_engine_applies_the_fixed_map_at_the_normal_of_the_geometry() {
                     e: restitution,
                     beta,
                 } => {
-                    let law = collision_core::Restitution {
+                    let law = crate::rough::RoughLaw::Constant(collision_core::Restitution {
                         e: restitution,
                         beta,
-                    };
+                    });
+                    crate::rough::fixed(&e.nu, &DISK, &law, &e.pre[0])
+                }
+                ContactKind::Walton {
+                    e: restitution,
+                    mu,
+                    beta0,
+                } => {
+                    let law = crate::rough::RoughLaw::Walton(collision_core::Walton {
+                        e: restitution,
+                        mu,
+                        beta0,
+                    });
                     crate::rough::fixed(&e.nu, &DISK, &law, &e.pre[0])
                 }
             };

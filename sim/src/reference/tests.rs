@@ -240,7 +240,21 @@ seed = 3
 speed = 1
 spin = 1
 "#;
-    for (name, text, contacts) in [("rough 2D", gas2d, CONTACTS), ("rough 3D", gas3d, 3_000)] {
+    // The Walton law on the 2D gas's balls and obstacle: sticking and sliding contacts.
+    let walton2d = gas2d
+        .replace(
+            r#"e = "0.9", beta = "0.4""#,
+            r#"e = "0.9", mu = "0.1", beta0 = "0.4""#,
+        )
+        .replace(
+            r#"e = "0.95", beta = "0.3""#,
+            r#"e = "0.95", mu = "0.2", beta0 = "0.3""#,
+        );
+    for (name, text, contacts) in [
+        ("rough 2D", gas2d, CONTACTS),
+        ("rough 3D", gas3d, 3_000),
+        ("Walton 2D", &walton2d, 3_000),
+    ] {
         let scene = Scene::from_toml(text, name).unwrap();
         collision_core::with_dim!(
             scene.dim,
