@@ -48,53 +48,55 @@ pub enum ContactKind {
 }
 
 impl ContactKind {
-    /// The kind with its numbers checked (`e` in `[0, 1]`, `beta` in `[-1, 1]`; an error
-    /// names `place.e` or `place.beta`) and its elastic members named: `(1, 1)` is
-    /// [`ContactKind::NoSlip`], `(1, -1)` [`ContactKind::Smooth`].
+    /// The kind with its numbers checked (`e` in `[0, 1]`, `beta` and `beta0` in `[-1, 1]`,
+    /// `mu >= 0`; an error names `place.e`, `place.beta`, `place.mu` or `place.beta0`) and its
+    /// special members named: rough `(1, 1)` is [`ContactKind::NoSlip`], `(1, -1)`
+    /// [`ContactKind::Smooth`]; a Walton law with `mu = 0` or `beta0 = -1` is the rough law
+    /// `{ e, beta = -1 }`.
     pub fn checked(&self, place: &str) -> Result<ContactKind, (String, String)> {
-        if let ContactKind::Walton { e, mu, beta0 } = self {
-            if mu.is_negative() {
-                return Err((format!("{place}.mu"), format!("must be >= 0, got {mu}")));
-            }
-            if beta0.abs() > BigRational::one() {
-                return Err((
-                    format!("{place}.beta0"),
-                    format!("must be in [-1, 1], got {beta0}"),
-                ));
-            }
-            if mu.is_zero() || beta0 == &-BigRational::one() {
-                let rough = ContactKind::Rough {
-                    e: e.clone(),
-                    beta: -BigRational::one(),
-                };
-                return rough.checked(place);
-            }
-            // e's range, as for the rough law (beta0 in range stands in for beta).
-            let as_rough = ContactKind::Rough {
-                e: e.clone(),
-                beta: beta0.clone(),
-            };
-            as_rough.checked(place)?;
-            return Ok(self.clone());
-        }
-        let ContactKind::Rough { e, beta } = self else {
-            return Ok(self.clone());
-        };
         let one = BigRational::one();
-        if e.is_negative() || e > &one {
-            return Err((format!("{place}.e"), format!("must be in [0, 1], got {e}")));
+        let outside = |key: &str, x: &BigRational, range: &str| {
+            Err((
+                format!("{place}.{key}"),
+                format!("must be {range}, got {x}"),
+            ))
+        };
+        match self {
+            ContactKind::NoSlip | ContactKind::Smooth => Ok(self.clone()),
+            ContactKind::Walton { e, mu, beta0 } => {
+                if mu.is_negative() {
+                    return outside("mu", mu, ">= 0");
+                }
+                if beta0.abs() > one {
+                    return outside("beta0", beta0, "in [-1, 1]");
+                }
+                if e.is_negative() || e > &one {
+                    return outside("e", e, "in [0, 1]");
+                }
+                if mu.is_zero() || beta0 == &-&one {
+                    // beta = -1 at every contact: the rough law, named as such.
+                    let rough = ContactKind::Rough {
+                        e: e.clone(),
+                        beta: -one,
+                    };
+                    return rough.checked(place);
+                }
+                Ok(self.clone())
+            }
+            ContactKind::Rough { e, beta } => {
+                if e.is_negative() || e > &one {
+                    return outside("e", e, "in [0, 1]");
+                }
+                if beta.abs() > one {
+                    return outside("beta", beta, "in [-1, 1]");
+                }
+                Ok(match (e == &one, beta.abs() == one) {
+                    (true, true) if beta.is_positive() => ContactKind::NoSlip,
+                    (true, true) => ContactKind::Smooth,
+                    _ => self.clone(),
+                })
+            }
         }
-        if beta.abs() > one {
-            return Err((
-                format!("{place}.beta"),
-                format!("must be in [-1, 1], got {beta}"),
-            ));
-        }
-        Ok(match (e == &one, beta.abs() == one) {
-            (true, true) if beta.is_positive() => ContactKind::NoSlip,
-            (true, true) => ContactKind::Smooth,
-            _ => self.clone(),
-        })
     }
 
     /// Whether the law has a tangential part: every kind but [`ContactKind::Smooth`] and the
