@@ -32,4 +32,4 @@ pub use case::Case;
 pub use method::Method;
 pub use regime::Regime;
 pub use render::{AccuracyReport, Provenance};
-pub use report::{check_samples, dim_result, Options, MAX_SAMPLES};
+pub use report::{check_samples, dim_result, dim_result_interruptible, Options, MAX_SAMPLES};

@@ -296,12 +296,14 @@ fn free_ops(dim: usize) -> Vec<(noslip_codegen::Arith, usize)> {
         .collect()
 }
 
-/// Every figure of one dimension and regime.
+/// Every figure of one dimension and regime; `None` once `interrupted()` answers true (it
+/// is asked before each case and each variant's timing, a few milliseconds apart).
 pub fn regime_result<const N: usize, const S: usize>(
     regime: Regime,
     opts: &Options,
     ops: &[(noslip_codegen::Arith, usize)],
-) -> RegimeResult
+    interrupted: &dyn Fn() -> bool,
+) -> Option<RegimeResult>
 where
     Generated: Kernel<f64, N, S>
         + Kernel<f32, N, S>
@@ -335,6 +337,9 @@ where
     let proven: Vec<Option<ProvenBound>> =
         Method::ALL.iter().map(|&m| ProvenBound::of(N, m)).collect();
     for (index, case) in cases.iter().enumerate() {
+        if interrupted() {
+            return None;
+        }
         let exact_case = case.to_exact();
         let exact = exact_result(&exact_case);
         let truth = Truth::of(&exact);
@@ -423,6 +428,9 @@ where
         .iter()
         .enumerate()
         .map(|(i, &v)| {
+            if interrupted() {
+                return None;
+            }
             // A variant that refused every case has nothing worth timing.
             let ran = acc.get(&i).is_some_and(|a| a.evaluated > 0);
             let timing = if batch.is_empty() || !ran {
@@ -433,12 +441,14 @@ where
             let ops = v
                 .generated()
                 .and_then(|a| ops.iter().find(|(b, _)| *b == a).map(|(_, n)| *n));
-            acc.remove(&i)
-                .unwrap_or_default()
-                .result(v, &names, ops, timing)
+            Some(
+                acc.remove(&i)
+                    .unwrap_or_default()
+                    .result(v, &names, ops, timing),
+            )
         })
-        .collect();
-    RegimeResult {
+        .collect::<Option<Vec<_>>>()?;
+    Some(RegimeResult {
         regime,
         name: regime.name().into(),
         about: regime.about().into(),
@@ -447,7 +457,7 @@ where
         conditioning: Stats::of(&kappas),
         variants,
         stability,
-    }
+    })
 }
 
 /// Agreement of the generated `f64` kernel across the limits it reaches without branches,
@@ -537,30 +547,44 @@ where
 }
 
 /// One dimension's results, `progress` called after each regime.
-pub fn dim_result(
+pub fn dim_result(dim: usize, opts: &Options, progress: impl FnMut(&RegimeResult)) -> DimResult {
+    dim_result_interruptible(dim, opts, progress, &|| false).expect("never interrupted")
+}
+
+/// [`dim_result`], asking `interrupted()` between cases, timings and regimes (a few
+/// milliseconds apart): `None` once it answers true, the partial results dropped.
+pub fn dim_result_interruptible(
     dim: usize,
     opts: &Options,
     mut progress: impl FnMut(&RegimeResult),
-) -> DimResult {
+    interrupted: &dyn Fn() -> bool,
+) -> Option<DimResult> {
     let ops = free_ops(dim);
     let (regimes, continuity) = collision_core::with_dim!(
         dim,
-        |N, S| (
-            opts.regimes
+        |N, S| {
+            let regimes = opts
+                .regimes
                 .iter()
                 .map(|&r| {
-                    let result = regime_result::<N, S>(r, opts, &ops);
+                    let result = regime_result::<N, S>(r, opts, &ops, interrupted)?;
                     progress(&result);
-                    result
+                    Some(result)
                 })
-                .collect(),
-            continuity::<N, S>(opts.samples.min(200), opts.seed),
-        ),
+                .collect::<Option<Vec<_>>>()?;
+            if interrupted() {
+                return None;
+            }
+            (
+                regimes,
+                continuity::<N, S>(opts.samples.min(200), opts.seed),
+            )
+        },
         panic!("no generated kernels for n = {dim}")
     );
-    DimResult {
+    Some(DimResult {
         dim,
         regimes,
         continuity,
-    }
+    })
 }

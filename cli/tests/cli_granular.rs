@@ -1,8 +1,10 @@
 //! `noslip simulate --observables DT` on the shipped granular gas: the CSV's header with its
-//! units, one row per interval, the gas cooling, and bad intervals and laws refused (exit 2,
+//! units, one row per interval, the gas cooling, the Parquet table equal to the CSV, and bad intervals and laws refused (exit 2,
 //! the option or the field named).
 
 mod support;
+use parquet::file::reader::{FileReader, SerializedFileReader};
+use parquet::record::Field;
 use support::{noslip, run_ok, temp};
 
 #[test]
@@ -48,6 +50,31 @@ fn the_granular_gas_writes_its_observables() {
     assert!(last[4] < first[4] && last[6] > 0.0, "{last:?}");
     let bound = (64.0 * last[1] + 40.0 * 500.0) * f64::EPSILON * first[4];
     assert!(((first[4] - last[4]) - last[6]).abs() <= bound, "{last:?}");
+    // observables.parquet holds the same numbers, bit for bit (the CSV's shortest
+    // round-trip decimals parse back to the f64 values), `contacts` an integer.
+    let file = std::fs::File::open(dir.join("observables.parquet")).unwrap();
+    let reader = SerializedFileReader::new(file).unwrap();
+    let table: Vec<Vec<Field>> = reader
+        .get_row_iter(None)
+        .unwrap()
+        .map(|r| {
+            r.unwrap()
+                .get_column_iter()
+                .map(|(_, f)| f.clone())
+                .collect()
+        })
+        .collect();
+    assert_eq!(table.len(), rows.len());
+    for (got, want) in table.iter().zip(&rows) {
+        assert_eq!(got.len(), want.len());
+        for (k, (g, w)) in got.iter().zip(want).enumerate() {
+            match g {
+                Field::Long(c) if k == 1 => assert_eq!(*c as f64, *w),
+                Field::Double(x) => assert_eq!(x.to_bits(), w.to_bits(), "column {k}"),
+                other => panic!("column {k}: {other:?}"),
+            }
+        }
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -2,8 +2,9 @@
 //!
 //! Columnar outputs of `noslip simulate`: a table written as Apache Parquet, streamed in row
 //! groups, with typed columns and the unit of each column in the file's key-value metadata.
-//! The events log (`--log FILE.parquet`, [`events`]) and the boundary map (`--boundary-map
-//! FILE.parquet`, [`boundary_map`]) are written through [`Table`].
+//! The events log (`--log FILE.parquet`, [`events`]), the boundary map (`--boundary-map
+//! FILE.parquet`, [`boundary_map`]) and the granular observables (`--observables DT`'s
+//! `observables.parquet`, [`observables`]) are written through [`Table`].
 //!
 //! Memory is bounded: rows are buffered per column until [`ROW_GROUP`] rows, then written as
 //! one row group (about `8 * ROW_GROUP` bytes per column). Floating-point columns are plain
@@ -17,6 +18,7 @@
 
 pub mod boundary_map;
 pub mod events;
+pub mod observables;
 
 use parquet::basic::{Compression, ConvertedType, Repetition, Type as Physical};
 use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int64Type};

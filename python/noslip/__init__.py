@@ -13,13 +13,14 @@ generated, exactly verified Rust kernels of the ``noslip`` workspace.
   :func:`orbits`: periodic orbits of a one-ball table, with their stability.
 - :func:`verify`, :func:`report`: the exact verification and the accuracy report.
 - :func:`sweep`: a function over a parameter grid as Dask tasks, streamed to a store.
-- :func:`read_log`, :func:`read_boundary_map`: ``noslip simulate``'s Parquet outputs as
-  pandas DataFrames, units in ``attrs`` (pyarrow, the ``sweep`` extra).
+- :func:`read_log`, :func:`read_boundary_map`, :func:`read_observables`: ``noslip
+  simulate``'s Parquet outputs as pandas DataFrames, units in ``attrs`` (pyarrow, the
+  ``sweep`` extra).
 - :class:`InputError`: bad input (a ``ValueError`` naming the field).
 
 ``noslip.__version__`` is the package's version. Long native calls (:func:`simulate`,
-:func:`lyapunov`, :func:`orbits`, :func:`verify`) stop on Ctrl-C with
-``KeyboardInterrupt``, discarding their partial results.
+:func:`lyapunov`, :func:`orbits`, :func:`verify`, :func:`report`, :func:`collide_batch`)
+stop on Ctrl-C with ``KeyboardInterrupt``, discarding their partial results.
 
 See ``docs/python.md``.
 """
@@ -28,7 +29,7 @@ from noslip._native import DIMS, InputError, Scene, __version__
 from noslip.batch import collide_batch, isa
 from noslip.case import collide
 from noslip.checks import report, verify
-from noslip.columnar import read_boundary_map, read_log
+from noslip.columnar import read_boundary_map, read_log, read_observables
 from noslip.dynamics import LyapunovResult, OrbitsResult, lyapunov, orbits
 from noslip.simulate import SimulationResult, simulate
 from noslip.sweep import sweep
@@ -49,6 +50,7 @@ __all__ = [
     "orbits",
     "read_boundary_map",
     "read_log",
+    "read_observables",
     "report",
     "simulate",
     "sweep",

@@ -291,6 +291,10 @@ def collide_batch(
     InputError
         A wrong shape or dtype (naming the field, ``out[1].velocity`` for an output), or
         with ``validate`` the first bad row: ``row 17: bodies[1].gamma2: ...``.
+    KeyboardInterrupt
+        Ctrl-C (SIGINT): Python's signals are looked at before each run of 4096 rows (once
+        50 ms have passed); the new arrays are discarded, and arrays given as ``out`` hold
+        the results of the runs done before it and are unchanged elsewhere.
     """
     nu = _numeric(normal, "normal")
     if np.ndim(nu) not in (1, 2):

@@ -61,6 +61,12 @@ def report(dims: Iterable[int] = (2, 3), samples: int = 200, seed: int = 1) -> d
     dict
         ``report.json``'s content (``dims``: per dimension, per regime, per variant, the
         errors and timings; ``options``; ``provenance``).
+
+    Raises
+    ------
+    KeyboardInterrupt
+        Ctrl-C (SIGINT): Python's signals are looked at before each case and each variant's
+        timing (once 50 ms have passed); the partial results are discarded.
     """
     out: Dict[str, Any] = json.loads(_native.report(_dims(dims), samples, seed))
     return out

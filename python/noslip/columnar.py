@@ -1,9 +1,10 @@
-"""The Parquet outputs of ``noslip simulate``, read without text: :func:`read_log` and
-:func:`read_boundary_map`.
+"""The Parquet outputs of ``noslip simulate``, read without text: :func:`read_log`,
+:func:`read_boundary_map` and :func:`read_observables`.
 
-``noslip simulate SCENE --log FILE.parquet --boundary-map FILE.parquet`` writes the events
-log and the boundary map as Apache Parquet (the crate ``noslip-columnar``): typed columns,
-and in the file's metadata ``noslip.units`` (column name to unit: ``L`` the scene's length
+``noslip simulate SCENE --log FILE.parquet --boundary-map FILE.parquet --observables DT``
+writes the events log, the boundary map and (``observables.parquet`` in its output
+directory) the granular observables as Apache Parquet (the crate ``noslip-columnar``): typed
+columns, and in the file's metadata ``noslip.units`` (column name to unit: ``L`` the scene's length
 unit, ``T`` its time unit, ``1`` none), ``noslip.table`` (what a row is) and ``noslip.dim``.
 These functions return the table as a pandas DataFrame with those in ``DataFrame.attrs``.
 
@@ -21,13 +22,17 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["read_log", "read_boundary_map"]
+__all__ = ["read_log", "read_boundary_map", "read_observables"]
 
-#: A column each table has and the other has not: how a file is told apart.
-_MARKS = {"events log": "ball_0", "boundary map": "coordinate"}
+#: A column each table has and the others have not: how a file is told apart.
+_MARKS = {"events log": "ball_0", "boundary map": "coordinate", "observables": "T_tr"}
 
 #: The function that reads each table.
-_READERS = {"events log": "read_log", "boundary map": "read_boundary_map"}
+_READERS = {
+    "events log": "read_log",
+    "boundary map": "read_boundary_map",
+    "observables": "read_observables",
+}
 
 
 def _parquet() -> Any:
@@ -41,7 +46,7 @@ def _parquet() -> Any:
         ) from e
 
 
-def _read(path: str | os.PathLike[str], what: str, other: str) -> pd.DataFrame:
+def _read(path: str | os.PathLike[str], what: str) -> pd.DataFrame:
     """The table ``what`` in the Parquet file ``path``, with its metadata in ``attrs``."""
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(
@@ -60,10 +65,12 @@ def _read(path: str | os.PathLike[str], what: str, other: str) -> pd.DataFrame:
     }
     columns = set(table.column_names)
     if "noslip.units" not in meta or _MARKS[what] not in columns:
+        other = next(
+            (o for o, mark in _MARKS.items() if "noslip.units" in meta and mark in columns),
+            None,
+        )
         hint = (
-            f" (it is a noslip {other}: read it with noslip.{_READERS[other]})"
-            if "noslip.units" in meta and _MARKS[other] in columns
-            else ""
+            f" (it is a noslip {other}: read it with noslip.{_READERS[other]})" if other else ""
         )
         raise ValueError(f"path: {name} is not a noslip {what} written by noslip simulate{hint}")
     frame: pd.DataFrame = table.to_pandas()
@@ -108,7 +115,7 @@ def read_log(path: str | os.PathLike[str]) -> pd.DataFrame:
     >>> log = noslip.read_log("out/sinai/events.parquet")  # doctest: +SKIP
     >>> log["time"].to_numpy(), log.attrs["units"]["time"]  # doctest: +SKIP
     """
-    return _read(path, "events log", "boundary map")
+    return _read(path, "events log")
 
 
 def read_boundary_map(path: str | os.PathLike[str]) -> pd.DataFrame:
@@ -139,4 +146,34 @@ def read_boundary_map(path: str | os.PathLike[str]) -> pd.DataFrame:
         The file is not Parquet, or not a boundary map of ``noslip simulate`` (the message
         names ``path``).
     """
-    return _read(path, "boundary map", "events log")
+    return _read(path, "boundary map")
+
+
+def read_observables(path: str | os.PathLike[str]) -> pd.DataFrame:
+    """Read the granular observables ``noslip simulate --observables DT`` wrote.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The Parquet file, ``observables.parquet`` in the run's output directory.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per sample, the CSV's columns typed: ``time``, ``contacts`` (int64),
+        ``T_tr``, ``T_rot``, ``energy``, ``collision_frequency``, ``lost_ball_ball``,
+        ``lost_ball_wall``, ``lost_ball_obstacle``, ``lost_ball_boundary``
+        (``docs/granular.md``; the same as :attr:`SimulationResult.observables`).
+        ``attrs`` as :func:`read_log`'s (units in the scene's ``M``, ``L``, ``T``).
+
+    Raises
+    ------
+    ImportError
+        pyarrow or pandas is not installed.
+    FileNotFoundError
+        No such file.
+    ValueError
+        The file is not Parquet, or not observables of ``noslip simulate`` (the message
+        names ``path``).
+    """
+    return _read(path, "observables")

@@ -60,6 +60,17 @@ class SimulationResult:
         ``sqrt(2 lambda)`` times the spin. Empty without ``boundary_map``.
     html : str or None
         The animation page (``html=True``), else None.
+    observables : dict of ndarray
+        The granular-gas observables (``observables=DT``), one row at the start and at the
+        first contact at or after each multiple of ``DT``, the state just after it, under
+        the columns of ``noslip simulate --observables``'s CSV (the same numbers, bit for
+        bit; ``docs/granular.md``), units in the scene's mass ``M``, length ``L`` and time
+        ``T``: ``time`` [T], ``contacts`` (int64), ``T_tr`` and ``T_rot`` (temperatures per
+        degree of freedom, [M L^2 T^-2]; ``T_tr`` without the centre of mass's motion),
+        ``energy``, ``collision_frequency`` [1/T] (ball-ball contacts per ball and unit time
+        since the previous row, NaN in the first), ``lost_ball_ball``, ``lost_ball_wall``,
+        ``lost_ball_obstacle``, ``lost_ball_boundary`` (energy lost so far at each kind of
+        contact). Empty without ``observables``.
     """
 
     summary: dict[str, Any]
@@ -67,6 +78,7 @@ class SimulationResult:
     events: dict[str, npt.NDArray[Any]] = field(repr=False)
     boundary_map: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
     html: str | None = field(repr=False, default=None)
+    observables: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
 
     def __repr__(self) -> str:
         s = self.summary
@@ -77,9 +89,10 @@ class SimulationResult:
         )
         rows = len(next(iter(self.events.values()), ()))
         bmap = len(next(iter(self.boundary_map.values()), ()))
+        samples = len(self.observables.get("time", ()))
         return (
             f"SimulationResult({shown}, energy samples={len(self.energy.get('drift', ()))}, "
-            f"events log rows={rows}, boundary map rows={bmap})"
+            f"events log rows={rows}, boundary map rows={bmap}, observables rows={samples})"
         )
 
 
@@ -92,6 +105,7 @@ def simulate(
     boundary_map: bool = False,
     max_memory: int = MAX_MEMORY,
     html: bool = False,
+    observables: float | None = None,
 ) -> SimulationResult:
     """Run a scene with the event-driven simulator of ``noslip simulate``.
 
@@ -127,19 +141,23 @@ def simulate(
         :attr:`SimulationResult.html`: one self-contained HTML document (under about 2 MB
         whatever the run; ``docs/animation.md``). In a notebook, show it with
         ``IPython.display.HTML`` in an ``<iframe srcdoc=...>``.
+    observables : float, optional
+        Sample the granular-gas observables every this much simulated time (positive and
+        finite), as ``noslip simulate --observables``: :attr:`SimulationResult.observables`
+        (264 bytes a row counted against ``max_memory``).
 
     Raises
     ------
     InputError
-        A bad scene (the message names the place) or limit, or records beyond
-        ``max_memory`` (naming ``events`` or ``time``).
+        A bad scene (the message names the place), limit or ``observables`` interval, or
+        records beyond ``max_memory`` (naming ``events`` or ``time``).
     KeyboardInterrupt
         Ctrl-C (SIGINT) during the run: the loop looks at Python's signals every 1024
         contacts once 50 ms have passed, so it stops within about 0.1 s; the partial run is
         discarded.
     """
     out = _native.simulate(
-        as_scene(scene), events, time, log, boundary_map, max_memory, html
+        as_scene(scene), events, time, log, boundary_map, max_memory, html, observables
     )
     summary = json.loads(out["summary"])
     energy = dict(out["energy"])
@@ -151,4 +169,5 @@ def simulate(
         events=dict(out["events"]),
         boundary_map=bmap,
         html=out["html"],
+        observables=dict(out["observables"]),
     )

@@ -5,7 +5,8 @@
 use crate::error::{input_error, unsigned};
 use crate::signals::Signals;
 use noslip_accuracy::{
-    check_samples, dim_result, AccuracyReport, Options as ReportOptions, Provenance, MAX_SAMPLES,
+    check_samples, dim_result_interruptible, AccuracyReport, Options as ReportOptions, Provenance,
+    MAX_SAMPLES,
 };
 use noslip_verify::report::Report;
 use noslip_verify::suite::{self, check_points, Options as VerifyOptions, MAX_POINTS};
@@ -92,19 +93,32 @@ pub fn report(
         seed,
         ..ReportOptions::default()
     };
-    Ok(py.detach(|| {
+    // Asked before each case (milliseconds in exact rationals) and each timing.
+    let signals = Signals::new(1);
+    let interrupted = || signals.interrupted();
+    let json = py.detach(|| {
         let start = Instant::now();
-        let results = dims.iter().map(|&d| dim_result(d, &opts, |_| {})).collect();
-        AccuracyReport {
-            tool: format!("noslip-python {}", env!("CARGO_PKG_VERSION")),
-            provenance: Provenance::collect(
-                format!("noslip.report(dims={dims:?}, samples={samples}, seed={seed})"),
-                std::path::Path::new("."),
-            ),
-            options: opts,
-            dims: results,
-            seconds: start.elapsed().as_secs_f64(),
-        }
-        .to_json()
-    }))
+        let results = dims
+            .iter()
+            .map(|&d| dim_result_interruptible(d, &opts, |_| {}, &interrupted))
+            .collect::<Option<Vec<_>>>()?;
+        Some(
+            AccuracyReport {
+                tool: format!("noslip-python {}", env!("CARGO_PKG_VERSION")),
+                provenance: Provenance::collect(
+                    format!("noslip.report(dims={dims:?}, samples={samples}, seed={seed})"),
+                    std::path::Path::new("."),
+                ),
+                options: opts,
+                dims: results,
+                seconds: start.elapsed().as_secs_f64(),
+            }
+            .to_json(),
+        )
+    });
+    match (json, signals.raised()) {
+        (_, Some(e)) => Err(e),
+        (Some(json), None) => Ok(json),
+        (None, None) => Err(input_error("internal error: stopped without a signal")),
+    }
 }

@@ -8,10 +8,15 @@
 //! the GIL and runs the handlers. An exception they raise (`KeyboardInterrupt`) is kept,
 //! the hook answers "stop" from then on, and the binding raises the exception once the
 //! loop has returned, discarding the partial result.
+//!
+//! Python runs signal handlers in its main thread only, so only the thread that made the
+//! hook (the one that called into the extension) looks at them; on the other threads of a
+//! loop shared with rayon (`collide_batch`) the hook answers from the stop flag alone.
 
 use pyo3::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Mutex;
+use std::thread::ThreadId;
 use std::time::{Duration, Instant};
 
 /// How often the signal handlers run during a long loop: 50 ms, so that Ctrl-C is
@@ -21,6 +26,8 @@ pub const CHECK_PERIOD: Duration = Duration::from_millis(50);
 /// The hook of one native call (see the module docs).
 pub struct Signals {
     every: u64,
+    /// The thread that made the hook: the only one that runs the handlers.
+    owner: ThreadId,
     calls: AtomicU64,
     start: Instant,
     /// Nanoseconds from `start` to the last look at the signals.
@@ -35,6 +42,7 @@ impl Signals {
     pub fn new(every: u64) -> Self {
         Signals {
             every: every.max(1),
+            owner: std::thread::current().id(),
             calls: AtomicU64::new(0),
             start: Instant::now(),
             last: AtomicU64::new(0),
@@ -47,6 +55,9 @@ impl Signals {
     pub fn interrupted(&self) -> bool {
         if self.stop.load(Ordering::Relaxed) {
             return true;
+        }
+        if std::thread::current().id() != self.owner {
+            return false;
         }
         if self.calls.fetch_add(1, Ordering::Relaxed) % self.every != 0 {
             return false;

@@ -5,13 +5,15 @@
 //! read back into columns: the same numbers, bit for bit (shortest round-trip text). The
 //! boundary map is `noslip_sim::boundary_map::row` of each contact with an immovable body,
 //! as `noslip simulate --boundary-map` writes it, in the CSV's columns. With `html`, the run
-//! as the animation page of `noslip simulate --html` (`noslip_sim::animation`).
+//! as the animation page of `noslip simulate --html` (`noslip_sim::animation`). With
+//! `observables`, the rows of `noslip simulate --observables` (`noslip_sim::granular`).
 
 use crate::error::{input_error, unsigned_opt};
 use crate::scene::Scene;
 use crate::signals::Signals;
 use collision_core::{Generated, Kernel};
 use noslip_sim::boundary_map::{self, Row};
+use noslip_sim::granular::{self, Sampler};
 use noslip_sim::run::{check_time, run_observed, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Simulation};
@@ -28,6 +30,7 @@ struct Run {
     columns: Columns,
     rows: Vec<Row>,
     html: Option<String>,
+    observables: Vec<granular::Row>,
 }
 
 /// What a run keeps of each contact, and at most how many contacts' worth.
@@ -39,6 +42,12 @@ struct Keep {
     html: bool,
     /// The most contacts whose records fit the memory cap (`u64::MAX` keeping nothing).
     contacts: u64,
+    /// Sample the observables every this much simulated time.
+    observables: Option<f64>,
+    /// The memory cap, in bytes, which the observables' rows share with the records.
+    max_memory: u64,
+    /// The bytes the records of a contact take ([`bytes_per_contact`]).
+    per_contact: u64,
 }
 
 /// The error of a run stopped at the memory cap (its text is replaced by [`simulate`]'s
@@ -78,6 +87,9 @@ where
     let mut recorder = keep
         .html
         .then(|| noslip_sim::animation::Recorder::new(&sim, &species, &title));
+    let mut sampler = keep
+        .observables
+        .map(|dt| Sampler::start(dt, &sim, &species));
     let (summary, trace) = run_observed(
         &mut sim,
         &species,
@@ -91,7 +103,14 @@ where
             if let Some(r) = &mut recorder {
                 r.observe(index, e, sim, &species);
             }
-            if index > keep.contacts {
+            if let Some(s) = &mut sampler {
+                s.contact(e, sim, &species);
+            }
+            let samples = sampler.as_ref().map_or(0, |s| s.rows().len() as u64);
+            if index > keep.contacts
+                || index.saturating_mul(keep.per_contact) + samples * OBSERVABLE_BYTES
+                    > keep.max_memory
+            {
                 return Err(std::io::Error::other(CAPPED));
             }
             if signals.interrupted() {
@@ -111,7 +130,31 @@ where
         columns: lines.columns,
         rows,
         html: recorder.map(|r| noslip_sim::animation_page::html(&r.finish(&sim))),
+        observables: sampler.map_or_else(Vec::new, |s| s.rows().to_vec()),
     })
+}
+
+/// Bytes one row of the observables holds, counted three times like the records (the
+/// vector's growth by doubling, then the arrays): 3 x 88.
+const OBSERVABLE_BYTES: u64 = 3 * std::mem::size_of::<granular::Row>() as u64;
+
+/// The observables' rows as arrays under the CSV's column names
+/// (`noslip_sim::granular::COLUMNS`): `contacts` as integers, the rest as doubles.
+fn observable_columns<'py>(
+    py: Python<'py>,
+    rows: &[granular::Row],
+) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    for (k, (name, _)) in granular::COLUMNS.iter().enumerate() {
+        if *name == "contacts" {
+            let v: Vec<i64> = rows.iter().map(|r| r.contacts as i64).collect();
+            out.set_item(name, array(py, v, &[rows.len()])?)?;
+        } else {
+            let v: Vec<f64> = rows.iter().map(|r| r.values()[k]).collect();
+            out.set_item(name, array(py, v, &[rows.len()])?)?;
+        }
+    }
+    Ok(out)
 }
 
 /// Why a run gave no result: bad input (the message), the memory cap reached at this
@@ -314,9 +357,10 @@ fn time_of(t: f64) -> PyResult<f64> {
 /// is known, else the run stops with an error at the cap). Returns a dict: ``summary`` (JSON
 /// text of the simulator's summary), ``energy`` (event counts and relative drifts of the
 /// samples), ``events`` (the log's columns as arrays), ``boundary_map``, ``html`` (the
-/// animation page with ``html``, else None).
+/// animation page with ``html``, else None), ``observables`` (with ``observables`` the
+/// sampling interval, the rows' columns as arrays; else empty).
 #[pyfunction]
-#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false))]
+#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false, observables=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -327,7 +371,13 @@ pub fn simulate<'py>(
     boundary_map: bool,
     max_memory: Option<Bound<'py, PyAny>>,
     html: bool,
+    observables: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if let Some(dt) = observables.filter(|dt| !(*dt > 0.0 && dt.is_finite())) {
+        return Err(input_error(format!(
+            "observables: the interval must be positive and finite, got {dt}"
+        )));
+    }
     let events = unsigned_opt(events.as_ref(), "events", 1, u64::MAX)?;
     let time = time.map(time_of).transpose()?;
     let max_memory =
@@ -351,12 +401,16 @@ pub fn simulate<'py>(
         map: boundary_map,
         html,
         contacts: max_memory.checked_div(per_contact).unwrap_or(u64::MAX),
+        observables,
+        max_memory,
+        per_contact,
     };
     let kept = || {
         [("log", log), ("boundary_map", boundary_map)]
             .iter()
             .filter(|k| k.1)
             .map(|k| format!("{}=True", k.0))
+            .chain(observables.map(|dt| format!("observables={dt:?}")))
             .collect::<Vec<_>>()
             .join(" and ")
     };
@@ -449,5 +503,6 @@ pub fn simulate<'py>(
     out.set_item("events", ev)?;
     out.set_item("boundary_map", map_columns(py, &done.rows, n)?)?;
     out.set_item("html", done.html)?;
+    out.set_item("observables", observable_columns(py, &done.observables)?)?;
     Ok(out)
 }

@@ -31,6 +31,22 @@ use collision_core::Ball;
 /// ball-wall (the box), ball-obstacle, ball-boundary (the table's other boundaries).
 pub const KINDS: [&str; 4] = ["ball_ball", "ball_wall", "ball_obstacle", "ball_boundary"];
 
+/// The columns of a row, in order: name and unit, in the scene's units of mass `M`, length
+/// `L` and time `T` (`1` a count). The CSV's header, the Parquet table's columns and the
+/// Python package's arrays share these names.
+pub const COLUMNS: [(&str, &str); 10] = [
+    ("time", "T"),
+    ("contacts", "1"),
+    ("T_tr", "M L^2 T^-2"),
+    ("T_rot", "M L^2 T^-2"),
+    ("energy", "M L^2 T^-2"),
+    ("collision_frequency", "T^-1"),
+    ("lost_ball_ball", "M L^2 T^-2"),
+    ("lost_ball_wall", "M L^2 T^-2"),
+    ("lost_ball_obstacle", "M L^2 T^-2"),
+    ("lost_ball_boundary", "M L^2 T^-2"),
+];
+
 /// One sample.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Row {
@@ -48,6 +64,26 @@ pub struct Row {
     pub frequency: f64,
     /// Energy lost so far per contact kind ([`KINDS`]).
     pub lost: [f64; 4],
+}
+
+impl Row {
+    /// The row's numbers in the order of [`COLUMNS`] (`contacts` as a double: exact below
+    /// `2^53`).
+    pub fn values(&self) -> [f64; COLUMNS.len()] {
+        let [a, b, c, d] = self.lost;
+        [
+            self.time,
+            self.contacts as f64,
+            self.t_tr,
+            self.t_rot,
+            self.energy,
+            self.frequency,
+            a,
+            b,
+            c,
+            d,
+        ]
+    }
 }
 
 /// `[T_tr, T_rot]` of the balls now (module docs).
@@ -184,25 +220,14 @@ impl Sampler {
         &self.rows
     }
 
-    /// The rows as CSV, one header line naming each column with its units in the scene's
-    /// units of mass `M`, length `L` and time `T` (temperatures and energies `M L^2 T^-2`).
+    /// The rows as CSV, one header line naming each column with its units ([`COLUMNS`]:
+    /// temperatures and energies `M L^2 T^-2`), numbers in Rust's shortest round-trip form.
     pub fn csv(&self) -> String {
-        let mut text = String::from(
-            "time [T],contacts [1],T_tr [M L^2 T^-2],T_rot [M L^2 T^-2],energy [M L^2 T^-2],\
-             collision_frequency [T^-1]",
-        );
-        for k in KINDS {
-            text.push_str(&format!(",lost_{k} [M L^2 T^-2]"));
-        }
-        text.push('\n');
+        let header: Vec<String> = COLUMNS.iter().map(|(n, u)| format!("{n} [{u}]")).collect();
+        let mut text = header.join(",") + "\n";
         for r in &self.rows {
-            text.push_str(&format!(
-                "{},{},{},{},{},{}",
-                r.time, r.contacts, r.t_tr, r.t_rot, r.energy, r.frequency
-            ));
-            for x in r.lost {
-                text.push_str(&format!(",{x}"));
-            }
+            let values: Vec<String> = r.values().iter().map(f64::to_string).collect();
+            text.push_str(&values.join(","));
             text.push('\n');
         }
         text

@@ -35,8 +35,9 @@ scene's [simulation] values, else 100000 events). Prints a summary (events, even
 second, kinetic energy and the drift of energy, linear and angular momentum relative to the
 start) and writes to --out, published as one set (the whole directory is replaced at once;
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
-drift over events), with --observables DT observables.csv (granular temperatures,
-collision frequency and energy lost per contact kind every DT; docs/granular.md) and, in 2D,
+drift over events), with --observables DT observables.csv and observables.parquet (granular
+temperatures, collision frequency and energy lost per contact kind every DT, the same
+numbers; docs/granular.md) and, in 2D,
 trajectories.svg (a few balls' paths, cut at periodic wraps
 and thinned, and the contact points). --log and --boundary-map belong to the set: a file
 directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
@@ -89,7 +90,8 @@ pub struct Args {
     html: Option<PathBuf>,
     /// Sample the granular-gas observables every DT of simulated time (translational and
     /// rotational temperatures, collision frequency, energy lost per contact kind) into
-    /// --out as observables.csv, units in its header (docs/granular.md).
+    /// --out as observables.csv, units in its header, and observables.parquet, units in its
+    /// metadata (docs/granular.md).
     #[arg(long, value_name = "DT", allow_negative_numbers = true)]
     observables: Option<f64>,
     /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
@@ -332,6 +334,10 @@ where
     if let Some(s) = &sampler {
         set.write("observables.csv", s.csv().as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
+        let table = columnar::observables::parquet(s.rows(), N)
+            .map_err(|e| Failure::output(format!("cannot write observables.parquet: {e}")))?;
+        set.write("observables.parquet", &table)
+            .map_err(|e| crate::exit::publish_failure(&e))?;
     }
     let energy = staged(
         energy_svg(&format!("{title}: energy drift"), &trace),
@@ -423,12 +429,13 @@ fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
 }
 
 /// Files of every simulate set; a side output may not take their names.
-const SET_FILES: [&str; 5] = [
+const SET_FILES: [&str; 6] = [
     crate::publish::MARKER,
     "summary.json",
     "energy.svg",
     "trajectories.svg",
     "observables.csv",
+    "observables.parquet",
 ];
 
 /// The member of the set that `--log` and `--boundary-map` become: the file's own name

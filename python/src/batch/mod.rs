@@ -25,6 +25,7 @@ mod run;
 mod unchecked;
 
 use crate::error::input_error;
+use crate::signals::Signals;
 use collision_core::batch::Exec;
 use collision_core::{RefArith, Scalar};
 pub(crate) use inputs::{BodyViews, Inputs};
@@ -34,7 +35,7 @@ pub(crate) use outputs::state_rows_mut;
 use outputs::{borrow_out, check_out, OutIn, Outputs};
 use pyo3::prelude::*;
 pub(crate) use run::piece_rows;
-use run::run_all;
+use run::{run_all, Stop};
 
 /// One body's arrays as Python passes them: `angular_velocity`, `velocity`, `inv_mass`,
 /// `radius`, `gamma2`.
@@ -112,15 +113,27 @@ where
                 x2.as_slice_mut().map_err(slice)?,
             ],
         };
-        py.detach(|| {
+        // Asked before each run of 4096 rows (0.1-0.4 ms without validation, 5-10 ms with):
+        // the clock is read every time, far below the cost of a run.
+        let signals = Signals::new(1);
+        let interrupted = || signals.interrupted();
+        let done = py.detach(|| {
             collision_core::with_dim!(
                 n,
-                |N, S| run_all::<T, N, S>(&input, validate, parallel, out),
-                Err(format!("dimension {n} has no batch kernels"))
+                |N, S| run_all::<T, N, S>(&input, validate, parallel, out, &interrupted),
+                Err(Stop::Refused(format!("dimension {n} has no batch kernels")))
             )
-        })
+        });
+        match (done, signals.raised()) {
+            (_, Some(e)) => Err(e),
+            (Err(Stop::Refused(m)), None) => Err(input_error(m)),
+            (Err(Stop::Interrupted), None) => {
+                Err(input_error("internal error: stopped without a signal"))
+            }
+            (Ok(()), None) => Ok(()),
+        }
     };
-    done.map_err(input_error)?;
+    done?;
     let [s1, s2] = spin;
     let [v1, v2] = velocity;
     Ok((s1, v1, s2, v2))

@@ -1,0 +1,98 @@
+"""The granular observables (``docs/granular.md``): ``noslip.simulate(..., observables=DT)``
+returns the rows ``noslip simulate --observables DT`` writes, bit for bit, both as its CSV and
+as its Parquet table (read by ``noslip.read_observables``); a bad interval raises naming
+``observables``; the rows count against ``max_memory``."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import noslip
+from conftest import run_cli
+
+ROOT = Path(__file__).resolve().parents[2]
+SCENE = ROOT / "scenes" / "granular3d.toml"
+COLUMNS = [
+    "time",
+    "contacts",
+    "T_tr",
+    "T_rot",
+    "energy",
+    "collision_frequency",
+    "lost_ball_ball",
+    "lost_ball_wall",
+    "lost_ball_obstacle",
+    "lost_ball_boundary",
+]
+
+
+@pytest.fixture(scope="module")
+def written(cli: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The CLI's output set of the granular gas to t = 3, sampled every 0.5."""
+    out = tmp_path_factory.mktemp("observables") / "run"
+    run_cli(
+        cli,
+        "simulate",
+        str(SCENE),
+        "--quiet",
+        "--time",
+        "3",
+        "--observables",
+        "0.5",
+        "--out",
+        str(out),
+    )
+    return out
+
+
+def test_the_rows_equal_the_cli_csv_and_parquet_bit_for_bit(written: Path) -> None:
+    got = noslip.simulate(SCENE, time=3, observables=0.5).observables
+    assert list(got) == COLUMNS
+    assert got["contacts"].dtype == np.int64 and got["time"].dtype == np.float64
+    with open(written / "observables.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    assert [h.split(" [")[0] for h in rows[0]] == COLUMNS
+    body = rows[1:]
+    # The start and the first contact after each of t = 0.5 .. 2.5 (none after 3: the run
+    # stops there).
+    assert len(body) == len(got["time"]) == 6
+    for k, name in enumerate(COLUMNS):
+        text = np.array([float(r[k]) for r in body])
+        ours = np.asarray(got[name], dtype=np.float64)
+        # Shortest round-trip decimals parse back to the same doubles (the bits compared,
+        # so -0.0 is not 0.0); NaN (the first row's frequency) where the CSV has NaN.
+        assert np.array_equal(np.isnan(ours), np.isnan(text)), name
+        ok = ~np.isnan(text)
+        assert np.array_equal(ours[ok].view(np.int64), text[ok].view(np.int64)), name
+    frame = noslip.read_observables(written / "observables.parquet")
+    assert list(frame.columns) == COLUMNS
+    assert frame["contacts"].dtype == np.int64
+    for name in COLUMNS:
+        np.testing.assert_array_equal(frame[name].to_numpy(), got[name], err_msg=name)
+    assert frame.attrs["units"]["T_tr"] == "M L^2 T^-2"
+    assert frame.attrs["units"]["collision_frequency"] == "T^-1"
+    assert frame.attrs["dim"] == 3
+
+
+def test_other_tables_are_told_apart(written: Path) -> None:
+    with pytest.raises(ValueError, match=r"is not a noslip events log.*read_observables"):
+        noslip.read_log(written / "observables.parquet")
+
+
+@pytest.mark.parametrize("dt", [0.0, -1.0, float("nan"), float("inf")])
+def test_a_bad_interval_names_observables(dt: float) -> None:
+    with pytest.raises(noslip.InputError, match="observables: the interval must be positive"):
+        noslip.simulate(SCENE, events=10, observables=dt)
+
+
+def test_the_rows_count_against_max_memory() -> None:
+    # A row at every contact (the interval far below the time between contacts), 264 bytes
+    # each: 2640 bytes hold 10 rows.
+    with pytest.raises(noslip.InputError, match=r"time: .*observables=1e-12.*max_memory = 2640"):
+        noslip.simulate(SCENE, time=1, observables=1e-12, max_memory=2640)
+    small = noslip.simulate(SCENE, events=5, observables=1e-12, max_memory=2640)
+    assert len(small.observables["time"]) == 6  # the start and each contact
