@@ -196,3 +196,70 @@ fn the_page_is_self_contained_and_carries_every_frame() {
     assert_eq!(d["frames"], a.frames.len());
     assert!(page.contains("id=\"portrait\""));
 }
+
+/// A 3D cube with the wall `x + y + z = 3/2` (through its centre, normal `(1, 1, 1)`): the
+/// section is the regular hexagon through the midpoints of the six edges the plane crosses,
+/// drawn as six segments beside the box's twelve edges, each the projection of two of those
+/// midpoints. In 4D, the same wall seen in the slice `x_3 = size_3 / 2`.
+#[test]
+fn an_oblique_wall_in_3d_is_drawn_as_its_section_by_the_box() {
+    let text = "dim = 3\n[box]\nsize = [1, 1, 1]\nboundary = [\"wall\", \"wall\", \"wall\"]\n\
+                [[wall]]\npoint = [\"1/2\", \"1/2\", \"1/2\"]\nnormal = [-1, -1, -1]\n\
+                [[species]]\nmass = 1\nradius = \"1/20\"\n\
+                [[ball]]\nspecies = 0\nposition = [\"1/5\", \"1/5\", \"1/5\"]\nvelocity = [1, \"1/3\", \"1/7\"]\n";
+    let scene = Scene::from_toml(text, "hexagon.toml").unwrap();
+    let setup = setup::<3, 3>(&scene).unwrap();
+    let species = setup.species.clone();
+    let s = sim(setup);
+    let rec = Recorder::new(&s, &species, "hexagon");
+    let (segments, ..) = rec.table_lines(&s);
+    assert_eq!(segments.len(), 12 + 6, "{segments:?}");
+    // The hexagon's vertices: the midpoints of the edges from (1,0,0)-like to (1,1,0)-like
+    // corners, every permutation of (1, 1/2, 0), in the recorder's local frame.
+    let mut want: Vec<[f64; 2]> = Vec::new();
+    for perm in [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ] {
+        let mut x = [0.0; 3];
+        x[perm[0]] = 1.0;
+        x[perm[1]] = 0.5;
+        let p = apply(&rec.project, &x);
+        want.push([p[0], p[1]]);
+    }
+    let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]) < 1e-12;
+    for seg in &segments[12..] {
+        for end in [[seg[0], seg[1]], [seg[2], seg[3]]] {
+            assert!(want.iter().any(|&w| close(w, end)), "{end:?} not a vertex");
+        }
+    }
+    // Each vertex ends two of the six segments: a closed hexagon.
+    for w in &want {
+        let ends = segments[12..]
+            .iter()
+            .flat_map(|s| [[s[0], s[1]], [s[2], s[3]]])
+            .filter(|&e| close(*w, e))
+            .count();
+        assert_eq!(ends, 2, "{w:?}");
+    }
+    // The plane of a face (x = 0, the box's own wall) adds nothing; through one corner only,
+    // nothing; x = y, the diagonal of the faces z = 0 and z = 1 (its two box edges are drawn
+    // already). In 4D, the wall x_0 + x_3 = 1 seen at x_3 = 1/2 is the square x_0 = 1/2.
+    let size = [1.0; 3];
+    assert!(table::wall_section(&[0.0; 3], &[1.0, 0.0, 0.0], &size).is_empty());
+    assert!(table::wall_section(&[0.0; 3], &[1.0, 1.0, 1.0], &size).is_empty());
+    let diagonal = table::wall_section(&[0.0; 3], &[1.0, -1.0, 0.0], &size);
+    assert_eq!(diagonal.len(), 2, "{diagonal:?}");
+    for [a, b] in diagonal {
+        assert_eq!((a[0], a[1], b[0], b[1], a[2]), (0.0, 0.0, 1.0, 1.0, b[2]));
+    }
+    let slice = table::wall_section(&[1.0, 0.0, 0.0, 0.0], &[1.0, 0.0, 0.0, 1.0], &[1.0; 4]);
+    assert_eq!(slice.len(), 4, "{slice:?}");
+    for [a, b] in slice {
+        assert_eq!((a[0], b[0], a[3], b[3]), (0.5, 0.5, 0.5, 0.5));
+    }
+}
