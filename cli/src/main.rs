@@ -4,6 +4,11 @@
 use clap::Parser;
 use std::process::ExitCode;
 
+/// Large arrays (the engine's records at many balls) on 2 MiB pages
+/// (`noslip_sim::huge_pages`; measured in docs/benchmarks.md, "Huge pages").
+#[global_allocator]
+static ALLOC: noslip_sim::huge_pages::HugePages = noslip_sim::huge_pages::HugePages;
+
 fn main() -> ExitCode {
     match noslip::Cli::try_parse() {
         Ok(cli) => noslip::run(cli),

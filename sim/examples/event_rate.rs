@@ -27,6 +27,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 
+/// Large arrays on 2 MiB pages, as the `noslip` command has them (`noslip_sim::huge_pages`).
+#[global_allocator]
+static ALLOC: noslip_sim::huge_pages::HugePages = noslip_sim::huge_pages::HugePages;
+
 /// Seconds of CPU time this thread has run (Linux), or of wall clock since `start`.
 fn seconds(start: &Instant) -> f64 {
     std::fs::read_to_string("/proc/thread-self/schedstat")

@@ -14,6 +14,10 @@ use noslip_scene::Scene;
 use noslip_sim::setup::{saturation, setup};
 use std::time::Instant;
 
+/// Large arrays on 2 MiB pages, as the `noslip` command has them (`noslip_sim::huge_pages`).
+#[global_allocator]
+static ALLOC: noslip_sim::huge_pages::HugePages = noslip_sim::huge_pages::HugePages;
+
 /// The scene text: `count` balls of radius 1/2 at `fraction` of a periodic cube in `dim`
 /// dimensions (side `(count V_n / 2^n / fraction)^(1/n)`, written with 12 decimals).
 fn scene(dim: usize, count: usize, fraction: f64, placement: &str) -> String {

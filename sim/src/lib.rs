@@ -22,7 +22,8 @@
 //! checked in the f64 arithmetic the engine uses ([`range`]) and placed in O(N) ([`place`],
 //! [`cover`], [`sequential`]); [`run`] runs it to its limits, writing the event log ([`log`],
 //! [`run::event_json`]) and keeping bounded traces ([`trace`]) for the pictures ([`plot`]) and the browser
-//! animation ([`animation`], [`animation_page`]).
+//! animation ([`animation`], [`animation_page`]). [`huge_pages`] is the allocator the binaries
+//! that run the engine register, so that its large arrays sit on 2 MiB pages.
 //! This crate must not parse command lines, print, or write files other than through the
 //! writers it is given: that is the `noslip` command's business.
 
@@ -38,6 +39,7 @@ pub mod dilute;
 pub mod engine;
 mod extent;
 pub mod granular;
+pub mod huge_pages;
 mod immovable;
 pub mod lattice;
 #[cfg(test)]
