@@ -30,7 +30,8 @@ fn the_granular_gas_writes_its_observables() {
         lines.next().unwrap(),
         "time [T],contacts [1],T_tr [M L^2 T^-2],T_rot [M L^2 T^-2],energy [M L^2 T^-2],\
          collision_frequency [T^-1],lost_ball_ball [M L^2 T^-2],lost_ball_wall [M L^2 T^-2],\
-         lost_ball_obstacle [M L^2 T^-2],lost_ball_boundary [M L^2 T^-2]"
+         lost_ball_obstacle [M L^2 T^-2],lost_ball_boundary [M L^2 T^-2],\
+         pressure [M L^-1 T^-2],a2 [1]"
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())

@@ -144,7 +144,8 @@ def simulate(
     observables : float, optional
         Sample the granular-gas observables every this much simulated time (positive and
         finite), as ``noslip simulate --observables``: :attr:`SimulationResult.observables`
-        (264 bytes a row counted against ``max_memory``).
+        (360 bytes a row with one species, 48 more a species in a mixture, counted against
+        ``max_memory``).
 
     Raises
     ------

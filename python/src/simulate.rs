@@ -30,7 +30,8 @@ struct Run {
     columns: Columns,
     rows: Vec<Row>,
     html: Option<String>,
-    observables: Vec<granular::Row>,
+    /// The observables' columns (name, unit) and rows (none without `observables`).
+    observables: (Vec<(String, String)>, Vec<granular::Row>),
 }
 
 /// What a run keeps of each contact, and at most how many contacts' worth.
@@ -108,7 +109,8 @@ where
             }
             let samples = sampler.as_ref().map_or(0, |s| s.rows().len() as u64);
             if index > keep.contacts
-                || index.saturating_mul(keep.per_contact) + samples * OBSERVABLE_BYTES
+                || index.saturating_mul(keep.per_contact)
+                    + samples * observable_bytes(species.len())
                     > keep.max_memory
             {
                 return Err(std::io::Error::other(CAPPED));
@@ -130,27 +132,32 @@ where
         columns: lines.columns,
         rows,
         html: recorder.map(|r| noslip_sim::animation_page::html(&r.finish(&sim))),
-        observables: sampler.map_or_else(Vec::new, |s| s.rows().to_vec()),
+        observables: sampler.map_or_else(Default::default, |s| (s.columns(), s.rows().to_vec())),
     })
 }
 
-/// Bytes one row of the observables holds, counted three times like the records (the
-/// vector's growth by doubling, then the arrays): 3 x 88.
-const OBSERVABLE_BYTES: u64 = 3 * std::mem::size_of::<granular::Row>() as u64;
+/// Bytes one row of the observables holds with `species` species, counted three times like
+/// the records (the vector's growth by doubling, then the arrays): the row and its
+/// per-species temperatures.
+fn observable_bytes(species: usize) -> u64 {
+    let per_species = if species > 1 { 16 * species } else { 0 };
+    3 * (std::mem::size_of::<granular::Row>() + per_species) as u64
+}
 
 /// The observables' rows as arrays under the CSV's column names
-/// (`noslip_sim::granular::COLUMNS`): `contacts` as integers, the rest as doubles.
+/// (`noslip_sim::granular::Sampler::columns`): `contacts` as integers, the rest as doubles.
 fn observable_columns<'py>(
     py: Python<'py>,
-    rows: &[granular::Row],
+    (columns, rows): &(Vec<(String, String)>, Vec<granular::Row>),
 ) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    for (k, (name, _)) in granular::COLUMNS.iter().enumerate() {
-        if *name == "contacts" {
+    let values: Vec<Vec<f64>> = rows.iter().map(granular::Row::values).collect();
+    for (k, (name, _)) in columns.iter().enumerate() {
+        if name == "contacts" {
             let v: Vec<i64> = rows.iter().map(|r| r.contacts as i64).collect();
             out.set_item(name, array(py, v, &[rows.len()])?)?;
         } else {
-            let v: Vec<f64> = rows.iter().map(|r| r.values()[k]).collect();
+            let v: Vec<f64> = values.iter().map(|r| r[k]).collect();
             out.set_item(name, array(py, v, &[rows.len()])?)?;
         }
     }

@@ -27,6 +27,8 @@ COLUMNS = [
     "lost_ball_wall",
     "lost_ball_obstacle",
     "lost_ball_boundary",
+    "pressure",
+    "a2",
 ]
 
 
@@ -90,9 +92,9 @@ def test_a_bad_interval_names_observables(dt: float) -> None:
 
 
 def test_the_rows_count_against_max_memory() -> None:
-    # A row at every contact (the interval far below the time between contacts), 264 bytes
-    # each: 2640 bytes hold 10 rows.
-    with pytest.raises(noslip.InputError, match=r"time: .*observables=1e-12.*max_memory = 2640"):
-        noslip.simulate(SCENE, time=1, observables=1e-12, max_memory=2640)
-    small = noslip.simulate(SCENE, events=5, observables=1e-12, max_memory=2640)
+    # A row at every contact (the interval far below the time between contacts), 360 bytes
+    # each (one species): 3600 bytes hold 10 rows.
+    with pytest.raises(noslip.InputError, match=r"time: .*observables=1e-12.*max_memory = 3600"):
+        noslip.simulate(SCENE, time=1, observables=1e-12, max_memory=3600)
+    small = noslip.simulate(SCENE, events=5, observables=1e-12, max_memory=3600)
     assert len(small.observables["time"]) == 6  # the start and each contact

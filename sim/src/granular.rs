@@ -1,23 +1,40 @@
 //! Granular-gas observables sampled over a run (docs/granular.md): the translational and
-//! rotational granular temperatures, the collision frequency and the kinetic energy lost per
-//! contact kind, written as CSV with the units in the header.
+//! rotational granular temperatures (of the whole gas and, in a mixture, of each species), the
+//! collision frequency, the kinetic energy lost per contact kind, the pressure and the
+//! velocity distribution's cumulant `a_2`, written as CSV with the units in the header.
 //!
 //! With `N_b` balls in R^n, `S = n(n-1)/2`, masses `m_i` and moments of inertia `I_i = 2 m_i
 //! lambda_i` (the project's convention: a ball's kinetic energy is `1/2 m |u|^2 + 1/2 I
 //! sum_{k<l} U_kl^2`, docs/derivation.md), the temperatures per degree of freedom are
 //!
 //! ```text
-//! T_tr  = sum_i m_i |u_i - V|^2 / (n (N_b - 1)),
+//! T_tr  = sum_i m_i |c_i|^2 / (n (N_b - 1)),          c_i = u_i - V,
 //! T_rot = sum_i I_i sum_{k<l} (U_i)_kl^2 / (S N_rot),
 //! ```
 //!
-//! `V = sum_i m_i u_i / sum_i m_i` the centre of mass's velocity: its motion is taken out
-//! (conserved in a periodic box, it is no thermal motion), leaving `n (N_b - 1)` translational
-//! degrees of freedom; `N_rot` the balls with `lambda > 0` (a point mass has no rotational
-//! degrees of freedom).
+//! `V = sum_i m_i u_i / M` (`M = sum_i m_i`) the centre of mass's velocity: its motion is taken
+//! out (conserved in a periodic box, it is no thermal motion), leaving `n (N_b - 1)`
+//! translational degrees of freedom; `N_rot` the balls with `lambda > 0` (a point mass has no
+//! rotational degrees of freedom). Of species `s` (`N_s` balls of total mass `M_s`):
+//! `T_tr,s = sum_{i in s} m_i |c_i|^2 / (n (N_s - M_s / M))` (at equal temperatures
+//! `E[m_i |c_i|^2] = n T (1 - m_i / M)` for Maxwellian velocities, so the `n (N_s - M_s/M)`
+//! degrees of freedom add up to the whole gas's) and `T_rot,s` as `T_rot` over its balls.
+//!
 //! The collision frequency between two samples is `2 C_bb / (N_b dt)`: ball-ball contacts
 //! `C_bb` in the interval, two balls each, per ball and unit time. The energy lost by a
 //! contact is the kinetic energy of its balls before minus after.
+//!
+//! The pressure of a periodic box of volume `V_box` without obstacles or other boundaries
+//! (NaN otherwise: they take momentum the bulk formula does not count) is the kinetic part now plus the
+//! collisional virial over the interval since the previous row,
+//!
+//! ```text
+//! P = sum_i m_i |c_i|^2 / (n V_box) + sum_{ball-ball contacts in dt} r_ij . J_i / (n V_box dt),
+//! ```
+//!
+//! `r_ij = x_i - x_j = -(R_i + R_j) nu` at contact and `J_i = m_i (u_i' - u_i)` the impulse on
+//! ball `i` (only its normal part counts: `r_ij` is along `nu`), NaN in the first row. The
+//! cumulant `a_2 = n / (n + 2) <|c|^4> / <|c|^2>^2 - 1` over the balls (0 for a Maxwellian).
 //!
 //! A row is written at the first contact at or after each multiple of the interval `every`
 //! (and one at the start): the row's time is that contact's, and the state is the one just
@@ -31,21 +48,8 @@ use collision_core::Ball;
 /// ball-wall (the box), ball-obstacle, ball-boundary (the table's other boundaries).
 pub const KINDS: [&str; 4] = ["ball_ball", "ball_wall", "ball_obstacle", "ball_boundary"];
 
-/// The columns of a row, in order: name and unit, in the scene's units of mass `M`, length
-/// `L` and time `T` (`1` a count). The CSV's header, the Parquet table's columns and the
-/// Python package's arrays share these names.
-pub const COLUMNS: [(&str, &str); 10] = [
-    ("time", "T"),
-    ("contacts", "1"),
-    ("T_tr", "M L^2 T^-2"),
-    ("T_rot", "M L^2 T^-2"),
-    ("energy", "M L^2 T^-2"),
-    ("collision_frequency", "T^-1"),
-    ("lost_ball_ball", "M L^2 T^-2"),
-    ("lost_ball_wall", "M L^2 T^-2"),
-    ("lost_ball_obstacle", "M L^2 T^-2"),
-    ("lost_ball_boundary", "M L^2 T^-2"),
-];
+/// The unit of temperatures and energies, in the scene's mass `M`, length `L` and time `T`.
+const ENERGY: &str = "M L^2 T^-2";
 
 /// One sample.
 #[derive(Clone, Debug, PartialEq)]
@@ -64,25 +68,106 @@ pub struct Row {
     pub frequency: f64,
     /// Energy lost so far per contact kind ([`KINDS`]).
     pub lost: [f64; 4],
+    /// The pressure (module docs; `NaN` in the first row and outside a periodic box).
+    pub pressure: f64,
+    /// The cumulant `a_2` of the translational velocities (module docs).
+    pub a2: f64,
+    /// `[T_tr,s, T_rot,s]` of each species `s`, in a mixture (empty with one species).
+    pub species: Vec<[f64; 2]>,
 }
 
 impl Row {
-    /// The row's numbers in the order of [`COLUMNS`] (`contacts` as a double: exact below
-    /// `2^53`).
-    pub fn values(&self) -> [f64; COLUMNS.len()] {
-        let [a, b, c, d] = self.lost;
-        [
+    /// The row's numbers in the order of [`Sampler::columns`] (`contacts` as a double:
+    /// exact below `2^53`).
+    pub fn values(&self) -> Vec<f64> {
+        let mut v = vec![
             self.time,
             self.contacts as f64,
             self.t_tr,
             self.t_rot,
             self.energy,
             self.frequency,
-            a,
-            b,
-            c,
-            d,
-        ]
+        ];
+        v.extend(self.lost);
+        v.extend([self.pressure, self.a2]);
+        v.extend(self.species.iter().flatten());
+        v
+    }
+}
+
+/// The translational and rotational moments of the balls now (module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Moments {
+    /// `[T_tr, T_rot]`.
+    pub temperatures: [f64; 2],
+    /// `sum_i m_i |c_i|^2`.
+    pub kinetic: f64,
+    /// `a_2`.
+    pub a2: f64,
+    /// `[T_tr,s, T_rot,s]` of every species (also with one).
+    pub species: Vec<[f64; 2]>,
+}
+
+/// The [`Moments`] of the balls of `sim` now.
+pub fn moments<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &Simulation<N, S, K>,
+    species: &[Ball<f64>],
+) -> Moments {
+    let (mut mass, mut p) = (0.0, [0.0; N]);
+    let mut species_mass = vec![0.0; species.len()];
+    let mut count = vec![0usize; species.len()];
+    for i in 0..sim.len() {
+        let s = sim.species_of(i);
+        let m = 1.0 / species[s].inv_mass;
+        mass += m;
+        species_mass[s] += m;
+        count[s] += 1;
+        for (pk, uk) in p.iter_mut().zip(&sim.state(i).velocity) {
+            *pk += m * uk;
+        }
+    }
+    let v = p.map(|pk| pk / mass);
+    let (mut tr, mut rot, mut rotating) = (0.0, 0.0, 0usize);
+    let (mut c2, mut c4) = (0.0, 0.0);
+    // Per species: sum m |c|^2, sum I |U|^2, balls with lambda > 0.
+    let mut per = vec![(0.0, 0.0, 0usize); species.len()];
+    for i in 0..sim.len() {
+        let s = sim.species_of(i);
+        let b = &species[s];
+        let m = 1.0 / b.inv_mass;
+        let state = sim.state(i);
+        let c: f64 = (0..N).map(|k| (state.velocity[k] - v[k]).powi(2)).sum();
+        tr += m * c;
+        per[s].0 += m * c;
+        c2 += c;
+        c4 += c * c;
+        if b.lambda() > 0.0 {
+            let r = 2.0 * m * b.lambda() * state.spin.iter().map(|x| x * x).sum::<f64>();
+            rot += r;
+            rotating += 1;
+            per[s].1 += r;
+            per[s].2 += 1;
+        }
+    }
+    let balls = sim.len() as f64;
+    let (n, s) = (N as f64, S as f64);
+    Moments {
+        temperatures: [
+            tr / (n * (balls.max(1.0) - 1.0)),
+            rot / (s * rotating as f64),
+        ],
+        kinetic: tr,
+        a2: n / (n + 2.0) * (c4 / balls) / (c2 / balls).powi(2) - 1.0,
+        species: per
+            .iter()
+            .zip(count.iter().zip(&species_mass))
+            .map(|(&(tr, rot, rotating), (&count, &ms))| {
+                [
+                    tr / (n * (count as f64 - ms / mass)),
+                    rot / (s * rotating as f64),
+                ]
+            })
+            .collect(),
     }
 }
 
@@ -91,30 +176,7 @@ pub fn temperatures<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &Simulation<N, S, K>,
     species: &[Ball<f64>],
 ) -> [f64; 2] {
-    let (mut mass, mut p) = (0.0, [0.0; N]);
-    for i in 0..sim.len() {
-        let m = 1.0 / species[sim.species_of(i)].inv_mass;
-        mass += m;
-        for (pk, uk) in p.iter_mut().zip(&sim.state(i).velocity) {
-            *pk += m * uk;
-        }
-    }
-    let v = p.map(|pk| pk / mass);
-    let (mut tr, mut rot, mut rotating) = (0.0, 0.0, 0usize);
-    for i in 0..sim.len() {
-        let b = &species[sim.species_of(i)];
-        let m = 1.0 / b.inv_mass;
-        let s = sim.state(i);
-        tr += m * (0..N).map(|k| (s.velocity[k] - v[k]).powi(2)).sum::<f64>();
-        if b.lambda() > 0.0 {
-            rot += 2.0 * m * b.lambda() * s.spin.iter().map(|x| x * x).sum::<f64>();
-            rotating += 1;
-        }
-    }
-    [
-        tr / (N * (sim.len().max(1) - 1)) as f64,
-        rot / (S * rotating) as f64,
-    ]
+    moments(sim, species).temperatures
 }
 
 /// The kinetic energy contact `e` of `sim` took away: its balls' energy before minus after.
@@ -137,14 +199,36 @@ pub fn lost<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sum
 }
 
+/// `r_ij . J_i` of a ball-ball contact `e` (module docs): `-(R_i + R_j) nu . m_i (u_i' - u_i)`.
+fn virial<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    e: &Event<N, S>,
+    i: usize,
+    j: usize,
+    sim: &Simulation<N, S, K>,
+    species: &[Ball<f64>],
+) -> f64 {
+    let (bi, bj) = (&species[sim.species_of(i)], &species[sim.species_of(j)]);
+    let impulse: f64 = (0..N)
+        .map(|k| e.nu[k] * (e.post[0].velocity[k] - e.pre[0].velocity[k]))
+        .sum();
+    -(bi.radius + bj.radius) * impulse / bi.inv_mass
+}
+
 /// Rows taken over a run: [`Sampler::start`], then [`Sampler::contact`] after each contact.
 #[derive(Clone, Debug)]
 pub struct Sampler {
     every: f64,
     next: f64,
+    dim: usize,
+    /// Species in the run: per-species columns when more than one.
+    species: usize,
+    /// The periodic box's volume, if the box is periodic on every axis.
+    volume: Option<f64>,
     /// Ball-ball contacts so far, and at the last row: `(time, ball-ball contacts)`.
     ball_ball: u64,
     last: (f64, u64),
+    /// `sum r_ij . J_i` over the ball-ball contacts since the last row.
+    virial: f64,
     lost: [f64; 4],
     rows: Vec<Row>,
 }
@@ -156,11 +240,19 @@ impl Sampler {
         sim: &Simulation<N, S, K>,
         species: &[Ball<f64>],
     ) -> Sampler {
+        let periodic = sim.table().boxed
+            && sim.periodic().iter().all(|&p| p)
+            && sim.obstacles().is_empty()
+            && sim.table().boundaries.is_empty();
         let mut s = Sampler {
             every,
             next: sim.now(),
+            dim: N,
+            species: species.len(),
+            volume: periodic.then(|| sim.box_size().iter().product()),
             ball_ball: 0,
             last: (sim.now(), 0),
+            virial: 0.0,
             lost: [0.0; 4],
             rows: Vec::new(),
         };
@@ -176,7 +268,10 @@ impl Sampler {
         species: &[Ball<f64>],
     ) {
         let k = match e.contact {
-            Contact::Ball { .. } => 0,
+            Contact::Ball { i, j } => {
+                self.virial += virial(e, i, j, sim, species);
+                0
+            }
             Contact::Wall { .. } => 1,
             Contact::Obstacle { .. } => 2,
             Contact::Boundary { .. } => 3,
@@ -194,12 +289,21 @@ impl Sampler {
         species: &[Ball<f64>],
     ) {
         let time = sim.now();
-        let [t_tr, t_rot] = temperatures(sim, species);
+        let m = moments(sim, species);
+        let [t_tr, t_rot] = m.temperatures;
         let (t0, c0) = self.last;
-        let frequency = if self.rows.is_empty() {
+        let first = self.rows.is_empty();
+        let frequency = if first {
             f64::NAN
         } else {
             2.0 * (self.ball_ball - c0) as f64 / (sim.len() as f64 * (time - t0))
+        };
+        let pressure = match self.volume {
+            Some(v) if !first => {
+                let n = N as f64;
+                m.kinetic / (n * v) + self.virial / (n * v * (time - t0))
+            }
+            _ => f64::NAN,
         };
         self.rows.push(Row {
             time,
@@ -209,8 +313,16 @@ impl Sampler {
             energy: sim.energy(),
             frequency,
             lost: self.lost,
+            pressure,
+            a2: m.a2,
+            species: if self.species > 1 {
+                m.species
+            } else {
+                Vec::new()
+            },
         });
         self.last = (time, self.ball_ball);
+        self.virial = 0.0;
         // The next multiple of `every` after `time`.
         self.next = ((time / self.every).floor() + 1.0) * self.every;
     }
@@ -220,10 +332,49 @@ impl Sampler {
         &self.rows
     }
 
-    /// The rows as CSV, one header line naming each column with its units ([`COLUMNS`]:
-    /// temperatures and energies `M L^2 T^-2`), numbers in Rust's shortest round-trip form.
+    /// The columns of a row, in the order of [`Row::values`]: name and unit, in the scene's
+    /// units of mass `M`, length `L` and time `T` (`1` a count or a pure number). The CSV's
+    /// header, the Parquet table's columns and the Python package's arrays share these names:
+    /// `time`, `contacts`, `T_tr`, `T_rot`, `energy`, `collision_frequency`, `lost_KIND`
+    /// ([`KINDS`]), `pressure`, `a2`, and in a mixture `T_tr_s`, `T_rot_s` for each species
+    /// index `s`.
+    pub fn columns(&self) -> Vec<(String, String)> {
+        let mut c: Vec<(String, String)> = [
+            ("time", "T"),
+            ("contacts", "1"),
+            ("T_tr", ENERGY),
+            ("T_rot", ENERGY),
+            ("energy", ENERGY),
+            ("collision_frequency", "T^-1"),
+        ]
+        .iter()
+        .map(|&(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+        c.extend(KINDS.iter().map(|k| (format!("lost_{k}"), ENERGY.into())));
+        // Force per (n-1)-area: M L^(2-n) T^-2.
+        let pressure = match 2 - self.dim as i64 {
+            0 => "M T^-2".to_string(),
+            p => format!("M L^{p} T^-2"),
+        };
+        c.push(("pressure".into(), pressure));
+        c.push(("a2".into(), "1".into()));
+        if self.species > 1 {
+            for s in 0..self.species {
+                c.push((format!("T_tr_{s}"), ENERGY.into()));
+                c.push((format!("T_rot_{s}"), ENERGY.into()));
+            }
+        }
+        c
+    }
+
+    /// The rows as CSV, one header line naming each column with its units
+    /// ([`Sampler::columns`]), numbers in Rust's shortest round-trip form.
     pub fn csv(&self) -> String {
-        let header: Vec<String> = COLUMNS.iter().map(|(n, u)| format!("{n} [{u}]")).collect();
+        let header: Vec<String> = self
+            .columns()
+            .iter()
+            .map(|(n, u)| format!("{n} [{u}]"))
+            .collect();
         let mut text = header.join(",") + "\n";
         for r in &self.rows {
             let values: Vec<String> = r.values().iter().map(f64::to_string).collect();

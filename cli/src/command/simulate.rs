@@ -334,7 +334,7 @@ where
     if let Some(s) = &sampler {
         set.write("observables.csv", s.csv().as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
-        let table = columnar::observables::parquet(s.rows(), N)
+        let table = columnar::observables::parquet(s, N, Vec::new())
             .map_err(|e| Failure::output(format!("cannot write observables.parquet: {e}")))?;
         set.write("observables.parquet", &table)
             .map_err(|e| crate::exit::publish_failure(&e))?;
