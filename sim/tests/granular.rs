@@ -44,6 +44,31 @@ where
     (sampler.rows().to_vec(), sim.contacts() as usize)
 }
 
+/// A periodic box of side `side` in R^`dim` holding `count` balls of diameter 1 and mass 1
+/// (uniform), then `tail` (`{seed}` to be replaced).
+fn periodic_gas(dim: usize, side: f64, count: usize, tail: &str) -> String {
+    let axes = vec!["\"periodic\""; dim].join(", ");
+    let sizes = vec![format!("{side}"); dim].join(", ");
+    format!(
+        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
+         radius = \"1/2\"\ncount = {count}\n{tail}"
+    )
+}
+
+/// [`periodic_gas`] with the rough law `{ e, beta }` at every ball-ball contact and a
+/// Maxwellian start at equal temperatures: a freely cooling gas.
+fn cooling_gas(dim: usize, side: f64, count: usize, e: f64, beta: f64) -> String {
+    periodic_gas(
+        dim,
+        side,
+        count,
+        &format!(
+            "[contact]\nballs = {{ e = {e}, beta = {beta} }}\n[random]\nseed = {{seed}}\n\
+             velocities = \"maxwellian\"\n"
+        ),
+    )
+}
+
 /// The sum of the per-contact losses is the kinetic energy lost, to rounding: each loss is
 /// a difference of ball energies `1/2 m (|u|^2 + 2 lambda |U|^2)`, each evaluated with a
 /// relative error below `(n + S + 4) eps <= 16 eps` in 2D, and each at most the total `E_0`,
@@ -135,13 +160,7 @@ fn haff(dim: usize, e: f64) {
         2 => 2.0 * PI.sqrt(),
         _ => 4.0 * PI.sqrt(),
     };
-    let axes = vec!["\"periodic\""; dim].join(", ");
-    let sizes = vec![format!("{side}"); dim].join(", ");
-    let gas = format!(
-        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
-         radius = \"1/2\"\ncount = {count}\n[contact]\nballs = {{ e = {e}, beta = -1 }}\n\
-         [random]\nseed = {{seed}}\nvelocities = \"maxwellian\"\n"
-    );
+    let gas = cooling_gas(dim, side, count, e, -1.0);
     let mut ratio = Vec::new();
     for seed in 0..6 {
         // The first row: the start's own temperature (the draw's, not the nominal 1).
@@ -188,11 +207,11 @@ fn haff_law_in_3d() {
 /// collision times per ball to relax, then `T_rot / T_tr` is the ratio of the two
 /// temperatures averaged over the next 40.
 fn equipartition(dim: usize, side: f64, count: usize) {
-    let axes = vec!["\"periodic\""; dim].join(", ");
-    let sizes = vec![format!("{side}"); dim].join(", ");
-    let gas = format!(
-        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
-         radius = \"1/2\"\ncount = {count}\n[random]\nseed = {{seed}}\nspeed = 1\nspin = 0\n"
+    let gas = periodic_gas(
+        dim,
+        side,
+        count,
+        "[random]\nseed = {seed}\nspeed = 1\nspin = 0\n",
     );
     let mut ratio = Vec::new();
     for seed in 0..6 {
@@ -425,13 +444,7 @@ fn hcs_in(
     starts: &[f64],
     replicas: u64,
 ) -> Measured {
-    let axes = vec!["\"periodic\""; dim].join(", ");
-    let sizes = vec![format!("{side}"); dim].join(", ");
-    let gas = format!(
-        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
-         radius = \"1/2\"\ncount = {count}\n[contact]\nballs = {{ e = {e}, beta = {beta} }}\n\
-         [random]\nseed = {{seed}}\nvelocities = \"maxwellian\"\n"
-    );
+    let gas = cooling_gas(dim, side as f64, count as usize, e, beta);
     // Uniform balls: gamma^2 = 2 / (n + 2).
     let theory = two_temperature(dim, e, beta, 2.0 / (dim as f64 + 2.0));
     let window = 60.0 / theory.rate();
