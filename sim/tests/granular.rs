@@ -1,20 +1,21 @@
 //! Granular gases against first principles and kinetic theory (docs/granular.md): the energy
 //! balance of rough contacts, Haff's law of a cooling gas of smooth inelastic balls in 2D and
-//! 3D, and equipartition in an elastic no-slip gas. Statistical tolerances come from the
-//! spread of independent runs (seeds): with `K` runs of mean `x` and standard error `s`, the
-//! theory's value must lie within `t s` of `x`, `t` the two-sided 99.9 % quantile of Student's
-//! t with `K - 1` degrees of freedom; and `s` must be small enough for the test to have
-//! power.
+//! 3D, equipartition in an elastic no-slip gas, and the homogeneous cooling state's
+//! `T_rot / T_tr` of rough balls against the two-temperature theory. Statistical tolerances
+//! come from the spread of independent runs (seeds): with `K` runs of mean `x` and standard
+//! error `s`, the theory's value must lie within `t s` of `x`, `t` the two-sided 99.9 %
+//! quantile of Student's t with `K - 1` degrees of freedom; and `s` must be small enough for
+//! the test to have power.
 
 use collision_core::{Generated, Kernel};
 use noslip_scene::Scene;
-use noslip_sim::granular::{Row, Sampler};
+use noslip_sim::granular::{temperatures, Row, Sampler};
 use noslip_sim::setup::setup;
-use noslip_sim::{GenericKernels, Simulation, Step};
+use noslip_sim::{GenericKernels, Setup, Simulation, Step};
 use std::f64::consts::PI;
 
-/// Student's t, two-sided 99.9 %, for `K - 1 = 5` degrees of freedom.
-const T_5: f64 = 6.869;
+mod common;
+use common::{mean_se, two_temperature, T_5};
 
 /// Runs `text` (with `{seed}` replaced) to time `until`, a row every `every`.
 fn rows(text: &str, seed: u64, every: f64, until: f64) -> (Vec<Row>, usize) {
@@ -43,12 +44,29 @@ where
     (sampler.rows().to_vec(), sim.contacts() as usize)
 }
 
-/// Mean and standard error of the mean.
-fn mean_se(x: &[f64]) -> (f64, f64) {
-    let k = x.len() as f64;
-    let mean = x.iter().sum::<f64>() / k;
-    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (k - 1.0);
-    (mean, (var / k).sqrt())
+/// A periodic box of side `side` in R^`dim` holding `count` balls of diameter 1 and mass 1
+/// (uniform), then `tail` (`{seed}` to be replaced).
+fn periodic_gas(dim: usize, side: f64, count: usize, tail: &str) -> String {
+    let axes = vec!["\"periodic\""; dim].join(", ");
+    let sizes = vec![format!("{side}"); dim].join(", ");
+    format!(
+        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
+         radius = \"1/2\"\ncount = {count}\n{tail}"
+    )
+}
+
+/// [`periodic_gas`] with the rough law `{ e, beta }` at every ball-ball contact and a
+/// Maxwellian start at equal temperatures: a freely cooling gas.
+fn cooling_gas(dim: usize, side: f64, count: usize, e: f64, beta: f64) -> String {
+    periodic_gas(
+        dim,
+        side,
+        count,
+        &format!(
+            "[contact]\nballs = {{ e = {e}, beta = {beta} }}\n[random]\nseed = {{seed}}\n\
+             velocities = \"maxwellian\"\n"
+        ),
+    )
 }
 
 /// The sum of the per-contact losses is the kinetic energy lost, to rounding: each loss is
@@ -142,13 +160,7 @@ fn haff(dim: usize, e: f64) {
         2 => 2.0 * PI.sqrt(),
         _ => 4.0 * PI.sqrt(),
     };
-    let axes = vec!["\"periodic\""; dim].join(", ");
-    let sizes = vec![format!("{side}"); dim].join(", ");
-    let gas = format!(
-        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
-         radius = \"1/2\"\ncount = {count}\n[contact]\nballs = {{ e = {e}, beta = -1 }}\n\
-         [random]\nseed = {{seed}}\nvelocities = \"maxwellian\"\n"
-    );
+    let gas = cooling_gas(dim, side, count, e, -1.0);
     let mut ratio = Vec::new();
     for seed in 0..6 {
         // The first row: the start's own temperature (the draw's, not the nominal 1).
@@ -195,11 +207,11 @@ fn haff_law_in_3d() {
 /// collision times per ball to relax, then `T_rot / T_tr` is the ratio of the two
 /// temperatures averaged over the next 40.
 fn equipartition(dim: usize, side: f64, count: usize) {
-    let axes = vec!["\"periodic\""; dim].join(", ");
-    let sizes = vec![format!("{side}"); dim].join(", ");
-    let gas = format!(
-        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
-         radius = \"1/2\"\ncount = {count}\n[random]\nseed = {{seed}}\nspeed = 1\nspin = 0\n"
+    let gas = periodic_gas(
+        dim,
+        side,
+        count,
+        "[random]\nseed = {seed}\nspeed = 1\nspin = 0\n",
     );
     let mut ratio = Vec::new();
     for seed in 0..6 {
@@ -237,4 +249,312 @@ fn equipartition_in_4d_to_6d() {
     equipartition(4, 6.0, 200);
     equipartition(5, 4.0, 200);
     equipartition(6, 3.0, 200);
+}
+
+/// The theory's own checks, exact up to rounding: at `e = 1`, `beta = 1` no energy is lost and
+/// the ratio is 1 (equipartition) for every `n` and `k`; at `beta = -1` the rotation decouples
+/// (`b = c = d = 0`) and translation cools as Haff's `a = 1 - e^2`; the energy per ball
+/// `(n T_tr + S T_rot) / 2` falls at the mean loss of docs/granular.md's `Delta E` over the
+/// Maxwellian contacts, `(1 - e^2) T_tr + (n - 1) eta (1 - beta) (T_tr + T_rot / k)`, halved
+/// (two balls a contact); and at `n = 3`, `a / 4`, `b / 4 = c / 4` and `d / 4` are Luding et
+/// al.'s `A = (1 - e^2)/4 + eta (1 - eta)`, `B = eta^2 / q` and `C = (eta / q)(1 - eta / q)`
+/// (their form for spheres as we know it, `q = k`); at `n = 2` their disk form.
+#[test]
+fn the_two_temperature_theory_conserves_energy_and_decouples_smooth_balls() {
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-13 * (1.0 + y.abs());
+    for n in 2..=6 {
+        let s = (n * (n - 1) / 2) as f64;
+        for k in [0.1, 2.0 / (n as f64 + 2.0), 2.0 / n as f64] {
+            let t = two_temperature(n, 1.0, 1.0, k);
+            assert!(close(t.ratio(), 1.0), "{n} {k} {t:?}");
+            let smooth = two_temperature(n, 0.8, -1.0, k);
+            assert!(smooth.b == 0.0 && smooth.c == 0.0 && smooth.d == 0.0);
+            assert!(close(smooth.a, 1.0 - 0.64));
+            for (e, beta, tr, rot) in [
+                (0.9, 0.5, 1.0, 0.7),
+                (0.6, -0.3, 2.0, 0.1),
+                (1.0, 1.0, 1.0, 3.0),
+            ] {
+                let t = two_temperature(n, e, beta, k);
+                let eta = k * (1.0 + beta) / (2.0 * (1.0 + k));
+                let de = (n as f64 * (-t.a * tr + t.b * rot) + s * (t.c * tr - t.d * rot))
+                    / (2.0 * n as f64);
+                let loss =
+                    (1.0 - e * e) * tr + (n as f64 - 1.0) * eta * (1.0 - beta) * (tr + rot / k);
+                assert!(close(de, -loss / 2.0), "{n} {k} {e} {beta}: {de} {loss}");
+            }
+        }
+    }
+    let (e, beta, q) = (0.9, 0.5, 0.4);
+    let eta = q * (1.0 + beta) / (2.0 * (1.0 + q));
+    let t = two_temperature(3, e, beta, q);
+    assert!(close(t.a / 4.0, (1.0 - e * e) / 4.0 + eta * (1.0 - eta)));
+    assert!(close(t.b / 4.0, eta * eta / q) && close(t.c / 4.0, eta * eta / q));
+    assert!(close(t.d / 4.0, eta / q * (1.0 - eta / q)));
+    // Disks (n = 2, q = 1/2): their A = a/4, B = b/4 = c/8, C = d/8, with the factor 2 of
+    // the rotational equation.
+    let q = 0.5;
+    let eta = q * (1.0 + beta) / (2.0 * (1.0 + q));
+    let t = two_temperature(2, e, beta, q);
+    assert!(close(
+        t.a / 4.0,
+        (1.0 - e * e) / 4.0 + eta * (1.0 - eta) / 2.0
+    ));
+    assert!(close(t.b / 4.0, eta * eta / (2.0 * q)) && close(t.c / 8.0, eta * eta / (2.0 * q)));
+    assert!(close(t.d / 8.0, eta / (2.0 * q) * (1.0 - eta / q)));
+}
+
+/// One freely cooling run (a periodic gas, ball-ball contacts only): the Maxwellian start of
+/// `scene` with the centre of mass brought to rest and every spin multiplied by `spin` (so
+/// `T_rot / T_tr` starts near `spin^2`), run for `skip + window` contacts per ball; returns the
+/// mean of `T_rot / T_tr` over samples every half contact per ball in the window, and the
+/// window's contacts per ball and unit time divided by `sqrt(T_tr)` in its first and last
+/// quarters (equal while the gas stays homogeneous). Hard-ball dynamics is invariant under a
+/// common scaling of all velocities and spins (it only rescales time), so whenever `T_tr`
+/// has fallen by `1e-8` the run is restarted from the current positions with every velocity
+/// and spin scaled back up: the same trajectory, kept in a comfortable floating-point range.
+fn cooling<const N: usize, const S: usize>(
+    scene: &Scene,
+    spin: f64,
+    skip: f64,
+    window: f64,
+) -> (f64, [f64; 2])
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let mut setup = setup::<N, S>(scene).unwrap();
+    let balls = setup.bodies.len();
+    let species = setup.species.clone();
+    let restart = |setup: &mut Setup<N, S>, scale: f64| {
+        // The centre of mass's velocity (equal masses).
+        let v: [f64; N] = std::array::from_fn(|k| {
+            setup
+                .bodies
+                .iter()
+                .map(|b| b.state.velocity[k])
+                .sum::<f64>()
+                / balls as f64
+        });
+        for b in &mut setup.bodies {
+            b.state.velocity = std::array::from_fn(|k| (b.state.velocity[k] - v[k]) * scale);
+            b.state.spin = b.state.spin.map(|x| x * scale);
+        }
+    };
+    for b in &mut setup.bodies {
+        b.state.spin = b.state.spin.map(|x| x * spin);
+    }
+    restart(&mut setup, 1.0);
+    let fresh = setup.clone();
+    let kernels = || GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels()).unwrap();
+    let t_start = temperatures(&sim, &species)[0];
+    let every = (balls / 4) as u64;
+    // Contacts and time (in the start's units) before the current run; `scale` the factor
+    // its velocities were scaled by, all told.
+    let (mut done, mut origin, mut scale) = (0u64, 0.0f64, 1.0f64);
+    let (mut ratios, mut clock) = (Vec::new(), Vec::new());
+    loop {
+        let Step::Contact(_) = sim.step(f64::INFINITY) else {
+            panic!("the gas stopped colliding")
+        };
+        if sim.contacts() % every != 0 {
+            continue;
+        }
+        let tau = 2.0 * (done + sim.contacts()) as f64 / balls as f64;
+        let [tr, rot] = temperatures(&sim, &species);
+        if tau >= skip {
+            ratios.push(rot / tr);
+            clock.push((tau, origin + sim.now() * scale, tr / (scale * scale)));
+        }
+        if tau >= skip + window {
+            break;
+        }
+        if tr < 1e-8 * t_start {
+            let mut next = fresh.clone();
+            for (i, b) in next.bodies.iter_mut().enumerate() {
+                b.position = std::array::from_fn(|k| {
+                    let x = sim.position(i)[k].rem_euclid(sim.box_size()[k]);
+                    if x < sim.box_size()[k] {
+                        x
+                    } else {
+                        0.0
+                    }
+                });
+                b.state = sim.state(i).clone();
+            }
+            let up = (t_start / tr).sqrt();
+            restart(&mut next, up);
+            done += sim.contacts();
+            origin += sim.now() * scale;
+            scale *= up;
+            sim = Simulation::new(next, kernels()).unwrap();
+        }
+    }
+    let mean = |r: &[f64]| r.iter().sum::<f64>() / r.len() as f64;
+    // Contacts per ball and unit time over sqrt(T_tr), sample to sample (`T_tr` at the
+    // interval's geometric mean), averaged over the first and the last quarter.
+    let k: Vec<f64> = clock
+        .windows(2)
+        .map(|w| (w[1].0 - w[0].0) / (w[1].1 - w[0].1) / (w[0].2 * w[1].2).powf(0.25))
+        .collect();
+    let q = k.len() / 4;
+    (mean(&ratios), [mean(&k[..q]), mean(&k[k.len() - q..])])
+}
+
+/// A measured homogeneous cooling state: the mean of `T_rot / T_tr` over six seeds, its
+/// standard error, the theory's value, and per start `(start, mean, standard error)`.
+struct Measured {
+    mean: f64,
+    se: f64,
+    theory: f64,
+    starts: Vec<(f64, f64, f64)>,
+}
+
+/// The homogeneous cooling state's `T_rot / T_tr` in a dilute periodic gas of equal uniform
+/// balls (3D: 1000 spheres in a box of side 30 diameters, `phi = 0.019`; 2D: 400 disks, side
+/// 100, `phi = 0.031`: the Haff gases), against [`two_temperature`]. The Maxwellian start
+/// has its spins scaled so that `T_rot / T_tr` starts near one of `starts` (0: no spin, 1:
+/// equal temperatures, 3: far above every ratio tested), and each run first waits out the
+/// ratio's relaxation as the theory gives it, until `|r - r_+| < 1e-3 r_+` (a quarter of the
+/// bound on the standard error below; `TwoTemperature::settled` in `tests/common`); it then
+/// averages over `60 / kappa` contacts per ball (60 relaxation times). Each of the six seeds
+/// averages `replicas` independent runs from each start. The standard error must be below
+/// `0.004 r_+`: a theory off by more than `6.87 x 0.4 % = 2.7 %` fails. The gas must stay
+/// homogeneous: its collision frequency over `sqrt(T_tr)` (Enskog's constant) may change by
+/// less than 3 % between the window's first and last quarters, on average over the runs (a
+/// growing shear mode lowers it and carries energy into flow, clusters raise it; a single
+/// 2D run of 400 disks varies by a few per cent by chance).
+fn hcs(dim: usize, e: f64, beta: f64, starts: &[f64], replicas: u64) -> Measured {
+    let (side, count) = match dim {
+        2 => (100, 400),
+        _ => (30, 1000),
+    };
+    hcs_in(dim, side, count, e, beta, starts, replicas)
+}
+
+/// [`hcs`] in a box of side `side` (diameters) with `count` balls.
+fn hcs_in(
+    dim: usize,
+    side: u64,
+    count: u64,
+    e: f64,
+    beta: f64,
+    starts: &[f64],
+    replicas: u64,
+) -> Measured {
+    let gas = cooling_gas(dim, side as f64, count as usize, e, beta);
+    // Uniform balls: gamma^2 = 2 / (n + 2).
+    let theory = two_temperature(dim, e, beta, 2.0 / (dim as f64 + 2.0));
+    let window = 60.0 / theory.rate();
+    let runs = starts.len() as u64 * replicas;
+    // Per seed: the mean over all its runs, and over each start's.
+    let (mut ratio, mut by_start) = (Vec::new(), vec![Vec::new(); starts.len()]);
+    let mut drift = 0.0;
+    for seed in 0..6 {
+        let mut sum = 0.0;
+        for (k, &start) in starts.iter().enumerate() {
+            let skip = theory.settled(start, 1e-3);
+            let mut part = 0.0;
+            for replica in 0..replicas {
+                let id = seed * runs + k as u64 * replicas + replica;
+                let text = gas.replace("{seed}", &id.to_string());
+                let scene = Scene::from_toml(&text, "t.toml").unwrap();
+                let spin = start.sqrt();
+                let (r, f) = collision_core::with_dim!(
+                    scene.dim,
+                    |N, S| cooling::<N, S>(&scene, spin, skip, window),
+                    unreachable!()
+                );
+                drift += (f[1] / f[0] - 1.0) / (6 * runs) as f64;
+                part += r / replicas as f64;
+            }
+            by_start[k].push(part);
+            sum += part / starts.len() as f64;
+        }
+        ratio.push(sum);
+    }
+    let (mean, se) = mean_se(&ratio);
+    let r = theory.ratio();
+    let starts: Vec<(f64, f64, f64)> = starts
+        .iter()
+        .zip(&by_start)
+        .map(|(&start, x)| {
+            let (m, s) = mean_se(x);
+            (start, m, s)
+        })
+        .collect();
+    eprintln!(
+        "HCS {dim}D, {count} in side {side}, e = {e}, beta = {beta}: {mean:.4} +- {se:.4} \
+         (6 seeds x {runs}), theory {r:.4}, {:+.1} %, {:+.1} s; from {starts:.4?}; \
+         frequency drift {:+.1} %",
+        100.0 * (mean / r - 1.0),
+        (mean - r) / se,
+        100.0 * drift
+    );
+    assert!(drift.abs() < 0.03, "not homogeneous: {drift}");
+    assert!(se < 0.004 * r, "too noisy to test: {ratio:?}");
+    Measured {
+        mean,
+        se,
+        theory: r,
+        starts,
+    }
+}
+
+/// The homogeneous cooling state's ratio where the Maxwellian two-temperature theory holds
+/// within the statistics (nearly perfectly rough balls, docs/granular.md), reached from both
+/// sides: every seed averages runs from no spin at all and from `T_rot = 3 T_tr`, and the two
+/// starts' means must agree with each other (`|m_0 - m_3| < t sqrt(s_0^2 + s_3^2)`).
+fn hcs_agrees(dim: usize, e: f64, beta: f64, replicas: u64) {
+    let m = hcs(dim, e, beta, &[0.0, 3.0], replicas);
+    assert!(
+        (m.mean - m.theory).abs() < T_5 * m.se,
+        "{} {}",
+        m.mean,
+        m.theory
+    );
+    let [(_, m0, s0), (_, m3, s3)] = [m.starts[0], m.starts[1]];
+    assert!(
+        (m0 - m3).abs() < T_5 * (s0 * s0 + s3 * s3).sqrt(),
+        "{m0} {m3}"
+    );
+}
+
+#[test]
+fn cooling_ratio_in_3d() {
+    hcs_agrees(3, 0.9, 0.9, 1);
+    hcs_agrees(3, 0.7, 0.9, 1);
+}
+
+#[test]
+fn cooling_ratio_in_2d() {
+    hcs_agrees(2, 0.9, 0.9, 8);
+}
+
+/// The ratio over the roughness, where the Maxwellian theory is known to be off at medium and
+/// small roughness (docs/granular.md): prints the table, checks power and homogeneity only.
+/// At `e = 0.9` the default gases; at `e = 0.7`, 3D the default gas (six means of two runs),
+/// 2D 1600 disks in side 400 (`phi = 0.008`, the same side in mean free paths; six means of
+/// two): the default 2D gas clusters at `e = 0.7` within the window (its collision frequency
+/// over `sqrt(T_tr)` rises by more than 5 % in some runs). Then the cases where the engine
+/// and the DSMC of the Boltzmann equation (`boltzmann.rs`) differ most, at `phi = 0.008`.
+/// About two minutes: `cargo test -p noslip-sim --test granular -- --ignored --nocapture cooling`.
+#[test]
+#[ignore]
+fn cooling_ratio_over_the_roughness() {
+    for (dim, replicas) in [(3, 1), (2, 8)] {
+        for beta in [1.0, 0.9, 0.5, 0.0, -0.5] {
+            hcs(dim, 0.9, beta, &[1.0], replicas);
+        }
+    }
+    for beta in [0.9, 0.5] {
+        hcs(3, 0.7, beta, &[1.0], 2);
+        hcs_in(2, 400, 1600, 0.7, beta, &[1.0], 2);
+    }
+    for beta in [0.0, -0.5] {
+        hcs_in(3, 40, 1000, 0.9, beta, &[1.0], 1);
+    }
+    hcs_in(2, 400, 1600, 0.9, -0.5, &[1.0], 2);
 }

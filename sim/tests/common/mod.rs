@@ -1,0 +1,79 @@
+//! Shared by the granular-gas tests (`granular.rs`, `boltzmann.rs`): the statistics of six
+//! seeds and the two-temperature theory of the homogeneous cooling state (docs/granular.md).
+// Each test crate compiles this module and uses part of it.
+#![allow(dead_code)]
+
+/// Student's t, two-sided 99.9 %, for `K - 1 = 5` degrees of freedom.
+pub const T_5: f64 = 6.869;
+
+/// Mean and standard error of the mean.
+pub fn mean_se(x: &[f64]) -> (f64, f64) {
+    let k = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / k;
+    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (k - 1.0);
+    (mean, (var / k).sqrt())
+}
+
+/// The two-temperature theory of a dilute gas of equal rough balls in R^n (Huthmann &
+/// Zippelius 1997; Luding, Huthmann, McNamara & Zippelius 1998; derived for any `n` in
+/// docs/granular.md): with `k = gamma^2 = I / (m R^2)`, `eta = k (1 + beta) / (2 (1 + k))` and
+/// `tau` the contacts per ball (`dtau = omega dt`), a Maxwellian gas at `T_tr`, `T_rot` has
+///
+/// ```text
+/// n dT_tr/dtau  = -a T_tr + b T_rot,   a = 1 - e^2 + 2 (n-1) eta (1 - eta),  b = 2 (n-1) eta^2 / k,
+/// n dT_rot/dtau =  c T_tr - d T_rot,   c = 4 eta^2 / k,                       d = 4 (eta / k) (1 - eta / k),
+/// ```
+///
+/// so `r = T_rot / T_tr` follows `n dr/dtau = c + (a - d) r - b r^2 = -b (r - r_+)(r - r_-)`:
+/// the homogeneous cooling state's ratio is the positive root `r_+` of `b r^2 + (d - a) r - c
+/// = 0`, and `(r - r_+) / (r - r_-)` decays exactly as `exp(-kappa tau)`, `kappa = b (r_+ -
+/// r_-) / n`.
+#[derive(Clone, Copy, Debug)]
+pub struct TwoTemperature {
+    pub n: f64,
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub d: f64,
+}
+
+pub fn two_temperature(n: usize, e: f64, beta: f64, k: f64) -> TwoTemperature {
+    let eta = k * (1.0 + beta) / (2.0 * (1.0 + k));
+    let n1 = (n - 1) as f64;
+    TwoTemperature {
+        n: n as f64,
+        a: 1.0 - e * e + 2.0 * n1 * eta * (1.0 - eta),
+        b: 2.0 * n1 * eta * eta / k,
+        c: 4.0 * eta * eta / k,
+        d: 4.0 * eta / k * (1.0 - eta / k),
+    }
+}
+
+impl TwoTemperature {
+    /// The roots `(r_+, r_-)` of `b r^2 + (d - a) r - c` (`b > 0`: `beta > -1`).
+    pub fn roots(&self) -> (f64, f64) {
+        let w = ((self.a - self.d).powi(2) + 4.0 * self.b * self.c).sqrt();
+        let m = self.a - self.d;
+        ((m + w) / (2.0 * self.b), (m - w) / (2.0 * self.b))
+    }
+
+    /// The homogeneous cooling state's `T_rot / T_tr`.
+    pub fn ratio(&self) -> f64 {
+        self.roots().0
+    }
+
+    /// `kappa`: the ratio's relaxation rate per contact per ball.
+    pub fn rate(&self) -> f64 {
+        let (p, m) = self.roots();
+        self.b * (p - m) / self.n
+    }
+
+    /// The contacts per ball after which `r`, started at `r0`, is within `eps r_+` of `r_+`:
+    /// `|r - r_+| = |delta| (r_+ - r_-) / (1 - delta)` with `delta = (r - r_+) / (r - r_-)`.
+    pub fn settled(&self, r0: f64, eps: f64) -> f64 {
+        let (p, m) = self.roots();
+        let delta0 = ((r0 - p) / (r0 - m)).abs();
+        let target = eps * p / (p - m + eps * p);
+        (delta0 / target).ln().max(0.0) / self.rate()
+    }
+}
