@@ -70,7 +70,10 @@ class SimulationResult:
         ``energy``, ``collision_frequency`` [1/T] (ball-ball contacts per ball and unit time
         since the previous row, NaN in the first), ``lost_ball_ball``, ``lost_ball_wall``,
         ``lost_ball_obstacle``, ``lost_ball_boundary`` (energy lost so far at each kind of
-        contact). Empty without ``observables``.
+        contact), ``pressure`` [M L^(2-n) T^-2] (kinetic plus the collisional virial since
+        the previous row; a periodic box without obstacles only, else NaN), ``a2`` (the
+        velocity cumulant, 0 for a Maxwellian) and, in a mixture, ``T_tr_s`` and
+        ``T_rot_s`` for each species index ``s``. Empty without ``observables``.
     """
 
     summary: dict[str, Any]

@@ -9,51 +9,13 @@
 
 use collision_core::{Generated, Kernel};
 use noslip_scene::Scene;
-use noslip_sim::granular::{temperatures, Row, Sampler};
+use noslip_sim::granular::{temperatures, Row};
 use noslip_sim::setup::setup;
 use noslip_sim::{GenericKernels, Setup, Simulation, Step};
 use std::f64::consts::PI;
 
 mod common;
-use common::{mean_se, two_temperature, T_5};
-
-/// Runs `text` (with `{seed}` replaced) to time `until`, a row every `every`.
-fn rows(text: &str, seed: u64, every: f64, until: f64) -> (Vec<Row>, usize) {
-    let scene = Scene::from_toml(&text.replace("{seed}", &seed.to_string()), "t.toml").unwrap();
-    collision_core::with_dim!(
-        scene.dim,
-        |N, S| run::<N, S>(&scene, every, until),
-        unreachable!()
-    )
-}
-
-fn run<const N: usize, const S: usize>(scene: &Scene, every: f64, until: f64) -> (Vec<Row>, usize)
-where
-    Generated: Kernel<f64, N, S>,
-{
-    let setup = setup::<N, S>(scene).unwrap();
-    let species = setup.species.clone();
-    let kernels = GenericKernels {
-        species: species.clone(),
-    };
-    let mut sim = Simulation::new(setup, kernels).unwrap();
-    let mut sampler = Sampler::start(every, &sim, &species);
-    while let Step::Contact(e) = sim.step(until) {
-        sampler.contact(&e, &sim, &species);
-    }
-    (sampler.rows().to_vec(), sim.contacts() as usize)
-}
-
-/// A periodic box of side `side` in R^`dim` holding `count` balls of diameter 1 and mass 1
-/// (uniform), then `tail` (`{seed}` to be replaced).
-fn periodic_gas(dim: usize, side: f64, count: usize, tail: &str) -> String {
-    let axes = vec!["\"periodic\""; dim].join(", ");
-    let sizes = vec![format!("{side}"); dim].join(", ");
-    format!(
-        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
-         radius = \"1/2\"\ncount = {count}\n{tail}"
-    )
-}
+use common::{mean_se, periodic_gas, rows, two_temperature, T_5};
 
 /// [`periodic_gas`] with the rough law `{ e, beta }` at every ball-ball contact and a
 /// Maxwellian start at equal temperatures: a freely cooling gas.

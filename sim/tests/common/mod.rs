@@ -1,7 +1,56 @@
-//! Shared by the granular-gas tests (`granular.rs`, `boltzmann.rs`): the statistics of six
-//! seeds and the two-temperature theory of the homogeneous cooling state (docs/granular.md).
+//! Shared by the granular-gas tests (`granular.rs`, `boltzmann.rs`, `observables.rs`): the
+//! statistics of six seeds, runs of a gas sampled by `noslip_sim::granular::Sampler`, and the
+//! two-temperature theory of the homogeneous cooling state (docs/granular.md).
 // Each test crate compiles this module and uses part of it.
 #![allow(dead_code)]
+
+use collision_core::{Generated, Kernel};
+use noslip_scene::Scene;
+use noslip_sim::granular::{Row, Sampler};
+use noslip_sim::setup::setup;
+use noslip_sim::{GenericKernels, Simulation, Step};
+
+/// Runs `text` (with `{seed}` replaced) to time `until`, a row every `every`.
+pub fn rows(text: &str, seed: u64, every: f64, until: f64) -> (Vec<Row>, usize) {
+    let scene = Scene::from_toml(&text.replace("{seed}", &seed.to_string()), "t.toml").unwrap();
+    collision_core::with_dim!(
+        scene.dim,
+        |N, S| run::<N, S>(&scene, every, until),
+        unreachable!()
+    )
+}
+
+pub fn run<const N: usize, const S: usize>(
+    scene: &Scene,
+    every: f64,
+    until: f64,
+) -> (Vec<Row>, usize)
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let setup = setup::<N, S>(scene).unwrap();
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let mut sampler = Sampler::start(every, &sim, &species);
+    while let Step::Contact(e) = sim.step(until) {
+        sampler.contact(&e, &sim, &species);
+    }
+    (sampler.rows().to_vec(), sim.contacts() as usize)
+}
+
+/// A periodic box of side `side` in R^`dim` holding `count` balls of diameter 1 and mass 1
+/// (uniform), then `tail` (`{seed}` to be replaced).
+pub fn periodic_gas(dim: usize, side: f64, count: usize, tail: &str) -> String {
+    let axes = vec!["\"periodic\""; dim].join(", ");
+    let sizes = vec![format!("{side}"); dim].join(", ");
+    format!(
+        "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
+         radius = \"1/2\"\ncount = {count}\n{tail}"
+    )
+}
 
 /// Student's t, two-sided 99.9 %, for `K - 1 = 5` degrees of freedom.
 pub const T_5: f64 = 6.869;
