@@ -76,6 +76,9 @@ fn the_granular_gas_writes_its_observables() {
             }
         }
     }
+    // observables.svg: the temperatures against time, titled with the scene.
+    let svg = std::fs::read_to_string(dir.join("observables.svg")).unwrap();
+    assert!(svg.contains("granular3d.toml: granular temperatures"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

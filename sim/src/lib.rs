@@ -39,6 +39,7 @@ pub mod dilute;
 pub mod engine;
 mod extent;
 pub mod granular;
+pub mod granular_plot;
 pub mod huge_pages;
 mod immovable;
 pub mod lattice;

@@ -135,3 +135,43 @@ fn each_species_of_an_elastic_mixture_reaches_one_temperature() {
         assert!((mean - 1.0).abs() < T_5 * se, "{what}: {x:?}");
     }
 }
+
+/// `observables.svg` of a cooling rough gas: both temperatures and the ratio drawn, with the
+/// axes' names and units and a legend; a mixture adds each species' pair.
+#[test]
+fn the_temperatures_are_drawn_with_axes_and_a_legend() {
+    use noslip_sim::granular::Sampler;
+    use noslip_sim::granular_plot::temperatures_svg;
+    let gas = "dim = 2\n[box]\nsize = [30, 30]\nboundary = [\"periodic\", \"periodic\"]\n\
+               [contact]\nballs = { e = 0.8, beta = 0.4 }\n\
+               [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 100\n\
+               [[species]]\nmass = 2\nradius = \"1/2\"\ncount = 50\n\
+               [random]\nseed = 3\nvelocities = \"maxwellian\"\n";
+    let scene = noslip_scene::Scene::from_toml(gas, "mixture.toml").unwrap();
+    let setup = noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
+    let species = setup.species.clone();
+    let kernels = noslip_sim::GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = noslip_sim::Simulation::new(setup, kernels).unwrap();
+    let mut sampler = Sampler::start(0.5, &sim, &species);
+    while let noslip_sim::Step::Contact(e) = sim.step(10.0) {
+        sampler.contact(&e, &sim, &species);
+    }
+    assert!(sampler.rows().len() >= 15);
+    let svg = temperatures_svg("mixture.toml", &sampler).unwrap();
+    for text in [
+        "mixture.toml: granular temperatures",
+        "time [T]",
+        "temperature [M L^2 T^-2] (log scale)",
+        "T_rot / T_tr",
+        "\nT_tr\n",
+        "\nT_rot\n",
+        "T_tr of species 1",
+        "T_rot of species 1 (dashed)",
+    ] {
+        assert!(svg.contains(text), "{text} missing");
+    }
+    // Six temperature curves and the ratio (legend marks are paths too: at least seven).
+    assert!(svg.matches("<polyline").count() + svg.matches("<path").count() >= 7);
+}

@@ -36,8 +36,9 @@ second, kinetic energy and the drift of energy, linear and angular momentum rela
 start) and writes to --out, published as one set (the whole directory is replaced at once;
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
 drift over events), with --observables DT observables.csv and observables.parquet (granular
-temperatures, collision frequency and energy lost per contact kind every DT, the same
-numbers; docs/granular.md) and, in 2D,
+temperatures, collision frequency, pressure, a2 and energy lost per contact kind every DT,
+the same numbers; docs/granular.md) and observables.svg (the temperatures against time) and,
+in 2D,
 trajectories.svg (a few balls' paths, cut at periodic wraps
 and thinned, and the contact points). --log and --boundary-map belong to the set: a file
 directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
@@ -338,6 +339,12 @@ where
             .map_err(|e| Failure::output(format!("cannot write observables.parquet: {e}")))?;
         set.write("observables.parquet", &table)
             .map_err(|e| crate::exit::publish_failure(&e))?;
+        let svg = staged(
+            noslip_sim::granular_plot::temperatures_svg(&title, s),
+            "observables.svg",
+        )?;
+        set.write("observables.svg", svg.as_bytes())
+            .map_err(|e| crate::exit::publish_failure(&e))?;
     }
     let energy = staged(
         energy_svg(&format!("{title}: energy drift"), &trace),
@@ -429,13 +436,14 @@ fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
 }
 
 /// Files of every simulate set; a side output may not take their names.
-const SET_FILES: [&str; 6] = [
+const SET_FILES: [&str; 7] = [
     crate::publish::MARKER,
     "summary.json",
     "energy.svg",
     "trajectories.svg",
     "observables.csv",
     "observables.parquet",
+    "observables.svg",
 ];
 
 /// The member of the set that `--log` and `--boundary-map` become: the file's own name
