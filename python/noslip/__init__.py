@@ -13,6 +13,8 @@ generated, exactly verified Rust kernels of the ``noslip`` workspace.
   :func:`orbits`: periodic orbits of a one-ball table, with their stability.
 - :func:`verify`, :func:`report`: the exact verification and the accuracy report.
 - :func:`sweep`: a function over a parameter grid as Dask tasks, streamed to a store.
+- :mod:`noslip.tables` (billiard tables) and :mod:`noslip.granular` (a cooling rough gas, its
+  ``T_rot / T_tr`` measured and from kinetic theory): functions for sweeps.
 - :func:`read_log`, :func:`read_boundary_map`, :func:`read_observables`: ``noslip
   simulate``'s Parquet outputs as pandas DataFrames, units in ``attrs`` (pyarrow, the
   ``sweep`` extra).
@@ -33,7 +35,7 @@ from noslip.columnar import read_boundary_map, read_log, read_observables
 from noslip.dynamics import LyapunovResult, OrbitsResult, lyapunov, orbits
 from noslip.simulate import SimulationResult, simulate
 from noslip.sweep import sweep
-from noslip import tables
+from noslip import granular, tables
 
 __all__ = [
     "__version__",
@@ -45,6 +47,7 @@ __all__ = [
     "SimulationResult",
     "collide",
     "collide_batch",
+    "granular",
     "isa",
     "lyapunov",
     "orbits",
