@@ -157,6 +157,8 @@ pub struct Scene {
     pub polygons: Vec<Vec<Vec<BigRational>>>,
     /// The contact kind of every ball-ball pair (`[contact] balls`).
     pub ball_contact: ContactKind,
+    /// The contact kind of the box's walls (`[box] contact`; no-slip without a box).
+    pub box_contact: ContactKind,
     /// The TC model's contact duration (`[contact] tc`, `> 0`): a contact of a ball within
     /// `tc` of its previous contact is elastic (docs/granular.md). `None`: every contact
     /// follows its law.

@@ -107,8 +107,9 @@ pub(crate) fn module_name(stem: &str) -> String {
 
 impl Scene {
     /// The pair kinds this scene can meet: ball-ball for every pair of species present
-    /// (a species with itself only if it has two balls) unless ball-ball contacts are smooth,
-    /// ball-wall for every present species and walled axis side of the box, ball-obstacle for
+    /// (a species with itself only if it has two balls) unless ball-ball contacts are not
+    /// no-slip, ball-wall for every present species and walled axis side of the box (unless the
+    /// box's contact is not no-slip), ball-obstacle for
     /// every present species if there are obstacles or other boundaries ([`Scene::boundaries`])
     /// with no-slip contact: the ball-obstacle kernel is the `fixed` map with the local normal
     /// that every immovable boundary uses.
@@ -129,7 +130,7 @@ impl Scene {
         let walls: Vec<usize> = (0..self.boundary.len())
             .filter(|&k| self.boundary[k] == Boundary::Wall)
             .collect();
-        let ball_wall = present
+        let ball_wall: Vec<(usize, usize, WallSide)> = present
             .iter()
             .flat_map(|&s| {
                 walls
@@ -146,6 +147,13 @@ impl Scene {
         if !no_slip(&self.ball_contact) {
             ball_ball.clear();
         }
+        // Box walls of another kind use no `fixed` kernel of their own (smooth: none; a
+        // rough or Walton law: the generic rough kernels).
+        let ball_wall = if no_slip(&self.box_contact) {
+            ball_wall
+        } else {
+            Vec::new()
+        };
         PairSet {
             name: module_name(&stem),
             dim: self.dim,

@@ -66,6 +66,10 @@ pub struct RawBox {
     pub size: Vec<Number>,
     /// `boundary`: `"wall"` or `"periodic"`, one per axis.
     pub boundary: Vec<Boundary>,
+    /// `contact`: the contact kind of the box's walls: `"no-slip"` (default), `"smooth"`,
+    /// `{ e = ..., beta = ... }` or `{ e = ..., mu = ..., beta0 = ... }`.
+    #[serde(default)]
+    pub contact: ContactKind,
 }
 
 /// A species' mass distribution named instead of its `lambda` or `gamma2`.

@@ -3,6 +3,7 @@
 use crate::ctx::Ctx;
 use crate::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
 use crate::table::{self, Shape};
+use crate::ContactKind;
 use crate::{
     BallSpec, Boundary, Obstacle, Placement, Random, RunDefaults, Scene, SceneError, Species,
     MAX_BALLS,
@@ -356,6 +357,10 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         boundaries,
         polygons,
         ball_contact: ctx.contact("contact.balls", &raw.contact.balls)?,
+        box_contact: match &raw.domain {
+            Some(domain) => ctx.contact("box.contact", &domain.contact)?,
+            None => ContactKind::NoSlip,
+        },
         tc: match &raw.contact.tc {
             Some(tc) => Some(ctx.positive("contact.tc", tc)?),
             None => None,

@@ -196,3 +196,51 @@ fn walton_laws_are_read_exactly_and_bad_ones_refused_naming_the_key() {
     let e = err("[contact]\nballs = { e = \"0.9\", beta = \"0.1\", mu = \"0.1\" }\n");
     assert!(e.contains("mu = ..., beta0 = ..."), "{e}");
 }
+
+/// `[box] contact`: the box walls' law, read exactly (no-slip by default and without a box),
+/// bad values refused naming `box.contact`; box walls of another law need no `fixed` kernel of
+/// their own (`Scene::pairs`).
+#[test]
+fn the_box_takes_a_contact_law() {
+    let boxed = |contact: &str| {
+        Scene::from_toml(
+            &BASE.replace(
+                "boundary = [\"wall\", \"wall\"]\n",
+                &format!("boundary = [\"wall\", \"wall\"]\ncontact = {contact}\n"),
+            ),
+            "t.toml",
+        )
+        .map_err(|e| e.to_string())
+    };
+    assert_eq!(scene("").unwrap().box_contact, ContactKind::NoSlip);
+    assert!(!scene("").unwrap().pairs().ball_wall.is_empty());
+    let rough = boxed("{ e = \"0.9\", beta = \"1/2\" }").unwrap();
+    assert_eq!(
+        rough.box_contact,
+        ContactKind::Rough {
+            e: q("9/10"),
+            beta: q("1/2")
+        }
+    );
+    assert!(rough.pairs().ball_wall.is_empty());
+    assert_eq!(
+        boxed("\"smooth\"").unwrap().box_contact,
+        ContactKind::Smooth
+    );
+    assert!(matches!(
+        boxed("{ e = 1, mu = \"0.2\", beta0 = 1 }")
+            .unwrap()
+            .box_contact,
+        ContactKind::Walton { .. }
+    ));
+    for (contact, place) in [
+        ("{ e = 2, beta = 0 }", "box.contact.e"),
+        ("{ e = 0.5, mu = -1, beta0 = 0 }", "box.contact.mu"),
+    ] {
+        let e = boxed(contact).unwrap_err();
+        assert!(
+            e.starts_with(&format!("t.toml: {place}: ")),
+            "{contact}: {e}"
+        );
+    }
+}

@@ -129,7 +129,7 @@ pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
             .map(|o| ContactKind::from(&o.contact))
             .collect(),
         ball_contact: ContactKind::from(&scene.ball_contact),
-        box_contact: ContactKind::NoSlip,
+        box_contact: ContactKind::from(&scene.box_contact),
         tc: scene.tc.as_ref().map_or(0.0, f),
         origin: extent::<N>(scene).0,
     }

@@ -474,3 +474,48 @@ fn sinai_normals_are_unit_on_average() {
         "plain: mean |nu|^2 - 1 = {mean} eps, standard error {error} (the test must tell the two apart)"
     );
 }
+
+/// `[box] contact` sets the law of the box's walls: a ball meeting a wall of a box with the
+/// rough law `{ e = 1/2, beta = 1/4 }` leaves it with the rough kernel's state (bit for bit)
+/// and with its normal velocity `-e` times what it was (first principles: spin moves only the
+/// contact point's tangential velocity), and under `"smooth"` with its tangential velocity
+/// and spin unchanged; the default is no-slip.
+#[test]
+fn the_box_walls_follow_their_contact_law() {
+    use noslip_sim::rough::{fixed, RoughLaw};
+    let text = |contact: &str| {
+        format!(
+            "dim = 2\n[box]\nsize = [10, 10]\nboundary = [\"wall\", \"wall\"]\n{contact}\n\
+             [[species]]\nmass = 1\nradius = \"1/2\"\n\
+             [[ball]]\nspecies = 0\nposition = [5, 5]\nvelocity = [1, \"3/10\"]\n\
+             angular_velocity = 2\n"
+        )
+    };
+    let first = |contact: &str| {
+        let scene = Scene::from_toml(&text(contact), "box.toml").unwrap();
+        let setup = setup::<2, 1>(&scene).unwrap();
+        let ball = setup.species[0].clone();
+        let mut sim = simulation(setup);
+        let e = next(&mut sim).expect("a wall ahead");
+        assert!(
+            matches!(e.contact, noslip_sim::Contact::Wall { axis: 0, .. }),
+            "{e:?}"
+        );
+        (e, ball)
+    };
+    let (e, ball) = first("contact = { e = \"1/2\", beta = \"1/4\" }");
+    let law = RoughLaw::Constant(collision_core::Restitution { e: 0.5, beta: 0.25 });
+    assert_eq!(e.post[0], fixed(&e.nu, &ball, &law, &e.pre[0]));
+    let normal = |s: &collision_core::BodyState<f64, 2, 1>| s.velocity[0];
+    assert!((normal(&e.post[0]) + 0.5 * normal(&e.pre[0])).abs() < 1e-15);
+    let (e, _) = first("contact = \"smooth\"");
+    assert_eq!(
+        e.post[0].velocity,
+        [-e.pre[0].velocity[0], e.pre[0].velocity[1]]
+    );
+    assert_eq!(e.post[0].spin, e.pre[0].spin);
+    let (no_slip, _) = first("");
+    let (named, _) = first("contact = \"no-slip\"");
+    assert_eq!(no_slip, named);
+    assert_ne!(no_slip.post[0].spin, no_slip.pre[0].spin);
+}

@@ -69,12 +69,15 @@ pub fn table<const N: usize, const S: usize>(
         .iter()
         .enumerate()
         .map(|(o, x)| (format!("obstacle[{o}]"), &x.contact));
-    let mut places = places.chain(
-        scene
-            .boundaries
-            .iter()
-            .map(|b| (b.place.clone(), &b.contact)),
-    );
+    let box_walls = scene.boundary.contains(&Axis::Wall);
+    let mut places = places
+        .chain(
+            scene
+                .boundaries
+                .iter()
+                .map(|b| (b.place.clone(), &b.contact)),
+        )
+        .chain(box_walls.then(|| ("box".to_string(), &scene.box_contact)));
     if let (Some((place, _)), None) = (places.find(|(_, c)| rough(c)), law) {
         return Err(format!(
             "{}: {place}.contact: a rough law (e < 1 or |beta| < 1) has no exact return map \
@@ -138,7 +141,7 @@ fn build<T: Root, const N: usize>(
                 point: far,
                 normal: e(-1),
             });
-            laws.extend([law.unwrap_or(Law::NoSlip); 2]);
+            laws.extend([law_of(&scene.box_contact).expect("rough laws refused"); 2]);
         }
     }
     for o in &scene.obstacles {
@@ -215,5 +218,30 @@ mod tests {
         assert_eq!(t.float.laws, vec![Law::NoSlip, Law::NoSlip, Law::Smooth]);
         let t = table::<2, 1>(&scene, Some(Law::NoSlip)).unwrap();
         assert_eq!(t.float.laws, vec![Law::NoSlip; 3]);
+    }
+
+    /// The box's walls take `[box] contact`: smooth walls are smooth laws (the override still
+    /// wins), a rough box is refused naming `box.contact`.
+    #[test]
+    fn the_box_walls_take_the_box_contact() {
+        let text = include_str!("../../../scenes/disk_between_walls.toml");
+        let with = |contact: &str| {
+            let t = text.replacen("[box]\n", &format!("[box]\ncontact = {contact}\n"), 1);
+            Scene::from_toml(&t, "box").unwrap()
+        };
+        let walls = 2 * Scene::from_toml(text, "box")
+            .unwrap()
+            .boundary
+            .iter()
+            .filter(|a| **a == Axis::Wall)
+            .count();
+        let t = table::<2, 1>(&with("\"smooth\""), None).unwrap();
+        assert_eq!(t.float.laws[..walls], vec![Law::Smooth; walls]);
+        let t = table::<2, 1>(&with("\"smooth\""), Some(Law::NoSlip)).unwrap();
+        assert_eq!(t.float.laws[..walls], vec![Law::NoSlip; walls]);
+        let Err(e) = table::<2, 1>(&with("{ e = 0.5, beta = 0 }"), None) else {
+            panic!("a rough box was accepted")
+        };
+        assert!(e.contains("box.contact: a rough law"), "{e}");
     }
 }
