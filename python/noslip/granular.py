@@ -26,6 +26,11 @@ def _uniform_gamma2(dim: int) -> float:
     return 2.0 / (dim + 2.0)
 
 
+def _ball_volume(dim: int) -> float:
+    """The volume of a ball of radius 1/2 in R^n: ``pi^(n/2) / (2^n Gamma(n/2 + 1))``."""
+    return float(math.pi ** (dim / 2) * 0.5**dim / math.gamma(dim / 2 + 1))
+
+
 def two_temperature_ratio(dim: int, e: float, beta: float, gamma2: float | None = None) -> float:
     """The homogeneous cooling state's ``T_rot / T_tr`` of the two-temperature theory.
 
@@ -95,8 +100,7 @@ def cooling_gas(
     in a periodic cube at packing fraction ``phi``, the rough law ``{e, beta}`` at every
     contact, a Maxwellian start at temperature 1 (every degree of freedom), placed at random
     with ``seed``."""
-    volume = math.pi ** (dim / 2) * 0.5**dim / math.gamma(dim / 2 + 1)
-    side = (balls * volume / phi) ** (1.0 / dim)
+    side = (balls * _ball_volume(dim) / phi) ** (1.0 / dim)
     return Scene.from_dict(
         {
             "description": f"cooling rough gas, e = {e}, beta = {beta}",
@@ -139,7 +143,7 @@ def cooling_ratio(
     scene = cooling_gas(e, beta, dim=dim, balls=balls, phi=phi, seed=seed)
     # The dilute collision frequency at temperature 1 (docs/granular.md, Haff's law:
     # 2 pi^((n-1)/2) / Gamma(n/2) rho sigma^(n-1) sqrt(T/m), sigma = 1) sets the sampling.
-    rho = phi / (math.pi ** (dim / 2) * 0.5**dim / math.gamma(dim / 2 + 1))
+    rho = phi / _ball_volume(dim)
     omega = 2 * math.pi ** ((dim - 1) / 2) / math.gamma(dim / 2) * rho
     run = simulate(scene, events=int(collisions * balls / 2), observables=0.05 / omega)
     obs = run.observables
