@@ -358,9 +358,11 @@ impl Sampler {
     /// at most half the shortest side (the nearest image only).
     pub fn with_pair_correlation(mut self, r_max: f64, bins: usize) -> Result<Sampler, String> {
         if self.volume.is_none() {
-            return Err("the pair correlation needs a box periodic on every axis, without \
+            return Err(
+                "the pair correlation needs a box periodic on every axis, without \
                         obstacles or boundaries"
-                .into());
+                    .into(),
+            );
         }
         self.pair_correlation = Some(PairCorrelation::new(r_max, bins, &self.sides)?);
         Ok(self)
