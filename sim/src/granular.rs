@@ -1,7 +1,10 @@
 //! Granular-gas observables sampled over a run (docs/granular.md): the translational and
 //! rotational granular temperatures (of the whole gas and, in a mixture, of each species), the
-//! collision frequency, the kinetic energy lost per contact kind, the pressure and the
-//! velocity distribution's cumulant `a_2`, written as CSV with the units in the header.
+//! collision frequency, the kinetic energy lost per contact kind, the pressure, the
+//! velocity distribution's cumulant `a_2` and the mean square displacement (of the balls'
+//! unwrapped displacements, also about the centre of mass: [`crate::displacement`]), written
+//! as CSV with the units in the header; on request the pair correlation `g(r)`
+//! ([`Sampler::with_pair_correlation`], [`crate::pair_correlation`]).
 //!
 //! With `N_b` balls in R^n, `S = n(n-1)/2`, masses `m_i` and moments of inertia `I_i = 2 m_i
 //! lambda_i` (the project's convention: a ball's kinetic energy is `1/2 m |u|^2 + 1/2 I
@@ -352,7 +355,8 @@ impl Sampler {
         &self.rows
     }
 
-    /// Samples the pair correlation `g(r)` of the balls' centres at every later row, in
+    /// Samples the pair correlation `g(r)` of the balls' centres at every later row (not the
+    /// first, taken by [`Sampler::start`]), in
     /// `bins` bins of `r` in `[0, r_max]` ([`crate::pair_correlation`]): only in a box
     /// periodic on every axis without obstacles or boundaries (as the pressure), with `r_max`
     /// at most half the shortest side (the nearest image only).

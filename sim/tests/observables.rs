@@ -236,8 +236,10 @@ fn slope(x: &[f64], y: &[f64]) -> f64 {
 ///
 /// the factor `1.01896` the converged Sonine expansion for hard spheres over its first term
 /// (`1 + 1/56` at the second, Hirschfelder, Curtiss & Bird eq. 8.2-44 with `A* = C* = 1`).
-/// The slope is fitted over `t` in `[10, 60] tau_v`, `tau_v = m D / T` the velocity's
-/// correlation time (about 1.5 collision times): its start is forgotten to `e^-10`. Not in the
+/// The slope is fitted over `t` in `[8, 30] tau_v`, `tau_v = m D / T` the velocity's
+/// correlation time (about 1.5 collision times): its start is forgotten to `e^-8`. One run's
+/// `D` has a relative error of about `sqrt(2 / (n N_b))` however long it runs (one time
+/// origin per ball): hence many balls. Not in the
 /// theory: the ring collisions (velocity correlations beyond Enskog's, the `t^-3/2` tail), a
 /// relative correction of order `phi` that molecular dynamics finds below 1 % of `D` at `phi <
 /// 0.04` (Alder, Gass & Wainwright 1970), allowed for beside `t s`; the momentum conservation
