@@ -1,6 +1,7 @@
 //! `noslip simulate --observables DT` on the shipped granular gas: the CSV's header with its
-//! units, one row per interval, the gas cooling, the Parquet table equal to the CSV, and bad intervals and laws refused (exit 2,
-//! the option or the field named).
+//! units, one row per interval, the gas cooling, the mean square displacement, g(r) with
+//! --pair-correlation, the Parquet table equal to the CSV, and bad intervals, radii and laws
+//! refused (exit 2, the option or the field named).
 
 mod support;
 use parquet::file::reader::{FileReader, SerializedFileReader};
@@ -19,6 +20,10 @@ fn the_granular_gas_writes_its_observables() {
                 "5",
                 "--observables",
                 "1",
+                "--pair-correlation",
+                "3",
+                "--pair-bins",
+                "30",
                 "--quiet",
                 "--out",
             ])
@@ -31,7 +36,7 @@ fn the_granular_gas_writes_its_observables() {
         "time [T],contacts [1],T_tr [M L^2 T^-2],T_rot [M L^2 T^-2],energy [M L^2 T^-2],\
          collision_frequency [T^-1],lost_ball_ball [M L^2 T^-2],lost_ball_wall [M L^2 T^-2],\
          lost_ball_obstacle [M L^2 T^-2],lost_ball_boundary [M L^2 T^-2],\
-         pressure [M L^-1 T^-2],a2 [1]"
+         pressure [M L^-1 T^-2],a2 [1],msd [L^2],msd_cm [L^2]"
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
@@ -51,6 +56,28 @@ fn the_granular_gas_writes_its_observables() {
     assert!(last[4] < first[4] && last[6] > 0.0, "{last:?}");
     let bound = (64.0 * last[1] + 40.0 * 500.0) * f64::EPSILON * first[4];
     assert!(((first[4] - last[4]) - last[6]).abs() <= bound, "{last:?}");
+    // No displacement at the start; then msd_cm <= msd (equal masses: msd - msd_cm is the
+    // centre of mass's |D|^2).
+    assert_eq!((first[12], first[13]), (0.0, 0.0));
+    assert!(last[13] > 0.0 && last[13] <= last[12], "{last:?}");
+    // pair-correlation.csv: 30 bins of width 0.1 up to 3, none below contact (the bin
+    // [0.9, 1) may hold a pair touching at a row's contact), g near 1 far out.
+    let pairs = std::fs::read_to_string(dir.join("pair-correlation.csv")).unwrap();
+    let mut lines = pairs.lines();
+    assert_eq!(lines.next().unwrap(), "r [L],g [1]");
+    let g: Vec<[f64; 2]> = lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1]]
+        })
+        .collect();
+    assert_eq!(g.len(), 30, "{pairs}");
+    assert!((g[0][0] - 0.05).abs() < 1e-12 && (g[29][0] - 2.95).abs() < 1e-12);
+    assert!(g[..9].iter().all(|&[_, g]| g == 0.0), "{pairs}");
+    assert!(
+        g[20..].iter().all(|&[_, g]| (g - 1.0).abs() < 0.2),
+        "{pairs}"
+    );
     // observables.parquet holds the same numbers, bit for bit (the CSV's shortest
     // round-trip decimals parse back to the f64 values), `contacts` an integer.
     let file = std::fs::File::open(dir.join("observables.parquet")).unwrap();
@@ -98,6 +125,25 @@ fn bad_intervals_and_laws_exit_2_naming_them() {
     let err = String::from_utf8(out.stderr).unwrap();
     assert!(
         err.contains("--observables: the interval must be positive"),
+        "{err}"
+    );
+    // g(r) beyond half the box's side (14) is refused.
+    let out = noslip()
+        .args([
+            "simulate",
+            "scenes/granular3d.toml",
+            "--observables",
+            "1",
+            "--pair-correlation",
+            "8",
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("--pair-correlation: the pair correlation's r_max = 8 must be in (0, 7]"),
         "{err}"
     );
     let dir = temp("granular-bad");

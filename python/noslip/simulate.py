@@ -72,7 +72,9 @@ class SimulationResult:
         ``lost_ball_obstacle``, ``lost_ball_boundary`` (energy lost so far at each kind of
         contact), ``pressure`` [M L^(2-n) T^-2] (kinetic plus the collisional virial since
         the previous row; a periodic box without obstacles only, else NaN), ``a2`` (the
-        velocity cumulant, 0 for a Maxwellian) and, in a mixture, ``T_tr_s`` and
+        velocity cumulant, 0 for a Maxwellian), ``msd`` and ``msd_cm`` [L^2] (the mean
+        square displacement since the start, unwrapped across periodic faces, and the same
+        about the centre of mass) and, in a mixture, ``T_tr_s`` and
         ``T_rot_s`` for each species index ``s``. Empty without ``observables``.
     """
 

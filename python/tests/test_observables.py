@@ -29,6 +29,8 @@ COLUMNS = [
     "lost_ball_boundary",
     "pressure",
     "a2",
+    "msd",
+    "msd_cm",
 ]
 
 

@@ -1,7 +1,10 @@
 //! Granular-gas observables sampled over a run (docs/granular.md): the translational and
 //! rotational granular temperatures (of the whole gas and, in a mixture, of each species), the
-//! collision frequency, the kinetic energy lost per contact kind, the pressure and the
-//! velocity distribution's cumulant `a_2`, written as CSV with the units in the header.
+//! collision frequency, the kinetic energy lost per contact kind, the pressure, the
+//! velocity distribution's cumulant `a_2` and the mean square displacement (of the balls'
+//! unwrapped displacements, also about the centre of mass: [`crate::displacement`]), written
+//! as CSV with the units in the header; on request the pair correlation `g(r)`
+//! ([`Sampler::with_pair_correlation`], [`crate::pair_correlation`]).
 //!
 //! With `N_b` balls in R^n, `S = n(n-1)/2`, masses `m_i` and moments of inertia `I_i = 2 m_i
 //! lambda_i` (the project's convention: a ball's kinetic energy is `1/2 m |u|^2 + 1/2 I
@@ -40,7 +43,9 @@
 //! (and one at the start): the row's time is that contact's, and the state is the one just
 //! after it (the velocities are constant between contacts, so the row is exact at its time).
 
+use crate::displacement::Displacements;
 use crate::observe::energy_of;
+use crate::pair_correlation::PairCorrelation;
 use crate::{Contact, Event, PairKernels, Simulation};
 use collision_core::Ball;
 
@@ -72,6 +77,10 @@ pub struct Row {
     pub pressure: f64,
     /// The cumulant `a_2` of the translational velocities (module docs).
     pub a2: f64,
+    /// The mean square displacement since the start, unwrapped ([`crate::displacement`]).
+    pub msd: f64,
+    /// The same about the centre of mass ([`crate::displacement`]).
+    pub msd_cm: f64,
     /// `[T_tr,s, T_rot,s]` of each species `s`, in a mixture (empty with one species).
     pub species: Vec<[f64; 2]>,
 }
@@ -89,7 +98,7 @@ impl Row {
             self.frequency,
         ];
         v.extend(self.lost);
-        v.extend([self.pressure, self.a2]);
+        v.extend([self.pressure, self.a2, self.msd, self.msd_cm]);
         v.extend(self.species.iter().flatten());
         v
     }
@@ -230,6 +239,10 @@ pub struct Sampler {
     /// `sum r_ij . J_i` over the ball-ball contacts since the last row.
     virial: f64,
     lost: [f64; 4],
+    displacements: Displacements,
+    /// The box's sides, for [`Sampler::with_pair_correlation`].
+    sides: Vec<f64>,
+    pair_correlation: Option<PairCorrelation>,
     rows: Vec<Row>,
 }
 
@@ -254,6 +267,9 @@ impl Sampler {
             last: (sim.now(), 0),
             virial: 0.0,
             lost: [0.0; 4],
+            displacements: Displacements::start(sim),
+            sides: sim.box_size().to_vec(),
+            pair_correlation: None,
             rows: Vec::new(),
         };
         s.row(sim, species);
@@ -277,6 +293,7 @@ impl Sampler {
             Contact::Boundary { .. } => 3,
         };
         self.ball_ball += u64::from(k == 0);
+        self.displacements.contact(e);
         self.lost[k] += lost(e, sim, species);
         if e.time >= self.next {
             self.row(sim, species);
@@ -291,6 +308,10 @@ impl Sampler {
         let time = sim.now();
         let m = moments(sim, species);
         let [t_tr, t_rot] = m.temperatures;
+        let [msd, msd_cm] = self.displacements.msd(sim, species);
+        if let Some(g) = &mut self.pair_correlation {
+            g.sample(sim);
+        }
         let (t0, c0) = self.last;
         let first = self.rows.is_empty();
         let frequency = if first {
@@ -315,6 +336,8 @@ impl Sampler {
             lost: self.lost,
             pressure,
             a2: m.a2,
+            msd,
+            msd_cm,
             species: if self.species > 1 {
                 m.species
             } else {
@@ -332,11 +355,33 @@ impl Sampler {
         &self.rows
     }
 
+    /// Samples the pair correlation `g(r)` of the balls' centres at every later row (not the
+    /// first, taken by [`Sampler::start`]), in
+    /// `bins` bins of `r` in `[0, r_max]` ([`crate::pair_correlation`]): only in a box
+    /// periodic on every axis without obstacles or boundaries (as the pressure), with `r_max`
+    /// at most half the shortest side (the nearest image only).
+    pub fn with_pair_correlation(mut self, r_max: f64, bins: usize) -> Result<Sampler, String> {
+        if self.volume.is_none() {
+            return Err(
+                "the pair correlation needs a box periodic on every axis, without \
+                        obstacles or boundaries"
+                    .into(),
+            );
+        }
+        self.pair_correlation = Some(PairCorrelation::new(r_max, bins, &self.sides)?);
+        Ok(self)
+    }
+
+    /// The pair correlation sampled so far, if asked for ([`Sampler::with_pair_correlation`]).
+    pub fn pair_correlation(&self) -> Option<&PairCorrelation> {
+        self.pair_correlation.as_ref()
+    }
+
     /// The columns of a row, in the order of [`Row::values`]: name and unit, in the scene's
     /// units of mass `M`, length `L` and time `T` (`1` a count or a pure number). The CSV's
     /// header, the Parquet table's columns and the Python package's arrays share these names:
     /// `time`, `contacts`, `T_tr`, `T_rot`, `energy`, `collision_frequency`, `lost_KIND`
-    /// ([`KINDS`]), `pressure`, `a2`, and in a mixture `T_tr_s`, `T_rot_s` for each species
+    /// ([`KINDS`]), `pressure`, `a2`, `msd`, `msd_cm`, and in a mixture `T_tr_s`, `T_rot_s` for each species
     /// index `s`.
     pub fn columns(&self) -> Vec<(String, String)> {
         let mut c: Vec<(String, String)> = [
@@ -358,6 +403,8 @@ impl Sampler {
         };
         c.push(("pressure".into(), pressure));
         c.push(("a2".into(), "1".into()));
+        c.push(("msd".into(), "L^2".into()));
+        c.push(("msd_cm".into(), "L^2".into()));
         if self.species > 1 {
             for s in 0..self.species {
                 c.push((format!("T_tr_{s}"), ENERGY.into()));

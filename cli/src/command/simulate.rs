@@ -95,6 +95,25 @@ pub struct Args {
     /// metadata (docs/granular.md).
     #[arg(long, value_name = "DT", allow_negative_numbers = true)]
     observables: Option<f64>,
+    /// With --observables: also sample the pair correlation g(r) of the centres at every
+    /// row, r in [0, R_MAX] (at most half the box's shortest side) in --pair-bins bins, and
+    /// write its average over the rows to --out as pair-correlation.csv (a periodic box
+    /// without obstacles or boundaries only; docs/granular.md).
+    #[arg(
+        long,
+        value_name = "R_MAX",
+        requires = "observables",
+        allow_negative_numbers = true
+    )]
+    pair_correlation: Option<f64>,
+    /// The bins of --pair-correlation.
+    #[arg(
+        long,
+        value_name = "BINS",
+        default_value_t = 100,
+        requires = "pair_correlation"
+    )]
+    pair_bins: usize,
     /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -164,6 +183,15 @@ where
         Some(dt) => Some(Sampler::start(dt, &sim, &species)),
         None => None,
     };
+    if let Some(r_max) = args.pair_correlation {
+        // `requires = "observables"`: the sampler is there.
+        if let Some(s) = sampler.take() {
+            sampler = Some(
+                s.with_pair_correlation(r_max, args.pair_bins)
+                    .map_err(|e| Failure::bad_input(format!("--pair-correlation: {e}")))?,
+            );
+        }
+    }
     let mut events = args.events.or(scene.simulation.events);
     let time = args.time.or(scene.simulation.time.as_ref().map(f));
     if events.is_none() && time.is_none() {
@@ -345,6 +373,10 @@ where
         )?;
         set.write("observables.svg", svg.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
+        if let Some(g) = s.pair_correlation() {
+            set.write("pair-correlation.csv", g.csv().as_bytes())
+                .map_err(|e| crate::exit::publish_failure(&e))?;
+        }
     }
     let energy = staged(
         energy_svg(&format!("{title}: energy drift"), &trace),
@@ -436,7 +468,7 @@ fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
 }
 
 /// Files of every simulate set; a side output may not take their names.
-const SET_FILES: [&str; 7] = [
+const SET_FILES: [&str; 8] = [
     crate::publish::MARKER,
     "summary.json",
     "energy.svg",
@@ -444,6 +476,7 @@ const SET_FILES: [&str; 7] = [
     "observables.csv",
     "observables.parquet",
     "observables.svg",
+    "pair-correlation.csv",
 ];
 
 /// The member of the set that `--log` and `--boundary-map` become: the file's own name
