@@ -76,6 +76,10 @@ class SimulationResult:
         square displacement since the start, unwrapped across periodic faces, and the same
         about the centre of mass) and, in a mixture, ``T_tr_s`` and
         ``T_rot_s`` for each species index ``s``. Empty without ``observables``.
+    pair_correlation : dict of ndarray
+        ``g(r)`` averaged over the observables' rows (``pair_correlation=R_MAX``), as
+        ``noslip simulate --pair-correlation`` writes ``pair-correlation.csv``: ``r`` [L]
+        (the bins' centres) and ``g``. Empty without ``pair_correlation``.
     """
 
     summary: dict[str, Any]
@@ -84,6 +88,7 @@ class SimulationResult:
     boundary_map: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
     html: str | None = field(repr=False, default=None)
     observables: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
+    pair_correlation: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
 
     def __repr__(self) -> str:
         s = self.summary
@@ -111,6 +116,8 @@ def simulate(
     max_memory: int = MAX_MEMORY,
     html: bool = False,
     observables: float | None = None,
+    pair_correlation: float | None = None,
+    pair_bins: int = 100,
 ) -> SimulationResult:
     """Run a scene with the event-driven simulator of ``noslip simulate``.
 
@@ -151,6 +158,13 @@ def simulate(
         finite), as ``noslip simulate --observables``: :attr:`SimulationResult.observables`
         (360 bytes a row with one species, 48 more a species in a mixture, counted against
         ``max_memory``).
+    pair_correlation : float, optional
+        Also sample ``g(r)`` up to this distance at every row but the first (needs
+        ``observables``; a box periodic on every axis, without obstacles or other
+        boundaries, and at most half its shortest side), in ``pair_bins`` bins:
+        :attr:`SimulationResult.pair_correlation` (``docs/granular.md``).
+    pair_bins : int
+        The bins of ``pair_correlation`` (default 100).
 
     Raises
     ------
@@ -163,7 +177,16 @@ def simulate(
         discarded.
     """
     out = _native.simulate(
-        as_scene(scene), events, time, log, boundary_map, max_memory, html, observables
+        as_scene(scene),
+        events,
+        time,
+        log,
+        boundary_map,
+        max_memory,
+        html,
+        observables,
+        pair_correlation,
+        pair_bins,
     )
     summary = json.loads(out["summary"])
     energy = dict(out["energy"])
@@ -176,4 +199,5 @@ def simulate(
         boundary_map=bmap,
         html=out["html"],
         observables=dict(out["observables"]),
+        pair_correlation=dict(out["pair_correlation"]),
     )

@@ -32,6 +32,8 @@ struct Run {
     html: Option<String>,
     /// The observables' columns (name, unit) and rows (none without `observables`).
     observables: (Vec<(String, String)>, Vec<granular::Row>),
+    /// `g(r)` averaged over the rows, `(r, g)` per bin (none without `pair_correlation`).
+    pair_correlation: Vec<[f64; 2]>,
 }
 
 /// What a run keeps of each contact, and at most how many contacts' worth.
@@ -45,6 +47,8 @@ struct Keep {
     contacts: u64,
     /// Sample the observables every this much simulated time.
     observables: Option<f64>,
+    /// Sample `g(r)` up to this distance in this many bins at each row.
+    pair_correlation: Option<(f64, usize)>,
     /// The memory cap, in bytes, which the observables' rows share with the records.
     max_memory: u64,
     /// The bytes the records of a contact take ([`bytes_per_contact`]).
@@ -91,6 +95,12 @@ where
     let mut sampler = keep
         .observables
         .map(|dt| Sampler::start(dt, &sim, &species));
+    if let Some((r_max, bins)) = keep.pair_correlation {
+        sampler = sampler
+            .map(|s| s.with_pair_correlation(r_max, bins))
+            .transpose()
+            .map_err(|e| RunError::Input(format!("pair_correlation: {e}")))?;
+    }
     let (summary, trace) = run_observed(
         &mut sim,
         &species,
@@ -132,6 +142,10 @@ where
         columns: lines.columns,
         rows,
         html: recorder.map(|r| noslip_sim::animation_page::html(&r.finish(&sim))),
+        pair_correlation: sampler
+            .as_ref()
+            .and_then(|s| s.pair_correlation())
+            .map_or_else(Vec::new, |g| g.g()),
         observables: sampler.map_or_else(Default::default, |s| (s.columns(), s.rows().to_vec())),
     })
 }
@@ -367,7 +381,7 @@ fn time_of(t: f64) -> PyResult<f64> {
 /// animation page with ``html``, else None), ``observables`` (with ``observables`` the
 /// sampling interval, the rows' columns as arrays; else empty).
 #[pyfunction]
-#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false, observables=None))]
+#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false, observables=None, pair_correlation=None, pair_bins=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -379,7 +393,15 @@ pub fn simulate<'py>(
     max_memory: Option<Bound<'py, PyAny>>,
     html: bool,
     observables: Option<f64>,
+    pair_correlation: Option<f64>,
+    pair_bins: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let pair_bins = unsigned_opt(pair_bins.as_ref(), "pair_bins", 1, 1 << 20)?.unwrap_or(100);
+    if pair_correlation.is_some() && observables.is_none() {
+        return Err(input_error(
+            "pair_correlation: g(r) is sampled at the observables' rows: give observables too",
+        ));
+    }
     if let Some(dt) = observables.filter(|dt| !(*dt > 0.0 && dt.is_finite())) {
         return Err(input_error(format!(
             "observables: the interval must be positive and finite, got {dt}"
@@ -409,6 +431,7 @@ pub fn simulate<'py>(
         html,
         contacts: max_memory.checked_div(per_contact).unwrap_or(u64::MAX),
         observables,
+        pair_correlation: pair_correlation.map(|r| (r, pair_bins as usize)),
         max_memory,
         per_contact,
     };
@@ -511,5 +534,24 @@ pub fn simulate<'py>(
     out.set_item("boundary_map", map_columns(py, &done.rows, n)?)?;
     out.set_item("html", done.html)?;
     out.set_item("observables", observable_columns(py, &done.observables)?)?;
+    let g = PyDict::new(py);
+    let bins = done.pair_correlation.len();
+    g.set_item(
+        "r",
+        array(
+            py,
+            done.pair_correlation.iter().map(|b| b[0]).collect(),
+            &[bins],
+        )?,
+    )?;
+    g.set_item(
+        "g",
+        array(
+            py,
+            done.pair_correlation.iter().map(|b| b[1]).collect(),
+            &[bins],
+        )?,
+    )?;
+    out.set_item("pair_correlation", g)?;
     Ok(out)
 }

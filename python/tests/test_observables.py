@@ -100,3 +100,25 @@ def test_the_rows_count_against_max_memory() -> None:
         noslip.simulate(SCENE, time=1, observables=1e-12, max_memory=3600)
     small = noslip.simulate(SCENE, events=5, observables=1e-12, max_memory=3600)
     assert len(small.observables["time"]) == 6  # the start and each contact
+
+
+def test_pair_correlation_equals_the_cli_csv(cli: Path, tmp_path: Path) -> None:
+    """g(r) of the CLI's pair-correlation.csv, bit for bit; bad radii and a missing
+    interval named."""
+    scene = ROOT / "scenes" / "gas3d.toml"
+    out = tmp_path / "run"
+    run_cli(cli, "simulate", str(scene), "--quiet", "--events", "3000", "--observables",
+            "0.5", "--pair-correlation", "2", "--pair-bins", "20", "--out", str(out))
+    with open(out / "pair-correlation.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    assert rows[0] == ["r [L]", "g [1]"]
+    text = np.array([[float(x) for x in r] for r in rows[1:]])
+    got = noslip.simulate(scene, events=3000, observables=0.5, pair_correlation=2,
+                          pair_bins=20).pair_correlation
+    assert got["r"].shape == got["g"].shape == (20,)
+    for k, name in enumerate(["r", "g"]):
+        assert np.array_equal(got[name].view(np.int64), text[:, k].view(np.int64)), name
+    with pytest.raises(noslip.InputError, match="pair_correlation: "):
+        noslip.simulate(scene, events=10, observables=0.5, pair_correlation=1e6)
+    with pytest.raises(noslip.InputError, match="pair_correlation: .*give observables"):
+        noslip.simulate(scene, events=10, pair_correlation=2)
