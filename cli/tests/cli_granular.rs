@@ -78,6 +78,26 @@ fn the_granular_gas_writes_its_observables() {
         g[20..].iter().all(|&[_, g]| (g - 1.0).abs() < 0.2),
         "{pairs}"
     );
+    // pair-correlation.parquet: the same numbers, bit for bit.
+    let file = std::fs::File::open(dir.join("pair-correlation.parquet")).unwrap();
+    let table: Vec<Vec<Field>> = SerializedFileReader::new(file)
+        .unwrap()
+        .get_row_iter(None)
+        .unwrap()
+        .map(|r| {
+            r.unwrap()
+                .get_column_iter()
+                .map(|(_, f)| f.clone())
+                .collect()
+        })
+        .collect();
+    assert_eq!(table.len(), g.len());
+    for (got, want) in table.iter().zip(&g) {
+        for (x, w) in got.iter().zip(want) {
+            let Field::Double(x) = x else { panic!("{x:?}") };
+            assert_eq!(x.to_bits(), w.to_bits());
+        }
+    }
     // observables.parquet holds the same numbers, bit for bit (the CSV's shortest
     // round-trip decimals parse back to the f64 values), `contacts` an integer.
     let file = std::fs::File::open(dir.join("observables.parquet")).unwrap();

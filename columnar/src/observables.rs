@@ -29,6 +29,30 @@ pub fn cells(row: &Row) -> Vec<Cell<'static>> {
     cells
 }
 
+/// `g(r)` of `g` in dimension `n` as a Parquet table into `out`: the columns `r` [L] (the
+/// bins' centres) and `g` [1] of `pair-correlation.csv`.
+pub fn pair_correlation<W: Write + Send>(
+    g: &noslip_sim::pair_correlation::PairCorrelation,
+    n: usize,
+    out: W,
+) -> io::Result<W> {
+    let mut t = Table::new(
+        out,
+        "noslip_pair_correlation",
+        vec![
+            Column::new("r", Kind::Float, false, "L"),
+            Column::new("g", Kind::Float, false, "1"),
+        ],
+        "one row per bin of the pair correlation g(r), averaged over the observables' rows \
+         (docs/granular.md)",
+        n,
+    )?;
+    for [r, value] in g.g() {
+        t.push(&[Cell::Float(r), Cell::Float(value)])?;
+    }
+    t.finish()
+}
+
 /// The whole table of `sampler`'s rows in dimension `n`, as the bytes of a Parquet file.
 pub fn parquet<W: Write + Send>(sampler: &Sampler, n: usize, out: W) -> io::Result<W> {
     let mut t = Table::new(

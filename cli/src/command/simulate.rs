@@ -97,8 +97,8 @@ pub struct Args {
     observables: Option<f64>,
     /// With --observables: also sample the pair correlation g(r) of the centres at every
     /// row, r in [0, R_MAX] (at most half the box's shortest side) in --pair-bins bins, and
-    /// write its average over the rows to --out as pair-correlation.csv (a periodic box
-    /// without obstacles or boundaries only; docs/granular.md).
+    /// write its average over the rows to --out as pair-correlation.csv and .parquet (a
+    /// periodic box without obstacles or boundaries only; docs/granular.md).
     #[arg(
         long,
         value_name = "R_MAX",
@@ -376,6 +376,11 @@ where
         if let Some(g) = s.pair_correlation() {
             set.write("pair-correlation.csv", g.csv().as_bytes())
                 .map_err(|e| crate::exit::publish_failure(&e))?;
+            let table = columnar::observables::pair_correlation(g, N, Vec::new()).map_err(|e| {
+                Failure::output(format!("cannot write pair-correlation.parquet: {e}"))
+            })?;
+            set.write("pair-correlation.parquet", &table)
+                .map_err(|e| crate::exit::publish_failure(&e))?;
         }
     }
     let energy = staged(
@@ -468,7 +473,7 @@ fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
 }
 
 /// Files of every simulate set; a side output may not take their names.
-const SET_FILES: [&str; 8] = [
+const SET_FILES: [&str; 9] = [
     crate::publish::MARKER,
     "summary.json",
     "energy.svg",
@@ -477,6 +482,7 @@ const SET_FILES: [&str; 8] = [
     "observables.parquet",
     "observables.svg",
     "pair-correlation.csv",
+    "pair-correlation.parquet",
 ];
 
 /// The member of the set that `--log` and `--boundary-map` become: the file's own name
