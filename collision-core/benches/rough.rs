@@ -4,7 +4,10 @@
 //!
 //! - `no_slip`: `collision_core::kernels::dN::free::<f64>`;
 //! - `rough`: `collision_core::kernels::dN::rough::free::<f64>` with `(e, beta) = (0.9, 0.4)`
-//!   passed at run time through `black_box` (so the compiler cannot fold the law in).
+//!   passed at run time through `black_box` (so the compiler cannot fold the law in);
+//! - `walton`: `collision_core::kernels::dN::walton::free::<f64>` with `(e, mu, beta0) =
+//!   (0.9, 0.2, 0.4)`, likewise (its select between sticking and sliding is branch-free:
+//!   both are computed).
 //!
 //! Target (issue 27): `rough` within 1.2x of `no_slip`. Run:
 //! `cargo bench -p collision-core --bench rough` (figures in docs/benchmarks.md).
@@ -18,7 +21,7 @@ mod cases;
 mod timed;
 
 use cases::{batch, Case};
-use collision_core::{kernels, Ball, BodyState, Restitution};
+use collision_core::{kernels, Ball, BodyState, Restitution, Walton};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
 use std::time::Duration;
@@ -58,6 +61,15 @@ fn bench_dim<const N: usize, const S: usize>(
             &BodyState<f64, N, S>,
         ) -> [BodyState<f64, N, S>; 2]
         + Copy,
+    walton: impl Fn(
+            &[f64; N],
+            &Ball<f64>,
+            &Ball<f64>,
+            &Walton<f64>,
+            &BodyState<f64, N, S>,
+            &BodyState<f64, N, S>,
+        ) -> [BodyState<f64, N, S>; 2]
+        + Copy,
 ) {
     let cases: Vec<Case<N, S>> = batch::<N, S>(SEED ^ N as u64, BATCH);
     let one = Restitution::no_slip();
@@ -70,6 +82,12 @@ fn bench_dim<const N: usize, const S: usize>(
         );
     }
     let law = Restitution::new(0.9, 0.4).expect("in range");
+    let friction = Walton::new(0.9, 0.2, 0.4).expect("in range");
+    for case in &cases {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        let out = walton(&case.nu, b1, b2, &friction, s1, s2);
+        assert!(bits(&out).iter().all(|b| f64::from_bits(*b).is_finite()));
+    }
 
     let mut group = c.benchmark_group(format!("rough_d{N}"));
     group
@@ -94,15 +112,49 @@ fn bench_dim<const N: usize, const S: usize>(
             })
         })
     });
+    group.bench_function("walton", |b| {
+        b.iter(|| {
+            let law = black_box(&friction);
+            run_batch(&cases, |case| {
+                let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+                walton(&case.nu, b1, b2, law, s1, s2)
+            })
+        })
+    });
     group.finish();
 }
 
 fn rough_against_no_slip(c: &mut Criterion) {
-    bench_dim::<2, 1>(c, kernels::d2::free::<f64>, kernels::d2::rough::free::<f64>);
-    bench_dim::<3, 3>(c, kernels::d3::free::<f64>, kernels::d3::rough::free::<f64>);
-    bench_dim::<4, 6>(c, kernels::d4::free::<f64>, kernels::d4::rough::free::<f64>);
-    bench_dim::<5, 10>(c, kernels::d5::free::<f64>, kernels::d5::rough::free::<f64>);
-    bench_dim::<6, 15>(c, kernels::d6::free::<f64>, kernels::d6::rough::free::<f64>);
+    bench_dim::<2, 1>(
+        c,
+        kernels::d2::free::<f64>,
+        kernels::d2::rough::free::<f64>,
+        kernels::d2::walton::free::<f64>,
+    );
+    bench_dim::<3, 3>(
+        c,
+        kernels::d3::free::<f64>,
+        kernels::d3::rough::free::<f64>,
+        kernels::d3::walton::free::<f64>,
+    );
+    bench_dim::<4, 6>(
+        c,
+        kernels::d4::free::<f64>,
+        kernels::d4::rough::free::<f64>,
+        kernels::d4::walton::free::<f64>,
+    );
+    bench_dim::<5, 10>(
+        c,
+        kernels::d5::free::<f64>,
+        kernels::d5::rough::free::<f64>,
+        kernels::d5::walton::free::<f64>,
+    );
+    bench_dim::<6, 15>(
+        c,
+        kernels::d6::free::<f64>,
+        kernels::d6::rough::free::<f64>,
+        kernels::d6::walton::free::<f64>,
+    );
 }
 
 criterion_group!(benches, rough_against_no_slip);
