@@ -29,8 +29,8 @@ pub fn cells(row: &Row) -> Vec<Cell<'static>> {
     cells
 }
 
-/// `g(r)` of `g` in dimension `n` as a Parquet table into `out`: the columns `r` [L] (the
-/// bins' centres) and `g` [1] of `pair-correlation.csv`.
+/// `g(r)` of `g` in dimension `n` as a Parquet table into `out`: the columns `r` (unit `L`, the
+/// bins' centres) and `g` (unit `1`) of `pair-correlation.csv`.
 pub fn pair_correlation<W: Write + Send>(
     g: &noslip_sim::pair_correlation::PairCorrelation,
     n: usize,
