@@ -8,6 +8,21 @@ use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::record::Field;
 use support::{noslip, run_ok, temp};
 
+/// The rows of the Parquet file `path`, each a list of its fields.
+fn parquet_rows(path: &std::path::Path) -> Vec<Vec<Field>> {
+    let reader = SerializedFileReader::new(std::fs::File::open(path).unwrap()).unwrap();
+    reader
+        .get_row_iter(None)
+        .unwrap()
+        .map(|r| {
+            r.unwrap()
+                .get_column_iter()
+                .map(|(_, f)| f.clone())
+                .collect()
+        })
+        .collect()
+}
+
 #[test]
 fn the_granular_gas_writes_its_observables() {
     let dir = temp("granular");
@@ -79,18 +94,7 @@ fn the_granular_gas_writes_its_observables() {
         "{pairs}"
     );
     // pair-correlation.parquet: the same numbers, bit for bit.
-    let file = std::fs::File::open(dir.join("pair-correlation.parquet")).unwrap();
-    let table: Vec<Vec<Field>> = SerializedFileReader::new(file)
-        .unwrap()
-        .get_row_iter(None)
-        .unwrap()
-        .map(|r| {
-            r.unwrap()
-                .get_column_iter()
-                .map(|(_, f)| f.clone())
-                .collect()
-        })
-        .collect();
+    let table = parquet_rows(&dir.join("pair-correlation.parquet"));
     assert_eq!(table.len(), g.len());
     for (got, want) in table.iter().zip(&g) {
         for (x, w) in got.iter().zip(want) {
@@ -100,18 +104,7 @@ fn the_granular_gas_writes_its_observables() {
     }
     // observables.parquet holds the same numbers, bit for bit (the CSV's shortest
     // round-trip decimals parse back to the f64 values), `contacts` an integer.
-    let file = std::fs::File::open(dir.join("observables.parquet")).unwrap();
-    let reader = SerializedFileReader::new(file).unwrap();
-    let table: Vec<Vec<Field>> = reader
-        .get_row_iter(None)
-        .unwrap()
-        .map(|r| {
-            r.unwrap()
-                .get_column_iter()
-                .map(|(_, f)| f.clone())
-                .collect()
-        })
-        .collect();
+    let table = parquet_rows(&dir.join("observables.parquet"));
     assert_eq!(table.len(), rows.len());
     for (got, want) in table.iter().zip(&rows) {
         assert_eq!(got.len(), want.len());

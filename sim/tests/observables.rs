@@ -10,6 +10,15 @@ use common::{mean_se, periodic_gas, rows, T_5};
 use noslip_sim::granular::Row;
 use std::f64::consts::PI;
 
+/// `count` balls of diameter 1 at packing fraction `phi` (2D or 3D) in a periodic cube, a
+/// Maxwellian start (`{seed}` to be replaced), and the cube's side.
+fn maxwellian_gas(dim: usize, count: usize, phi: f64) -> (String, f64) {
+    let ball = if dim == 2 { PI / 4.0 } else { PI / 6.0 };
+    let side = (count as f64 * ball / phi).powf(1.0 / dim as f64);
+    let tail = "[random]\nseed = {seed}\nvelocities = \"maxwellian\"\n";
+    (periodic_gas(dim, side, count, tail), side)
+}
+
 /// The rows of `gas` (seed `seed`) over `80` collision times per ball, a row every collision
 /// time `tau` (from a short probe run's collision frequency), and `tau`.
 fn sampled(gas: &str, seed: u64) -> (Vec<Row>, f64) {
@@ -37,14 +46,7 @@ fn late_mean(rows: &[Row], tau: f64, f: &dyn Fn(&Row) -> f64) -> f64 {
 /// `rho T_tr` (the centre of mass's motion taken out), 0.2-0.25 % below, inside the
 /// tolerance.
 fn equation_of_state(dim: usize, count: usize, phi: f64, expected: f64) {
-    let ball = if dim == 2 { PI / 4.0 } else { PI / 6.0 };
-    let side = (count as f64 * ball / phi).powf(1.0 / dim as f64);
-    let gas = periodic_gas(
-        dim,
-        side,
-        count,
-        "[random]\nseed = {seed}\nvelocities = \"maxwellian\"\n",
-    );
+    let (gas, side) = maxwellian_gas(dim, count, phi);
     let rho = count as f64 / side.powi(dim as i32);
     let z: Vec<f64> = (0..6)
         .map(|seed| {
@@ -288,14 +290,7 @@ fn self_diffusion_of_a_dilute_smooth_gas_is_enskogs() {
 /// vanish beyond `2 sigma` and `3 sigma` exactly (their Mayer-bond chains do not reach), the
 /// rest is of order `(2^n phi)^3 e^-...`, below the statistics here.
 fn pair_correlation(dim: usize, count: usize, phi: f64, chi: f64) {
-    let ball = if dim == 2 { PI / 4.0 } else { PI / 6.0 };
-    let side = (count as f64 * ball / phi).powf(1.0 / dim as f64);
-    let gas = periodic_gas(
-        dim,
-        side,
-        count,
-        "[random]\nseed = {seed}\nvelocities = \"maxwellian\"\n",
-    );
+    let (gas, _) = maxwellian_gas(dim, count, phi);
     // A collision time, from a probe run (as `sampled`).
     let (probe, _) = rows(&gas, 0, 1.0, 5.0);
     let omega = probe[1..].iter().map(|r| r.frequency).sum::<f64>() / (probe.len() - 1) as f64;
