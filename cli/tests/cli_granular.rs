@@ -122,42 +122,33 @@ fn the_granular_gas_writes_its_observables() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `noslip args`: it must exit 2 with `says` in its stderr.
+fn refused(args: &[&str], says: &str) {
+    let out = noslip().args(args).output().unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains(says), "{err}");
+}
+
 #[test]
 fn bad_intervals_and_laws_exit_2_naming_them() {
-    let out = noslip()
-        .args([
-            "simulate",
-            "scenes/granular3d.toml",
-            "--observables",
-            "0",
-            "--quiet",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(
-        err.contains("--observables: the interval must be positive"),
-        "{err}"
+    let gas = "scenes/granular3d.toml";
+    refused(
+        &["simulate", gas, "--observables", "0", "--quiet"],
+        "--observables: the interval must be positive",
     );
     // g(r) beyond half the box's side (14) is refused.
-    let out = noslip()
-        .args([
+    refused(
+        &[
             "simulate",
-            "scenes/granular3d.toml",
+            gas,
             "--observables",
             "1",
             "--pair-correlation",
             "8",
             "--quiet",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(
-        err.contains("--pair-correlation: the pair correlation's r_max = 8 must be in (0, 7]"),
-        "{err}"
+        ],
+        "--pair-correlation: the pair correlation's r_max = 8 must be in (0, 7]",
     );
     let dir = temp("granular-bad");
     std::fs::create_dir_all(&dir).unwrap();
@@ -168,15 +159,9 @@ fn bad_intervals_and_laws_exit_2_naming_them() {
     .unwrap()
     .replace("e = \"0.9\"", "e = \"1.2\"");
     std::fs::write(&bad, scene).unwrap();
-    let out = noslip()
-        .args(["simulate", bad.to_str().unwrap(), "--quiet"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(
-        err.contains("bad.toml: contact.balls.e: must be in [0, 1], got 6/5"),
-        "{err}"
+    refused(
+        &["simulate", bad.to_str().unwrap(), "--quiet"],
+        "bad.toml: contact.balls.e: must be in [0, 1], got 6/5",
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }

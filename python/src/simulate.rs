@@ -118,10 +118,9 @@ where
                 s.contact(e, sim, &species);
             }
             let samples = sampler.as_ref().map_or(0, |s| s.rows().len() as u64);
-            if index > keep.contacts
-                || index.saturating_mul(keep.per_contact)
-                    + samples * observable_bytes(species.len())
-                    > keep.max_memory
+            // `index * per_contact > max_memory` is `index > keep.contacts` (the quotient).
+            if index.saturating_mul(keep.per_contact) + samples * observable_bytes(species.len())
+                > keep.max_memory
             {
                 return Err(std::io::Error::other(CAPPED));
             }

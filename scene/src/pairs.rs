@@ -127,10 +127,13 @@ impl Scene {
                 }
             }
         }
+        let no_slip = |c: &ContactKind| *c == ContactKind::NoSlip;
+        // Box walls of another kind use no `fixed` kernel of their own (smooth: none; a
+        // rough or Walton law: the generic rough kernels).
         let walls: Vec<usize> = (0..self.boundary.len())
-            .filter(|&k| self.boundary[k] == Boundary::Wall)
+            .filter(|&k| self.boundary[k] == Boundary::Wall && no_slip(&self.box_contact))
             .collect();
-        let ball_wall: Vec<(usize, usize, WallSide)> = present
+        let ball_wall = present
             .iter()
             .flat_map(|&s| {
                 walls
@@ -140,20 +143,12 @@ impl Scene {
             .collect();
         // Every other immovable boundary with no-slip contact uses the ball-obstacle kernel
         // (the `fixed` map with the local normal); smooth contacts use no kernel.
-        let no_slip = |c: &ContactKind| *c == ContactKind::NoSlip;
         let fixed = self.obstacles.iter().any(|o| no_slip(&o.contact))
             || self.boundaries.iter().any(|b| no_slip(&b.contact));
         let ball_obstacle = if fixed { present.clone() } else { Vec::new() };
         if !no_slip(&self.ball_contact) {
             ball_ball.clear();
         }
-        // Box walls of another kind use no `fixed` kernel of their own (smooth: none; a
-        // rough or Walton law: the generic rough kernels).
-        let ball_wall = if no_slip(&self.box_contact) {
-            ball_wall
-        } else {
-            Vec::new()
-        };
         PairSet {
             name: module_name(&stem),
             dim: self.dim,

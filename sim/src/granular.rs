@@ -231,8 +231,9 @@ pub struct Sampler {
     dim: usize,
     /// Species in the run: per-species columns when more than one.
     species: usize,
-    /// The periodic box's volume, if the box is periodic on every axis.
-    volume: Option<f64>,
+    /// Whether the box is periodic on every axis, without obstacles or other boundaries (the
+    /// pressure and `g(r)` are defined).
+    periodic: bool,
     /// Ball-ball contacts so far, and at the last row: `(time, ball-ball contacts)`.
     ball_ball: u64,
     last: (f64, u64),
@@ -240,7 +241,7 @@ pub struct Sampler {
     virial: f64,
     lost: [f64; 4],
     displacements: Displacements,
-    /// The box's sides, for [`Sampler::with_pair_correlation`].
+    /// The box's sides: its volume, and the cells of [`Sampler::with_pair_correlation`].
     sides: Vec<f64>,
     pair_correlation: Option<PairCorrelation>,
     rows: Vec<Row>,
@@ -262,7 +263,7 @@ impl Sampler {
             next: sim.now(),
             dim: N,
             species: species.len(),
-            volume: periodic.then(|| sim.box_size().iter().product()),
+            periodic,
             ball_ball: 0,
             last: (sim.now(), 0),
             virial: 0.0,
@@ -319,7 +320,7 @@ impl Sampler {
         } else {
             2.0 * (self.ball_ball - c0) as f64 / (sim.len() as f64 * (time - t0))
         };
-        let pressure = match self.volume {
+        let pressure = match self.volume() {
             Some(v) if !first => {
                 let n = N as f64;
                 m.kinetic / (n * v) + self.virial / (n * v * (time - t0))
@@ -361,7 +362,7 @@ impl Sampler {
     /// periodic on every axis without obstacles or boundaries (as the pressure), with `r_max`
     /// at most half the shortest side (the nearest image only).
     pub fn with_pair_correlation(mut self, r_max: f64, bins: usize) -> Result<Sampler, String> {
-        if self.volume.is_none() {
+        if !self.periodic {
             return Err(
                 "the pair correlation needs a box periodic on every axis, without \
                         obstacles or boundaries"
@@ -370,6 +371,11 @@ impl Sampler {
         }
         self.pair_correlation = Some(PairCorrelation::new(r_max, bins, &self.sides)?);
         Ok(self)
+    }
+
+    /// The box's volume when it is periodic (`periodic`), else `None` (the pressure is `NaN`).
+    fn volume(&self) -> Option<f64> {
+        self.periodic.then(|| self.sides.iter().product())
     }
 
     /// The pair correlation sampled so far, if asked for ([`Sampler::with_pair_correlation`]).

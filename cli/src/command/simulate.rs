@@ -185,12 +185,10 @@ where
     };
     if let Some(r_max) = args.pair_correlation {
         // `requires = "observables"`: the sampler is there.
-        if let Some(s) = sampler.take() {
-            sampler = Some(
-                s.with_pair_correlation(r_max, args.pair_bins)
-                    .map_err(|e| Failure::bad_input(format!("--pair-correlation: {e}")))?,
-            );
-        }
+        sampler = sampler
+            .map(|s| s.with_pair_correlation(r_max, args.pair_bins))
+            .transpose()
+            .map_err(|e| Failure::bad_input(format!("--pair-correlation: {e}")))?;
     }
     let mut events = args.events.or(scene.simulation.events);
     let time = args.time.or(scene.simulation.time.as_ref().map(f));
