@@ -11,6 +11,7 @@
 //! - [`batched`]: the batch variant's cases, split into `free` and `fixed` batches as
 //!   `collide` dispatches them.
 //! - [`measure`]: bits of error, normwise error in each body's energy norm, conditioning.
+//! - [`family`]: the rough-ball family's kernels (`rough`, `walton`) in their own regimes.
 //! - [`proven`]: the proven rounding-error bound of a case, in the measured figure.
 //! - [`report`]: one report run; [`render`]: Markdown and JSON; [`plot`]: the SVG plot.
 
@@ -19,6 +20,7 @@
 pub mod batched;
 pub mod case;
 pub mod dense;
+pub mod family;
 pub mod measure;
 pub mod method;
 pub mod plot;

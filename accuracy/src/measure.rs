@@ -192,6 +192,20 @@ pub fn conditioning<const N: usize, const S: usize>(
 where
     Generated: Kernel<ExactRelaxed, N, S>,
 {
+    conditioning_of(case, exact, truth, rng, exact_result)
+}
+
+/// [`conditioning`] of the exact map `map` (a rough-ball kernel with its law, say): the
+/// largest relative change of each body's exact result, in its energy norm, over two
+/// perturbations of every input by a relative `+-2^-53` (random signs), per unit
+/// perturbation.
+pub fn conditioning_of<const N: usize, const S: usize>(
+    case: &Case<Exact, N, S>,
+    exact: &[BodyState<Exact, N, S>; 2],
+    truth: &Truth,
+    rng: &mut Rng,
+    map: impl Fn(&Case<Exact, N, S>) -> [BodyState<Exact, N, S>; 2],
+) -> [Option<f64>; 2] {
     const TRIALS: usize = 2;
     let unit = || Exact::from_integer(1);
     let u = Exact::pow2(-53);
@@ -202,7 +216,7 @@ where
             let du = if rng.coin() { u.clone() } else { -u.clone() };
             x * (unit() + du)
         });
-        let change: Vec<f64> = crate::case::flatten(&exact_result(&perturbed))
+        let change: Vec<f64> = crate::case::flatten(&map(&perturbed))
             .iter()
             .zip(&exact)
             .map(|(m, e)| ToPrimitive::to_f64(&(m - e)).unwrap_or(f64::INFINITY))

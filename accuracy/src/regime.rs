@@ -170,7 +170,9 @@ fn scale<const N: usize, const S: usize>(
 }
 
 /// `(du . nu, |t|)` with `t = du - (du . nu) nu - (R_1 U_1 + R_2 U_2) nu`, in `f64`.
-fn normal_and_slip<const N: usize, const S: usize>(case: &Case<f64, N, S>) -> (f64, f64) {
+pub(crate) fn normal_and_slip<const N: usize, const S: usize>(
+    case: &Case<f64, N, S>,
+) -> (f64, f64) {
     let du: Vec<f64> = (0..N)
         .map(|k| case.states[1].velocity[k] - case.states[0].velocity[k])
         .collect();

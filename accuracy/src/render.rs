@@ -107,11 +107,13 @@ pub struct AccuracyReport {
 }
 
 impl AccuracyReport {
-    /// Every regime of every dimension meets the stability requirement, and the rounding
-    /// part of the difference across each limit stays within 64 eps.
+    /// Every regime of every dimension meets the stability requirement, the rough-ball
+    /// family's `f64` kernels give no NaN or infinity, and the rounding part of the
+    /// difference across each limit stays within 64 eps.
     pub fn passed(&self) -> bool {
         self.dims.iter().all(|d| {
             d.regimes.iter().all(|r| r.stability.passed)
+                && d.family.iter().all(|r| r.passed())
                 && d.continuity.mass_1e15_vs_immovable.rounding_eps <= CONTINUITY_BOUND_EPS
                 && d.continuity.gamma2_1e15_vs_zero.rounding_eps <= CONTINUITY_BOUND_EPS
         })
@@ -185,6 +187,9 @@ impl AccuracyReport {
                 regime(&mut m, r);
             }
         }
+        let family: Vec<(usize, &[crate::family::FamilyResult])> =
+            self.dims.iter().map(|d| (d.dim, &d.family[..])).collect();
+        crate::family::markdown(&mut m, &family);
         m
     }
 }

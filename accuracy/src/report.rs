@@ -2,6 +2,7 @@
 //! and time every variant, and gather the error figures.
 
 use crate::case::{component_names, Case};
+use crate::family::{family_result, FamilyRegime, FamilyResult};
 use crate::measure::{bits, conditioning, exact_result, lambda, normwise, Float, Truth};
 use crate::method::{Method, Outcome};
 use crate::proven::ProvenBound;
@@ -47,6 +48,8 @@ pub struct Options {
     /// Cases per dimension and regime whose conditioning is estimated (besides every
     /// body whose error exceeds the bound).
     pub conditioned: usize,
+    /// The rough-ball family's regimes, in report order (`crate::family`).
+    pub family: Vec<FamilyRegime>,
 }
 
 impl Default for Options {
@@ -60,6 +63,7 @@ impl Default for Options {
             exact_batch: 32,
             timing_samples: 21,
             conditioned: 50,
+            family: FamilyRegime::ALL.to_vec(),
         }
     }
 }
@@ -185,6 +189,8 @@ pub struct DimResult {
     pub regimes: Vec<RegimeResult>,
     /// Agreement of the `f64` kernel across its branch-free limits.
     pub continuity: Continuity,
+    /// The rough-ball family's kernels, one result per [`Options::family`] regime.
+    pub family: Vec<FamilyResult>,
 }
 
 /// Per-variant accumulators.
@@ -560,7 +566,7 @@ pub fn dim_result_interruptible(
     interrupted: &dyn Fn() -> bool,
 ) -> Option<DimResult> {
     let ops = free_ops(dim);
-    let (regimes, continuity) = collision_core::with_dim!(
+    let (regimes, continuity, family) = collision_core::with_dim!(
         dim,
         |N, S| {
             let regimes = opts
@@ -572,12 +578,18 @@ pub fn dim_result_interruptible(
                     Some(result)
                 })
                 .collect::<Option<Vec<_>>>()?;
+            let family = opts
+                .family
+                .iter()
+                .map(|&r| family_result::<N, S>(r, opts, interrupted))
+                .collect::<Option<Vec<_>>>()?;
             if interrupted() {
                 return None;
             }
             (
                 regimes,
                 continuity::<N, S>(opts.samples.min(200), opts.seed),
+                family,
             )
         },
         panic!("no generated kernels for n = {dim}")
@@ -586,5 +598,6 @@ pub fn dim_result_interruptible(
         dim,
         regimes,
         continuity,
+        family,
     })
 }

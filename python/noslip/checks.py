@@ -54,13 +54,16 @@ def report(dims: Iterable[int] = (2, 3), samples: int = 200, seed: int = 1) -> d
     Errors are against exact rational ground truth, in nine regimes (typical, mass ratios to
     1e15, an immovable body, gamma^2 to 0, radius ratios to 1e6, scales 1e-100..1e100,
     spin-dominated, near-grazing), as bits ``log2(ulps + 1)`` per component and per body in
-    its kinetic-energy norm in units of eps.
+    its kinetic-energy norm in units of eps; and the rough-ball family's kernels (``rough``
+    and ``walton``) in seven regimes of their laws (ends of ``e`` and ``beta``, an immovable
+    body, near grazing, near the Walton switch), in the same normwise measure.
 
     Returns
     -------
     dict
         ``report.json``'s content (``dims``: per dimension, per regime, per variant, the
-        errors and timings; ``options``; ``provenance``).
+        errors and timings, and ``family``: per family regime the same for the rough-ball
+        kernels; ``options``; ``provenance``).
 
     Raises
     ------
