@@ -12,6 +12,23 @@ def test_verify_passes_and_reports_every_check():
     assert all(r["passed"] for r in out["results"]) and len(out["results"]) > 20
 
 
+def test_report_measures_the_no_slip_kernels_and_the_rough_family():
+    out = noslip.report(dims=[2], samples=20)
+    (dim,) = out["dims"]
+    assert dim["dim"] == 2 and len(dim["regimes"]) == 9
+    family = {r["regime"]: r for r in dim["family"]}
+    assert set(family) == {
+        "rough", "rough_ends", "rough_near_ends", "rough_immovable", "rough_grazing",
+        "walton", "walton_switch",
+    }
+    for r in family.values():
+        f64 = next(v for v in r["variants"] if v["variant"] == "f64")
+        # Every sampled case ran, none gave a NaN or an infinity.
+        assert f64["evaluated"] == 20 and f64["non_finite"] == 0, r["name"]
+        assert r["stability"]["over_conditioning"] == 0, r["name"]
+    assert family["walton"]["kernel"] == "walton" and family["rough"]["kernel"] == "rough"
+
+
 def test_bad_dims_are_input_errors():
     with pytest.raises(noslip.InputError, match=r"^dims: 7 has no generated kernels"):
         noslip.verify(dims=[7])
