@@ -26,7 +26,7 @@ pub mod table;
 mod validate;
 
 pub use number::{parse_exact, Number, MAX_DIGITS};
-pub use pairs::{Pair, PairSet, WallSide};
+pub use pairs::{Pair, PairLaws, PairSet, WallSide};
 pub use raw::{Boundary, ContactKind, Distribution};
 
 pub use table::{Shape, TableBoundary};

@@ -41,6 +41,39 @@ pub struct PairSet {
     pub ball_wall: Vec<(usize, usize, WallSide)>,
     /// Species that can hit a fixed ball obstacle.
     pub ball_obstacle: Vec<usize>,
+    /// The contact law folded into each kind of kernel.
+    pub laws: PairLaws,
+}
+
+/// The contact law a [`PairSet`]'s kernels of each kind apply, folded into them as exact
+/// constants: [`ContactKind::NoSlip`] or a [`ContactKind::Rough`] law `(e, beta)`. Smooth
+/// contacts need no kernel, and Walton's law (a square root of the contact's own numbers)
+/// keeps the generic kernels: pairs with those laws are not in the set (and a kind with no
+/// pair in the set has the default law here, which nothing applies).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct PairLaws {
+    /// The law of every ball-ball pair.
+    pub ball: ContactKind,
+    /// The law of the box walls.
+    pub wall: ContactKind,
+    /// The law of the ball-obstacle kernel (obstacles and the table's other boundaries).
+    pub fixed: ContactKind,
+}
+
+impl PairLaws {
+    /// The law folded into `pair`'s kernel.
+    pub fn of(&self, pair: Pair) -> &ContactKind {
+        match pair {
+            Pair::BallBall(..) => &self.ball,
+            Pair::BallWall(..) => &self.wall,
+            Pair::BallObstacle(..) => &self.fixed,
+        }
+    }
+
+    /// Whether a kernel can have `law` folded into it: the no-slip map and a rough law.
+    pub fn foldable(law: &ContactKind) -> bool {
+        matches!(law, ContactKind::NoSlip | ContactKind::Rough { .. })
+    }
 }
 
 /// A contact kind of a [`PairSet`].
@@ -106,13 +139,15 @@ pub(crate) fn module_name(stem: &str) -> String {
 }
 
 impl Scene {
-    /// The pair kinds this scene can meet: ball-ball for every pair of species present
-    /// (a species with itself only if it has two balls) unless ball-ball contacts are not
-    /// no-slip, ball-wall for every present species and walled axis side of the box (unless the
-    /// box's contact is not no-slip), ball-obstacle for
-    /// every present species if there are obstacles or other boundaries ([`Scene::boundaries`])
-    /// with no-slip contact: the ball-obstacle kernel is the `fixed` map with the local normal
-    /// that every immovable boundary uses.
+    /// The pair kinds this scene can meet, each with its law folded in ([`PairLaws`]):
+    /// ball-ball for every pair of species present (a species with itself only if it has two
+    /// balls) if the balls' contact is no-slip or rough; ball-wall for every present species and
+    /// walled axis side of the box if the box's contact is; ball-obstacle for every present
+    /// species if obstacles or other boundaries ([`Scene::boundaries`]) have such a contact:
+    /// the ball-obstacle kernel is the `fixed` map with the local normal that every immovable
+    /// boundary uses, with the no-slip law if any of them is no-slip (as before rough laws
+    /// were folded), else with their rough law if they all have the same one (else none: the
+    /// engines run the generic rough kernels for them).
     pub fn pairs(&self) -> PairSet {
         let stem = std::path::Path::new(&self.origin)
             .file_stem()
@@ -127,11 +162,11 @@ impl Scene {
                 }
             }
         }
-        let no_slip = |c: &ContactKind| *c == ContactKind::NoSlip;
+        let foldable = PairLaws::foldable;
         // Box walls of another kind use no `fixed` kernel of their own (smooth: none; a
-        // rough or Walton law: the generic rough kernels).
+        // Walton law: the generic Walton kernels).
         let walls: Vec<usize> = (0..self.boundary.len())
-            .filter(|&k| self.boundary[k] == Boundary::Wall && no_slip(&self.box_contact))
+            .filter(|&k| self.boundary[k] == Boundary::Wall && foldable(&self.box_contact))
             .collect();
         let ball_wall = present
             .iter()
@@ -141,14 +176,40 @@ impl Scene {
                     .flat_map(move |&k| WallSide::BOTH.map(|side| (s, k, side)))
             })
             .collect();
-        // Every other immovable boundary with no-slip contact uses the ball-obstacle kernel
+        // Every other immovable boundary with a foldable contact uses the ball-obstacle kernel
         // (the `fixed` map with the local normal); smooth contacts use no kernel.
-        let fixed = self.obstacles.iter().any(|o| no_slip(&o.contact))
-            || self.boundaries.iter().any(|b| no_slip(&b.contact));
-        let ball_obstacle = if fixed { present.clone() } else { Vec::new() };
-        if !no_slip(&self.ball_contact) {
+        let fixed_laws: Vec<&ContactKind> = (self.obstacles.iter().map(|o| &o.contact))
+            .chain(self.boundaries.iter().map(|b| &b.contact))
+            .filter(|c| foldable(c))
+            .collect();
+        let fixed = if fixed_laws.contains(&&ContactKind::NoSlip) {
+            Some(ContactKind::NoSlip)
+        } else {
+            fixed_laws
+                .first()
+                .filter(|&&first| fixed_laws.iter().all(|c| c == &first))
+                .map(|&c| c.clone())
+        };
+        let ball_obstacle = if fixed.is_some() {
+            present.clone()
+        } else {
+            Vec::new()
+        };
+        if !foldable(&self.ball_contact) {
             ball_ball.clear();
         }
+        let folded = |c: &ContactKind| {
+            if foldable(c) {
+                c.clone()
+            } else {
+                ContactKind::NoSlip
+            }
+        };
+        let laws = PairLaws {
+            ball: folded(&self.ball_contact),
+            wall: folded(&self.box_contact),
+            fixed: fixed.unwrap_or_default(),
+        };
         PairSet {
             name: module_name(&stem),
             dim: self.dim,
@@ -156,6 +217,7 @@ impl Scene {
             ball_ball,
             ball_wall,
             ball_obstacle,
+            laws,
         }
     }
 }

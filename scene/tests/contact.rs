@@ -198,8 +198,8 @@ fn walton_laws_are_read_exactly_and_bad_ones_refused_naming_the_key() {
 }
 
 /// `[box] contact`: the box walls' law, read exactly (no-slip by default and without a box),
-/// bad values refused naming `box.contact`; box walls of another law need no `fixed` kernel of
-/// their own (`Scene::pairs`).
+/// bad values refused naming `box.contact`; box walls with a rough law have their `fixed`
+/// kernels with the law folded in, smooth and Walton walls none (`Scene::pairs`).
 #[test]
 fn the_box_takes_a_contact_law() {
     let boxed = |contact: &str| {
@@ -222,17 +222,14 @@ fn the_box_takes_a_contact_law() {
             beta: q("1/2")
         }
     );
-    assert!(rough.pairs().ball_wall.is_empty());
-    assert_eq!(
-        boxed("\"smooth\"").unwrap().box_contact,
-        ContactKind::Smooth
-    );
-    assert!(matches!(
-        boxed("{ e = 1, mu = \"0.2\", beta0 = 1 }")
-            .unwrap()
-            .box_contact,
-        ContactKind::Walton { .. }
-    ));
+    assert_eq!(rough.pairs().ball_wall.len(), 4);
+    assert_eq!(rough.pairs().laws.wall, rough.box_contact);
+    let smooth = boxed("\"smooth\"").unwrap();
+    assert_eq!(smooth.box_contact, ContactKind::Smooth);
+    assert!(smooth.pairs().ball_wall.is_empty());
+    let walton = boxed("{ e = 1, mu = \"0.2\", beta0 = 1 }").unwrap();
+    assert!(matches!(walton.box_contact, ContactKind::Walton { .. }));
+    assert!(walton.pairs().ball_wall.is_empty());
     for (contact, place) in [
         ("{ e = 2, beta = 0 }", "box.contact.e"),
         ("{ e = 0.5, mu = -1, beta0 = 0 }", "box.contact.mu"),
@@ -243,4 +240,51 @@ fn the_box_takes_a_contact_law() {
             "{contact}: {e}"
         );
     }
+}
+
+/// The laws `Scene::pairs` folds into each kind of kernel: the balls' and the box's own law
+/// when no-slip or rough (Walton and smooth contacts have no kernels in the set); the fixed
+/// bodies' no-slip law if any is no-slip, else their one rough law, else none.
+#[test]
+fn pairs_fold_rough_laws_and_leave_walton_out() {
+    let rough = |e: &str, beta: &str| ContactKind::Rough {
+        e: q(e),
+        beta: q(beta),
+    };
+    let s = scene("[contact]\nballs = { e = \"0.9\", beta = \"1/2\" }\n").unwrap();
+    let p = s.pairs();
+    assert_eq!(p.ball_ball, [(0, 0)]);
+    assert_eq!(p.laws.ball, rough("9/10", "1/2"));
+    assert_eq!(p.laws.wall, ContactKind::NoSlip);
+    let walton = scene("[contact]\nballs = { e = 1, mu = \"0.2\", beta0 = 1 }\n").unwrap();
+    assert!(walton.pairs().ball_ball.is_empty());
+    let obstacle = |contact: &str| {
+        format!("[[obstacle]]\nposition = [5, 5]\nradius = 1\ncontact = {contact}\n")
+    };
+    let wall =
+        |contact: &str| format!("[[wall]]\npoint = [0, 1]\nnormal = [0, 1]\ncontact = {contact}\n");
+    let law_a = "{ e = 0.5, beta = 0 }";
+    let law_b = "{ e = 0.5, beta = \"0.1\" }";
+    // One rough law on every fixed body: folded.
+    let p = scene(&(obstacle(law_a) + &wall(law_a))).unwrap().pairs();
+    assert_eq!(
+        (p.ball_obstacle.len(), &p.laws.fixed),
+        (1, &rough("1/2", "0"))
+    );
+    // A no-slip one among them: the no-slip kernel, as before rough laws were folded.
+    let p = scene(&(obstacle(law_a) + &wall("\"no-slip\"")))
+        .unwrap()
+        .pairs();
+    assert_eq!(
+        (p.ball_obstacle.len(), &p.laws.fixed),
+        (1, &ContactKind::NoSlip)
+    );
+    // Two rough laws and no no-slip one: no ball-obstacle kernel.
+    let p = scene(&(obstacle(law_a) + &wall(law_b))).unwrap().pairs();
+    assert!(p.ball_obstacle.is_empty());
+    // Smooth and Walton fixed bodies need none either.
+    let p = scene(&(obstacle("\"smooth\"") + &wall("{ e = 1, mu = 1, beta0 = 0 }")))
+        .unwrap()
+        .pairs();
+    assert!(p.ball_obstacle.is_empty());
 }

@@ -78,6 +78,28 @@ impl From<&noslip_scene::ContactKind> for ContactKind {
     }
 }
 
+/// The laws a [`PairKernels`]' kernels apply, per kind ([`PairKernels::laws`]): `None` for a
+/// kind it has no kernel of (every contact of that kind then takes the generic kernels of its
+/// law).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct FoldedLaws {
+    /// The law of [`PairKernels::ball_ball`].
+    pub ball: Option<ContactKind>,
+    /// The law of [`PairKernels::ball_wall`].
+    pub wall: Option<ContactKind>,
+    /// The law of [`PairKernels::ball_obstacle`].
+    pub fixed: Option<ContactKind>,
+}
+
+impl FoldedLaws {
+    /// The no-slip map for every kind: the generic kernels.
+    pub const NO_SLIP: FoldedLaws = FoldedLaws {
+        ball: Some(ContactKind::NoSlip),
+        wall: Some(ContactKind::NoSlip),
+        fixed: Some(ContactKind::NoSlip),
+    };
+}
+
 /// The law a contact at absolute time `time` follows under the TC model with contact
 /// duration `tc` (0: none), given the times of the previous contacts of its balls
 /// (`-inf` before the first): a rough law becomes [`ContactKind::Smooth`] when
@@ -103,8 +125,20 @@ pub(crate) fn pair<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     nu: &[f64; N],
     pre: &[BodyState<f64, N, S>; 2],
 ) -> [BodyState<f64, N, S>; 2] {
+    if kernels.laws().ball == Some(kind) {
+        return kernels.ball_ball(a, b, nu, &pre[0], &pre[1]);
+    }
     match kind {
-        ContactKind::NoSlip => kernels.ball_ball(a, b, nu, &pre[0], &pre[1]),
+        // No kernel of `kernels` has the no-slip law: the rough kernels at `(1, 1)` are the
+        // no-slip map bit for bit.
+        ContactKind::NoSlip => crate::rough::pair(
+            nu,
+            &species[a],
+            &species[b],
+            &RoughLaw::Constant(Restitution::no_slip()),
+            &pre[0],
+            &pre[1],
+        ),
         ContactKind::Smooth => smooth::pair(
             nu,
             &species[a].inv_mass,
@@ -135,9 +169,16 @@ pub(crate) fn fixed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     nu: &[f64; N],
     pre: &BodyState<f64, N, S>,
 ) -> BodyState<f64, N, S> {
+    let laws = kernels.laws();
     match (kind, wall) {
-        (ContactKind::NoSlip, Some((axis, upper))) => kernels.ball_wall(a, axis, upper, pre),
-        (ContactKind::NoSlip, None) => kernels.ball_obstacle(a, nu, pre),
+        (k, Some((axis, upper))) if laws.wall == Some(k) => kernels.ball_wall(a, axis, upper, pre),
+        (k, None) if laws.fixed == Some(k) => kernels.ball_obstacle(a, nu, pre),
+        (ContactKind::NoSlip, _) => crate::rough::fixed(
+            nu,
+            &species[a],
+            &RoughLaw::Constant(Restitution::no_slip()),
+            pre,
+        ),
         (ContactKind::Smooth, _) => smooth::fixed(nu, pre),
         (ContactKind::Rough { .. } | ContactKind::Walton { .. }, _) => crate::rough::fixed(
             nu,
@@ -150,7 +191,108 @@ pub(crate) fn fixed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
 
 #[cfg(test)]
 mod tests {
-    use super::{tc_law, ContactKind};
+    use super::{fixed, pair, tc_law, ContactKind, FoldedLaws};
+    use crate::PairKernels;
+    use collision_core::{Ball, BodyState, Restitution, State2};
+
+    /// Kernels that return a marker (velocity `[k, 0]`, `k` the kind: 1 ball-ball, 2 wall,
+    /// 3 obstacle) and fold a rough law into the ball-ball and obstacle kinds only.
+    struct Marked;
+
+    fn marker(k: f64) -> State2<f64> {
+        BodyState {
+            spin: [0.0],
+            velocity: [k, 0.0],
+        }
+    }
+
+    const ROUGH: ContactKind = ContactKind::Rough { e: 0.5, beta: 0.25 };
+
+    impl PairKernels<f64, 2, 1> for Marked {
+        fn laws(&self) -> FoldedLaws {
+            FoldedLaws {
+                ball: Some(ROUGH),
+                wall: None,
+                fixed: Some(ROUGH),
+            }
+        }
+        fn ball_ball(
+            &self,
+            _: usize,
+            _: usize,
+            _: &[f64; 2],
+            _: &State2<f64>,
+            _: &State2<f64>,
+        ) -> [State2<f64>; 2] {
+            [marker(1.0), marker(1.0)]
+        }
+        fn ball_wall(&self, _: usize, _: usize, _: bool, _: &State2<f64>) -> State2<f64> {
+            marker(2.0)
+        }
+        fn ball_obstacle(&self, _: usize, _: &[f64; 2], _: &State2<f64>) -> State2<f64> {
+            marker(3.0)
+        }
+    }
+
+    /// The engines call a kernel for the law it folds, and the generic kernels of every
+    /// other law (the rough kernels, exactly as `crate::rough` runs them).
+    #[test]
+    fn contacts_take_the_kernels_of_their_law() {
+        let species = [Ball {
+            inv_mass: 1.0,
+            radius: 0.5,
+            gamma2: 0.5,
+        }];
+        let nu = [0.6, 0.8];
+        let pre = [
+            BodyState {
+                spin: [0.3],
+                velocity: [1.0, 0.5],
+            },
+            BodyState {
+                spin: [-0.2],
+                velocity: [-1.0, 0.25],
+            },
+        ];
+        let k = Marked;
+        assert_eq!(
+            pair(&k, &species, ROUGH, [0, 0], &nu, &pre),
+            [marker(1.0), marker(1.0)]
+        );
+        assert_eq!(
+            fixed(&k, &species, ROUGH, 0, None, &nu, &pre[1]),
+            marker(3.0)
+        );
+        // Another rough law, and the no-slip map, are the generic rough kernels'.
+        let other = ContactKind::Rough { e: 0.5, beta: 0.5 };
+        let generic = |e, beta| {
+            let law = crate::rough::RoughLaw::Constant(Restitution { e, beta });
+            crate::rough::pair(&nu, &species[0], &species[0], &law, &pre[0], &pre[1])
+        };
+        assert_eq!(
+            pair(&k, &species, other, [0, 0], &nu, &pre),
+            generic(0.5, 0.5)
+        );
+        assert_eq!(
+            pair(&k, &species, ContactKind::NoSlip, [0, 0], &nu, &pre),
+            generic(1.0, 1.0)
+        );
+        // The wall kind folds nothing: the generic rough `fixed` with the wall's normal.
+        let wall = fixed(
+            &k,
+            &species,
+            ROUGH,
+            0,
+            Some((1, false)),
+            &[0.0, 1.0],
+            &pre[1],
+        );
+        let law = crate::rough::RoughLaw::Constant(Restitution { e: 0.5, beta: 0.25 });
+        assert_eq!(
+            wall,
+            crate::rough::fixed(&[0.0, 1.0], &species[0], &law, &pre[1])
+        );
+    }
 
     #[test]
     fn the_tc_model_makes_close_contacts_of_rough_laws_elastic() {

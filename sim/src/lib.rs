@@ -86,11 +86,20 @@ pub use table::{Boundary, ContactKind, Geometry, Shape, Table};
 
 use collision_core::{Ball, BodyState, Generated, Kernel, RefArith, Scalar};
 
-/// The no-slip maps of the pair kinds a simulation meets, by species index. Body 1 of
+/// The maps of the pair kinds a simulation meets, by species index ([`PairKernels::laws`]
+/// says which law each applies: the no-slip map unless it says otherwise). Body 1 of
 /// `ball_ball` is species `a` and `nu` points from body 1 to body 2; walls and obstacles are
 /// at rest and immovable, `nu` from the obstacle's centre to the ball's, and a wall's normal
 /// is `+e_axis` (the wall at `x_axis = 0`) or `-e_axis` (`upper`, at `x_axis = L`).
 pub trait PairKernels<T, const N: usize, const S: usize> {
+    /// The contact law each kind of kernel applies ([`law::FoldedLaws`]): the engines call
+    /// `ball_ball`, `ball_wall` and `ball_obstacle` for contacts of that law and the generic
+    /// kernels of their law otherwise. The default, the no-slip map for all three, is the
+    /// generic kernels'; scene-specialised kernels (`noslip_codegen::specialise`) may have a
+    /// rough law folded in.
+    fn laws(&self) -> law::FoldedLaws {
+        law::FoldedLaws::NO_SLIP
+    }
     /// The states of balls of species `a` (body 1) and `b` (body 2) after their contact.
     fn ball_ball(
         &self,

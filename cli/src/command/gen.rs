@@ -144,7 +144,7 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
                 p.pair.kind(),
                 p.ops,
                 p.generic_ops,
-                noslip_codegen::specialise::variant(p.pair).name()
+                noslip_codegen::specialise::generic_name(&set, p.pair)
             )?;
         }
     } else {

@@ -495,11 +495,12 @@ pub fn scene_units(set: &PairSet) -> Vec<Unit> {
                 ],
             };
             let mut doc = vec![format!(
-                "Scene `{}`, {} kernel `{}` (the `{}` map with the species constants folded in).",
+                "Scene `{}`, {} kernel `{}` (the `{}` {} map with the species constants and the law folded in).",
                 set.name,
                 pair.kind(),
                 pair.fn_name(),
-                crate::specialise::variant(pair).name()
+                crate::specialise::variant(pair).name(),
+                crate::specialise::law_name(set, pair)
             )];
             doc.push(format!(
                 "Ops: {}; {} intermediate terms.",
@@ -633,7 +634,7 @@ pub fn generate_scene(
         lang.language(),
         &guard,
         &format!(
-            "No-slip kernels specialised to scene `{}` (n = {})",
+            "Kernels specialised to scene `{}` (n = {})",
             set.name, set.dim
         ),
         &scene_units(set),

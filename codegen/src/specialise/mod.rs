@@ -1,5 +1,6 @@
 //! Kernels specialised to a scene: only its dimension, only its pair kinds, each species'
-//! constants folded into exact literals before scheduling.
+//! constants and each kind's contact law (the no-slip map, or a rough law's exact `e` and
+//! `beta`: [`noslip_scene::PairLaws`]) folded into exact literals before scheduling.
 //!
 //! The same model builder ([`crate::model::build_on`]) runs with constants in place of the
 //! parameters, so the exact constant folding of [`crate::ir`] removes every division (the
@@ -27,9 +28,10 @@ pub use range::{check_ranges, ConstantOutOfRange, GenerateError};
 use crate::bindings::{ident, lit};
 use crate::emit::{self, array_pattern, doc_lines, state_pattern, EmittedBody};
 use crate::ir::{Graph, Id};
+use crate::literal::{f64_tokens, nearest_floats};
 use crate::model::{self, names, skew_pairs, BodyInputs, KernelGraph, KernelInputs, Variant};
 use crate::schedule::OpCount;
-use noslip_scene::{Pair, PairSet, Species, WallSide};
+use noslip_scene::{ContactKind, Pair, PairSet, Species, WallSide};
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -140,13 +142,45 @@ pub fn build(set: &PairSet, pair: Pair) -> KernelGraph {
             ],
         },
     };
-    let outputs = model::build_on(&mut g, &inputs, variant(pair));
+    let (law, outputs) = match set.laws.of(pair) {
+        ContactKind::Rough { e, beta } => {
+            let law = model::RestitutionInputs {
+                e: constant(&mut g, e),
+                beta: constant(&mut g, beta),
+            };
+            let outputs = model::build_rough_on(&mut g, &inputs, variant(pair), law);
+            (model::Law::Rough, outputs)
+        }
+        ContactKind::NoSlip => (
+            model::Law::NoSlip,
+            model::build_on(&mut g, &inputs, variant(pair)),
+        ),
+        other => panic!("{other:?} is not folded into kernels (PairLaws::foldable)"),
+    };
     KernelGraph {
         dim: n,
         variant: variant(pair),
-        law: model::Law::NoSlip,
+        law,
         graph: g,
         outputs,
+    }
+}
+
+/// The generic kernel `pair`'s kernel replaces, by its path below `kernels::dN`: `free`,
+/// `fixed`, or under a rough law `rough::free`, `rough::fixed`.
+pub fn generic_name(set: &PairSet, pair: Pair) -> String {
+    match set.laws.of(pair) {
+        ContactKind::Rough { .. } => format!("rough::{}", variant(pair).name()),
+        _ => variant(pair).name().to_string(),
+    }
+}
+
+/// The law folded into `pair`'s kernel, as the kernels' docs name it: `no-slip`, or
+/// `rough (e = .., beta = ..)`.
+pub fn law_name(set: &PairSet, pair: Pair) -> String {
+    match set.laws.of(pair) {
+        ContactKind::Rough { e, beta } => format!("rough (e = {e}, beta = {beta})"),
+        _ => "no-slip".into(),
     }
 }
 
@@ -159,14 +193,15 @@ fn describe(set: &PairSet, pair: Pair) -> Vec<String> {
         )
     };
     let n = set.dim;
+    let law = law_name(set, pair);
     match pair {
         Pair::BallBall(a, b) => vec![
-            format!("The `free` no-slip map in R^{n} of body 1 of {} and body 2 of {}:", sp(a), sp(b)),
+            format!("The `free` {law} map in R^{n} of body 1 of {} and body 2 of {}:", sp(a), sp(b)),
             "returns `[body 1+, body 2+]`; `nu` is the unit normal from body 1's centre to body 2's.".into(),
         ],
         Pair::BallWall(s, k, side) => vec![
             format!(
-                "The `fixed` no-slip map in R^{n} of {} on the {} wall of axis {k} (at rest,",
+                "The `fixed` {law} map in R^{n} of {} on the {} wall of axis {k} (at rest,",
                 sp(s),
                 side.name()
             ),
@@ -176,7 +211,7 @@ fn describe(set: &PairSet, pair: Pair) -> Vec<String> {
             ),
         ],
         Pair::BallObstacle(s) => vec![
-            format!("The `fixed` no-slip map in R^{n} of {} on a fixed ball at rest:", sp(s)),
+            format!("The `fixed` {law} map in R^{n} of {} on a fixed ball at rest:", sp(s)),
             "`nu` is the unit normal from the obstacle's centre to the ball's; returns the ball after contact.".into(),
         ],
     }
@@ -193,7 +228,10 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
         ops,
         terms,
     } = emit::emit_body(&kernel);
-    let generic = emit::emit_body(&model::build(n, variant(pair)));
+    let generic = emit::emit_body(&match set.laws.of(pair) {
+        ContactKind::Rough { .. } => model::build_rough(n, variant(pair)),
+        _ => model::build(n, variant(pair)),
+    });
     let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
     let state_ty = quote!(BodyState<T, #nl, #sl>);
     let nu_pattern = array_pattern((0..n).map(names::nu), &live);
@@ -223,7 +261,7 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
     doc.push(String::new());
     doc.push(format!(
         "Ops: {ops}; {terms} intermediate terms (generic `{}`: {}).",
-        variant(pair).name(),
+        generic_name(set, pair),
         generic.ops
     ));
     let doc = doc_lines(&doc);
@@ -281,6 +319,24 @@ fn dispatch(set: &PairSet, sim_path: &syn::Path) -> TokenStream {
         let ls = lit(s);
         quote!(#ls => #f(nu, state),)
     });
+    let law = |present: bool, law: &ContactKind| {
+        if !present {
+            return quote!(None);
+        }
+        match law {
+            ContactKind::Rough { e, beta } => {
+                let (e, beta) = (
+                    f64_tokens(nearest_floats(e).0),
+                    f64_tokens(nearest_floats(beta).0),
+                );
+                quote!(Some(#sim_path::ContactKind::Rough { e: #e, beta: #beta }))
+            }
+            _ => quote!(Some(#sim_path::ContactKind::NoSlip)),
+        }
+    };
+    let ball_law = law(!set.ball_ball.is_empty(), &set.laws.ball);
+    let wall_law = law(!set.ball_wall.is_empty(), &set.laws.wall);
+    let fixed_law = law(!set.ball_obstacle.is_empty(), &set.laws.fixed);
     quote! {
         /// The scene's kernels, dispatched by species for the simulator.
         #[derive(Clone, Copy, Debug, Default)]
@@ -291,6 +347,13 @@ fn dispatch(set: &PairSet, sim_path: &syn::Path) -> TokenStream {
         where
             for<'a> &'a T: RefArith<T>,
         {
+            fn laws(&self) -> #sim_path::law::FoldedLaws {
+                #sim_path::law::FoldedLaws {
+                    ball: #ball_law,
+                    wall: #wall_law,
+                    fixed: #fixed_law,
+                }
+            }
             fn ball_ball(&self, a: usize, b: usize, nu: &[T; #nl], state1: &#state_ty, state2: &#state_ty) -> [#state_ty; 2] {
                 match (a, b) {
                     #(#bb)*
@@ -353,7 +416,7 @@ pub fn generate(
     let mut header = format!(
         "// @generated by noslip-codegen (codegen/src/specialise): kernels specialised to scene `{}`.\n\
          // Do not edit: the build script rewrites it.\n\
-         // n = {}; species constants folded into exact literals.\n",
+         // n = {}; species constants and contact laws folded into exact literals.\n",
         set.name,
         set.dim
     );
@@ -364,7 +427,7 @@ pub fn generate(
             p.pair.kind(),
             p.ops,
             p.terms,
-            variant(p.pair).name(),
+            generic_name(set, p.pair),
             p.generic_ops
         ));
     }

@@ -1,5 +1,6 @@
-//! Specialised kernels (a scene's species constants folded in) against the generic map with
-//! the same constants, exactly.
+//! Specialised kernels (a scene's species constants and contact laws folded in) against the
+//! generic map with the same constants, exactly: the no-slip kernels, or for a pair kind with
+//! a rough law `(e, beta)` the generic rough kernels with the same exact `e` and `beta`.
 //!
 //! Each specialised kernel's DAG is evaluated in exact rationals at random points (random
 //! exactly unit normals, random states with entries from `S = {1..2^20}`) and must equal the
@@ -12,10 +13,10 @@
 use crate::sample::{element, normal};
 use crate::under_test::input_values;
 use collision_core::rng::Rng;
-use collision_core::{Ball, BodyState, Exact, Generated, Kernel};
+use collision_core::{Ball, BodyState, Exact, Generated, Kernel, Restitution, RoughKernel};
 use noslip_codegen::specialise;
 use noslip_scene::Pair;
-use noslip_scene::{PairSet, WallSide};
+use noslip_scene::{ContactKind, PairSet, WallSide};
 use noslip_sim::setup::species_balls;
 use noslip_sim::{GenericKernels, PairKernels};
 
@@ -37,6 +38,40 @@ fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<Exact, N, S
     }
 }
 
+/// The generic rough kernels under `law` for `pair`, as the engines run them: ball-ball the
+/// `free` map; a wall or obstacle the `fixed` map with body 1 at rest (radius 1: it
+/// multiplies a zero spin) and the wall's normal `+-e_axis` or the given `nu`.
+fn rough<const N: usize, const S: usize>(
+    pair: Pair,
+    balls: &[Ball<Exact>],
+    law: &Restitution<Exact>,
+    nu: &[Exact; N],
+    states: &[BodyState<Exact, N, S>; 2],
+) -> Vec<BodyState<Exact, N, S>>
+where
+    Generated: RoughKernel<Exact, N, S>,
+{
+    let (one, rest) = (Exact::from_integer(1), BodyState::zero());
+    match pair {
+        Pair::BallBall(a, b) => {
+            Generated::rough_free(nu, &balls[a], &balls[b], law, &states[0], &states[1]).to_vec()
+        }
+        Pair::BallWall(s, axis, side) => {
+            let sign = if side == WallSide::Upper { -1 } else { 1 };
+            let wall =
+                std::array::from_fn(|k| Exact::from_integer(if k == axis { sign } else { 0 }));
+            vec![Generated::rough_fixed(
+                &wall, &one, &balls[s], law, &rest, &states[1],
+            )]
+        }
+        Pair::BallObstacle(s) => {
+            vec![Generated::rough_fixed(
+                nu, &one, &balls[s], law, &rest, &states[1],
+            )]
+        }
+    }
+}
+
 /// Compare every pair kind of `set` at `points` random points.
 pub fn check<const N: usize, const S: usize>(
     set: &PairSet,
@@ -44,7 +79,23 @@ pub fn check<const N: usize, const S: usize>(
     seed: u64,
 ) -> Vec<PairCheck>
 where
-    Generated: Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S>,
+    Generated:
+        Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S> + RoughKernel<Exact, N, S>,
+{
+    compare::<N, S>(set, set, points, seed)
+}
+
+/// [`check`] of the kernels specialised to `set` against the generic kernels under the laws
+/// of `reference` (the same set but for its laws, in the tests).
+fn compare<const N: usize, const S: usize>(
+    set: &PairSet,
+    reference: &PairSet,
+    points: usize,
+    seed: u64,
+) -> Vec<PairCheck>
+where
+    Generated:
+        Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S> + RoughKernel<Exact, N, S>,
 {
     assert_eq!(set.dim, N);
     let balls: Vec<Ball<Exact>> = species_balls(&set.species, Exact::from_fraction);
@@ -70,14 +121,23 @@ where
                     velocity: std::array::from_fn(|k| values[o.velocity[k].0 as usize].clone()),
                 };
                 let got: Vec<BodyState<Exact, N, S>> = kernel.outputs.iter().map(read).collect();
-                let want: Vec<BodyState<Exact, N, S>> = match pair {
-                    Pair::BallBall(a, b) => generic
-                        .ball_ball(a, b, &nu, &states[0], &states[1])
-                        .to_vec(),
-                    Pair::BallWall(s, axis, side) => {
-                        vec![generic.ball_wall(s, axis, side == WallSide::Upper, &states[1])]
+                let want: Vec<BodyState<Exact, N, S>> = match reference.laws.of(pair) {
+                    ContactKind::Rough { e, beta } => {
+                        let law = Restitution {
+                            e: Exact::from_fraction(&e),
+                            beta: Exact::from_fraction(&beta),
+                        };
+                        rough(pair, &balls, &law, &nu, &states)
                     }
-                    Pair::BallObstacle(s) => vec![generic.ball_obstacle(s, &nu, &states[1])],
+                    _ => match pair {
+                        Pair::BallBall(a, b) => generic
+                            .ball_ball(a, b, &nu, &states[0], &states[1])
+                            .to_vec(),
+                        Pair::BallWall(s, axis, side) => {
+                            vec![generic.ball_wall(s, axis, side == WallSide::Upper, &states[1])]
+                        }
+                        Pair::BallObstacle(s) => vec![generic.ball_obstacle(s, &nu, &states[1])],
+                    },
                 };
                 if got != want {
                     mismatches += 1;
@@ -90,4 +150,60 @@ where
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use noslip_scene::Scene;
+
+    /// A 2D box with rough walls, a rough obstacle and rough ball-ball contacts: all three
+    /// kinds of kernel with a rough law folded in.
+    const ROUGH: &str = r#"
+dim = 2
+[box]
+size = [10, 10]
+boundary = ["wall", "periodic"]
+contact = { e = "0.8", beta = "-1/3" }
+[[species]]
+mass = 1
+radius = "1/2"
+gamma2 = "1/2"
+count = 3
+[[obstacle]]
+position = [5, 5]
+radius = 1
+contact = { e = "0.8", beta = "-1/3" }
+[contact]
+balls = { e = "0.9", beta = "1/2" }
+"#;
+
+    #[test]
+    fn rough_kernels_equal_the_generic_rough_kernels_and_a_wrong_law_is_caught() {
+        let set = Scene::from_toml(ROUGH, "rough.toml").unwrap().pairs();
+        assert!(matches!(set.laws.ball, ContactKind::Rough { .. }));
+        assert!(matches!(set.laws.wall, ContactKind::Rough { .. }));
+        assert!(matches!(set.laws.fixed, ContactKind::Rough { .. }));
+        let results = check::<2, 1>(&set, 4, 1);
+        assert_eq!(results.len(), set.all().len());
+        assert_eq!(results.len(), 4); // ball-ball, two walls, obstacle
+        assert!(results.iter().all(|r| r.mismatches == 0), "{results:?}");
+        // Against the no-slip map, or another rough law, every point differs.
+        for law in [
+            ContactKind::NoSlip,
+            ContactKind::Rough {
+                e: "9/10".parse().unwrap(),
+                beta: "1/3".parse().unwrap(),
+            },
+        ] {
+            let mut other = set.clone();
+            other.laws = noslip_scene::PairLaws {
+                ball: law.clone(),
+                wall: law.clone(),
+                fixed: law,
+            };
+            let results = compare::<2, 1>(&set, &other, 4, 1);
+            assert!(results.iter().all(|r| r.mismatches == 4), "{results:?}");
+        }
+    }
 }
