@@ -75,7 +75,8 @@ class SimulationResult:
         velocity cumulant, 0 for a Maxwellian), ``msd`` and ``msd_cm`` [L^2] (the mean
         square displacement since the start, unwrapped across periodic faces, and the same
         about the centre of mass) and, in a mixture, ``T_tr_s`` and
-        ``T_rot_s`` for each species index ``s``. Empty without ``observables``.
+        ``T_rot_s`` for each species index ``s``, then ``msd_cm_s`` for each. Empty without
+        ``observables``.
     pair_correlation : dict of ndarray
         ``g(r)`` averaged over the observables' rows (``pair_correlation=R_MAX``), as
         ``noslip simulate --pair-correlation`` writes ``pair-correlation.csv``: ``r`` [L]

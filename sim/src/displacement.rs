@@ -91,6 +91,17 @@ impl Displacements {
         sim: &Simulation<N, S, K>,
         species: &[Ball<f64>],
     ) -> [f64; 2] {
+        let m = self.mean_squares(sim, species);
+        [m.msd, m.msd_cm]
+    }
+
+    /// [`Displacements::msd`] and `msd_cm` of each species `s`:
+    /// `sum over the balls i of s of |d_i - D|^2 / N_s` (`NaN` for a species without balls).
+    pub fn mean_squares<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+        &self,
+        sim: &Simulation<N, S, K>,
+        species: &[Ball<f64>],
+    ) -> MeanSquares {
         let d = self.now(sim);
         let (mut mass, mut centre) = (0.0, [0.0; N]);
         for (i, di) in d.iter().enumerate() {
@@ -102,15 +113,40 @@ impl Displacements {
         }
         let centre = centre.map(|c| c / mass);
         let (mut msd, mut msd_cm) = (0.0, 0.0);
-        for di in &d {
+        let (mut per, mut count) = (vec![0.0; species.len()], vec![0usize; species.len()]);
+        for (i, di) in d.iter().enumerate() {
+            let mut about_centre = 0.0;
             for (x, c) in di.iter().zip(&centre) {
                 msd += x * x;
-                msd_cm += (x - c) * (x - c);
+                about_centre += (x - c) * (x - c);
             }
+            msd_cm += about_centre;
+            let s = sim.species_of(i);
+            per[s] += about_centre;
+            count[s] += 1;
         }
         let balls = d.len() as f64;
-        [msd / balls, msd_cm / balls]
+        MeanSquares {
+            msd: msd / balls,
+            msd_cm: msd_cm / balls,
+            species_cm: per
+                .iter()
+                .zip(&count)
+                .map(|(&sum, &n)| if n == 0 { f64::NAN } else { sum / n as f64 })
+                .collect(),
+        }
     }
+}
+
+/// The mean square displacements of [`Displacements::mean_squares`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeanSquares {
+    /// `msd` (module docs).
+    pub msd: f64,
+    /// `msd_cm` (module docs).
+    pub msd_cm: f64,
+    /// `msd_cm` over the balls of each species.
+    pub species_cm: Vec<f64>,
 }
 
 #[cfg(test)]

@@ -83,6 +83,9 @@ pub struct Row {
     pub msd_cm: f64,
     /// `[T_tr,s, T_rot,s]` of each species `s`, in a mixture (empty with one species).
     pub species: Vec<[f64; 2]>,
+    /// `msd_cm` over the balls of each species `s`, in a mixture (empty with one species;
+    /// [`crate::displacement::MeanSquares`]).
+    pub msd_species: Vec<f64>,
 }
 
 impl Row {
@@ -100,6 +103,7 @@ impl Row {
         v.extend(self.lost);
         v.extend([self.pressure, self.a2, self.msd, self.msd_cm]);
         v.extend(self.species.iter().flatten());
+        v.extend(&self.msd_species);
         v
     }
 }
@@ -309,7 +313,7 @@ impl Sampler {
         let time = sim.now();
         let m = moments(sim, species);
         let [t_tr, t_rot] = m.temperatures;
-        let [msd, msd_cm] = self.displacements.msd(sim, species);
+        let squares = self.displacements.mean_squares(sim, species);
         if let Some(g) = &mut self.pair_correlation {
             g.sample(sim);
         }
@@ -337,10 +341,15 @@ impl Sampler {
             lost: self.lost,
             pressure,
             a2: m.a2,
-            msd,
-            msd_cm,
+            msd: squares.msd,
+            msd_cm: squares.msd_cm,
             species: if self.species > 1 {
                 m.species
+            } else {
+                Vec::new()
+            },
+            msd_species: if self.species > 1 {
+                squares.species_cm
             } else {
                 Vec::new()
             },
@@ -388,7 +397,7 @@ impl Sampler {
     /// header, the Parquet table's columns and the Python package's arrays share these names:
     /// `time`, `contacts`, `T_tr`, `T_rot`, `energy`, `collision_frequency`, `lost_KIND`
     /// ([`KINDS`]), `pressure`, `a2`, `msd`, `msd_cm`, and in a mixture `T_tr_s`, `T_rot_s` for each species
-    /// index `s`.
+    /// index `s`, then `msd_cm_s` for each.
     pub fn columns(&self) -> Vec<(String, String)> {
         let mut c: Vec<(String, String)> = [
             ("time", "T"),
@@ -415,6 +424,9 @@ impl Sampler {
             for s in 0..self.species {
                 c.push((format!("T_tr_{s}"), ENERGY.into()));
                 c.push((format!("T_rot_{s}"), ENERGY.into()));
+            }
+            for s in 0..self.species {
+                c.push((format!("msd_cm_{s}"), "L^2".into()));
             }
         }
         c

@@ -111,7 +111,12 @@ fn a2_of_a_uniform_start_and_of_the_relaxed_gas() {
 /// In an elastic mixture every degree of freedom of every species has one temperature at
 /// equilibrium (the microcanonical average of each quadratic term), so `T_tr,s` and `T_rot,s`
 /// of both species agree; started at equal speeds, the heavy species (mass 4) starts at four
-/// times the light one's translational temperature.
+/// times the light one's translational temperature. The species' mean square displacements
+/// make up the whole gas's (`N msd_cm = sum_s N_s msd_cm,s`, to rounding, at every row). The
+/// ratio of the species' diffusion coefficients (the slopes of `msd_cm,s` from 20 collision
+/// times on) is printed, not asserted: the first Chapman-Enskog approximation for smooth disks
+/// (`1 / D_s ~ sum_j x_j sqrt(mu_sj)`, `mu` the reduced mass) puts it at 1.39, the rough
+/// disks' value is not derived here, and six such runs give it only to about 4 %.
 #[test]
 fn each_species_of_an_elastic_mixture_reaches_one_temperature() {
     let gas = "dim = 2\n[box]\nsize = [80, 80]\nboundary = [\"periodic\", \"periodic\"]\n\
@@ -119,9 +124,27 @@ fn each_species_of_an_elastic_mixture_reaches_one_temperature() {
                [[species]]\nmass = 4\nradius = \"1/2\"\ncount = 400\n\
                [random]\nseed = {seed}\nspeed = 1\nspin = 1\n";
     let mut ratios: [Vec<f64>; 3] = Default::default();
+    let mut diffusion = Vec::new();
     for seed in 0..6 {
         let (rows, tau) = sampled(gas, seed);
         assert_eq!(rows[0].species.len(), 2);
+        for r in &rows {
+            let whole = (800.0 * r.msd_species[0] + 400.0 * r.msd_species[1]) / 1200.0;
+            assert!(
+                (whole - r.msd_cm).abs() <= 1e-12 * r.msd_cm,
+                "{whole} {}",
+                r.msd_cm
+            );
+        }
+        let late: Vec<&Row> = rows.iter().filter(|r| r.time >= 20.0 * tau).collect();
+        let x: Vec<f64> = late.iter().map(|r| r.time).collect();
+        let d = |s: usize| {
+            slope(
+                &x,
+                &late.iter().map(|r| r.msd_species[s]).collect::<Vec<_>>(),
+            )
+        };
+        diffusion.push(d(0) / d(1));
         let start = rows[0].species[1][0] / rows[0].species[0][0];
         assert!(start > 2.5, "the heavy species starts hotter: {start}");
         let t = |s: usize, k: usize| late_mean(&rows, tau, &|r| r.species[s][k]);
@@ -136,6 +159,8 @@ fn each_species_of_an_elastic_mixture_reaches_one_temperature() {
         assert!(se < 0.02, "too noisy to test: {x:?}");
         assert!((mean - 1.0).abs() < T_5 * se, "{what}: {x:?}");
     }
+    let (mean, se) = mean_se(&diffusion);
+    eprintln!("D_0 / D_1 = {mean:.3} +- {se:.3} (6 seeds; smooth disks' first approximation 1.39)");
 }
 
 /// `observables.svg` of a cooling rough gas: both temperatures and the ratio drawn, with the
