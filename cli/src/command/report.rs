@@ -139,10 +139,13 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         .dims
         .iter()
         .flat_map(|d| {
+            let family = d.family.iter().filter(|r| !r.passed()).map(|r| &r.name);
             d.regimes
                 .iter()
                 .filter(|r| !r.stability.passed)
-                .map(move |r| format!("n = {} {}", d.dim, r.name))
+                .map(|r| &r.name)
+                .chain(family)
+                .map(move |name| format!("n = {} {name}", d.dim))
         })
         .collect();
     if failing.is_empty() && !report.passed() {
@@ -155,9 +158,10 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
         .map(|r| r.stability.max_normwise_eps)
         .fold(0.0, f64::max);
     outln!(
-        "report: n = {:?}, {} regimes, {} cases each, {:.1} s; generated f64 worst normwise error {:.2} eps; {}; reports in {}",
+        "report: n = {:?}, {} regimes and {} of the rough-ball family, {} cases each, {:.1} s; generated f64 worst normwise error {:.2} eps; {}; reports in {}",
         report.options.dims,
         report.options.regimes.len(),
+        report.options.family.len(),
         report.options.samples,
         report.seconds,
         worst,
