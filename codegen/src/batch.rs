@@ -76,6 +76,14 @@ impl Params {
             Params::Shared => format!("{}_shared", variant.name()),
         }
     }
+
+    /// [`Params::function_name`] under `law`: the rough kernels' names start with `rough_`.
+    pub fn function_name_of(self, law: model::Law, variant: Variant) -> String {
+        match law {
+            model::Law::Rough => format!("rough_{}", self.function_name(variant)),
+            _ => self.function_name(variant),
+        }
+    }
 }
 
 /// Cost of one batch kernel, split into the part run for every contact and the part run
@@ -84,6 +92,8 @@ impl Params {
 pub struct BatchSummary {
     /// The dimension `n`.
     pub dim: usize,
+    /// The contact law: the no-slip map, or the rough law with `(e, beta)` shared by the call.
+    pub law: model::Law,
     /// Which bodies move: the scalar kernel the batch kernel repeats.
     pub variant: Variant,
     /// Where its ball parameters come from.
@@ -138,6 +148,12 @@ fn uniform_nodes(graph: &Graph, shared: &BTreeSet<String>) -> Vec<bool> {
 /// The place of a kernel input in the batch: a path to a lane array (indexed by `l`) or, for
 /// a shared parameter, to a scalar.
 fn input_path(name: &str, n: usize, variant: Variant, params: Params) -> TokenStream {
+    if name == names::restitution_e() {
+        return quote!(law.e);
+    }
+    if name == names::restitution_beta() {
+        return quote!(law.beta);
+    }
     let contact = match params {
         Params::PerContact => quote!(block.contact),
         Params::Shared => quote!(block),
@@ -205,7 +221,12 @@ struct EmittedBatch {
 }
 
 /// The kernel's parameters, and the type of one input block.
-fn signature(n: usize, variant: Variant, params: Params) -> (TokenStream, TokenStream) {
+fn signature(
+    n: usize,
+    law: model::Law,
+    variant: Variant,
+    params: Params,
+) -> (TokenStream, TokenStream) {
     let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
     let post = match variant {
         Variant::Free => quote!([StateLanes<T, #nl, #sl>; 2]),
@@ -223,7 +244,14 @@ fn signature(n: usize, variant: Variant, params: Params) -> (TokenStream, TokenS
             quote!(ContactLanes<T, #nl, #sl>),
         ),
     };
-    (quote!(#shared blocks: &[#block], out: &mut [#post]), block)
+    let law = match law {
+        model::Law::Rough => quote!(law: &Restitution<T>,),
+        _ => quote!(),
+    };
+    (
+        quote!(#shared #law blocks: &[#block], out: &mut [#post]),
+        block,
+    )
 }
 
 fn docs(
@@ -232,7 +260,10 @@ fn docs(
     per_contact: OpCount,
     per_batch: OpCount,
 ) -> TokenStream {
-    let scalar = kernel.variant.name();
+    let scalar = match kernel.law {
+        model::Law::Rough => format!("rough::{}", kernel.variant.name()),
+        _ => kernel.variant.name().to_string(),
+    };
     let mut lines = vec![
         format!(
             "Batch form of [`crate::kernels::d{}::{scalar}`]: block `k` of `blocks` into `out[k]`,",
@@ -240,6 +271,11 @@ fn docs(
         ),
         "lane by lane, for `min(blocks.len(), out.len())` blocks.".into(),
     ];
+    if kernel.law == model::Law::Rough {
+        lines.push(
+            "The law `(e, beta)`: shared by every contact; `h_n`, `h_t` are computed once.".into(),
+        );
+    }
     match params {
         Params::PerContact => lines.push("Ball parameters: per contact, in the lanes.".into()),
         Params::Shared => lines.push(
@@ -276,10 +312,13 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
         .flat_map(|o| o.spin.iter().chain(&o.velocity).copied());
     let sched: Schedule = schedule(&kernel.graph, roots);
     let namer = Namer::new(kernel, &sched, &sched.steps);
-    let shared = match params {
+    let mut shared = match params {
         Params::PerContact => BTreeSet::new(),
         Params::Shared => shared_inputs(variant),
     };
+    if kernel.law == model::Law::Rough {
+        shared.extend([names::restitution_e(), names::restitution_beta()]);
+    }
     let uniform = uniform_nodes(&kernel.graph, &shared);
     let (hoisted, lane): (Vec<Id>, Vec<Id>) =
         sched.steps.iter().partition(|id| uniform[id.0 as usize]);
@@ -374,8 +413,8 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
     let per_contact = count(&kernel.graph, &lane);
     let per_batch = count(&kernel.graph, &hoisted);
     let doc = docs(kernel, params, per_contact, per_batch);
-    let fn_name = ident(&params.function_name(variant));
-    let (sig, block_ty) = signature(n, variant, params);
+    let fn_name = ident(&params.function_name_of(kernel.law, variant));
+    let (sig, block_ty) = signature(n, kernel.law, variant, params);
     let tokens = quote! {
         #doc
         #[inline(always)]
@@ -405,6 +444,7 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
     EmittedBatch {
         summary: BatchSummary {
             dim: n,
+            law: kernel.law,
             variant,
             params,
             per_contact,
@@ -418,12 +458,12 @@ fn header(dim: usize, kernels: &[BatchSummary]) -> String {
     let mut h = format!(
         "// @generated by noslip-codegen from the general SO(n) formulas (codegen/src/model.rs),\n\
          // batch form (codegen/src/batch.rs). Do not edit: it is rewritten by collision-core's build.rs.\n\
-         // No-slip collision batch kernels for n = {dim}, blocks of LANES contacts.\n"
+         // No-slip and rough-ball collision batch kernels for n = {dim}, blocks of LANES contacts.\n"
     );
     for k in kernels {
         h.push_str(&format!(
             "// {}: per contact {}; per call {}.\n",
-            k.params.function_name(k.variant),
+            k.params.function_name_of(k.law, k.variant),
             k.per_contact,
             k.per_batch
         ));
@@ -432,11 +472,14 @@ fn header(dim: usize, kernels: &[BatchSummary]) -> String {
 }
 
 /// Generate the batch kernels of dimension `dim` (`free`, `fixed`, `free_shared`,
-/// `fixed_shared`) as one formatted source file; `crate_path` as in [`crate::generate`].
+/// `fixed_shared`, and the rough-ball law's `rough_free`, ..., with `(e, beta)` shared by the
+/// call) as one formatted source file; `crate_path` as in [`crate::generate`].
 ///
 /// Panics if the emission is not valid Rust: a generator bug.
 pub fn generate(dim: usize, crate_path: &str) -> BatchModule {
-    let built: Vec<KernelGraph> = Variant::ALL.iter().map(|&v| model::build(dim, v)).collect();
+    let built: Vec<KernelGraph> = (Variant::ALL.iter().map(|&v| model::build(dim, v)))
+        .chain(Variant::ALL.iter().map(|&v| model::build_rough(dim, v)))
+        .collect();
     let emitted: Vec<EmittedBatch> = Params::ALL
         .iter()
         .flat_map(|&p| built.iter().map(move |k| emit_batch(k, p)))
@@ -444,7 +487,7 @@ pub fn generate(dim: usize, crate_path: &str) -> BatchModule {
     let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
     let imports = quote! {
         use #path::batch::{prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance};
-        use #path::{Ball, RefArith, Scalar};
+        use #path::{Ball, RefArith, Restitution, Scalar};
     };
     let items = emitted.iter().map(|e| &e.tokens);
     let file = emit::parse(quote!(#imports #(#items)*));
@@ -497,15 +540,30 @@ mod tests {
                 .map(|k| (k.variant, k.ops))
                 .collect();
             for k in generate(dim, "crate").kernels {
+                let ops = match k.law {
+                    model::Law::Rough => emit::emit_body(&model::build_rough(dim, k.variant)).ops,
+                    _ => scalar[&k.variant],
+                };
                 assert_eq!(
                     add(k.per_contact, k.per_batch),
-                    scalar[&k.variant],
-                    "n = {dim}, {:?} {:?}",
+                    ops,
+                    "n = {dim}, {:?} {:?} {:?}",
+                    k.law,
                     k.variant,
                     k.params
                 );
+                // The rough law's h_n = (1 + e)/2 and h_t = (1 + beta)/2 are computed once
+                // per call in both modes.
+                let law = match k.law {
+                    model::Law::Rough => OpCount {
+                        add: 2,
+                        mul: 2,
+                        ..OpCount::default()
+                    },
+                    _ => OpCount::default(),
+                };
                 match k.params {
-                    Params::PerContact => assert_eq!(k.per_batch, OpCount::default()),
+                    Params::PerContact => assert_eq!(k.per_batch, law),
                     // D, g_1 g_2 / D and the rho_i leave the lane loop; of `fixed`,
                     // g_2 / (1 + g_2) does, and the divisions of y_k = .. / R_2 stay in it
                     // (`crate::unbiased`).
@@ -523,10 +581,13 @@ mod tests {
         for dim in DIMS {
             let source = generate(dim, "crate").source;
             let file = syn::parse_file(&source).expect("generated source parses");
-            assert_eq!(file.items.len(), 2 + 4, "two use items, four kernels");
-            for v in Variant::ALL {
+            assert_eq!(file.items.len(), 2 + 8, "two use items, eight kernels");
+            for (law, v) in [model::Law::NoSlip, model::Law::Rough]
+                .into_iter()
+                .flat_map(|l| Variant::ALL.map(|v| (l, v)))
+            {
                 for p in Params::ALL {
-                    let name = p.function_name(v);
+                    let name = p.function_name_of(law, v);
                     let body = source
                         .split(&format!("pub fn {name}<"))
                         .nth(1)
@@ -577,11 +638,31 @@ mod tests {
         }
     }
 
+    /// The rough kernels' law is a parameter of the call: `h_n`, `h_t` leave the lane loop
+    /// in both modes, and in the per-contact mode nothing else does.
+    #[test]
+    fn the_rough_law_leaves_the_lane_loop() {
+        let source = generate(3, "crate").source;
+        for name in ["rough_free", "rough_fixed", "rough_free_shared"] {
+            let body = source.split(&format!("pub fn {name}<")).nth(1).unwrap();
+            let (before_loop, in_loop) = body.split_once("for k in 0..").unwrap();
+            let in_loop = in_loop.split("\npub fn ").next().unwrap();
+            assert!(before_loop.contains("law: &Restitution<T>"), "{name}");
+            assert!(before_loop.contains("let h_n: T ="), "{name}");
+            assert!(before_loop.contains("let h_t: T ="), "{name}");
+            assert!(
+                !in_loop.contains("law."),
+                "{name}: the law is read per lane"
+            );
+        }
+    }
+
     #[test]
     fn shared_parameters_leave_the_lane_loop() {
         let source = generate(3, "crate").source;
         let shared = source.split("pub fn free_shared<").nth(1).unwrap();
         let (before_loop, in_loop) = shared.split_once("for k in 0..").unwrap();
+        let in_loop = in_loop.split("\npub fn ").next().unwrap();
         assert!(before_loop.contains("let d: T ="), "D is computed once");
         assert!(before_loop.contains("let rho1: T ="));
         assert!(

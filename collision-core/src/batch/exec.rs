@@ -206,7 +206,12 @@ impl Exec {
     /// Run `job` on this instruction set, shared with rayon's workers in chunks when the
     /// batch is long enough (`share.rs`).
     #[inline(always)]
-    fn drive<B: Sync, O: Send>(&self, job: &(impl Job<B, O> + Sync), blocks: &[B], out: &mut [O]) {
+    pub(super) fn drive<B: Sync, O: Send>(
+        &self,
+        job: &(impl Job<B, O> + Sync),
+        blocks: &[B],
+        out: &mut [O],
+    ) {
         #[cfg(feature = "parallel")]
         if self.splits::<B, O>(blocks.len()) {
             let (isa, len) = (self.isa, blocks.len().min(out.len()));
@@ -230,12 +235,15 @@ impl Exec {
     }
 }
 
-fn pairs_for<T: Scalar, const N: usize, const S: usize>(out: &mut PairBatch<T, N, S>, len: usize) {
+pub(super) fn pairs_for<T: Scalar, const N: usize, const S: usize>(
+    out: &mut PairBatch<T, N, S>,
+    len: usize,
+) {
     let zero = [BodyState::zero(), BodyState::zero()];
     out.resize_with(len, || Lanewise::splat(&zero));
 }
 
-fn states_for<T: Scalar, const N: usize, const S: usize>(
+pub(super) fn states_for<T: Scalar, const N: usize, const S: usize>(
     out: &mut StateBatch<T, N, S>,
     len: usize,
 ) {

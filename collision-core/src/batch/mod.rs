@@ -58,6 +58,7 @@ mod kept;
 pub mod kernels;
 pub mod lanes;
 mod prefetch;
+mod rough;
 mod rows;
 #[cfg(feature = "parallel")]
 mod share;
@@ -74,6 +75,7 @@ pub use lanes::{
     BLOCK_ALIGN, LANES,
 };
 pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
+pub use rough::RoughBatchKernel;
 pub use rows::{
     BallRows, FreeRows, StateRows, StateRowsMut, ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES,
     ROWS_PASS_BYTES_OUT_OF_CACHE, STREAM_FROM_BYTES,

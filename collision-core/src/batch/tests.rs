@@ -8,10 +8,10 @@ use crate::{collide_unchecked, Ball, BodyState, Exact, Kernel, RefArith, Scalar}
 use rand::{Rng as _, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-type Item<T, const N: usize, const S: usize> = (Contact<T, N, S>, [Ball<T>; 2]);
+pub(super) type Item<T, const N: usize, const S: usize> = (Contact<T, N, S>, [Ball<T>; 2]);
 
 /// Lengths around the block size: empty, one lane, ragged, full, and several blocks.
-const LENGTHS: [usize; 6] = [0, 1, 7, 8, 9, 37];
+pub(super) const LENGTHS: [usize; 6] = [0, 1, 7, 8, 9, 37];
 
 /// `len` contacts with masses and radii in [1/2, 2), `gamma2` in [1/(5n), 2/n), spins and
 /// velocities in [-1, 1), normals unit in floats (in `Exact` not: the kernels are rational
@@ -19,7 +19,7 @@ const LENGTHS: [usize; 6] = [0, 1, 7, 8, 9, 37];
 /// by `num(rng, lo, hi)`. Contact `k` has body 1 immovable (`inv_mass = 0`) when
 /// `k % 4 == 1`, body 2 immovable when `k % 4 == 2`, and one point mass (`gamma2 = 0`) when
 /// `k % 4 == 3`: `free` takes every one of them (its preconditions hold).
-fn sample<T: Scalar, const N: usize, const S: usize>(
+pub(super) fn sample<T: Scalar, const N: usize, const S: usize>(
     seed: u64,
     len: usize,
     num: impl Fn(&mut ChaCha8Rng, f64, f64) -> T,
@@ -64,7 +64,7 @@ fn from_f64<T: Scalar>(x: f64) -> T {
     T::from_ratio((x * scale as f64).round() as i64, scale)
 }
 
-fn float<T: Scalar>(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> T {
+pub(super) fn float<T: Scalar>(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> T {
     from_f64(rng.random_range(lo..hi))
 }
 
@@ -79,7 +79,7 @@ fn same<T: Scalar>(a: &T, b: &T) -> bool {
     a == b && a.to_f64().to_bits() == b.to_f64().to_bits()
 }
 
-fn same_state<T: Scalar, const N: usize, const S: usize>(
+pub(super) fn same_state<T: Scalar, const N: usize, const S: usize>(
     a: &BodyState<T, N, S>,
     b: &BodyState<T, N, S>,
 ) -> bool {
@@ -89,7 +89,7 @@ fn same_state<T: Scalar, const N: usize, const S: usize>(
 
 /// Every instruction set this CPU runs, serial and (feature `parallel`) threaded from the
 /// first contact on.
-fn execs() -> Vec<Exec> {
+pub(super) fn execs() -> Vec<Exec> {
     let mut out = Vec::new();
     for isa in Isa::available() {
         let exec = Exec::auto().with_isa(isa).expect("available").serial();
