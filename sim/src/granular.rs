@@ -241,6 +241,10 @@ pub struct Sampler {
     virial: f64,
     lost: [f64; 4],
     displacements: Displacements,
+    /// Whether the run is driven by a thermostat ([`crate::thermostat`]): its kicks change
+    /// velocities between contacts, which the displacements (summed over the flights the
+    /// contacts end) do not see, so `msd` and `msd_cm` are NaN.
+    kicked: bool,
     /// The box's sides: its volume, and the cells of [`Sampler::with_pair_correlation`].
     sides: Vec<f64>,
     pair_correlation: Option<PairCorrelation>,
@@ -269,6 +273,7 @@ impl Sampler {
             virial: 0.0,
             lost: [0.0; 4],
             displacements: Displacements::start(sim),
+            kicked: sim.table().thermostat.is_some(),
             sides: sim.box_size().to_vec(),
             pair_correlation: None,
             rows: Vec::new(),
@@ -309,7 +314,11 @@ impl Sampler {
         let time = sim.now();
         let m = moments(sim, species);
         let [t_tr, t_rot] = m.temperatures;
-        let [msd, msd_cm] = self.displacements.msd(sim, species);
+        let [msd, msd_cm] = if self.kicked {
+            [f64::NAN; 2]
+        } else {
+            self.displacements.msd(sim, species)
+        };
         if let Some(g) = &mut self.pair_correlation {
             g.sample(sim);
         }
