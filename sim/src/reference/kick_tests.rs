@@ -166,7 +166,7 @@ seed = 2
             unreachable!("dim {}", scene.dim)
         );
         assert!(
-            kicks >= if rebasing { 5 } else { 20 },
+            kicks >= if rebasing { 3 } else { 20 },
             "{name}: {kicks} kicks"
         );
         // Each kick is a re-basing; the dilute gas re-bases between kicks too.
