@@ -88,10 +88,19 @@ mod tests {
         for (text, key) in [
             ("kind = \"white-noise\"\ninterval = 1", "strength"),
             ("kind = \"white-noise\"\nstrength = 1", "interval"),
-            ("kind = \"white-noise\"\nstrength = 1\ninterval = 1\nrate = 2", "rate"),
+            (
+                "kind = \"white-noise\"\nstrength = 1\ninterval = 1\nrate = 2",
+                "rate",
+            ),
             // Not numbers: refused by the number reader at their place in the file.
-            ("kind = \"white-noise\"\nstrength = \"nan\"\ninterval = 1", "line 11, column 12"),
-            ("kind = \"white-noise\"\nstrength = 1\ninterval = \"inf\"", "line 12, column 12"),
+            (
+                "kind = \"white-noise\"\nstrength = \"nan\"\ninterval = 1",
+                "line 11, column 12",
+            ),
+            (
+                "kind = \"white-noise\"\nstrength = 1\ninterval = \"inf\"",
+                "line 12, column 12",
+            ),
         ] {
             let e = scene(text).unwrap_err();
             assert!(e.contains(key), "{text}: {e}");

@@ -182,3 +182,21 @@ seed = 2
         }
     }
 }
+
+/// The shipped driven gases ([`super::tests`] checks that every shipped scene is compared).
+pub(super) const DRIVEN: [&str; 1] = ["driven3d"];
+
+#[test]
+fn the_shipped_driven_gas_logs_the_same_bytes_in_both_engines() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    for name in DRIVEN {
+        let text = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
+        let scene = Scene::from_toml(&text, name).unwrap();
+        let (kicks, _) = collision_core::with_dim!(
+            scene.dim,
+            |N, S| compare(name, setup::<N, S>(&scene).unwrap(), 10_000),
+            unreachable!("dim {}", scene.dim)
+        );
+        assert!(kicks >= 5, "{name}: {kicks} kicks");
+    }
+}
