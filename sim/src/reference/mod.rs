@@ -472,8 +472,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         let t = self.now;
         for (i, d) in dv.iter().enumerate() {
             self.move_record(i, t);
-            for k in 0..N {
-                self.state[i].velocity[k] += d[k];
+            for (u, dk) in self.state[i].velocity.iter_mut().zip(d) {
+                *u += dk;
             }
             self.records[i].velocity = self.state[i].velocity;
             self.count[i] += 1;
