@@ -275,8 +275,16 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         let kick_at = noise.as_ref().map(Noise::next_time).filter(|&t| t <= until);
         let e = match sim.step(kick_at.unwrap_or(until)) {
             Step::Contact(e) => e,
-            // A kick is due (after `Never` too: kicks set balls at rest or apart moving).
-            Step::Until | Step::Never(_) if kick_at.is_some() => {
+            // A kick is due. After `Never` too if the run has a time limit (kicks set balls
+            // at rest or apart moving); without one it stops there, as a run without kicks
+            // (a lone ball would be kicked forever).
+            Step::Until if kick_at.is_some() => {
+                if let Some(noise) = &mut noise {
+                    injected += kick(sim, species, noise, &mut tracer, traced, &at);
+                }
+                continue;
+            }
+            Step::Never(_) if kick_at.is_some() && until.is_finite() => {
                 if let Some(noise) = &mut noise {
                     injected += kick(sim, species, noise, &mut tracer, traced, &at);
                 }

@@ -364,3 +364,48 @@ fn rough_balls_driven_in_translation_keep_the_two_temperature_ratio() {
         ratio_agrees(dim, window);
     }
 }
+
+/// A lone ball in a periodic box, kicked, with a limit of contacts but none of time: the
+/// engine finds that no contact can come, and the run stops there (kicks would go on forever);
+/// with a time limit, the kicks go on to it.
+#[test]
+fn a_lone_kicked_ball_stops_without_a_time_limit() {
+    let text = "dim = 2\n[box]\nsize = [10, 10]\nboundary = [\"periodic\", \"periodic\"]\n\
+                [[species]]\nmass = 1\nradius = \"1/2\"\ncount = 1\n[thermostat]\n\
+                kind = \"white-noise\"\nstrength = 1\ninterval = \"0.5\"\n";
+    let scene = Scene::from_toml(text, "lone.toml").unwrap();
+    let run = |time: Option<f64>| {
+        let setup = setup::<2, 1>(&scene).unwrap();
+        let species = setup.species.clone();
+        let kernels = GenericKernels {
+            species: species.clone(),
+        };
+        let mut sim = Simulation::new(setup, kernels).unwrap();
+        let limits = Limits {
+            events: Some(10),
+            time,
+            samples: 1,
+            traced: 1,
+            contact_points: 0,
+        };
+        run_observed(
+            &mut sim,
+            &species,
+            &limits,
+            None,
+            &mut |_| {},
+            &mut |_, _, _| Ok(()),
+        )
+        .unwrap()
+        .0
+    };
+    let endless = run(None);
+    assert_eq!(endless.events, 0);
+    assert!(endless.stopped.is_some(), "{endless:?}");
+    let timed = run(Some(50.0));
+    assert_eq!(
+        (timed.events, timed.kicks, timed.time),
+        (0, 100, 50.0),
+        "{timed:?}"
+    );
+}
