@@ -27,18 +27,18 @@ fn the_driven_gas_is_kicked_and_accounts_for_its_energy() {
     );
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
-    // Kicks every 0.1 up to t = 5 (50 * 0.1 rounds to 5 exactly).
-    assert_eq!(summary["kicks"], 50, "{summary}");
+    // Kicks every 0.43 up to t = 5.
+    assert_eq!(summary["kicks"], 11, "{summary}");
     let injected = summary["energy_injected"].as_f64().unwrap();
     let (start, end) = (
         summary["energy_start"].as_f64().unwrap(),
         summary["energy_end"].as_f64().unwrap(),
     );
-    // The expected injection: 50 kicks of n (N - 1) m xi^2 dt / 2 = 3 * 499 * 0.36 * 0.1 / 2
-    // = 26.95 each, 1347 in all, with the kicks' random cross term `sum m u . dv` (standard
-    // deviation sqrt(2 E_tr xi^2 dt) = 7.3 per kick at E_tr = 750, 52 over 50): within 6 of
+    // The expected injection: 11 kicks of n (N - 1) m xi^2 dt / 2 = 3 * 499 * 0.36 * 0.43 / 2
+    // = 115.86 each, 1274.5 in all, with the kicks' random cross term `sum m u . dv` (standard
+    // deviation sqrt(2 E_tr xi^2 dt) = 15.2 per kick at E_tr = 750, 50.4 over 11): within 6 of
     // those.
-    assert!((injected - 1347.3).abs() < 6.0 * 52.0, "{injected}");
+    assert!((injected - 1274.5).abs() < 6.0 * 50.4, "{injected}");
     let csv = std::fs::read_to_string(dir.join("observables.csv")).unwrap();
     let rows: Vec<Vec<f64>> = csv
         .lines()
@@ -81,7 +81,7 @@ fn bad_thermostats_and_driven_dynamics_exit_2_naming_them() {
             "bad.toml: thermostat.strength: must be positive, got -3/5",
         ),
         (
-            "interval = \"0.1\"",
+            "interval = \"0.43\"",
             "interval = 0",
             "bad.toml: thermostat.interval: must be positive, got 0",
         ),
