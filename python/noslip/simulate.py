@@ -31,7 +31,9 @@ class SimulationResult:
         The simulator's summary (as ``noslip simulate`` writes ``summary.json``): ``events``,
         ``ball_ball``, ``ball_wall``, ``ball_obstacle``, ``time``, ``seconds``,
         ``energy_start`` ``E_0``, ``energy_end``, ``energy_drift`` ``|E - E_0| / E_0``,
-        ``momentum_drift``, ``angular_momentum_drift``, ``stopped``, ...
+        ``momentum_drift``, ``angular_momentum_drift``, ``stopped``, ``kicks`` and
+        ``energy_injected`` (a scene's ``[thermostat]``: its kicks and the energy they added,
+        ``docs/granular.md``), ...
     energy : dict of ndarray
         Samples over the run (up to 2000): ``events`` (contacts done), ``drift``
         ``(E - E_0) / E_0`` and ``energy`` ``E = E_0 (1 + drift)``, with

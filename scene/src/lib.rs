@@ -23,6 +23,7 @@ mod number;
 mod pairs;
 pub mod raw;
 pub mod table;
+mod thermostat;
 mod validate;
 
 pub use number::{parse_exact, Number, MAX_DIGITS};
@@ -30,6 +31,7 @@ pub use pairs::{Pair, PairLaws, PairSet, WallSide};
 pub use raw::{Boundary, ContactKind, Distribution};
 
 pub use table::{Shape, TableBoundary};
+pub use thermostat::Thermostat;
 
 use num_rational::BigRational;
 use std::fmt;
@@ -173,6 +175,9 @@ pub struct Scene {
     pub random: Random,
     /// The run's defaults (`[simulation]`).
     pub simulation: RunDefaults,
+    /// The white-noise thermostat of a driven steady state (`[thermostat]`); `None`: no
+    /// forcing.
+    pub thermostat: Option<Thermostat>,
 }
 
 /// A bad scene: where (`file: place`) and what.

@@ -46,6 +46,9 @@ pub struct RawScene {
     /// The `[simulation]` table (its defaults when absent).
     #[serde(default)]
     pub simulation: RawSimulation,
+    /// The `[thermostat]` table: a driven steady state (absent: no forcing).
+    #[serde(default)]
+    pub thermostat: Option<RawThermostat>,
 }
 
 /// Each axis of the box is bounded by two flat walls or is periodic.
@@ -273,4 +276,21 @@ pub struct RawSimulation {
     /// `orientation`: track each ball's orientation `A_i` in SO(n) (default false).
     #[serde(default)]
     pub orientation: bool,
+}
+
+/// The `[thermostat]` table: random kicks of the balls' velocities (docs/granular.md).
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawThermostat {
+    /// `kind`: `"white-noise"` (the only one); checked by validation, so that a bad value is
+    /// named by its key.
+    pub kind: String,
+    /// `strength`: `xi`, the noise's strength (a velocity increment of variance `xi^2 dt`
+    /// per component in time `dt`); `> 0`.
+    pub strength: Number,
+    /// `interval`: the time `dt` between kicks; `> 0`.
+    pub interval: Number,
+    /// `seed`: of the kicks' random stream (default 0).
+    #[serde(default)]
+    pub seed: u64,
 }

@@ -365,6 +365,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
             Some(tc) => Some(ctx.positive("contact.tc", tc)?),
             None => None,
         },
+        thermostat: crate::thermostat::thermostat(&ctx, &raw.thermostat)?,
     };
     if scene.size.is_empty() {
         if let Some(k) = scene.species.iter().position(|s| s.count > 0) {

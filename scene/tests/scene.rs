@@ -36,6 +36,7 @@ fn shipped_scenes_are_valid() {
             "circle",
             "cube3d",
             "disk_between_walls",
+            "driven3d",
             "gas2d",
             "gas3d",
             "gas4d",

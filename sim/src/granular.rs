@@ -245,6 +245,10 @@ pub struct Sampler {
     virial: f64,
     lost: [f64; 4],
     displacements: Displacements,
+    /// Whether the run is driven by a thermostat ([`crate::thermostat`]): its kicks change
+    /// velocities between contacts, which the displacements (summed over the flights the
+    /// contacts end) do not see, so `msd` and `msd_cm` are NaN.
+    kicked: bool,
     /// The box's sides: its volume, and the cells of [`Sampler::with_pair_correlation`].
     sides: Vec<f64>,
     pair_correlation: Option<PairCorrelation>,
@@ -273,6 +277,7 @@ impl Sampler {
             virial: 0.0,
             lost: [0.0; 4],
             displacements: Displacements::start(sim),
+            kicked: sim.table().thermostat.is_some(),
             sides: sim.box_size().to_vec(),
             pair_correlation: None,
             rows: Vec::new(),
@@ -313,7 +318,13 @@ impl Sampler {
         let time = sim.now();
         let m = moments(sim, species);
         let [t_tr, t_rot] = m.temperatures;
-        let squares = self.displacements.mean_squares(sim, species);
+        let mut squares = self.displacements.mean_squares(sim, species);
+        if self.kicked {
+            // Kicks change velocities between the contacts the displacements add up.
+            squares.msd = f64::NAN;
+            squares.msd_cm = f64::NAN;
+            squares.species_cm.iter_mut().for_each(|x| *x = f64::NAN);
+        }
         if let Some(g) = &mut self.pair_correlation {
             g.sample(sim);
         }

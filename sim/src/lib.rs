@@ -77,6 +77,7 @@ pub mod table;
 mod table_tests;
 #[cfg(test)]
 mod tests;
+pub mod thermostat;
 pub mod trace;
 
 pub use engine::{Contact, Event, SetupError, Simulation, Step};

@@ -3,6 +3,7 @@
 //! the caller how it goes ([`Progress`]).
 
 use crate::dilute::out_of_reach;
+use crate::thermostat::Noise;
 use crate::trace::{Tracer, CONTACT_DOTS};
 use crate::{Contact, Event, PairKernels, Simulation, Step};
 use collision_core::BodyState;
@@ -104,6 +105,12 @@ pub struct Summary {
     /// Why the run stopped before its limits: the engine found that no contact will happen
     /// again ([`crate::NoContact`]), or none came within [`MAX_QUIET_BOX_LENGTHS`].
     pub stopped: Option<String>,
+    /// The thermostat's kicks applied ([`crate::thermostat`]; 0 without one).
+    pub kicks: u64,
+    /// The kinetic energy the kicks added, the sum of [`Simulation::kick`]'s returns (0
+    /// without a thermostat): `energy_end = energy_start + energy_injected - (energy lost in
+    /// contacts)`, to rounding.
+    pub energy_injected: f64,
 }
 
 /// What the pictures need (bounded whatever the number of events; see [`crate::trace`]).
@@ -261,9 +268,28 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let clock = Instant::now();
     let mut done = 0u64;
     let mut stopped = None;
+    let mut noise = sim.table().thermostat.map(Noise::new);
+    let mut injected = 0.0;
     while done < events {
-        let e = match sim.step(until) {
+        // The engine steps to the next kick (if it comes by `until`), then the kick is applied.
+        let kick_at = noise.as_ref().map(Noise::next_time).filter(|&t| t <= until);
+        let e = match sim.step(kick_at.unwrap_or(until)) {
             Step::Contact(e) => e,
+            // A kick is due. After `Never` too if the run has a time limit (kicks set balls
+            // at rest or apart moving); without one it stops there, as a run without kicks
+            // (a lone ball would be kicked forever).
+            Step::Until if kick_at.is_some() => {
+                if let Some(noise) = &mut noise {
+                    injected += kick(sim, species, noise, &mut tracer, traced, &at);
+                }
+                continue;
+            }
+            Step::Never(_) if kick_at.is_some() && until.is_finite() => {
+                if let Some(noise) = &mut noise {
+                    injected += kick(sim, species, noise, &mut tracer, traced, &at);
+                }
+                continue;
+            }
             Step::Until => break,
             Step::Never(why) => {
                 stopped = Some(why.to_string());
@@ -347,8 +373,32 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         momentum_drift: distance(&end.momentum, &start.momentum) / p_scale,
         angular_momentum_drift: distance(&end.angular_momentum, &start.angular_momentum) / l_scale,
         stopped,
+        kicks: noise.as_ref().map_or(0, Noise::done),
+        energy_injected: injected,
     };
     Ok((summary, trace))
+}
+
+/// Applies `noise`'s next kick to `sim` ([`Simulation::kick`]) and restarts the traced balls'
+/// paths with their new velocities; returns the energy the kick added.
+fn kick<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &mut Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+    noise: &mut Noise,
+    tracer: &mut Tracer,
+    traced: usize,
+    at: &dyn Fn(&[f64; N]) -> [f64; 2],
+) -> f64 {
+    let inv_mass: Vec<f64> = (0..sim.len())
+        .map(|i| species[sim.species_of(i)].inv_mass)
+        .collect();
+    let dv = noise.kick::<N>(&inv_mass);
+    let added = sim.kick(&dv);
+    for b in 0..traced {
+        let u = sim.state(b).velocity;
+        tracer.flight(b, sim.now(), at(&sim.position(b)), [u[0], u[1]]);
+    }
+    added
 }
 
 /// The contact point `Q`: `a_i + R_i nu` for two balls, `a - R nu` for a ball on a wall, an

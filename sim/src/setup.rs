@@ -132,6 +132,14 @@ pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
         box_contact: ContactKind::from(&scene.box_contact),
         tc: scene.tc.as_ref().map_or(0.0, f),
         origin: extent::<N>(scene).0,
+        thermostat: scene
+            .thermostat
+            .as_ref()
+            .map(|t| crate::thermostat::Thermostat {
+                strength: f(&t.strength),
+                interval: f(&t.interval),
+                seed: t.seed,
+            }),
     }
 }
 

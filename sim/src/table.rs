@@ -119,6 +119,9 @@ pub struct Table<const N: usize> {
     /// The lower corner of the region the pictures show, `[origin, origin + size]` (`size`
     /// of [`crate::Setup`]): 0 with a box.
     pub origin: [f64; N],
+    /// The white-noise thermostat's kicks ([`crate::thermostat`]), applied by the run loop
+    /// ([`crate::run::run_observed`]); `None`: no forcing.
+    pub thermostat: Option<crate::thermostat::Thermostat>,
 }
 
 impl<const N: usize> Table<N> {
@@ -132,6 +135,7 @@ impl<const N: usize> Table<N> {
             box_contact: ContactKind::NoSlip,
             tc: 0.0,
             origin: [0.0; N],
+            thermostat: None,
         }
     }
 

@@ -173,6 +173,13 @@ pub fn running_csv(s: &Spectrum) -> String {
 pub fn run(args: &Args) -> Result<Exit, Failure> {
     let (options, two) = options(args)?;
     let scene = Scene::from_file(&args.file).map_err(|e| Failure::bad_input(e.to_string()))?;
+    if scene.thermostat.is_some() {
+        return Err(Failure::bad_input(format!(
+            "{}: thermostat: a driven gas's random kicks have no tangent map here: lyapunov \
+             takes undriven scenes",
+            scene.origin
+        )));
+    }
     let s = collision_core::with_dim!(
         scene.dim,
         |N, S| spectrum::<N, S>(&scene, &options, two),

@@ -155,6 +155,13 @@ fn print_summary(s: &Summary) -> Result<(), Failure> {
         "momentum drift {:.3e}, angular momentum drift {:.3e} (relative; conserved only without walls/obstacles, angular also without periodic wrapping)",
         s.momentum_drift, s.angular_momentum_drift
     )?;
+    if s.kicks > 0 {
+        outln!(
+            "thermostat: {} kicks added energy {:.17e}",
+            s.kicks,
+            s.energy_injected
+        )?;
+    }
     if let Some(why) = &s.stopped {
         outln!("stopped: {why}")?;
     }

@@ -63,6 +63,13 @@ pub fn table<const N: usize, const S: usize>(
             scene.origin
         ));
     }
+    if scene.thermostat.is_some() {
+        return Err(format!(
+            "{}: thermostat: a driven table's random kicks have no exact return map: orbits \
+             take undriven scenes",
+            scene.origin
+        ));
+    }
     let rough = |c: &noslip_scene::ContactKind| Law::of(c.into()).is_none();
     let places = scene
         .obstacles

@@ -81,6 +81,7 @@
 
 mod contacts;
 mod events;
+mod kick;
 mod quiet;
 mod scan;
 

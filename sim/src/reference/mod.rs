@@ -29,6 +29,8 @@ use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
 #[cfg(test)]
+mod kick_tests;
+#[cfg(test)]
 mod tests;
 
 /// What a ball's prediction found.
@@ -184,11 +186,29 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
 
     /// The next contact (`None` if no ball will ever move again or have a contact).
     pub(crate) fn next_contact(&mut self) -> Option<Event<N, S>> {
+        self.next_contact_until(f64::INFINITY)
+    }
+
+    /// The next contact at or before the absolute time `until`; `None` if there is none by
+    /// then (the clock then at `until` if that is finite), as the cell engine's
+    /// [`crate::Simulation::step`].
+    pub(crate) fn next_contact_until(&mut self, until: f64) -> Option<Event<N, S>> {
         loop {
-            let Reverse(Entry(time, _, i, number)) = self.heap.pop()?;
-            if number != self.next[i].0 {
-                continue;
+            let local = (until - self.origin) - self.origin_low;
+            while let Some(Reverse(Entry(_, _, i, number))) = self.heap.peek() {
+                if *number == self.next[*i].0 {
+                    break;
+                }
+                self.heap.pop();
             }
+            let past = self.heap.peek().is_none_or(|Reverse(e)| e.0 > local);
+            if past {
+                if local.is_finite() {
+                    self.now = self.now.max(local);
+                }
+                return None;
+            }
+            let Reverse(Entry(time, _, i, _)) = self.heap.pop()?;
             if time > self.rebase_at {
                 // Every ball is predicted again from its moved record.
                 self.rebase(self.rebase_at, true);
@@ -440,6 +460,26 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             }
         }
         event
+    }
+
+    /// The cell engine's [`crate::Simulation::kick`] at the clock's time: the re-basings due
+    /// before it, every record moved there, the velocities changed, the counters moved on, the
+    /// last boundaries forgotten, and a re-basing there.
+    pub(crate) fn kick(&mut self, dv: &[[f64; N]]) {
+        while self.now > self.rebase_at {
+            self.rebase(self.rebase_at, true);
+        }
+        let t = self.now;
+        for (i, d) in dv.iter().enumerate() {
+            self.move_record(i, t);
+            for (u, dk) in self.state[i].velocity.iter_mut().zip(d) {
+                *u += dk;
+            }
+            self.records[i].velocity = self.state[i].velocity;
+            self.count[i] += 1;
+            self.last[i] = 0;
+        }
+        self.rebase(t, false);
     }
 
     /// The canonical re-basing at `t` ([`crate::canonical`]).

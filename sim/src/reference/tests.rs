@@ -128,6 +128,7 @@ fn every_shipped_scene_is_compared() {
         .iter()
         .chain(&TABLES)
         .chain(&GRANULAR)
+        .chain(&super::kick_tests::DRIVEN)
         .copied()
         .collect();
     listed.sort();

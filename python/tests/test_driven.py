@@ -1,0 +1,90 @@
+"""A driven granular gas (``[thermostat]``, ``docs/granular.md``): ``noslip.simulate`` runs a
+scene with a white-noise thermostat, its kicks counted and their energy in the summary,
+``observables=`` sampled; bad thermostats refused naming the field (scene and Python)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import noslip
+from noslip.granular import driven_gas, driven_ratio, two_temperature_ratio
+
+
+def test_a_driven_gas_is_kicked_and_keeps_its_temperature() -> None:
+    # 300 spheres at phi = 0.02, e = beta = 0.9; kicks every 0.05 up to t = 10: 200 kicks.
+    # strength 0.185 holds T_tr near 1: n (N - 1) m xi^2 / N = omega_1 T^(3/2) (a - b c / d),
+    # omega_1 = 4 sqrt(pi) rho chi = 0.284, a - b c / d = 0.359 (sim/tests/driven.rs).
+    scene = driven_gas(0.9, 0.9, strength=0.185, interval=0.05, balls=300)
+    assert "[thermostat]" in scene.toml and "driven rough gas" in scene.description
+    run = noslip.simulate(scene, time=10.0, observables=0.5)
+    s = run.summary
+    assert s["kicks"] == 200
+    # The kicks inject n (N - 1) m xi^2 dt / 2 = 3 * 299 * 0.034225 * 0.05 / 2 = 0.7675 each
+    # on average, 153.5 in all; the random cross term sum m u . dv has standard deviation
+    # sqrt(2 E_tr xi^2 dt) = 1.24 per kick at T_tr = 1 (E_tr = 450), 17.6 over 200 kicks:
+    # within six of those.
+    assert abs(s["energy_injected"] - 153.5) < 6 * 17.6, s
+    obs = run.observables
+    # A row at the start and at the first contact after each of t = 0.5, 1, ..., 9.5 (the
+    # first after 10 is past the run's end).
+    assert len(obs["time"]) == 20
+    # T_tr stays near 1: a single run's temperature wanders by the kicks' random energy (17.6
+    # of 450, 4 %) and its own fluctuations (sqrt(2 / 897) = 5 % a row); the late rows' mean
+    # within 20 % (the theory itself is within a few per cent at beta = 0.9).
+    late = obs["T_tr"][10:]
+    assert 0.8 < float(np.mean(late)) < 1.2, obs["T_tr"]
+    # The energy the contacts took is positive and at most what was there and came in.
+    lost = obs["lost_ball_ball"][-1]
+    assert 0 < lost < s["energy_start"] + s["energy_injected"]
+    # Kicks are not contact flights: no mean square displacement under a thermostat.
+    assert np.isnan(obs["msd"]).all() and np.isnan(obs["msd_cm"]).all()
+    # The same scene runs bit for bit again (seeded kicks).
+    again = noslip.simulate(scene, time=10.0, observables=0.5)
+    assert np.array_equal(again.observables["T_tr"], obs["T_tr"])
+
+
+def test_the_driven_ratio_is_the_rotational_balance() -> None:
+    # c / d = eta / (1 - eta / k): 0.8444 for solid spheres and 0.8636 for disks at
+    # beta = 0.9 (sim/tests/driven.rs); independent of e; below the cooling state's ratio.
+    assert round(driven_ratio(3, 0.9, 0.9), 4) == 0.8444
+    assert round(driven_ratio(2, 0.9, 0.9), 4) == 0.8636
+    assert driven_ratio(3, 0.7, 0.9) == driven_ratio(3, 0.9, 0.9)
+    assert driven_ratio(3, 0.9, 0.9) < two_temperature_ratio(3, 0.9, 0.9)
+    # Elastic perfectly rough balls: equipartition.
+    assert driven_ratio(3, 1.0, 1.0) == pytest.approx(1.0, abs=1e-12)
+    assert math.isnan(driven_ratio(3, 0.9, -1.0))
+
+
+@pytest.mark.parametrize("field", ["strength", "interval"])
+@pytest.mark.parametrize("value", [0.0, -1.0, math.nan, math.inf])
+def test_bad_thermostats_are_named(field: str, value: float) -> None:
+    args = {"strength": 1.0, "interval": 0.1, field: value}
+    with pytest.raises(ValueError, match=f"^{field}:"):
+        driven_gas(0.9, 0.9, **args)
+
+
+def test_a_bad_thermostat_in_a_scene_is_named() -> None:
+    base = {
+        "dim": 2,
+        "box": {"size": [10, 10], "boundary": ["periodic", "periodic"]},
+        "species": [{"mass": 1, "radius": "1/2", "count": 4}],
+    }
+    for thermostat, says in [
+        ({"kind": "white-noise", "strength": 0, "interval": 1},
+         "thermostat.strength: must be positive, got 0"),
+        ({"kind": "white-noise", "strength": 1, "interval": "-1/2"},
+         "thermostat.interval: must be positive, got -1/2"),
+        ({"kind": "shaker", "strength": 1, "interval": 1},
+         'thermostat.kind: must be "white-noise", got "shaker"'),
+    ]:
+        with pytest.raises(noslip.InputError, match="thermostat"):
+            noslip.Scene.from_dict({**base, "thermostat": thermostat})
+        try:
+            noslip.simulate({**base, "thermostat": thermostat}, time=1.0)
+        except noslip.InputError as e:
+            assert says in str(e), str(e)
+        else:
+            raise AssertionError("accepted")
