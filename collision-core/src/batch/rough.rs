@@ -12,27 +12,28 @@ use super::exec::{pairs_for, states_for};
 use super::lanes::{ContactLanes, FixedLanes, FreeLanes, StateLanes};
 use super::{ContactBatch, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
 use crate::kernels::Generated;
-use crate::{Ball, RefArith, Restitution, Scalar};
+use crate::{Ball, RefArith, Restitution, Scalar, ScalarRoot, Walton};
 
-/// The generated rough-ball batch kernels of one dimension (as [`super::BatchKernel`], with
-/// the law `(e, beta)` of every contact of the call).
-pub trait RoughBatchKernel<T, const N: usize, const S: usize> {
+/// The generated batch kernels of one dimension under a law `L` of the rough-ball family
+/// shared by every contact of the call (as [`super::BatchKernel`]): [`Restitution`]
+/// (`rough_free`, ...) or [`Walton`] (`walton_free`, ...).
+pub trait RoughBatchKernel<L, T, const N: usize, const S: usize> {
     /// Both bodies free, parameters per contact: `out[k]` = `[body 1+, body 2+]` lanes.
     fn rough_free_blocks<const W: usize>(
-        law: &Restitution<T>,
+        law: &L,
         blocks: &[FreeLanes<T, N, S>],
         out: &mut [[StateLanes<T, N, S>; 2]],
     );
     /// Body 1 immovable, parameters per contact: `out[k]` = body 2+ lanes.
     fn rough_fixed_blocks<const W: usize>(
-        law: &Restitution<T>,
+        law: &L,
         blocks: &[FixedLanes<T, N, S>],
         out: &mut [StateLanes<T, N, S>],
     );
     /// Both bodies free, one pair of balls for every contact.
     fn rough_free_shared_blocks<const W: usize>(
         balls: [&Ball<T>; 2],
-        law: &Restitution<T>,
+        law: &L,
         blocks: &[ContactLanes<T, N, S>],
         out: &mut [[StateLanes<T, N, S>; 2]],
     );
@@ -40,62 +41,72 @@ pub trait RoughBatchKernel<T, const N: usize, const S: usize> {
     fn rough_fixed_shared_blocks<const W: usize>(
         radius1: &T,
         ball2: &Ball<T>,
-        law: &Restitution<T>,
+        law: &L,
         blocks: &[ContactLanes<T, N, S>],
         out: &mut [StateLanes<T, N, S>],
     );
 }
 
 macro_rules! rough_batch {
-    ($($module:ident $feature:literal $n:literal $s:literal;)*) => {$(
+    ($law:ident $bound:ident [$free:ident $fixed:ident $free_shared:ident $fixed_shared:ident] $($module:ident $feature:literal $n:literal $s:literal;)*) => {$(
         #[cfg(feature = $feature)]
-        impl<T: Scalar> RoughBatchKernel<T, $n, $s> for Generated
+        impl<T: $bound> RoughBatchKernel<$law<T>, T, $n, $s> for Generated
         where
             for<'a> &'a T: RefArith<T>,
         {
             #[inline(always)]
             fn rough_free_blocks<const W: usize>(
-                law: &Restitution<T>,
+                law: &$law<T>,
                 blocks: &[FreeLanes<T, $n, $s>],
                 out: &mut [[StateLanes<T, $n, $s>; 2]],
             ) {
-                super::kernels::$module::rough_free::<T, W>(law, blocks, out)
+                super::kernels::$module::$free::<T, W>(law, blocks, out)
             }
 
             #[inline(always)]
             fn rough_fixed_blocks<const W: usize>(
-                law: &Restitution<T>,
+                law: &$law<T>,
                 blocks: &[FixedLanes<T, $n, $s>],
                 out: &mut [StateLanes<T, $n, $s>],
             ) {
-                super::kernels::$module::rough_fixed::<T, W>(law, blocks, out)
+                super::kernels::$module::$fixed::<T, W>(law, blocks, out)
             }
 
             #[inline(always)]
             fn rough_free_shared_blocks<const W: usize>(
                 balls: [&Ball<T>; 2],
-                law: &Restitution<T>,
+                law: &$law<T>,
                 blocks: &[ContactLanes<T, $n, $s>],
                 out: &mut [[StateLanes<T, $n, $s>; 2]],
             ) {
-                super::kernels::$module::rough_free_shared::<T, W>(balls[0], balls[1], law, blocks, out)
+                super::kernels::$module::$free_shared::<T, W>(balls[0], balls[1], law, blocks, out)
             }
 
             #[inline(always)]
             fn rough_fixed_shared_blocks<const W: usize>(
                 radius1: &T,
                 ball2: &Ball<T>,
-                law: &Restitution<T>,
+                law: &$law<T>,
                 blocks: &[ContactLanes<T, $n, $s>],
                 out: &mut [StateLanes<T, $n, $s>],
             ) {
-                super::kernels::$module::rough_fixed_shared::<T, W>(radius1, ball2, law, blocks, out)
+                super::kernels::$module::$fixed_shared::<T, W>(radius1, ball2, law, blocks, out)
             }
         }
     )*};
 }
 
 rough_batch! {
+    Restitution Scalar [rough_free rough_fixed rough_free_shared rough_fixed_shared]
+    d2 "d2" 2 1;
+    d3 "d3" 3 3;
+    d4 "d4" 4 6;
+    d5 "d5" 5 10;
+    d6 "d6" 6 15;
+}
+
+rough_batch! {
+    Walton ScalarRoot [walton_free walton_fixed walton_free_shared walton_fixed_shared]
     d2 "d2" 2 1;
     d3 "d3" 3 3;
     d4 "d4" 4 6;
@@ -106,46 +117,46 @@ rough_batch! {
 impl Exec {
     /// [`Exec::free`] under the rough-ball law `law` (`kernels::dN::rough::free` per contact).
     /// `law` is not checked: [`Restitution::new`] checks it.
-    pub fn rough_free<T, const N: usize, const S: usize>(
+    pub fn rough_free<L: Sync, T, const N: usize, const S: usize>(
         &self,
-        law: &Restitution<T>,
+        law: &L,
         batch: &FreeBatch<T, N, S>,
         out: &mut PairBatch<T, N, S>,
     ) where
         T: Scalar + Send + Sync,
         for<'a> &'a T: RefArith<T>,
-        Generated: RoughBatchKernel<T, N, S>,
+        Generated: RoughBatchKernel<L, T, N, S>,
     {
         pairs_for(out, batch.len());
         self.drive(&RoughFree { law }, batch.blocks(), out.blocks_mut());
     }
 
     /// [`Exec::fixed`] under the rough-ball law `law` (`kernels::dN::rough::fixed`).
-    pub fn rough_fixed<T, const N: usize, const S: usize>(
+    pub fn rough_fixed<L: Sync, T, const N: usize, const S: usize>(
         &self,
-        law: &Restitution<T>,
+        law: &L,
         batch: &FixedBatch<T, N, S>,
         out: &mut StateBatch<T, N, S>,
     ) where
         T: Scalar + Send + Sync,
         for<'a> &'a T: RefArith<T>,
-        Generated: RoughBatchKernel<T, N, S>,
+        Generated: RoughBatchKernel<L, T, N, S>,
     {
         states_for(out, batch.len());
         self.drive(&RoughFixed { law }, batch.blocks(), out.blocks_mut());
     }
 
     /// [`Exec::free_shared`] under the rough-ball law `law`.
-    pub fn rough_free_shared<T, const N: usize, const S: usize>(
+    pub fn rough_free_shared<L: Sync, T, const N: usize, const S: usize>(
         &self,
         balls: [&Ball<T>; 2],
-        law: &Restitution<T>,
+        law: &L,
         batch: &ContactBatch<T, N, S>,
         out: &mut PairBatch<T, N, S>,
     ) where
         T: Scalar + Send + Sync,
         for<'a> &'a T: RefArith<T>,
-        Generated: RoughBatchKernel<T, N, S>,
+        Generated: RoughBatchKernel<L, T, N, S>,
     {
         pairs_for(out, batch.len());
         let job = RoughFreeShared { balls, law };
@@ -153,17 +164,17 @@ impl Exec {
     }
 
     /// [`Exec::fixed_shared`] under the rough-ball law `law`.
-    pub fn rough_fixed_shared<T, const N: usize, const S: usize>(
+    pub fn rough_fixed_shared<L: Sync, T, const N: usize, const S: usize>(
         &self,
         radius1: &T,
         ball2: &Ball<T>,
-        law: &Restitution<T>,
+        law: &L,
         batch: &ContactBatch<T, N, S>,
         out: &mut StateBatch<T, N, S>,
     ) where
         T: Scalar + Send + Sync,
         for<'a> &'a T: RefArith<T>,
-        Generated: RoughBatchKernel<T, N, S>,
+        Generated: RoughBatchKernel<L, T, N, S>,
     {
         states_for(out, batch.len());
         let job = RoughFixedShared {
@@ -176,14 +187,14 @@ impl Exec {
 }
 
 /// The jobs: one kernel each, with the law (and the shared balls) of the call.
-struct RoughFree<'a, T> {
-    law: &'a Restitution<T>,
+struct RoughFree<'a, L> {
+    law: &'a L,
 }
 
-impl<T, const N: usize, const S: usize> Job<FreeLanes<T, N, S>, [StateLanes<T, N, S>; 2]>
-    for RoughFree<'_, T>
+impl<L, T, const N: usize, const S: usize> Job<FreeLanes<T, N, S>, [StateLanes<T, N, S>; 2]>
+    for RoughFree<'_, L>
 where
-    Generated: RoughBatchKernel<T, N, S>,
+    Generated: RoughBatchKernel<L, T, N, S>,
 {
     #[inline(always)]
     fn run<const W: usize>(
@@ -195,14 +206,14 @@ where
     }
 }
 
-struct RoughFixed<'a, T> {
-    law: &'a Restitution<T>,
+struct RoughFixed<'a, L> {
+    law: &'a L,
 }
 
-impl<T, const N: usize, const S: usize> Job<FixedLanes<T, N, S>, StateLanes<T, N, S>>
-    for RoughFixed<'_, T>
+impl<L, T, const N: usize, const S: usize> Job<FixedLanes<T, N, S>, StateLanes<T, N, S>>
+    for RoughFixed<'_, L>
 where
-    Generated: RoughBatchKernel<T, N, S>,
+    Generated: RoughBatchKernel<L, T, N, S>,
 {
     #[inline(always)]
     fn run<const W: usize>(&self, blocks: &[FixedLanes<T, N, S>], out: &mut [StateLanes<T, N, S>]) {
@@ -210,15 +221,15 @@ where
     }
 }
 
-struct RoughFreeShared<'a, T> {
+struct RoughFreeShared<'a, L, T> {
     balls: [&'a Ball<T>; 2],
-    law: &'a Restitution<T>,
+    law: &'a L,
 }
 
-impl<T, const N: usize, const S: usize> Job<ContactLanes<T, N, S>, [StateLanes<T, N, S>; 2]>
-    for RoughFreeShared<'_, T>
+impl<L, T, const N: usize, const S: usize> Job<ContactLanes<T, N, S>, [StateLanes<T, N, S>; 2]>
+    for RoughFreeShared<'_, L, T>
 where
-    Generated: RoughBatchKernel<T, N, S>,
+    Generated: RoughBatchKernel<L, T, N, S>,
 {
     #[inline(always)]
     fn run<const W: usize>(
@@ -230,16 +241,16 @@ where
     }
 }
 
-struct RoughFixedShared<'a, T> {
+struct RoughFixedShared<'a, L, T> {
     radius1: &'a T,
     ball2: &'a Ball<T>,
-    law: &'a Restitution<T>,
+    law: &'a L,
 }
 
-impl<T, const N: usize, const S: usize> Job<ContactLanes<T, N, S>, StateLanes<T, N, S>>
-    for RoughFixedShared<'_, T>
+impl<L, T, const N: usize, const S: usize> Job<ContactLanes<T, N, S>, StateLanes<T, N, S>>
+    for RoughFixedShared<'_, L, T>
 where
-    Generated: RoughBatchKernel<T, N, S>,
+    Generated: RoughBatchKernel<L, T, N, S>,
 {
     #[inline(always)]
     fn run<const W: usize>(
@@ -254,14 +265,26 @@ where
 #[cfg(test)]
 mod tests {
     use super::super::tests::{execs, float, same_state, sample, Item, LENGTHS};
+    use super::super::Contact;
     use super::*;
-    use crate::kernels::RoughKernel;
+    use crate::kernels::{RoughKernel, WaltonKernel};
+    use crate::BodyState;
 
-    /// The four rough batch kernels on `items` under `law` against the scalar rough kernels,
-    /// bit for bit, for every instruction set (and thread split) this CPU runs.
-    fn check<const N: usize, const S: usize>(items: &[Item<f64, N, S>], law: &Restitution<f64>)
-    where
-        Generated: RoughBatchKernel<f64, N, S> + RoughKernel<f64, N, S>,
+    /// A law's scalar kernels on one contact: `free`'s two bodies and `fixed`'s body 2.
+    type Scalars<'a, const N: usize, const S: usize> =
+        &'a dyn Fn(
+            &Contact<f64, N, S>,
+            [&Ball<f64>; 2],
+        ) -> ([BodyState<f64, N, S>; 2], BodyState<f64, N, S>);
+
+    /// The four batch kernels of a law on `items` against the law's scalar kernels, bit for
+    /// bit, for every instruction set (and thread split) this CPU runs.
+    fn check<L: Sync + std::fmt::Debug, const N: usize, const S: usize>(
+        items: &[Item<f64, N, S>],
+        law: &L,
+        scalar: Scalars<N, S>,
+    ) where
+        Generated: RoughBatchKernel<L, f64, N, S>,
     {
         let Some((_, shared)) = items.first() else {
             return;
@@ -285,15 +308,10 @@ mod tests {
                 .zip(pairs.iter().zip(states.iter()))
                 .enumerate()
             {
-                let [s1, s2] = &c.states;
-                let want = Generated::rough_free(&c.nu, b1, b2, law, s1, s2);
-                assert!(
-                    same_state(&got[0], &want[0]) && same_state(&got[1], &want[1]),
-                    "{}",
-                    what("free", k)
-                );
-                let want = Generated::rough_fixed(&c.nu, &b1.radius, b2, law, s1, s2);
-                assert!(same_state(&got1, &want), "{}", what("fixed", k));
+                let (want, want1) = scalar(c, [b1, b2]);
+                let free = same_state(&got[0], &want[0]) && same_state(&got[1], &want[1]);
+                assert!(free, "{}", what("free", k));
+                assert!(same_state(&got1, &want1), "{}", what("fixed", k));
             }
             let [b1, b2] = shared;
             exec.rough_free_shared([b1, b2], law, &contacts, &mut pairs);
@@ -303,22 +321,20 @@ mod tests {
                 .zip(pairs.iter().zip(states.iter()))
                 .enumerate()
             {
-                let [s1, s2] = &c.states;
-                let want = Generated::rough_free(&c.nu, b1, b2, law, s1, s2);
-                assert!(
-                    same_state(&got[0], &want[0]) && same_state(&got[1], &want[1]),
-                    "{}",
-                    what("free_shared", k)
-                );
-                let want = Generated::rough_fixed(&c.nu, &b1.radius, b2, law, s1, s2);
-                assert!(same_state(&got1, &want), "{}", what("fixed_shared", k));
+                let (want, want1) = scalar(c, [b1, b2]);
+                let free = same_state(&got[0], &want[0]) && same_state(&got[1], &want[1]);
+                assert!(free, "{}", what("free_shared", k));
+                assert!(same_state(&got1, &want1), "{}", what("fixed_shared", k));
             }
         }
     }
 
     fn every_length<const N: usize, const S: usize>()
     where
-        Generated: RoughBatchKernel<f64, N, S> + RoughKernel<f64, N, S>,
+        Generated: RoughBatchKernel<Restitution<f64>, f64, N, S>
+            + RoughBatchKernel<Walton<f64>, f64, N, S>
+            + RoughKernel<f64, N, S>
+            + WaltonKernel<f64, N, S>,
     {
         // Inside the family, at its ends (smooth inelastic, smooth elastic) and no-slip.
         let laws = [
@@ -328,16 +344,41 @@ mod tests {
             (1.0, -1.0),
             (1.0, 1.0),
         ];
+        // Walton: contacts that slide and contacts that stick among the samples, no friction,
+        // a sticking restitution of -1 (docs/backends.md's laws, and one more).
+        let waltons = [
+            (0.9, 0.3, 0.5),
+            (1.0, 0.0, 1.0),
+            (0.0, 2.0, -0.2),
+            (0.5, 0.1, -1.0),
+        ];
         for (seed, &len) in LENGTHS.iter().enumerate() {
             let items = sample::<f64, N, S>(0x7006 + seed as u64, len, float);
             for (e, beta) in laws {
-                check(&items, &Restitution::new(e, beta).unwrap());
+                let law = Restitution::new(e, beta).unwrap();
+                check(&items, &law, &|c, [b1, b2]| {
+                    let [s1, s2] = &c.states;
+                    (
+                        Generated::rough_free(&c.nu, b1, b2, &law, s1, s2),
+                        Generated::rough_fixed(&c.nu, &b1.radius, b2, &law, s1, s2),
+                    )
+                });
+            }
+            for (e, mu, beta0) in waltons {
+                let law = Walton::new(e, mu, beta0).unwrap();
+                check(&items, &law, &|c, [b1, b2]| {
+                    let [s1, s2] = &c.states;
+                    (
+                        Generated::walton_free(&c.nu, b1, b2, &law, s1, s2),
+                        Generated::walton_fixed(&c.nu, &b1.radius, b2, &law, s1, s2),
+                    )
+                });
             }
         }
     }
 
     #[test]
-    fn rough_batches_give_the_scalar_rough_kernels_bits() {
+    fn rough_and_walton_batches_give_the_scalar_kernels_bits() {
         every_length::<2, 1>();
         every_length::<3, 3>();
         every_length::<4, 6>();
