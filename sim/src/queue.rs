@@ -258,17 +258,6 @@ impl Calendar {
         self.scratch = list;
     }
 
-    /// Forgets every pending event; the owner sets every slot to [`Slot::EMPTY`] (balls
-    /// renumbered: their places are gone).
-    pub(crate) fn clear(&mut self) {
-        self.heap.clear();
-        for list in &mut self.buckets {
-            list.clear();
-        }
-        self.in_buckets = 0;
-        self.overflow.clear();
-    }
-
     /// Sets every pending time `t_i` to `max(t_i - shift, 0)` (the clock's origin moved by
     /// `shift`) and chooses the bucket width again: `delta = 8 tbar / m` for `m` pending
     /// events whose mean time ahead is `tbar` (so about 8 per bucket), with `B >= m / 2`

@@ -235,14 +235,6 @@ impl<const N: usize> Residents<N> {
         &mut self.slab[at as usize].wraps
     }
 
-    /// Every ball renumbered: ball `b`'s record, at `homes.home(b)`, is given its new
-    /// number `b` (the owner permuted the homes with the balls).
-    pub(crate) fn renumber(&mut self, homes: &(impl Homes + ?Sized)) {
-        for b in 0..self.balls {
-            self.slab[homes.home(b) as usize].ball = b as u32;
-        }
-    }
-
     /// Moves ball `ball` from cell `from` to cell `to`: swap-removed from `from`'s list,
     /// appended to `to`'s.
     pub(crate) fn relocate(

@@ -36,17 +36,16 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     fn settle(&mut self, b: usize, t: f64) {
         self.move_record(b, t);
         if let Some(a) = &mut self.orientation {
-            let id = self.balls[b].id as usize;
-            let dt = std::mem::take(&mut self.unturned[id]);
+            let dt = std::mem::take(&mut self.unturned[b]);
             if dt != 0.0 {
-                a[id] = mul(&exp_skew::<N>(&self.balls[b].state.spin, dt), &a[id]);
+                a[b] = mul(&exp_skew::<N>(&self.balls[b].state.spin, dt), &a[b]);
             }
         }
     }
 
     /// The contact of balls `i` and `j` (`j` at image `image` in `i`'s record coordinates)
-    /// at local time `t`: body 1 is the lower index (`id`, the caller's), `nu` along the
-    /// canonical offset ([`pair_offset`]).
+    /// at local time `t`: body 1 is the lower index, `nu` along the canonical offset
+    /// ([`pair_offset`]).
     pub(super) fn ball_ball(
         &mut self,
         i: usize,
@@ -54,7 +53,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         image: &[i16; N],
         t: f64,
     ) -> Event<N, S> {
-        let (lo, hi, image) = if self.balls[i].id < self.balls[j].id {
+        let (lo, hi, image) = if i < j {
             (i, j, *image)
         } else {
             (j, i, image.map(|k| -k))
@@ -145,18 +144,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// The law of a contact of `balls` at local time `t` whose kind is `kind`: under the TC
-    /// model ([`tc_law`]), from the balls' previous contact times (kept only under it: with
-    /// `tc = 0` the law is `kind` whatever they are).
+    /// model ([`tc_law`]), from the balls' previous contact times.
     fn law(&self, kind: ContactKind, balls: [usize; 2], t: f64) -> ContactKind {
-        if self.previous.is_empty() {
-            return tc_law(
-                kind,
-                self.table.tc,
-                self.absolute(t),
-                [f64::NEG_INFINITY; 2],
-            );
-        }
-        let previous = balls.map(|b| self.previous[self.balls[b].id as usize]);
+        let previous = balls.map(|b| self.balls[b].previous);
         tc_law(kind, self.table.tc, self.absolute(t), previous)
     }
 
@@ -180,21 +170,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         )
     }
 
-    /// `contact` with its balls named by their ids (the caller's numbers).
-    fn named(&self, contact: Contact) -> Contact {
-        let id = |i: usize| self.balls[i].id as usize;
-        match contact {
-            Contact::Ball { i, j } => Contact::Ball { i: id(i), j: id(j) },
-            Contact::Wall { i, axis, upper } => Contact::Wall {
-                i: id(i),
-                axis,
-                upper,
-            },
-            Contact::Obstacle { i, obstacle } => Contact::Obstacle { i: id(i), obstacle },
-            Contact::Boundary { i, boundary } => Contact::Boundary { i: id(i), boundary },
-        }
-    }
-
     pub(super) fn finish(
         &mut self,
         contact: Contact,
@@ -213,17 +188,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.contacts += 1;
         self.last_contact = t;
         let time = self.absolute(t);
-        if !self.previous.is_empty() {
-            for b in balls {
-                self.previous[self.balls[b].id as usize] = time;
-            }
+        for b in balls {
+            self.balls[b].previous = time;
         }
         self.quiet = 0;
         self.next_check = self.first_check();
         self.next_notice = QUIET_BOX_LENGTHS;
         Event {
             time,
-            contact: self.named(contact),
+            contact,
             nu,
             position: balls.map(|b| self.flight(b).pos),
             pre,

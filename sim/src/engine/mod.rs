@@ -83,7 +83,6 @@ mod contacts;
 mod events;
 mod quiet;
 mod record;
-mod renumber;
 mod scan;
 
 pub use events::{Contact, Event, SetupError, Step};
@@ -115,21 +114,15 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     table: Table<N>,
     grid: Grid<N>,
     /// Per ball: what its events read and write, in one record (`record.rs`): the
-    /// calendar's slot, its pending event, its kept contact, cell, counter, home in the
-    /// slab, state, id, species and last boundary. Numbered in cell order at every re-basing
-    /// (`renumber.rs`); `balls[p].id` is the caller's number of ball `p`.
+    /// calendar's slot, its pending event, its kept contact, cell, counter, state, species,
+    /// last boundary and previous contact.
     balls: Vec<BallRecord<N, S>>,
-    /// Per id (the caller's number): the ball's index in `balls`.
-    index: Vec<u32>,
-    /// Per id: the absolute time of its last contact (`-inf` before the first), for the TC
-    /// model ([`crate::law::tc_law`]); empty without it (`tc = 0`).
-    previous: Vec<f64>,
     /// Per ball: centre, its time, velocity and radius (the neighbour scan's reads), stored
     /// by cell (the cell lists).
     motion: Residents<N>,
     fixed_members: Vec<Vec<u32>>,
-    /// Per id: `A_i` at the ball's time minus `unturned_i`: the flight time (at constant
-    /// `U_i`) not applied to it yet, kept by rebases so that they need no matrix exponential.
+    /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
+    /// applied to it yet, kept by rebases so that they need no matrix exponential.
     orientation: Option<Vec<Matrix<N>>>,
     unturned: Vec<f64>,
     /// Whether a prediction prefetches its neighbour cells' lists: a cell list larger than
@@ -207,7 +200,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 return Err(SetupError::Outside { ball: i, axis: k });
             }
             let c = grid.cell_of(&b.position);
-            balls.push(BallRecord::new(i, b.state.clone(), b.species, c));
+            balls.push(BallRecord::new(b.state.clone(), b.species, c));
             motion.push(
                 balls.as_mut_slice(),
                 grid.flat(&c),
@@ -227,7 +220,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let slab = (bodies.len() + grid.cells()) * std::mem::size_of::<Resident<N>>();
         let prefetch = slab >= PREFETCH_FROM_BYTES;
         let span2 = clock_span2(&grid.width);
-        let tc = table.tc > 0.0;
         let mut sim = Simulation {
             kernels,
             species,
@@ -235,8 +227,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             table,
             grid,
             balls,
-            index: (0..n as u32).collect(),
-            previous: vec![f64::NEG_INFINITY; if tc { n } else { 0 }],
             motion,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
@@ -380,48 +370,37 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
     }
 
-    /// Ball `i`'s record (`i` the caller's number).
-    fn ball(&self, i: usize) -> &BallRecord<N, S> {
-        &self.balls[self.index[i] as usize]
-    }
-
     /// Ball `i`'s species index.
     pub fn species_of(&self, i: usize) -> usize {
-        self.ball(i).kind as usize
+        self.balls[i].kind as usize
     }
 
     /// Ball `i`'s state `(U, u)` (constant between contacts).
     pub fn state(&self, i: usize) -> &BodyState<f64, N, S> {
-        &self.ball(i).state
+        &self.balls[i].state
     }
 
     /// Ball `i`'s centre now (inside the box; wrapped on periodic axes up to the crossing
     /// in progress): `a_i + (t - t_i) u_i - W_i L`.
     pub fn position(&self, i: usize) -> [f64; N] {
-        self.centre(self.index[i] as usize)
-    }
-
-    /// The centre now of the ball at `p` in `balls` ([`Simulation::position`]).
-    fn centre(&self, p: usize) -> [f64; N] {
-        let x = self.flight(p).at(self.now);
-        let w = self.motion.wraps(self.balls[p].home);
+        let x = self.flight(i).at(self.now);
+        let w = self.motion.wraps(self.balls[i].home);
         std::array::from_fn(|k| x[k] - f64::from(w[k]) * self.grid.size[k])
     }
 
     /// Ball `i`'s orientation `A_i` now, if the setup tracks orientations.
     pub fn orientation(&self, i: usize) -> Option<[[f64; N]; N]> {
         let a = self.orientation.as_ref()?;
-        let p = self.index[i] as usize;
-        let dt = self.unturned[i] + (self.now - self.flight(p).since);
-        let r = exp_skew::<N>(&self.balls[p].state.spin, dt);
+        let dt = self.unturned[i] + (self.now - self.flight(i).since);
+        let r = exp_skew::<N>(&self.balls[i].state.spin, dt);
         Some(mul(&r, &a[i]))
     }
 
-    /// Energy, momentum and angular momentum now (summed in the caller's order).
+    /// Energy, momentum and angular momentum now.
     pub fn observables(&self) -> Observables<N, S> {
         let positions: Vec<[f64; N]> = (0..self.len()).map(|i| self.position(i)).collect();
         Observables::of((0..self.len()).map(|i| {
-            let b = self.ball(i);
+            let b = &self.balls[i];
             (&self.species[b.kind as usize], &positions[i], &b.state)
         }))
     }
@@ -431,7 +410,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// cost (a run samples it `samples` times, each `O(balls)`).
     pub fn energy(&self) -> f64 {
         (0..self.len()).fold(0.0, |e, i| {
-            let b = self.ball(i);
+            let b = &self.balls[i];
             e + crate::observe::energy_of(&self.species[b.kind as usize], &b.state)
         })
     }

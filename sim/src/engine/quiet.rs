@@ -24,8 +24,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Whether no contact can happen again ([`NoContact`]); the exact pair test is run when
     /// its cost (balls x bodies) is at most `max(2^20, 16 quiet)`, so `O(1)` per event.
     pub(super) fn no_contact(&self) -> Option<NoContact> {
-        // By place in `balls` (the answer does not depend on the numbering).
-        let position = |i: usize| self.centre(i);
+        let position = |i: usize| self.position(i);
         let velocity = |i: usize| self.balls[i].state.velocity;
         let radius = |i: usize| self.species[self.balls[i].kind as usize].radius;
         let flight = Flight {
@@ -60,7 +59,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// The speed `|u|` of the slowest moving ball, `None` if every ball is at rest.
     pub(crate) fn slowest_speed(&self) -> Option<f64> {
         let slowest = (0..self.len())
-            .map(|p| self.speed2_of(p).sqrt())
+            .map(|i| self.speed_of(i))
             .filter(|&v| v > 0.0)
             .fold(f64::INFINITY, f64::min);
         slowest.is_finite().then_some(slowest)
@@ -71,12 +70,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.grid.size.iter().copied().fold(0.0, f64::max)
     }
 
-    /// Ball `i`'s speed `|u_i|` (`i` the caller's number).
+    /// Ball `i`'s speed `|u_i|`.
     pub(crate) fn speed_of(&self, i: usize) -> f64 {
-        self.speed2_of(self.index[i] as usize).sqrt()
+        self.speed2_of(i).sqrt()
     }
 
-    /// The squared speed of the ball at `p` in `balls`.
     pub(super) fn speed2_of(&self, i: usize) -> f64 {
         self.balls[i].state.velocity.iter().map(|x| x * x).sum()
     }

@@ -7,9 +7,8 @@
 //! is, 24), the cell (`4 n`), the counter `count_i`, the flight record's place in the cell
 //! slab (4) and the pending crossing (2): 62 bytes in 3D, 58 in 2D, one line in both. A crossing, the most frequent event, reads and writes
 //! only that line. The state `(U_i, u_i)`, the last boundary touched, the species and the
-//! caller's number for the ball follow (a contact's reads): two lines a ball in 2D and 3D
-//! (128 bytes, against 192 in the arrays before). The time of the previous contact, read
-//! only under the TC model, is kept apart.
+//! previous contact's time follow (a contact's reads): two lines a ball in 2D and 3D
+//! (128 bytes, against 192 in the arrays before).
 //!
 //! **The pending event** is the earlier of the kept contact and the crossing (a crossing is
 //! kept only when it beat the contact), so it is not stored twice; its key, which orders
@@ -41,9 +40,9 @@ pub(super) struct BallRecord<const N: usize, const S: usize> {
     pub crossing: Option<(u8, bool)>,
     /// Its state `(U_i, u_i)`.
     pub state: BodyState<f64, N, S>,
-    /// Its index as the caller numbered it (`id_i`): the engine renumbers its balls, the
-    /// log, the keys and the public methods use this number (`renumber.rs`).
-    pub id: u32,
+    /// The absolute time of its last contact (`-inf` before the first), for the TC model
+    /// ([`crate::law::tc_law`]).
+    pub previous: f64,
     /// Its species.
     pub kind: u32,
     /// `b + 1` if its last contact was with boundary `b`, else 0. A boundary convex seen from
@@ -53,13 +52,8 @@ pub(super) struct BallRecord<const N: usize, const S: usize> {
 }
 
 impl<const N: usize, const S: usize> BallRecord<N, S> {
-    /// Ball `id` of species `kind` in cell `cell` with state `state`, no event yet.
-    pub(super) fn new(
-        id: usize,
-        state: BodyState<f64, N, S>,
-        kind: usize,
-        cell: [usize; N],
-    ) -> Self {
+    /// A ball of species `kind` in cell `cell` with state `state`, no event yet.
+    pub(super) fn new(state: BodyState<f64, N, S>, kind: usize, cell: [usize; N]) -> Self {
         BallRecord {
             slot: Slot::EMPTY,
             found: None,
@@ -68,7 +62,7 @@ impl<const N: usize, const S: usize> BallRecord<N, S> {
             home: u32::MAX,
             crossing: None,
             state,
-            id: id as u32,
+            previous: f64::NEG_INFINITY,
             kind: kind as u32,
             last: 0,
         }
@@ -96,19 +90,13 @@ fn negated<const N: usize>(image: &[i16; N]) -> [i16; N] {
     image.map(|k| -k)
 }
 
-/// The key of ball `i`'s event `what` ([`crate::canonical::key`]) in the caller's numbers
-/// (`id`): its lowest ball, kind, other body and image (a pair's image as seen from its
-/// lower ball, `-k` from the higher).
+/// The key of ball `i`'s event `what` ([`crate::canonical::key`]): its lowest ball, kind,
+/// other body and image (a pair's image as seen from its lower ball, `-k` from the higher).
 #[inline]
-pub(super) fn key_of<const N: usize, const S: usize>(
-    balls: &[BallRecord<N, S>],
-    i: usize,
-    what: &What<N>,
-) -> Key {
-    let i = balls[i].id as usize;
+pub(super) fn key_of<const N: usize>(i: usize, what: &What<N>) -> Key {
     match *what {
         What::Ball { j, image, .. } => {
-            let j = balls[j as usize].id as usize;
+            let j = j as usize;
             let lo_image = if i < j { image } else { negated(&image) };
             key(i.min(j), kind::BALL, i.max(j) as u32, &lo_image)
         }
@@ -140,7 +128,7 @@ impl<const N: usize, const S: usize> Slots for [BallRecord<N, S>] {
     fn key(&self, ball: usize) -> Key {
         self[ball]
             .next()
-            .map_or(Key::MAX, |what| key_of(self, ball, &what))
+            .map_or(Key::MAX, |what| key_of(ball, &what))
     }
 }
 
@@ -178,30 +166,18 @@ mod tests {
 
     #[test]
     fn a_pair_s_key_is_the_same_from_either_ball() {
-        // Ball 3 sees ball 7 at image k; ball 7 sees ball 3 at -k: one event, one key. The
-        // records hold balls 7 and 3 (renumbered), the key names the caller's numbers.
-        let state = BodyState::<f64, 3, 3> {
-            spin: [0.0; 3],
-            velocity: [0.0; 3],
-        };
-        let balls = [
-            BallRecord::new(7, state.clone(), 0, [0; 3]),
-            BallRecord::new(3, state, 0, [0; 3]),
-        ];
+        // Ball 3 sees ball 7 at image k; ball 7 sees ball 3 at -k: one event, one key.
         let from_3 = What::<3>::Ball {
-            j: 0,
+            j: 7,
             count: 0,
             image: [1, 0, -2],
         };
         let from_7 = What::<3>::Ball {
-            j: 1,
+            j: 3,
             count: 5,
             image: [-1, 0, 2],
         };
-        assert_eq!(key_of(&balls, 1, &from_3), key_of(&balls, 0, &from_7));
-        assert_eq!(
-            key_of(&balls, 1, &from_3),
-            key(3, kind::BALL, 7, &[1, 0, -2])
-        );
+        assert_eq!(key_of(3, &from_3), key_of(7, &from_7));
+        assert_eq!(key_of(3, &from_3), key(3, kind::BALL, 7, &[1, 0, -2]));
     }
 }

@@ -2,7 +2,7 @@
 //! table's boundaries, the box walls and its cell's faces, every contact time canonical
 //! ([`crate::canonical`]); and the cell crossings, which move no record.
 
-use super::record::{key_of, BallRecord};
+use super::record::key_of;
 use super::Simulation;
 use crate::canonical::{self, obstacle_time, pair_time};
 use crate::predict::exit_time;
@@ -23,20 +23,15 @@ impl<const N: usize> Best<N> {
         self.best.as_ref().is_none_or(|&(b, _)| t <= b)
     }
 
-    /// Offers event `what` at `t` (the least `(t, key)` stays, `canonical::order`; the
-    /// keys, in the numbers of `balls`' ids, made only for a tie).
+    /// Offers event `what` at `t` (the least `(t, key)` stays, `canonical::order`).
     #[inline]
-    fn offer<const S: usize>(
-        &mut self,
-        balls: &[BallRecord<N, S>],
-        t: f64,
-        what: impl FnOnce() -> What<N>,
-    ) {
+    fn offer(&mut self, t: f64, what: impl FnOnce() -> What<N>) {
         match self.best {
             Some((b, _)) if t > b => {}
             Some((b, old)) if t == b => {
+                // The keys are made only for a tie.
                 let what = what();
-                if key_of(balls, self.i, &what) < key_of(balls, self.i, &old) {
+                if key_of(self.i, &what) < key_of(self.i, &old) {
                     self.best = Some((t, what));
                 }
             }
@@ -61,9 +56,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// lists), then sizes the calendar for them: the start and every re-basing.
     pub(super) fn predict_all(&mut self) {
         self.motion.compact(self.balls.as_mut_slice());
-        // The balls numbered in the slab's order: then 0, 1, 2 ... is cell after cell.
-        self.renumber();
-        for i in 0..self.len() {
+        let order: Vec<usize> = self.motion.in_cell_order().collect();
+        for i in order {
             self.predict(i);
         }
         self.queue.rebuild(self.balls.as_mut_slice(), 0.0);
@@ -139,7 +133,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let t = pair_time(&m, &resident.motion, &image, &size);
                 // NaN: no contact (never better).
                 if !t.is_nan() && best.may_beat(t) {
-                    best.offer(&self.balls, t, || What::Ball {
+                    best.offer(t, || What::Ball {
                         j: j as u32,
                         count: self.balls[j].count,
                         image: image.map(|k| k as i16),
@@ -153,7 +147,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let image: [i16; N] = std::array::from_fn(|k| i16::from(nb.shift[k]) + w_i[k]);
                 let f = &self.obstacles[o as usize];
                 if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, &size) {
-                    best.offer(&self.balls, t, || What::Obstacle { o, image });
+                    best.offer(t, || What::Obstacle { o, image });
                 }
             }
         });
@@ -171,9 +165,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
             if let Some(tau) = boundary.shape.contact_time(&m.pos, &m.velocity, m.radius) {
                 if !(repeat && tau == 0.0) {
-                    best.offer(&self.balls, m.since + tau, || What::Boundary {
-                        b: b as u32,
-                    });
+                    best.offer(m.since + tau, || What::Boundary { b: b as u32 });
                 }
             }
         }
@@ -188,7 +180,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 self.grid.size[k] - m.radius,
             );
             if let Some((tau, upper)) = wall {
-                best.offer(&self.balls, m.since + tau, || What::Wall {
+                best.offer(m.since + tau, || What::Wall {
                     axis: k as u8,
                     upper,
                 });
@@ -213,10 +205,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let last = c[k] + 1 == self.grid.n[k];
                 let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
                 if !blocked {
-                    best.offer(&self.balls, m.since + tau, || What::Cell {
-                        axis: k as u8,
-                        up,
-                    });
+                    best.offer(m.since + tau, || What::Cell { axis: k as u8, up });
                 }
             }
         }
@@ -258,7 +247,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         m.since = t;
         let pos = m.pos;
         if self.orientation.is_some() {
-            self.unturned[self.balls[i].id as usize] += dt;
+            self.unturned[i] += dt;
         }
         *self.motion.wraps_mut(home) = [0; N];
         if self.table.boxed {
