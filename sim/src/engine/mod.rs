@@ -24,7 +24,17 @@
 //! - a contact moves the records of the balls involved to its time, applies the pair's map
 //!   (body 1 the lower index), bumps the counters and re-predicts them.
 //!
-//! **Layout.** What a prediction reads of every neighbour (its record and its wraps) is stored
+//! **Layout.** What an event reads and writes of its own ball is one record per ball
+//! (`BallRecord`, `record.rs`; one `Vec`, aligned to a cache line, hot fields first): the
+//! calendar's slot (its time and place; the calendar keeps only the order, `queue::Slots`),
+//! the kept contact, the cell, the counter, the home of its flight in the slab
+//! (`residents::Homes`) and the pending crossing share one 64-byte line in 2D and 3D; the
+//! state, species, last boundary and previous contact (a contact's reads) follow. The
+//! pending event is the crossing if it beat the kept contact, else the kept contact, and an
+//! event's key is computed from the ball and the event when two times tie: neither is
+//! stored twice. At `10^6` balls an event so costs one miss for its ball where the separate
+//! arrays cost five or six (docs/benchmarks.md, "The per-ball records gathered into one").
+//! What a prediction reads of every neighbour (its flight and its wraps) is stored
 //! by cell (`Residents`, `residents.rs`): a cell's records are one list, and the lists lie in
 //! one slab in the order of the cells, laid out again at the start and at every re-basing
 //! (which also predict the balls cell after cell), so a scan of the `3^n` cells within reach
