@@ -65,19 +65,38 @@ enum Place {
     Overflow(u32),
 }
 
-/// A ball's pending time, its event's key and its place.
+/// A ball's pending time `t_i` and where its event is kept: 16 bytes, held in the ball's
+/// own record by the calendar's owner ([`Slots`]), so that an event reads one record.
 #[derive(Clone, Copy, Debug)]
-struct Slot {
+pub(crate) struct Slot {
     time: f64,
-    key: Key,
     place: Place,
 }
 
-/// The calendar of pending events, one per ball (module docs).
+impl Slot {
+    /// No pending event.
+    pub(crate) const EMPTY: Slot = Slot {
+        time: f64::INFINITY,
+        place: Place::None,
+    };
+}
+
+/// The balls' slots and their events' keys, kept by the calendar's owner (the engine keeps
+/// each slot in its ball's record, beside what the event is): the calendar orders balls by
+/// `(t_i, key_i, i)` and reads `key_i` only when two times are equal.
+pub(crate) trait Slots {
+    /// Ball `ball`'s slot.
+    fn slot(&self, ball: usize) -> &Slot;
+    /// Ball `ball`'s slot, to change.
+    fn slot_mut(&mut self, ball: usize) -> &mut Slot;
+    /// The key of ball `ball`'s pending event ([`crate::canonical::key`]).
+    fn key(&self, ball: usize) -> Key;
+}
+
+/// The calendar of pending events, one per ball (module docs). It holds the order (heap,
+/// buckets, overflow); the slots are its owner's ([`Slots`]), passed to every call.
 #[derive(Debug)]
 pub(crate) struct Calendar {
-    /// Per ball: `t_i` and where its event is kept (one record: one cache line to read).
-    slots: Vec<Slot>,
     /// Balls with `b_i <= current`, a binary heap on `(t_i, key_i, i)`.
     heap: Vec<u32>,
     /// Balls with `current < b_i < current + B`, in bucket `b_i mod B`.
@@ -94,17 +113,9 @@ pub(crate) struct Calendar {
 }
 
 impl Calendar {
-    /// An empty calendar for balls `0..balls`.
-    pub(crate) fn new(balls: usize) -> Self {
+    /// An empty calendar (every slot [`Slot::EMPTY`]).
+    pub(crate) fn new() -> Self {
         Calendar {
-            slots: vec![
-                Slot {
-                    time: f64::INFINITY,
-                    key: 0,
-                    place: Place::None,
-                };
-                balls
-            ],
             heap: Vec::new(),
             buckets: vec![Vec::new()],
             in_buckets: 0,
@@ -130,87 +141,94 @@ impl Calendar {
         (t * self.inv_width) as u64
     }
 
-    fn less(&self, a: u32, b: u32) -> bool {
-        let (x, y) = (&self.slots[a as usize], &self.slots[b as usize]);
-        order((x.time, x.key), (y.time, y.key))
-            .then_with(|| a.cmp(&b))
-            .is_lt()
+    /// Whether ball `a`'s event comes before ball `b`'s: `(t_a, key_a, a) < (t_b, key_b, b)`
+    /// ([`order`]), the keys read only for equal times.
+    #[inline]
+    fn less(slots: &(impl Slots + ?Sized), a: u32, b: u32) -> bool {
+        let (ta, tb) = (slots.slot(a as usize).time, slots.slot(b as usize).time);
+        match ta.total_cmp(&tb) {
+            std::cmp::Ordering::Equal => {
+                let (ka, kb) = (slots.key(a as usize), slots.key(b as usize));
+                order((ta, ka), (tb, kb)).then_with(|| a.cmp(&b)).is_lt()
+            }
+            o => o.is_lt(),
+        }
     }
 
-    /// Ball `ball`'s pending event is now at `time`, with key `key` (replacing any it had).
-    pub(crate) fn set(&mut self, ball: usize, time: f64, key: Key) {
-        self.remove(ball);
-        self.slots[ball].time = time;
-        self.slots[ball].key = key;
-        self.insert(ball as u32);
+    /// Ball `ball`'s pending event is now at `time` (replacing any it had); its key is
+    /// `slots.key(ball)`, already the new event's.
+    pub(crate) fn set(&mut self, slots: &mut (impl Slots + ?Sized), ball: usize, time: f64) {
+        self.remove(slots, ball);
+        slots.slot_mut(ball).time = time;
+        self.insert(slots, ball as u32);
     }
 
-    fn insert(&mut self, ball: u32) {
-        let b = self.bucket(self.slots[ball as usize].time);
+    fn insert(&mut self, slots: &mut (impl Slots + ?Sized), ball: u32) {
+        let b = self.bucket(slots.slot(ball as usize).time);
         if b <= self.current {
             self.heap.push(ball);
             let at = self.heap.len() - 1;
-            self.slots[ball as usize].place = Place::Heap(at as u32);
-            self.sift_up(at);
+            slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
+            self.sift_up(slots, at);
         } else if b - self.current < self.buckets.len() as u64 {
             let slot = (b & self.mask()) as usize;
-            self.slots[ball as usize].place = Place::Bucket(self.buckets[slot].len() as u32);
+            slots.slot_mut(ball as usize).place = Place::Bucket(self.buckets[slot].len() as u32);
             self.buckets[slot].push(ball);
             self.in_buckets += 1;
         } else {
-            self.slots[ball as usize].place = Place::Overflow(self.overflow.len() as u32);
+            slots.slot_mut(ball as usize).place = Place::Overflow(self.overflow.len() as u32);
             self.overflow.push(ball);
         }
     }
 
     /// Ball `ball` has no pending event any more.
-    pub(crate) fn remove(&mut self, ball: usize) {
-        match std::mem::replace(&mut self.slots[ball].place, Place::None) {
+    pub(crate) fn remove(&mut self, slots: &mut (impl Slots + ?Sized), ball: usize) {
+        match std::mem::replace(&mut slots.slot_mut(ball).place, Place::None) {
             Place::None => {}
             Place::Heap(at) => {
                 let at = at as usize;
                 let last = self.heap.pop().expect("a ball in the heap");
                 if at < self.heap.len() {
                     self.heap[at] = last;
-                    self.slots[last as usize].place = Place::Heap(at as u32);
-                    self.sift_down(at);
-                    self.sift_up(at);
+                    slots.slot_mut(last as usize).place = Place::Heap(at as u32);
+                    self.sift_down(slots, at);
+                    self.sift_up(slots, at);
                 }
             }
             Place::Bucket(at) => {
-                let slot = (self.bucket(self.slots[ball].time) & self.mask()) as usize;
+                let slot = (self.bucket(slots.slot(ball).time) & self.mask()) as usize;
                 let list = &mut self.buckets[slot];
                 list.swap_remove(at as usize);
                 if let Some(&moved) = list.get(at as usize) {
-                    self.slots[moved as usize].place = Place::Bucket(at);
+                    slots.slot_mut(moved as usize).place = Place::Bucket(at);
                 }
                 self.in_buckets -= 1;
             }
             Place::Overflow(at) => {
                 self.overflow.swap_remove(at as usize);
                 if let Some(&moved) = self.overflow.get(at as usize) {
-                    self.slots[moved as usize].place = Place::Overflow(at);
+                    slots.slot_mut(moved as usize).place = Place::Overflow(at);
                 }
             }
         }
     }
 
     /// The earliest pending event `(t_i, i)` (least `(t_i, key_i, i)`), if any.
-    pub(crate) fn peek(&mut self) -> Option<(f64, usize)> {
+    pub(crate) fn peek(&mut self, slots: &mut (impl Slots + ?Sized)) -> Option<(f64, usize)> {
         while self.heap.is_empty() {
             if self.in_buckets == 0 {
                 // Every bucket is empty: jump to the overflow's earliest bucket.
                 let first = self
                     .overflow
                     .iter()
-                    .map(|&i| self.bucket(self.slots[i as usize].time));
+                    .map(|&i| self.bucket(slots.slot(i as usize).time));
                 self.current = first.min()?;
-                self.reschedule_overflow();
+                self.reschedule_overflow(slots);
                 continue;
             }
             self.current += 1;
             if self.current & self.mask() == 0 {
-                self.reschedule_overflow();
+                self.reschedule_overflow(slots);
             }
             let slot = (self.current & self.mask()) as usize;
             let mut list = std::mem::take(&mut self.buckets[slot]);
@@ -218,23 +236,23 @@ impl Calendar {
             for &ball in &list {
                 self.heap.push(ball);
                 let at = self.heap.len() - 1;
-                self.slots[ball as usize].place = Place::Heap(at as u32);
-                self.sift_up(at);
+                slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
+                self.sift_up(slots, at);
             }
             list.clear();
             self.buckets[slot] = list;
         }
         let top = self.heap[0] as usize;
-        Some((self.slots[top].time, top))
+        Some((slots.slot(top).time, top))
     }
 
     /// Moves the overflow's balls within reach of the buckets into them (or the heap).
-    fn reschedule_overflow(&mut self) {
+    fn reschedule_overflow(&mut self, slots: &mut (impl Slots + ?Sized)) {
         // The overflow and the (empty) scratch list trade places, so nothing is allocated.
         let scratch = std::mem::take(&mut self.scratch);
         let mut list = std::mem::replace(&mut self.overflow, scratch);
         for &ball in &list {
-            self.insert(ball);
+            self.insert(slots, ball);
         }
         list.clear();
         self.scratch = list;
@@ -244,7 +262,7 @@ impl Calendar {
     /// `shift`) and chooses the bucket width again: `delta = 8 tbar / m` for `m` pending
     /// events whose mean time ahead is `tbar` (so about 8 per bucket), with `B >= m / 2`
     /// buckets, a power of two (a horizon `B delta` of 4 to 8 `tbar`). `O(balls)`.
-    pub(crate) fn rebuild(&mut self, shift: f64) {
+    pub(crate) fn rebuild(&mut self, slots: &mut (impl Slots + ?Sized), shift: f64) {
         let mut pending = std::mem::take(&mut self.scratch);
         pending.clear();
         pending.append(&mut self.heap);
@@ -255,7 +273,7 @@ impl Calendar {
         self.in_buckets = 0;
         let (mut sum, mut finite) = (0.0, 0usize);
         for &ball in &pending {
-            let t = &mut self.slots[ball as usize].time;
+            let t = &mut slots.slot_mut(ball as usize).time;
             *t = (*t - shift).max(0.0);
             if t.is_finite() {
                 sum += *t;
@@ -276,29 +294,29 @@ impl Calendar {
         }
         self.current = 0;
         for &ball in &pending {
-            self.insert(ball);
+            self.insert(slots, ball);
         }
         pending.clear();
         self.scratch = pending;
     }
 
-    fn sift_up(&mut self, mut at: usize) {
+    fn sift_up(&mut self, slots: &mut (impl Slots + ?Sized), mut at: usize) {
         let ball = self.heap[at];
         while at > 0 {
             let parent = (at - 1) / 2;
             let p = self.heap[parent];
-            if !self.less(ball, p) {
+            if !Self::less(slots, ball, p) {
                 break;
             }
             self.heap[at] = p;
-            self.slots[p as usize].place = Place::Heap(at as u32);
+            slots.slot_mut(p as usize).place = Place::Heap(at as u32);
             at = parent;
         }
         self.heap[at] = ball;
-        self.slots[ball as usize].place = Place::Heap(at as u32);
+        slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
     }
 
-    fn sift_down(&mut self, mut at: usize) {
+    fn sift_down(&mut self, slots: &mut (impl Slots + ?Sized), mut at: usize) {
         let ball = self.heap[at];
         let len = self.heap.len();
         loop {
@@ -307,21 +325,21 @@ impl Calendar {
                 break;
             }
             let right = left + 1;
-            let child = if right < len && self.less(self.heap[right], self.heap[left]) {
+            let child = if right < len && Self::less(slots, self.heap[right], self.heap[left]) {
                 right
             } else {
                 left
             };
             let c = self.heap[child];
-            if !self.less(c, ball) {
+            if !Self::less(slots, c, ball) {
                 break;
             }
             self.heap[at] = c;
-            self.slots[c as usize].place = Place::Heap(at as u32);
+            slots.slot_mut(c as usize).place = Place::Heap(at as u32);
             at = child;
         }
         self.heap[at] = ball;
-        self.slots[ball as usize].place = Place::Heap(at as u32);
+        slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
     }
 }
 
@@ -329,6 +347,52 @@ impl Calendar {
 mod tests {
     use super::*;
     use std::collections::BTreeSet;
+
+    /// A calendar with its slots and keys in a plain list (the engine keeps them in its
+    /// balls' records).
+    struct Keyed {
+        cal: Calendar,
+        slots: Vec<(Slot, Key)>,
+    }
+
+    impl Slots for Vec<(Slot, Key)> {
+        fn slot(&self, ball: usize) -> &Slot {
+            &self[ball].0
+        }
+        fn slot_mut(&mut self, ball: usize) -> &mut Slot {
+            &mut self[ball].0
+        }
+        fn key(&self, ball: usize) -> Key {
+            self[ball].1
+        }
+    }
+
+    impl Keyed {
+        fn new(balls: usize) -> Self {
+            Keyed {
+                cal: Calendar::new(),
+                slots: vec![(Slot::EMPTY, 0); balls],
+            }
+        }
+        fn set(&mut self, ball: usize, time: f64, key: Key) {
+            // The key first: it is the new event's when the calendar places it.
+            self.cal.remove(&mut self.slots, ball);
+            self.slots[ball].1 = key;
+            self.cal.set(&mut self.slots, ball, time);
+        }
+        fn remove(&mut self, ball: usize) {
+            self.cal.remove(&mut self.slots, ball);
+        }
+        fn peek(&mut self) -> Option<(f64, usize)> {
+            self.cal.peek(&mut self.slots)
+        }
+        fn rebuild(&mut self, shift: f64) {
+            self.cal.rebuild(&mut self.slots, shift);
+        }
+        fn len(&self) -> usize {
+            self.cal.len()
+        }
+    }
 
     /// A reference: the set of `(t_i, key_i, i)`, ordered as the calendar must pop them.
     #[derive(Default)]
@@ -382,7 +446,7 @@ mod tests {
     /// a new time ahead (near, far, tied, or none), re-base now and then; every pop agrees.
     fn agree(balls: usize, steps: usize, seed: u64) {
         let mut rng = Rng(seed);
-        let mut cal = Calendar::new(balls);
+        let mut cal = Keyed::new(balls);
         let mut reference = Reference::default();
         let ahead = |rng: &mut Rng| match rng.below(10) {
             0 => 1e3 * rng.unit(),           // far: the overflow
@@ -446,7 +510,7 @@ mod tests {
 
     #[test]
     fn far_events_and_empty_buckets_are_reached() {
-        let mut cal = Calendar::new(3);
+        let mut cal = Keyed::new(3);
         cal.set(0, 1.0, 0);
         cal.set(1, 2.0, 0);
         cal.rebuild(0.0);

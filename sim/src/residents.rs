@@ -11,6 +11,11 @@
 //! with twice the room (its old place is left unused); when the unused places outnumber the
 //! used ones the slab is compacted at once, so memory stays `O(balls + cells)`.
 //!
+//! **Homes.** Where a ball's record lies in the slab (its *home*) is kept by the owner,
+//! in the ball's own record beside its other fields ([`Homes`]: the engine's event then
+//! reads one per-ball record, not a separate array of homes too); the methods that move
+//! records are given the homes to update.
+//!
 //! **Order.** A ball leaving a cell is swap-removed (the cell's last ball takes its slot) and
 //! appended to its new cell; moves and compaction keep each list's order: the order of every
 //! list is the order in which a plain list of ball indices kept by the same moves would hold
@@ -39,6 +44,15 @@ struct Span {
     cap: u32,
 }
 
+/// Where each ball's record lies in the slab, kept by the owner of the [`Residents`]
+/// (module docs, "Homes").
+pub(crate) trait Homes {
+    /// Ball `ball`'s record's index in the slab.
+    fn home(&self, ball: usize) -> u32;
+    /// Ball `ball`'s record is now at index `at` of the slab.
+    fn set_home(&mut self, ball: usize, at: u32);
+}
+
 /// Every ball's flight record, by cell (module docs).
 #[derive(Debug)]
 pub(crate) struct Residents<const N: usize> {
@@ -46,8 +60,8 @@ pub(crate) struct Residents<const N: usize> {
     slab: Vec<Resident<N>>,
     /// Per cell: its list's place in the slab.
     spans: Vec<Span>,
-    /// Per ball: its cell's flat index and its record's index in the slab.
-    home: Vec<(u32, u32)>,
+    /// The number of balls.
+    balls: usize,
     /// The room of the lists, `sum_c cap_c` (the rest of the slab is unused).
     room: usize,
 }
@@ -69,21 +83,32 @@ fn vacant<const N: usize>() -> Resident<N> {
 impl<const N: usize> Residents<N> {
     /// No balls yet, `cells` empty cells.
     pub(crate) fn new(cells: usize) -> Self {
-        let mut residents = Residents {
-            slab: Vec::new(),
-            spans: vec![Span::default(); cells],
-            home: Vec::new(),
-            room: 0,
-        };
-        residents.compact();
-        residents
+        // As compaction lays them out: room for one record in each.
+        Residents {
+            slab: vec![vacant(); cells],
+            spans: (0..cells as u32)
+                .map(|c| Span {
+                    start: c,
+                    len: 0,
+                    cap: 1,
+                })
+                .collect(),
+            balls: 0,
+            room: cells,
+        }
     }
 
-    /// Adds the next ball (index `len()`) to `cell`.
-    pub(crate) fn push(&mut self, cell: usize, motion: Motion<N>) {
-        let ball = self.home.len() as u32;
-        self.home.push((cell as u32, u32::MAX));
+    /// Adds the next ball (index `len()`) to `cell`; its home is set in `homes`.
+    pub(crate) fn push(
+        &mut self,
+        homes: &mut (impl Homes + ?Sized),
+        cell: usize,
+        motion: Motion<N>,
+    ) {
+        let ball = self.balls as u32;
+        self.balls += 1;
         self.append(
+            homes,
             cell,
             Resident {
                 motion,
@@ -95,32 +120,32 @@ impl<const N: usize> Residents<N> {
 
     /// Appends `resident` to `cell`'s list, moving the list to the end of the slab with twice
     /// the room when it is full (module docs).
-    fn append(&mut self, cell: usize, resident: Resident<N>) {
+    fn append(&mut self, homes: &mut (impl Homes + ?Sized), cell: usize, resident: Resident<N>) {
         if self.spans[cell].len == self.spans[cell].cap {
-            self.regrow(cell);
+            self.regrow(homes, cell);
         }
         let span = &mut self.spans[cell];
         let at = (span.start + span.len) as usize;
         span.len += 1;
         self.slab[at] = resident;
-        self.home[resident.ball as usize].1 = at as u32;
+        homes.set_home(resident.ball as usize, at as u32);
     }
 
     /// Moves full `cell`'s list to the end of the slab with room for `2 len + 1`, or
     /// compacts the slab if the unused places would outnumber the used ones.
-    fn regrow(&mut self, cell: usize) {
+    fn regrow(&mut self, homes: &mut (impl Homes + ?Sized), cell: usize) {
         let span = self.spans[cell];
         let cap = 2 * span.len + 1;
         if self.slab.len() + cap as usize > 2 * (self.room + cap as usize) {
             // Compaction leaves room for one more in every list.
-            return self.compact();
+            return self.compact(homes);
         }
         let start = self.slab.len();
         let (from, len) = (span.start as usize, span.len as usize);
         self.slab.extend_from_within(from..from + len);
         self.slab.resize(start + cap as usize, vacant());
         for (k, r) in self.slab[start..start + len].iter().enumerate() {
-            self.home[r.ball as usize].1 = (start + k) as u32;
+            homes.set_home(r.ball as usize, (start + k) as u32);
         }
         self.room += (cap - span.cap) as usize;
         self.spans[cell] = Span {
@@ -132,7 +157,7 @@ impl<const N: usize> Residents<N> {
 
     /// Lays every list out again in the order of the cells, each with room for one more
     /// record than it holds (module docs). `O(balls + cells)`.
-    pub(crate) fn compact(&mut self) {
+    pub(crate) fn compact(&mut self, homes: &mut (impl Homes + ?Sized)) {
         let room: usize = self.spans.iter().map(|s| s.len as usize + 1).sum();
         let mut slab = Vec::with_capacity(room);
         for span in self.spans.iter_mut() {
@@ -148,7 +173,7 @@ impl<const N: usize> Residents<N> {
         }
         for (k, r) in slab.iter().enumerate() {
             if r.ball != u32::MAX {
-                self.home[r.ball as usize].1 = k as u32;
+                homes.set_home(r.ball as usize, k as u32);
             }
         }
         self.slab = slab;
@@ -157,7 +182,7 @@ impl<const N: usize> Residents<N> {
 
     /// The number of balls.
     pub(crate) fn len(&self) -> usize {
-        self.home.len()
+        self.balls
     }
 
     /// The balls of cell `cell`, in their order.
@@ -186,47 +211,50 @@ impl<const N: usize> Residents<N> {
         prefetch(self.cell(cell).first());
     }
 
-    /// Ball `ball`'s flight.
+    /// The flight of the ball whose home is `at`.
     #[inline]
-    pub(crate) fn get(&self, ball: usize) -> &Motion<N> {
-        &self.slab[self.home[ball].1 as usize].motion
+    pub(crate) fn get(&self, at: u32) -> &Motion<N> {
+        &self.slab[at as usize].motion
     }
 
-    /// Ball `ball`'s flight, to change.
+    /// The flight of the ball whose home is `at`, to change.
     #[inline]
-    pub(crate) fn get_mut(&mut self, ball: usize) -> &mut Motion<N> {
-        &mut self.resident_mut(ball).motion
+    pub(crate) fn get_mut(&mut self, at: u32) -> &mut Motion<N> {
+        &mut self.slab[at as usize].motion
     }
 
-    /// Ball `ball`'s wraps since its record moved.
+    /// The wraps since its record moved of the ball whose home is `at`.
     #[inline]
-    pub(crate) fn wraps(&self, ball: usize) -> [i16; N] {
-        self.slab[self.home[ball].1 as usize].wraps
+    pub(crate) fn wraps(&self, at: u32) -> [i16; N] {
+        self.slab[at as usize].wraps
     }
 
-    /// Ball `ball`'s wraps, to change.
+    /// The wraps of the ball whose home is `at`, to change.
     #[inline]
-    pub(crate) fn wraps_mut(&mut self, ball: usize) -> &mut [i16; N] {
-        &mut self.resident_mut(ball).wraps
+    pub(crate) fn wraps_mut(&mut self, at: u32) -> &mut [i16; N] {
+        &mut self.slab[at as usize].wraps
     }
 
-    fn resident_mut(&mut self, ball: usize) -> &mut Resident<N> {
-        &mut self.slab[self.home[ball].1 as usize]
-    }
-
-    /// Moves ball `ball` to cell `to`: swap-removed from its cell, appended to `to`.
-    pub(crate) fn relocate(&mut self, ball: usize, to: usize) {
-        let (c, at) = self.home[ball];
-        let span = &mut self.spans[c as usize];
+    /// Moves ball `ball` from cell `from` to cell `to`: swap-removed from `from`'s list,
+    /// appended to `to`'s.
+    pub(crate) fn relocate(
+        &mut self,
+        homes: &mut (impl Homes + ?Sized),
+        ball: usize,
+        from: usize,
+        to: usize,
+    ) {
+        let at = homes.home(ball);
+        let span = &mut self.spans[from];
         let last = (span.start + span.len - 1) as usize;
+        debug_assert!((span.start as usize..=last).contains(&(at as usize)));
         span.len -= 1;
         let resident = self.slab[at as usize];
         if last != at as usize {
             self.slab[at as usize] = self.slab[last];
-            self.home[self.slab[at as usize].ball as usize].1 = at;
+            homes.set_home(self.slab[at as usize].ball as usize, at);
         }
-        self.home[ball].0 = to as u32;
-        self.append(to, resident);
+        self.append(homes, to, resident);
     }
 }
 
@@ -243,6 +271,18 @@ mod tests {
         }
     }
 
+    impl Homes for Vec<u32> {
+        fn home(&self, ball: usize) -> u32 {
+            self[ball]
+        }
+        fn set_home(&mut self, ball: usize, at: u32) {
+            if ball >= self.len() {
+                self.resize(ball + 1, u32::MAX);
+            }
+            self[ball] = at;
+        }
+    }
+
     #[test]
     fn moves_keep_the_order_of_index_lists_and_every_record_with_its_ball() {
         // The reference: lists of indices under the same moves (swap_remove, push).
@@ -250,9 +290,10 @@ mod tests {
         let mut residents = Residents::<2>::new(cells);
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); cells];
         let mut home = Vec::new();
+        let mut homes = Vec::<u32>::new();
         for b in 0..40u32 {
             let c = (b as usize * 7) % cells;
-            residents.push(c, motion(b as f64));
+            residents.push(&mut homes, c, motion(b as f64));
             lists[c].push(b);
             home.push(c);
         }
@@ -263,15 +304,15 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             let b = (state >> 33) as usize % 40;
             let to = (state >> 20) as usize % cells;
-            residents.relocate(b, to);
+            residents.relocate(&mut homes, b, home[b], to);
             let from = &mut lists[home[b]];
             let at = from.iter().position(|&x| x as usize == b).unwrap();
             from.swap_remove(at);
             lists[to].push(b as u32);
             home[b] = to;
-            residents.get_mut(b).since += 1.0;
+            residents.get_mut(homes[b]).since += 1.0;
             if state % 97 == 0 {
-                residents.compact();
+                residents.compact(&mut homes);
             }
         }
         let order: Vec<u32> = residents.in_cell_order().map(|b| b as u32).collect();
@@ -281,7 +322,15 @@ mod tests {
             assert_eq!(&got, list);
         }
         for b in 0..40 {
-            assert_eq!(residents.get(b).pos, motion(b as f64).pos);
+            assert_eq!(residents.get(homes[b]).pos, motion(b as f64).pos);
+            assert_eq!(
+                residents
+                    .cell(home[b])
+                    .iter()
+                    .filter(|r| r.ball as usize == b)
+                    .count(),
+                1
+            );
         }
         assert_eq!(residents.len(), 40);
     }

@@ -38,7 +38,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         if let Some(a) = &mut self.orientation {
             let dt = std::mem::take(&mut self.unturned[b]);
             if dt != 0.0 {
-                a[b] = mul(&exp_skew::<N>(&self.state[b].spin, dt), &a[b]);
+                a[b] = mul(&exp_skew::<N>(&self.balls[b].state.spin, dt), &a[b]);
             }
         }
     }
@@ -59,8 +59,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             (j, i, image.map(|k| -k))
         };
         let d = pair_offset(
-            self.motion.get(lo),
-            self.motion.get(hi),
+            self.flight(lo),
+            self.flight(hi),
             &image_f64(&image),
             &self.grid.size,
             t,
@@ -68,20 +68,20 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let nu = unit(d);
         self.settle(lo, t);
         self.settle(hi, t);
-        let pre = [self.state[lo].clone(), self.state[hi].clone()];
+        let pre = [self.balls[lo].state.clone(), self.balls[hi].state.clone()];
         let kind = self.law(self.table.ball_contact, [lo, hi], t);
         let [s1, s2] = law::pair(
             &self.kernels,
             &self.species,
             kind,
-            [self.kind[lo], self.kind[hi]],
+            [self.balls[lo].kind as usize, self.balls[hi].kind as usize],
             &nu,
             &pre,
         );
-        self.last[lo] = 0;
-        self.last[hi] = 0;
-        self.state[lo] = s1;
-        self.state[hi] = s2;
+        self.balls[lo].last = 0;
+        self.balls[hi].last = 0;
+        self.balls[lo].state = s1;
+        self.balls[hi].state = s2;
         let event = self.finish(Contact::Ball { i: lo, j: hi }, nu, [lo, hi], pre, t);
         self.after_contact([lo, hi], t);
         event
@@ -98,10 +98,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 1.0
             }
         });
-        let pre = [self.state[i].clone(), self.state[i].clone()];
+        let pre = [self.balls[i].state.clone(), self.balls[i].state.clone()];
         let kind = self.law(self.table.box_contact, [i, i], t);
-        self.state[i] = self.fixed(kind, i, Some((axis, upper)), &nu, &pre[0]);
-        self.last[i] = 0;
+        self.balls[i].state = self.fixed(kind, i, Some((axis, upper)), &nu, &pre[0]);
+        self.balls[i].last = 0;
         let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event
@@ -115,14 +115,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         image: &[i16; N],
         t: f64,
     ) -> Event<N, S> {
-        let p = self.motion.get(i).at(t);
+        let p = self.flight(i).at(t);
         let b = obstacle_image(&self.obstacles[o].position, image, &self.grid.size);
         let nu = unit(std::array::from_fn(|k| p[k] - b[k]));
         self.settle(i, t);
-        let pre = [self.state[i].clone(), self.state[i].clone()];
+        let pre = [self.balls[i].state.clone(), self.balls[i].state.clone()];
         let kind = self.law(self.table.obstacle(o), [i, i], t);
-        self.state[i] = self.fixed(kind, i, None, &nu, &pre[0]);
-        self.last[i] = 0;
+        self.balls[i].state = self.fixed(kind, i, None, &nu, &pre[0]);
+        self.balls[i].last = 0;
         let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event
@@ -131,13 +131,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// A contact with boundary `b`: the `fixed` kernel (no-slip) or the specular map
     /// (smooth) at the boundary's local normal (see [`crate::table`]).
     pub(super) fn ball_boundary(&mut self, i: usize, b: usize, t: f64) -> Event<N, S> {
-        let p = self.motion.get(i).at(t);
+        let p = self.flight(i).at(t);
         let nu = self.table.boundaries[b].shape.normal(&p);
         self.settle(i, t);
-        let pre = [self.state[i].clone(), self.state[i].clone()];
+        let pre = [self.balls[i].state.clone(), self.balls[i].state.clone()];
         let kind = self.law(self.table.boundaries[b].contact, [i, i], t);
-        self.state[i] = self.fixed(kind, i, None, &nu, &pre[0]);
-        self.last[i] = b as u32 + 1;
+        self.balls[i].state = self.fixed(kind, i, None, &nu, &pre[0]);
+        self.balls[i].last = b as u32 + 1;
         let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event
@@ -146,7 +146,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// The law of a contact of `balls` at local time `t` whose kind is `kind`: under the TC
     /// model ([`tc_law`]), from the balls' previous contact times.
     fn law(&self, kind: ContactKind, balls: [usize; 2], t: f64) -> ContactKind {
-        let previous = balls.map(|b| self.previous[b]);
+        let previous = balls.map(|b| self.balls[b].previous);
         tc_law(kind, self.table.tc, self.absolute(t), previous)
     }
 
@@ -163,7 +163,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             &self.kernels,
             &self.species,
             kind,
-            self.kind[i],
+            self.balls[i].kind as usize,
             wall,
             nu,
             pre,
@@ -179,17 +179,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         t: f64,
     ) -> Event<N, S> {
         for b in balls {
-            self.motion.get_mut(b).velocity = self.state[b].velocity;
+            self.motion.get_mut(self.balls[b].home).velocity = self.balls[b].state.velocity;
         }
-        self.count[balls[0]] += 1;
+        self.balls[balls[0]].count += 1;
         if balls[1] != balls[0] {
-            self.count[balls[1]] += 1;
+            self.balls[balls[1]].count += 1;
         }
         self.contacts += 1;
         self.last_contact = t;
         let time = self.absolute(t);
         for b in balls {
-            self.previous[b] = time;
+            self.balls[b].previous = time;
         }
         self.quiet = 0;
         self.next_check = self.first_check();
@@ -198,9 +198,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             time,
             contact,
             nu,
-            position: balls.map(|b| self.motion.get(b).pos),
+            position: balls.map(|b| self.flight(b).pos),
             pre,
-            post: balls.map(|b| self.state[b].clone()),
+            post: balls.map(|b| self.balls[b].state.clone()),
         }
     }
 }

@@ -24,7 +24,17 @@
 //! - a contact moves the records of the balls involved to its time, applies the pair's map
 //!   (body 1 the lower index), bumps the counters and re-predicts them.
 //!
-//! **Layout.** What a prediction reads of every neighbour (its record and its wraps) is stored
+//! **Layout.** What an event reads and writes of its own ball is one record per ball
+//! (`BallRecord`, `record.rs`; one `Vec`, aligned to a cache line, hot fields first): the
+//! calendar's slot (its time and place; the calendar keeps only the order, `queue::Slots`),
+//! the kept contact, the cell, the counter, the home of its flight in the slab
+//! (`residents::Homes`) and the pending crossing share one 64-byte line in 2D and 3D; the
+//! state, species, last boundary and previous contact (a contact's reads) follow. The
+//! pending event is the crossing if it beat the kept contact, else the kept contact, and an
+//! event's key is computed from the ball and the event when two times tie: neither is
+//! stored twice. At `10^6` balls an event so costs one miss for its ball where the separate
+//! arrays cost five or six (docs/benchmarks.md, "The per-ball records gathered into one").
+//! What a prediction reads of every neighbour (its flight and its wraps) is stored
 //! by cell (`Residents`, `residents.rs`): a cell's records are one list, and the lists lie in
 //! one slab in the order of the cells, laid out again at the start and at every re-basing
 //! (which also predict the balls cell after cell), so a scan of the `3^n` cells within reach
@@ -83,6 +93,7 @@ mod contacts;
 mod events;
 mod kick;
 mod quiet;
+mod record;
 mod scan;
 
 pub use events::{Contact, Event, SetupError, Step};
@@ -96,8 +107,9 @@ use super::orientation::{exp_skew, identity, mul, Matrix};
 use super::queue::{Calendar, What};
 use super::residents::{Resident, Residents};
 use super::table::{ContactKind, Geometry, Table};
-use super::{Body, FixedBall, PairKernels, Setup};
+use super::{FixedBall, PairKernels, Setup};
 use collision_core::{Ball, BodyState};
+use record::BallRecord;
 
 /// The size of the slab of records (`(balls + cells)` records: each list has room for one
 /// more) from which a prediction prefetches its neighbour cells' lists: 4 MiB, several times a
@@ -111,21 +123,14 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     species: Vec<Ball<f64>>,
     obstacles: Vec<FixedBall<N>>,
     table: Table<N>,
-    /// Per ball: `b + 1` if its last contact was with boundary `b`, else 0. A boundary convex
-    /// seen from the ball cannot be touched again before another contact; a container not
-    /// at the same instant (module docs, "Boundaries").
-    last: Vec<u32>,
     grid: Grid<N>,
-    kind: Vec<usize>,
+    /// Per ball: what its events read and write, in one record (`record.rs`): the
+    /// calendar's slot, its pending event, its kept contact, cell, counter, state, species,
+    /// last boundary and previous contact.
+    balls: Vec<BallRecord<N, S>>,
     /// Per ball: centre, its time, velocity and radius (the neighbour scan's reads), stored
     /// by cell (the cell lists).
     motion: Residents<N>,
-    state: Vec<BodyState<f64, N, S>>,
-    count: Vec<u32>,
-    /// Per ball: the absolute time of its last contact (`-inf` before the first), for the
-    /// TC model ([`crate::law::tc_law`]).
-    previous: Vec<f64>,
-    cell: Vec<[usize; N]>,
     fixed_members: Vec<Vec<u32>>,
     /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
@@ -134,11 +139,8 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// Whether a prediction prefetches its neighbour cells' lists: a cell list larger than
     /// the caches ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
-    /// Per ball: the time of its pending event (`Calendar`) and what it is (`next`).
+    /// The order of the balls' pending events (their slots are in `balls`).
     queue: Calendar,
-    next: Vec<What<N>>,
-    /// Per ball: its best contact found by its last scans (`scan.rs`).
-    found: Vec<scan::Found<N>>,
     /// The local clock; the absolute time is `origin + origin_low + now`.
     now: f64,
     origin: f64,
@@ -202,14 +204,16 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         };
         let mut motion = Residents::new(grid.cells());
         let mut fixed_members = vec![Vec::new(); grid.cells()];
-        let mut cell = Vec::with_capacity(bodies.len());
+        let mut balls = Vec::with_capacity(bodies.len());
         for (i, b) in bodies.iter().enumerate() {
             let outside = (0..N).find(|&k| !(0.0..=size[k]).contains(&b.position[k]));
             if let (Some(k), true) = (outside, table.boxed) {
                 return Err(SetupError::Outside { ball: i, axis: k });
             }
             let c = grid.cell_of(&b.position);
+            balls.push(BallRecord::new(b.state.clone(), b.species, c));
             motion.push(
+                balls.as_mut_slice(),
                 grid.flat(&c),
                 Motion {
                     pos: b.position,
@@ -218,7 +222,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                     radius: species[b.species].radius,
                 },
             );
-            cell.push(c);
         }
         for (o, f) in obstacles.iter().enumerate() {
             let c = grid.cell_of(&f.position);
@@ -233,27 +236,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             species,
             obstacles,
             table,
-            last: vec![0; n],
             grid,
-            kind: bodies.iter().map(|b| b.species).collect(),
+            balls,
             motion,
-            state: bodies.into_iter().map(|b: Body<N, S>| b.state).collect(),
-            count: vec![0; n],
-            previous: vec![f64::NEG_INFINITY; n],
-            cell,
             fixed_members,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
             prefetch,
-            queue: Calendar::new(n),
-            found: vec![None; n],
-            next: vec![
-                What::Wall {
-                    axis: 0,
-                    upper: false
-                };
-                n
-            ],
+            queue: Calendar::new(),
             now: 0.0,
             origin: 0.0,
             origin_low: 0.0,
@@ -280,6 +270,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     #[cfg(test)]
     pub(crate) fn set_prefetch(&mut self, on: bool) {
         self.prefetch = on;
+    }
+
+    /// Ball `i`'s flight record (`Motion`), from its home in the slab.
+    #[inline]
+    fn flight(&self, i: usize) -> &Motion<N> {
+        self.motion.get(self.balls[i].home)
     }
 
     /// The absolute time now.
@@ -387,36 +383,37 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Ball `i`'s species index.
     pub fn species_of(&self, i: usize) -> usize {
-        self.kind[i]
+        self.balls[i].kind as usize
     }
 
     /// Ball `i`'s state `(U, u)` (constant between contacts).
     pub fn state(&self, i: usize) -> &BodyState<f64, N, S> {
-        &self.state[i]
+        &self.balls[i].state
     }
 
     /// Ball `i`'s centre now (inside the box; wrapped on periodic axes up to the crossing
     /// in progress): `a_i + (t - t_i) u_i - W_i L`.
     pub fn position(&self, i: usize) -> [f64; N] {
-        let x = self.motion.get(i).at(self.now);
-        let w = self.motion.wraps(i);
+        let x = self.flight(i).at(self.now);
+        let w = self.motion.wraps(self.balls[i].home);
         std::array::from_fn(|k| x[k] - f64::from(w[k]) * self.grid.size[k])
     }
 
     /// Ball `i`'s orientation `A_i` now, if the setup tracks orientations.
     pub fn orientation(&self, i: usize) -> Option<[[f64; N]; N]> {
         let a = self.orientation.as_ref()?;
-        let dt = self.unturned[i] + (self.now - self.motion.get(i).since);
-        let r = exp_skew::<N>(&self.state[i].spin, dt);
+        let dt = self.unturned[i] + (self.now - self.flight(i).since);
+        let r = exp_skew::<N>(&self.balls[i].state.spin, dt);
         Some(mul(&r, &a[i]))
     }
 
     /// Energy, momentum and angular momentum now.
     pub fn observables(&self) -> Observables<N, S> {
         let positions: Vec<[f64; N]> = (0..self.len()).map(|i| self.position(i)).collect();
-        Observables::of(
-            (0..self.len()).map(|i| (&self.species[self.kind[i]], &positions[i], &self.state[i])),
-        )
+        Observables::of((0..self.len()).map(|i| {
+            let b = &self.balls[i];
+            (&self.species[b.kind as usize], &positions[i], &b.state)
+        }))
     }
 
     /// The kinetic energy now, [`Observables::energy`] without the positions the other
@@ -424,7 +421,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// cost (a run samples it `samples` times, each `O(balls)`).
     pub fn energy(&self) -> f64 {
         (0..self.len()).fold(0.0, |e, i| {
-            e + crate::observe::energy_of(&self.species[self.kind[i]], &self.state[i])
+            let b = &self.balls[i];
+            e + crate::observe::energy_of(&self.species[b.kind as usize], &b.state)
         })
     }
 
@@ -445,7 +443,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                     return Step::Quiet { box_lengths };
                 }
             }
-            let Some((time, i)) = self.queue.peek() else {
+            let Some((time, i)) = self.queue.peek(self.balls.as_mut_slice()) else {
                 // Every moving ball has an entry in a box (a crossing or a wall at least);
                 // without one, an empty queue means no ball has a contact ahead.
                 let moving = (0..self.len()).any(|i| self.speed2_of(i) > 0.0);
@@ -467,7 +465,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 continue;
             }
             // Ball i's event stays in the queue until every branch below re-predicts i.
-            let what = self.next[i];
+            let what = self.balls[i]
+                .next()
+                .expect("a ball in the calendar has an event");
             self.now = self.now.max(time);
             match what {
                 What::Cell { axis, up } => {
@@ -475,7 +475,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                     self.predict_after_crossing(i, axis as usize, up);
                     self.quiet += 1;
                 }
-                What::Ball { j, count, .. } if count != self.count[j as usize] => {
+                What::Ball { j, count, .. } if count != self.balls[j as usize].count => {
                     self.stale += 1;
                     self.predict(i);
                     self.quiet += 1;

@@ -25,8 +25,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// its cost (balls x bodies) is at most `max(2^20, 16 quiet)`, so `O(1)` per event.
     pub(super) fn no_contact(&self) -> Option<NoContact> {
         let position = |i: usize| self.position(i);
-        let velocity = |i: usize| self.state[i].velocity;
-        let radius = |i: usize| self.species[self.kind[i]].radius;
+        let velocity = |i: usize| self.balls[i].state.velocity;
+        let radius = |i: usize| self.species[self.balls[i].kind as usize].radius;
         let flight = Flight {
             size: self.grid.size,
             periodic: self.grid.periodic,
@@ -76,7 +76,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     pub(super) fn speed2_of(&self, i: usize) -> f64 {
-        self.state[i].velocity.iter().map(|x| x * x).sum()
+        self.balls[i].state.velocity.iter().map(|x| x * x).sum()
     }
 
     /// Re-base the clock at local time `t` (the canonical time of [`crate::canonical`]): every
@@ -89,7 +89,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let mut speed2: f64 = 0.0;
         for i in 0..self.len() {
             self.move_record(i, t);
-            self.motion.get_mut(i).since = 0.0;
+            self.motion.get_mut(self.balls[i].home).since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
         (self.origin, self.origin_low) = moved_origin(self.origin, self.origin_low, t);

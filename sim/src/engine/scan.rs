@@ -2,55 +2,50 @@
 //! table's boundaries, the box walls and its cell's faces, every contact time canonical
 //! ([`crate::canonical`]); and the cell crossings, which move no record.
 
+use super::record::key_of;
 use super::Simulation;
-use crate::canonical::{self, key, kind, obstacle_time, order, pair_time, Key};
+use crate::canonical::{self, obstacle_time, pair_time};
 use crate::predict::exit_time;
 use crate::queue::What;
 use crate::PairKernels;
 
-/// The earliest event offered so far, least `(t, key)`.
-struct Best<const N: usize>(Option<(f64, Key, What<N>)>);
+/// Ball `i`'s earliest event offered so far, least `(t, key)` (the key, [`key_of`], made
+/// only for a tie).
+struct Best<const N: usize> {
+    i: usize,
+    best: Option<(f64, What<N>)>,
+}
 
 impl<const N: usize> Best<N> {
     /// Whether an event at `t` can beat the best (a tie is decided by the keys).
     #[inline]
     fn may_beat(&self, t: f64) -> bool {
-        self.0.as_ref().is_none_or(|&(b, _, _)| t <= b)
+        self.best.as_ref().is_none_or(|&(b, _)| t <= b)
     }
 
-    /// Offers an event at `t` with key `key` (the least `(t, key)` stays).
+    /// Offers event `what` at `t` (the least `(t, key)` stays, `canonical::order`).
     #[inline]
-    fn offer(&mut self, t: f64, key: impl FnOnce() -> Key, what: impl FnOnce() -> What<N>) {
-        match self.0 {
-            Some((b, _, _)) if t > b => {}
-            Some((b, k, _)) if t == b => {
-                // The key is made only for a tie (canonical::order).
-                let key = key();
-                if order((t, key), (b, k)).is_lt() {
-                    self.0 = Some((t, key, what()));
+    fn offer(&mut self, t: f64, what: impl FnOnce() -> What<N>) {
+        match self.best {
+            Some((b, _)) if t > b => {}
+            Some((b, old)) if t == b => {
+                // The keys are made only for a tie.
+                let what = what();
+                if key_of(self.i, &what) < key_of(self.i, &old) {
+                    self.best = Some((t, what));
                 }
             }
-            _ => self.0 = Some((t, key(), what())),
+            _ => self.best = Some((t, what())),
         }
     }
 }
-
-/// `-k`.
-#[inline]
-fn negated<const N: usize>(image: &[i16; N]) -> [i16; N] {
-    image.map(|k| -k)
-}
-
-/// A ball's best contact (any event but a crossing) found by its last scans: kept so that a
-/// crossing scans only the newly reached cells ([`Simulation::predict_after_crossing`]).
-pub(super) type Found<const N: usize> = Option<(f64, Key, What<N>)>;
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
     /// Schedule ball `i`'s earliest event from a full scan of the cells within reach (its
     /// record does not move).
     pub(super) fn predict(&mut self, i: usize) {
-        let mut best = Best::<N>(None);
-        let c = self.cell[i];
+        let mut best = Best::<N> { i, best: None };
+        let c = self.balls[i].cell();
         self.scan(i, &mut best, &c, None);
         self.fixed_bodies(i, &mut best);
         self.schedule(i, best);
@@ -60,12 +55,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// predicts every ball, cell after cell (so that neighbouring predictions read the same
     /// lists), then sizes the calendar for them: the start and every re-basing.
     pub(super) fn predict_all(&mut self) {
-        self.motion.compact();
+        self.motion.compact(self.balls.as_mut_slice());
         let order: Vec<usize> = self.motion.in_cell_order().collect();
         for i in order {
             self.predict(i);
         }
-        self.queue.rebuild(0.0);
+        self.queue.rebuild(self.balls.as_mut_slice(), 0.0);
     }
 
     /// Schedule ball `i`'s earliest event after it crossed into its cell along `axis` (moving
@@ -74,14 +69,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// cells it saw before would give the same times again. A stale best contact needs the full
     /// scan (the second best was not kept).
     pub(super) fn predict_after_crossing(&mut self, i: usize, axis: usize, up: bool) {
-        let kept = self.found[i];
-        if let Some((_, _, What::Ball { j, count, .. })) = kept {
-            if count != self.count[j as usize] {
+        let kept = self.balls[i].found;
+        if let Some((_, What::Ball { j, count, .. })) = kept {
+            if count != self.balls[j as usize].count {
                 return self.predict(i);
             }
         }
-        let mut best = Best::<N>(kept);
-        let c = self.cell[i];
+        let mut best = Best::<N> { i, best: kept };
+        let c = self.balls[i].cell();
         let layer = self.grid.layer(axis, if up { 1 } else { -1 });
         self.scan(i, &mut best, &c, Some(layer));
         self.schedule(i, best);
@@ -90,14 +85,19 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Keeps `best` as ball `i`'s best contact and schedules the earlier of it and the next
     /// crossing of its cell's faces.
     fn schedule(&mut self, i: usize, mut best: Best<N>) {
-        self.found[i] = best.0;
+        let found = best.best;
         self.crossing(i, &mut best);
-        match best.0 {
-            Some((t, key, what)) => {
-                self.queue.set(i, t, key);
-                self.next[i] = what;
-            }
-            None => self.queue.remove(i),
+        let crossing = match best.best {
+            Some((_, What::Cell { axis, up })) => Some((axis, up)),
+            _ => None,
+        };
+        // Out of the calendar before its key (read from the record) changes.
+        self.queue.remove(self.balls.as_mut_slice(), i);
+        let record = &mut self.balls[i];
+        record.found = found;
+        record.crossing = crossing;
+        if let Some((t, _)) = best.best {
+            self.queue.set(self.balls.as_mut_slice(), i, t);
         }
     }
 
@@ -105,8 +105,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// cell `c`, or of its layer `only` ([`crate::cells::Grid::for_cells`]).
     #[inline]
     fn scan(&self, i: usize, best: &mut Best<N>, c: &[usize; N], only: Option<(usize, i64)>) {
-        let m = *self.motion.get(i);
-        let w_i = self.motion.wraps(i);
+        let home = self.balls[i].home;
+        let m = *self.motion.get(home);
+        let w_i = self.motion.wraps(home);
         let size = self.grid.size;
         if self.prefetch {
             // Start the loads of the cells' lists together, in two rounds (the headers, then
@@ -132,17 +133,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let t = pair_time(&m, &resident.motion, &image, &size);
                 // NaN: no contact (never better).
                 if !t.is_nan() && best.may_beat(t) {
-                    let image: [i16; N] = image.map(|k| k as i16);
-                    let lo_image = if i < j { image } else { negated(&image) };
-                    best.offer(
-                        t,
-                        || key(i.min(j), kind::BALL, i.max(j) as u32, &lo_image),
-                        || What::Ball {
-                            j: j as u32,
-                            count: self.count[j],
-                            image,
-                        },
-                    );
+                    best.offer(t, || What::Ball {
+                        j: j as u32,
+                        count: self.balls[j].count,
+                        image: image.map(|k| k as i16),
+                    });
                 }
             }
             if !obstacles {
@@ -152,11 +147,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let image: [i16; N] = std::array::from_fn(|k| i16::from(nb.shift[k]) + w_i[k]);
                 let f = &self.obstacles[o as usize];
                 if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, &size) {
-                    best.offer(
-                        t,
-                        || key(i, kind::OBSTACLE, o, &image),
-                        || What::Obstacle { o, image },
-                    );
+                    best.offer(t, || What::Obstacle { o, image });
                 }
             }
         });
@@ -164,21 +155,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Offers ball `i`'s contacts with the table's boundaries and the box walls.
     fn fixed_bodies(&self, i: usize, best: &mut Best<N>) {
-        let m = self.motion.get(i);
+        let m = self.flight(i);
         for (b, boundary) in self.table.boundaries.iter().enumerate() {
             // Right after a contact with b: a convex b cannot be met again, a container not at
             // the same instant (a graze within rounding would repeat forever at t = 0).
-            let repeat = self.last[i] == b as u32 + 1;
+            let repeat = self.balls[i].last == b as u32 + 1;
             if repeat && boundary.shape.convex_from_outside() {
                 continue;
             }
             if let Some(tau) = boundary.shape.contact_time(&m.pos, &m.velocity, m.radius) {
                 if !(repeat && tau == 0.0) {
-                    best.offer(
-                        m.since + tau,
-                        || key(i, kind::BOUNDARY, b as u32, &[0; N]),
-                        || What::Boundary { b: b as u32 },
-                    );
+                    best.offer(m.since + tau, || What::Boundary { b: b as u32 });
                 }
             }
         }
@@ -193,23 +180,20 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 self.grid.size[k] - m.radius,
             );
             if let Some((tau, upper)) = wall {
-                best.offer(
-                    m.since + tau,
-                    || key(i, kind::WALL, 2 * k as u32 + u32::from(upper), &[0; N]),
-                    || What::Wall {
-                        axis: k as u8,
-                        upper,
-                    },
-                );
+                best.offer(m.since + tau, || What::Wall {
+                    axis: k as u8,
+                    upper,
+                });
             }
         }
     }
 
     /// Offers ball `i`'s next crossing of its cell's faces.
     fn crossing(&self, i: usize, best: &mut Best<N>) {
-        let m = self.motion.get(i);
-        let w_i = self.motion.wraps(i);
-        let c = self.cell[i];
+        let home = self.balls[i].home;
+        let m = self.motion.get(home);
+        let w_i = self.motion.wraps(home);
+        let c = self.balls[i].cell();
         for k in 0..N {
             if !self.grid.periodic[k] && self.grid.n[k] == 1 {
                 continue;
@@ -221,11 +205,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let last = c[k] + 1 == self.grid.n[k];
                 let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
                 if !blocked {
-                    best.offer(
-                        m.since + tau,
-                        || key(i, kind::CELL, 2 * k as u32 + u32::from(up), &[0; N]),
-                        || What::Cell { axis: k as u8, up },
-                    );
+                    best.offer(m.since + tau, || What::Cell { axis: k as u8, up });
                 }
             }
         }
@@ -234,22 +214,24 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Ball `i` crosses its cell's face along `axis`: it moves to the next cell (wrapping on a
     /// periodic axis, counted in `W_i`); its record does not move.
     pub(super) fn cross(&mut self, i: usize, axis: usize, up: bool) {
-        let c = self.cell[i];
+        let c = self.balls[i].cell();
+        let home = self.balls[i].home;
         let n = self.grid.n[axis];
         let mut c2 = c;
         if up {
             c2[axis] = (c[axis] + 1) % n;
             if c2[axis] == 0 {
-                self.motion.wraps_mut(i)[axis] += 1;
+                self.motion.wraps_mut(home)[axis] += 1;
             }
         } else {
             c2[axis] = (c[axis] + n - 1) % n;
             if c[axis] == 0 {
-                self.motion.wraps_mut(i)[axis] -= 1;
+                self.motion.wraps_mut(home)[axis] -= 1;
             }
         }
-        self.cell[i] = c2;
-        self.motion.relocate(i, self.grid.flat(&c2));
+        self.balls[i].cell = c2.map(|x| x as u32);
+        let (from, to) = (self.grid.flat(&c), self.grid.flat(&c2));
+        self.motion.relocate(self.balls.as_mut_slice(), i, from, to);
         self.crossings += 1;
     }
 
@@ -258,7 +240,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// flight time noted, no wraps since, and the cell of the folded centre.
     pub(super) fn move_record(&mut self, i: usize, t: f64) {
         let (size, periodic) = (self.grid.size, self.periodic());
-        let m = self.motion.get_mut(i);
+        let home = self.balls[i].home;
+        let m = self.motion.get_mut(home);
         let dt = t - m.since;
         m.pos = canonical::fold(&m.at(t), &size, &periodic);
         m.since = t;
@@ -266,12 +249,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         if self.orientation.is_some() {
             self.unturned[i] += dt;
         }
-        *self.motion.wraps_mut(i) = [0; N];
+        *self.motion.wraps_mut(home) = [0; N];
         if self.table.boxed {
             let c = self.grid.cell_of(&pos);
-            if c != self.cell[i] {
-                self.cell[i] = c;
-                self.motion.relocate(i, self.grid.flat(&c));
+            let old = self.balls[i].cell();
+            if c != old {
+                self.balls[i].cell = c.map(|x| x as u32);
+                let (from, to) = (self.grid.flat(&old), self.grid.flat(&c));
+                self.motion.relocate(self.balls.as_mut_slice(), i, from, to);
             }
         }
     }
