@@ -1,0 +1,151 @@
+//! The certified companions (`collision_core::certified`, `kernels::dN::certified`) on the
+//! same cases as the interpreter's bound: for `f64` and `f32`, every output bit-identical to
+//! the plain kernel's (`collide_unchecked`), every finite bound at least the true error
+//! (exact rationals), and how the companion's bound compares with the interpreter's point
+//! bound (`ProvenBound::component_bounds`) and with the measured error.
+
+use collision_core::certified::{collide_certified, CertifiedKernel};
+use collision_core::{collide_unchecked, validate, Exact, Generated, Kernel};
+use noslip_accuracy::case::{flatten, Case};
+use noslip_accuracy::measure::exact_result;
+use noslip_accuracy::proven::ProvenBound;
+use num_traits::Signed;
+
+/// What the check saw in one format.
+#[derive(Clone, Debug, Default)]
+pub struct CertSeen {
+    /// Cases checked.
+    pub cases: usize,
+    /// Components checked against the exact error (finite bound).
+    pub components: usize,
+    /// Components with an infinite companion bound (and with an infinite interpreter bound).
+    pub infinite: usize,
+    pub infinite_interpreter: usize,
+    /// Per component with both bounds finite and positive: companion / interpreter.
+    pub over_interpreter: Vec<f64>,
+    /// Per component with a nonzero error: companion bound / measured error.
+    pub over_measured: Vec<f64>,
+    /// Largest measured / companion bound (must stay <= 1).
+    pub worst: f64,
+}
+
+impl CertSeen {
+    /// `(median, max)` of a list (NaN if empty).
+    pub fn median_max(v: &[f64]) -> (f64, f64) {
+        if v.is_empty() {
+            return (f64::NAN, f64::NAN);
+        }
+        let mut v = v.to_vec();
+        v.sort_by(f64::total_cmp);
+        (v[v.len() / 2], v[v.len() - 1])
+    }
+
+    pub fn min(v: &[f64]) -> f64 {
+        v.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Check both formats' companions on `case` (`f32`: if the case is one `f32` holds).
+pub fn check<const N: usize, const S: usize>(
+    bound64: &ProvenBound,
+    bound32: &ProvenBound,
+    case: &Case<f64, N, S>,
+    exact_case: &Case<Exact, N, S>,
+    seen: &mut [CertSeen; 2],
+) where
+    Generated: Kernel<f64, N, S>
+        + Kernel<f32, N, S>
+        + Kernel<collision_core::ExactRelaxed, N, S>
+        + CertifiedKernel<f64, N, S>
+        + CertifiedKernel<f32, N, S>,
+{
+    // f64
+    let plain = collide_unchecked(&case.nu, case.ball_refs(), case.state_refs());
+    let (out, bound) = collide_certified(&case.nu, case.ball_refs(), case.state_refs());
+    let values: Vec<f64> = flatten(&out);
+    let plain: Vec<f64> = flatten(&plain);
+    for (k, (a, b)) in values.iter().zip(&plain).enumerate() {
+        assert!(
+            a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+            "n = {N} f64: component {k} {a:e} differs from the plain kernel's {b:e} for {case:?}"
+        );
+    }
+    let exact = exact_result(exact_case);
+    compare(
+        &values,
+        &flatten(&bound),
+        &bound64.component_bounds(case),
+        &flatten(&exact),
+        &mut seen[0],
+        &format!("n = {N} f64 {case:?}"),
+    );
+    // f32: the inputs as rounded, and their exact result.
+    let Ok(c32) = case.to_f32() else { return };
+    if validate(&c32.nu, c32.ball_refs(), c32.state_refs()).is_err() {
+        return;
+    }
+    let plain = collide_unchecked(&c32.nu, c32.ball_refs(), c32.state_refs());
+    let (out, bound) = collide_certified(&c32.nu, c32.ball_refs(), c32.state_refs());
+    let values: Vec<f32> = flatten(&out);
+    let plain: Vec<f32> = flatten(&plain);
+    for (k, (a, b)) in values.iter().zip(&plain).enumerate() {
+        assert!(
+            a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+            "n = {N} f32: component {k} {a:e} differs from the plain kernel's {b:e} for {case:?}"
+        );
+    }
+    let ran_on = c32.map(|&x| f64::from(x));
+    let exact = exact_result(&ran_on.to_exact());
+    let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
+    compare(
+        &widen(values),
+        &widen(flatten(&bound)),
+        &bound32.component_bounds(&ran_on),
+        &flatten(&exact),
+        &mut seen[1],
+        &format!("n = {N} f32 {ran_on:?}"),
+    );
+}
+
+fn compare(
+    values: &[f64],
+    bounds: &[f64],
+    interpreter: &[f64],
+    exact: &[Exact],
+    seen: &mut CertSeen,
+    what: &str,
+) {
+    seen.cases += 1;
+    for k in 0..values.len() {
+        let (e, i) = (bounds[k], interpreter[k]);
+        assert!(e >= 0.0, "{what}: component {k} has a bound {e}");
+        if i.is_infinite() {
+            seen.infinite_interpreter += 1;
+        }
+        if e.is_infinite() {
+            seen.infinite += 1;
+            continue;
+        }
+        assert!(
+            values[k].is_finite(),
+            "{what}: component {k} is {} with a finite bound {e:e}",
+            values[k]
+        );
+        seen.components += 1;
+        let err = (Exact::from_float(values[k]).expect("finite") - &exact[k]).abs();
+        assert!(
+            err <= Exact::from_float(e).expect("finite"),
+            "{what}: component {k} computed {:e}, exact {:e}, error above the companion's bound {e:e}",
+            values[k],
+            exact[k].to_f64()
+        );
+        let measured = err.to_f64();
+        if measured > 0.0 {
+            seen.over_measured.push(e / measured);
+            seen.worst = seen.worst.max(measured / e);
+        }
+        if i.is_finite() && i > 0.0 && e > 0.0 {
+            seen.over_interpreter.push(e / i);
+        }
+    }
+}
