@@ -149,3 +149,40 @@ fn compare(
         }
     }
 }
+
+/// No bound where none holds: a non-finite input (an infinite velocity, a NaN radius read as
+/// a divisor) gives `+inf` for every output that reads it, and so does a vanishing divisor
+/// (two movable point masses: `D = 0`); a finite case gives finite bounds.
+#[test]
+fn non_finite_inputs_and_a_zero_divisor_give_infinite_bounds() {
+    use collision_core::kernels::d3;
+    use collision_core::{Ball, BodyState};
+    let ball = |w: f64, r: f64, g: f64| Ball {
+        inv_mass: w,
+        radius: r,
+        gamma2: g,
+    };
+    let state = BodyState::<f64, 3, 3> {
+        spin: [0.3, -0.2, 0.1],
+        velocity: [0.5, 0.25, -1.0],
+    };
+    let rest = BodyState::<f64, 3, 3> {
+        spin: [0.0; 3],
+        velocity: [0.0; 3],
+    };
+    let nu = [0.0, 0.0, 1.0];
+    let all = |b: &[BodyState<f64, 3, 3>; 2]| flatten(b);
+    let (b1, b2) = (ball(1.0, 1.0, 0.4), ball(0.5, 2.0, 0.3));
+    let (_, bound) = d3::certified::free(&nu, &b1, &b2, &state, &rest);
+    assert!(all(&bound).iter().all(|e| e.is_finite() && *e > 0.0));
+    let mut fast = state.clone();
+    fast.velocity[0] = f64::INFINITY;
+    let (_, bound) = d3::certified::free(&nu, &b1, &b2, &fast, &rest);
+    assert!(all(&bound).iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+    let (_, bound) = d3::certified::fixed(&nu, &1.0, &ball(0.5, f64::NAN, 0.3), &state, &rest);
+    let e: Vec<f64> = bound.spin.iter().chain(&bound.velocity).copied().collect();
+    assert!(e.iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+    let (p1, p2) = (ball(1.0, 1.0, 0.0), ball(0.5, 2.0, 0.0));
+    let (_, bound) = d3::certified::free(&nu, &p1, &p2, &state, &rest);
+    assert!(all(&bound).iter().any(|e| *e == f64::INFINITY), "{bound:?}");
+}
