@@ -112,27 +112,31 @@ where
     failures
 }
 
+/// Write `header` into `dir` and compile the harness against it as C99 with `flags`
+/// (warnings are errors).
+fn build(dir: &Path, header: &str, flags: &[&str], exe: &str) -> PathBuf {
+    std::fs::write(dir.join(file_name(Lang::C)), header).unwrap();
+    let exe = dir.join(exe);
+    run(Command::new(cc())
+        .args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
+        .args(flags)
+        .arg("-I")
+        .arg(dir)
+        .arg(c_source("certified_harness.c"))
+        .arg("-o")
+        .arg(&exe)
+        .arg("-lm"));
+    exe
+}
+
 #[test]
 fn c_certified_companions_are_bit_identical_to_the_rust_ones() {
     let dir = scratch("c-certified");
     let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
-    std::fs::write(dir.join(file_name(Lang::C)), &header).unwrap();
     let exes: Vec<(&str, PathBuf)> = CONFIGS
         .iter()
         .enumerate()
-        .map(|(k, (name, flags))| {
-            let exe = dir.join(format!("certified{k}"));
-            run(Command::new(cc())
-                .args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
-                .args(*flags)
-                .arg("-I")
-                .arg(&dir)
-                .arg(c_source("certified_harness.c"))
-                .arg("-o")
-                .arg(&exe)
-                .arg("-lm"));
-            (*name, exe)
-        })
+        .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("certified{k}"))))
         .collect();
     let mut failures = Vec::new();
     for n in collision_core::DIMS.iter().copied() {
@@ -149,4 +153,36 @@ fn c_certified_companions_are_bit_identical_to_the_rust_ones() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// One bound operation altered (its first sum of two bound terms made a difference) makes the comparison fail: the test
+/// above compares the bounds, not only the outputs.
+#[test]
+fn one_altered_bound_operation_fails_the_comparison() {
+    let dir = scratch("c-certified-mutation");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+    let start = header
+        .find("void noslip_d3_free_certified_f64(")
+        .expect("the companion is in the header");
+    let body = &header[start..];
+    let line = body
+        .lines()
+        .find(|l| l.trim_start().starts_with("const double cert") && l.contains(" + cert"))
+        .expect("a sum of two bound terms");
+    let at = start + body.find(line).unwrap();
+    let mut mutated = header.clone();
+    mutated.replace_range(at..at + line.len(), &line.replacen(" + cert", " - cert", 1));
+    let cases = draw::<3, 3>(1000, 3).f64;
+    let exes = [
+        ("good", build(&dir, &header, CONFIGS[0].1, "good")),
+        ("bad", build(&dir, &mutated, CONFIGS[0].1, "bad")),
+    ];
+    let good = check_format(&dir, &exes[..1], &cases);
+    assert!(good.is_empty(), "{good:?}");
+    let bad = check_format(&dir, &exes[1..], &cases);
+    assert!(
+        bad.iter().any(|f| f.contains("free_certified")),
+        "altering `{}` went unnoticed",
+        line.trim()
+    );
 }
