@@ -1,6 +1,7 @@
-//! Criterion benchmark of the certified companions against the plain kernels (`free`, `f64`,
-//! n = 2..6), one collision at a time over the in-cache batch the `kernels` bench uses, in
-//! alternated rounds: each round benchmarks `plain` then `certified` for every n, so a change
+//! Criterion benchmark of the certified companions against the plain kernels (`free` and
+//! `fixed`, `f64`, n = 2..6), one collision at a time over the in-cache batch the `kernels`
+//! bench uses (`fixed` on the same cases, body 1 taken as immovable), in alternated rounds:
+//! each round benchmarks `plain`, `certified`, `plain_fixed`, `certified_fixed` for every n, so a change
 //! of the shared machine's load hits both alike. Per round and variant the figure is
 //! criterion's samples' median time per collision (recorded through `iter_custom`); the
 //! summary printed at the end gives per n the median (min-max) over the rounds of each
@@ -38,6 +39,23 @@ type Plain<const N: usize, const S: usize> = fn(
     &BodyState<f64, N, S>,
     &BodyState<f64, N, S>,
 ) -> [BodyState<f64, N, S>; 2];
+
+type PlainFixed<const N: usize, const S: usize> = fn(
+    &[f64; N],
+    &f64,
+    &Ball<f64>,
+    &BodyState<f64, N, S>,
+    &BodyState<f64, N, S>,
+) -> BodyState<f64, N, S>;
+
+type CertifiedFixed<const N: usize, const S: usize> =
+    fn(
+        &[f64; N],
+        &f64,
+        &Ball<f64>,
+        &BodyState<f64, N, S>,
+        &BodyState<f64, N, S>,
+    ) -> (BodyState<f64, N, S>, BodyState<f64, N, S>);
 
 type Certified<const N: usize, const S: usize> =
     fn(
@@ -112,12 +130,34 @@ fn timed<const N: usize, const S: usize, R>(
 fn round_dim<const N: usize, const S: usize>(
     c: &mut Criterion,
     round: usize,
-    plain: Plain<N, S>,
-    certified: Certified<N, S>,
+    (plain, certified): (Plain<N, S>, Certified<N, S>),
+    (plain_fixed, certified_fixed): (PlainFixed<N, S>, CertifiedFixed<N, S>),
 ) {
     let cases = batch::<N, S>(SEED ^ N as u64, BATCH);
     if round == 0 {
         check(&cases, plain, certified);
+        for (k, case) in cases.iter().enumerate() {
+            let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+            let p = plain_fixed(&case.nu, &b1.radius, b2, s1, s2);
+            let (out, bound) = certified_fixed(&case.nu, &b1.radius, b2, s1, s2);
+            let bits = |s: &BodyState<f64, N, S>| -> Vec<u64> {
+                s.spin
+                    .iter()
+                    .chain(&s.velocity)
+                    .map(|x| x.to_bits())
+                    .collect()
+            };
+            assert_eq!(
+                bits(&out),
+                bits(&p),
+                "n = {N}, case {k}: fixed outputs differ"
+            );
+            assert!(bound
+                .velocity
+                .iter()
+                .chain(&bound.spin)
+                .all(|e| e.is_finite()));
+        }
     }
     timed(c, round, "plain", &cases, |case| {
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
@@ -127,6 +167,14 @@ fn round_dim<const N: usize, const S: usize>(
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
         certified(&case.nu, b1, b2, s1, s2)
     });
+    timed(c, round, "plain_fixed", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        plain_fixed(&case.nu, &b1.radius, b2, s1, s2)
+    });
+    timed(c, round, "certified_fixed", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        certified_fixed(&case.nu, &b1.radius, b2, s1, s2)
+    });
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -135,8 +183,15 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn summary(rounds: usize) {
+    for (plain, certified) in [("plain", "certified"), ("plain_fixed", "certified_fixed")] {
+        summary_of(rounds, plain, certified);
+    }
+}
+
+fn summary_of(rounds: usize, plain: &str, certified: &str) {
     let samples = SAMPLES.lock().unwrap();
-    println!("\nn  plain ns (median, min-max over rounds)  certified ns  certified/plain");
+    println!("\n{certified} against {plain}");
+    println!("n  plain ns (median, min-max over rounds)  certified ns  certified/plain");
     for n in 2..=6 {
         let per_round = |name: &str| -> Vec<f64> {
             (0..rounds)
@@ -151,7 +206,7 @@ fn summary(rounds: usize) {
                 })
                 .collect()
         };
-        let (p, c) = (per_round("plain"), per_round("certified"));
+        let (p, c) = (per_round(plain), per_round(certified));
         let ratio: Vec<f64> = p.iter().zip(&c).map(|(p, c)| c / p).collect();
         let mm = |v: &[f64]| {
             let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
@@ -174,36 +229,21 @@ fn main() {
         .unwrap_or(3);
     let mut c = Criterion::default().configure_from_args();
     for round in 0..rounds {
-        round_dim::<2, 1>(
-            &mut c,
-            round,
-            kernels::d2::free::<f64>,
-            kernels::d2::certified::free,
-        );
-        round_dim::<3, 3>(
-            &mut c,
-            round,
-            kernels::d3::free::<f64>,
-            kernels::d3::certified::free,
-        );
-        round_dim::<4, 6>(
-            &mut c,
-            round,
-            kernels::d4::free::<f64>,
-            kernels::d4::certified::free,
-        );
-        round_dim::<5, 10>(
-            &mut c,
-            round,
-            kernels::d5::free::<f64>,
-            kernels::d5::certified::free,
-        );
-        round_dim::<6, 15>(
-            &mut c,
-            round,
-            kernels::d6::free::<f64>,
-            kernels::d6::certified::free,
-        );
+        macro_rules! dim {
+            ($m:ident $n:literal $s:literal) => {
+                round_dim::<$n, $s>(
+                    &mut c,
+                    round,
+                    (kernels::$m::free::<f64>, kernels::$m::certified::free),
+                    (kernels::$m::fixed::<f64>, kernels::$m::certified::fixed),
+                )
+            };
+        }
+        dim!(d2 2 1);
+        dim!(d3 3 3);
+        dim!(d4 4 6);
+        dim!(d5 5 10);
+        dim!(d6 6 15);
     }
     c.final_summary();
     summary(rounds);
