@@ -4,8 +4,9 @@
 //! (exact rationals), and how the companion's bound compares with the interpreter's point
 //! bound (`ProvenBound::component_bounds`) and with the measured error.
 
-use collision_core::certified::{collide_certified, CertifiedKernel};
+use collision_core::certified::{collide_certified, energy_error_bound, CertifiedKernel};
 use collision_core::{collide_unchecked, validate, Exact, Generated, Kernel};
+use collision_core::{Ball, BodyState};
 use noslip_accuracy::case::{flatten, Case};
 use noslip_accuracy::measure::exact_result;
 use noslip_accuracy::proven::ProvenBound;
@@ -79,6 +80,7 @@ pub fn check<const N: usize, const S: usize>(
         &mut seen[0],
         &format!("n = {N} f64 {case:?}"),
     );
+    energy(&case.balls, &values, &bound, &flatten(&exact), "f64");
     // f32: the inputs as rounded, and their exact result.
     let Ok(c32) = case.to_f32() else { return };
     if validate(&c32.nu, c32.ball_refs(), c32.state_refs()).is_err() {
@@ -97,6 +99,17 @@ pub fn check<const N: usize, const S: usize>(
     let ran_on = c32.map(|&x| f64::from(x));
     let exact = exact_result(&ran_on.to_exact());
     let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
+    let bound64: [BodyState<f64, N, S>; 2] = bound.clone().map(|b| BodyState {
+        spin: b.spin.map(f64::from),
+        velocity: b.velocity.map(f64::from),
+    });
+    energy(
+        &ran_on.balls,
+        &widen(values.clone()),
+        &bound64,
+        &flatten(&exact),
+        "f32",
+    );
     compare(
         &widen(values),
         &widen(flatten(&bound)),
@@ -105,6 +118,42 @@ pub fn check<const N: usize, const S: usize>(
         &mut seen[1],
         &format!("n = {N} f32 {ran_on:?}"),
     );
+}
+
+/// Per body, `energy_error_bound` at least the body's error in its energy norm,
+/// `|x^ - x|_E^2 = 2 lambda sum dU^2 + sum du^2` (`2 lambda = gamma2 R^2`), compared squared in
+/// exact rationals.
+fn energy<const N: usize, const S: usize>(
+    balls: &[Ball<f64>; 2],
+    values: &[f64],
+    bound: &[BodyState<f64, N, S>; 2],
+    exact: &[Exact],
+    what: &str,
+) {
+    for b in 0..2 {
+        let e = energy_error_bound(&balls[b], &bound[b]);
+        if !e.is_finite() {
+            continue;
+        }
+        let x = |v: f64| Exact::from_float(v).expect("finite");
+        let two_lambda = x(balls[b].gamma2) * x(balls[b].radius) * x(balls[b].radius);
+        let mut sq = x(0.0);
+        for k in 0..S + N {
+            let i = b * (S + N) + k;
+            let d = x(values[i]) - &exact[i];
+            let d2 = &d * &d;
+            sq = if k < S {
+                sq + &two_lambda * &d2
+            } else {
+                sq + d2
+            };
+        }
+        assert!(
+            sq <= x(e) * x(e),
+            "n = {N} {what}: body {} energy-norm error above energy_error_bound {e:e}",
+            b + 1
+        );
+    }
 }
 
 fn compare(
