@@ -1,6 +1,6 @@
 //! Generates the kernels of the enabled dimensions (features `d2`..`d6`) into OUT_DIR (see
 //! noslip-codegen): the scalar `kernels_{n}.rs`, the rough-ball `rough_{n}.rs`, the Walton
-//! `walton_{n}.rs`, the batch
+//! `walton_{n}.rs`, the certified companions `certified_{n}.rs`, the batch
 //! `batch_{n}.rs`, and `dims.rs`, the one table of dimensions every crate dispatches on
 //! (`for_each_dim!`, `with_dim!`).
 use std::path::PathBuf;
@@ -21,6 +21,10 @@ fn main() {
         let path = out_dir.join(noslip_codegen::walton_file_name(dim));
         noslip_codegen::write_if_changed(&path, &walton.source)
             .expect("write generated Walton kernels to OUT_DIR");
+        let certified = noslip_codegen::certify::rust::generate(dim, "crate");
+        let path = out_dir.join(noslip_codegen::certify::rust::file_name(dim));
+        noslip_codegen::write_if_changed(&path, &certified)
+            .expect("write generated certified companions to OUT_DIR");
         let module = noslip_codegen::batch::generate(dim, "crate");
         let path = out_dir.join(noslip_codegen::batch::file_name(dim));
         noslip_codegen::write_if_changed(&path, &module.source)

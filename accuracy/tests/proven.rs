@@ -16,7 +16,16 @@
 //! ```sh
 //! cargo test --release -p noslip-accuracy --test proven -- --ignored --nocapture
 //! ```
+//!
+//! Every case is also run through the certified companions (`f64`, `f32`;
+//! [`certified`]): outputs bit-identical to the plain kernel's, every bound at least the
+//! true error; the long run prints how their bounds compare with the interpreter's.
 
+#[path = "proven/certified.rs"]
+mod certified;
+
+use certified::CertSeen;
+use collision_core::certified::CertifiedKernel;
 use collision_core::rng::Rng;
 use collision_core::{validate, Exact, Generated, Kernel};
 use noslip_accuracy::case::{flatten, Case};
@@ -177,19 +186,26 @@ fn check_one<const N: usize, const S: usize>(
 const METHODS: [Method; 3] = [Method::F64, Method::F64Fma, Method::F32];
 
 /// `per_source` cases from every regime and from the adversarial mix, each checked with
-/// every method.
-fn run<const N: usize, const S: usize>(per_source: usize, seed: u64) -> [Seen; 3]
+/// every method, and with the certified companions (per source, `f64` and `f32`).
+fn run<const N: usize, const S: usize>(
+    per_source: usize,
+    seed: u64,
+) -> ([Seen; 3], Vec<[CertSeen; 2]>)
 where
     Generated: Kernel<f64, N, S>
         + Kernel<f32, N, S>
         + Kernel<collision_core::ExactRelaxed, N, S>
-        + collision_core::batch::BatchKernel<f64, N, S>,
+        + collision_core::batch::BatchKernel<f64, N, S>
+        + CertifiedKernel<f64, N, S>
+        + CertifiedKernel<f32, N, S>,
 {
     let bounds = METHODS.map(|m| ProvenBound::of(N, m).expect("a generated float method"));
     let mut seen: [Seen; 3] = Default::default();
+    let mut cert: Vec<[CertSeen; 2]> = Vec::new();
     let mut rng = Rng::new(seed ^ ((N as u64) << 40));
     let sources = Regime::ALL.len() + 1;
     for source in 0..sources {
+        cert.push(Default::default());
         for _ in 0..per_source {
             let case = match Regime::ALL.get(source) {
                 Some(r) => r.sample::<N, S>(&mut rng),
@@ -202,9 +218,16 @@ where
             for (i, m) in METHODS.iter().enumerate() {
                 check_one(*m, &bounds[i], &case, &exact_case, &mut seen[i]);
             }
+            certified::check(
+                &bounds[0],
+                &bounds[2],
+                &case,
+                &exact_case,
+                &mut cert[source],
+            );
         }
     }
-    seen
+    (seen, cert)
 }
 
 fn quick<const N: usize, const S: usize>()
@@ -212,13 +235,25 @@ where
     Generated: Kernel<f64, N, S>
         + Kernel<f32, N, S>
         + Kernel<collision_core::ExactRelaxed, N, S>
-        + collision_core::batch::BatchKernel<f64, N, S>,
+        + collision_core::batch::BatchKernel<f64, N, S>
+        + CertifiedKernel<f64, N, S>
+        + CertifiedKernel<f32, N, S>,
 {
-    let seen = run::<N, S>(6, 0xB0D);
+    let (seen, cert) = run::<N, S>(6, 0xB0D);
     for (m, s) in METHODS.iter().zip(&seen) {
         assert!(s.cases > 0, "n = {N} {}: no case checked", m.name());
         assert!(s.worst_ratio <= 1.0 + 2f64.powi(-40));
     }
+    // Every source gave f64 cases whose components were checked against the exact error;
+    // f32 in total (the extreme scales are beyond f32).
+    for (source, c) in cert.iter().enumerate() {
+        assert!(
+            c[0].components > 0,
+            "n = {N} source {source}: no f64 component checked"
+        );
+        assert!(c[0].worst <= 1.0 && c[1].worst <= 1.0);
+    }
+    assert!(cert.iter().map(|c| c[1].components).sum::<usize>() > 0);
 }
 
 macro_rules! per_dim {
@@ -250,7 +285,8 @@ fn a_million_cases_per_dimension_and_precision() {
     let per_source = total.div_ceil(Regime::ALL.len() + 1);
     for n in dims {
         let start = std::time::Instant::now();
-        let seen = collision_core::with_dim!(n, |N, S| run::<N, S>(per_source, 0x1E6), panic!());
+        let (seen, cert) =
+            collision_core::with_dim!(n, |N, S| run::<N, S>(per_source, 0x1E6), panic!());
         for (m, s) in METHODS.iter().zip(&seen) {
             println!(
                 "n = {n} {:<18} cases {:>8} skipped {:>6} measured max {:>8.3} eps, proven max {:>10.3} eps, worst measured/proven {:.4} ({:.0} s)",
@@ -261,6 +297,34 @@ fn a_million_cases_per_dimension_and_precision() {
                 s.bound_max,
                 s.worst_ratio,
                 start.elapsed().as_secs_f64()
+            );
+        }
+        print_certified(n, &cert);
+    }
+}
+
+/// Per source and format: the companion's bound over the interpreter's and over the
+/// measured error (medians and extremes), and the infinite bounds of each.
+fn print_certified(n: usize, cert: &[[CertSeen; 2]]) {
+    let names: Vec<String> = Regime::ALL
+        .iter()
+        .map(|r| r.name().to_string())
+        .chain(std::iter::once("adversarial".to_string()))
+        .collect();
+    for (source, c) in cert.iter().enumerate() {
+        for (f, s) in ["f64", "f32"].iter().zip(c) {
+            let (im, ix) = CertSeen::median_max(&s.over_interpreter);
+            let (mm, mx) = CertSeen::median_max(&s.over_measured);
+            println!(
+                "n = {n} certified {f} {:<14} cases {:>7} components {:>8} inf {:>6} (interpreter inf {:>6}); bound/interpreter median {im:.3} min {:.3} max {ix:.3}; bound/measured median {mm:.1} min {:.2} max {mx:.3e}; worst measured/bound {:.4}",
+                names[source],
+                s.cases,
+                s.components,
+                s.infinite,
+                s.infinite_interpreter,
+                CertSeen::min(&s.over_interpreter),
+                CertSeen::min(&s.over_measured),
+                s.worst
             );
         }
     }

@@ -27,6 +27,7 @@ pub mod backend;
 pub mod batch;
 mod bindings;
 pub mod bound;
+pub mod certify;
 pub mod emit;
 pub mod fuse;
 pub mod ir;

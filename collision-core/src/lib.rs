@@ -47,6 +47,7 @@ mod dims;
 pub mod allowance;
 mod ball;
 pub mod batch;
+pub mod certified;
 mod checked;
 mod collide;
 mod error;

@@ -21,7 +21,7 @@ pub use rough::RoughKernel;
 pub use walton::WaltonKernel;
 
 macro_rules! generated {
-    ($($module:ident $feature:literal $n:literal $s:literal $file:literal $rough:literal $walton:literal;)*) => {$(
+    ($($module:ident $feature:literal $n:literal $s:literal $file:literal $rough:literal $walton:literal $certified:literal;)*) => {$(
         #[doc = concat!("Generated kernels for n = ", stringify!($n), ".")]
         #[cfg(feature = $feature)]
         pub mod $module {
@@ -38,6 +38,14 @@ macro_rules! generated {
             pub mod walton {
                 include!(concat!(env!("OUT_DIR"), "/", $walton));
             }
+
+            /// The certified companions of [`free`] and [`fixed`] (`f64`; `free_f32`,
+            /// `fixed_f32`): the same outputs, bit for bit, and a rigorous bound on each
+            /// output's absolute error for these inputs (`noslip_codegen::certify`,
+            /// `docs/accuracy.md` "Certified companions").
+            pub mod certified {
+                include!(concat!(env!("OUT_DIR"), "/", $certified));
+            }
         }
 
         #[cfg(feature = $feature)]
@@ -45,6 +53,56 @@ macro_rules! generated {
 
         #[cfg(feature = $feature)]
         walton::walton_kernel_impl!($module $n $s);
+
+        #[cfg(feature = $feature)]
+        impl crate::certified::CertifiedKernel<f64, $n, $s> for Generated {
+            #[inline(always)]
+            fn free(
+                nu: &[f64; $n],
+                ball1: &Ball<f64>,
+                ball2: &Ball<f64>,
+                state1: &BodyState<f64, $n, $s>,
+                state2: &BodyState<f64, $n, $s>,
+            ) -> ([BodyState<f64, $n, $s>; 2], [BodyState<f64, $n, $s>; 2]) {
+                $module::certified::free(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed(
+                nu: &[f64; $n],
+                radius1: &f64,
+                ball2: &Ball<f64>,
+                state1: &BodyState<f64, $n, $s>,
+                state2: &BodyState<f64, $n, $s>,
+            ) -> (BodyState<f64, $n, $s>, BodyState<f64, $n, $s>) {
+                $module::certified::fixed(nu, radius1, ball2, state1, state2)
+            }
+        }
+
+        #[cfg(feature = $feature)]
+        impl crate::certified::CertifiedKernel<f32, $n, $s> for Generated {
+            #[inline(always)]
+            fn free(
+                nu: &[f32; $n],
+                ball1: &Ball<f32>,
+                ball2: &Ball<f32>,
+                state1: &BodyState<f32, $n, $s>,
+                state2: &BodyState<f32, $n, $s>,
+            ) -> ([BodyState<f32, $n, $s>; 2], [BodyState<f32, $n, $s>; 2]) {
+                $module::certified::free_f32(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed(
+                nu: &[f32; $n],
+                radius1: &f32,
+                ball2: &Ball<f32>,
+                state1: &BodyState<f32, $n, $s>,
+                state2: &BodyState<f32, $n, $s>,
+            ) -> (BodyState<f32, $n, $s>, BodyState<f32, $n, $s>) {
+                $module::certified::fixed_f32(nu, radius1, ball2, state1, state2)
+            }
+        }
 
         #[cfg(feature = $feature)]
         impl<T: Scalar> Kernel<T, $n, $s> for Generated
@@ -142,9 +200,9 @@ pub trait Kernel<T, const N: usize, const S: usize> {
 pub struct Generated;
 
 generated! {
-    d2 "d2" 2 1 "kernels_2.rs" "rough_2.rs" "walton_2.rs";
-    d3 "d3" 3 3 "kernels_3.rs" "rough_3.rs" "walton_3.rs";
-    d4 "d4" 4 6 "kernels_4.rs" "rough_4.rs" "walton_4.rs";
-    d5 "d5" 5 10 "kernels_5.rs" "rough_5.rs" "walton_5.rs";
-    d6 "d6" 6 15 "kernels_6.rs" "rough_6.rs" "walton_6.rs";
+    d2 "d2" 2 1 "kernels_2.rs" "rough_2.rs" "walton_2.rs" "certified_2.rs";
+    d3 "d3" 3 3 "kernels_3.rs" "rough_3.rs" "walton_3.rs" "certified_3.rs";
+    d4 "d4" 4 6 "kernels_4.rs" "rough_4.rs" "walton_4.rs" "certified_4.rs";
+    d5 "d5" 5 10 "kernels_5.rs" "rough_5.rs" "walton_5.rs" "certified_5.rs";
+    d6 "d6" 6 15 "kernels_6.rs" "rough_6.rs" "walton_6.rs" "certified_6.rs";
 }

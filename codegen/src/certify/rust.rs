@@ -1,0 +1,186 @@
+//! The certified companions spelled in Rust: `kernels::dN::certified::{free, fixed}` (`f64`)
+//! and `{free_f32, fixed_f32}`, monomorphic, returning the plain kernel's outputs and a bound
+//! per output component in the same layout.
+
+use super::{Arg, Certified, Expr, Format};
+use crate::model::{names, skew_pairs, Variant};
+use crate::program::{Op, Operand, Program};
+use std::fmt::Write;
+
+/// A literal of `format`: the float's shortest round-trip decimal, suffixed.
+fn literal(format: Format, x: f64) -> String {
+    match format {
+        Format::F64 => format!("{x:e}f64"),
+        Format::F32 => format!("{:e}f32", x as f32),
+    }
+}
+
+fn ty(format: Format) -> &'static str {
+    match format {
+        Format::F64 => "f64",
+        Format::F32 => "f32",
+    }
+}
+
+fn arg(format: Format, a: &Arg) -> String {
+    match a {
+        Arg::Name(n) => n.clone(),
+        Arg::Lit(x) => literal(format, *x),
+    }
+}
+
+/// A plain kernel step, as the generic kernel spells it (one IEEE operation).
+fn step(program: &Program, op: &Op) -> String {
+    let o = |x: &Operand| program.name(x).to_string();
+    match op {
+        Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
+        Op::Sub(a, b) => format!("{} - {}", o(a), o(b)),
+        Op::Mul(a, b) => format!("{} * {}", o(a), o(b)),
+        Op::Div(a, b) => format!("{} / {}", o(a), o(b)),
+        Op::Neg(a) => format!("-{}", o(a)),
+        _ => unreachable!("Certified::derive refuses it"),
+    }
+}
+
+/// How each kernel input is read from the Rust parameters.
+pub(crate) fn rust_inputs(n: usize, variant: Variant) -> Vec<(String, String)> {
+    let mut v: Vec<(String, String)> = (0..n).map(|k| (names::nu(k), format!("nu[{k}]"))).collect();
+    for body in 1..=2 {
+        if variant == Variant::Fixed && body == 1 {
+            v.push((names::radius(1), "*radius1".into()));
+        } else {
+            v.push((names::inv_mass(body), format!("ball{body}.inv_mass")));
+            v.push((names::radius(body), format!("ball{body}.radius")));
+            v.push((names::gamma2(body), format!("ball{body}.gamma2")));
+        }
+        for (k, (i, j)) in skew_pairs(n).into_iter().enumerate() {
+            v.push((names::spin(body, i, j), format!("state{body}.spin[{k}]")));
+        }
+        for k in 0..n {
+            v.push((
+                names::velocity(body, k),
+                format!("state{body}.velocity[{k}]"),
+            ));
+        }
+    }
+    v
+}
+
+/// The function `name` of `c`.
+pub fn function(c: &Certified, name: &str) -> String {
+    let (p, f) = (&c.program, c.format);
+    let (n, t) = (p.dim, ty(f));
+    let s = n * (n - 1) / 2;
+    let state = format!("BodyState<{t}, {n}, {s}>");
+    let mut out = String::new();
+    let variant = p.variant;
+    let _ = writeln!(
+        out,
+        "/// [`super::{}`] in `{t}` (the same operations, bit for bit) with a rigorous bound on the\n\
+         /// absolute error of every output for these inputs, computed in the same branch-free pass\n\
+         /// (running error analysis, `noslip_codegen::certify`): returns `(outputs, bounds)`, each\n\
+         /// bound in its output's slot, `|computed - exact| <= bound` for the exact map on the given\n\
+         /// floats; `+inf` where no bound holds (a divisor not provably nonzero, overflow, a\n\
+         /// non-finite input).\n\
+         ///\n\
+         /// Ops: {} of the kernel, {} of the bound.",
+        variant.name(),
+        p.ops,
+        c.bound_ops
+    );
+    let (params, ret) = match variant {
+        Variant::Free => (
+            format!("nu: &[{t}; {n}], ball1: &Ball<{t}>, ball2: &Ball<{t}>, state1: &{state}, state2: &{state}"),
+            format!("([{state}; 2], [{state}; 2])"),
+        ),
+        Variant::Fixed => (
+            format!("nu: &[{t}; {n}], radius1: &{t}, ball2: &Ball<{t}>, state1: &{state}, state2: &{state}"),
+            format!("({state}, {state})"),
+        ),
+    };
+    let _ = writeln!(
+        out,
+        "#[inline]\n#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::neg_multiply)]\n\
+         pub fn {name}({params}) -> {ret} {{"
+    );
+    for (input, access) in rust_inputs(n, variant) {
+        if p.inputs.contains(&input) {
+            let _ = writeln!(out, "let {input}: {t} = {access};");
+        }
+    }
+    for st in &c.stmts {
+        let e = match &st.expr {
+            Expr::Const(k) => literal(f, f_round(f, &p.constants[*k].value)),
+            Expr::Step(k) => step(p, &p.steps[*k].op),
+            Expr::Abs(a) => format!("{t}::abs({})", arg(f, a)),
+            Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
+            Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
+            Expr::Mul(a, b) => format!("{} * {}", arg(f, a), arg(f, b)),
+            Expr::Div(a, b) => format!("{} / {}", arg(f, a), arg(f, b)),
+            Expr::PositiveOr(x, y) => format!("{t}::positive_or_inf({}, {})", arg(f, x), arg(f, y)),
+            Expr::BoundOrInf(x) => format!("{t}::bound_or_inf({})", arg(f, x)),
+        };
+        let _ = writeln!(out, "let {}: {t} = {e};", st.name);
+    }
+    let body = |o: &super::CertifiedOutput, values: bool| {
+        let items: Vec<String> = if values {
+            o.values.iter().map(|x| p.name(x).to_string()).collect()
+        } else {
+            o.bounds.iter().map(|b| arg(f, b)).collect()
+        };
+        format!(
+            "BodyState {{ spin: [{}], velocity: [{}] }}",
+            items[..s].join(", "),
+            items[s..].join(", ")
+        )
+    };
+    let all = |values: bool| -> Vec<String> { c.outputs.iter().map(|o| body(o, values)).collect() };
+    let _ = match variant {
+        Variant::Free => writeln!(
+            out,
+            "([{}], [{}])",
+            all(true).join(", "),
+            all(false).join(", ")
+        ),
+        Variant::Fixed => writeln!(out, "({}, {})", all(true).join(", "), all(false).join(", ")),
+    };
+    out.push_str("}\n");
+    out
+}
+
+fn f_round(f: Format, v: &num_rational::BigRational) -> f64 {
+    f.round(v)
+}
+
+/// The file name of dimension `dim`'s companions: `certified_{dim}.rs`.
+pub fn file_name(dim: usize) -> String {
+    format!("certified_{dim}.rs")
+}
+
+/// The companions of dimension `dim` (`free`, `fixed` in `f64`; `free_f32`, `fixed_f32`)
+/// as one formatted file; `crate_path` as for [`crate::generate`].
+pub fn generate(dim: usize, crate_path: &str) -> String {
+    let mut src =
+        format!("use {crate_path}::{{Ball, BodyState}};\nuse {crate_path}::certified::Certify;\n");
+    let mut header = format!(
+        "// @generated by noslip-codegen (codegen/src/certify): certified companions for n = {dim}.\n\
+         // Do not edit: it is rewritten by collision-core's build.rs.\n"
+    );
+    for format in [Format::F64, Format::F32] {
+        for variant in Variant::ALL {
+            let c = Certified::of(dim, variant, format);
+            let name = match format {
+                Format::F64 => variant.name().to_string(),
+                Format::F32 => format!("{}_f32", variant.name()),
+            };
+            let _ = writeln!(
+                header,
+                "// {name}: kernel {}; bound {} ops.",
+                c.program.ops, c.bound_ops
+            );
+            src.push_str(&function(&c, &name));
+        }
+    }
+    let file = crate::emit::parse(src.parse().expect("certified source tokenizes"));
+    format!("{header}\n{}", prettyplease::unparse(&file))
+}

@@ -1,0 +1,83 @@
+use super::*;
+
+#[test]
+fn every_plain_no_slip_kernel_has_a_companion_with_every_step_in_order() {
+    for n in crate::DIMS {
+        for v in Variant::ALL {
+            for f in [Format::F64, Format::F32] {
+                let c = Certified::of(n, v, f);
+                let steps: Vec<usize> = c
+                    .stmts
+                    .iter()
+                    .filter_map(|s| match s.expr {
+                        Expr::Step(k) => Some(k),
+                        _ => None,
+                    })
+                    .collect();
+                assert_eq!(steps, (0..c.program.steps.len()).collect::<Vec<_>>());
+                let outputs: usize = c.outputs.iter().map(|o| o.bounds.len()).sum();
+                assert_eq!(outputs, c.outputs.len() * (n * (n - 1) / 2 + n));
+                // Every statement reads only inputs and earlier bindings.
+                let mut bound: std::collections::HashSet<String> =
+                    c.program.inputs.iter().cloned().collect();
+                for s in &c.stmts {
+                    let args: Vec<&Arg> = match &s.expr {
+                        Expr::Abs(a) | Expr::BoundOrInf(a) => vec![a],
+                        Expr::Add(a, b)
+                        | Expr::Sub(a, b)
+                        | Expr::Mul(a, b)
+                        | Expr::Div(a, b)
+                        | Expr::PositiveOr(a, b) => vec![a, b],
+                        Expr::Const(_) | Expr::Step(_) => vec![],
+                    };
+                    for a in args {
+                        if let Arg::Name(x) = a {
+                            assert!(bound.contains(x), "n = {n} {v:?}: {} reads {x}", s.name);
+                        }
+                    }
+                    bound.insert(s.name.clone());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_inflation_factor_covers_the_lost_roundings() {
+    // (1 - 2u)^d F(d) (1 - u) >= 1 for every depth the generator can reach (d <= DEPTH_LIMIT
+    // + the deepest rule, 2 DEPTH_LIMIT + 4), through Bernoulli's (1 - 2u)^d >= 1 - 2du, in
+    // exact rationals.
+    use num_rational::BigRational;
+    use num_traits::One;
+    for f in [Format::F64, Format::F32] {
+        let u = BigRational::from_float(f.unit_roundoff()).unwrap();
+        let one = BigRational::one();
+        let two = &one + &one;
+        for d in [0u32, 1, 2, 7, 100, DEPTH_LIMIT, 2 * DEPTH_LIMIT + 4] {
+            let factor = BigRational::from_float(f.inflation(d)).unwrap();
+            let bernoulli = &one - &two * &u * BigRational::from_integer(d.into());
+            assert!(bernoulli > BigRational::from_integer(0.into()));
+            let p = &factor * (&one - &u) * bernoulli;
+            assert!(p >= one, "{f:?} d = {d}");
+        }
+    }
+}
+
+#[test]
+fn the_floor_makes_every_product_of_the_bound_normal() {
+    for (f, e_min) in [(Format::F64, -1022), (Format::F32, -126)] {
+        let (u, s) = (f.unit_roundoff(), f.floor());
+        // m e >= s * u s is normal; u s is above the subnormal half-spacing 2^(e_min - p).
+        assert!(s * s * u >= 2f64.powi(e_min));
+        let p = -f.roundoff_exponent() - 1; // precision - 1
+        assert!(u * s >= 2f64.powi(e_min - p - 1));
+    }
+}
+
+#[test]
+fn fused_steps_are_refused_with_their_name() {
+    let kernel = crate::model::build(3, Variant::Free);
+    let program = Program::lower(&kernel, crate::Arith::Fma);
+    let err = Certified::derive(&program, Format::F64).unwrap_err();
+    assert!(err.to_string().contains("fused step"), "{err}");
+}
