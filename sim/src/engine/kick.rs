@@ -34,8 +34,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let mut added = 0.0;
         for (i, d) in dv.iter().enumerate() {
             self.move_record(i, t);
-            let m = 1.0 / self.species[self.kind[i]].inv_mass;
-            let u = &mut self.state[i].velocity;
+            let ball = &mut self.balls[i];
+            let m = 1.0 / self.species[ball.kind as usize].inv_mass;
+            let u = &mut ball.state.velocity;
             let mut twice = 0.0;
             for k in 0..N {
                 let before = u[k];
@@ -43,9 +44,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 twice += (u[k] - before) * (u[k] + before);
             }
             added += 0.5 * m * twice;
-            self.motion.get_mut(i).velocity = self.state[i].velocity;
-            self.count[i] += 1;
-            self.last[i] = 0;
+            ball.count += 1;
+            ball.last = 0;
+            let (home, velocity) = (ball.home, ball.state.velocity);
+            self.motion.get_mut(home).velocity = velocity;
         }
         self.rebase(t, false);
         added
