@@ -304,10 +304,14 @@ fn docs(
         String::new(),
     ]);
     // The scalar kernel's description, less its straight-line note (this one loops).
+    // Its links are relative to the scalar kernel's module (`super::free` from
+    // `dN::rough`); here they name the scalar kernels by their full path.
+    let dim_module = format!("[`crate::kernels::d{}::", kernel.dim);
     lines.extend(
         emit::description(kernel)
             .into_iter()
-            .filter(|l| !l.starts_with("Straight-line")),
+            .filter(|l| !l.starts_with("Straight-line"))
+            .map(|l| l.replace("[`super::", &dim_module)),
     );
     lines.push(String::new());
     lines.push(format!("Ops per contact: {per_contact}."));

@@ -273,10 +273,10 @@ where
 /// ```
 ///
 /// `w_i` = `inv_mass` (0: immovable), `g_i` = `gamma2` = 2 lambda_i / R_i^2;
-/// `e` in `[0, 1]`, `beta` in `[-1, 1]`: `(1, 1)` is the no-slip map [`super::free`]
+/// `e` in `[0, 1]`, `beta` in `[-1, 1]`: `(1, 1)` is the no-slip map [`crate::kernels::d2::free`]
 /// (the same values, bit for bit, also in floats), `(1, -1)` the smooth one. Energy change
 /// `-(1 - e^2) dn^2 / (2 (w_1 + w_2)) - (1 - beta^2) g_1 g_2 |t|^2 / (2 D)`.
-/// Requires `D > 0` and `w_1 + w_2 > 0`, as [`super::free`].
+/// Requires `D > 0` and `w_1 + w_2 > 0`, as [`crate::kernels::d2::free`].
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
@@ -412,7 +412,7 @@ where
 /// dn+  = -e dn,                t+ = -beta t              (the law)
 /// ```
 ///
-/// Finite for every `gamma2` in `[0, 2/n]`; `(e, beta) = (1, 1)` is [`super::fixed`].
+/// Finite for every `gamma2` in `[0, 2/n]`; `(e, beta) = (1, 1)` is [`crate::kernels::d2::fixed`].
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
@@ -541,8 +541,8 @@ where
 /// dn+  = -e dn;  sticking: t+ = -beta0 t;  sliding: |J_t| = mu |J_n|
 /// ```
 ///
-/// While sticking (`C >= L`, including `t = 0`) the outputs are [`super::rough::free`]'s at
-/// `beta = beta0`, bit for bit. Requires `D > 0` and `w_1 + w_2 > 0`, as [`super::free`], and
+/// While sticking (`C >= L`, including `t = 0`) the outputs are [`crate::kernels::d2::rough::free`]'s at
+/// `beta = beta0`, bit for bit. Requires `D > 0` and `w_1 + w_2 > 0`, as [`crate::kernels::d2::free`], and
 /// `L` and `C` finite (floats: `|t|`, `|dn|` far below the square root of the largest value).
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
@@ -699,7 +699,7 @@ where
 /// dn+  = -e dn;  sticking: t+ = -beta0 t;  sliding: |J_t| = mu |J_n|
 /// ```
 ///
-/// While sticking the outputs are [`super::rough::fixed`]'s at `beta = beta0`, bit for bit.
+/// While sticking the outputs are [`crate::kernels::d2::rough::fixed`]'s at `beta = beta0`, bit for bit.
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
@@ -1079,10 +1079,10 @@ where
 /// ```
 ///
 /// `w_i` = `inv_mass` (0: immovable), `g_i` = `gamma2` = 2 lambda_i / R_i^2;
-/// `e` in `[0, 1]`, `beta` in `[-1, 1]`: `(1, 1)` is the no-slip map [`super::free`]
+/// `e` in `[0, 1]`, `beta` in `[-1, 1]`: `(1, 1)` is the no-slip map [`crate::kernels::d2::free`]
 /// (the same values, bit for bit, also in floats), `(1, -1)` the smooth one. Energy change
 /// `-(1 - e^2) dn^2 / (2 (w_1 + w_2)) - (1 - beta^2) g_1 g_2 |t|^2 / (2 D)`.
-/// Requires `D > 0` and `w_1 + w_2 > 0`, as [`super::free`].
+/// Requires `D > 0` and `w_1 + w_2 > 0`, as [`crate::kernels::d2::free`].
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
@@ -1221,7 +1221,7 @@ where
 /// dn+  = -e dn,                t+ = -beta t              (the law)
 /// ```
 ///
-/// Finite for every `gamma2` in `[0, 2/n]`; `(e, beta) = (1, 1)` is [`super::fixed`].
+/// Finite for every `gamma2` in `[0, 2/n]`; `(e, beta) = (1, 1)` is [`crate::kernels::d2::fixed`].
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
@@ -1353,8 +1353,8 @@ where
 /// dn+  = -e dn;  sticking: t+ = -beta0 t;  sliding: |J_t| = mu |J_n|
 /// ```
 ///
-/// While sticking (`C >= L`, including `t = 0`) the outputs are [`super::rough::free`]'s at
-/// `beta = beta0`, bit for bit. Requires `D > 0` and `w_1 + w_2 > 0`, as [`super::free`], and
+/// While sticking (`C >= L`, including `t = 0`) the outputs are [`crate::kernels::d2::rough::free`]'s at
+/// `beta = beta0`, bit for bit. Requires `D > 0` and `w_1 + w_2 > 0`, as [`crate::kernels::d2::free`], and
 /// `L` and `C` finite (floats: `|t|`, `|dn|` far below the square root of the largest value).
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
@@ -1514,7 +1514,7 @@ where
 /// dn+  = -e dn;  sticking: t+ = -beta0 t;  sliding: |J_t| = mu |J_n|
 /// ```
 ///
-/// While sticking the outputs are [`super::rough::fixed`]'s at `beta = beta0`, bit for bit.
+/// While sticking the outputs are [`crate::kernels::d2::rough::fixed`]'s at `beta = beta0`, bit for bit.
 ///
 /// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
 ///
