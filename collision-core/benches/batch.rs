@@ -29,6 +29,11 @@
 //!   from the first contact on) and, out of cache, `floor_rayon` (the floor split the same
 //!   way).
 //!
+//! Group `batch_family_dN` (in cache, widest instruction set, one thread): `no_slip`
+//! (`Exec::free`), `rough` (`Exec::rough_free` under `(e, beta) = (0.9, 0.4)`) and `walton`
+//! (`Exec::rough_free` under the Walton law `(0.9, 0.2, 0.4)`), the laws through
+//! `black_box`, over the same batch.
+//!
 //! Throughput is `Elements(len)`: criterion's time per element is the time per collision.
 //! Before timing, the batch kernel's results on the in-cache batch are checked bit for bit
 //! against the scalar kernel's.
@@ -39,11 +44,12 @@
 mod cases;
 
 use cases::{batch, Case};
+use collision_core::batch::RoughBatchKernel;
 use collision_core::batch::{
     BatchKernel, Contact, Exec, FreeBatch, FreeLanes, Isa, Lane, Lanewise, PairBatch, StateLanes,
     LANES,
 };
-use collision_core::{BodyState, Generated, Kernel};
+use collision_core::{BodyState, Generated, Kernel, Restitution, Walton};
 use criterion::measurement::WallTime;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
 use std::hint::black_box;
@@ -321,7 +327,10 @@ fn bench_group<const N: usize, const S: usize>(
 
 fn bench_dim<const N: usize, const S: usize>(c: &mut Criterion)
 where
-    Generated: Kernel<f64, N, S> + BatchKernel<f64, N, S>,
+    Generated: Kernel<f64, N, S>
+        + BatchKernel<f64, N, S>
+        + RoughBatchKernel<Restitution<f64>, f64, N, S>
+        + RoughBatchKernel<Walton<f64>, f64, N, S>,
 {
     let cases = batch::<N, S>(SEED ^ N as u64, IN_CACHE);
     check(&cases, &to_batch(&cases));
@@ -331,6 +340,29 @@ where
         .measurement_time(Duration::from_millis(1500))
         .sample_size(30);
     bench_group(&mut group, &cases, false);
+    group.finish();
+
+    // The rough-ball family's batch kernels beside the no-slip one (the law a run-time value).
+    let blocks = to_batch(&cases);
+    let mut out: PairBatch<f64, N, S> = PairBatch::new();
+    let exec = Exec::auto().serial();
+    let mut group = c.benchmark_group(format!("batch_family_d{N}"));
+    group
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_millis(1500))
+        .sample_size(30)
+        .throughput(Throughput::Elements(cases.len() as u64));
+    group.bench_function("no_slip", |b| {
+        b.iter(|| exec.free(black_box(&blocks), &mut out))
+    });
+    let rough = Restitution::new(0.9, 0.4).expect("in range");
+    group.bench_function("rough", |b| {
+        b.iter(|| exec.rough_free(black_box(&rough), black_box(&blocks), &mut out))
+    });
+    let walton = Walton::new(0.9, 0.2, 0.4).expect("in range");
+    group.bench_function("walton", |b| {
+        b.iter(|| exec.rough_free(black_box(&walton), black_box(&blocks), &mut out))
+    });
     group.finish();
 
     // Threads on work that fits the two cores' L2 caches (1 MB each), and on work that fits
