@@ -149,6 +149,18 @@ pub struct MeanSquares {
     pub species_cm: Vec<f64>,
 }
 
+impl MeanSquares {
+    /// Every figure `NaN`, for `species` species: displacements that are not known (a
+    /// thermostat changes velocities between contacts).
+    pub fn unknown(species: usize) -> MeanSquares {
+        MeanSquares {
+            msd: f64::NAN,
+            msd_cm: f64::NAN,
+            species_cm: vec![f64::NAN; species],
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

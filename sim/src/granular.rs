@@ -43,7 +43,7 @@
 //! (and one at the start): the row's time is that contact's, and the state is the one just
 //! after it (the velocities are constant between contacts, so the row is exact at its time).
 
-use crate::displacement::Displacements;
+use crate::displacement::{Displacements, MeanSquares};
 use crate::observe::energy_of;
 use crate::pair_correlation::PairCorrelation;
 use crate::{Contact, Event, PairKernels, Simulation};
@@ -318,13 +318,12 @@ impl Sampler {
         let time = sim.now();
         let m = moments(sim, species);
         let [t_tr, t_rot] = m.temperatures;
-        let mut squares = self.displacements.mean_squares(sim, species);
-        if self.kicked {
-            // Kicks change velocities between the contacts the displacements add up.
-            squares.msd = f64::NAN;
-            squares.msd_cm = f64::NAN;
-            squares.species_cm.iter_mut().for_each(|x| *x = f64::NAN);
-        }
+        // Kicks change velocities between the contacts the displacements add up: unknown.
+        let squares = if self.kicked {
+            MeanSquares::unknown(species.len())
+        } else {
+            self.displacements.mean_squares(sim, species)
+        };
         if let Some(g) = &mut self.pair_correlation {
             g.sample(sim);
         }

@@ -11,10 +11,11 @@ use noslip_sim::granular::{lost, Row, Sampler};
 use noslip_sim::run::{run_observed, Limits, Summary};
 use noslip_sim::setup::setup;
 use noslip_sim::{GenericKernels, Simulation};
-use std::f64::consts::PI;
 
 mod common;
-use common::{mean_se, periodic_gas, two_temperature, T_5};
+use common::{
+    enskog_frequency, haff_gas, mean_se, packing_fraction, periodic_gas, two_temperature, T_5,
+};
 
 /// What a driven run reports: its summary, its rows, and the energy its contacts took.
 struct Driven {
@@ -139,25 +140,6 @@ seed = {seed}
     assert!(s.energy_injected > 3.0 * s.energy_start && run.lost > 3.0 * s.energy_start);
 }
 
-/// The Enskog collision frequency per ball at temperature `T = 1` of a periodic gas of
-/// `count` balls of diameter 1 and mass 1 in a cube of side `side` in R^`dim` (`granular.rs`,
-/// Haff's law): `omega = 2 pi^((n-1)/2) / Gamma(n/2) rho sigma^(n-1) chi sqrt(T / m)`.
-fn enskog(dim: usize, side: f64, count: usize) -> f64 {
-    let volume = side.powi(dim as i32);
-    let ball = if dim == 2 { PI / 4.0 } else { PI / 6.0 };
-    let phi = count as f64 * ball / volume;
-    let chi = match dim {
-        2 => (1.0 - 7.0 * phi / 16.0) / (1.0 - phi).powi(2),
-        _ => (1.0 - phi / 2.0) / (1.0 - phi).powi(3),
-    };
-    let c = if dim == 2 {
-        2.0 * PI.sqrt()
-    } else {
-        4.0 * PI.sqrt()
-    };
-    c * count as f64 / volume * chi
-}
-
 /// The accuracy allowed the Enskog-Maxwellian theory of the steady temperature, besides the
 /// statistics: the gas's packing fraction `phi`. Enskog's collision frequency assumes molecular
 /// chaos (uncorrelated velocities of colliding balls, with the static `chi`); its corrections
@@ -168,25 +150,14 @@ fn enskog(dim: usize, side: f64, count: usize) -> f64 {
 /// The rough balls' ratio, whose theory also counts contacts by molecular chaos, is allowed the
 /// same (relative) `phi`.
 fn beyond_enskog(dim: usize) -> f64 {
-    let (side, count) = gas(dim);
-    let ball = if dim == 2 { PI / 4.0 } else { PI / 6.0 };
-    count as f64 * ball / side.powi(dim as i32)
-}
-
-/// The Haff gases of `granular.rs` (2D: 400 disks in side 100, `phi = 0.031`; 3D: 1000 spheres
-/// in side 30, `phi = 0.019`).
-fn gas(dim: usize) -> (f64, usize) {
-    if dim == 2 {
-        (100.0, 400)
-    } else {
-        (30.0, 1000)
-    }
+    let (side, count) = haff_gas(dim);
+    packing_fraction(dim, side, count)
 }
 
 /// The driven steady state of smooth inelastic balls (`beta = -1`) against the balance of the
 /// thermostat's heating and the Enskog-Haff cooling. Heating (`noslip_sim::thermostat`): a kick
 /// injects `n (N - 1) m xi^2 dt / 2` on average. Cooling (Haff): `N omega / 2` contacts per
-/// unit time, each losing `(1 - e^2) T`, `omega = omega_1 sqrt(T)` ([`enskog`]). Stationary,
+/// unit time, each losing `(1 - e^2) T`, `omega = omega_1 sqrt(T)` ([`enskog_frequency`]). Stationary,
 ///
 /// ```text
 /// n (N - 1) m xi^2 / 2 = N omega_1 (1 - e^2) T^(3/2) / 2
@@ -207,9 +178,9 @@ fn gas(dim: usize) -> (f64, usize) {
 /// `T_ss (P / <P>)^(2/3) (1 + 3 a_2 / 16)^(-2/3)`. What remains is the Enskog theory's own
 /// accuracy ([`beyond_enskog`]).
 fn steady(dim: usize, e: f64, window: f64) {
-    let (side, count) = gas(dim);
+    let (side, count) = haff_gas(dim);
     let (n, big) = (dim as f64, count as f64);
-    let omega1 = enskog(dim, side, count);
+    let omega1 = enskog_frequency(dim, side, count);
     let xi2 = big * (1.0 - e * e) * omega1 / (n * (big - 1.0));
     let xi = xi2.sqrt();
     let dt = 1.0 / omega1;
@@ -309,12 +280,12 @@ fn the_driven_steady_state_over_long_windows() {
 /// then averages the ratio of the rows' temperatures over `window / gamma`; six seeds, the
 /// standard error below `0.004` of the ratio (a theory off by more than 2.7 % fails).
 fn driven_ratio(dim: usize, e: f64, beta: f64, window: f64) -> (f64, f64, f64) {
-    let (side, count) = gas(dim);
+    let (side, count) = haff_gas(dim);
     let (n, big) = (dim as f64, count as f64);
     let k = 2.0 / (n + 2.0);
     let theory = two_temperature(dim, e, beta, k);
     let ratio = theory.c / theory.d;
-    let omega1 = enskog(dim, side, count);
+    let omega1 = enskog_frequency(dim, side, count);
     let heat = theory.a - theory.b * ratio;
     let xi = (big * omega1 * heat / (n * (big - 1.0))).sqrt();
     let dt = 1.0 / omega1;

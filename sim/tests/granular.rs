@@ -12,10 +12,9 @@ use noslip_scene::Scene;
 use noslip_sim::granular::{temperatures, Row};
 use noslip_sim::setup::setup;
 use noslip_sim::{GenericKernels, Setup, Simulation, Step};
-use std::f64::consts::PI;
 
 mod common;
-use common::{mean_se, periodic_gas, rows, two_temperature, T_5};
+use common::{enskog_frequency, haff_gas, mean_se, periodic_gas, rows, two_temperature, T_5};
 
 /// [`periodic_gas`] with the rough law `{ e, beta }` at every ball-ball contact and a
 /// Maxwellian start at equal temperatures: a freely cooling gas.
@@ -98,37 +97,14 @@ spin = 1
 /// fitted from `1 / sqrt(T)`, linear in `t`: `(1 + t / t_0) / sqrt(T_0)`. Two values of `e`
 /// test the dependence on it (`t_0` 2.7 times shorter at 0.7 than at 0.9).
 fn haff(dim: usize, e: f64) {
-    // phi = 0.031 in 2D, 0.019 in 3D: dilute, where Enskog's chi is close to 1 and
-    // clustering is slow.
-    let (side, count) = match dim {
-        2 => (100.0, 400),
-        _ => (30.0, 1000),
-    };
-    let volume = f64::powi(side, dim as i32);
-    let sigma: f64 = 1.0;
-    let ball = match dim {
-        2 => PI * 0.25,
-        _ => PI / 6.0,
-    };
-    let phi = count as f64 * ball / volume;
-    // Henderson (2D) and Carnahan-Starling (3D).
-    let chi = match dim {
-        2 => (1.0 - 7.0 * phi / 16.0) / (1.0 - phi).powi(2),
-        _ => (1.0 - phi / 2.0) / (1.0 - phi).powi(3),
-    };
-    let rho = count as f64 / volume;
-    // 2 pi^((n-1)/2) / Gamma(n/2): 2 sqrt(pi) in 2D, 4 sqrt(pi) in 3D.
-    let c = match dim {
-        2 => 2.0 * PI.sqrt(),
-        _ => 4.0 * PI.sqrt(),
-    };
+    let (side, count) = haff_gas(dim);
     let gas = cooling_gas(dim, side, count, e, -1.0);
     let mut ratio = Vec::new();
     for seed in 0..6 {
         // The first row: the start's own temperature (the draw's, not the nominal 1).
         let (first, _) = rows(&gas, seed, 1e9, 0.0);
         let t_start = first[0].t_tr;
-        let omega = c * rho * sigma.powi(dim as i32 - 1) * chi * t_start.sqrt();
+        let omega = enskog_frequency(dim, side, count) * t_start.sqrt();
         let t0 = 2.0 * dim as f64 / ((1.0 - e * e) * omega);
         let (rows, _) = rows(&gas, seed, t0 / 20.0, t0);
         // Least squares of y = 1 / sqrt(T) against t: t_0 = intercept / slope.

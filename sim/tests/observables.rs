@@ -6,15 +6,14 @@
 //! of freedom), and `s` small enough that the test has power.
 
 mod common;
-use common::{mean_se, periodic_gas, rows, T_5};
+use common::{ball_volume, contact_chi, mean_se, periodic_gas, rows, T_5};
 use noslip_sim::granular::Row;
 use std::f64::consts::PI;
 
 /// `count` balls of diameter 1 at packing fraction `phi` (2D or 3D) in a periodic cube, a
 /// Maxwellian start (`{seed}` to be replaced), and the cube's side.
 fn maxwellian_gas(dim: usize, count: usize, phi: f64) -> (String, f64) {
-    let ball = if dim == 2 { PI / 4.0 } else { PI / 6.0 };
-    let side = (count as f64 * ball / phi).powf(1.0 / dim as f64);
+    let side = (count as f64 * ball_volume(dim) / phi).powf(1.0 / dim as f64);
     let tail = "[random]\nseed = {seed}\nvelocities = \"maxwellian\"\n";
     (periodic_gas(dim, side, count, tail), side)
 }
@@ -274,7 +273,7 @@ fn slope(x: &[f64], y: &[f64]) -> f64 {
 #[test]
 fn self_diffusion_of_a_dilute_smooth_gas_is_enskogs() {
     let (count, phi, t) = (16000usize, 0.03f64, 1.0);
-    let side = (count as f64 * PI / 6.0 / phi).cbrt();
+    let side = (count as f64 * ball_volume(3) / phi).cbrt();
     let gas = periodic_gas(
         3,
         side,
@@ -282,7 +281,7 @@ fn self_diffusion_of_a_dilute_smooth_gas_is_enskogs() {
         "[contact]\nballs = \"smooth\"\n[random]\nseed = {seed}\nvelocities = \"maxwellian\"\n",
     );
     let rho = count as f64 / side.powi(3);
-    let chi = (1.0 - phi / 2.0) / (1.0 - phi).powi(3);
+    let chi = contact_chi(3, phi);
     let enskog = |t: f64| 1.01896 * 3.0 / (8.0 * rho * chi) * (t / PI).sqrt();
     let tau_v = enskog(t) / t;
     let d: Vec<f64> = (0..6)
@@ -365,7 +364,7 @@ fn pair_correlation(dim: usize, count: usize, phi: f64, chi: f64) {
 #[test]
 fn the_pair_correlation_of_an_elastic_gas_is_the_hard_ball_fluids() {
     let phi: f64 = 0.1;
-    pair_correlation(3, 1000, phi, (1.0 - phi / 2.0) / (1.0 - phi).powi(3));
+    pair_correlation(3, 1000, phi, contact_chi(3, phi));
     let phi: f64 = 0.2;
-    pair_correlation(2, 1000, phi, (1.0 - 7.0 * phi / 16.0) / (1.0 - phi).powi(2));
+    pair_correlation(2, 1000, phi, contact_chi(2, phi));
 }

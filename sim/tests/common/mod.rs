@@ -9,6 +9,7 @@ use noslip_scene::Scene;
 use noslip_sim::granular::{Row, Sampler};
 use noslip_sim::setup::setup;
 use noslip_sim::{GenericKernels, Simulation, Step};
+use std::f64::consts::PI;
 
 /// Runs `text` (with `{seed}` replaced) to time `until`, a row every `every`.
 pub fn rows(text: &str, seed: u64, every: f64, until: f64) -> (Vec<Row>, usize) {
@@ -50,6 +51,55 @@ pub fn periodic_gas(dim: usize, side: f64, count: usize, tail: &str) -> String {
         "dim = {dim}\n[box]\nsize = [{sizes}]\nboundary = [{axes}]\n[[species]]\nmass = 1\n\
          radius = \"1/2\"\ncount = {count}\n{tail}"
     )
+}
+
+/// The volume of a ball of diameter 1 in R^`dim` (2 or 3).
+pub fn ball_volume(dim: usize) -> f64 {
+    if dim == 2 {
+        PI / 4.0
+    } else {
+        PI / 6.0
+    }
+}
+
+/// The packing fraction of `count` balls of diameter 1 in a cube of side `side` in R^`dim`.
+pub fn packing_fraction(dim: usize, side: f64, count: usize) -> f64 {
+    count as f64 * ball_volume(dim) / side.powi(dim as i32)
+}
+
+/// The hard-ball fluid's contact value `chi` at packing fraction `phi`: Henderson
+/// `(1 - 7 phi / 16) / (1 - phi)^2` in 2D, Carnahan-Starling `(1 - phi / 2) / (1 - phi)^3` in 3D.
+pub fn contact_chi(dim: usize, phi: f64) -> f64 {
+    if dim == 2 {
+        (1.0 - 7.0 * phi / 16.0) / (1.0 - phi).powi(2)
+    } else {
+        (1.0 - phi / 2.0) / (1.0 - phi).powi(3)
+    }
+}
+
+/// The Enskog collision frequency per ball at temperature `T = 1` of `count` balls of diameter
+/// 1 and mass 1 in a cube of side `side` in R^`dim`:
+/// `omega = 2 pi^((n-1)/2) / Gamma(n/2) rho sigma^(n-1) chi sqrt(T / m)` (`2 sqrt(pi)` in 2D,
+/// `4 sqrt(pi)` in 3D; it scales as `sqrt(T)`).
+pub fn enskog_frequency(dim: usize, side: f64, count: usize) -> f64 {
+    let c = if dim == 2 {
+        2.0 * PI.sqrt()
+    } else {
+        4.0 * PI.sqrt()
+    };
+    let rho = count as f64 / side.powi(dim as i32);
+    c * rho * contact_chi(dim, packing_fraction(dim, side, count))
+}
+
+/// The dilute gases of Haff's law test (`granular.rs`), also driven (`driven.rs`): `(side,
+/// count)`, 400 disks in side 100 (`phi = 0.031`) or 1000 spheres in side 30 (`phi = 0.019`),
+/// where Enskog's `chi` is close to 1 and clustering is slow.
+pub fn haff_gas(dim: usize) -> (f64, usize) {
+    if dim == 2 {
+        (100.0, 400)
+    } else {
+        (30.0, 1000)
+    }
 }
 
 /// Student's t, two-sided 99.9 %, for `K - 1 = 5` degrees of freedom.
