@@ -12,7 +12,7 @@
 mod backend;
 
 use backend::{
-    c_source, cc, compare, draw, records, run, rust_results, rust_rough_results,
+    cc, compare, compile_harness, draw, records, run, rust_results, rust_rough_results,
     rust_walton_results, scratch, Float, KERNELS, LAWS, ROUGH_KERNELS, WALTON_KERNELS, WALTON_LAWS,
 };
 use collision_core::{Generated, Kernel, Restitution, RoughKernel, Scalar, Walton, WaltonKernel};
@@ -41,24 +41,11 @@ fn build(dir: &Path, header: &str, flags: &[&str], exe: &str) -> PathBuf {
     build_with(dir, header, &cc(), &all, exe)
 }
 
-/// Write `header` into `dir` and compile the harness against it with `compiler` and `flags`;
-/// warnings are errors, so the emitted C must compile cleanly.
+/// Compile the harness (`tests/c/harness.c`) against `header` with `compiler` and `flags`.
 fn build_with(dir: &Path, header: &str, compiler: &str, flags: &[&str], exe: &str) -> PathBuf {
-    std::fs::write(dir.join(file_name(Lang::C)), header).unwrap();
-    let exe = dir.join(exe);
-    run(Command::new(compiler)
-        .args(["-Wall", "-Wextra", "-Werror"])
-        .args(flags)
-        .arg("-I")
-        .arg(dir)
-        .arg(c_source("harness.c"))
-        .arg("-o")
-        .arg(&exe)
-        .arg("-lm"));
-    exe
+    compile_harness(dir, header, compiler, flags, "harness.c", exe)
 }
 
-/// Run `kernel` of dimension `n` in format `T` on the records in `input`.
 fn run_c<T: Float>(exe: &Path, n: usize, kernel: &str, input: &Path) -> Vec<T> {
     let output = input.with_extension(format!("{kernel}.out"));
     run(Command::new(exe)

@@ -8,12 +8,12 @@
 
 mod backend;
 
-use backend::{c_source, cc, draw, records, run, same, scratch, Float};
+use backend::{cc, compile_harness, draw, records, run, same, scratch, Float};
 use collision_core::certified::CertifiedKernel;
 use collision_core::{BodyState, Generated, Scalar};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
-use noslip_codegen::backend::{file_name, generate, Lang};
+use noslip_codegen::backend::{generate, Lang};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -112,21 +112,12 @@ where
     failures
 }
 
-/// Write `header` into `dir` and compile the harness against it as C99 with `flags`
-/// (warnings are errors).
+/// Compile the companions' harness (`tests/c/certified_harness.c`) against `header` as C99
+/// with `flags` (warnings are errors).
 fn build(dir: &Path, header: &str, flags: &[&str], exe: &str) -> PathBuf {
-    std::fs::write(dir.join(file_name(Lang::C)), header).unwrap();
-    let exe = dir.join(exe);
-    run(Command::new(cc())
-        .args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
-        .args(flags)
-        .arg("-I")
-        .arg(dir)
-        .arg(c_source("certified_harness.c"))
-        .arg("-o")
-        .arg(&exe)
-        .arg("-lm"));
-    exe
+    let mut all = vec!["-std=c99"];
+    all.extend(flags);
+    compile_harness(dir, header, &cc(), &all, "certified_harness.c", exe)
 }
 
 #[test]

@@ -18,6 +18,7 @@ use collision_core::{
 };
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
+use noslip_codegen::backend::{file_name, Lang};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -350,6 +351,31 @@ pub fn run(cmd: &mut Command) {
         out.status,
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+/// Write the C `header` into `dir` and compile the harness `harness` (of `tests/c/`) against
+/// it with `compiler` and `flags` into `dir/exe`; warnings are errors, so the emitted C must
+/// compile cleanly.
+pub fn compile_harness(
+    dir: &Path,
+    header: &str,
+    compiler: &str,
+    flags: &[&str],
+    harness: &str,
+    exe: &str,
+) -> PathBuf {
+    std::fs::write(dir.join(file_name(Lang::C)), header).unwrap();
+    let exe = dir.join(exe);
+    run(Command::new(compiler)
+        .args(["-Wall", "-Wextra", "-Werror"])
+        .args(flags)
+        .arg("-I")
+        .arg(dir)
+        .arg(c_source(harness))
+        .arg("-o")
+        .arg(&exe)
+        .arg("-lm"));
+    exe
 }
 
 /// The C compiler: `$CC`, else `cc`.
