@@ -273,23 +273,21 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     while done < events {
         // The engine steps to the next kick (if it comes by `until`), then the kick is applied.
         let kick_at = noise.as_ref().map(Noise::next_time).filter(|&t| t <= until);
-        let e = match sim.step(kick_at.unwrap_or(until)) {
+        let step = sim.step(kick_at.unwrap_or(until));
+        // A kick is due. After `Never` too if the run has a time limit (kicks set balls at
+        // rest or apart moving); without one it stops there, as a run without kicks (a lone
+        // ball would be kicked forever).
+        let due = match step {
+            Step::Until => true,
+            Step::Never(_) => until.is_finite(),
+            _ => false,
+        };
+        if let (Some(noise), Some(_), true) = (&mut noise, kick_at, due) {
+            injected += kick(sim, species, noise, &mut tracer, traced, &at);
+            continue;
+        }
+        let e = match step {
             Step::Contact(e) => e,
-            // A kick is due. After `Never` too if the run has a time limit (kicks set balls
-            // at rest or apart moving); without one it stops there, as a run without kicks
-            // (a lone ball would be kicked forever).
-            Step::Until if kick_at.is_some() => {
-                if let Some(noise) = &mut noise {
-                    injected += kick(sim, species, noise, &mut tracer, traced, &at);
-                }
-                continue;
-            }
-            Step::Never(_) if kick_at.is_some() && until.is_finite() => {
-                if let Some(noise) = &mut noise {
-                    injected += kick(sim, species, noise, &mut tracer, traced, &at);
-                }
-                continue;
-            }
             Step::Until => break,
             Step::Never(why) => {
                 stopped = Some(why.to_string());
