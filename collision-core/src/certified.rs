@@ -43,10 +43,7 @@ where
 {
     let [b1, b2] = balls;
     let [s1, s2] = states;
-    let zero = BodyState {
-        spin: std::array::from_fn(|_| T::zero()),
-        velocity: std::array::from_fn(|_| T::zero()),
-    };
+    let zero = BodyState::zero();
     if b1.is_immovable() {
         let (after, bound) = Generated::fixed(nu, &b1.radius, b2, s1, s2);
         ([s1.clone(), after], [zero, bound])

@@ -59,6 +59,7 @@ pub mod rust;
 #[cfg(test)]
 mod tests;
 
+use crate::bound::round::up;
 use crate::model::Variant;
 use crate::program::{Op, Operand, Program};
 use std::collections::HashMap;
@@ -256,7 +257,7 @@ impl Builder<'_> {
         let m = match x {
             Operand::Const(k) => {
                 let c = self.format.round(&self.program.constants[*k].value);
-                Arg::Lit(self.format.up(next_up(c.abs() + self.format.floor())))
+                Arg::Lit(self.format.up(up(c.abs() + self.format.floor())))
             }
             _ => {
                 let a = self.bind(Expr::Abs(self.value(x)));
@@ -407,11 +408,6 @@ impl Builder<'_> {
     }
 }
 
-/// The next `f64` above a finite positive `x`.
-fn next_up(x: f64) -> f64 {
-    f64::from_bits(x.to_bits() + 1)
-}
-
 impl Certified {
     /// The companion of `program` in `format`: its steps in order, each followed by its
     /// bound's statements, then the bound of every output. Refuses a program with fused
@@ -445,7 +441,7 @@ impl Certified {
             let exact = num_rational::BigRational::from_float(f).as_ref() == Some(&c.value);
             let error = (!exact).then(|| {
                 let u = format.unit_roundoff();
-                Arg::Lit(format.up(next_up(next_up(u * f.abs()) + u * format.floor())))
+                Arg::Lit(format.up(up(up(u * f.abs()) + u * format.floor())))
             });
             b.bounds
                 .insert(Operand::Const(k), Bounded { error, depth: 0 });
