@@ -1,5 +1,5 @@
-//! The certified companions of the C header (`noslip_d{n}_{free|fixed}_certified_{f64|f32}`)
-//! are faithful: compiled by the system C compiler at `-O2 -ffp-contract=off` and at
+//! The certified companions of the C header (`noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
+//! and the fast ones `..._certified_fast_...`) are faithful: compiled by the system C compiler at `-O2 -ffp-contract=off` and at
 //! `-O3 -march=native -ffp-contract=off`, they return bit for bit the Rust companions'
 //! outputs and bounds (`collision_core::kernels::dN::certified`), and so the plain Rust
 //! kernels' outputs (accuracy/tests/proven.rs checks the Rust companions against those and
@@ -52,6 +52,14 @@ where
                 let (o, e) = Generated::fixed(nu, &b1.radius, b2, s1, s2);
                 vec![o, e]
             }
+            "free_fast" => {
+                let ([o1, o2], [e1, e2]) = Generated::free_fast(nu, b1, b2, s1, s2);
+                vec![o1, o2, e1, e2]
+            }
+            "fixed_fast" => {
+                let (o, e) = Generated::fixed_fast(nu, &b1.radius, b2, s1, s2);
+                vec![o, e]
+            }
             _ => panic!("no kernel {kernel}"),
         };
         for b in &bodies {
@@ -72,7 +80,7 @@ where
     let input = dir.join(format!("cases_{N}_{}.bin", <T as Scalar>::NAME));
     std::fs::write(&input, records(cases)).unwrap();
     let mut failures = Vec::new();
-    for kernel in ["free", "fixed"] {
+    for kernel in ["free", "fixed", "free_fast", "fixed_fast"] {
         let rust = rust_results(kernel, cases);
         assert!(rust.iter().any(|x| x.finite()), "no finite result");
         for (config, exe) in exes {
@@ -174,6 +182,25 @@ fn one_altered_bound_operation_fails_the_comparison() {
     assert!(
         bad.iter().any(|f| f.contains("free_certified")),
         "altering `{}` went unnoticed",
+        line.trim()
+    );
+    // The fast companion: its first sum of two magnitudes made a difference.
+    let start = header
+        .find("void noslip_d3_free_certified_fast_f64(")
+        .expect("the fast companion is in the header");
+    let body = &header[start..];
+    let line = body
+        .lines()
+        .find(|l| l.trim_start().starts_with("const double mag") && l.contains(" + mag"))
+        .expect("a sum of two magnitudes");
+    let at = start + body.find(line).unwrap();
+    let mut mutated = header.clone();
+    mutated.replace_range(at..at + line.len(), &line.replacen(" + mag", " - mag", 1));
+    let exes = [("bad", build(&dir, &mutated, CONFIGS[0].1, "bad_fast"))];
+    let bad = check_format(&dir, &exes, &cases);
+    assert!(
+        bad.iter().any(|f| f.contains("free_fast_certified")),
+        "altering `{}` went unnoticed: {bad:?}",
         line.trim()
     );
 }

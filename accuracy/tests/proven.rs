@@ -25,7 +25,7 @@
 mod certified;
 
 use certified::CertSeen;
-use collision_core::certified::CertifiedKernel;
+use collision_core::certified::{CertifiedKernel, Companion};
 use collision_core::rng::Rng;
 use collision_core::{validate, Exact, Generated, Kernel};
 use noslip_accuracy::case::{flatten, Case};
@@ -185,12 +185,15 @@ fn check_one<const N: usize, const S: usize>(
 
 const METHODS: [Method; 3] = [Method::F64, Method::F64Fma, Method::F32];
 
+/// The certified companions checked: running error analysis, then the fast ones.
+const COMPANIONS: [Companion; 2] = [Companion::Running, Companion::Fast];
+
 /// `per_source` cases from every regime and from the adversarial mix, each checked with
 /// every method, and with the certified companions (per source, `f64` and `f32`).
 fn run<const N: usize, const S: usize>(
     per_source: usize,
     seed: u64,
-) -> ([Seen; 3], Vec<[CertSeen; 2]>)
+) -> ([Seen; 3], Vec<[[CertSeen; 2]; 2]>)
 where
     Generated: Kernel<f64, N, S>
         + Kernel<f32, N, S>
@@ -201,7 +204,7 @@ where
 {
     let bounds = METHODS.map(|m| ProvenBound::of(N, m).expect("a generated float method"));
     let mut seen: [Seen; 3] = Default::default();
-    let mut cert: Vec<[CertSeen; 2]> = Vec::new();
+    let mut cert: Vec<[[CertSeen; 2]; 2]> = Vec::new();
     let mut rng = Rng::new(seed ^ ((N as u64) << 40));
     let sources = Regime::ALL.len() + 1;
     for source in 0..sources {
@@ -218,13 +221,16 @@ where
             for (i, m) in METHODS.iter().enumerate() {
                 check_one(*m, &bounds[i], &case, &exact_case, &mut seen[i]);
             }
-            certified::check(
-                &bounds[0],
-                &bounds[2],
-                &case,
-                &exact_case,
-                &mut cert[source],
-            );
+            for (k, companion) in COMPANIONS.into_iter().enumerate() {
+                certified::check(
+                    companion,
+                    &bounds[0],
+                    &bounds[2],
+                    &case,
+                    &exact_case,
+                    &mut cert[source][k],
+                );
+            }
         }
     }
     (seen, cert)
@@ -246,14 +252,17 @@ where
     }
     // Every source gave f64 cases whose components were checked against the exact error;
     // f32 in total (the extreme scales are beyond f32).
-    for (source, c) in cert.iter().enumerate() {
-        assert!(
-            c[0].components > 0,
-            "n = {N} source {source}: no f64 component checked"
-        );
-        assert!(c[0].worst <= 1.0 && c[1].worst <= 1.0);
+    for k in 0..COMPANIONS.len() {
+        for (source, c) in cert.iter().map(|c| &c[k]).enumerate() {
+            assert!(
+                c[0].components > 0,
+                "n = {N} {:?} source {source}: no f64 component checked",
+                COMPANIONS[k]
+            );
+            assert!(c[0].worst <= 1.0 && c[1].worst <= 1.0);
+        }
+        assert!(cert.iter().map(|c| c[k][1].components).sum::<usize>() > 0);
     }
-    assert!(cert.iter().map(|c| c[1].components).sum::<usize>() > 0);
 }
 
 macro_rules! per_dim {
@@ -305,18 +314,19 @@ fn a_million_cases_per_dimension_and_precision() {
 
 /// Per source and format: the companion's bound over the interpreter's and over the
 /// measured error (medians and extremes), and the infinite bounds of each.
-fn print_certified(n: usize, cert: &[[CertSeen; 2]]) {
+fn print_certified(n: usize, cert: &[[[CertSeen; 2]; 2]]) {
     let names: Vec<String> = Regime::ALL
         .iter()
         .map(|r| r.name().to_string())
         .chain(std::iter::once("adversarial".to_string()))
         .collect();
-    for (source, c) in cert.iter().enumerate() {
-        for (f, s) in ["f64", "f32"].iter().zip(c) {
-            let (im, ix) = CertSeen::median_max(&s.over_interpreter);
-            let (mm, mx) = CertSeen::median_max(&s.over_measured);
-            println!(
-                "n = {n} certified {f} {:<14} cases {:>7} components {:>8} inf {:>6} (interpreter inf {:>6}); bound/interpreter median {im:.3} min {:.3} max {ix:.3}; bound/measured median {mm:.1} min {:.2} max {mx:.3e}; worst measured/bound {:.4}",
+    for (k, companion) in COMPANIONS.iter().enumerate() {
+        for (source, c) in cert.iter().map(|c| &c[k]).enumerate() {
+            for (f, s) in ["f64", "f32"].iter().zip(c) {
+                let (im, ix) = CertSeen::median_max(&s.over_interpreter);
+                let (mm, mx) = CertSeen::median_max(&s.over_measured);
+                println!(
+                "n = {n} certified {companion:?} {f} {:<14} cases {:>7} components {:>8} inf {:>6} (interpreter inf {:>6}); bound/interpreter median {im:.3} min {:.3} max {ix:.3}; bound/measured median {mm:.1} min {:.2} max {mx:.3e}; worst measured/bound {:.4}",
                 names[source],
                 s.cases,
                 s.components,
@@ -326,6 +336,7 @@ fn print_certified(n: usize, cert: &[[CertSeen; 2]]) {
                 CertSeen::min(&s.over_measured),
                 s.worst
             );
+            }
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Criterion benchmark of the certified companions against the plain kernels (`free` and
 //! `fixed`, `f64`, n = 2..6), one collision at a time over the in-cache batch the `kernels`
 //! bench uses (`fixed` on the same cases, body 1 taken as immovable), in alternated rounds:
-//! each round benchmarks `plain`, `certified`, `plain_fixed`, `certified_fixed` for every n, so a change
+//! each round benchmarks `plain`, `certified`, `fast`, `plain_fixed`, `certified_fixed`, `fast_fixed` for every n, so a change
 //! of the shared machine's load hits both alike. Per round and variant the figure is
 //! criterion's samples' median time per collision (recorded through `iter_custom`); the
 //! summary printed at the end gives per n the median (min-max) over the rounds of each
@@ -132,31 +132,35 @@ fn round_dim<const N: usize, const S: usize>(
     round: usize,
     (plain, certified): (Plain<N, S>, Certified<N, S>),
     (plain_fixed, certified_fixed): (PlainFixed<N, S>, CertifiedFixed<N, S>),
+    (fast, fast_fixed): (Certified<N, S>, CertifiedFixed<N, S>),
 ) {
     let cases = batch::<N, S>(SEED ^ N as u64, BATCH);
     if round == 0 {
         check(&cases, plain, certified);
+        check(&cases, plain, fast);
         for (k, case) in cases.iter().enumerate() {
             let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
             let p = plain_fixed(&case.nu, &b1.radius, b2, s1, s2);
-            let (out, bound) = certified_fixed(&case.nu, &b1.radius, b2, s1, s2);
-            let bits = |s: &BodyState<f64, N, S>| -> Vec<u64> {
-                s.spin
+            for companion in [certified_fixed, fast_fixed] {
+                let (out, bound) = companion(&case.nu, &b1.radius, b2, s1, s2);
+                let bits = |s: &BodyState<f64, N, S>| -> Vec<u64> {
+                    s.spin
+                        .iter()
+                        .chain(&s.velocity)
+                        .map(|x| x.to_bits())
+                        .collect()
+                };
+                assert_eq!(
+                    bits(&out),
+                    bits(&p),
+                    "n = {N}, case {k}: fixed outputs differ"
+                );
+                assert!(bound
+                    .velocity
                     .iter()
-                    .chain(&s.velocity)
-                    .map(|x| x.to_bits())
-                    .collect()
-            };
-            assert_eq!(
-                bits(&out),
-                bits(&p),
-                "n = {N}, case {k}: fixed outputs differ"
-            );
-            assert!(bound
-                .velocity
-                .iter()
-                .chain(&bound.spin)
-                .all(|e| e.is_finite()));
+                    .chain(&bound.spin)
+                    .all(|e| e.is_finite()));
+            }
         }
     }
     timed(c, round, "plain", &cases, |case| {
@@ -167,6 +171,10 @@ fn round_dim<const N: usize, const S: usize>(
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
         certified(&case.nu, b1, b2, s1, s2)
     });
+    timed(c, round, "fast", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        fast(&case.nu, b1, b2, s1, s2)
+    });
     timed(c, round, "plain_fixed", &cases, |case| {
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
         plain_fixed(&case.nu, &b1.radius, b2, s1, s2)
@@ -174,6 +182,10 @@ fn round_dim<const N: usize, const S: usize>(
     timed(c, round, "certified_fixed", &cases, |case| {
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
         certified_fixed(&case.nu, &b1.radius, b2, s1, s2)
+    });
+    timed(c, round, "fast_fixed", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        fast_fixed(&case.nu, &b1.radius, b2, s1, s2)
     });
 }
 
@@ -183,7 +195,12 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn summary(rounds: usize) {
-    for (plain, certified) in [("plain", "certified"), ("plain_fixed", "certified_fixed")] {
+    for (plain, certified) in [
+        ("plain", "certified"),
+        ("plain_fixed", "certified_fixed"),
+        ("plain", "fast"),
+        ("plain_fixed", "fast_fixed"),
+    ] {
         summary_of(rounds, plain, certified);
     }
 }
@@ -236,6 +253,10 @@ fn main() {
                     round,
                     (kernels::$m::free::<f64>, kernels::$m::certified::free),
                     (kernels::$m::fixed::<f64>, kernels::$m::certified::fixed),
+                    (
+                        kernels::$m::certified::free_fast,
+                        kernels::$m::certified::fixed_fast,
+                    ),
                 )
             };
         }

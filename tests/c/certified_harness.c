@@ -3,7 +3,7 @@
  *
  *   certified_harness N KERNEL PRECISION IN OUT
  *
- * KERNEL free or fixed, PRECISION f64 or f32. IN holds records as for harness.c: nu[N],
+ * KERNEL free, fixed, free_fast or fixed_fast, PRECISION f64 or f32. IN holds records as for harness.c: nu[N],
  * ball1[3], ball2[3], state1[S+N], state2[S+N]. OUT receives per record out1, out2, bound1,
  * bound2 (free) or out2, bound2 (fixed, radius1 = ball1[1]), each S+N values. */
 #include <stdio.h>
@@ -33,9 +33,13 @@
     } while (0)
 
 #define DIM(N, S)                                                                                  \
-    if (n == (N)) {                                                                                \
+    if (n == (N) && !fast) {                                                                       \
         if (f64) LOOP(double, N, S, noslip_d##N##_free_certified_f64, noslip_d##N##_fixed_certified_f64); \
         else LOOP(float, N, S, noslip_d##N##_free_certified_f32, noslip_d##N##_fixed_certified_f32);      \
+    }                                                                                              \
+    if (n == (N) && fast) {                                                                        \
+        if (f64) LOOP(double, N, S, noslip_d##N##_free_certified_fast_f64, noslip_d##N##_fixed_certified_fast_f64); \
+        else LOOP(float, N, S, noslip_d##N##_free_certified_fast_f32, noslip_d##N##_fixed_certified_fast_f32);      \
     }
 
 static void *read_all(const char *path, size_t *len) {
@@ -56,7 +60,8 @@ int main(int argc, char **argv) {
         return 2;
     }
     const int n = atoi(argv[1]);
-    const int free_ = !strcmp(argv[2], "free");
+    const int free_ = !strcmp(argv[2], "free") || !strcmp(argv[2], "free_fast");
+    const int fast = strstr(argv[2], "_fast") != NULL;
     const int f64 = !strcmp(argv[3], "f64");
     size_t in_len = 0, count = 0, out_len = 0;
     void *in = read_all(argv[4], &in_len);

@@ -4,7 +4,9 @@
 //! (exact rationals), and how the companion's bound compares with the interpreter's point
 //! bound (`ProvenBound::component_bounds`) and with the measured error.
 
-use collision_core::certified::{collide_certified, energy_error_bound, CertifiedKernel};
+use collision_core::certified::{
+    collide_certified_by, energy_error_bound, CertifiedKernel, Companion,
+};
 use collision_core::{collide_unchecked, validate, Exact, Generated, Kernel};
 use collision_core::{Ball, BodyState};
 use noslip_accuracy::case::{flatten, Case};
@@ -46,8 +48,10 @@ impl CertSeen {
     }
 }
 
-/// Check both formats' companions on `case` (`f32`: if the case is one `f32` holds).
+/// Check both formats' companions of kind `companion` on `case` (`f32`: if the case is one
+/// `f32` holds).
 pub fn check<const N: usize, const S: usize>(
+    companion: Companion,
     bound64: &ProvenBound,
     bound32: &ProvenBound,
     case: &Case<f64, N, S>,
@@ -62,7 +66,8 @@ pub fn check<const N: usize, const S: usize>(
 {
     // f64
     let plain = collide_unchecked(&case.nu, case.ball_refs(), case.state_refs());
-    let (out, bound) = collide_certified(&case.nu, case.ball_refs(), case.state_refs());
+    let (out, bound) =
+        collide_certified_by(companion, &case.nu, case.ball_refs(), case.state_refs());
     let values: Vec<f64> = flatten(&out);
     let plain: Vec<f64> = flatten(&plain);
     for (k, (a, b)) in values.iter().zip(&plain).enumerate() {
@@ -87,7 +92,7 @@ pub fn check<const N: usize, const S: usize>(
         return;
     }
     let plain = collide_unchecked(&c32.nu, c32.ball_refs(), c32.state_refs());
-    let (out, bound) = collide_certified(&c32.nu, c32.ball_refs(), c32.state_refs());
+    let (out, bound) = collide_certified_by(companion, &c32.nu, c32.ball_refs(), c32.state_refs());
     let values: Vec<f32> = flatten(&out);
     let plain: Vec<f32> = flatten(&plain);
     for (k, (a, b)) in values.iter().zip(&plain).enumerate() {
@@ -233,5 +238,18 @@ fn non_finite_inputs_and_a_zero_divisor_give_infinite_bounds() {
     assert!(e.iter().all(|e| *e == f64::INFINITY), "{bound:?}");
     let (p1, p2) = (ball(1.0, 1.0, 0.0), ball(0.5, 2.0, 0.0));
     let (_, bound) = d3::certified::free(&nu, &p1, &p2, &state, &rest);
+    assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
+    // The fast companions: the same cases.
+    let (_, bound) = d3::certified::free_fast(&nu, &b1, &b2, &state, &rest);
+    assert!(all(&bound).iter().all(|e| e.is_finite() && *e > 0.0));
+    let (_, bound) = d3::certified::free_fast(&nu, &b1, &b2, &fast, &rest);
+    assert!(all(&bound).iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+    let (_, bound) = d3::certified::fixed_fast(&nu, &1.0, &ball(0.5, f64::NAN, 0.3), &state, &rest);
+    let e: Vec<f64> = bound.spin.iter().chain(&bound.velocity).copied().collect();
+    assert!(e.iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+    let (_, bound) = d3::certified::free_fast(&nu, &p1, &p2, &state, &rest);
+    assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
+    // A divisor that cancels (a negative inverse mass, which `collide` refuses): `+inf`.
+    let (_, bound) = d3::certified::free_fast(&nu, &b1, &ball(-0.999, 2.0, 0.3), &state, &rest);
     assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
 }

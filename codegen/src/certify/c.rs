@@ -2,7 +2,7 @@
 //! appended to the C header (`noslip gen --lang c`), with the plain kernels' ABI plus one
 //! bound array per output array.
 
-use super::{Arg, Certified, Expr, Format};
+use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::backend::{constant_literal, Precision};
 use crate::model::{names, skew_pairs, Variant};
 use crate::program::{Op, Operand, Program};
@@ -63,10 +63,15 @@ fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
     v
 }
 
-/// The name of the C function: `noslip_d3_free_certified_f64`.
-pub fn function_name(n: usize, variant: Variant, f: Format) -> String {
+/// The name of the C function: `noslip_d3_free_certified_f64`, and for the fast scheme
+/// `noslip_d3_free_certified_fast_f64`.
+pub fn function_name(n: usize, variant: Variant, f: Format, scheme: Scheme) -> String {
+    let fast = match scheme {
+        Scheme::Running => "",
+        Scheme::Fast { .. } => "fast_",
+    };
     format!(
-        "noslip_d{n}_{}_certified_{}",
+        "noslip_d{n}_{}_certified_{fast}{}",
         variant.name(),
         precision(f).suffix()
     )
@@ -87,10 +92,13 @@ pub fn function(c: &Certified) -> String {
     let _ = writeln!(
         s,
         "// {plain} (the same operations, bit for bit) and a rigorous bound on the absolute\n\
-         // error of every output for these inputs, in the same branch-free pass (running error\n\
-         // analysis, docs/accuracy.md \"Certified companions\"): bound1/bound2 hold, slot by slot,\n\
+         // error of every output for these inputs, in the same branch-free pass ({}): bound1/bound2 hold, slot by slot,\n\
          // B >= |out - exact| for the exact map on the given floats, or +inf where none holds.\n\
          // Ops: kernel {}; bound {} ops.",
+        match c.scheme {
+            Scheme::Running => "running error\n// analysis, docs/accuracy.md \"Certified companions\"".to_string(),
+            Scheme::Fast { floor } => format!("a constant per output times\n// magnitudes from the inputs' largest absolute values, docs/accuracy.md \"Fast certified\n// companions\", magnitude floor {floor:e}"),
+        },
         p.ops, c.bound_ops
     );
     let arrays = arrays(n, p.variant);
@@ -111,7 +119,7 @@ pub fn function(c: &Certified) -> String {
     let _ = writeln!(
         s,
         "static inline NOSLIP_NO_CONTRACT void {}({})\n{{\n    NOSLIP_FP_CONTRACT_OFF",
-        function_name(n, p.variant, f),
+        function_name(n, p.variant, f, c.scheme),
         params.join(", ")
     );
     for (a, elems) in &arrays {
@@ -145,6 +153,10 @@ pub fn function(c: &Certified) -> String {
                 let x = arg(f, x);
                 format!("{x} >= 0 ? {x} : ({ty})INFINITY")
             }
+            Expr::AtLeast(x, y) => {
+                let (x, y) = (arg(f, x), arg(f, y));
+                format!("{x} > {y} ? {x} : {y}")
+            }
         };
         let _ = writeln!(s, "    const {ty} {} = {e};", st.name);
     }
@@ -171,6 +183,8 @@ pub fn functions(dims: &[usize]) -> String {
             for v in Variant::ALL {
                 s.push('\n');
                 s.push_str(&function(&Certified::of(n, v, f)));
+                s.push('\n');
+                s.push_str(&function(&Certified::of_fast(n, v, f)));
             }
         }
     }

@@ -55,6 +55,7 @@
 //! Branch-free: the two choices (`L_b > 0`, NaN) are selects (`?:` in C, bit masks in Rust).
 
 pub mod c;
+pub mod fast;
 pub mod rust;
 #[cfg(test)]
 mod tests;
@@ -161,6 +162,21 @@ pub enum Expr {
     PositiveOr(Arg, Arg),
     /// `x` if `x >= 0`, else `+inf` (NaN becomes `+inf`).
     BoundOrInf(Arg),
+    /// `x` if `x > y`, else `y` (a NaN `x` gives `y`): `max` as x86's `maxsd`.
+    AtLeast(Arg, Arg),
+}
+
+/// How a companion bounds its outputs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scheme {
+    /// Running error analysis: a bound carried with every value.
+    Running,
+    /// A magnitude per value and a constant per output ([`fast`]), with the magnitudes'
+    /// floor.
+    Fast {
+        /// The floor `s`.
+        floor: f64,
+    },
 }
 
 /// One binding `name = expr`.
@@ -205,6 +221,8 @@ pub struct Certified {
     pub outputs: Vec<CertifiedOutput>,
     /// Operations of the bound (beyond the kernel's own).
     pub bound_ops: usize,
+    /// How the bound is computed.
+    pub scheme: Scheme,
 }
 
 /// A kernel operation the companions do not bound (`sqrt`, selects, fused forms).
@@ -469,6 +487,7 @@ impl Certified {
             stmts: b.stmts,
             outputs,
             bound_ops,
+            scheme: Scheme::Running,
         })
     }
 

@@ -2,7 +2,7 @@
 //! and `{free_f32, fixed_f32}`, monomorphic, returning the plain kernel's outputs and a bound
 //! per output component in the same layout.
 
-use super::{Arg, Certified, Expr, Format};
+use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::model::{names, skew_pairs, Variant};
 use crate::program::{Op, Operand, Program};
 use std::fmt::Write;
@@ -74,11 +74,19 @@ pub fn function(c: &Certified, name: &str) -> String {
     let state = format!("BodyState<{t}, {n}, {s}>");
     let mut out = String::new();
     let variant = p.variant;
+    let how = match c.scheme {
+        Scheme::Running => "(running error analysis, `noslip_codegen::certify`)".to_string(),
+        Scheme::Fast { floor } => format!(
+            "(a constant fixed at generation times a magnitude of each output computed from the\n\
+             /// inputs' largest absolute values, `noslip_codegen::certify::fast`; looser than\n\
+             /// the running companions where the kernel cancels; magnitude floor `{floor:e}`)"
+        ),
+    };
     let _ = writeln!(
         out,
         "/// [`super::{}`] in `{t}` (the same operations, bit for bit) with a rigorous bound on the\n\
          /// absolute error of every output for these inputs, computed in the same branch-free pass\n\
-         /// (running error analysis, `noslip_codegen::certify`): returns `(outputs, bounds)`, each\n\
+         /// {how}: returns `(outputs, bounds)`, each\n\
          /// bound in its output's slot, `|computed - exact| <= bound` for the exact map on the given\n\
          /// floats; `+inf` where no bound holds (a divisor not provably nonzero, overflow, a\n\
          /// non-finite input).\n\
@@ -119,6 +127,10 @@ pub fn function(c: &Certified, name: &str) -> String {
             Expr::Div(a, b) => format!("{} / {}", arg(f, a), arg(f, b)),
             Expr::PositiveOr(x, y) => format!("{t}::positive_or_inf({}, {})", arg(f, x), arg(f, y)),
             Expr::BoundOrInf(x) => format!("{t}::bound_or_inf({})", arg(f, x)),
+            Expr::AtLeast(x, y) => {
+                let (x, y) = (arg(f, x), arg(f, y));
+                format!("if {x} > {y} {{ {x} }} else {{ {y} }}")
+            }
         };
         let _ = writeln!(out, "let {}: {t} = {e};", st.name);
     }
@@ -157,7 +169,8 @@ pub fn file_name(dim: usize) -> String {
     format!("certified_{dim}.rs")
 }
 
-/// The companions of dimension `dim` (`free`, `fixed` in `f64`; `free_f32`, `fixed_f32`)
+/// The companions of dimension `dim` (`free`, `fixed` in `f64`; `free_f32`, `fixed_f32`;
+/// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`)
 /// as one formatted file; `crate_path` as for [`crate::generate`].
 pub fn generate(dim: usize, crate_path: &str) -> String {
     let mut src =
@@ -179,6 +192,17 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
                 c.program.ops, c.bound_ops
             );
             src.push_str(&function(&c, &name));
+            let fast = Certified::of_fast(dim, variant, format);
+            let name = match format {
+                Format::F64 => format!("{}_fast", variant.name()),
+                Format::F32 => format!("{}_fast_f32", variant.name()),
+            };
+            let _ = writeln!(
+                header,
+                "// {name}: kernel {}; bound {} ops.",
+                fast.program.ops, fast.bound_ops
+            );
+            src.push_str(&function(&fast, &name));
         }
     }
     let file = crate::emit::parse(src.parse().expect("certified source tokenizes"));

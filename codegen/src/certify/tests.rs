@@ -27,7 +27,8 @@ fn every_plain_no_slip_kernel_has_a_companion_with_every_step_in_order() {
                         | Expr::Sub(a, b)
                         | Expr::Mul(a, b)
                         | Expr::Div(a, b)
-                        | Expr::PositiveOr(a, b) => vec![a, b],
+                        | Expr::PositiveOr(a, b)
+                        | Expr::AtLeast(a, b) => vec![a, b],
                         Expr::Const(_) | Expr::Step(_) => vec![],
                     };
                     for a in args {

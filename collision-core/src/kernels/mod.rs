@@ -42,7 +42,9 @@ macro_rules! generated {
             /// The certified companions of [`free`] and [`fixed`] (`f64`; `free_f32`,
             /// `fixed_f32`): the same outputs, bit for bit, and a rigorous bound on each
             /// output's absolute error for these inputs (`noslip_codegen::certify`,
-            /// `docs/accuracy.md` "Certified companions").
+            /// `docs/accuracy.md` "Certified companions"); and the fast companions
+            /// `free_fast`, `fixed_fast` (`_f32`), whose bound is a constant times a
+            /// magnitude carried beside each value (`noslip_codegen::certify::fast`).
             pub mod certified {
                 include!(concat!(env!("OUT_DIR"), "/", $certified));
             }
@@ -77,6 +79,28 @@ macro_rules! generated {
             ) -> (BodyState<f64, $n, $s>, BodyState<f64, $n, $s>) {
                 $module::certified::fixed(nu, radius1, ball2, state1, state2)
             }
+
+            #[inline(always)]
+            fn free_fast(
+                nu: &[f64; $n],
+                ball1: &Ball<f64>,
+                ball2: &Ball<f64>,
+                state1: &BodyState<f64, $n, $s>,
+                state2: &BodyState<f64, $n, $s>,
+            ) -> ([BodyState<f64, $n, $s>; 2], [BodyState<f64, $n, $s>; 2]) {
+                $module::certified::free_fast(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed_fast(
+                nu: &[f64; $n],
+                radius1: &f64,
+                ball2: &Ball<f64>,
+                state1: &BodyState<f64, $n, $s>,
+                state2: &BodyState<f64, $n, $s>,
+            ) -> (BodyState<f64, $n, $s>, BodyState<f64, $n, $s>) {
+                $module::certified::fixed_fast(nu, radius1, ball2, state1, state2)
+            }
         }
 
         #[cfg(feature = $feature)]
@@ -101,6 +125,28 @@ macro_rules! generated {
                 state2: &BodyState<f32, $n, $s>,
             ) -> (BodyState<f32, $n, $s>, BodyState<f32, $n, $s>) {
                 $module::certified::fixed_f32(nu, radius1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn free_fast(
+                nu: &[f32; $n],
+                ball1: &Ball<f32>,
+                ball2: &Ball<f32>,
+                state1: &BodyState<f32, $n, $s>,
+                state2: &BodyState<f32, $n, $s>,
+            ) -> ([BodyState<f32, $n, $s>; 2], [BodyState<f32, $n, $s>; 2]) {
+                $module::certified::free_fast_f32(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed_fast(
+                nu: &[f32; $n],
+                radius1: &f32,
+                ball2: &Ball<f32>,
+                state1: &BodyState<f32, $n, $s>,
+                state2: &BodyState<f32, $n, $s>,
+            ) -> (BodyState<f32, $n, $s>, BodyState<f32, $n, $s>) {
+                $module::certified::fixed_fast_f32(nu, radius1, ball2, state1, state2)
             }
         }
 
