@@ -1,5 +1,5 @@
 //! The engine's homogeneous cooling state of rough balls against the Boltzmann equation's
-//! (docs/granular.md, "The cooling state against the Boltzmann equation"). The kinetic theory
+//! (docs/granular.md, "Against the Boltzmann equation, over the roughness"). The kinetic theory
 //! without the Maxwellian closure of the two-temperature theory is the Boltzmann equation
 //! itself, solved here by the DSMC of `tests/common/dsmc.rs` (no code shared with the engine).
 //! At the Enskog level the cooling state's `T_rot / T_tr` does not depend on the density (both
@@ -14,9 +14,11 @@
 //!
 //! must equal the DSMC's, `|r_0 - r_D| < t sqrt(s_0^2 + s_D^2)`, `t` Student's two-sided
 //! 99.9 % quantile at the Welch-Satterthwaite degrees of freedom of the three six-seed means
-//! (the order `phi^2` left out is about `(phi_2 / phi_1) phi_1 phi_2` of the slope's scale,
-//! under 0.1 % here). Both sides use the ratio of the temperatures' means with the cooling
-//! scaled out (`Run::ratio_of_means`), which has no `O(1 / N_b)` bias of a mean of ratios.
+//! (a term `b phi^2` would shift `r_0` by `-b phi_1 phi_2`, `phi_1 phi_2` about `3e-4` here:
+//! below the statistics unless `|b| / r` exceeds about 10; a middle packing lies on the line,
+//! `the_cooling_state_in_boxes_of_fewer_mean_free_paths`). Both sides use the ratio of the
+//! temperatures' means with the cooling scaled out (`Run::ratio_of_means`), which has no
+//! `O(1 / N_b)` bias of a mean of ratios.
 //!
 //! The boxes are a few mean free paths `l` wide: the cooling state is unstable to a shear
 //! mode in a box wider than `L_c = 2 pi sqrt(2 nu / zeta)` (`nu` the kinematic viscosity,
@@ -71,8 +73,9 @@ fn free_path(dim: usize, side: f64, count: usize) -> f64 {
 }
 
 /// One row: the engine in `gases` (two packings) extrapolated to `phi -> 0` against the DSMC
-/// with `particles`; asserts the agreement (module docs), that the combined standard error is
-/// below `power r_D` and that both gases stayed homogeneous. Returns `(r_0, r_D)`.
+/// with `particles`; prints the row and asserts that both gases stayed homogeneous. Returns
+/// the failed checks: the agreement (module docs) and the power (the combined standard error
+/// below `power r_D`).
 fn against_boltzmann(
     dim: usize,
     e: f64,
@@ -80,7 +83,7 @@ fn against_boltzmann(
     gases: [Gas; 2],
     particles: usize,
     power: f64,
-) -> (f64, f64) {
+) -> Vec<String> {
     let measured: Vec<(f64, Measured)> = gases
         .iter()
         .map(|&(side, count, replicas)| {
@@ -108,25 +111,32 @@ fn against_boltzmann(
         (r0 - rd) / s,
         100.0 * (rd / theory - 1.0),
     );
-    assert!(s < power * rd, "too noisy to test: {s} {rd}");
-    assert!(
-        (r0 - rd).abs() < t * s,
-        "engine {r0} +- {s0}, DSMC {rd} +- {sd}"
-    );
-    (r0, rd)
+    let case = format!("{dim}D e = {e} beta = {beta}");
+    let mut failed = Vec::new();
+    if s >= power * rd {
+        failed.push(format!("{case}: too noisy to test: {s} {rd}"));
+    }
+    if (r0 - rd).abs() >= t * s {
+        failed.push(format!("{case}: engine {r0} +- {s0}, DSMC {rd} +- {sd}"));
+    }
+    failed
 }
 
 /// The 3D gases: 1000 spheres in side 40 (`phi = 0.0082`, 2.8 mean free paths) and 500 in
 /// side 19 (`phi = 0.038`, 6.2), both below half the shear instability's `L_c` (12 to 36 mean
-/// free paths over the grid, docs/granular.md), `replicas` runs per seed each.
-fn spheres(replicas: u64) -> [Gas; 2] {
-    [(40.0, 1000, replicas), (19.0, 500, 2 * replicas)]
+/// free paths over the grid, docs/granular.md), four runs per seed each (the extrapolation
+/// weighs the dilute gas 1.27 times, the dense one 0.27).
+fn spheres() -> [Gas; 2] {
+    [(40.0, 1000, 4), (19.0, 500, 4)]
 }
 
 /// The 2D gases: 400 disks in side 200 (`phi = 0.0079`) and 100 in side 50 (`phi = 0.031`),
-/// both 5.7 mean free paths wide (below half `L_c`, 12 to 29 over the grid).
-fn disks(replicas: u64) -> [Gas; 2] {
-    [(200.0, 400, replicas), (50.0, 100, 4 * replicas)]
+/// both 5.7 mean free paths wide (below half `L_c`, 12 to 29 over the grid), eight and
+/// sixteen runs per seed (weights 1.33 and 0.33), twice as many at `e = 0.7`, where the ratio
+/// fluctuates more (a first run of the grid had standard errors of 0.5 % there).
+fn disks(e: f64) -> [Gas; 2] {
+    let k = if e < 0.8 { 2 } else { 1 };
+    [(200.0, 400, 8 * k), (50.0, 100, 16 * k)]
 }
 
 /// The representative case, within the CI's budget (about 7 s of CPU): spheres, `e = 0.9`,
@@ -139,22 +149,25 @@ fn disks(replicas: u64) -> [Gas; 2] {
 #[test]
 fn the_cooling_state_of_rough_spheres_is_the_boltzmann_equations() {
     let gases = [(30.0, 400, 2), (15.0, 250, 1)];
-    against_boltzmann(3, 0.9, 0.0, gases, 1000, 0.006);
+    let failed = against_boltzmann(3, 0.9, 0.0, gases, 1000, 0.006);
+    assert!(failed.is_empty(), "{failed:#?}");
 }
 
-/// The grid: `beta` in {1, 0.5, 0, -0.5} at `e` in {0.9, 0.7}, spheres and disks (about 10
+/// The grid: `beta` in {1, 0.5, 0, -0.5} at `e` in {0.9, 0.7}, spheres and disks (about 15
 /// minutes): `cargo test -p noslip-sim --test cooling_state -- --ignored --nocapture grid`.
 #[test]
 #[ignore]
 fn the_cooling_state_over_the_grid_is_the_boltzmann_equations() {
+    let mut failed = Vec::new();
     for dim in [3, 2] {
         for e in [0.9, 0.7] {
             for beta in [1.0, 0.5, 0.0, -0.5] {
-                let gases = if dim == 3 { spheres(2) } else { disks(4) };
-                against_boltzmann(dim, e, beta, gases, 4000, 0.003);
+                let gases = if dim == 3 { spheres() } else { disks(e) };
+                failed.extend(against_boltzmann(dim, e, beta, gases, 4000, 0.004));
             }
         }
     }
+    assert!(failed.is_empty(), "{failed:#?}");
 }
 
 /// The box's hydrodynamics: disks at `e = 0.7`, `beta = 0.5`, `phi = 0.0079` (the row of
@@ -168,8 +181,8 @@ fn the_cooling_state_over_the_grid_is_the_boltzmann_equations() {
 /// the packing's effect at `e = 0.9`, `beta = 0` and `-0.5`: the engine at three packings
 /// (2D: 100, 200, 400 disks in sides 50, 100, 200, all 5.7 `l` wide; 3D: 500 spheres in side
 /// 19, 1000 in 30 and in 40, 6.2, 4.9 and 2.8 `l`), the middle one on the line through the
-/// other two within `t s` (the extrapolation's premise). About 4 minutes: `cargo test -p noslip-sim --test cooling_state
-/// -- --ignored --nocapture boxes`.
+/// other two within `t s` (the extrapolation's premise). About 6 minutes: `cargo test -p
+/// noslip-sim --test cooling_state -- --ignored --nocapture boxes`.
 #[test]
 #[ignore]
 fn the_cooling_state_in_boxes_of_fewer_mean_free_paths() {
