@@ -28,10 +28,11 @@ fn dsmc_of_elastic_perfectly_rough_balls_keeps_equipartition() {
     }
 }
 
-/// The DSMC ratios of the cases of `granular.rs`'s `cooling_ratio_over_the_roughness`, six
-/// seeds of 4000 particles, the same settling (`|r - r_+| < 1e-3 r_+` by the theory, from
-/// `r = 1`) and window (`60 / kappa` collisions per particle): prints the table of
-/// docs/granular.md; checks only the power (`s < 0.004 r_+`).
+/// The DSMC's mean of ratios against the Maxwellian two-temperature theory for the cases of
+/// the first version of docs/granular.md's table over the roughness, six seeds of 4000
+/// particles, the same settling (`|r - r_+| < 1e-3 r_+` by the theory, from `r = 1`) and
+/// window (`60 / kappa` collisions per particle); checks only the power (`s < 0.004 r_+`).
+/// The engine is held to the DSMC in `cooling_state.rs`.
 #[test]
 #[ignore]
 fn dsmc_cooling_ratio_over_the_roughness() {
