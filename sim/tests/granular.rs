@@ -7,28 +7,11 @@
 //! quantile of Student's t with `K - 1` degrees of freedom; and `s` must be small enough for
 //! the test to have power.
 
-use collision_core::{Generated, Kernel};
-use noslip_scene::Scene;
-use noslip_sim::granular::{temperatures, Row};
-use noslip_sim::setup::setup;
-use noslip_sim::{GenericKernels, Setup, Simulation, Step};
+use noslip_sim::granular::Row;
 
 mod common;
+use common::cooling::{cooling_gas, hcs_in, Measured};
 use common::{enskog_frequency, haff_gas, mean_se, periodic_gas, rows, two_temperature, T_5};
-
-/// [`periodic_gas`] with the rough law `{ e, beta }` at every ball-ball contact and a
-/// Maxwellian start at equal temperatures: a freely cooling gas.
-fn cooling_gas(dim: usize, side: f64, count: usize, e: f64, beta: f64) -> String {
-    periodic_gas(
-        dim,
-        side,
-        count,
-        &format!(
-            "[contact]\nballs = {{ e = {e}, beta = {beta} }}\n[random]\nseed = {{seed}}\n\
-             velocities = \"maxwellian\"\n"
-        ),
-    )
-}
 
 /// The sum of the per-contact losses is the kinetic energy lost, to rounding: each loss is
 /// a difference of ball energies `1/2 m (|u|^2 + 2 lambda |U|^2)`, each evaluated with a
@@ -242,203 +225,16 @@ fn the_two_temperature_theory_conserves_energy_and_decouples_smooth_balls() {
     assert!(close(t.d / 8.0, eta / (2.0 * q) * (1.0 - eta / q)));
 }
 
-/// One freely cooling run (a periodic gas, ball-ball contacts only): the Maxwellian start of
-/// `scene` with the centre of mass brought to rest and every spin multiplied by `spin` (so
-/// `T_rot / T_tr` starts near `spin^2`), run for `skip + window` contacts per ball; returns the
-/// mean of `T_rot / T_tr` over samples every half contact per ball in the window, and the
-/// window's contacts per ball and unit time divided by `sqrt(T_tr)` in its first and last
-/// quarters (equal while the gas stays homogeneous). Hard-ball dynamics is invariant under a
-/// common scaling of all velocities and spins (it only rescales time), so whenever `T_tr`
-/// has fallen by `1e-8` the run is restarted from the current positions with every velocity
-/// and spin scaled back up: the same trajectory, kept in a comfortable floating-point range.
-fn cooling<const N: usize, const S: usize>(
-    scene: &Scene,
-    spin: f64,
-    skip: f64,
-    window: f64,
-) -> (f64, [f64; 2])
-where
-    Generated: Kernel<f64, N, S>,
-{
-    let mut setup = setup::<N, S>(scene).unwrap();
-    let balls = setup.bodies.len();
-    let species = setup.species.clone();
-    let restart = |setup: &mut Setup<N, S>, scale: f64| {
-        // The centre of mass's velocity (equal masses).
-        let v: [f64; N] = std::array::from_fn(|k| {
-            setup
-                .bodies
-                .iter()
-                .map(|b| b.state.velocity[k])
-                .sum::<f64>()
-                / balls as f64
-        });
-        for b in &mut setup.bodies {
-            b.state.velocity = std::array::from_fn(|k| (b.state.velocity[k] - v[k]) * scale);
-            b.state.spin = b.state.spin.map(|x| x * scale);
-        }
-    };
-    for b in &mut setup.bodies {
-        b.state.spin = b.state.spin.map(|x| x * spin);
-    }
-    restart(&mut setup, 1.0);
-    let fresh = setup.clone();
-    let kernels = || GenericKernels {
-        species: species.clone(),
-    };
-    let mut sim = Simulation::new(setup, kernels()).unwrap();
-    let t_start = temperatures(&sim, &species)[0];
-    let every = (balls / 4) as u64;
-    // Contacts and time (in the start's units) before the current run; `scale` the factor
-    // its velocities were scaled by, all told.
-    let (mut done, mut origin, mut scale) = (0u64, 0.0f64, 1.0f64);
-    let (mut ratios, mut clock) = (Vec::new(), Vec::new());
-    loop {
-        let Step::Contact(_) = sim.step(f64::INFINITY) else {
-            panic!("the gas stopped colliding")
-        };
-        if sim.contacts() % every != 0 {
-            continue;
-        }
-        let tau = 2.0 * (done + sim.contacts()) as f64 / balls as f64;
-        let [tr, rot] = temperatures(&sim, &species);
-        if tau >= skip {
-            ratios.push(rot / tr);
-            clock.push((tau, origin + sim.now() * scale, tr / (scale * scale)));
-        }
-        if tau >= skip + window {
-            break;
-        }
-        if tr < 1e-8 * t_start {
-            let mut next = fresh.clone();
-            for (i, b) in next.bodies.iter_mut().enumerate() {
-                b.position = std::array::from_fn(|k| {
-                    let x = sim.position(i)[k].rem_euclid(sim.box_size()[k]);
-                    if x < sim.box_size()[k] {
-                        x
-                    } else {
-                        0.0
-                    }
-                });
-                b.state = sim.state(i).clone();
-            }
-            let up = (t_start / tr).sqrt();
-            restart(&mut next, up);
-            done += sim.contacts();
-            origin += sim.now() * scale;
-            scale *= up;
-            sim = Simulation::new(next, kernels()).unwrap();
-        }
-    }
-    let mean = |r: &[f64]| r.iter().sum::<f64>() / r.len() as f64;
-    // Contacts per ball and unit time over sqrt(T_tr), sample to sample (`T_tr` at the
-    // interval's geometric mean), averaged over the first and the last quarter.
-    let k: Vec<f64> = clock
-        .windows(2)
-        .map(|w| (w[1].0 - w[0].0) / (w[1].1 - w[0].1) / (w[0].2 * w[1].2).powf(0.25))
-        .collect();
-    let q = k.len() / 4;
-    (mean(&ratios), [mean(&k[..q]), mean(&k[k.len() - q..])])
-}
-
-/// A measured homogeneous cooling state: the mean of `T_rot / T_tr` over six seeds, its
-/// standard error, the theory's value, and per start `(start, mean, standard error)`.
-struct Measured {
-    mean: f64,
-    se: f64,
-    theory: f64,
-    starts: Vec<(f64, f64, f64)>,
-}
-
 /// The homogeneous cooling state's `T_rot / T_tr` in a dilute periodic gas of equal uniform
 /// balls (3D: 1000 spheres in a box of side 30 diameters, `phi = 0.019`; 2D: 400 disks, side
-/// 100, `phi = 0.031`: the Haff gases), against [`two_temperature`]. The Maxwellian start
-/// has its spins scaled so that `T_rot / T_tr` starts near one of `starts` (0: no spin, 1:
-/// equal temperatures, 3: far above every ratio tested), and each run first waits out the
-/// ratio's relaxation as the theory gives it, until `|r - r_+| < 1e-3 r_+` (a quarter of the
-/// bound on the standard error below; `TwoTemperature::settled` in `tests/common`); it then
-/// averages over `60 / kappa` contacts per ball (60 relaxation times). Each of the six seeds
-/// averages `replicas` independent runs from each start. The standard error must be below
-/// `0.004 r_+`: a theory off by more than `6.87 x 0.4 % = 2.7 %` fails. The gas must stay
-/// homogeneous: its collision frequency over `sqrt(T_tr)` (Enskog's constant) may change by
-/// less than 3 % between the window's first and last quarters, on average over the runs (a
-/// growing shear mode lowers it and carries energy into flow, clusters raise it; a single
-/// 2D run of 400 disks varies by a few per cent by chance).
+/// 100, `phi = 0.031`: the Haff gases), against [`two_temperature`] (`hcs_in` in
+/// `tests/common/cooling.rs`: the settling, until `|r - r_+| < 1e-3 r_+` by the theory, a
+/// quarter of the bound on the standard error below, then `60 / kappa` contacts per ball).
+/// The standard error must be below `0.004 r_+`: a theory off by more than `6.87 x 0.4 % =
+/// 2.7 %` fails; and the gas must stay homogeneous ([`Measured::checked`]).
 fn hcs(dim: usize, e: f64, beta: f64, starts: &[f64], replicas: u64) -> Measured {
-    let (side, count) = match dim {
-        2 => (100, 400),
-        _ => (30, 1000),
-    };
-    hcs_in(dim, side, count, e, beta, starts, replicas)
-}
-
-/// [`hcs`] in a box of side `side` (diameters) with `count` balls.
-fn hcs_in(
-    dim: usize,
-    side: u64,
-    count: u64,
-    e: f64,
-    beta: f64,
-    starts: &[f64],
-    replicas: u64,
-) -> Measured {
-    let gas = cooling_gas(dim, side as f64, count as usize, e, beta);
-    // Uniform balls: gamma^2 = 2 / (n + 2).
-    let theory = two_temperature(dim, e, beta, 2.0 / (dim as f64 + 2.0));
-    let window = 60.0 / theory.rate();
-    let runs = starts.len() as u64 * replicas;
-    // Per seed: the mean over all its runs, and over each start's.
-    let (mut ratio, mut by_start) = (Vec::new(), vec![Vec::new(); starts.len()]);
-    let mut drift = 0.0;
-    for seed in 0..6 {
-        let mut sum = 0.0;
-        for (k, &start) in starts.iter().enumerate() {
-            let skip = theory.settled(start, 1e-3);
-            let mut part = 0.0;
-            for replica in 0..replicas {
-                let id = seed * runs + k as u64 * replicas + replica;
-                let text = gas.replace("{seed}", &id.to_string());
-                let scene = Scene::from_toml(&text, "t.toml").unwrap();
-                let spin = start.sqrt();
-                let (r, f) = collision_core::with_dim!(
-                    scene.dim,
-                    |N, S| cooling::<N, S>(&scene, spin, skip, window),
-                    unreachable!()
-                );
-                drift += (f[1] / f[0] - 1.0) / (6 * runs) as f64;
-                part += r / replicas as f64;
-            }
-            by_start[k].push(part);
-            sum += part / starts.len() as f64;
-        }
-        ratio.push(sum);
-    }
-    let (mean, se) = mean_se(&ratio);
-    let r = theory.ratio();
-    let starts: Vec<(f64, f64, f64)> = starts
-        .iter()
-        .zip(&by_start)
-        .map(|(&start, x)| {
-            let (m, s) = mean_se(x);
-            (start, m, s)
-        })
-        .collect();
-    eprintln!(
-        "HCS {dim}D, {count} in side {side}, e = {e}, beta = {beta}: {mean:.4} +- {se:.4} \
-         (6 seeds x {runs}), theory {r:.4}, {:+.1} %, {:+.1} s; from {starts:.4?}; \
-         frequency drift {:+.1} %",
-        100.0 * (mean / r - 1.0),
-        (mean - r) / se,
-        100.0 * drift
-    );
-    assert!(drift.abs() < 0.03, "not homogeneous: {drift}");
-    assert!(se < 0.004 * r, "too noisy to test: {ratio:?}");
-    Measured {
-        mean,
-        se,
-        theory: r,
-        starts,
-    }
+    let (side, count) = haff_gas(dim);
+    hcs_in(dim, side, count, e, beta, starts, replicas, false).checked()
 }
 
 /// The homogeneous cooling state's ratio where the Maxwellian two-temperature theory holds
@@ -469,30 +265,4 @@ fn cooling_ratio_in_3d() {
 #[test]
 fn cooling_ratio_in_2d() {
     hcs_agrees(2, 0.9, 0.9, 8);
-}
-
-/// The ratio over the roughness, where the Maxwellian theory is known to be off at medium and
-/// small roughness (docs/granular.md): prints the table, checks power and homogeneity only.
-/// At `e = 0.9` the default gases; at `e = 0.7`, 3D the default gas (six means of two runs),
-/// 2D 1600 disks in side 400 (`phi = 0.008`, the same side in mean free paths; six means of
-/// two): the default 2D gas clusters at `e = 0.7` within the window (its collision frequency
-/// over `sqrt(T_tr)` rises by more than 5 % in some runs). Then the cases where the engine
-/// and the DSMC of the Boltzmann equation (`boltzmann.rs`) differ most, at `phi = 0.008`.
-/// About two minutes: `cargo test -p noslip-sim --test granular -- --ignored --nocapture cooling`.
-#[test]
-#[ignore]
-fn cooling_ratio_over_the_roughness() {
-    for (dim, replicas) in [(3, 1), (2, 8)] {
-        for beta in [1.0, 0.9, 0.5, 0.0, -0.5] {
-            hcs(dim, 0.9, beta, &[1.0], replicas);
-        }
-    }
-    for beta in [0.9, 0.5] {
-        hcs(3, 0.7, beta, &[1.0], 2);
-        hcs_in(2, 400, 1600, 0.7, beta, &[1.0], 2);
-    }
-    for beta in [0.0, -0.5] {
-        hcs_in(3, 40, 1000, 0.9, beta, &[1.0], 1);
-    }
-    hcs_in(2, 400, 1600, 0.9, -0.5, &[1.0], 2);
 }

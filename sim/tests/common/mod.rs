@@ -11,6 +11,9 @@ use noslip_sim::setup::setup;
 use noslip_sim::{GenericKernels, Simulation, Step};
 use std::f64::consts::PI;
 
+pub mod cooling;
+pub mod dsmc;
+
 /// Runs `text` (with `{seed}` replaced) to time `until`, a row every `every`.
 pub fn rows(text: &str, seed: u64, every: f64, until: f64) -> (Vec<Row>, usize) {
     let scene = Scene::from_toml(&text.replace("{seed}", &seed.to_string()), "t.toml").unwrap();
