@@ -32,8 +32,8 @@
 //! ```
 //!
 //! A product's rounding is off by at most `u max(|a^ b^|, 2^e_min)`, and `A*_a A*_b >=
-//! 2^e_min` for every product, which the floor `s` ensures ([`Fast::floor`] is the least
-//! power of two for which the recursion's lower bounds pass): so gradual underflow is covered
+//! 2^e_min` for every product, which the floor `s` ensures (the least power of two for
+//! which the recursion's lower bounds pass, recorded in [`Scheme::Fast`]): so gradual underflow is covered
 //! by the same `u`. Sums round only in the normal range. A quotient's rounding is covered by
 //! its magnitude's floor `s >= 2^e_min`. At a quotient the divisor must not cancel: the
 //! companion checks `A_b <= rho |b^|` (`rho = 1 + 2^-20`), so that `|b - b^| <= k |b^|`; if
@@ -63,7 +63,7 @@
 //! outputs). Equal keys have equal `cc`, `ce`, `KA` (they follow the key's structure).
 
 use super::{Arg, Certified, CertifiedOutput, Expr, Format, Scheme, Stmt, Unsupported};
-use crate::bound::round::{add_up, div_up, mul_up, up};
+use crate::bound::round::{add_up, div_up, mul_up, sub_down};
 use crate::model::Variant;
 use crate::program::{Op, Operand, Program};
 use num_rational::BigRational;
@@ -191,7 +191,7 @@ fn track(program: &Program, format: Format, floor_log2: i32) -> Result<Vec<Track
                 assert!(kappa < 0.5, "a divisor's error bound {kappa} is not small");
                 Tracked {
                     cc: compose(u, a.cc),
-                    ce: div_up(add_up(a.ce, kappa), 1.0 - up(kappa)),
+                    ce: div_up(add_up(a.ce, kappa), sub_down(1.0, kappa)),
                     ka: 0,
                     lo: floor,
                 }
@@ -421,6 +421,11 @@ impl Certified {
                             let t = tracked[*k];
                             let c =
                                 format.up(mul_up(add_up(t.cc, t.ce), inverse_power(u, t.ka + 1)));
+                            // `C_y A_y >= C_y s` stays normal: its rounding is relative.
+                            assert!(
+                                c * floor >= 2f64.powi(format.min_exponent() + 1),
+                                "C_y s = {c:e} {floor:e} is not normal"
+                            );
                             let key = (b.step_keys[*k].clone(), c.to_bits());
                             if let Some(a) = bounds.get(&key) {
                                 return a.clone();
