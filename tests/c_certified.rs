@@ -154,53 +154,56 @@ fn c_certified_companions_are_bit_identical_to_the_rust_ones() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// One bound operation altered (its first sum of two bound terms made a difference) makes the comparison fail: the test
-/// above compares the bounds, not only the outputs.
-#[test]
-fn one_altered_bound_operation_fails_the_comparison() {
-    let dir = scratch("c-certified-mutation");
-    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+/// `header` with the first sum `+ {prefix}` of a `const double {prefix}` line in `function`
+/// made a difference, and the line altered.
+fn with_first_sum_negated(header: &str, function: &str, prefix: &str) -> (String, String) {
     let start = header
-        .find("void noslip_d3_free_certified_f64(")
+        .find(&format!("void {function}("))
         .expect("the companion is in the header");
     let body = &header[start..];
     let line = body
         .lines()
-        .find(|l| l.trim_start().starts_with("const double cert") && l.contains(" + cert"))
+        .find(|l| {
+            l.trim_start()
+                .starts_with(&format!("const double {prefix}"))
+                && l.contains(&format!(" + {prefix}"))
+        })
         .expect("a sum of two bound terms");
     let at = start + body.find(line).unwrap();
-    let mut mutated = header.clone();
-    mutated.replace_range(at..at + line.len(), &line.replacen(" + cert", " - cert", 1));
+    let mut mutated = header.to_string();
+    let altered = line.replacen(&format!(" + {prefix}"), &format!(" - {prefix}"), 1);
+    mutated.replace_range(at..at + line.len(), &altered);
+    (mutated, line.trim().to_string())
+}
+
+/// One bound operation altered (the first sum of two bound terms of the running companion,
+/// then the first sum of two magnitudes of the fast one, made a difference) makes the
+/// comparison fail: the test above compares the bounds, not only the outputs.
+#[test]
+fn one_altered_bound_operation_fails_the_comparison() {
+    let dir = scratch("c-certified-mutation");
+    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
     let cases = draw::<3, 3>(1000, 3).f64;
-    let exes = [
-        ("good", build(&dir, &header, CONFIGS[0].1, "good")),
-        ("bad", build(&dir, &mutated, CONFIGS[0].1, "bad")),
-    ];
-    let good = check_format(&dir, &exes[..1], &cases);
+    let good = [("good", build(&dir, &header, CONFIGS[0].1, "good"))];
+    let good = check_format(&dir, &good, &cases);
     assert!(good.is_empty(), "{good:?}");
-    let bad = check_format(&dir, &exes[1..], &cases);
-    assert!(
-        bad.iter().any(|f| f.contains("free_certified")),
-        "altering `{}` went unnoticed",
-        line.trim()
-    );
-    // The fast companion: its first sum of two magnitudes made a difference.
-    let start = header
-        .find("void noslip_d3_free_certified_fast_f64(")
-        .expect("the fast companion is in the header");
-    let body = &header[start..];
-    let line = body
-        .lines()
-        .find(|l| l.trim_start().starts_with("const double mag") && l.contains(" + mag"))
-        .expect("a sum of two magnitudes");
-    let at = start + body.find(line).unwrap();
-    let mut mutated = header.clone();
-    mutated.replace_range(at..at + line.len(), &line.replacen(" + mag", " - mag", 1));
-    let exes = [("bad", build(&dir, &mutated, CONFIGS[0].1, "bad_fast"))];
-    let bad = check_format(&dir, &exes, &cases);
-    assert!(
-        bad.iter().any(|f| f.contains("free_fast_certified")),
-        "altering `{}` went unnoticed: {bad:?}",
-        line.trim()
-    );
+    for (function, prefix, kernel) in [
+        ("noslip_d3_free_certified_f64", "cert", "free_certified"),
+        (
+            "noslip_d3_free_certified_fast_f64",
+            "mag",
+            "free_fast_certified",
+        ),
+    ] {
+        let (mutated, line) = with_first_sum_negated(&header, function, prefix);
+        let bad = [(
+            "bad",
+            build(&dir, &mutated, CONFIGS[0].1, &format!("bad_{prefix}")),
+        )];
+        let bad = check_format(&dir, &bad, &cases);
+        assert!(
+            bad.iter().any(|f| f.contains(kernel)),
+            "altering `{line}` went unnoticed: {bad:?}"
+        );
+    }
 }

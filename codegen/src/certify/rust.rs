@@ -205,6 +205,16 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
             src.push_str(&function(&fast, &name));
         }
     }
+    src.push_str(
+        "/// The `f64` companions under the names generic code uses.\n\
+         pub mod in_f64 {\n\
+         pub use super::{fixed, fixed_fast, free, free_fast};\n\
+         }\n\
+         /// The `f32` companions under the names generic code uses.\n\
+         pub mod in_f32 {\n\
+         pub use super::{fixed_f32 as fixed, fixed_fast_f32 as fixed_fast, free_f32 as free, free_fast_f32 as free_fast};\n\
+         }\n",
+    );
     let file = crate::emit::parse(src.parse().expect("certified source tokenizes"));
     format!("{header}\n{}", prettyplease::unparse(&file))
 }

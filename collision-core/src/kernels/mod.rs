@@ -20,6 +20,58 @@ mod walton;
 pub use rough::RoughKernel;
 pub use walton::WaltonKernel;
 
+/// `CertifiedKernel<$t>` for dimension `$n` from the companions' per-format names
+/// (`kernels::dN::certified::in_f64`, `in_f32`).
+macro_rules! certified_kernel_impl {
+    ($module:ident $n:literal $s:literal $t:ident $format:ident) => {
+        impl crate::certified::CertifiedKernel<$t, $n, $s> for Generated {
+            #[inline(always)]
+            fn free(
+                nu: &[$t; $n],
+                ball1: &Ball<$t>,
+                ball2: &Ball<$t>,
+                state1: &BodyState<$t, $n, $s>,
+                state2: &BodyState<$t, $n, $s>,
+            ) -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]) {
+                $module::certified::$format::free(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed(
+                nu: &[$t; $n],
+                radius1: &$t,
+                ball2: &Ball<$t>,
+                state1: &BodyState<$t, $n, $s>,
+                state2: &BodyState<$t, $n, $s>,
+            ) -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>) {
+                $module::certified::$format::fixed(nu, radius1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn free_fast(
+                nu: &[$t; $n],
+                ball1: &Ball<$t>,
+                ball2: &Ball<$t>,
+                state1: &BodyState<$t, $n, $s>,
+                state2: &BodyState<$t, $n, $s>,
+            ) -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]) {
+                $module::certified::$format::free_fast(nu, ball1, ball2, state1, state2)
+            }
+
+            #[inline(always)]
+            fn fixed_fast(
+                nu: &[$t; $n],
+                radius1: &$t,
+                ball2: &Ball<$t>,
+                state1: &BodyState<$t, $n, $s>,
+                state2: &BodyState<$t, $n, $s>,
+            ) -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>) {
+                $module::certified::$format::fixed_fast(nu, radius1, ball2, state1, state2)
+            }
+        }
+    };
+}
+
 macro_rules! generated {
     ($($module:ident $feature:literal $n:literal $s:literal $file:literal $rough:literal $walton:literal $certified:literal;)*) => {$(
         #[doc = concat!("Generated kernels for n = ", stringify!($n), ".")]
@@ -57,98 +109,10 @@ macro_rules! generated {
         walton::walton_kernel_impl!($module $n $s);
 
         #[cfg(feature = $feature)]
-        impl crate::certified::CertifiedKernel<f64, $n, $s> for Generated {
-            #[inline(always)]
-            fn free(
-                nu: &[f64; $n],
-                ball1: &Ball<f64>,
-                ball2: &Ball<f64>,
-                state1: &BodyState<f64, $n, $s>,
-                state2: &BodyState<f64, $n, $s>,
-            ) -> ([BodyState<f64, $n, $s>; 2], [BodyState<f64, $n, $s>; 2]) {
-                $module::certified::free(nu, ball1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn fixed(
-                nu: &[f64; $n],
-                radius1: &f64,
-                ball2: &Ball<f64>,
-                state1: &BodyState<f64, $n, $s>,
-                state2: &BodyState<f64, $n, $s>,
-            ) -> (BodyState<f64, $n, $s>, BodyState<f64, $n, $s>) {
-                $module::certified::fixed(nu, radius1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn free_fast(
-                nu: &[f64; $n],
-                ball1: &Ball<f64>,
-                ball2: &Ball<f64>,
-                state1: &BodyState<f64, $n, $s>,
-                state2: &BodyState<f64, $n, $s>,
-            ) -> ([BodyState<f64, $n, $s>; 2], [BodyState<f64, $n, $s>; 2]) {
-                $module::certified::free_fast(nu, ball1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn fixed_fast(
-                nu: &[f64; $n],
-                radius1: &f64,
-                ball2: &Ball<f64>,
-                state1: &BodyState<f64, $n, $s>,
-                state2: &BodyState<f64, $n, $s>,
-            ) -> (BodyState<f64, $n, $s>, BodyState<f64, $n, $s>) {
-                $module::certified::fixed_fast(nu, radius1, ball2, state1, state2)
-            }
-        }
+        certified_kernel_impl!($module $n $s f64 in_f64);
 
         #[cfg(feature = $feature)]
-        impl crate::certified::CertifiedKernel<f32, $n, $s> for Generated {
-            #[inline(always)]
-            fn free(
-                nu: &[f32; $n],
-                ball1: &Ball<f32>,
-                ball2: &Ball<f32>,
-                state1: &BodyState<f32, $n, $s>,
-                state2: &BodyState<f32, $n, $s>,
-            ) -> ([BodyState<f32, $n, $s>; 2], [BodyState<f32, $n, $s>; 2]) {
-                $module::certified::free_f32(nu, ball1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn fixed(
-                nu: &[f32; $n],
-                radius1: &f32,
-                ball2: &Ball<f32>,
-                state1: &BodyState<f32, $n, $s>,
-                state2: &BodyState<f32, $n, $s>,
-            ) -> (BodyState<f32, $n, $s>, BodyState<f32, $n, $s>) {
-                $module::certified::fixed_f32(nu, radius1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn free_fast(
-                nu: &[f32; $n],
-                ball1: &Ball<f32>,
-                ball2: &Ball<f32>,
-                state1: &BodyState<f32, $n, $s>,
-                state2: &BodyState<f32, $n, $s>,
-            ) -> ([BodyState<f32, $n, $s>; 2], [BodyState<f32, $n, $s>; 2]) {
-                $module::certified::free_fast_f32(nu, ball1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn fixed_fast(
-                nu: &[f32; $n],
-                radius1: &f32,
-                ball2: &Ball<f32>,
-                state1: &BodyState<f32, $n, $s>,
-                state2: &BodyState<f32, $n, $s>,
-            ) -> (BodyState<f32, $n, $s>, BodyState<f32, $n, $s>) {
-                $module::certified::fixed_fast_f32(nu, radius1, ball2, state1, state2)
-            }
-        }
+        certified_kernel_impl!($module $n $s f32 in_f32);
 
         #[cfg(feature = $feature)]
         impl<T: Scalar> Kernel<T, $n, $s> for Generated
