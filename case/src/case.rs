@@ -45,6 +45,37 @@ pub const BODY_KEYS: [&str; 7] = [
 ];
 const INERTIA_KEYS: [&str; 3] = ["lambda", "gamma2", "distribution"];
 
+/// `bodies[i]`, the path of body `i`.
+const BODY_PATHS: [&str; 2] = ["bodies[0]", "bodies[1]"];
+
+/// `bodies[i].KEY` for each of [`BODY_KEYS`], spelled once (a case reads a dozen of them).
+const BODY_FIELDS: [[&str; 7]; 2] = [
+    [
+        "bodies[0].mass",
+        "bodies[0].radius",
+        "bodies[0].lambda",
+        "bodies[0].gamma2",
+        "bodies[0].distribution",
+        "bodies[0].angular_velocity",
+        "bodies[0].velocity",
+    ],
+    [
+        "bodies[1].mass",
+        "bodies[1].radius",
+        "bodies[1].lambda",
+        "bodies[1].gamma2",
+        "bodies[1].distribution",
+        "bodies[1].angular_velocity",
+        "bodies[1].velocity",
+    ],
+];
+
+/// The field of `key` (one of [`BODY_KEYS`]) of body `index` (0 or 1).
+fn body_field(index: usize, key: &str) -> &'static str {
+    let k = BODY_KEYS.iter().position(|&b| b == key);
+    k.map_or("", |k| BODY_FIELDS[index][k])
+}
+
 /// One case as given; `normal` and `velocity` have length `dim`, a `Matrix` spin is
 /// `dim x dim`.
 #[derive(Clone, Debug, PartialEq)]
@@ -80,24 +111,29 @@ fn get<'a, V: Node>(obj: &'a V::Object, path: &str, key: &str) -> Result<&'a V, 
         .ok_or_else(|| CaseError::new(join(path, key), "missing (required)"))
 }
 
-/// An array of exactly `len` numbers; the length is checked before any number is read. The
-/// fields of components below the normal range of `T` are pushed on `tiny`.
+/// An array of exactly `len` numbers at `field` (at `field[row]` for a row of a matrix);
+/// the length is checked before any number is read. The fields of components below the
+/// normal range of `T` are pushed on `tiny`. Fields are spelled out only when needed.
 fn vector<T: InputScalar, V: Node>(
     value: &V,
-    field: &str,
+    (field, row): (&str, Option<usize>),
     len: usize,
     floats: bool,
     tiny: &mut Vec<String>,
 ) -> Result<Vec<T>, CaseError> {
+    let field = || match row {
+        Some(r) => format!("{field}[{r}]"),
+        None => field.to_string(),
+    };
     let items = value.as_array().ok_or_else(|| {
         CaseError::new(
-            field,
+            field(),
             format!("expected an array of {len} numbers, got {}", value.kind()),
         )
     })?;
     if items.len() != len {
         return Err(CaseError::new(
-            field,
+            field(),
             format!("expected {len} numbers (dim = {len}), got {}", items.len()),
         ));
     }
@@ -105,8 +141,7 @@ fn vector<T: InputScalar, V: Node>(
         .iter()
         .enumerate()
         .map(|(k, x)| {
-            // The field is spelled out only when it is needed.
-            let field = || format!("{field}[{k}]");
+            let field = || format!("{}[{k}]", field());
             let (x, below) = read(x, floats).map_err(|m| CaseError::new(field(), m))?;
             if below {
                 tiny.push(field());
@@ -176,11 +211,11 @@ fn spin<T: InputScalar, V: Node>(
         items
             .iter()
             .enumerate()
-            .map(|(r, row)| vector(row, &format!("{field}[{r}]"), dim, floats, tiny))
+            .map(|(r, row)| vector(row, (field, Some(r)), dim, floats, tiny))
             .collect::<Result<_, _>>()
             .map(Spin::Matrix)
     } else if dim == 3 && items.len() == 3 && !items.iter().any(V::is_array) {
-        let omega: Vec<T> = vector(value, field, 3, floats, tiny)?;
+        let omega: Vec<T> = vector(value, (field, None), 3, floats, tiny)?;
         Ok(Spin::Omega([0, 1, 2].map(|k| omega[k].clone())))
     } else if items.is_empty() {
         Err(wrong("an empty array".into()))
@@ -191,26 +226,27 @@ fn spin<T: InputScalar, V: Node>(
     }
 }
 
+/// The inertia of body `index`.
 fn inertia<T: InputScalar, V: Node>(
     obj: &V::Object,
-    path: &str,
+    index: usize,
     floats: bool,
 ) -> Result<Inertia<T>, CaseError> {
-    let given: Vec<(&str, &V)> = INERTIA_KEYS
+    let mut given = INERTIA_KEYS
         .into_iter()
-        .filter_map(|k| obj.get(k).map(|v| (k, v)))
-        .collect();
-    if let [(first, _), (second, _), ..] = given[..] {
+        .filter_map(|k| obj.get(k).map(|v| (k, v)));
+    let first = given.next();
+    if let (Some((first, _)), Some((second, _))) = (first, given.next()) {
         return Err(CaseError::new(
-            join(path, second),
+            body_field(index, second),
             format!("conflicts with {first}: give at most one of lambda, gamma2, distribution"),
         ));
     }
-    let field = |k: &str| join(path, k);
-    Ok(match given.first().copied() {
+    let field = |k: &str| body_field(index, k);
+    Ok(match first {
         None => Inertia::Uniform,
-        Some(("lambda", v)) => Inertia::Lambda(scalar_from_json(v, &field("lambda"), floats)?),
-        Some(("gamma2", v)) => Inertia::Gamma2(scalar_from_json(v, &field("gamma2"), floats)?),
+        Some(("lambda", v)) => Inertia::Lambda(scalar_from_json(v, field("lambda"), floats)?),
+        Some(("gamma2", v)) => Inertia::Gamma2(scalar_from_json(v, field("gamma2"), floats)?),
         Some((_, v)) => match v.as_str() {
             Some("uniform") => Inertia::Uniform,
             Some("shell") => Inertia::Shell,
@@ -245,16 +281,16 @@ impl<T: InputScalar> BodyInput<T> {
         floats: bool,
         tiny: &mut Tiny,
     ) -> Result<Self, CaseError> {
-        let path = format!("bodies[{index}]");
+        let path = BODY_PATHS[index];
         let obj = object(
             value,
-            &path,
+            path,
             "a body (an object with keys mass, radius, angular_velocity, velocity and at most \
              one of lambda, gamma2, distribution)",
         )?;
-        no_unknown_keys::<V>(obj, &path, &BODY_KEYS)?;
-        let field = |k: &str| join(&path, k);
-        let mass = get::<V>(obj, &path, "mass")?;
+        no_unknown_keys::<V>(obj, path, &BODY_KEYS)?;
+        let field = |k: &str| body_field(index, k);
+        let mass = get::<V>(obj, path, "mass")?;
         let mass = match mass.as_str() {
             Some("inf") => Mass::Infinite,
             Some(s) if is_infinity(s) => {
@@ -268,20 +304,20 @@ impl<T: InputScalar> BodyInput<T> {
                     format!("{message}, got {}", quote(s, 40)),
                 ));
             }
-            _ => Mass::Finite(scalar_from_json(mass, &field("mass"), floats)?),
+            _ => Mass::Finite(scalar_from_json(mass, field("mass"), floats)?),
         };
-        let radius = scalar_from_json(get::<V>(obj, &path, "radius")?, &field("radius"), floats)?;
-        let inertia = inertia::<T, V>(obj, &path, floats)?;
+        let radius = scalar_from_json(get::<V>(obj, path, "radius")?, field("radius"), floats)?;
+        let inertia = inertia::<T, V>(obj, index, floats)?;
         let velocity = vector(
-            get::<V>(obj, &path, "velocity")?,
-            &field("velocity"),
+            get::<V>(obj, path, "velocity")?,
+            (field("velocity"), None),
             dim,
             floats,
             &mut tiny.velocity,
         )?;
         let spin = spin(
-            get::<V>(obj, &path, "angular_velocity")?,
-            &field("angular_velocity"),
+            get::<V>(obj, path, "angular_velocity")?,
+            field("angular_velocity"),
             dim,
             floats,
             &mut tiny.spin[index],
@@ -323,7 +359,7 @@ impl<T: InputScalar> Case<T> {
         // is off by at most 2^-1075, far inside the allowance of |nu|^2.
         let normal = vector(
             get::<V>(obj, "", "normal")?,
-            "normal",
+            ("normal", None),
             dim,
             floats,
             &mut Vec::new(),
@@ -354,5 +390,21 @@ impl<T: InputScalar> Case<T> {
             bodies,
             contact,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fields spelled once are the paths `join` spells.
+    #[test]
+    fn body_fields_are_the_joined_paths() {
+        for (i, path) in BODY_PATHS.iter().enumerate() {
+            assert_eq!(*path, format!("bodies[{i}]"));
+            for key in BODY_KEYS {
+                assert_eq!(body_field(i, key), join(path, key));
+            }
+        }
     }
 }
