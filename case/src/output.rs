@@ -142,7 +142,7 @@ pub fn write<T: InputScalar>(
     Ok(())
 }
 
-/// The JSON output of a case, as a string ([`write`]).
+/// The JSON output of a case, as a string ([`write()`]).
 pub fn render<T: InputScalar>(
     case: &Case<T>,
     out: &[BodyOutput<T>; 2],

@@ -131,7 +131,8 @@ impl Backend for RBig {
     fn parts(a: &Self) -> (String, String) {
         (a.numerator().to_string(), a.denominator().to_string())
     }
-    /// The digits go straight into `f`, with no string of their own ([`write_rbig`]).
+    /// The digits go straight into `f`, with no string of their own (`write_rbig`: the
+    /// words converted by `decimal::write_words`).
     fn write(a: &Self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write_rbig(a, false, f)
     }
