@@ -11,7 +11,8 @@
 //! (`noslip_case::output::render`). Each figure is the median
 //! over `ROUNDS` (default 7) of the mean over a batch of calls lasting about 0.2 s, with its
 //! least and greatest; the pieces alternate within a round. Prints `case piece median min
-//! max` in microseconds.
+//! max` in microseconds. `collide_exact calls CASE N` only calls `collide_json` N times on one
+//! case (0 fixed, 1 free, 2 typical), for `valgrind --tool=callgrind`.
 
 use collision_core::rng::Rng;
 use collision_core::{collide, collide_unchecked, stereographic_normal, Ball, BodyState, Exact};
@@ -119,9 +120,24 @@ fn inputs(case: &Case<Exact>) -> ([Exact; 3], [Ball<Exact>; 2], [BodyState<Exact
     (nu, balls, states)
 }
 
+/// `calls CASE N`: `collide_json` alone, `N` times on case `CASE` (0 fixed, 1 free, 2
+/// typical), for an instruction profile (`valgrind --tool=callgrind`).
+fn calls(args: &[String]) {
+    let which: usize = args[0].parse().expect("CASE: 0, 1 or 2");
+    let n: usize = args[1].parse().expect("N: a whole number");
+    let all = cases();
+    for _ in 0..n {
+        black_box(collide_json(black_box(&all[which].1), Mode::Exact).unwrap());
+    }
+}
+
 fn main() {
-    let rounds: usize = std::env::args()
-        .nth(1)
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("calls") {
+        return calls(&args[1..]);
+    }
+    let rounds: usize = args
+        .first()
         .map_or(7, |s| s.parse().expect("ROUNDS: a whole number"));
     println!("case piece median_us min_us max_us");
     for (name, text) in cases() {
