@@ -4,12 +4,15 @@
 //! the collision, JSON out) against its pieces: `kernel`, the kernel alone (`collide_unchecked`
 //! on the parsed inputs, what the exact-arithmetic benchmarks time); `checked_collide`, the
 //! kernel with collision-core's checks; `solve`, the case's balls and states built and checked,
-//! then `checked_collide`; `read`, the case read (`read:json` the JSON, `read:keys` the test
-//! for repeated keys, `read:case` `Case::from_json`); `write`, the answer written
-//! (`write:render` the JSON value, then `serde_json::to_string`). Each figure is the median
+//! then `checked_collide`; `read`, the case read as `collide_json` reads it (`read:text` the
+//! text into the borrowed tree, `noslip_case::text::parse`; `read:case` `Case::from_json` on
+//! that tree); `read:serde`, the same by serde_json's `Value` with the test for repeated keys
+//! (the path of inputs the fast reader declines, and of errors); `write`, the answer written
+//! (`noslip_case::output::render`). Each figure is the median
 //! over `ROUNDS` (default 7) of the mean over a batch of calls lasting about 0.2 s, with its
 //! least and greatest; the pieces alternate within a round. Prints `case piece median min
-//! max` in microseconds.
+//! max` in microseconds. `collide_exact calls CASE N` only calls `collide_json` N times on one
+//! case (0 fixed, 1 free, 2 typical), for `valgrind --tool=callgrind`.
 
 use collision_core::rng::Rng;
 use collision_core::{collide, collide_unchecked, stereographic_normal, Ball, BodyState, Exact};
@@ -17,6 +20,7 @@ use noslip_case::case::{Case, Spin};
 use noslip_case::keys::has_every_key;
 use noslip_case::output::render;
 use noslip_case::solve::solve;
+use noslip_case::text;
 use noslip_case::{collide_json, Mode};
 use serde_json::Value;
 use std::hint::black_box;
@@ -116,14 +120,29 @@ fn inputs(case: &Case<Exact>) -> ([Exact; 3], [Ball<Exact>; 2], [BodyState<Exact
     (nu, balls, states)
 }
 
+/// `calls CASE N`: `collide_json` alone, `N` times on case `CASE` (0 fixed, 1 free, 2
+/// typical), for an instruction profile (`valgrind --tool=callgrind`).
+fn calls(args: &[String]) {
+    let which: usize = args[0].parse().expect("CASE: 0, 1 or 2");
+    let n: usize = args[1].parse().expect("N: a whole number");
+    let all = cases();
+    for _ in 0..n {
+        black_box(collide_json(black_box(&all[which].1), Mode::Exact).unwrap());
+    }
+}
+
 fn main() {
-    let rounds: usize = std::env::args()
-        .nth(1)
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("calls") {
+        return calls(&args[1..]);
+    }
+    let rounds: usize = args
+        .first()
         .map_or(7, |s| s.parse().expect("ROUNDS: a whole number"));
     println!("case piece median_us min_us max_us");
     for (name, text) in cases() {
-        let value: Value = serde_json::from_str(&text).unwrap();
-        let case = Case::<Exact>::from_json(&value).unwrap();
+        let tree = text::parse(&text).unwrap();
+        let case = Case::<Exact>::from_json(&tree).unwrap();
         let (nu, balls, states) = inputs(&case);
         let out = solve(&case).unwrap();
         let pieces: Vec<Piece<'_>> = vec![
@@ -154,33 +173,28 @@ fn main() {
             (
                 "read",
                 Box::new(|| {
-                    let v: Value = serde_json::from_str(black_box(&text)).unwrap();
-                    assert!(has_every_key(&text, &v));
-                    black_box(Case::<Exact>::from_json(&v).unwrap());
+                    let tree = text::parse(black_box(&text)).unwrap();
+                    black_box(Case::<Exact>::from_json(&tree).unwrap());
                 }),
             ),
             (
-                "read:json",
+                "read:text",
                 Box::new(|| {
-                    black_box(serde_json::from_str::<Value>(black_box(&text)).unwrap());
-                }),
-            ),
-            (
-                "read:keys",
-                Box::new(|| {
-                    assert!(has_every_key(black_box(&text), &value));
+                    black_box(text::parse(black_box(&text)).unwrap());
                 }),
             ),
             (
                 "read:case",
                 Box::new(|| {
-                    black_box(Case::<Exact>::from_json(black_box(&value)).unwrap());
+                    black_box(Case::<Exact>::from_json(black_box(&tree)).unwrap());
                 }),
             ),
             (
-                "write:render",
+                "read:serde",
                 Box::new(|| {
-                    black_box(render(black_box(&case), &out).unwrap());
+                    let v: Value = serde_json::from_str(black_box(&text)).unwrap();
+                    assert!(has_every_key(&text, &v));
+                    black_box(Case::<Exact>::from_json(&v).unwrap());
                 }),
             ),
             (
@@ -192,8 +206,7 @@ fn main() {
             (
                 "write",
                 Box::new(|| {
-                    let v = render(black_box(&case), &out).unwrap();
-                    black_box(serde_json::to_string(&v).unwrap());
+                    black_box(render(black_box(&case), &out).unwrap());
                 }),
             ),
         ];

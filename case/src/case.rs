@@ -18,11 +18,11 @@
 
 pub use crate::body::{BodyInput, Spin};
 use crate::contact::{contact_from_json, Contact};
-use crate::error::{clip, join, kind, quote, CaseError};
+use crate::error::{clip, join, quote, CaseError};
+use crate::node::{Members, Node};
 use crate::number::{integer_literal, read, scalar_from_json, InputScalar};
 use crate::tiny::Tiny;
 use collision_core::{Inertia, Mass};
-use serde_json::{Map, Value};
 
 /// The largest `dim` accepted. Above 6 the general-n reference runs; its work grows like
 /// `n^4` arithmetic operations (a Gram matrix of `n(n+1)` x `n` impulse columns, then
@@ -45,6 +45,37 @@ pub const BODY_KEYS: [&str; 7] = [
 ];
 const INERTIA_KEYS: [&str; 3] = ["lambda", "gamma2", "distribution"];
 
+/// `bodies[i]`, the path of body `i`.
+const BODY_PATHS: [&str; 2] = ["bodies[0]", "bodies[1]"];
+
+/// `bodies[i].KEY` for each of [`BODY_KEYS`], spelled once (a case reads a dozen of them).
+const BODY_FIELDS: [[&str; 7]; 2] = [
+    [
+        "bodies[0].mass",
+        "bodies[0].radius",
+        "bodies[0].lambda",
+        "bodies[0].gamma2",
+        "bodies[0].distribution",
+        "bodies[0].angular_velocity",
+        "bodies[0].velocity",
+    ],
+    [
+        "bodies[1].mass",
+        "bodies[1].radius",
+        "bodies[1].lambda",
+        "bodies[1].gamma2",
+        "bodies[1].distribution",
+        "bodies[1].angular_velocity",
+        "bodies[1].velocity",
+    ],
+];
+
+/// The field of `key` (one of [`BODY_KEYS`]) of body `index` (0 or 1).
+fn body_field(index: usize, key: &str) -> &'static str {
+    let k = BODY_KEYS.iter().position(|&b| b == key);
+    k.map_or("", |k| BODY_FIELDS[index][k])
+}
+
 /// One case as given; `normal` and `velocity` have length `dim`, a `Matrix` spin is
 /// `dim x dim`.
 #[derive(Clone, Debug, PartialEq)]
@@ -59,18 +90,14 @@ pub struct Case<T> {
     pub contact: Contact<T>,
 }
 
-fn object<'a>(
-    value: &'a Value,
-    path: &str,
-    what: &str,
-) -> Result<&'a Map<String, Value>, CaseError> {
+fn object<'a, V: Node>(value: &'a V, path: &str, what: &str) -> Result<&'a V::Object, CaseError> {
     value
         .as_object()
-        .ok_or_else(|| CaseError::new(path, format!("expected {what}, got {}", kind(value))))
+        .ok_or_else(|| CaseError::new(path, format!("expected {what}, got {}", value.kind())))
 }
 
-fn no_unknown_keys(obj: &Map<String, Value>, path: &str, known: &[&str]) -> Result<(), CaseError> {
-    match obj.keys().find(|k| !known.contains(&k.as_str())) {
+fn no_unknown_keys<V: Node>(obj: &V::Object, path: &str, known: &[&str]) -> Result<(), CaseError> {
+    match obj.unknown_key(known) {
         Some(k) => Err(CaseError::new(
             join(path, k),
             format!("unknown key (the keys are: {})", known.join(", ")),
@@ -79,29 +106,34 @@ fn no_unknown_keys(obj: &Map<String, Value>, path: &str, known: &[&str]) -> Resu
     }
 }
 
-fn get<'a>(obj: &'a Map<String, Value>, path: &str, key: &str) -> Result<&'a Value, CaseError> {
+fn get<'a, V: Node>(obj: &'a V::Object, path: &str, key: &str) -> Result<&'a V, CaseError> {
     obj.get(key)
         .ok_or_else(|| CaseError::new(join(path, key), "missing (required)"))
 }
 
-/// An array of exactly `len` numbers; the length is checked before any number is read. The
-/// fields of components below the normal range of `T` are pushed on `tiny`.
-fn vector<T: InputScalar>(
-    value: &Value,
-    field: &str,
+/// An array of exactly `len` numbers at `field` (at `field[row]` for a row of a matrix);
+/// the length is checked before any number is read. The fields of components below the
+/// normal range of `T` are pushed on `tiny`. Fields are spelled out only when needed.
+fn vector<T: InputScalar, V: Node>(
+    value: &V,
+    (field, row): (&str, Option<usize>),
     len: usize,
     floats: bool,
     tiny: &mut Vec<String>,
 ) -> Result<Vec<T>, CaseError> {
+    let field = || match row {
+        Some(r) => format!("{field}[{r}]"),
+        None => field.to_string(),
+    };
     let items = value.as_array().ok_or_else(|| {
         CaseError::new(
-            field,
-            format!("expected an array of {len} numbers, got {}", kind(value)),
+            field(),
+            format!("expected an array of {len} numbers, got {}", value.kind()),
         )
     })?;
     if items.len() != len {
         return Err(CaseError::new(
-            field,
+            field(),
             format!("expected {len} numbers (dim = {len}), got {}", items.len()),
         ));
     }
@@ -109,37 +141,36 @@ fn vector<T: InputScalar>(
         .iter()
         .enumerate()
         .map(|(k, x)| {
-            let field = format!("{field}[{k}]");
-            let (x, below) = read(x, &field, floats)?;
+            let field = || format!("{}[{k}]", field());
+            let (x, below) = read(x, floats).map_err(|m| CaseError::new(field(), m))?;
             if below {
-                tiny.push(field);
+                tiny.push(field());
             }
             Ok(x)
         })
         .collect()
 }
 
-fn dim(value: &Value) -> Result<usize, CaseError> {
+fn dim<V: Node>(value: &V) -> Result<usize, CaseError> {
     let err = |m: String| CaseError::new("dim", m);
-    let Value::Number(n) = value else {
+    let Some(n) = value.as_number() else {
         return Err(err(format!(
             "expected an integer >= 2, got {}",
-            kind(value)
+            value.kind()
         )));
     };
-    match integer_literal(n.as_str()) {
+    match integer_literal(n) {
         None => Err(err(format!(
             "expected an integer >= 2, got {}",
-            clip(n.as_str(), 40)
+            clip(n, 40)
         ))),
-        Some((true, _)) | Some((false, 0..=1)) => Err(err(format!(
-            "must be at least 2, got {}",
-            clip(n.as_str(), 40)
-        ))),
+        Some((true, _)) | Some((false, 0..=1)) => {
+            Err(err(format!("must be at least 2, got {}", clip(n, 40))))
+        }
         Some((false, d)) if d > MAX_DIM => Err(err(format!(
             "at most {MAX_DIM} is supported (dims above 6 run the general-n reference, \
              whose cost grows like n^4), got {}",
-            clip(n.as_str(), 40)
+            clip(n, 40)
         ))),
         Some((false, d)) => Ok(d),
     }
@@ -154,8 +185,8 @@ fn spin_forms(dim: usize) -> String {
     }
 }
 
-fn spin<T: InputScalar>(
-    value: &Value,
+fn spin<T: InputScalar, V: Node>(
+    value: &V,
     field: &str,
     dim: usize,
     floats: bool,
@@ -163,70 +194,66 @@ fn spin<T: InputScalar>(
 ) -> Result<Spin<T>, CaseError> {
     let wrong =
         |what: String| CaseError::new(field, format!("expected {}, got {what}", spin_forms(dim)));
-    match value {
-        Value::Number(_) | Value::String(_) if dim == 2 => {
-            let (c, below) = read(value, field, floats)?;
-            if below {
-                tiny.push(field.to_string());
-            }
-            Ok(Spin::Scalar(c))
+    if dim == 2 && (value.is_number() || value.as_str().is_some()) {
+        let (c, below) = read(value, floats).map_err(|m| CaseError::new(field, m))?;
+        if below {
+            tiny.push(field.to_string());
         }
-        Value::Array(rows) if !rows.is_empty() && rows.iter().all(Value::is_array) => {
-            if rows.len() != dim {
-                return Err(wrong(format!("{} rows", rows.len())));
-            }
-            rows.iter()
-                .enumerate()
-                .map(|(r, row)| vector(row, &format!("{field}[{r}]"), dim, floats, tiny))
-                .collect::<Result<_, _>>()
-                .map(Spin::Matrix)
+        return Ok(Spin::Scalar(c));
+    }
+    let Some(items) = value.as_array() else {
+        return Err(wrong(value.kind().into()));
+    };
+    if !items.is_empty() && items.iter().all(V::is_array) {
+        if items.len() != dim {
+            return Err(wrong(format!("{} rows", items.len())));
         }
-        Value::Array(items)
-            if dim == 3 && items.len() == 3 && !items.iter().any(Value::is_array) =>
-        {
-            let omega: Vec<T> = vector(value, field, 3, floats, tiny)?;
-            Ok(Spin::Omega([0, 1, 2].map(|k| omega[k].clone())))
-        }
-        Value::Array(items) if items.is_empty() => Err(wrong("an empty array".into())),
-        Value::Array(items) if items.iter().any(Value::is_array) => {
-            Err(wrong("an array mixing rows and numbers".into()))
-        }
-        Value::Array(items) => Err(wrong(format!("an array of {} numbers", items.len()))),
-        other => Err(wrong(kind(other).into())),
+        items
+            .iter()
+            .enumerate()
+            .map(|(r, row)| vector(row, (field, Some(r)), dim, floats, tiny))
+            .collect::<Result<_, _>>()
+            .map(Spin::Matrix)
+    } else if dim == 3 && items.len() == 3 && !items.iter().any(V::is_array) {
+        let omega: Vec<T> = vector(value, (field, None), 3, floats, tiny)?;
+        Ok(Spin::Omega([0, 1, 2].map(|k| omega[k].clone())))
+    } else if items.is_empty() {
+        Err(wrong("an empty array".into()))
+    } else if items.iter().any(V::is_array) {
+        Err(wrong("an array mixing rows and numbers".into()))
+    } else {
+        Err(wrong(format!("an array of {} numbers", items.len())))
     }
 }
 
-fn inertia<T: InputScalar>(
-    obj: &Map<String, Value>,
-    path: &str,
+/// The inertia of body `index`.
+fn inertia<T: InputScalar, V: Node>(
+    obj: &V::Object,
+    index: usize,
     floats: bool,
 ) -> Result<Inertia<T>, CaseError> {
-    let given: Vec<&str> = INERTIA_KEYS
+    let mut given = INERTIA_KEYS
         .into_iter()
-        .filter(|k| obj.contains_key(*k))
-        .collect();
-    if let [first, second, ..] = given[..] {
+        .filter_map(|k| obj.get(k).map(|v| (k, v)));
+    let first = given.next();
+    if let (Some((first, _)), Some((second, _))) = (first, given.next()) {
         return Err(CaseError::new(
-            join(path, second),
+            body_field(index, second),
             format!("conflicts with {first}: give at most one of lambda, gamma2, distribution"),
         ));
     }
-    let field = |k: &str| join(path, k);
-    Ok(match given.first().copied() {
+    let field = |k: &str| body_field(index, k);
+    Ok(match first {
         None => Inertia::Uniform,
-        Some("lambda") => {
-            Inertia::Lambda(scalar_from_json(&obj["lambda"], &field("lambda"), floats)?)
-        }
-        Some("gamma2") => {
-            Inertia::Gamma2(scalar_from_json(&obj["gamma2"], &field("gamma2"), floats)?)
-        }
-        Some(_) => match &obj["distribution"] {
-            Value::String(s) if s == "uniform" => Inertia::Uniform,
-            Value::String(s) if s == "shell" => Inertia::Shell,
-            other => {
-                let got = match other {
-                    Value::String(s) => quote(s, 40),
-                    v => kind(v).to_string(),
+        Some(("lambda", v)) => Inertia::Lambda(scalar_from_json(v, field("lambda"), floats)?),
+        Some(("gamma2", v)) => Inertia::Gamma2(scalar_from_json(v, field("gamma2"), floats)?),
+        Some((_, v)) => match v.as_str() {
+            Some("uniform") => Inertia::Uniform,
+            Some("shell") => Inertia::Shell,
+            got => {
+                let got = match got {
+                    Some(s) => quote(s, 40),
+                    None => v.kind().to_string(),
                 };
                 return Err(CaseError::new(
                     field("distribution"),
@@ -247,25 +274,26 @@ impl<T: InputScalar> BodyInput<T> {
     /// Body `index` of a case in `dim` dimensions. Its velocity's and angular velocity's
     /// components below the normal range of `T` are recorded in `tiny` (whether they can be
     /// taken depends on the other body: see [`Tiny`]).
-    fn from_json(
-        value: &Value,
+    fn from_json<V: Node>(
+        value: &V,
         index: usize,
         dim: usize,
         floats: bool,
         tiny: &mut Tiny,
     ) -> Result<Self, CaseError> {
-        let path = format!("bodies[{index}]");
+        let path = BODY_PATHS[index];
         let obj = object(
             value,
-            &path,
+            path,
             "a body (an object with keys mass, radius, angular_velocity, velocity and at most \
              one of lambda, gamma2, distribution)",
         )?;
-        no_unknown_keys(obj, &path, &BODY_KEYS)?;
-        let field = |k: &str| join(&path, k);
-        let mass = match get(obj, &path, "mass")? {
-            Value::String(s) if s == "inf" => Mass::Infinite,
-            Value::String(s) if is_infinity(s) => {
+        no_unknown_keys::<V>(obj, path, &BODY_KEYS)?;
+        let field = |k: &str| body_field(index, k);
+        let mass = get::<V>(obj, path, "mass")?;
+        let mass = match mass.as_str() {
+            Some("inf") => Mass::Infinite,
+            Some(s) if is_infinity(s) => {
                 let message = if s.starts_with('-') {
                     "must be positive (or \"inf\" for an immovable body)"
                 } else {
@@ -276,20 +304,20 @@ impl<T: InputScalar> BodyInput<T> {
                     format!("{message}, got {}", quote(s, 40)),
                 ));
             }
-            v => Mass::Finite(scalar_from_json(v, &field("mass"), floats)?),
+            _ => Mass::Finite(scalar_from_json(mass, field("mass"), floats)?),
         };
-        let radius = scalar_from_json(get(obj, &path, "radius")?, &field("radius"), floats)?;
-        let inertia = inertia(obj, &path, floats)?;
+        let radius = scalar_from_json(get::<V>(obj, path, "radius")?, field("radius"), floats)?;
+        let inertia = inertia::<T, V>(obj, index, floats)?;
         let velocity = vector(
-            get(obj, &path, "velocity")?,
-            &field("velocity"),
+            get::<V>(obj, path, "velocity")?,
+            (field("velocity"), None),
             dim,
             floats,
             &mut tiny.velocity,
         )?;
         let spin = spin(
-            get(obj, &path, "angular_velocity")?,
-            &field("angular_velocity"),
+            get::<V>(obj, path, "angular_velocity")?,
+            field("angular_velocity"),
             dim,
             floats,
             &mut tiny.spin[index],
@@ -306,7 +334,7 @@ impl<T: InputScalar> BodyInput<T> {
 
 impl<T: InputScalar> Case<T> {
     /// One case of the input, every number read as the decimal or rational it spells.
-    pub fn from_json(value: &Value) -> Result<Self, CaseError> {
+    pub fn from_json<V: Node>(value: &V) -> Result<Self, CaseError> {
         Self::read(value, false)
     }
 
@@ -315,32 +343,32 @@ impl<T: InputScalar> Case<T> {
     /// that float, so one below the normal range is taken as it is (it lost nothing), where
     /// [`Case::from_json`] refuses it or measures its rounding (`case/src/tiny.rs`). Strings
     /// are read as in [`Case::from_json`].
-    pub fn from_floats(value: &Value) -> Result<Self, CaseError> {
+    pub fn from_floats<V: Node>(value: &V) -> Result<Self, CaseError> {
         Self::read(value, true)
     }
 
-    fn read(value: &Value, floats: bool) -> Result<Self, CaseError> {
+    fn read<V: Node>(value: &V, floats: bool) -> Result<Self, CaseError> {
         let obj = object(
             value,
             "",
             "a case (an object with keys dim, normal, bodies)",
         )?;
-        no_unknown_keys(obj, "", &CASE_KEYS)?;
-        let dim = dim(get(obj, "", "dim")?)?;
+        no_unknown_keys::<V>(obj, "", &CASE_KEYS)?;
+        let dim = dim(get::<V>(obj, "", "dim")?)?;
         // A normal's components are measured against |nu| = 1: one below the normal range
         // is off by at most 2^-1075, far inside the allowance of |nu|^2.
         let normal = vector(
-            get(obj, "", "normal")?,
-            "normal",
+            get::<V>(obj, "", "normal")?,
+            ("normal", None),
             dim,
             floats,
             &mut Vec::new(),
         )?;
-        let bodies = get(obj, "", "bodies")?;
+        let bodies = get::<V>(obj, "", "bodies")?;
         let list = bodies.as_array().ok_or_else(|| {
             CaseError::new(
                 "bodies",
-                format!("expected an array of 2 bodies, got {}", kind(bodies)),
+                format!("expected an array of 2 bodies, got {}", bodies.kind()),
             )
         })?;
         if list.len() != 2 {
@@ -362,5 +390,21 @@ impl<T: InputScalar> Case<T> {
             bodies,
             contact,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fields spelled once are the paths `join` spells.
+    #[test]
+    fn body_fields_are_the_joined_paths() {
+        for (i, path) in BODY_PATHS.iter().enumerate() {
+            assert_eq!(*path, format!("bodies[{i}]"));
+            for key in BODY_KEYS {
+                assert_eq!(body_field(i, key), join(path, key));
+            }
+        }
     }
 }

@@ -2,11 +2,13 @@
 
 use crate::case::Case;
 use crate::error::join;
-use crate::error::{kind, CaseError};
+use crate::error::CaseError;
 use crate::keys::{first_repeated_key, has_every_key, PathStep};
+use crate::node::Node;
 use crate::number::InputScalar;
-use crate::output::render;
+use crate::output::{render, write};
 use crate::solve::solve;
+use crate::text;
 use collision_core::{Exact, RefArith};
 use serde_json::Value;
 use std::fmt;
@@ -72,8 +74,8 @@ fn repeated_key(input: &Value, path: &[PathStep]) -> RunError {
     )
 }
 
-/// One case, JSON in, JSON out.
-pub fn collide_case<T>(case: &Value) -> Result<Value, CaseError>
+/// One case, JSON in, JSON text out (one line).
+pub fn collide_case<T>(case: &Value) -> Result<String, CaseError>
 where
     T: InputScalar,
     for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
@@ -85,7 +87,7 @@ where
 
 /// [`collide_case`] for a case whose JSON numbers are floats of `T` in their shortest
 /// round-trip form ([`Case::from_floats`]: the Python package's floats).
-pub fn collide_floats<T>(case: &Value) -> Result<Value, CaseError>
+pub fn collide_floats<T>(case: &Value) -> Result<String, CaseError>
 where
     T: InputScalar,
     for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
@@ -95,39 +97,78 @@ where
     render(&case, &out)
 }
 
+/// Append the output of one case to `json`.
+fn collide_into<T, V: Node>(case: &V, json: &mut String) -> Result<(), CaseError>
+where
+    T: InputScalar,
+    for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
+{
+    let case = Case::<T>::from_json(case)?;
+    let out = solve(&case)?;
+    write(&case, &out, json)
+}
+
+/// Append the output of every case of `input` (a case, or an array of cases) to `json`;
+/// the index of the first invalid case and its error otherwise.
+fn collide_all<V: Node>(input: &V, mode: Mode, json: &mut String) -> Result<(), RunError> {
+    let one = |i: usize, case: &V, json: &mut String| {
+        match mode {
+            Mode::Float => collide_into::<f64, V>(case, json),
+            Mode::Exact => collide_into::<Exact, V>(case, json),
+        }
+        .map_err(|e| RunError::Case(i, e))
+    };
+    if let Some(cases) = input.as_array() {
+        json.push('[');
+        for (i, c) in cases.iter().enumerate() {
+            if i > 0 {
+                json.push(',');
+            }
+            one(i, c, json)?;
+        }
+        json.push(']');
+        Ok(())
+    } else if input.as_object().is_some() {
+        one(0, input, json)
+    } else {
+        Err(RunError::Shape(format!(
+            "expected a case (a JSON object) or an array of cases, got {}",
+            input.kind()
+        )))
+    }
+}
+
 /// Collide every case of `input` (a case, or an array of cases) and return the output
 /// JSON (one line, no trailing newline): an array for an array, an object for an object.
 /// A key given twice in one object is an error (naming its case and path). Stops at the
 /// first invalid case; nothing is output then.
+///
+/// The input is read in one pass into a borrowed tree ([`crate::text`]) when it can be;
+/// when it cannot, or when any case fails, it is read again by serde_json and run again
+/// from the start, so that every error (the JSON's, a repeated key's, a case's) is the
+/// one that path reports.
 pub fn collide_json(input: &str, mode: Mode) -> Result<String, RunError> {
+    if let Some(tree) = text::parse(input) {
+        let mut json = String::new();
+        if collide_all(&tree, mode, &mut json).is_ok() {
+            return Ok(json);
+        }
+    }
+    collide_json_serde(input, mode)
+}
+
+/// [`collide_json`] by serde_json alone: the input read into a `Value` (and searched for a
+/// repeated key), then every case. The path of every input the fast path does not read,
+/// and of every error; the reference the fast path is tested against
+/// (`case/tests/fast_path.rs`).
+pub fn collide_json_serde(input: &str, mode: Mode) -> Result<String, RunError> {
     let value: Value = serde_json::from_str(input).map_err(RunError::Json)?;
     if !has_every_key(input, &value) {
         if let Some(path) = first_repeated_key(input) {
             return Err(repeated_key(&value, &path));
         }
     }
-    let one = |i: usize, case: &Value| {
-        match mode {
-            Mode::Float => collide_case::<f64>(case),
-            Mode::Exact => collide_case::<Exact>(case),
-        }
-        .map_err(|e| RunError::Case(i, e))
-    };
-    let out = match &value {
-        Value::Array(cases) => Value::Array(
-            cases
-                .iter()
-                .enumerate()
-                .map(|(i, c)| one(i, c))
-                .collect::<Result<_, _>>()?,
-        ),
-        Value::Object(_) => one(0, &value)?,
-        other => {
-            return Err(RunError::Shape(format!(
-                "expected a case (a JSON object) or an array of cases, got {}",
-                kind(other)
-            )))
-        }
-    };
-    serde_json::to_string(&out).map_err(RunError::Json)
+    let mut json = String::new();
+    collide_all(&value, mode, &mut json)?;
+    Ok(json)
 }

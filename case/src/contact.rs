@@ -16,10 +16,10 @@
 //! `contact.beta0`.
 
 use crate::error::join;
-use crate::error::{kind, quote, CaseError};
+use crate::error::{quote, CaseError};
+use crate::node::{Members, Node};
 use crate::number::{scalar_from_json, InputScalar};
 use collision_core::{Restitution, Walton};
-use serde_json::Value;
 
 /// The keys of the rough-ball object form.
 pub const CONTACT_KEYS: [&str; 2] = ["e", "beta"];
@@ -41,67 +41,67 @@ pub enum Contact<T> {
 
 /// Read `contact` (absent: [`Contact::NoSlip`]). Numbers are read as every other number of
 /// the case (`floats` as in `Case::from_floats`); ranges are checked when the case runs.
-pub fn contact_from_json<T: InputScalar>(
-    value: Option<&Value>,
+pub fn contact_from_json<T: InputScalar, V: Node>(
+    value: Option<&V>,
     floats: bool,
 ) -> Result<Contact<T>, CaseError> {
     let Some(value) = value else {
         return Ok(Contact::NoSlip);
     };
     let forms = "\"no-slip\", \"smooth\" or an object {\"e\": .., \"beta\": ..} or {\"e\": .., \"mu\": .., \"beta0\": ..}";
-    match value {
-        Value::String(s) if s == "no-slip" => Ok(Contact::NoSlip),
-        Value::String(s) if s == "smooth" => Ok(Contact::Rough(Restitution::smooth())),
-        Value::Object(obj) => {
-            // `beta` means the rough form; otherwise `mu` or `beta0` the Walton form.
-            let walton =
-                !obj.contains_key("beta") && (obj.contains_key("mu") || obj.contains_key("beta0"));
-            let (keys, form): (&[&str], &str) = if walton {
-                (&WALTON_KEYS, "the Walton form")
-            } else {
-                (&CONTACT_KEYS, "the rough form")
-            };
-            if let Some(k) = obj.keys().find(|k| !keys.contains(&k.as_str())) {
-                return Err(CaseError::new(
-                    join("contact", k),
-                    format!(
-                        "unknown key (the keys of {form} are: {}; of the {}: {})",
-                        keys.join(", "),
-                        if walton { "rough form" } else { "Walton form" },
-                        if walton {
-                            CONTACT_KEYS.join(", ")
-                        } else {
-                            WALTON_KEYS.join(", ")
-                        },
-                    ),
-                ));
-            }
-            let read = |key: &str| -> Result<T, CaseError> {
-                let field = join("contact", key);
-                let x = obj.get(key).ok_or_else(|| {
-                    CaseError::new(field.as_str(), format!("missing (required in {form})"))
-                })?;
-                scalar_from_json::<T>(x, &field, floats)
-            };
-            if walton {
-                return Ok(Contact::Walton(Walton {
-                    e: read("e")?,
-                    mu: read("mu")?,
-                    beta0: read("beta0")?,
-                }));
-            }
-            Ok(Contact::Rough(Restitution {
-                e: read("e")?,
-                beta: read("beta")?,
-            }))
+    if let Some(obj) = value.as_object() {
+        // `beta` means the rough form; otherwise `mu` or `beta0` the Walton form.
+        let walton =
+            !obj.contains_key("beta") && (obj.contains_key("mu") || obj.contains_key("beta0"));
+        let (keys, form): (&[&str], &str) = if walton {
+            (&WALTON_KEYS, "the Walton form")
+        } else {
+            (&CONTACT_KEYS, "the rough form")
+        };
+        if let Some(k) = obj.unknown_key(keys) {
+            return Err(CaseError::new(
+                join("contact", k),
+                format!(
+                    "unknown key (the keys of {form} are: {}; of the {}: {})",
+                    keys.join(", "),
+                    if walton { "rough form" } else { "Walton form" },
+                    if walton {
+                        CONTACT_KEYS.join(", ")
+                    } else {
+                        WALTON_KEYS.join(", ")
+                    },
+                ),
+            ));
         }
-        Value::String(s) => Err(CaseError::new(
+        let read = |key: &str| -> Result<T, CaseError> {
+            let field = join("contact", key);
+            let x = obj.get(key).ok_or_else(|| {
+                CaseError::new(field.as_str(), format!("missing (required in {form})"))
+            })?;
+            scalar_from_json::<T, V>(x, &field, floats)
+        };
+        if walton {
+            return Ok(Contact::Walton(Walton {
+                e: read("e")?,
+                mu: read("mu")?,
+                beta0: read("beta0")?,
+            }));
+        }
+        return Ok(Contact::Rough(Restitution {
+            e: read("e")?,
+            beta: read("beta")?,
+        }));
+    }
+    match value.as_str() {
+        Some("no-slip") => Ok(Contact::NoSlip),
+        Some("smooth") => Ok(Contact::Rough(Restitution::smooth())),
+        Some(s) => Err(CaseError::new(
             "contact",
             format!("expected {forms}, got {}", quote(s, 40)),
         )),
-        other => Err(CaseError::new(
+        None => Err(CaseError::new(
             "contact",
-            format!("expected {forms}, got {}", kind(other)),
+            format!("expected {forms}, got {}", value.kind()),
         )),
     }
 }

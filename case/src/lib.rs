@@ -9,6 +9,8 @@
 //!   rationals read and print them.
 //! - [`case`]: the input schema of a case; [`contact`]: its optional contact law.
 //! - [`keys`]: keys given twice (which `serde_json::Value` would drop silently).
+//! - [`node`]: what reading a case needs of a JSON value; [`text`]: the fast path, one pass
+//!   from the text into a borrowed tree (serde_json's `Value` reads whatever it does not).
 //! - [`solve`]: validation with readable messages, and the dispatch over `dim` to the
 //!   generated kernels (2..=6) or the general-n reference.
 //! - [`output`]: the output schema.
@@ -23,9 +25,11 @@ pub mod collide;
 pub mod contact;
 pub mod error;
 pub mod keys;
+pub mod node;
 pub mod number;
 pub mod output;
 pub mod solve;
+pub mod text;
 mod tiny;
 
 pub use collide::{collide_json, Mode, RunError};

@@ -14,7 +14,8 @@
 //!   parser, rationals as the exact rational rounded once (num-rational's `to_f64`).
 //!   Results beyond the `f64` range are errors; results below it round to (signed) zero.
 
-use crate::error::{kind, quote, CaseError};
+use crate::error::{quote, CaseError};
+use crate::node::Node;
 use collision_core::{Exact, Scalar};
 use num_traits::{ToPrimitive, Zero};
 use serde_json::Value;
@@ -37,11 +38,21 @@ pub trait InputScalar: Scalar<Unbounded: collision_core::ScalarRoot> {
     fn parse_number(text: &str) -> Result<Self, String>;
     /// The value as JSON output; `None` if it is not finite.
     fn to_json(&self) -> Option<Value>;
-    /// The output of `0 - x` given `json`, the output of `x` (`0 - x`, not `-x`: a zero stays
-    /// `+0` in floats); `None` if it is not finite.
-    fn negated_json(x: &Self, json: &Value) -> Option<Value> {
-        let _ = json;
-        (Self::zero() - x.clone()).to_json()
+    /// Append the JSON text of [`InputScalar::to_json`] (serde_json's compact form) to
+    /// `json`; `false` (nothing appended) if the value is not finite.
+    fn write_json(&self, json: &mut String) -> bool {
+        match self.to_json() {
+            Some(v) => {
+                json.push_str(&v.to_string());
+                true
+            }
+            None => false,
+        }
+    }
+    /// [`InputScalar::write_json`] of `0 - self` (`0 - x`, not `-x`: a zero stays `+0` in
+    /// floats).
+    fn write_negated_json(&self, json: &mut String) -> bool {
+        (Self::zero() - self.clone()).write_json(json)
     }
     /// Whether `x`, read from `text`, is a nonzero number that lies below the normal range
     /// of the type: it was rounded to a subnormal or to zero, with an absolute error of up to
@@ -64,22 +75,28 @@ impl InputScalar for Exact {
         Some(Value::String(self.to_string()))
     }
 
-    /// The text of `x` with its sign turned (`0 - x = -x`; `0` stays `0`), without printing
-    /// the rational again.
-    fn negated_json(x: &Self, json: &Value) -> Option<Value> {
-        let Value::String(text) = json else {
-            return (Self::zero() - x.clone()).to_json();
-        };
-        Some(Value::String(match text.strip_prefix('-') {
-            Some(positive) => positive.to_string(),
-            None if x.is_zero() => text.clone(),
-            None => format!("-{text}"),
-        }))
+    /// `"p/q"` or `"p"` (a JSON string, no escapes needed), its digits written in place.
+    fn write_json(&self, json: &mut String) -> bool {
+        write_quoted(self, false, json)
+    }
+
+    /// `0 - x = -x` (`0` stays `0`), written without computing `-x`.
+    fn write_negated_json(&self, json: &mut String) -> bool {
+        write_quoted(self, true, json)
     }
 
     fn below_normal(_: &str, _: &Self) -> bool {
         false
     }
+}
+
+/// `"x"` (or `"-x"` if `negated`) into `json`: always finite.
+fn write_quoted(x: &Exact, negated: bool, json: &mut String) -> bool {
+    json.push('"');
+    // Writing into a `String` cannot fail.
+    let _ = x.write_decimal(negated, json);
+    json.push('"');
+    true
 }
 
 impl InputScalar for f64 {
@@ -127,8 +144,10 @@ impl InputScalar for f64 {
 }
 
 /// Read the number at `field` of a case: a JSON number or a string.
-pub fn from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseError> {
-    read(value, field, false).map(|(x, _)| x)
+pub fn from_json<T: InputScalar, V: Node>(value: &V, field: &str) -> Result<T, CaseError> {
+    read(value, false)
+        .map(|(x, _)| x)
+        .map_err(|m| CaseError::new(field, m))
 }
 
 /// [`from_json`] for a scalar of a body (mass, radius, lambda, gamma2): one that lies below
@@ -136,12 +155,12 @@ pub fn from_json<T: InputScalar>(value: &Value, field: &str) -> Result<T, CaseEr
 /// relative precision (a radius `4e-324` is read as `4.94e-324`, 23% off); with `floats`, a
 /// JSON number is a float of `T` in its shortest round-trip form and is taken as that float
 /// ([`crate::case::Case::from_floats`]).
-pub fn scalar_from_json<T: InputScalar>(
-    value: &Value,
+pub fn scalar_from_json<T: InputScalar, V: Node>(
+    value: &V,
     field: &str,
     floats: bool,
 ) -> Result<T, CaseError> {
-    let (x, tiny) = read::<T>(value, field, floats)?;
+    let (x, tiny) = read::<T, V>(value, floats).map_err(|m| CaseError::new(field, m))?;
     if tiny {
         return Err(CaseError::new(
             field,
@@ -159,36 +178,25 @@ pub fn scalar_from_json<T: InputScalar>(
     Ok(x)
 }
 
-/// The number at `field` and whether it was rounded below the normal range of `T`
+/// The number `value` holds and whether it was rounded below the normal range of `T`
 /// ([`InputScalar::below_normal`]); with `floats`, a JSON number is a float of `T` in its
 /// shortest round-trip form ([`crate::case::Case::from_floats`]): read as that float, it
-/// lost nothing.
-pub(crate) fn read<T: InputScalar>(
-    value: &Value,
-    field: &str,
-    floats: bool,
-) -> Result<(T, bool), CaseError> {
+/// lost nothing. The error is the message for the number's field.
+pub(crate) fn read<T: InputScalar, V: Node>(value: &V, floats: bool) -> Result<(T, bool), String> {
     let Some(text) = number_text(value) else {
-        return Err(CaseError::new(
-            field,
-            format!(
-                "expected a number (a JSON number or a string such as \"3/5\"), got {}",
-                kind(value)
-            ),
+        return Err(format!(
+            "expected a number (a JSON number or a string such as \"3/5\"), got {}",
+            value.kind()
         ));
     };
-    let x = T::parse_number(text).map_err(|m| CaseError::new(field, m))?;
+    let x = T::parse_number(text)?;
     let tiny = T::below_normal(text, &x) && !(floats && value.is_number());
     Ok((x, tiny))
 }
 
 /// The text of a JSON number or string.
-pub(crate) fn number_text(value: &Value) -> Option<&str> {
-    match value {
-        Value::Number(n) => Some(n.as_str()),
-        Value::String(s) => Some(s.as_str()),
-        _ => None,
-    }
+pub(crate) fn number_text<V: Node>(value: &V) -> Option<&str> {
+    value.as_number().or_else(|| value.as_str())
 }
 
 /// The parts of a number's text, checked against the grammar.
@@ -306,8 +314,7 @@ fn exact(scanned: &Scanned<'_>, text: &str) -> Result<Exact, String> {
             frac,
             exp,
         } => {
-            let mantissa = format!("{int}{frac}");
-            if mantissa.bytes().all(|b| b == b'0') {
+            if int.bytes().chain(frac.bytes()).all(|b| b == b'0') {
                 return Ok(Exact::zero());
             }
             let out_of_range = || {
@@ -329,6 +336,7 @@ fn exact(scanned: &Scanned<'_>, text: &str) -> Result<Exact, String> {
             }
             // 10^|shift| in digits: a 1 and |shift| zeros.
             let power = format!("1{}", "0".repeat(shift.unsigned_abs() as usize));
+            let mantissa = format!("{int}{frac}");
             let value = if shift >= 0 {
                 Exact::from_decimal(&format!("{mantissa}{}", &power[1..]), "1")
             } else {
@@ -559,7 +567,7 @@ mod tests {
         assert_eq!(got[1], Ok(q(100, 1)));
         assert_eq!(got[2], Ok(q(0, 1)));
         assert!(got[3].as_ref().unwrap_err().message.contains("exponent"));
-        let e = from_json::<f64>(&Value::Bool(true), "bodies[0].mass").unwrap_err();
+        let e = from_json::<f64, _>(&Value::Bool(true), "bodies[0].mass").unwrap_err();
         assert_eq!(e.field, "bodies[0].mass");
         assert!(e.message.contains("got a boolean"));
     }

@@ -1,41 +1,68 @@
-//! The output of one case: `{"bodies": [{"angular_velocity": .., "velocity": [..]}, ..]}`,
-//! each body's angular velocity in the form it was given (matrix, 2D scalar, 3D omega).
+//! The output of one case: `{"bodies":[{"angular_velocity":..,"velocity":[..]},..]}`, each
+//! body's angular velocity in the form it was given (matrix, 2D scalar, 3D omega), written
+//! straight into a `String` as serde_json's compact form of that value would be (keys in
+//! order, no spaces; each number as [`InputScalar::write_json`] writes it).
 
 use crate::case::{Case, Spin};
 use crate::error::CaseError;
 use crate::number::InputScalar;
 use crate::solve::BodyOutput;
 use collision_core::{skew_pairs, State2, State3};
-use serde_json::{Map, Value};
 
-fn number<T: InputScalar>(x: &T, field: &str) -> Result<Value, CaseError> {
-    x.to_json().ok_or_else(|| {
-        CaseError::new(
-            field,
-            "the result is not a finite f64 (the inputs are too large for float arithmetic; \
-             --exact computes it)",
-        )
-    })
-}
-
-fn numbers<T: InputScalar>(xs: &[T], field: &str) -> Result<Value, CaseError> {
-    xs.iter()
-        .map(|x| number(x, field))
-        .collect::<Result<_, _>>()
-        .map(Value::Array)
+/// The error of a result that is not a finite `f64`, at `field` (`bodies[i].velocity`, ...).
+fn not_finite(field: &str) -> CaseError {
+    CaseError::new(
+        field,
+        "the result is not a finite f64 (the inputs are too large for float arithmetic; \
+         --exact computes it)",
+    )
 }
 
 fn internal(what: &str) -> CaseError {
     CaseError::new("", format!("internal error: {what}"))
 }
 
-/// The angular velocity in the given form.
+/// Body `i`'s field `key`, for messages.
+fn field(i: usize, key: &str) -> String {
+    format!("bodies[{i}].{key}")
+}
+
+/// `x`, or the error at body `i`'s `key`.
+fn number<T: InputScalar>(x: &T, i: usize, key: &str, json: &mut String) -> Result<(), CaseError> {
+    if x.write_json(json) {
+        Ok(())
+    } else {
+        Err(not_finite(&field(i, key)))
+    }
+}
+
+/// `[x_0,x_1,..]`.
+fn numbers<T: InputScalar>(
+    xs: &[T],
+    i: usize,
+    key: &str,
+    json: &mut String,
+) -> Result<(), CaseError> {
+    json.push('[');
+    for (k, x) in xs.iter().enumerate() {
+        if k > 0 {
+            json.push(',');
+        }
+        number(x, i, key, json)?;
+    }
+    json.push(']');
+    Ok(())
+}
+
+/// Body `i`'s angular velocity in the given form.
 fn spin<T: InputScalar>(
     form: &Spin<T>,
     out: &BodyOutput<T>,
     dim: usize,
-    field: &str,
-) -> Result<Value, CaseError> {
+    i: usize,
+    json: &mut String,
+) -> Result<(), CaseError> {
+    const KEY: &str = "angular_velocity";
     match form {
         Spin::Scalar(_) => {
             let [x] = <[T; 1]>::try_from(out.spin.clone()).map_err(|_| internal("2D spin"))?;
@@ -45,58 +72,82 @@ fn spin<T: InputScalar>(
                 spin: [x],
                 velocity: [v0, v1],
             };
-            number(&s.scalar_spin(), field)
+            number(&s.scalar_spin(), i, KEY, json)
         }
         Spin::Omega(_) => {
             let spin = <[T; 3]>::try_from(out.spin.clone()).map_err(|_| internal("3D spin"))?;
             let velocity =
                 <[T; 3]>::try_from(out.velocity.clone()).map_err(|_| internal("3D velocity"))?;
-            numbers(&State3 { spin, velocity }.omega(), field)
+            numbers(&State3 { spin, velocity }.omega(), i, KEY, json)
         }
         Spin::Matrix(_) => {
             if out.spin.len() != dim * (dim - 1) / 2 {
                 return Err(internal("spin length"));
             }
-            // Each entry above the diagonal is printed once; the one below is its negation,
-            // `0 - x` ([`InputScalar::negated_json`]).
-            let zero = number(&T::zero(), field)?;
-            let mut m = vec![vec![zero; dim]; dim];
-            for ((r, c), x) in skew_pairs(dim).zip(&out.spin) {
-                let upper = number(x, field)?;
-                m[c][r] = T::negated_json(x, &upper).ok_or_else(|| internal("negation"))?;
-                m[r][c] = upper;
+            // Entry (r, c), r < c, is compact entry `at[r * dim + c]`; the one below the
+            // diagonal is its negation `0 - x` ([`InputScalar::write_negated_json`]).
+            let mut at = vec![0; dim * dim];
+            for (k, (r, c)) in skew_pairs(dim).enumerate() {
+                at[r * dim + c] = k;
             }
-            Ok(Value::Array(m.into_iter().map(Value::Array).collect()))
+            let zero = T::zero();
+            json.push('[');
+            for r in 0..dim {
+                json.push_str(if r > 0 { ",[" } else { "[" });
+                for c in 0..dim {
+                    if c > 0 {
+                        json.push(',');
+                    }
+                    match r.cmp(&c) {
+                        std::cmp::Ordering::Equal => number(&zero, i, KEY, json)?,
+                        std::cmp::Ordering::Less => {
+                            number(&out.spin[at[r * dim + c]], i, KEY, json)?
+                        }
+                        std::cmp::Ordering::Greater => {
+                            let x = &out.spin[at[c * dim + r]];
+                            if !x.write_negated_json(json) {
+                                return Err(not_finite(&field(i, KEY)));
+                            }
+                        }
+                    }
+                }
+                json.push(']');
+            }
+            json.push(']');
+            Ok(())
         }
     }
 }
 
-/// The JSON output of a case.
+/// Append the JSON output of a case to `json`. On an error, what was appended is to be
+/// discarded.
+pub fn write<T: InputScalar>(
+    case: &Case<T>,
+    out: &[BodyOutput<T>; 2],
+    json: &mut String,
+) -> Result<(), CaseError> {
+    json.push_str("{\"bodies\":[");
+    for (i, body) in out.iter().enumerate() {
+        json.push_str(if i > 0 {
+            ",{\"angular_velocity\":"
+        } else {
+            "{\"angular_velocity\":"
+        });
+        spin(&case.bodies[i].spin, body, case.dim, i, json)?;
+        json.push_str(",\"velocity\":");
+        numbers(&body.velocity, i, "velocity", json)?;
+        json.push('}');
+    }
+    json.push_str("]}");
+    Ok(())
+}
+
+/// The JSON output of a case, as a string ([`write()`]).
 pub fn render<T: InputScalar>(
     case: &Case<T>,
     out: &[BodyOutput<T>; 2],
-) -> Result<Value, CaseError> {
-    let bodies = (0..2)
-        .map(|i| {
-            let field = |f: &str| format!("bodies[{i}].{f}");
-            let mut body = Map::new();
-            body.insert(
-                "angular_velocity".into(),
-                spin(
-                    &case.bodies[i].spin,
-                    &out[i],
-                    case.dim,
-                    &field("angular_velocity"),
-                )?,
-            );
-            body.insert(
-                "velocity".into(),
-                numbers(&out[i].velocity, &field("velocity"))?,
-            );
-            Ok(Value::Object(body))
-        })
-        .collect::<Result<Vec<_>, CaseError>>()?;
-    let mut case = Map::new();
-    case.insert("bodies".into(), Value::Array(bodies));
-    Ok(Value::Object(case))
+) -> Result<String, CaseError> {
+    let mut json = String::new();
+    write(case, out, &mut json)?;
+    Ok(json)
 }

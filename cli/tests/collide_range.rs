@@ -359,6 +359,7 @@ where
         match collide_case::<f64>(&case) {
             Ok(float) => {
                 tally.accepted += 1;
+                let float: Value = serde_json::from_str(&float).expect("the answer is JSON");
                 let float = parse_output(n, &float, float_number);
                 for b in 0..2 {
                     if ec.balls[b].inv_mass.is_zero() {

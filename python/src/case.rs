@@ -22,13 +22,12 @@ use serde_json::Value;
 pub fn collide_case(py: Python<'_>, case: &str, exact: bool) -> PyResult<String> {
     let value: Value =
         serde_json::from_str(case).map_err(|e| input_error(format!("malformed case: {e}")))?;
-    let out: Result<Value, CaseError> = py.detach(|| {
+    let out: Result<String, CaseError> = py.detach(|| {
         if exact {
             solve_case::<Exact>(&value)
         } else {
             collide_floats::<f64>(&value)
         }
     });
-    let out = out.map_err(|e| input_error(e.to_string()))?;
-    serde_json::to_string(&out).map_err(|e| input_error(format!("internal error: {e}")))
+    out.map_err(|e| input_error(e.to_string()))
 }

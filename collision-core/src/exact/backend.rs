@@ -2,6 +2,7 @@
 //! interface, so that the choice is made (and measured, `accuracy/examples/exact_backends.rs`) in one
 //! place and no other crate names a bignum crate.
 
+use super::decimal::write_words;
 use dashu_int::IBig;
 use dashu_ratio::{RBig, Relaxed};
 use std::cmp::Ordering;
@@ -59,6 +60,22 @@ pub trait Backend: sealed::Sealed + Clone + Send + Sync + 'static {
     fn to_f64(a: &Self) -> f64;
 }
 
+/// `p` or `p/q` of `a` (of `-a` if `negated`), reduced, `q > 0`: the words of `p` and `q`
+/// converted to decimal by [`super::decimal::write_words`].
+pub(super) fn write_rbig<W: fmt::Write>(a: &RBig, negated: bool, w: &mut W) -> fmt::Result {
+    let (sign, p) = a.numerator().as_sign_words();
+    if (sign == dashu_int::Sign::Negative) != negated && *a.numerator() != IBig::ZERO {
+        w.write_char('-')?;
+    }
+    write_words(p, w)?;
+    let q = a.denominator();
+    if !q.is_one() {
+        w.write_char('/')?;
+        write_words(q.as_words(), w)?;
+    }
+    Ok(())
+}
+
 fn ibig(digits: &str) -> Option<IBig> {
     digits.strip_prefix('+').unwrap_or(digits).parse().ok()
 }
@@ -114,14 +131,10 @@ impl Backend for RBig {
     fn parts(a: &Self) -> (String, String) {
         (a.numerator().to_string(), a.denominator().to_string())
     }
-    /// The digits go straight into `f`, with no string of their own.
+    /// The digits go straight into `f`, with no string of their own (`write_rbig`: the
+    /// words converted by `decimal::write_words`).
     fn write(a: &Self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Display::fmt(a.numerator(), f)?;
-        if !a.denominator().is_one() {
-            f.write_str("/")?;
-            fmt::Display::fmt(a.denominator(), f)?;
-        }
-        Ok(())
+        write_rbig(a, false, f)
     }
     fn to_f64(a: &Self) -> f64 {
         a.to_f64().value()

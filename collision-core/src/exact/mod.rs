@@ -12,6 +12,7 @@
 //! ([`Relaxing`], [`collide_exact`]).
 
 mod backend;
+pub mod decimal;
 mod kernel;
 mod ops;
 mod root;
@@ -159,6 +160,14 @@ impl Exact {
         let (sp, sq) = (p.sqrt(), q.sqrt());
         (&sp * &sp == p && &sq * &sq == *q)
             .then(|| Rational(dashu_ratio::RBig::from_parts(sp.into(), sq)))
+    }
+}
+
+impl Exact {
+    /// Write `p` or `p/q` as [`fmt::Display`] does, of `-self` when `negated` (without
+    /// computing `-self`): reduced, `q > 0`, `0` for zero either way.
+    pub fn write_decimal<W: fmt::Write>(&self, negated: bool, w: &mut W) -> fmt::Result {
+        backend::write_rbig(&self.0, negated, w)
     }
 }
 

@@ -74,3 +74,32 @@ fn the_relaxed_form_has_the_same_values() {
     assert!(q(1, 3).relax() > q(-1, 2).relax());
     assert_eq!((&a - &a), ExactRelaxed::zero());
 }
+
+/// `write_decimal` (and so `Display`) gives dashu's digits of the reduced numerator and
+/// denominator (`parts`), and with `negated` those of `-x`; `0` has no sign either way.
+#[test]
+fn decimal_writing_gives_dashus_digits_and_negation() {
+    let big = [Exact::pow2(-300) * q(-5, 3), Exact::pow2(2100) * q(1, 3)];
+    let small = [
+        q(0, 1),
+        q(-3, 2),
+        q(7, 1),
+        q(-1, 1),
+        q(i64::MAX, 3),
+        q(i64::MIN + 1, 7),
+    ];
+    for x in small.into_iter().chain(big) {
+        for negated in [false, true] {
+            let (p, q) = if negated { (-&x).parts() } else { x.parts() };
+            let want = if q == "1" { p } else { format!("{p}/{q}") };
+            let mut s = String::new();
+            x.write_decimal(negated, &mut s).unwrap();
+            assert_eq!(s, want);
+        }
+        assert_eq!(x.to_string(), {
+            let mut s = String::new();
+            x.write_decimal(false, &mut s).unwrap();
+            s
+        });
+    }
+}
