@@ -338,7 +338,10 @@ impl Certified {
         b.leaves();
         // The magnitudes, one per key; the flag's terms from the divisors.
         let mut checks: Vec<Arg> = Vec::new();
-        for s in &program.steps {
+        // The first step's constants per key: every later step with that key must agree, or
+        // the shared magnitude would carry another value's `cc`, `ce`, `KA` or floor.
+        let mut of_key: HashMap<String, Tracked> = HashMap::new();
+        for (k, s) in program.steps.iter().enumerate() {
             let key = match &s.op {
                 Op::Neg(a) => b.key(a),
                 Op::Add(x, y) | Op::Sub(x, y) | Op::Mul(x, y) => {
@@ -390,6 +393,12 @@ impl Certified {
                 }
                 _ => unreachable!("refused above"),
             };
+            let (t, first) = (tracked[k], *of_key.entry(key.clone()).or_insert(tracked[k]));
+            assert!(
+                t.cc == first.cc && t.ce == first.ce && t.ka == first.ka && t.lo == first.lo,
+                "the step {} shares the magnitude {key} but not its constants: {t:?}, {first:?}",
+                s.name
+            );
             b.step_keys.push(key);
         }
         // The flag: 0 times the sum of the outputs (a tree), plus the divisors' terms; NaN
@@ -464,5 +473,24 @@ impl Certified {
         let program = Program::lower(&kernel, crate::Arith::Plain);
         Certified::derive_fast(&program, format)
             .expect("the plain no-slip kernels have + - * / only")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Hash-consing is sound only if equal keys have equal `cc`, `ce`, `KA` and floor:
+    /// [`Certified::derive_fast`] asserts it per step; here on every plain kernel and format.
+    #[test]
+    fn equal_magnitude_keys_have_equal_constants() {
+        for dim in 2..=6 {
+            for variant in Variant::ALL {
+                for format in [Format::F64, Format::F32] {
+                    let c = Certified::of_fast(dim, variant, format);
+                    assert!(matches!(c.scheme, Scheme::Fast { .. }));
+                }
+            }
+        }
     }
 }
