@@ -43,7 +43,10 @@
 //! monotone, no underflow): `A_x >= (1 - u)^KA_x A*_x`, `KA` the rounding count on a
 //! monomial of the magnitude recursion (a sum adds one to the larger count, a product adds
 //! both and one; inputs, constants and quotients count 0, since `F_a = (1 - u)^-(KA_a + 2)`
-//! rounded up covers the quotient's). So an output `y` has
+//! rounded up covers the quotient's). The one division of magnitudes, `RN(A_a / |b^|)`,
+//! may underflow; then `A*_a / |b^| < (1 - u)^-KA_a 2^e_min <= s` (the floor is at least
+//! `2^(e_min + 1)`), so the `max` with `s` still gives `A_x >= A*_a / |b^|`. So an output
+//! `y` has
 //!
 //! ```text
 //! |y^ - y| <= (cc_y + ce_y) A*_y <= C_y RN(...)       C_y = (cc_y + ce_y) / (1 - u)^(KA_y + 1), rounded up,
@@ -55,7 +58,10 @@
 //! `flag` is `+inf` if an output is not finite (an overflow anywhere reaches an output as
 //! an infinity or a NaN, except through a divisor: `finite / inf = 0`), if a divisor is not
 //! finite, or if a divisor check fails; otherwise 0. A magnitude never becomes NaN (`max`
-//! keeps `s` when its operand is NaN), so a bound is never NaN.
+//! keeps `s` when its operand is NaN), so a bound is never NaN. A NaN input can make its
+//! group's `max` tree drop the group's other entries (`if x > NaN` keeps the NaN, the next
+//! `max` drops it): harmless, since `+ - * /` never absorb a NaN, so it reaches an output
+//! and the flag is `+inf`.
 //!
 //! The magnitudes are hash-consed: `a + b`, `a - b` and `b + a` have one magnitude, `-a`
 //! that of `a`, and with shared leaves most of the kernel's values fall together (`n = 3`
