@@ -9,7 +9,7 @@
 mod backend;
 
 use backend::{cc, compile_harness, draw, records, run, same, scratch, Float};
-use collision_core::certified::CertifiedKernel;
+use collision_core::certified::{CertifiedKernel, Companion};
 use collision_core::{BodyState, Generated, Scalar};
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
@@ -43,21 +43,17 @@ where
     let mut out = Vec::new();
     for (_, c) in cases {
         let (nu, [b1, b2], [s1, s2]) = (&c.nu, c.ball_refs(), c.state_refs());
-        let bodies: Vec<BodyState<T, N, S>> = match kernel {
+        let (variant, companion) = match kernel.strip_suffix("_fast") {
+            Some(v) => (v, Companion::Fast),
+            None => (kernel, Companion::Running),
+        };
+        let bodies: Vec<BodyState<T, N, S>> = match variant {
             "free" => {
-                let ([o1, o2], [e1, e2]) = Generated::free(nu, b1, b2, s1, s2);
+                let ([o1, o2], [e1, e2]) = Generated::free(companion, nu, b1, b2, s1, s2);
                 vec![o1, o2, e1, e2]
             }
             "fixed" => {
-                let (o, e) = Generated::fixed(nu, &b1.radius, b2, s1, s2);
-                vec![o, e]
-            }
-            "free_fast" => {
-                let ([o1, o2], [e1, e2]) = Generated::free_fast(nu, b1, b2, s1, s2);
-                vec![o1, o2, e1, e2]
-            }
-            "fixed_fast" => {
-                let (o, e) = Generated::fixed_fast(nu, &b1.radius, b2, s1, s2);
+                let (o, e) = Generated::fixed(companion, nu, &b1.radius, b2, s1, s2);
                 vec![o, e]
             }
             _ => panic!("no kernel {kernel}"),

@@ -440,8 +440,14 @@ where
         let e = case.to_exact();
         let (b1, b2) = (&case.balls[0], &case.balls[1]);
         let (s1, s2) = (&case.states[0], &case.states[1]);
-        let (out, bound) =
-            <Generated as CertifiedKernel<T, N, S>>::free_fast(&case.nu, b1, b2, s1, s2);
+        let (out, bound) = <Generated as CertifiedKernel<T, N, S>>::free(
+            Companion::Fast,
+            &case.nu,
+            b1,
+            b2,
+            s1,
+            s2,
+        );
         let plain = <Generated as Kernel<T, N, S>>::free(&case.nu, b1, b2, s1, s2);
         let exact = exactly(|| {
             flatten(&<Relaxing as Kernel<Exact, N, S>>::free(
@@ -463,8 +469,14 @@ where
             exact.as_deref(),
             &|_| true,
         );
-        let (out, bound) =
-            <Generated as CertifiedKernel<T, N, S>>::fixed_fast(&case.nu, &b1.radius, b2, s1, s2);
+        let (out, bound) = <Generated as CertifiedKernel<T, N, S>>::fixed(
+            Companion::Fast,
+            &case.nu,
+            &b1.radius,
+            b2,
+            s1,
+            s2,
+        );
         let plain = <Generated as Kernel<T, N, S>>::fixed(&case.nu, &b1.radius, b2, s1, s2);
         let exact = exactly(|| {
             let o = <Relaxing as Kernel<Exact, N, S>>::fixed(

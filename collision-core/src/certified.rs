@@ -7,9 +7,11 @@ use crate::{Ball, BodyState, Generated};
 /// The certified companions by dimension, for generic code: implemented by [`Generated`]
 /// for `f64` and `f32` in every enabled dimension (`kernels::dN::certified`).
 pub trait CertifiedKernel<T, const N: usize, const S: usize> {
-    /// `kernels::dN::certified::free`: `(outputs, bounds)`.
+    /// `kernels::dN::certified::free` (`Companion::Running`) or `free_fast`
+    /// (`Companion::Fast`): `(outputs, bounds)`.
     #[allow(clippy::type_complexity)]
     fn free(
+        companion: Companion,
         nu: &[T; N],
         ball1: &Ball<T>,
         ball2: &Ball<T>,
@@ -17,27 +19,9 @@ pub trait CertifiedKernel<T, const N: usize, const S: usize> {
         state2: &BodyState<T, N, S>,
     ) -> ([BodyState<T, N, S>; 2], [BodyState<T, N, S>; 2]);
 
-    /// `kernels::dN::certified::fixed`: body 2's `(output, bound)`.
+    /// `kernels::dN::certified::fixed` or `fixed_fast`: body 2's `(output, bound)`.
     fn fixed(
-        nu: &[T; N],
-        radius1: &T,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> (BodyState<T, N, S>, BodyState<T, N, S>);
-
-    /// `kernels::dN::certified::free_fast`: `(outputs, bounds)`.
-    #[allow(clippy::type_complexity)]
-    fn free_fast(
-        nu: &[T; N],
-        ball1: &Ball<T>,
-        ball2: &Ball<T>,
-        state1: &BodyState<T, N, S>,
-        state2: &BodyState<T, N, S>,
-    ) -> ([BodyState<T, N, S>; 2], [BodyState<T, N, S>; 2]);
-
-    /// `kernels::dN::certified::fixed_fast`: body 2's `(output, bound)`.
-    fn fixed_fast(
+        companion: Companion,
         nu: &[T; N],
         radius1: &T,
         ball2: &Ball<T>,
@@ -90,22 +74,15 @@ where
     let [b1, b2] = balls;
     let [s1, s2] = states;
     let zero = BodyState::zero();
-    let fixed = match companion {
-        Companion::Running => <Generated as CertifiedKernel<T, N, S>>::fixed,
-        Companion::Fast => <Generated as CertifiedKernel<T, N, S>>::fixed_fast,
-    };
     if b1.is_immovable() {
-        let (after, bound) = fixed(nu, &b1.radius, b2, s1, s2);
+        let (after, bound) = Generated::fixed(companion, nu, &b1.radius, b2, s1, s2);
         ([s1.clone(), after], [zero, bound])
     } else if b2.is_immovable() {
         let minus_nu = nu.map(|x| -x);
-        let (after, bound) = fixed(&minus_nu, &b2.radius, b1, s2, s1);
+        let (after, bound) = Generated::fixed(companion, &minus_nu, &b2.radius, b1, s2, s1);
         ([after, s2.clone()], [bound, zero])
     } else {
-        match companion {
-            Companion::Running => Generated::free(nu, b1, b2, s1, s2),
-            Companion::Fast => Generated::free_fast(nu, b1, b2, s1, s2),
-        }
+        Generated::free(companion, nu, b1, b2, s1, s2)
     }
 }
 

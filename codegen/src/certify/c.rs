@@ -5,7 +5,6 @@
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::backend::{constant_literal, Precision};
 use crate::model::{names, skew_pairs, Variant};
-use crate::program::{Op, Operand, Program};
 use std::fmt::Write;
 
 fn precision(f: Format) -> Precision {
@@ -28,18 +27,6 @@ fn arg(f: Format, a: &Arg) -> String {
     match a {
         Arg::Name(n) => n.clone(),
         Arg::Lit(x) => literal(f, *x),
-    }
-}
-
-fn step(program: &Program, op: &Op) -> String {
-    let o = |x: &Operand| program.name(x).to_string();
-    match op {
-        Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
-        Op::Sub(a, b) => format!("{} - {}", o(a), o(b)),
-        Op::Mul(a, b) => format!("{} * {}", o(a), o(b)),
-        Op::Div(a, b) => format!("{} / {}", o(a), o(b)),
-        Op::Neg(a) => format!("-{}", o(a)),
-        _ => unreachable!("Certified::derive refuses it"),
     }
 }
 
@@ -140,7 +127,7 @@ pub fn function(c: &Certified) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => constant_literal(&p.constants[*k].value, precision(f)),
-            Expr::Step(k) => step(p, &p.steps[*k].op),
+            Expr::Step(k) => super::infix_step(p, &p.steps[*k].op),
             Expr::Abs(a) => format!("{fabs}({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),

@@ -225,6 +225,20 @@ pub struct Certified {
     pub scheme: Scheme,
 }
 
+/// A plain kernel step as the plain kernels spell it in Rust and C alike (one IEEE
+/// operation: `a + b`, `a - b`, `a * b`, `a / b`, `-a`).
+pub(crate) fn infix_step(program: &Program, op: &Op) -> String {
+    let o = |x: &Operand| program.name(x).to_string();
+    match op {
+        Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
+        Op::Sub(a, b) => format!("{} - {}", o(a), o(b)),
+        Op::Mul(a, b) => format!("{} * {}", o(a), o(b)),
+        Op::Div(a, b) => format!("{} / {}", o(a), o(b)),
+        Op::Neg(a) => format!("-{}", o(a)),
+        _ => unreachable!("Certified::derive and derive_fast refuse it"),
+    }
+}
+
 /// A kernel operation the companions do not bound (`sqrt`, selects, fused forms).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unsupported(pub String);

@@ -4,7 +4,6 @@
 
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::model::{names, skew_pairs, Variant};
-use crate::program::{Op, Operand, Program};
 use std::fmt::Write;
 
 /// A literal of `format`: the float's shortest round-trip decimal, suffixed.
@@ -26,19 +25,6 @@ fn arg(format: Format, a: &Arg) -> String {
     match a {
         Arg::Name(n) => n.clone(),
         Arg::Lit(x) => literal(format, *x),
-    }
-}
-
-/// A plain kernel step, as the generic kernel spells it (one IEEE operation).
-fn step(program: &Program, op: &Op) -> String {
-    let o = |x: &Operand| program.name(x).to_string();
-    match op {
-        Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
-        Op::Sub(a, b) => format!("{} - {}", o(a), o(b)),
-        Op::Mul(a, b) => format!("{} * {}", o(a), o(b)),
-        Op::Div(a, b) => format!("{} / {}", o(a), o(b)),
-        Op::Neg(a) => format!("-{}", o(a)),
-        _ => unreachable!("Certified::derive refuses it"),
     }
 }
 
@@ -119,7 +105,7 @@ pub fn function(c: &Certified, name: &str) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => literal(f, f_round(f, &p.constants[*k].value)),
-            Expr::Step(k) => step(p, &p.steps[*k].op),
+            Expr::Step(k) => super::infix_step(p, &p.steps[*k].op),
             Expr::Abs(a) => format!("{t}::abs({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),

@@ -27,46 +27,42 @@ macro_rules! certified_kernel_impl {
         impl crate::certified::CertifiedKernel<$t, $n, $s> for Generated {
             #[inline(always)]
             fn free(
+                companion: crate::certified::Companion,
                 nu: &[$t; $n],
                 ball1: &Ball<$t>,
                 ball2: &Ball<$t>,
                 state1: &BodyState<$t, $n, $s>,
                 state2: &BodyState<$t, $n, $s>,
             ) -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]) {
-                $module::certified::$format::free(nu, ball1, ball2, state1, state2)
+                use $module::certified::$format as c;
+                match companion {
+                    crate::certified::Companion::Running => {
+                        c::free(nu, ball1, ball2, state1, state2)
+                    }
+                    crate::certified::Companion::Fast => {
+                        c::free_fast(nu, ball1, ball2, state1, state2)
+                    }
+                }
             }
 
             #[inline(always)]
             fn fixed(
+                companion: crate::certified::Companion,
                 nu: &[$t; $n],
                 radius1: &$t,
                 ball2: &Ball<$t>,
                 state1: &BodyState<$t, $n, $s>,
                 state2: &BodyState<$t, $n, $s>,
             ) -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>) {
-                $module::certified::$format::fixed(nu, radius1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn free_fast(
-                nu: &[$t; $n],
-                ball1: &Ball<$t>,
-                ball2: &Ball<$t>,
-                state1: &BodyState<$t, $n, $s>,
-                state2: &BodyState<$t, $n, $s>,
-            ) -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]) {
-                $module::certified::$format::free_fast(nu, ball1, ball2, state1, state2)
-            }
-
-            #[inline(always)]
-            fn fixed_fast(
-                nu: &[$t; $n],
-                radius1: &$t,
-                ball2: &Ball<$t>,
-                state1: &BodyState<$t, $n, $s>,
-                state2: &BodyState<$t, $n, $s>,
-            ) -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>) {
-                $module::certified::$format::fixed_fast(nu, radius1, ball2, state1, state2)
+                use $module::certified::$format as c;
+                match companion {
+                    crate::certified::Companion::Running => {
+                        c::fixed(nu, radius1, ball2, state1, state2)
+                    }
+                    crate::certified::Companion::Fast => {
+                        c::fixed_fast(nu, radius1, ball2, state1, state2)
+                    }
+                }
             }
         }
     };
