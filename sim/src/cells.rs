@@ -34,6 +34,12 @@ pub(crate) struct Grid<const N: usize> {
     reach: [i64; N],
     /// `prod_{l > k} n_l`: the flat index is `sum_k c_k stride_k`.
     stride: [usize; N],
+    /// The flat offsets `sum_k delta_k stride_k` of every `delta` within reach, in
+    /// [`Grid::for_cells`]' order: the neighbours of an interior cell without the odometer.
+    offsets: Vec<isize>,
+    /// The same for each layer, at `2 axis` (offset `-K_axis` along `axis`) and `2 axis + 1`
+    /// (`+K_axis`).
+    layers: Vec<Vec<isize>>,
 }
 
 /// A neighbouring cell: its flat index and the image shift of its contents.
@@ -135,27 +141,45 @@ impl<const N: usize> Grid<N> {
                 r as i64
             };
         }
-        Ok(Grid {
+        Ok(Grid::with(n, width, size, periodic, reach))
+    }
+
+    /// The grid of `n` cells of `width`, with its strides and offset tables.
+    fn with(
+        n: [usize; N],
+        width: [f64; N],
+        size: [f64; N],
+        periodic: [bool; N],
+        reach: [i64; N],
+    ) -> Self {
+        let stride = strides(&n);
+        let offsets = offsets_of(&reach, &stride, None);
+        let layers = (0..2 * N)
+            .map(|l| {
+                let delta = if l % 2 == 1 {
+                    reach[l / 2]
+                } else {
+                    -reach[l / 2]
+                };
+                offsets_of(&reach, &stride, Some((l / 2, delta)))
+            })
+            .collect();
+        Grid {
             n,
             width,
             size,
             periodic,
             reach,
-            stride: strides(&n),
-        })
+            stride,
+            offsets,
+            layers,
+        }
     }
 
     /// One cell of sides `size`, neither walled nor periodic (a table without a box: every
     /// pair is a neighbour; the cell's bounds are never crossed or checked).
     pub(crate) fn single(size: [f64; N]) -> Self {
-        Grid {
-            n: [1; N],
-            width: size,
-            size,
-            periodic: [false; N],
-            reach: [0; N],
-            stride: strides(&[1; N]),
-        }
+        Grid::with([1; N], size, size, [false; N], [0; N])
     }
 
     /// The reach `K_k` of each axis.
@@ -210,14 +234,48 @@ impl<const N: usize> Grid<N> {
     }
 
     /// [`Grid::for_neighbours`], or with `only = (axis, delta)` the offset `delta` alone along
-    /// `axis`.
+    /// `axis`: `f` for each of [`Grid::near`]'s cells.
     #[inline]
     pub(crate) fn for_cells(
         &self,
         c: &[usize; N],
         only: Option<(usize, i64)>,
-        mut f: impl FnMut(Neighbour<N>),
+        f: impl FnMut(Neighbour<N>),
     ) {
+        self.near(c, only).for_each(f);
+    }
+
+    /// The cells of [`Grid::for_cells`], as an iterator (a scan's loop body is then inlined
+    /// once). A cell whose every neighbour lies inside the grid (no wrap, no wall) walks the
+    /// precomputed flat offsets, in the same order and with shift 0; others take the
+    /// [`Odometer`].
+    #[inline]
+    pub(crate) fn near(&self, c: &[usize; N], only: Option<(usize, i64)>) -> Near<'_, N> {
+        let interior = (0..N).all(|k| {
+            c[k] as i64 >= self.reach[k] && c[k] as i64 + self.reach[k] < self.n[k] as i64
+        });
+        if !interior {
+            return Near {
+                flat: 0,
+                offsets: [].iter(),
+                odometer: Some(self.odometer(c, only)),
+            };
+        }
+        let offsets = match only {
+            None => &self.offsets,
+            Some((axis, delta)) => &self.layers[2 * axis + usize::from(delta > 0)],
+        };
+        Near {
+            flat: self.flat(c) as isize,
+            offsets: offsets.iter(),
+            odometer: None,
+        }
+    }
+
+    /// The cells of [`Grid::for_cells`] for any cell: per axis, the at most `2 K_k + 1` cells
+    /// and shifts (wrapped on a periodic axis, skipped beyond a wall), to be combined. No
+    /// division: the shifts `floor((c_k + delta) / n_k)` are counted.
+    fn odometer(&self, c: &[usize; N], only: Option<(usize, i64)>) -> Odometer<N> {
         let mut part = [[0usize; 5]; N];
         let mut shifts = [[0i8; 5]; N];
         let mut len = [0usize; N];
@@ -246,31 +304,102 @@ impl<const N: usize> Grid<N> {
                 len[k] += 1;
             }
         }
-        // An odometer over the product (each axis lists at least c_k itself, but a layer
-        // beyond a wall lists nothing).
-        if len.contains(&0) {
-            return;
-        }
-        let mut at = [0usize; N];
-        loop {
-            f(Neighbour {
-                cell: (0..N).map(|k| part[k][at[k]]).sum(),
-                shift: std::array::from_fn(|k| shifts[k][at[k]]),
-            });
-            let mut k = N;
-            loop {
-                if k == 0 {
-                    return;
-                }
-                k -= 1;
-                at[k] += 1;
-                if at[k] < len[k] {
-                    break;
-                }
-                at[k] = 0;
-            }
+        Odometer {
+            part,
+            shifts,
+            len,
+            at: [0; N],
+            // Each axis lists at least c_k itself, but a layer beyond a wall lists nothing.
+            done: len.contains(&0),
         }
     }
+}
+
+/// The cells within reach of one cell ([`Grid::near`]): the flat offsets of an interior cell,
+/// or the odometer.
+pub(crate) struct Near<'a, const N: usize> {
+    flat: isize,
+    offsets: std::slice::Iter<'a, isize>,
+    odometer: Option<Odometer<N>>,
+}
+
+impl<const N: usize> Iterator for Near<'_, N> {
+    type Item = Neighbour<N>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Neighbour<N>> {
+        if let Some(&offset) = self.offsets.next() {
+            return Some(Neighbour {
+                cell: (self.flat + offset) as usize,
+                shift: [0; N],
+            });
+        }
+        self.odometer.as_mut()?.next()
+    }
+}
+
+/// An odometer over the product of each axis' cells (the last axis fastest).
+struct Odometer<const N: usize> {
+    part: [[usize; 5]; N],
+    shifts: [[i8; 5]; N],
+    len: [usize; N],
+    at: [usize; N],
+    done: bool,
+}
+
+impl<const N: usize> Iterator for Odometer<N> {
+    type Item = Neighbour<N>;
+
+    fn next(&mut self) -> Option<Neighbour<N>> {
+        if self.done {
+            return None;
+        }
+        let at = self.at;
+        let nb = Neighbour {
+            cell: (0..N).map(|k| self.part[k][at[k]]).sum(),
+            shift: std::array::from_fn(|k| self.shifts[k][at[k]]),
+        };
+        let mut k = N;
+        loop {
+            if k == 0 {
+                self.done = true;
+                break;
+            }
+            k -= 1;
+            self.at[k] += 1;
+            if self.at[k] < self.len[k] {
+                break;
+            }
+            self.at[k] = 0;
+        }
+        Some(nb)
+    }
+}
+
+/// The flat offsets `sum_k delta_k stride_k` of the offsets `delta` in `[-K_0, K_0] x .. x
+/// [-K_{n-1}, K_{n-1}]` (with `only = (axis, d)`, `delta_axis = d` alone), the last axis
+/// fastest: [`Grid::for_cells`]' order.
+fn offsets_of<const N: usize>(
+    reach: &[i64; N],
+    stride: &[usize; N],
+    only: Option<(usize, i64)>,
+) -> Vec<isize> {
+    let mut out = vec![0isize];
+    for k in 0..N {
+        let deltas = match only {
+            Some((axis, d)) if axis == k => d..=d,
+            _ => -reach[k]..=reach[k],
+        };
+        out = out
+            .iter()
+            .flat_map(|&o| {
+                deltas
+                    .clone()
+                    .map(move |d| o + d as isize * stride[k] as isize)
+            })
+            .collect();
+    }
+    out
 }
 
 /// `stride_k = prod_{l > k} n_l`.
@@ -338,6 +467,45 @@ mod tests {
         assert_eq!(g.reach(), [2]);
         assert_eq!(listed(|f| g.for_layer(&[0], 0, 1, f)), vec![(0, [2])]);
         assert_eq!(listed(|f| g.for_layer(&[0], 0, -1, f)), vec![(0, [-2])]);
+    }
+
+    #[test]
+    fn interior_cells_list_what_the_odometer_lists() {
+        // Every cell of grids with periodic, walled, one-cell and reach-2 axes: the offset
+        // tables give the odometer's (cell, shift) list, in its order, for the whole
+        // neighbourhood and for each layer; and the tables serve every interior cell.
+        fn check<const N: usize>(g: &Grid<N>) {
+            let mut tabled = 0;
+            let mut c = [0usize; N];
+            for flat in 0..g.cells() {
+                let mut rest = flat;
+                for k in 0..N {
+                    c[k] = rest / g.stride[k];
+                    rest %= g.stride[k];
+                }
+                let mut onlys = vec![None];
+                for axis in 0..N {
+                    onlys.push(Some(g.layer(axis, 1)));
+                    onlys.push(Some(g.layer(axis, -1)));
+                }
+                for only in onlys {
+                    let near = listed(|f| g.for_cells(&c, only, f));
+                    let odometer = listed(|f| g.odometer(&c, only).for_each(f));
+                    assert_eq!(near, odometer, "{:?} {c:?} {only:?}", g.n);
+                }
+                tabled += usize::from(g.near(&c, None).odometer.is_none());
+            }
+            let interior: usize = (0..N)
+                .map(|k| (g.n[k] as i64 - 2 * g.reach[k]).max(0) as usize)
+                .product();
+            assert_eq!(tabled, interior, "{:?}", g.n);
+        }
+        check(&Grid::<2>::new([10.0, 8.0], [true, false], 1.5, 40).unwrap());
+        check(&Grid::<2>::new([1.0, 9.0], [true, true], 1.5, 40).unwrap());
+        check(&Grid::<3>::new([7.0, 6.0, 0.5], [true, false, false], 1.0, 100).unwrap());
+        check(&Grid::<3>::new([21.9; 3], [true; 3], 1.0, 4000).unwrap());
+        check(&Grid::<4>::new([5.0; 4], [false, true, true, false], 1.0, 200).unwrap());
+        check(&Grid::<2>::single([3.0, 4.0]));
     }
 
     #[test]

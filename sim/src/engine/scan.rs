@@ -102,7 +102,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// Offers ball `i`'s contacts with the balls and obstacles of the cells within reach of
-    /// cell `c`, or of its layer `only` ([`crate::cells::Grid::for_cells`]).
+    /// cell `c`, or of its layer `only` ([`crate::cells::Grid::near`]).
     #[inline]
     fn scan(&self, i: usize, best: &mut Best<N>, c: &[usize; N], only: Option<(usize, i64)>) {
         let home = self.balls[i].home;
@@ -117,7 +117,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             grid.for_cells(c, only, |nb| self.motion.prefetch_list(nb.cell));
         }
         let obstacles = !self.obstacles.is_empty();
-        self.grid.for_cells(c, only, |nb| {
+        for nb in self.grid.near(c, only) {
             // The cell's image in i's record coordinates, s + W_i (whole numbers in f64).
             let base: [f64; N] =
                 std::array::from_fn(|k| f64::from(nb.shift[k]) + f64::from(w_i[k]));
@@ -141,7 +141,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 }
             }
             if !obstacles {
-                return;
+                continue;
             }
             for &o in &self.fixed_members[nb.cell] {
                 let image: [i16; N] = std::array::from_fn(|k| i16::from(nb.shift[k]) + w_i[k]);
@@ -150,7 +150,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                     best.offer(t, || What::Obstacle { o, image });
                 }
             }
-        });
+        }
     }
 
     /// Offers ball `i`'s contacts with the table's boundaries and the box walls.
