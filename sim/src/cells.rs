@@ -476,13 +476,8 @@ mod tests {
         // neighbourhood and for each layer; and the tables serve every interior cell.
         fn check<const N: usize>(g: &Grid<N>) {
             let mut tabled = 0;
-            let mut c = [0usize; N];
             for flat in 0..g.cells() {
-                let mut rest = flat;
-                for k in 0..N {
-                    c[k] = rest / g.stride[k];
-                    rest %= g.stride[k];
-                }
+                let c: [usize; N] = std::array::from_fn(|k| flat / g.stride[k] % g.n[k]);
                 let mut onlys = vec![None];
                 for axis in 0..N {
                     onlys.push(Some(g.layer(axis, 1)));
