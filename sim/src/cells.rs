@@ -323,6 +323,14 @@ pub(crate) struct Near<'a, const N: usize> {
     odometer: Option<Odometer<N>>,
 }
 
+impl<const N: usize> Near<'_, N> {
+    /// Whether every cell listed has image shift 0 (an interior cell's neighbours).
+    #[inline]
+    pub(crate) fn unshifted(&self) -> bool {
+        self.odometer.is_none()
+    }
+}
+
 impl<const N: usize> Iterator for Near<'_, N> {
     type Item = Neighbour<N>;
 

@@ -193,6 +193,32 @@ impl<const N: usize> Residents<N> {
         &self.slab[start..start + span.len as usize]
     }
 
+    /// Writes the slab places of cell `cell`'s records to `out[*count..]` and advances
+    /// `*count` past them. The first four places are written whatever the list's length (one
+    /// store, and no branch on a length that varies from cell to cell: a scan's loop over the
+    /// places has one trip count instead of one per cell); `out` grows when it must.
+    #[inline]
+    pub(crate) fn gather(&self, cell: usize, out: &mut Vec<u32>, count: &mut usize) {
+        let span = self.spans[cell];
+        let (start, len) = (span.start, span.len as usize);
+        let need = *count + len.max(4);
+        if out.len() < need {
+            out.resize(need.next_power_of_two(), 0);
+        }
+        let first: &mut [u32; 4] = (&mut out[*count..*count + 4]).try_into().unwrap();
+        *first = [start, start + 1, start + 2, start + 3];
+        for k in 4..len {
+            out[*count + k] = start + k as u32;
+        }
+        *count += len;
+    }
+
+    /// The record at slab place `at` (from [`Residents::gather`]).
+    #[inline]
+    pub(crate) fn at(&self, at: u32) -> &Resident<N> {
+        &self.slab[at as usize]
+    }
+
     /// Every ball, cell after cell (in the slab's order).
     pub(crate) fn in_cell_order(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.spans.len()).flat_map(|c| self.cell(c).iter().map(|r| r.ball as usize))

@@ -139,6 +139,8 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// Whether a prediction prefetches its neighbour cells' lists: a cell list larger than
     /// the caches ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
+    /// The slab places of the balls a scan meets ([`Residents::gather`]), kept between scans.
+    near: Vec<u32>,
     /// The order of the balls' pending events (their slots are in `balls`).
     queue: Calendar,
     /// The local clock; the absolute time is `origin + origin_low + now`.
@@ -243,6 +245,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
             prefetch,
+            near: Vec::new(),
             queue: Calendar::new(),
             now: 0.0,
             origin: 0.0,

@@ -5,8 +5,10 @@
 use super::record::key_of;
 use super::Simulation;
 use crate::canonical::{self, obstacle_time, pair_time};
+use crate::motion::Motion;
 use crate::predict::exit_time;
 use crate::queue::What;
+use crate::residents::Resident;
 use crate::PairKernels;
 
 /// Ball `i`'s earliest event offered so far, least `(t, key)` (the key, [`key_of`], made
@@ -46,7 +48,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     pub(super) fn predict(&mut self, i: usize) {
         let mut best = Best::<N> { i, best: None };
         let c = self.balls[i].cell();
-        self.scan(i, &mut best, &c, None);
+        let mut near = std::mem::take(&mut self.near);
+        self.scan(i, &mut best, &c, None, &mut near);
+        self.near = near;
         self.fixed_bodies(i, &mut best);
         self.schedule(i, best);
     }
@@ -78,7 +82,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let mut best = Best::<N> { i, best: kept };
         let c = self.balls[i].cell();
         let layer = self.grid.layer(axis, if up { 1 } else { -1 });
-        self.scan(i, &mut best, &c, Some(layer));
+        let mut near = std::mem::take(&mut self.near);
+        self.scan(i, &mut best, &c, Some(layer), &mut near);
+        self.near = near;
         self.schedule(i, best);
     }
 
@@ -102,13 +108,21 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// Offers ball `i`'s contacts with the balls and obstacles of the cells within reach of
-    /// cell `c`, or of its layer `only` ([`crate::cells::Grid::near`]).
+    /// cell `c`, or of its layer `only` ([`crate::cells::Grid::near`]). Without obstacles, the
+    /// neighbours of an interior cell (image shift 0 for all) are first gathered into `near`
+    /// ([`crate::residents::Residents::gather`]), then met in one loop.
     #[inline]
-    fn scan(&self, i: usize, best: &mut Best<N>, c: &[usize; N], only: Option<(usize, i64)>) {
+    fn scan(
+        &self,
+        i: usize,
+        best: &mut Best<N>,
+        c: &[usize; N],
+        only: Option<(usize, i64)>,
+        near: &mut Vec<u32>,
+    ) {
         let home = self.balls[i].home;
         let m = *self.motion.get(home);
         let w_i = self.motion.wraps(home);
-        let size = self.grid.size;
         if self.prefetch {
             // Start the loads of the cells' lists together, in two rounds (the headers, then
             // the records they point to), instead of one after another as the scan meets them.
@@ -117,28 +131,24 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             grid.for_cells(c, only, |nb| self.motion.prefetch_list(nb.cell));
         }
         let obstacles = !self.obstacles.is_empty();
-        for nb in self.grid.near(c, only) {
+        let cells = self.grid.near(c, only);
+        if cells.unshifted() && !obstacles {
+            let mut count = 0;
+            for nb in cells {
+                self.motion.gather(nb.cell, near, &mut count);
+            }
+            let base: [f64; N] = w_i.map(f64::from);
+            for &at in &near[..count] {
+                self.offer_ball(i, best, &m, &base, self.motion.at(at));
+            }
+            return;
+        }
+        for nb in cells {
             // The cell's image in i's record coordinates, s + W_i (whole numbers in f64).
             let base: [f64; N] =
                 std::array::from_fn(|k| f64::from(nb.shift[k]) + f64::from(w_i[k]));
             for resident in self.motion.cell(nb.cell) {
-                let j = resident.ball as usize;
-                if j == i {
-                    continue;
-                }
-                // j's image in i's record coordinates: s - W_j + W_i (exact in f64).
-                let image: [f64; N] =
-                    std::array::from_fn(|k| base[k] - f64::from(resident.wraps[k]));
-                // The same bits as from j's side (canonical::pair_time): no ordering here.
-                let t = pair_time(&m, &resident.motion, &image, &size);
-                // NaN: no contact (never better).
-                if !t.is_nan() && best.may_beat(t) {
-                    best.offer(t, || What::Ball {
-                        j: j as u32,
-                        count: self.balls[j].count,
-                        image: image.map(|k| k as i16),
-                    });
-                }
+                self.offer_ball(i, best, &m, &base, resident);
             }
             if !obstacles {
                 continue;
@@ -146,10 +156,40 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             for &o in &self.fixed_members[nb.cell] {
                 let image: [i16; N] = std::array::from_fn(|k| i16::from(nb.shift[k]) + w_i[k]);
                 let f = &self.obstacles[o as usize];
-                if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, &size) {
+                let size = &self.grid.size;
+                if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, size) {
                     best.offer(t, || What::Obstacle { o, image });
                 }
             }
+        }
+    }
+
+    /// Offers ball `i` (flight `m`) meeting the ball of record `resident`, whose cell's
+    /// image in `i`'s record coordinates is `base` (`s + W_i`).
+    #[inline(always)]
+    fn offer_ball(
+        &self,
+        i: usize,
+        best: &mut Best<N>,
+        m: &Motion<N>,
+        base: &[f64; N],
+        resident: &Resident<N>,
+    ) {
+        let j = resident.ball as usize;
+        if j == i {
+            return;
+        }
+        // j's image in i's record coordinates: s - W_j + W_i (exact in f64).
+        let image: [f64; N] = std::array::from_fn(|k| base[k] - f64::from(resident.wraps[k]));
+        // The same bits as from j's side (canonical::pair_time): no ordering here.
+        let t = pair_time(m, &resident.motion, &image, &self.grid.size);
+        // NaN: no contact (never better).
+        if !t.is_nan() && best.may_beat(t) {
+            best.offer(t, || What::Ball {
+                j: j as u32,
+                count: self.balls[j].count,
+                image: image.map(|k| k as i16),
+            });
         }
     }
 
