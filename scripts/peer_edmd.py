@@ -19,6 +19,10 @@ Usage::
 
     scripts/peer_edmd.py PATH/TO/EDMD [--balls 4000,32000,108000]
         [--phi 0.1,0.2,0.3,0.4] [--rounds 3] [--contacts C] [--no-slip] [--noslip BINARY]
+        [--before BINARY]
+
+``--before`` adds an earlier build of ``event_rate`` to every round (before, noslip, Cell,
+Single), and the table its times and noslip's time over them.
 
 A second table gives each program's peak resident memory and, between successive ``N``, the
 bytes each added ball costs.
@@ -135,6 +139,12 @@ def main() -> None:
         default=None,
         help="an event_rate binary to time (default: the repository's, built in release here)",
     )
+    parser.add_argument(
+        "--before",
+        type=Path,
+        default=None,
+        help="an earlier event_rate binary, timed in the same rounds",
+    )
     a = parser.parse_args()
     balls = [int(x) for x in a.balls.split(",")]
     phis = [float(x) for x in a.phi.split(",")]
@@ -156,11 +166,14 @@ def main() -> None:
                 contacts = a.contacts or max(n, 200_000)
                 for phi in phis:
                     order = ["noslip", "Cell", "Single"]
+                    if a.before is not None:
+                        order.insert(0, "before")
                     if r % 2:
                         order.reverse()
                     for who in order:
-                        if who == "noslip":
-                            t, peak = run_noslip(ours, n, phi, warm, contacts, not a.no_slip)
+                        if who in ("noslip", "before"):
+                            binary = ours if who == "noslip" else a.before
+                            t, peak = run_noslip(binary, n, phi, warm, contacts, not a.no_slip)
                         else:
                             t, peak = run_peer(peers[who], n, phi, warm, contacts)
                         times.setdefault((n, phi, who), []).append(t)
@@ -170,20 +183,32 @@ def main() -> None:
     load = os.getloadavg()
     print(f"# us per collision, medians (min-max) of {a.rounds} alternated rounds; noslip {kind}")
     print(f"# load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at the end")
-    print("| N | phi | noslip | peer Cell | peer Single | noslip / best peer (speed) |")
-    print("|---:|---:|---:|---:|---:|---:|")
+    before = a.before is not None
+    head = "| N | phi | " + ("before | " if before else "") + "noslip | "
+    head += "noslip / before (time) | " if before else ""
+    print(head + "peer Cell | peer Single | noslip / best peer (speed) |")
+    print("|---:|---:|" + ("---:|---:|" if before else "") + "---:|---:|---:|---:|")
     for n in balls:
         for phi in phis:
             ours, cell, single = (times[(n, phi, w)] for w in ("noslip", "Cell", "Single"))
             best = min(statistics.median(cell), statistics.median(single))
             ratio = best / statistics.median(ours)
-            print(f"| {n} | {phi} | {spread(ours)} | {spread(cell)} | {spread(single)} | {ratio:.2f} |")
+            row = f"| {n} | {phi} | "
+            if before:
+                old = times[(n, phi, "before")]
+                gain = statistics.median(ours) / statistics.median(old)
+                row += f"{spread(old)} | {spread(ours)} | {gain:.2f} | "
+            else:
+                row += f"{spread(ours)} | "
+            print(row + f"{spread(cell)} | {spread(single)} | {ratio:.2f} |")
     print()
     print("# peak resident memory (ru_maxrss, MiB; it counts the forking Python too, about")
     print("# 15 MiB), and bytes per ball added from the previous N (the memory a ball costs)")
     print("| N | phi | noslip | peer Cell | peer Single |")
     print("|---:|---:|---:|---:|---:|")
     who = ("noslip", "Cell", "Single")
+    if before:
+        print("# (the before build's memory is not shown)")
     for phi in phis:
         for k, n in enumerate(balls):
             cells = []
