@@ -38,7 +38,10 @@
 //! by cell (`Residents`, `residents.rs`): a cell's records are one list, and the lists lie in
 //! one slab in the order of the cells, laid out again at the start and at every re-basing
 //! (which also predict the balls cell after cell), so a scan of the `3^n` cells within reach
-//! (`Grid::for_cells`, no division) reads a few stretches of memory. The velocity there
+//! (`Grid::near`, no division; an interior cell's from a table of flat offsets) reads a few
+//! stretches of memory. Without obstacles, an interior cell's scan gathers its neighbours'
+//! slab places first and meets them in one loop (`Residents::gather`): one loop exit per scan
+//! instead of a mispredicted one per cell. The velocity there
 //! is a copy of the ball's state's, written at each contact. Contact times in the scan are
 //! taken without branches (`predict::contact_time_or_nan`, the same bits as
 //! `contact_time`). The calendar's lists, the slab and the scan reuse their memory:
