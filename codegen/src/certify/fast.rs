@@ -202,6 +202,20 @@ fn track(program: &Program, format: Format, floor_log2: i32) -> Result<Vec<Track
                     lo: floor,
                 }
             }
+            Op::MulAdd(a, b, c) | Op::MulSub(a, b, c) | Op::NegMulAdd(a, b, c) => {
+                let (a, b, c) = (leaf(a, &steps), leaf(b, &steps), leaf(c, &steps));
+                let t = Tracked {
+                    cc: compose(u, compose(a.cc, b.cc).max(c.cc)),
+                    ce: compose(a.ce, b.ce).max(c.ce),
+                    ka: (a.ka + b.ka + 1).max(c.ka) + 1,
+                    lo: (a.lo + b.lo).max(c.lo),
+                };
+                // The product's magnitude `A_a A_b` is rounded on its own: it stays normal.
+                if a.lo + b.lo < threshold {
+                    return Err(());
+                }
+                t
+            }
             _ => unreachable!("derive_fast refuses it first"),
         };
         steps.push(t);
@@ -304,7 +318,14 @@ impl Certified {
     pub fn derive_fast(program: &Program, format: Format) -> Result<Certified, Unsupported> {
         for s in &program.steps {
             match s.op {
-                Op::Add(..) | Op::Sub(..) | Op::Mul(..) | Op::Div(..) | Op::Neg(..) => {}
+                Op::Add(..)
+                | Op::Sub(..)
+                | Op::Mul(..)
+                | Op::Div(..)
+                | Op::Neg(..)
+                | Op::MulAdd(..)
+                | Op::MulSub(..)
+                | Op::NegMulAdd(..) => {}
                 _ => return Err(Unsupported(format!("the step {}", s.name))),
             }
         }
@@ -365,6 +386,28 @@ impl Certified {
                             Op::Mul(..) => b.bind(Expr::Mul(ma, mb)),
                             _ => b.bind(Expr::Add(ma, mb)),
                         };
+                        b.keys.insert(key.clone(), m);
+                    }
+                    key
+                }
+                Op::MulAdd(x, y, w) | Op::MulSub(x, y, w) | Op::NegMulAdd(x, y, w) => {
+                    let mut v = [b.key(x), b.key(y)];
+                    v.sort();
+                    let product = format!("(* {} {})", v[0], v[1]);
+                    let key = format!("(fma {} {} {})", v[0], v[1], b.key(w));
+                    if !b.keys.contains_key(&key) {
+                        // `A_a A_b` shares the product's key: the same magnitude.
+                        let p = match b.keys.get(&product) {
+                            Some(p) => p.clone(),
+                            None => {
+                                let (ma, mb) = (b.mag(x), b.mag(y));
+                                let p = b.bind(Expr::Mul(ma, mb));
+                                b.keys.insert(product, p.clone());
+                                p
+                            }
+                        };
+                        let mw = b.mag(w);
+                        let m = b.bind(Expr::Add(p, mw));
                         b.keys.insert(key.clone(), m);
                     }
                     key
@@ -473,12 +516,13 @@ impl Certified {
         })
     }
 
-    /// The fast companion of the plain no-slip kernel `variant` in dimension `dim`.
-    pub fn of_fast(dim: usize, variant: Variant, format: Format) -> Certified {
+    /// The fast companion of the no-slip kernel `variant` in dimension `dim`, plain or FMA
+    /// (`arith`).
+    pub fn of_fast(dim: usize, variant: Variant, arith: crate::Arith, format: Format) -> Certified {
         let kernel = crate::model::build(dim, variant);
-        let program = Program::lower(&kernel, crate::Arith::Plain);
+        let program = Program::lower(&kernel, arith);
         Certified::derive_fast(&program, format)
-            .expect("the plain no-slip kernels have + - * / only")
+            .expect("the no-slip kernels have + - * / and FMA only")
     }
 }
 
@@ -493,8 +537,10 @@ mod tests {
         for dim in 2..=6 {
             for variant in Variant::ALL {
                 for format in [Format::F64, Format::F32] {
-                    let c = Certified::of_fast(dim, variant, format);
-                    assert!(matches!(c.scheme, Scheme::Fast { .. }));
+                    for arith in [crate::Arith::Plain, crate::Arith::Fma] {
+                        let c = Certified::of_fast(dim, variant, arith, format);
+                        assert!(matches!(c.scheme, Scheme::Fast { .. }));
+                    }
                 }
             }
         }

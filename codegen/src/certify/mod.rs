@@ -225,9 +225,10 @@ pub struct Certified {
     pub scheme: Scheme,
 }
 
-/// A plain kernel step as the plain kernels spell it in Rust and C alike (one IEEE
-/// operation: `a + b`, `a - b`, `a * b`, `a / b`, `-a`).
-pub(crate) fn infix_step(program: &Program, op: &Op) -> String {
+/// A kernel step as the plain kernels spell it in Rust and C alike: one IEEE operation
+/// (`a + b`, `a - b`, `a * b`, `a / b`, `-a`), or a fused one through `fma` (`f64::mul_add`,
+/// `fma`, ...) as the FMA kernels call it: `fma(a, b, c)`, `fma(a, b, -c)`, `fma(-a, b, c)`.
+pub(crate) fn step_expr(program: &Program, op: &Op, fma: &str) -> String {
     let o = |x: &Operand| program.name(x).to_string();
     match op {
         Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
@@ -235,11 +236,14 @@ pub(crate) fn infix_step(program: &Program, op: &Op) -> String {
         Op::Mul(a, b) => format!("{} * {}", o(a), o(b)),
         Op::Div(a, b) => format!("{} / {}", o(a), o(b)),
         Op::Neg(a) => format!("-{}", o(a)),
+        Op::MulAdd(a, b, c) => format!("{fma}({}, {}, {})", o(a), o(b), o(c)),
+        Op::MulSub(a, b, c) => format!("{fma}({}, {}, -{})", o(a), o(b), o(c)),
+        Op::NegMulAdd(a, b, c) => format!("{fma}(-{}, {}, {})", o(a), o(b), o(c)),
         _ => unreachable!("Certified::derive and derive_fast refuse it"),
     }
 }
 
-/// A kernel operation the companions do not bound (`sqrt`, selects, fused forms).
+/// A kernel operation the companions do not bound (`sqrt`, selects).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unsupported(pub String);
 
@@ -405,8 +409,8 @@ impl Builder<'_> {
                     depth: ba.depth + 4,
                 }
             }
-            Op::MulAdd(..) | Op::MulSub(..) | Op::NegMulAdd(..) => {
-                return Err(Unsupported(format!("the fused step {}", s.name)))
+            Op::MulAdd(a, b, c) | Op::MulSub(a, b, c) | Op::NegMulAdd(a, b, c) => {
+                self.fused(a, b, c, &z)
             }
             Op::Sqrt(_) => return Err(Unsupported(format!("the square root {}", s.name))),
             Op::SelectLt(_) => return Err(Unsupported(format!("the select {}", s.name))),
@@ -421,6 +425,45 @@ impl Builder<'_> {
         };
         self.bounds.insert(z, bounded);
         Ok(())
+    }
+
+    /// The fused step `z = a b + c` (or `a b - c`, `c - a b`), one rounding:
+    /// `e_z = [m_a e_b + (m_b + e_b) e_a] + e_c + u m_z`, the product's term as in the
+    /// product rule without its own rounding.
+    fn fused(&mut self, a: &Operand, b: &Operand, c: &Operand, z: &Operand) -> Bounded {
+        let (ba, bb, bc) = (self.bounded(a), self.bounded(b), self.bounded(c));
+        let mz = self.mag(z);
+        let r = self.bind(Expr::Mul(self.u(), mz));
+        let product = match (ba.error.clone(), bb.error.clone()) {
+            (None, None) => None,
+            (Some(ea), None) => {
+                let mb = self.mag(b);
+                Some((self.bind(Expr::Mul(mb, ea)), ba.depth + 1))
+            }
+            (None, Some(eb)) => {
+                let ma = self.mag(a);
+                Some((self.bind(Expr::Mul(ma, eb)), bb.depth + 1))
+            }
+            (Some(ea), Some(eb)) => {
+                let (ma, mb) = (self.mag(a), self.mag(b));
+                let p1 = self.bind(Expr::Mul(ma, eb.clone()));
+                let sb = self.bind(Expr::Add(mb, eb));
+                let p2 = self.bind(Expr::Mul(sb, ea));
+                Some((self.bind(Expr::Add(p1, p2)), ba.depth + bb.depth + 3))
+            }
+        };
+        let terms = product
+            .into_iter()
+            .chain(bc.error.map(|e| (e, bc.depth)))
+            .chain(std::iter::once((r, 0)));
+        // A sum loses one rounding on top of the deeper of its two operands.
+        let (error, depth) = terms
+            .reduce(|(acc, da), (t, dt)| (self.bind(Expr::Add(acc, t)), da.max(dt) + 1))
+            .expect("the rounding term");
+        Bounded {
+            error: Some(error),
+            depth,
+        }
     }
 
     fn output(&mut self, x: &Operand) -> Arg {
@@ -443,8 +486,7 @@ impl Builder<'_> {
 impl Certified {
     /// The companion of `program` in `format`: its steps in order, each followed by its
     /// bound's statements, then the bound of every output. Refuses a program with fused
-    /// steps, square roots or selects (the no-slip and rough kernels have none in their
-    /// plain form).
+    /// square roots or selects (the no-slip and rough kernels have none).
     pub fn derive(program: &Program, format: Format) -> Result<Certified, Unsupported> {
         let mut b = Builder {
             program,
@@ -505,10 +547,11 @@ impl Certified {
         })
     }
 
-    /// The companion of the plain no-slip kernel `variant` in dimension `dim`.
-    pub fn of(dim: usize, variant: Variant, format: Format) -> Certified {
+    /// The companion of the no-slip kernel `variant` in dimension `dim`, plain or FMA
+    /// (`arith`).
+    pub fn of(dim: usize, variant: Variant, arith: crate::Arith, format: Format) -> Certified {
         let kernel = crate::model::build(dim, variant);
-        let program = Program::lower(&kernel, crate::Arith::Plain);
-        Certified::derive(&program, format).expect("the plain no-slip kernels have + - * / only")
+        let program = Program::lower(&kernel, arith);
+        Certified::derive(&program, format).expect("the no-slip kernels have + - * / and FMA only")
     }
 }

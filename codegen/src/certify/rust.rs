@@ -78,10 +78,19 @@ pub fn function(c: &Certified, name: &str) -> String {
          /// non-finite input).\n\
          ///\n\
          /// Ops: {} of the kernel, {} of the bound.",
-        variant.name(),
+        match p.arith {
+            crate::Arith::Plain => variant.name().to_string(),
+            crate::Arith::Fma => format!("{}_fma", variant.name()),
+        },
         p.ops,
         c.bound_ops
     );
+    // The FMA companions, like the FMA kernels, are always inlined: compiled with their
+    // caller's target features (`collide_certified_fma_by`), so `mul_add` is an instruction.
+    let inline = match p.arith {
+        crate::Arith::Plain => "#[inline]",
+        crate::Arith::Fma => "#[inline(always)]",
+    };
     let (params, ret) = match variant {
         Variant::Free => (
             format!("nu: &[{t}; {n}], ball1: &Ball<{t}>, ball2: &Ball<{t}>, state1: &{state}, state2: &{state}"),
@@ -94,7 +103,7 @@ pub fn function(c: &Certified, name: &str) -> String {
     };
     let _ = writeln!(
         out,
-        "#[inline]\n#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::neg_multiply)]\n\
+        "{inline}\n#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::neg_multiply)]\n\
          pub fn {name}({params}) -> {ret} {{"
     );
     for (input, access) in rust_inputs(n, variant) {
@@ -105,7 +114,7 @@ pub fn function(c: &Certified, name: &str) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => literal(f, f_round(f, &p.constants[*k].value)),
-            Expr::Step(k) => super::infix_step(p, &p.steps[*k].op),
+            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, &format!("{t}::mul_add")),
             Expr::Abs(a) => format!("{t}::abs({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
@@ -150,13 +159,28 @@ fn f_round(f: Format, v: &num_rational::BigRational) -> f64 {
     f.round(v)
 }
 
+/// The Rust name of a companion: `free`, `fixed_fast`, `free_fma`, `fixed_fma_fast_f32`, ...
+pub fn function_name(variant: Variant, arith: crate::Arith, fast: bool, format: Format) -> String {
+    let fma = match arith {
+        crate::Arith::Plain => "",
+        crate::Arith::Fma => "_fma",
+    };
+    let fast = if fast { "_fast" } else { "" };
+    let f32 = match format {
+        Format::F64 => "",
+        Format::F32 => "_f32",
+    };
+    format!("{}{fma}{fast}{f32}", variant.name())
+}
+
 /// The file name of dimension `dim`'s companions: `certified_{dim}.rs`.
 pub fn file_name(dim: usize) -> String {
     format!("certified_{dim}.rs")
 }
 
 /// The companions of dimension `dim` (`free`, `fixed` in `f64`; `free_f32`, `fixed_f32`;
-/// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`)
+/// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`; and those of
+/// the FMA kernels, `free_fma`, `free_fma_fast`, `free_fma_f32`, ...: [`function_name`])
 /// as one formatted file; `crate_path` as for [`crate::generate`].
 pub fn generate(dim: usize, crate_path: &str) -> String {
     let mut src =
@@ -166,39 +190,34 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
          // Do not edit: it is rewritten by collision-core's build.rs.\n"
     );
     for format in [Format::F64, Format::F32] {
-        for variant in Variant::ALL {
-            let c = Certified::of(dim, variant, format);
-            let name = match format {
-                Format::F64 => variant.name().to_string(),
-                Format::F32 => format!("{}_f32", variant.name()),
-            };
-            let _ = writeln!(
-                header,
-                "// {name}: kernel {}; bound {} ops.",
-                c.program.ops, c.bound_ops
-            );
-            src.push_str(&function(&c, &name));
-            let fast = Certified::of_fast(dim, variant, format);
-            let name = match format {
-                Format::F64 => format!("{}_fast", variant.name()),
-                Format::F32 => format!("{}_fast_f32", variant.name()),
-            };
-            let _ = writeln!(
-                header,
-                "// {name}: kernel {}; bound {} ops.",
-                fast.program.ops, fast.bound_ops
-            );
-            src.push_str(&function(&fast, &name));
+        for arith in crate::Arith::ALL {
+            for variant in Variant::ALL {
+                for fast in [false, true] {
+                    let c = match fast {
+                        false => Certified::of(dim, variant, arith, format),
+                        true => Certified::of_fast(dim, variant, arith, format),
+                    };
+                    let name = function_name(variant, arith, fast, format);
+                    let _ = writeln!(
+                        header,
+                        "// {name}: kernel {}; bound {} ops.",
+                        c.program.ops, c.bound_ops
+                    );
+                    src.push_str(&function(&c, &name));
+                }
+            }
         }
     }
     src.push_str(
         "/// The `f64` companions under the names generic code uses.\n\
          pub mod in_f64 {\n\
          pub use super::{fixed, fixed_fast, free, free_fast};\n\
+         pub use super::{fixed_fma, fixed_fma_fast, free_fma, free_fma_fast};\n\
          }\n\
          /// The `f32` companions under the names generic code uses.\n\
          pub mod in_f32 {\n\
          pub use super::{fixed_f32 as fixed, fixed_fast_f32 as fixed_fast, free_f32 as free, free_fast_f32 as free_fast};\n\
+         pub use super::{fixed_fma_f32 as fixed_fma, fixed_fma_fast_f32 as fixed_fma_fast, free_fma_f32 as free_fma, free_fma_fast_f32 as free_fma_fast};\n\
          }\n",
     );
     let file = crate::emit::parse(src.parse().expect("certified source tokenizes"));
