@@ -19,10 +19,14 @@
 //!
 //! Every case is also run through the certified companions (`f64`, `f32`;
 //! [`certified`]): outputs bit-identical to the plain kernel's, every bound at least the
-//! true error; the long run prints how their bounds compare with the interpreter's.
+//! true error; the long run prints how their bounds compare with the interpreter's. The FMA
+//! kernels' companions are checked the same way against the FMA kernels, and the companions
+//! with rounded inputs against the exact map at the intended inputs ([`rounded`]).
 
 #[path = "proven/certified.rs"]
 mod certified;
+#[path = "proven/rounded.rs"]
+mod rounded;
 
 use certified::CertSeen;
 use collision_core::certified::{CertifiedKernel, Companion};

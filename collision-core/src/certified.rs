@@ -136,6 +136,36 @@ where
     }
 }
 
+/// How far the caller's inputs may be from the intended real ones, for the companions with
+/// rounded inputs (`kernels::dN::certified::free_rounded`, `fixed_rounded`, their FMA and
+/// `f32` forms): each normal component `nu_k^` within `nu |nu_k|` of the intended unit
+/// normal's, each `gamma2^` within `gamma2 |gamma2|` of the intended value. Their bounds
+/// cover `|computed - exact|` for the exact map at the intended inputs, the inputs' rounding
+/// propagated with every higher-order term (`noslip_codegen::certify::rounded`). A `rho` of
+/// `2^-10` or more, or NaN, gives `+inf` bounds.
+///
+/// A normal normalised in floats, `nu^ = fl(x / fl(sqrt(sum x_k^2)))`, has
+/// `nu = (n + 2) eps` ([`InputRounding::normalised`]); a `gamma2` rounded once from its
+/// real value, `gamma2 = eps / 2` (the unit roundoff); an exact input, 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InputRounding<T> {
+    /// `rho` of the normal's components.
+    pub nu: T,
+    /// `rho` of each body's `gamma2`.
+    pub gamma2: T,
+}
+
+impl InputRounding<f64> {
+    /// A normal normalised in `f64` (`(n + 2) eps`, the bound of `docs/kernels.md`) and each
+    /// `gamma2` rounded once (`eps / 2`).
+    pub fn normalised(n: usize) -> Self {
+        InputRounding {
+            nu: (n as f64 + 2.0) * f64::EPSILON,
+            gamma2: f64::EPSILON / 2.0,
+        }
+    }
+}
+
 /// The selects of a certified companion, branch-free (bit masks, no `if`).
 pub trait Certify: Copy {
     /// `x` if `c > 0`, else `+inf` (a NaN `c` gives `+inf`).

@@ -5,10 +5,11 @@
 //! bound (`ProvenBound::component_bounds`) and with the measured error.
 
 use collision_core::certified::{
-    collide_certified_by, collide_certified_fma_by, energy_error_bound, CertifiedKernel,
-    Companion,
+    collide_certified_by, collide_certified_fma_by, energy_error_bound, CertifiedKernel, Companion,
 };
-use collision_core::{collide_unchecked, collide_unchecked_fma, validate, Exact, Generated, Kernel};
+use collision_core::{
+    collide_unchecked, collide_unchecked_fma, validate, Exact, Generated, Kernel,
+};
 use collision_core::{Ball, BodyState};
 use noslip_accuracy::case::{flatten, Case};
 use noslip_accuracy::measure::exact_result;

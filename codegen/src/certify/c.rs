@@ -4,8 +4,8 @@
 
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::backend::{constant_literal, Precision};
-use crate::Arith;
 use crate::model::{names, skew_pairs, Variant};
+use crate::Arith;
 use std::fmt::Write;
 
 fn precision(f: Format) -> Precision {
@@ -53,7 +53,13 @@ fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
 
 /// The name of the C function: `noslip_d3_free_certified_f64`, for the fast scheme
 /// `noslip_d3_free_certified_fast_f64`, for the FMA kernel `noslip_d3_free_fma_certified_f64`.
-pub fn function_name(n: usize, variant: Variant, arith: Arith, f: Format, scheme: Scheme) -> String {
+pub fn function_name(
+    n: usize,
+    variant: Variant,
+    arith: Arith,
+    f: Format,
+    scheme: Scheme,
+) -> String {
     let fast = match scheme {
         Scheme::Running => "",
         Scheme::Fast { .. } => "fast_",

@@ -513,6 +513,7 @@ impl Certified {
             outputs,
             bound_ops: b.ops,
             scheme: Scheme::Fast { floor },
+            rounded: Vec::new(),
         })
     }
 

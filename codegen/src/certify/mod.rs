@@ -56,6 +56,7 @@
 
 pub mod c;
 pub mod fast;
+pub mod rounded;
 pub mod rust;
 #[cfg(test)]
 mod tests;
@@ -223,6 +224,9 @@ pub struct Certified {
     pub bound_ops: usize,
     /// How the bound is computed.
     pub scheme: Scheme,
+    /// The run-time parameters of the inputs' rounding ([`rounded`]): each `rho` parameter
+    /// and the inputs it covers; empty for a companion of the map on the floats given.
+    pub rounded: Vec<rounded::Rounding>,
 }
 
 /// A kernel step as the plain kernels spell it in Rust and C alike: one IEEE operation
@@ -253,7 +257,7 @@ impl std::fmt::Display for Unsupported {
     }
 }
 
-struct Builder<'a> {
+pub(crate) struct Builder<'a> {
     program: &'a Program,
     format: Format,
     stmts: Vec<Stmt>,
@@ -264,11 +268,11 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
-    fn u(&self) -> Arg {
+    pub(crate) fn u(&self) -> Arg {
         Arg::Lit(self.format.unit_roundoff())
     }
 
-    fn bind(&mut self, expr: Expr) -> Arg {
+    pub(crate) fn bind(&mut self, expr: Expr) -> Arg {
         if !matches!(expr, Expr::Const(_) | Expr::Step(_)) {
             self.ops += 1;
         }
@@ -286,7 +290,7 @@ impl Builder<'_> {
     }
 
     /// `m_x = RN(|x^| + s)`, bound once per value.
-    fn mag(&mut self, x: &Operand) -> Arg {
+    pub(crate) fn mag(&mut self, x: &Operand) -> Arg {
         if let Some(m) = self.mags.get(x) {
             return m.clone();
         }
@@ -488,6 +492,17 @@ impl Certified {
     /// bound's statements, then the bound of every output. Refuses a program with fused
     /// square roots or selects (the no-slip and rough kernels have none).
     pub fn derive(program: &Program, format: Format) -> Result<Certified, Unsupported> {
+        Certified::derive_rounded(program, format, &[])
+    }
+
+    /// [`Certified::derive`] with the inputs of each [`rounded::Rounding`] taken as rounded:
+    /// their bound `e_x` is the run-time `rho`'s ([`rounded`]), and the outputs are bounded
+    /// against the exact map on the intended real inputs.
+    pub fn derive_rounded(
+        program: &Program,
+        format: Format,
+        rounded: &[rounded::Rounding],
+    ) -> Result<Certified, Unsupported> {
         let mut b = Builder {
             program,
             format,
@@ -505,6 +520,9 @@ impl Certified {
                     depth: 0,
                 },
             );
+        }
+        for r in rounded {
+            r.bind_inputs(&mut b);
         }
         for (k, c) in program.constants.iter().enumerate() {
             b.stmts.push(Stmt {
@@ -544,6 +562,7 @@ impl Certified {
             outputs,
             bound_ops,
             scheme: Scheme::Running,
+            rounded: rounded.to_vec(),
         })
     }
 

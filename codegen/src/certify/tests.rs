@@ -105,6 +105,11 @@ fn the_fma_companions_bound_every_fused_step() {
         let plain = Certified::of(3, v, crate::Arith::Plain, Format::F64);
         // Fewer roundings, so fewer `u m_z` terms: fewer bound operations than the plain
         // companion, which has one more product per fused step.
-        assert!(c.bound_ops < plain.bound_ops, "{} {}", c.bound_ops, plain.bound_ops);
+        assert!(
+            c.bound_ops < plain.bound_ops,
+            "{} {}",
+            c.bound_ops,
+            plain.bound_ops
+        );
     }
 }

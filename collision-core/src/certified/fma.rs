@@ -1,7 +1,7 @@
 //! The certified companions of the FMA kernels, run on FMA instructions wherever the CPU has
 //! them, as [`crate::collide_unchecked_fma`] runs the plain FMA kernels.
 
-use super::{dispatch, Certify, CertifiedKernel, Companion};
+use super::{dispatch, CertifiedKernel, Certify, Companion};
 use crate::{Ball, BodyState, Generated};
 
 /// [`crate::collide_unchecked_fma`] with certified companions (`certified::free_fma`,
