@@ -1,6 +1,8 @@
 //! The certified companions spelled in C99: `noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
-//! appended to the C header (`noslip gen --lang c`), with the plain kernels' ABI plus one
-//! bound array per output array.
+//! `..._certified_fast_...`, and those of the FMA kernels `noslip_d{n}_{free|fixed}_fma_certified_...`
+//! (fused steps through `fma`/`fmaf`, contraction off as in the plain kernels), appended to
+//! the C header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
+//! output array.
 
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::backend::{constant_literal, Precision};

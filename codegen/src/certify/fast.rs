@@ -29,7 +29,17 @@
 //! a +- b        1 + cc = (1 + u)(1 + max cc)    ce = max ce
 //! a * b         1 + cc = (1 + u)(1 + cc_a)(1 + cc_b)    1 + ce = (1 + ce_a)(1 + ce_b)
 //! a / b         1 + cc = (1 + u)(1 + cc_a)      ce = (ce_a + k) / (1 - k),  k = (cc_b + ce_b) rho / (1 - u)^KA_b
+//! fma(a, b, c)  1 + cc = (1 + u)(1 + max((1 + cc_a)(1 + cc_b) - 1, cc_c))
+//!               1 + ce = max((1 + ce_a)(1 + ce_b), 1 + ce_c)
 //! ```
+//!
+//! A fused step `z = a b + c` (or `a b - c`, `c - a b`) has `A_z = A_a A_b + A_c` (two
+//! roundings of the magnitude: `KA_z = max(KA_a + KA_b + 1, KA_c) + 1`) and one rounding of
+//! the kernel, `fl(w) = w (1 + delta)`, `w = a^ b^ + c^`: with
+//! `M = max((1 + cc_a)(1 + cc_b) - 1, cc_c)`, `|w - R_z| <= M A*_z` and
+//! `|w| <= (1 + M) A*_z`, so `|z^ - R_z| <= (M + u (1 + M)) A*_z`; below the normal range
+//! the rounding is at most `u 2^e_min <= u A*_a A*_b`
+//! (the same floor condition as a product's, checked on `A_a A_b`).
 //!
 //! A product's rounding is off by at most `u max(|a^ b^|, 2^e_min)`, and `A*_a A*_b >=
 //! 2^e_min` for every product, which the floor `s` ensures (the least power of two for

@@ -23,7 +23,17 @@
 //! z = a * b    e_z = m_a e_b + (m_b + e_b) e_a + u m_z      (|a^ b^ - a b| <= |a^| e_b + |b| e_a)
 //! z = a / b    e_z = (e_a + m_z E_b) / L_b + u m_z   if L_b > 0, else +inf
 //! z = -a       e_z = e_a, m_z = m_a
+//! z = fma(a, b, c) = a b + c (or a b - c, c - a b), one rounding:
+//!              e_z = [m_a e_b + (m_b + e_b) e_a] + e_c + u m_z
 //! ```
+//!
+//! The fused step: the FMA kernels call `fma(a^, b^, c^)` (Rust `mul_add`, C `fma`/`fmaf`),
+//! which returns `fl(a^ b^ + c^) = (a^ b^ + c^)(1 + delta)`, `|delta| <= u`, one rounding of
+//! the exact `w = a^ b^ + c^` (and, below the normal range, at most the subnormal
+//! half-spacing, as for any operation). So `z^ = RN(w)`, `|z^ - w| <= u m_z` as above, and
+//! `|w - z| <= |a^ b^ - a b| + |c^ - c|`, the first term bounded as in the product rule: no
+//! rounding of the product is charged. `a b - c` and `c - a b` are `fma(a, b, -c)` and
+//! `fma(-a, b, c)`, negations being exact: the same bound.
 //!
 //! For the quotient, `a^/b^ - a/b = ((a^ - a) - (a^/b^)(b^ - b)) / b` and
 //! `|a^/b^| <= (1 + u) m_z`; `E_b = RN(e_b F(d_b + 1)) >= (1 + u) |b^ - b|` is the divisor's
@@ -53,6 +63,13 @@
 //! `0 x^` (0, or `+inf` for a non-finite input).
 //!
 //! Branch-free: the two choices (`L_b > 0`, NaN) are selects (`?:` in C, bit masks in Rust).
+//!
+//! The depth of a fused step's bound: the product's term has the product rule's depth less
+//! the rounding term's sum (`d_a + 1`, `d_b + 1`, or `d_a + d_b + 3`); each of the (at most
+//! two) following sums adds one to the larger of its operands' depths.
+//!
+//! The inputs are exact (`e = 0`) unless the companion takes them as rounded ([`rounded`]:
+//! a normal or `gamma2` within a run-time relative `rho` of the intended value).
 
 pub mod c;
 pub mod fast;
