@@ -270,6 +270,49 @@ fn non_finite_inputs_and_a_zero_divisor_give_infinite_bounds() {
     assert!(e.iter().all(|e| *e == f64::INFINITY), "{bound:?}");
     let (_, bound) = d3::certified::free_fast(&nu, &p1, &p2, &state, &rest);
     assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
+    // The FMA kernels' companions, both kinds: the same cases.
+    type Free3 = fn(
+        &[f64; 3],
+        &Ball<f64>,
+        &Ball<f64>,
+        &BodyState<f64, 3, 3>,
+        &BodyState<f64, 3, 3>,
+    ) -> ([BodyState<f64, 3, 3>; 2], [BodyState<f64, 3, 3>; 2]);
+    let fma: [Free3; 2] = [d3::certified::free_fma, d3::certified::free_fma_fast];
+    for f in fma {
+        let (_, bound) = f(&nu, &b1, &b2, &state, &rest);
+        assert!(all(&bound).iter().all(|e| e.is_finite() && *e > 0.0));
+        let (_, bound) = f(&nu, &b1, &b2, &fast, &rest);
+        assert!(all(&bound).iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+        let (_, bound) = f(&nu, &p1, &p2, &state, &rest);
+        assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
+    }
+    for f in [d3::certified::fixed_fma, d3::certified::fixed_fma_fast] {
+        let (_, bound) = f(&nu, &1.0, &ball(0.5, f64::NAN, 0.3), &state, &rest);
+        let e: Vec<f64> = bound.spin.iter().chain(&bound.velocity).copied().collect();
+        assert!(e.iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+    }
+    // A rho at or above 2^-10, or NaN, gives +inf bounds on the rounded-input companions.
+    use collision_core::certified::InputRounding;
+    for rho in [
+        InputRounding::normalised(3),
+        InputRounding {
+            nu: 1.0 / 1024.0,
+            gamma2: 0.0,
+        },
+        InputRounding {
+            nu: 0.0,
+            gamma2: f64::NAN,
+        },
+    ] {
+        let (_, bound) = d3::certified::free_rounded(&nu, &b1, &b2, &state, &rest, &rho);
+        let finite = rho == InputRounding::normalised(3);
+        assert_eq!(
+            all(&bound).iter().all(|e| e.is_finite()),
+            finite,
+            "{rho:?}: {bound:?}"
+        );
+    }
     // A divisor that cancels (a negative inverse mass, which `collide` refuses): `+inf`.
     let (_, bound) = d3::certified::free_fast(&nu, &b1, &ball(-0.999, 2.0, 0.3), &state, &rest);
     assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
