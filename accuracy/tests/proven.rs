@@ -27,6 +27,8 @@
 mod certified;
 #[path = "proven/rounded.rs"]
 mod rounded;
+#[path = "proven/wide.rs"]
+mod wide;
 
 use certified::CertSeen;
 use collision_core::certified::{CertifiedKernel, Companion};

@@ -14,6 +14,7 @@ fn precision(f: Format) -> Precision {
     match f {
         Format::F64 => Precision::F64,
         Format::F32 => Precision::F32,
+        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
     }
 }
 
@@ -23,6 +24,7 @@ fn literal(f: Format, x: f64) -> String {
     match f {
         Format::F64 => format!("{x:e}"),
         Format::F32 => format!("{:e}f", x as f32),
+        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
     }
 }
 
@@ -86,6 +88,7 @@ pub fn function(c: &Certified) -> String {
     let (fabs, fma) = match f {
         Format::F64 => ("fabs", "fma"),
         Format::F32 => ("fabsf", "fmaf"),
+        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
     };
     let mut s = String::new();
     let fma_suffix = match p.arith {

@@ -110,7 +110,7 @@ impl Format {
     fn min_exponent(self) -> i32 {
         match self {
             Format::F64 => -1022,
-            Format::F32 => -126,
+            Format::F32 | Format::F32Wide => -126,
         }
     }
 }

@@ -77,6 +77,7 @@ pub mod rounded;
 pub mod rust;
 #[cfg(test)]
 mod tests;
+pub mod wide;
 
 use crate::bound::round::up;
 use crate::model::Variant;
@@ -94,6 +95,10 @@ pub enum Format {
     F64,
     /// IEEE binary32.
     F32,
+    /// The kernel in IEEE binary32, its bound in binary64 ([`wide`]): the kernel's `u` and
+    /// rounding rules, the bound's own arithmetic in `f64` (which loses less per operation
+    /// than the proof allows for `u = 2^-24`, and cannot overflow where `f32` would).
+    F32Wide,
 }
 
 impl Format {
@@ -101,7 +106,7 @@ impl Format {
     fn roundoff_exponent(self) -> i32 {
         match self {
             Format::F64 => -53,
-            Format::F32 => -24,
+            Format::F32 | Format::F32Wide => -24,
         }
     }
 
@@ -111,12 +116,19 @@ impl Format {
     }
 
     /// The magnitude floor `s`: `2^-480` (`f64`), `2^-51` (`f32`), so that `s^2 u` is normal
-    /// and `u s` is above the subnormal half-spacing.
+    /// and `u s` is above the subnormal half-spacing; `2^-126` for [`Format::F32Wide`]
+    /// (`u s = 2^-150`, the `f32` subnormal half-spacing; `s^2 u` is normal in `f64`).
     pub fn floor(self) -> f64 {
         match self {
             Format::F64 => 2f64.powi(-480),
             Format::F32 => 2f64.powi(-51),
+            Format::F32Wide => 2f64.powi(-126),
         }
+    }
+
+    /// Whether the bound is evaluated in `f64` (every format but [`Format::F32`]).
+    pub fn bound_in_f64(self) -> bool {
+        !matches!(self, Format::F32)
     }
 
     /// `F(d) = 1 + (d + 2) 2u`, exact in the format for `d < 2^22`.
@@ -128,7 +140,7 @@ impl Format {
     /// The smallest float of the format at least `x` (`x` an `f64` upper bound).
     fn up(self, x: f64) -> f64 {
         match self {
-            Format::F64 => x,
+            Format::F64 | Format::F32Wide => x,
             Format::F32 => {
                 let y = x as f32;
                 if f64::from(y) >= x {
@@ -145,7 +157,7 @@ impl Format {
         let (x64, x32) = crate::literal::nearest_floats(value);
         match self {
             Format::F64 => x64,
-            Format::F32 => f64::from(x32),
+            Format::F32 | Format::F32Wide => f64::from(x32),
         }
     }
 }

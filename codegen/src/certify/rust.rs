@@ -8,25 +8,50 @@ use crate::model::{names, skew_pairs, Variant};
 use crate::program::Program;
 use std::fmt::Write;
 
-/// A literal of `format`: the float's shortest round-trip decimal, suffixed.
+/// A literal of the kernel's type in `format`: the float's shortest round-trip decimal,
+/// suffixed.
 fn literal(format: Format, x: f64) -> String {
     match format {
         Format::F64 => format!("{x:e}f64"),
-        Format::F32 => format!("{:e}f32", x as f32),
+        Format::F32 | Format::F32Wide => format!("{:e}f32", x as f32),
     }
 }
 
+/// A literal of the bound's type in `format`.
+fn bound_literal(format: Format, x: f64) -> String {
+    if format.bound_in_f64() {
+        format!("{x:e}f64")
+    } else {
+        format!("{:e}f32", x as f32)
+    }
+}
+
+/// The kernel's type.
 fn ty(format: Format) -> &'static str {
     match format {
         Format::F64 => "f64",
-        Format::F32 => "f32",
+        Format::F32 | Format::F32Wide => "f32",
     }
 }
 
-fn arg(format: Format, a: &Arg) -> String {
+/// The bound's type.
+fn bound_ty(format: Format) -> &'static str {
+    if format.bound_in_f64() {
+        "f64"
+    } else {
+        "f32"
+    }
+}
+
+/// An argument of a bound statement; a kernel value (`kernel` holds their names) widened to
+/// `f64` (exactly) where the bound runs in `f64` and the kernel in `f32`.
+fn arg(format: Format, kernel: &std::collections::HashSet<&str>, a: &Arg) -> String {
     match a {
+        Arg::Name(n) if format == Format::F32Wide && kernel.contains(n.as_str()) => {
+            format!("f64::from({n})")
+        }
         Arg::Name(n) => n.clone(),
-        Arg::Lit(x) => literal(format, *x),
+        Arg::Lit(x) => bound_literal(format, *x),
     }
 }
 
@@ -63,6 +88,9 @@ pub fn function(c: &Certified, name: &str) -> String {
     let mut out = String::new();
     let variant = p.variant;
     let how = match c.scheme {
+        Scheme::Running if f == Format::F32Wide => "(running error analysis, the bound in `f64`:\n\
+             /// tighter than `f32`'s and without its overflow, `noslip_codegen::certify::wide`)"
+            .to_string(),
         Scheme::Running => "(running error analysis, `noslip_codegen::certify`)".to_string(),
         Scheme::Fast { floor } => format!(
             "(a constant fixed at generation times a magnitude of each output computed from the\n\
@@ -99,16 +127,26 @@ pub fn function(c: &Certified, name: &str) -> String {
         crate::Arith::Plain => "#[inline]",
         crate::Arith::Fma => "#[inline(always)]",
     };
+    let bt = bound_ty(f);
+    let bstate = format!("BodyState<{bt}, {n}, {s}>");
     let (params, ret) = match variant {
         Variant::Free => (
             format!("nu: &[{t}; {n}], ball1: &Ball<{t}>, ball2: &Ball<{t}>, state1: &{state}, state2: &{state}"),
-            format!("([{state}; 2], [{state}; 2])"),
+            format!("([{state}; 2], [{bstate}; 2])"),
         ),
         Variant::Fixed => (
             format!("nu: &[{t}; {n}], radius1: &{t}, ball2: &Ball<{t}>, state1: &{state}, state2: &{state}"),
-            format!("({state}, {state})"),
+            format!("({state}, {bstate})"),
         ),
     };
+    let kernel: std::collections::HashSet<&str> = p
+        .inputs
+        .iter()
+        .map(String::as_str)
+        .chain(p.constants.iter().map(|c| c.name.as_str()))
+        .chain(p.steps.iter().map(|s| s.name.as_str()))
+        .collect();
+    let arg = |f: Format, a: &Arg| arg(f, &kernel, a);
     let mut params = params;
     if !c.rounded.is_empty() {
         params.push_str(&format!(", rho: &InputRounding<{t}>"));
@@ -131,19 +169,25 @@ pub fn function(c: &Certified, name: &str) -> String {
         let e = match &st.expr {
             Expr::Const(k) => literal(f, f_round(f, &p.constants[*k].value)),
             Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, &format!("{t}::mul_add")),
-            Expr::Abs(a) => format!("{t}::abs({})", arg(f, a)),
+            Expr::Abs(a) => format!("{bt}::abs({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
             Expr::Mul(a, b) => format!("{} * {}", arg(f, a), arg(f, b)),
             Expr::Div(a, b) => format!("{} / {}", arg(f, a), arg(f, b)),
-            Expr::PositiveOr(x, y) => format!("{t}::positive_or_inf({}, {})", arg(f, x), arg(f, y)),
-            Expr::BoundOrInf(x) => format!("{t}::bound_or_inf({})", arg(f, x)),
+            Expr::PositiveOr(x, y) => {
+                format!("{bt}::positive_or_inf({}, {})", arg(f, x), arg(f, y))
+            }
+            Expr::BoundOrInf(x) => format!("{bt}::bound_or_inf({})", arg(f, x)),
             Expr::AtLeast(x, y) => {
                 let (x, y) = (arg(f, x), arg(f, y));
                 format!("if {x} > {y} {{ {x} }} else {{ {y} }}")
             }
         };
-        let _ = writeln!(out, "let {}: {t} = {e};", st.name);
+        let st_ty = match st.expr {
+            Expr::Const(_) | Expr::Step(_) => t,
+            _ => bt,
+        };
+        let _ = writeln!(out, "let {}: {st_ty} = {e};", st.name);
     }
     let body = |o: &super::CertifiedOutput, values: bool| {
         let items: Vec<String> = if values {
@@ -185,6 +229,7 @@ pub fn function_name(variant: Variant, arith: crate::Arith, fast: bool, format: 
     let f32 = match format {
         Format::F64 => "",
         Format::F32 => "_f32",
+        Format::F32Wide => "_f32_wide",
     };
     format!("{}{fma}{fast}{f32}", variant.name())
 }
@@ -199,6 +244,7 @@ pub fn rounded_name(variant: Variant, arith: crate::Arith, format: Format) -> St
     let f32 = match format {
         Format::F64 => "",
         Format::F32 => "_f32",
+        Format::F32Wide => "_f32_wide",
     };
     format!("{}{fma}_rounded{f32}", variant.name())
 }
@@ -249,6 +295,19 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
                 );
                 src.push_str(&function(&c, &name));
             }
+        }
+    }
+    // The f32 kernels' running companions with the bound computed in f64.
+    for arith in crate::Arith::ALL {
+        for variant in Variant::ALL {
+            let c = Certified::of(dim, variant, arith, Format::F32Wide);
+            let name = function_name(variant, arith, false, Format::F32Wide);
+            let _ = writeln!(
+                header,
+                "// {name}: kernel {}; bound {} ops (in f64).",
+                c.program.ops, c.bound_ops
+            );
+            src.push_str(&function(&c, &name));
         }
     }
     src.push_str(
