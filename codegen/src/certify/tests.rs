@@ -4,7 +4,7 @@ use super::*;
 fn every_plain_no_slip_kernel_has_a_companion_with_every_step_in_order() {
     for n in crate::DIMS {
         for v in Variant::ALL {
-            for (f, arith) in [Format::F64, Format::F32]
+            for (f, arith) in [Format::F64, Format::F32, Format::F32Wide]
                 .into_iter()
                 .flat_map(|f| crate::Arith::ALL.map(|a| (f, a)))
             {
@@ -65,6 +65,18 @@ fn the_inflation_factor_covers_the_lost_roundings() {
             assert!(p >= one, "{f:?} d = {d}");
         }
     }
+}
+
+/// `F32Wide`: the kernel's roundings in `f32` (`u s` at least the `f32` subnormal
+/// half-spacing `2^-150`), the bound's products normal in `f64`.
+#[test]
+fn the_wide_floor_covers_f32_underflow_and_keeps_f64_products_normal() {
+    let f = Format::F32Wide;
+    let (u, s) = (f.unit_roundoff(), f.floor());
+    assert_eq!(u, 2f64.powi(-24));
+    assert!(u * s >= 2f64.powi(-150));
+    assert!(s * s * u >= 2f64.powi(-1022));
+    assert!(f.bound_in_f64() && !Format::F32.bound_in_f64());
 }
 
 #[test]
