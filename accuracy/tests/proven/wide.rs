@@ -49,18 +49,19 @@ fn dispatch<const N: usize, const S: usize>(
     }
 }
 
-/// Check `per_source` cases per source; returns `[[f32 inf, wide inf]; 2]` (plain, FMA).
+/// Check `per_source` cases per source; returns `[[f32 inf, wide inf, wide inf with a
+/// finite output]; 2]` (plain, FMA).
 pub fn check<const N: usize, const S: usize>(
     per_source: usize,
     kinds: [(Free<N, S>, Fixed<N, S>); 2],
-) -> [[usize; 2]; 2]
+) -> [[usize; 3]; 2]
 where
     Generated: Kernel<f32, N, S>
         + Kernel<collision_core::ExactRelaxed, N, S>
         + collision_core::certified::CertifiedKernel<f32, N, S>,
 {
     let mut rng = Rng::new(0x1D3 ^ N as u64);
-    let mut infinite = [[0; 2]; 2];
+    let mut infinite = [[0; 3]; 2];
     let mut checked = 0;
     for source in 0..=Regime::ALL.len() {
         for _ in 0..per_source {
@@ -114,6 +115,7 @@ where
                     infinite[k][0] += usize::from(e32.is_infinite());
                     if e.is_infinite() {
                         infinite[k][1] += 1;
+                        infinite[k][2] += usize::from(out[i].is_finite());
                         assert!(
                             e32.is_infinite(),
                             "n = {N} fma {fma}: component {i} has an infinite wide bound, \
@@ -156,7 +158,7 @@ macro_rules! dims {
 fn the_f32_companions_with_f64_bounds_hold_and_do_not_overflow() {
     let seen = dims!(6; (d2 2 1) (d3 3 3) (d4 4 6) (d5 5 10) (d6 6 15));
     for (n, inf) in seen {
-        for [narrow, wide] in inf {
+        for [narrow, wide, _] in inf {
             assert!(
                 wide <= narrow,
                 "n = {n}: {wide} infinite wide bounds, {narrow} in f32"
@@ -181,7 +183,7 @@ fn the_f32_companions_with_f64_bounds_long() {
     let seen = dims!(per_source; (d2 2 1) (d3 3 3) (d4 4 6) (d5 5 10) (d6 6 15));
     for (n, inf) in seen {
         println!(
-            "n = {n}: infinite bounds (f32 companion, wide): plain {:?}, FMA {:?}",
+            "n = {n}: infinite bounds (f32 companion, wide, wide on a finite output): plain {:?}, FMA {:?}",
             inf[0], inf[1]
         );
     }

@@ -134,7 +134,11 @@ macro_rules! generated {
             /// `free_fast`, `fixed_fast` (`_f32`), whose bound is a constant times a
             /// magnitude carried beside each value (`noslip_codegen::certify::fast`); and
             /// the companions of [`free_fma`] and [`fixed_fma`] (`free_fma`, `free_fma_fast`,
-            /// ..., each fused step bounded with its one rounding).
+            /// ..., each fused step bounded with its one rounding); `free_rounded`,
+            /// `fixed_rounded` (and `_fma`, `_f32` forms), whose bound also covers the
+            /// rounding of the normal and `gamma2` given
+            /// ([`crate::certified::InputRounding`]); and `free_f32_wide`, `fixed_f32_wide`
+            /// (and `_fma`), the `f32` kernels with the bound computed in `f64`.
             pub mod certified {
                 include!(concat!(env!("OUT_DIR"), "/", $certified));
             }
