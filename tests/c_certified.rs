@@ -1,5 +1,6 @@
 //! The certified companions of the C header (`noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
-//! and the fast ones `..._certified_fast_...`) are faithful: compiled by the system C compiler at `-O2 -ffp-contract=off` and at
+//! the fast ones `..._certified_fast_...`, and those of the FMA kernels
+//! `noslip_d{n}_{free|fixed}_fma_certified_...`, which call `fma`/`fmaf`) are faithful: compiled by the system C compiler at `-O2 -ffp-contract=off` and at
 //! `-O3 -march=native -ffp-contract=off`, they return bit for bit the Rust companions'
 //! outputs and bounds (`collision_core::kernels::dN::certified`), and so the plain Rust
 //! kernels' outputs (accuracy/tests/proven.rs checks the Rust companions against those and
@@ -19,6 +20,18 @@ use std::process::Command;
 
 /// Cases per dimension, kernel and format.
 const CASES: usize = 5_000;
+
+/// The companions compared: of the plain kernels, then of the FMA kernels.
+const KERNELS: [&str; 8] = [
+    "free",
+    "fixed",
+    "free_fast",
+    "fixed_fast",
+    "free_fma",
+    "fixed_fma",
+    "free_fma_fast",
+    "fixed_fma_fast",
+];
 
 const CONFIGS: [(&str, &[&str]); 2] = [
     ("-O2", &["-O2", "-ffp-contract=off"]),
@@ -56,6 +69,14 @@ where
                 let (o, e) = Generated::fixed(companion, nu, &b1.radius, b2, s1, s2);
                 vec![o, e]
             }
+            "free_fma" => {
+                let ([o1, o2], [e1, e2]) = Generated::free_fma(companion, nu, b1, b2, s1, s2);
+                vec![o1, o2, e1, e2]
+            }
+            "fixed_fma" => {
+                let (o, e) = Generated::fixed_fma(companion, nu, &b1.radius, b2, s1, s2);
+                vec![o, e]
+            }
             _ => panic!("no kernel {kernel}"),
         };
         for b in &bodies {
@@ -76,7 +97,7 @@ where
     let input = dir.join(format!("cases_{N}_{}.bin", <T as Scalar>::NAME));
     std::fs::write(&input, records(cases)).unwrap();
     let mut failures = Vec::new();
-    for kernel in ["free", "fixed", "free_fast", "fixed_fast"] {
+    for kernel in KERNELS {
         let rust = rust_results(kernel, cases);
         assert!(rust.iter().any(|x| x.finite()), "no finite result");
         for (config, exe) in exes {
@@ -173,7 +194,8 @@ fn with_first_sum_negated(header: &str, function: &str, prefix: &str) -> (String
 }
 
 /// One bound operation altered (the first sum of two bound terms of the running companion,
-/// then the first sum of two magnitudes of the fast one, made a difference) makes the
+/// then the first sum of two magnitudes of the fast one, then the first sum of bound terms
+/// of the FMA kernel's running companion, made a difference) makes the
 /// comparison fail: the test above compares the bounds, not only the outputs.
 #[test]
 fn one_altered_bound_operation_fails_the_comparison() {
@@ -189,6 +211,11 @@ fn one_altered_bound_operation_fails_the_comparison() {
             "noslip_d3_free_certified_fast_f64",
             "mag",
             "free_fast_certified",
+        ),
+        (
+            "noslip_d3_free_fma_certified_f64",
+            "cert",
+            "free_fma_certified",
         ),
     ] {
         let (mutated, line) = with_first_sum_negated(&header, function, prefix);

@@ -19,10 +19,16 @@
 //!
 //! Every case is also run through the certified companions (`f64`, `f32`;
 //! [`certified`]): outputs bit-identical to the plain kernel's, every bound at least the
-//! true error; the long run prints how their bounds compare with the interpreter's.
+//! true error; the long run prints how their bounds compare with the interpreter's. The FMA
+//! kernels' companions are checked the same way against the FMA kernels, and the companions
+//! with rounded inputs against the exact map at the intended inputs ([`rounded`]).
 
 #[path = "proven/certified.rs"]
 mod certified;
+#[path = "proven/rounded.rs"]
+mod rounded;
+#[path = "proven/wide.rs"]
+mod wide;
 
 use certified::CertSeen;
 use collision_core::certified::{CertifiedKernel, Companion};
@@ -185,15 +191,21 @@ fn check_one<const N: usize, const S: usize>(
 
 const METHODS: [Method; 3] = [Method::F64, Method::F64Fma, Method::F32];
 
-/// The certified companions checked: running error analysis, then the fast ones.
-const COMPANIONS: [Companion; 2] = [Companion::Running, Companion::Fast];
+/// The certified companions checked: running error analysis, then the fast ones, of the
+/// plain kernels and (`true`) of the FMA kernels.
+const COMPANIONS: [(Companion, bool); 4] = [
+    (Companion::Running, false),
+    (Companion::Fast, false),
+    (Companion::Running, true),
+    (Companion::Fast, true),
+];
 
 /// `per_source` cases from every regime and from the adversarial mix, each checked with
 /// every method, and with the certified companions (per source, `f64` and `f32`).
 fn run<const N: usize, const S: usize>(
     per_source: usize,
     seed: u64,
-) -> ([Seen; 3], Vec<[[CertSeen; 2]; 2]>)
+) -> ([Seen; 3], Vec<[[CertSeen; 2]; 4]>)
 where
     Generated: Kernel<f64, N, S>
         + Kernel<f32, N, S>
@@ -204,7 +216,7 @@ where
 {
     let bounds = METHODS.map(|m| ProvenBound::of(N, m).expect("a generated float method"));
     let mut seen: [Seen; 3] = Default::default();
-    let mut cert: Vec<[[CertSeen; 2]; 2]> = Vec::new();
+    let mut cert: Vec<[[CertSeen; 2]; 4]> = Vec::new();
     let mut rng = Rng::new(seed ^ ((N as u64) << 40));
     let sources = Regime::ALL.len() + 1;
     for source in 0..sources {
@@ -222,10 +234,15 @@ where
                 check_one(*m, &bounds[i], &case, &exact_case, &mut seen[i]);
             }
             for (k, companion) in COMPANIONS.into_iter().enumerate() {
+                // The interpreter's bounds of the same kernel (none for f32 FMA).
+                let (b64, b32) = match companion.1 {
+                    false => (&bounds[0], Some(&bounds[2])),
+                    true => (&bounds[1], None),
+                };
                 certified::check(
                     companion,
-                    &bounds[0],
-                    &bounds[2],
+                    b64,
+                    b32,
                     &case,
                     &exact_case,
                     &mut cert[source][k],
@@ -314,7 +331,7 @@ fn a_million_cases_per_dimension_and_precision() {
 
 /// Per source and format: the companion's bound over the interpreter's and over the
 /// measured error (medians and extremes), and the infinite bounds of each.
-fn print_certified(n: usize, cert: &[[[CertSeen; 2]; 2]]) {
+fn print_certified(n: usize, cert: &[[[CertSeen; 2]; 4]]) {
     let names: Vec<String> = Regime::ALL
         .iter()
         .map(|r| r.name().to_string())
@@ -325,8 +342,10 @@ fn print_certified(n: usize, cert: &[[[CertSeen; 2]; 2]]) {
             for (f, s) in ["f64", "f32"].iter().zip(c) {
                 let (im, ix) = CertSeen::median_max(&s.over_interpreter);
                 let (mm, mx) = CertSeen::median_max(&s.over_measured);
+                let (kind, fma) = companion;
+                let kernel = if *fma { "fma" } else { "plain" };
                 println!(
-                "n = {n} certified {companion:?} {f} {:<14} cases {:>7} components {:>8} inf {:>6} (interpreter inf {:>6}); bound/interpreter median {im:.3} min {:.3} max {ix:.3}; bound/measured median {mm:.1} min {:.2} max {mx:.3e}; worst measured/bound {:.4}",
+                "n = {n} certified {kind:?} {kernel} {f} {:<14} cases {:>7} components {:>8} inf {:>6} (interpreter inf {:>6}); bound/interpreter median {im:.3} min {:.3} max {ix:.3}; bound/measured median {mm:.1} min {:.2} max {mx:.3e}; worst measured/bound {:.4}",
                 names[source],
                 s.cases,
                 s.components,

@@ -1,7 +1,10 @@
 //! Criterion benchmark of the certified companions against the plain kernels (`free` and
 //! `fixed`, `f64`, n = 2..6), one collision at a time over the in-cache batch the `kernels`
 //! bench uses (`fixed` on the same cases, body 1 taken as immovable), in alternated rounds:
-//! each round benchmarks `plain`, `certified`, `fast`, `plain_fixed`, `certified_fixed`, `fast_fixed` for every n, so a change
+//! each round benchmarks `plain`, `certified`, `fast`, `plain_fma`, `certified_fma`,
+//! `fast_fma` (the FMA kernels and their companions, through `collide_unchecked_fma` and
+//! `collide_certified_fma_by`, so on FMA instructions), `plain_fixed`, `certified_fixed`,
+//! `fast_fixed` for every n, so a change
 //! of the shared machine's load hits both alike. Per round and variant the figure is
 //! criterion's samples' median time per collision (recorded through `iter_custom`); the
 //! summary printed at the end gives per n the median (min-max) over the rounds of each
@@ -20,7 +23,8 @@ mod cases;
 mod timed;
 
 use cases::{batch, Case};
-use collision_core::{kernels, Ball, BodyState};
+use collision_core::certified::{collide_certified_fma_by, CertifiedKernel, Companion};
+use collision_core::{collide_unchecked_fma, kernels, Ball, BodyState, Generated, Kernel};
 use criterion::{Criterion, Throughput};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -133,11 +137,28 @@ fn round_dim<const N: usize, const S: usize>(
     (plain, certified): (Plain<N, S>, Certified<N, S>),
     (plain_fixed, certified_fixed): (PlainFixed<N, S>, CertifiedFixed<N, S>),
     (fast, fast_fixed): (Certified<N, S>, CertifiedFixed<N, S>),
-) {
+) where
+    Generated: Kernel<f64, N, S> + CertifiedKernel<f64, N, S>,
+{
     let cases = batch::<N, S>(SEED ^ N as u64, BATCH);
     if round == 0 {
         check(&cases, plain, certified);
         check(&cases, plain, fast);
+        for companion in [Companion::Running, Companion::Fast] {
+            for (k, case) in cases.iter().enumerate() {
+                let (b, s) = (&case.balls, &case.states);
+                let p = collide_unchecked_fma(&case.nu, [&b[0], &b[1]], [&s[0], &s[1]]);
+                let (out, bound) =
+                    collide_certified_fma_by(companion, &case.nu, [&b[0], &b[1]], [&s[0], &s[1]]);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(&flat(&out)),
+                    bits(&flat(&p)),
+                    "n = {N}, case {k}: FMA outputs differ"
+                );
+                assert!(flat(&bound).iter().all(|e| e.is_finite()));
+            }
+        }
         for (k, case) in cases.iter().enumerate() {
             let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
             let p = plain_fixed(&case.nu, &b1.radius, b2, s1, s2);
@@ -175,6 +196,20 @@ fn round_dim<const N: usize, const S: usize>(
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
         fast(&case.nu, b1, b2, s1, s2)
     });
+    // The FMA kernels and their companions through the entry points that run them on FMA
+    // instructions (run-time detection on x86-64): the same dispatch on both sides.
+    timed(c, round, "plain_fma", &cases, |case| {
+        let (b, s) = (&case.balls, &case.states);
+        collide_unchecked_fma(&case.nu, [&b[0], &b[1]], [&s[0], &s[1]])
+    });
+    timed(c, round, "certified_fma", &cases, |case| {
+        let (b, s) = (&case.balls, &case.states);
+        collide_certified_fma_by(Companion::Running, &case.nu, [&b[0], &b[1]], [&s[0], &s[1]])
+    });
+    timed(c, round, "fast_fma", &cases, |case| {
+        let (b, s) = (&case.balls, &case.states);
+        collide_certified_fma_by(Companion::Fast, &case.nu, [&b[0], &b[1]], [&s[0], &s[1]])
+    });
     timed(c, round, "plain_fixed", &cases, |case| {
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
         plain_fixed(&case.nu, &b1.radius, b2, s1, s2)
@@ -200,6 +235,8 @@ fn summary(rounds: usize) {
         ("plain_fixed", "certified_fixed"),
         ("plain", "fast"),
         ("plain_fixed", "fast_fixed"),
+        ("plain_fma", "certified_fma"),
+        ("plain_fma", "fast_fma"),
     ] {
         summary_of(rounds, plain, certified);
     }

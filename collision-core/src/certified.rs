@@ -4,6 +4,9 @@
 
 use crate::{Ball, BodyState, Generated};
 
+mod fma;
+pub use fma::collide_certified_fma_by;
+
 /// The certified companions by dimension, for generic code: implemented by [`Generated`]
 /// for `f64` and `f32` in every enabled dimension (`kernels::dN::certified`).
 pub trait CertifiedKernel<T, const N: usize, const S: usize> {
@@ -21,6 +24,28 @@ pub trait CertifiedKernel<T, const N: usize, const S: usize> {
 
     /// `kernels::dN::certified::fixed` or `fixed_fast`: body 2's `(output, bound)`.
     fn fixed(
+        companion: Companion,
+        nu: &[T; N],
+        radius1: &T,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> (BodyState<T, N, S>, BodyState<T, N, S>);
+
+    /// The companions of the FMA kernel `free_fma`: `kernels::dN::certified::free_fma` or
+    /// `free_fma_fast`.
+    #[allow(clippy::type_complexity)]
+    fn free_fma(
+        companion: Companion,
+        nu: &[T; N],
+        ball1: &Ball<T>,
+        ball2: &Ball<T>,
+        state1: &BodyState<T, N, S>,
+        state2: &BodyState<T, N, S>,
+    ) -> ([BodyState<T, N, S>; 2], [BodyState<T, N, S>; 2]);
+
+    /// `kernels::dN::certified::fixed_fma` or `fixed_fma_fast`.
+    fn fixed_fma(
         companion: Companion,
         nu: &[T; N],
         radius1: &T,
@@ -71,18 +96,73 @@ where
     T: crate::Scalar + Certify,
     Generated: CertifiedKernel<T, N, S>,
 {
+    dispatch::<false, T, N, S>(companion, nu, balls, states)
+}
+
+/// The dispatch of [`collide_certified_by`] (`FMA = false`) and
+/// [`collide_certified_fma_by`] (`FMA = true`, the FMA kernels' companions); always
+/// inlined, so it is compiled with its caller's target features.
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+pub(crate) fn dispatch<const FMA: bool, T, const N: usize, const S: usize>(
+    companion: Companion,
+    nu: &[T; N],
+    balls: [&Ball<T>; 2],
+    states: [&BodyState<T, N, S>; 2],
+) -> ([BodyState<T, N, S>; 2], [BodyState<T, N, S>; 2])
+where
+    T: crate::Scalar + Certify,
+    Generated: CertifiedKernel<T, N, S>,
+{
+    let fixed = if FMA {
+        Generated::fixed_fma
+    } else {
+        Generated::fixed
+    };
     let [b1, b2] = balls;
     let [s1, s2] = states;
     let zero = BodyState::zero();
     if b1.is_immovable() {
-        let (after, bound) = Generated::fixed(companion, nu, &b1.radius, b2, s1, s2);
+        let (after, bound) = fixed(companion, nu, &b1.radius, b2, s1, s2);
         ([s1.clone(), after], [zero, bound])
     } else if b2.is_immovable() {
         let minus_nu = nu.map(|x| -x);
-        let (after, bound) = Generated::fixed(companion, &minus_nu, &b2.radius, b1, s2, s1);
+        let (after, bound) = fixed(companion, &minus_nu, &b2.radius, b1, s2, s1);
         ([after, s2.clone()], [bound, zero])
+    } else if FMA {
+        Generated::free_fma(companion, nu, b1, b2, s1, s2)
     } else {
         Generated::free(companion, nu, b1, b2, s1, s2)
+    }
+}
+
+/// How far the caller's inputs may be from the intended real ones, for the companions with
+/// rounded inputs (`kernels::dN::certified::free_rounded`, `fixed_rounded`, their FMA and
+/// `f32` forms): each normal component `nu_k^` within `nu |nu_k|` of the intended unit
+/// normal's, each `gamma2^` within `gamma2 |gamma2|` of the intended value. Their bounds
+/// cover `|computed - exact|` for the exact map at the intended inputs, the inputs' rounding
+/// propagated with every higher-order term (`noslip_codegen::certify::rounded`). A `rho` of
+/// `2^-10` or more, or NaN, gives `+inf` bounds.
+///
+/// A normal normalised in floats, `nu^ = fl(x / fl(sqrt(sum x_k^2)))`, has
+/// `nu = (n + 2) eps` ([`InputRounding::normalised`]); a `gamma2` rounded once from its
+/// real value, `gamma2 = eps / 2` (the unit roundoff); an exact input, 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InputRounding<T> {
+    /// `rho` of the normal's components.
+    pub nu: T,
+    /// `rho` of each body's `gamma2`.
+    pub gamma2: T,
+}
+
+impl InputRounding<f64> {
+    /// A normal normalised in `f64` (`(n + 2) eps`, the bound of `docs/kernels.md`) and each
+    /// `gamma2` rounded once (`eps / 2`).
+    pub fn normalised(n: usize) -> Self {
+        InputRounding {
+            nu: (n as f64 + 2.0) * f64::EPSILON,
+            gamma2: f64::EPSILON / 2.0,
+        }
     }
 }
 

@@ -3,7 +3,8 @@
  *
  *   certified_harness N KERNEL PRECISION IN OUT
  *
- * KERNEL free, fixed, free_fast or fixed_fast, PRECISION f64 or f32. IN holds records as for harness.c: nu[N],
+ * KERNEL free, fixed, free_fast, fixed_fast, or the FMA kernels' free_fma, fixed_fma,
+ * free_fma_fast, fixed_fma_fast; PRECISION f64 or f32. IN holds records as for harness.c: nu[N],
  * ball1[3], ball2[3], state1[S+N], state2[S+N]. OUT receives per record out1, out2, bound1,
  * bound2 (free) or out2, bound2 (fixed, radius1 = ball1[1]), each S+N values. */
 #include <stdio.h>
@@ -32,15 +33,15 @@
         out_len = (size_t)((char *)y - (char *)out);                                    \
     } while (0)
 
+#define KIND(N, S, FMA, FAST)                                                                      \
+    if (f64) LOOP(double, N, S, noslip_d##N##_free##FMA##_certified_##FAST##f64, noslip_d##N##_fixed##FMA##_certified_##FAST##f64); \
+    else LOOP(float, N, S, noslip_d##N##_free##FMA##_certified_##FAST##f32, noslip_d##N##_fixed##FMA##_certified_##FAST##f32);
+
 #define DIM(N, S)                                                                                  \
-    if (n == (N) && !fast) {                                                                       \
-        if (f64) LOOP(double, N, S, noslip_d##N##_free_certified_f64, noslip_d##N##_fixed_certified_f64); \
-        else LOOP(float, N, S, noslip_d##N##_free_certified_f32, noslip_d##N##_fixed_certified_f32);      \
-    }                                                                                              \
-    if (n == (N) && fast) {                                                                        \
-        if (f64) LOOP(double, N, S, noslip_d##N##_free_certified_fast_f64, noslip_d##N##_fixed_certified_fast_f64); \
-        else LOOP(float, N, S, noslip_d##N##_free_certified_fast_f32, noslip_d##N##_fixed_certified_fast_f32);      \
-    }
+    if (n == (N) && !fma && !fast) { KIND(N, S, , ) }                                              \
+    if (n == (N) && !fma && fast) { KIND(N, S, , fast_) }                                          \
+    if (n == (N) && fma && !fast) { KIND(N, S, _fma, ) }                                           \
+    if (n == (N) && fma && fast) { KIND(N, S, _fma, fast_) }
 
 static void *read_all(const char *path, size_t *len) {
     FILE *f = fopen(path, "rb");
@@ -60,8 +61,9 @@ int main(int argc, char **argv) {
         return 2;
     }
     const int n = atoi(argv[1]);
-    const int free_ = !strcmp(argv[2], "free") || !strcmp(argv[2], "free_fast");
+    const int free_ = !strncmp(argv[2], "free", 4);
     const int fast = strstr(argv[2], "_fast") != NULL;
+    const int fma = strstr(argv[2], "_fma") != NULL;
     const int f64 = !strcmp(argv[3], "f64");
     size_t in_len = 0, count = 0, out_len = 0;
     void *in = read_all(argv[4], &in_len);

@@ -5,9 +5,11 @@
 //! bound (`ProvenBound::component_bounds`) and with the measured error.
 
 use collision_core::certified::{
-    collide_certified_by, energy_error_bound, CertifiedKernel, Companion,
+    collide_certified_by, collide_certified_fma_by, energy_error_bound, CertifiedKernel, Companion,
 };
-use collision_core::{collide_unchecked, validate, Exact, Generated, Kernel};
+use collision_core::{
+    collide_unchecked, collide_unchecked_fma, validate, Exact, Generated, Kernel,
+};
 use collision_core::{Ball, BodyState};
 use noslip_accuracy::case::{flatten, Case};
 use noslip_accuracy::measure::exact_result;
@@ -49,11 +51,12 @@ impl CertSeen {
 }
 
 /// Check both formats' companions of kind `companion` on `case` (`f32`: if the case is one
-/// `f32` holds).
+/// `f32` holds), of the plain kernels or (`fma`) of the FMA kernels; the interpreter's
+/// bounds `bound64`, `bound32` (of the same kernel; `None`: none to compare with).
 pub fn check<const N: usize, const S: usize>(
-    companion: Companion,
+    (companion, fma): (Companion, bool),
     bound64: &ProvenBound,
-    bound32: &ProvenBound,
+    bound32: Option<&ProvenBound>,
     case: &Case<f64, N, S>,
     exact_case: &Case<Exact, N, S>,
     seen: &mut [CertSeen; 2],
@@ -65,9 +68,17 @@ pub fn check<const N: usize, const S: usize>(
         + CertifiedKernel<f32, N, S>,
 {
     // f64
-    let plain = collide_unchecked(&case.nu, case.ball_refs(), case.state_refs());
-    let (out, bound) =
-        collide_certified_by(companion, &case.nu, case.ball_refs(), case.state_refs());
+    let (plain, (out, bound)) = if fma {
+        (
+            collide_unchecked_fma(&case.nu, case.ball_refs(), case.state_refs()),
+            collide_certified_fma_by(companion, &case.nu, case.ball_refs(), case.state_refs()),
+        )
+    } else {
+        (
+            collide_unchecked(&case.nu, case.ball_refs(), case.state_refs()),
+            collide_certified_by(companion, &case.nu, case.ball_refs(), case.state_refs()),
+        )
+    };
     let values: Vec<f64> = flatten(&out);
     let plain: Vec<f64> = flatten(&plain);
     for (k, (a, b)) in values.iter().zip(&plain).enumerate() {
@@ -80,7 +91,7 @@ pub fn check<const N: usize, const S: usize>(
     compare(
         &values,
         &flatten(&bound),
-        &bound64.component_bounds(case),
+        Some(&bound64.component_bounds(case)),
         &flatten(&exact),
         &mut seen[0],
         &format!("n = {N} f64 {case:?}"),
@@ -91,8 +102,17 @@ pub fn check<const N: usize, const S: usize>(
     if validate(&c32.nu, c32.ball_refs(), c32.state_refs()).is_err() {
         return;
     }
-    let plain = collide_unchecked(&c32.nu, c32.ball_refs(), c32.state_refs());
-    let (out, bound) = collide_certified_by(companion, &c32.nu, c32.ball_refs(), c32.state_refs());
+    let (plain, (out, bound)) = if fma {
+        (
+            collide_unchecked_fma(&c32.nu, c32.ball_refs(), c32.state_refs()),
+            collide_certified_fma_by(companion, &c32.nu, c32.ball_refs(), c32.state_refs()),
+        )
+    } else {
+        (
+            collide_unchecked(&c32.nu, c32.ball_refs(), c32.state_refs()),
+            collide_certified_by(companion, &c32.nu, c32.ball_refs(), c32.state_refs()),
+        )
+    };
     let values: Vec<f32> = flatten(&out);
     let plain: Vec<f32> = flatten(&plain);
     for (k, (a, b)) in values.iter().zip(&plain).enumerate() {
@@ -118,7 +138,7 @@ pub fn check<const N: usize, const S: usize>(
     compare(
         &widen(values),
         &widen(flatten(&bound)),
-        &bound32.component_bounds(&ran_on),
+        bound32.map(|b| b.component_bounds(&ran_on)).as_deref(),
         &flatten(&exact),
         &mut seen[1],
         &format!("n = {N} f32 {ran_on:?}"),
@@ -164,14 +184,15 @@ fn energy<const N: usize, const S: usize>(
 fn compare(
     values: &[f64],
     bounds: &[f64],
-    interpreter: &[f64],
+    interpreter: Option<&[f64]>,
     exact: &[Exact],
     seen: &mut CertSeen,
     what: &str,
 ) {
     seen.cases += 1;
     for k in 0..values.len() {
-        let (e, i) = (bounds[k], interpreter[k]);
+        // No interpreter bound to compare with: NaN, counted nowhere.
+        let (e, i) = (bounds[k], interpreter.map_or(f64::NAN, |b| b[k]));
         assert!(e >= 0.0, "{what}: component {k} has a bound {e}");
         if i.is_infinite() {
             seen.infinite_interpreter += 1;
@@ -249,6 +270,49 @@ fn non_finite_inputs_and_a_zero_divisor_give_infinite_bounds() {
     assert!(e.iter().all(|e| *e == f64::INFINITY), "{bound:?}");
     let (_, bound) = d3::certified::free_fast(&nu, &p1, &p2, &state, &rest);
     assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
+    // The FMA kernels' companions, both kinds: the same cases.
+    type Free3 = fn(
+        &[f64; 3],
+        &Ball<f64>,
+        &Ball<f64>,
+        &BodyState<f64, 3, 3>,
+        &BodyState<f64, 3, 3>,
+    ) -> ([BodyState<f64, 3, 3>; 2], [BodyState<f64, 3, 3>; 2]);
+    let fma: [Free3; 2] = [d3::certified::free_fma, d3::certified::free_fma_fast];
+    for f in fma {
+        let (_, bound) = f(&nu, &b1, &b2, &state, &rest);
+        assert!(all(&bound).iter().all(|e| e.is_finite() && *e > 0.0));
+        let (_, bound) = f(&nu, &b1, &b2, &fast, &rest);
+        assert!(all(&bound).iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+        let (_, bound) = f(&nu, &p1, &p2, &state, &rest);
+        assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");
+    }
+    for f in [d3::certified::fixed_fma, d3::certified::fixed_fma_fast] {
+        let (_, bound) = f(&nu, &1.0, &ball(0.5, f64::NAN, 0.3), &state, &rest);
+        let e: Vec<f64> = bound.spin.iter().chain(&bound.velocity).copied().collect();
+        assert!(e.iter().all(|e| *e == f64::INFINITY), "{bound:?}");
+    }
+    // A rho at or above 2^-10, or NaN, gives +inf bounds on the rounded-input companions.
+    use collision_core::certified::InputRounding;
+    for rho in [
+        InputRounding::normalised(3),
+        InputRounding {
+            nu: 1.0 / 1024.0,
+            gamma2: 0.0,
+        },
+        InputRounding {
+            nu: 0.0,
+            gamma2: f64::NAN,
+        },
+    ] {
+        let (_, bound) = d3::certified::free_rounded(&nu, &b1, &b2, &state, &rest, &rho);
+        let finite = rho == InputRounding::normalised(3);
+        assert_eq!(
+            all(&bound).iter().all(|e| e.is_finite()),
+            finite,
+            "{rho:?}: {bound:?}"
+        );
+    }
     // A divisor that cancels (a negative inverse mass, which `collide` refuses): `+inf`.
     let (_, bound) = d3::certified::free_fast(&nu, &b1, &ball(-0.999, 2.0, 0.3), &state, &rest);
     assert!(all(&bound).contains(&f64::INFINITY), "{bound:?}");

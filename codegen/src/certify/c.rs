@@ -1,16 +1,20 @@
 //! The certified companions spelled in C99: `noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
-//! appended to the C header (`noslip gen --lang c`), with the plain kernels' ABI plus one
-//! bound array per output array.
+//! `..._certified_fast_...`, and those of the FMA kernels `noslip_d{n}_{free|fixed}_fma_certified_...`
+//! (fused steps through `fma`/`fmaf`, contraction off as in the plain kernels), appended to
+//! the C header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
+//! output array.
 
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::backend::{constant_literal, Precision};
 use crate::model::{names, skew_pairs, Variant};
+use crate::Arith;
 use std::fmt::Write;
 
 fn precision(f: Format) -> Precision {
     match f {
         Format::F64 => Precision::F64,
         Format::F32 => Precision::F32,
+        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
     }
 }
 
@@ -20,6 +24,7 @@ fn literal(f: Format, x: f64) -> String {
     match f {
         Format::F64 => format!("{x:e}"),
         Format::F32 => format!("{:e}f", x as f32),
+        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
     }
 }
 
@@ -50,15 +55,25 @@ fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
     v
 }
 
-/// The name of the C function: `noslip_d3_free_certified_f64`, and for the fast scheme
-/// `noslip_d3_free_certified_fast_f64`.
-pub fn function_name(n: usize, variant: Variant, f: Format, scheme: Scheme) -> String {
+/// The name of the C function: `noslip_d3_free_certified_f64`, for the fast scheme
+/// `noslip_d3_free_certified_fast_f64`, for the FMA kernel `noslip_d3_free_fma_certified_f64`.
+pub fn function_name(
+    n: usize,
+    variant: Variant,
+    arith: Arith,
+    f: Format,
+    scheme: Scheme,
+) -> String {
     let fast = match scheme {
         Scheme::Running => "",
         Scheme::Fast { .. } => "fast_",
     };
+    let fma = match arith {
+        Arith::Plain => "",
+        Arith::Fma => "_fma",
+    };
     format!(
-        "noslip_d{n}_{}_certified_{fast}{}",
+        "noslip_d{n}_{}{fma}_certified_{fast}{}",
         variant.name(),
         precision(f).suffix()
     )
@@ -70,12 +85,21 @@ pub fn function(c: &Certified) -> String {
     let n = p.dim;
     let ty = precision(f).c_type();
     let len = n * (n - 1) / 2 + n;
-    let fabs = match f {
-        Format::F64 => "fabs",
-        Format::F32 => "fabsf",
+    let (fabs, fma) = match f {
+        Format::F64 => ("fabs", "fma"),
+        Format::F32 => ("fabsf", "fmaf"),
+        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
     };
     let mut s = String::new();
-    let plain = format!("noslip_d{n}_{}_{}", p.variant.name(), precision(f).suffix());
+    let fma_suffix = match p.arith {
+        Arith::Plain => "",
+        Arith::Fma => "_fma",
+    };
+    let plain = format!(
+        "noslip_d{n}_{}{fma_suffix}_{}",
+        p.variant.name(),
+        precision(f).suffix()
+    );
     let _ = writeln!(
         s,
         "// {plain} (the same operations, bit for bit) and a rigorous bound on the absolute\n\
@@ -106,7 +130,7 @@ pub fn function(c: &Certified) -> String {
     let _ = writeln!(
         s,
         "static inline NOSLIP_NO_CONTRACT void {}({})\n{{\n    NOSLIP_FP_CONTRACT_OFF",
-        function_name(n, p.variant, f, c.scheme),
+        function_name(n, p.variant, p.arith, f, c.scheme),
         params.join(", ")
     );
     for (a, elems) in &arrays {
@@ -127,7 +151,7 @@ pub fn function(c: &Certified) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => constant_literal(&p.constants[*k].value, precision(f)),
-            Expr::Step(k) => super::infix_step(p, &p.steps[*k].op),
+            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, fma),
             Expr::Abs(a) => format!("{fabs}({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
@@ -167,11 +191,13 @@ pub fn functions(dims: &[usize]) -> String {
     );
     for f in [Format::F64, Format::F32] {
         for &n in dims {
-            for v in Variant::ALL {
-                s.push('\n');
-                s.push_str(&function(&Certified::of(n, v, f)));
-                s.push('\n');
-                s.push_str(&function(&Certified::of_fast(n, v, f)));
+            for arith in Arith::ALL {
+                for v in Variant::ALL {
+                    s.push('\n');
+                    s.push_str(&function(&Certified::of(n, v, arith, f)));
+                    s.push('\n');
+                    s.push_str(&function(&Certified::of_fast(n, v, arith, f)));
+                }
             }
         }
     }

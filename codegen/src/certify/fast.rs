@@ -29,7 +29,17 @@
 //! a +- b        1 + cc = (1 + u)(1 + max cc)    ce = max ce
 //! a * b         1 + cc = (1 + u)(1 + cc_a)(1 + cc_b)    1 + ce = (1 + ce_a)(1 + ce_b)
 //! a / b         1 + cc = (1 + u)(1 + cc_a)      ce = (ce_a + k) / (1 - k),  k = (cc_b + ce_b) rho / (1 - u)^KA_b
+//! fma(a, b, c)  1 + cc = (1 + u)(1 + max((1 + cc_a)(1 + cc_b) - 1, cc_c))
+//!               1 + ce = max((1 + ce_a)(1 + ce_b), 1 + ce_c)
 //! ```
+//!
+//! A fused step `z = a b + c` (or `a b - c`, `c - a b`) has `A_z = A_a A_b + A_c` (two
+//! roundings of the magnitude: `KA_z = max(KA_a + KA_b + 1, KA_c) + 1`) and one rounding of
+//! the kernel, `fl(w) = w (1 + delta)`, `w = a^ b^ + c^`: with
+//! `M = max((1 + cc_a)(1 + cc_b) - 1, cc_c)`, `|w - R_z| <= M A*_z` and
+//! `|w| <= (1 + M) A*_z`, so `|z^ - R_z| <= (M + u (1 + M)) A*_z`; below the normal range
+//! the rounding is at most `u 2^e_min <= u A*_a A*_b`
+//! (the same floor condition as a product's, checked on `A_a A_b`).
 //!
 //! A product's rounding is off by at most `u max(|a^ b^|, 2^e_min)`, and `A*_a A*_b >=
 //! 2^e_min` for every product, which the floor `s` ensures (the least power of two for
@@ -100,7 +110,7 @@ impl Format {
     fn min_exponent(self) -> i32 {
         match self {
             Format::F64 => -1022,
-            Format::F32 => -126,
+            Format::F32 | Format::F32Wide => -126,
         }
     }
 }
@@ -201,6 +211,20 @@ fn track(program: &Program, format: Format, floor_log2: i32) -> Result<Vec<Track
                     ka: 0,
                     lo: floor,
                 }
+            }
+            Op::MulAdd(a, b, c) | Op::MulSub(a, b, c) | Op::NegMulAdd(a, b, c) => {
+                let (a, b, c) = (leaf(a, &steps), leaf(b, &steps), leaf(c, &steps));
+                let t = Tracked {
+                    cc: compose(u, compose(a.cc, b.cc).max(c.cc)),
+                    ce: compose(a.ce, b.ce).max(c.ce),
+                    ka: (a.ka + b.ka + 1).max(c.ka) + 1,
+                    lo: (a.lo + b.lo).max(c.lo),
+                };
+                // The product's magnitude `A_a A_b` is rounded on its own: it stays normal.
+                if a.lo + b.lo < threshold {
+                    return Err(());
+                }
+                t
             }
             _ => unreachable!("derive_fast refuses it first"),
         };
@@ -304,7 +328,14 @@ impl Certified {
     pub fn derive_fast(program: &Program, format: Format) -> Result<Certified, Unsupported> {
         for s in &program.steps {
             match s.op {
-                Op::Add(..) | Op::Sub(..) | Op::Mul(..) | Op::Div(..) | Op::Neg(..) => {}
+                Op::Add(..)
+                | Op::Sub(..)
+                | Op::Mul(..)
+                | Op::Div(..)
+                | Op::Neg(..)
+                | Op::MulAdd(..)
+                | Op::MulSub(..)
+                | Op::NegMulAdd(..) => {}
                 _ => return Err(Unsupported(format!("the step {}", s.name))),
             }
         }
@@ -365,6 +396,28 @@ impl Certified {
                             Op::Mul(..) => b.bind(Expr::Mul(ma, mb)),
                             _ => b.bind(Expr::Add(ma, mb)),
                         };
+                        b.keys.insert(key.clone(), m);
+                    }
+                    key
+                }
+                Op::MulAdd(x, y, w) | Op::MulSub(x, y, w) | Op::NegMulAdd(x, y, w) => {
+                    let mut v = [b.key(x), b.key(y)];
+                    v.sort();
+                    let product = format!("(* {} {})", v[0], v[1]);
+                    let key = format!("(fma {} {} {})", v[0], v[1], b.key(w));
+                    if !b.keys.contains_key(&key) {
+                        // `A_a A_b` shares the product's key: the same magnitude.
+                        let p = match b.keys.get(&product) {
+                            Some(p) => p.clone(),
+                            None => {
+                                let (ma, mb) = (b.mag(x), b.mag(y));
+                                let p = b.bind(Expr::Mul(ma, mb));
+                                b.keys.insert(product, p.clone());
+                                p
+                            }
+                        };
+                        let mw = b.mag(w);
+                        let m = b.bind(Expr::Add(p, mw));
                         b.keys.insert(key.clone(), m);
                     }
                     key
@@ -470,15 +523,17 @@ impl Certified {
             outputs,
             bound_ops: b.ops,
             scheme: Scheme::Fast { floor },
+            rounded: Vec::new(),
         })
     }
 
-    /// The fast companion of the plain no-slip kernel `variant` in dimension `dim`.
-    pub fn of_fast(dim: usize, variant: Variant, format: Format) -> Certified {
+    /// The fast companion of the no-slip kernel `variant` in dimension `dim`, plain or FMA
+    /// (`arith`).
+    pub fn of_fast(dim: usize, variant: Variant, arith: crate::Arith, format: Format) -> Certified {
         let kernel = crate::model::build(dim, variant);
-        let program = Program::lower(&kernel, crate::Arith::Plain);
+        let program = Program::lower(&kernel, arith);
         Certified::derive_fast(&program, format)
-            .expect("the plain no-slip kernels have + - * / only")
+            .expect("the no-slip kernels have + - * / and FMA only")
     }
 }
 
@@ -493,8 +548,10 @@ mod tests {
         for dim in 2..=6 {
             for variant in Variant::ALL {
                 for format in [Format::F64, Format::F32] {
-                    let c = Certified::of_fast(dim, variant, format);
-                    assert!(matches!(c.scheme, Scheme::Fast { .. }));
+                    for arith in [crate::Arith::Plain, crate::Arith::Fma] {
+                        let c = Certified::of_fast(dim, variant, arith, format);
+                        assert!(matches!(c.scheme, Scheme::Fast { .. }));
+                    }
                 }
             }
         }

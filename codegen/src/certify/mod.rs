@@ -23,7 +23,17 @@
 //! z = a * b    e_z = m_a e_b + (m_b + e_b) e_a + u m_z      (|a^ b^ - a b| <= |a^| e_b + |b| e_a)
 //! z = a / b    e_z = (e_a + m_z E_b) / L_b + u m_z   if L_b > 0, else +inf
 //! z = -a       e_z = e_a, m_z = m_a
+//! z = fma(a, b, c) = a b + c (or a b - c, c - a b), one rounding:
+//!              e_z = [m_a e_b + (m_b + e_b) e_a] + e_c + u m_z
 //! ```
+//!
+//! The fused step: the FMA kernels call `fma(a^, b^, c^)` (Rust `mul_add`, C `fma`/`fmaf`),
+//! which returns `fl(a^ b^ + c^) = (a^ b^ + c^)(1 + delta)`, `|delta| <= u`, one rounding of
+//! the exact `w = a^ b^ + c^` (and, below the normal range, at most the subnormal
+//! half-spacing, as for any operation). So `z^ = RN(w)`, `|z^ - w| <= u m_z` as above, and
+//! `|w - z| <= |a^ b^ - a b| + |c^ - c|`, the first term bounded as in the product rule: no
+//! rounding of the product is charged. `a b - c` and `c - a b` are `fma(a, b, -c)` and
+//! `fma(-a, b, c)`, negations being exact: the same bound.
 //!
 //! For the quotient, `a^/b^ - a/b = ((a^ - a) - (a^/b^)(b^ - b)) / b` and
 //! `|a^/b^| <= (1 + u) m_z`; `E_b = RN(e_b F(d_b + 1)) >= (1 + u) |b^ - b|` is the divisor's
@@ -53,12 +63,21 @@
 //! `0 x^` (0, or `+inf` for a non-finite input).
 //!
 //! Branch-free: the two choices (`L_b > 0`, NaN) are selects (`?:` in C, bit masks in Rust).
+//!
+//! The depth of a fused step's bound: the product's term has the product rule's depth less
+//! the rounding term's sum (`d_a + 1`, `d_b + 1`, or `d_a + d_b + 3`); each of the (at most
+//! two) following sums adds one to the larger of its operands' depths.
+//!
+//! The inputs are exact (`e = 0`) unless the companion takes them as rounded ([`rounded`]:
+//! a normal or `gamma2` within a run-time relative `rho` of the intended value).
 
 pub mod c;
 pub mod fast;
+pub mod rounded;
 pub mod rust;
 #[cfg(test)]
 mod tests;
+pub mod wide;
 
 use crate::bound::round::up;
 use crate::model::Variant;
@@ -76,6 +95,10 @@ pub enum Format {
     F64,
     /// IEEE binary32.
     F32,
+    /// The kernel in IEEE binary32, its bound in binary64 ([`wide`]): the kernel's `u` and
+    /// rounding rules, the bound's own arithmetic in `f64` (which loses less per operation
+    /// than the proof allows for `u = 2^-24`, and cannot overflow where `f32` would).
+    F32Wide,
 }
 
 impl Format {
@@ -83,7 +106,7 @@ impl Format {
     fn roundoff_exponent(self) -> i32 {
         match self {
             Format::F64 => -53,
-            Format::F32 => -24,
+            Format::F32 | Format::F32Wide => -24,
         }
     }
 
@@ -93,12 +116,19 @@ impl Format {
     }
 
     /// The magnitude floor `s`: `2^-480` (`f64`), `2^-51` (`f32`), so that `s^2 u` is normal
-    /// and `u s` is above the subnormal half-spacing.
+    /// and `u s` is above the subnormal half-spacing; `2^-126` for [`Format::F32Wide`]
+    /// (`u s = 2^-150`, the `f32` subnormal half-spacing; `s^2 u` is normal in `f64`).
     pub fn floor(self) -> f64 {
         match self {
             Format::F64 => 2f64.powi(-480),
             Format::F32 => 2f64.powi(-51),
+            Format::F32Wide => 2f64.powi(-126),
         }
+    }
+
+    /// Whether the bound is evaluated in `f64` (every format but [`Format::F32`]).
+    pub fn bound_in_f64(self) -> bool {
+        !matches!(self, Format::F32)
     }
 
     /// `F(d) = 1 + (d + 2) 2u`, exact in the format for `d < 2^22`.
@@ -110,7 +140,7 @@ impl Format {
     /// The smallest float of the format at least `x` (`x` an `f64` upper bound).
     fn up(self, x: f64) -> f64 {
         match self {
-            Format::F64 => x,
+            Format::F64 | Format::F32Wide => x,
             Format::F32 => {
                 let y = x as f32;
                 if f64::from(y) >= x {
@@ -127,7 +157,7 @@ impl Format {
         let (x64, x32) = crate::literal::nearest_floats(value);
         match self {
             Format::F64 => x64,
-            Format::F32 => f64::from(x32),
+            Format::F32 | Format::F32Wide => f64::from(x32),
         }
     }
 }
@@ -223,11 +253,15 @@ pub struct Certified {
     pub bound_ops: usize,
     /// How the bound is computed.
     pub scheme: Scheme,
+    /// The run-time parameters of the inputs' rounding ([`rounded`]): each `rho` parameter
+    /// and the inputs it covers; empty for a companion of the map on the floats given.
+    pub rounded: Vec<rounded::Rounding>,
 }
 
-/// A plain kernel step as the plain kernels spell it in Rust and C alike (one IEEE
-/// operation: `a + b`, `a - b`, `a * b`, `a / b`, `-a`).
-pub(crate) fn infix_step(program: &Program, op: &Op) -> String {
+/// A kernel step as the plain kernels spell it in Rust and C alike: one IEEE operation
+/// (`a + b`, `a - b`, `a * b`, `a / b`, `-a`), or a fused one through `fma` (`f64::mul_add`,
+/// `fma`, ...) as the FMA kernels call it: `fma(a, b, c)`, `fma(a, b, -c)`, `fma(-a, b, c)`.
+pub(crate) fn step_expr(program: &Program, op: &Op, fma: &str) -> String {
     let o = |x: &Operand| program.name(x).to_string();
     match op {
         Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
@@ -235,11 +269,14 @@ pub(crate) fn infix_step(program: &Program, op: &Op) -> String {
         Op::Mul(a, b) => format!("{} * {}", o(a), o(b)),
         Op::Div(a, b) => format!("{} / {}", o(a), o(b)),
         Op::Neg(a) => format!("-{}", o(a)),
+        Op::MulAdd(a, b, c) => format!("{fma}({}, {}, {})", o(a), o(b), o(c)),
+        Op::MulSub(a, b, c) => format!("{fma}({}, {}, -{})", o(a), o(b), o(c)),
+        Op::NegMulAdd(a, b, c) => format!("{fma}(-{}, {}, {})", o(a), o(b), o(c)),
         _ => unreachable!("Certified::derive and derive_fast refuse it"),
     }
 }
 
-/// A kernel operation the companions do not bound (`sqrt`, selects, fused forms).
+/// A kernel operation the companions do not bound (`sqrt`, selects).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unsupported(pub String);
 
@@ -249,7 +286,7 @@ impl std::fmt::Display for Unsupported {
     }
 }
 
-struct Builder<'a> {
+pub(crate) struct Builder<'a> {
     program: &'a Program,
     format: Format,
     stmts: Vec<Stmt>,
@@ -260,11 +297,11 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
-    fn u(&self) -> Arg {
+    pub(crate) fn u(&self) -> Arg {
         Arg::Lit(self.format.unit_roundoff())
     }
 
-    fn bind(&mut self, expr: Expr) -> Arg {
+    pub(crate) fn bind(&mut self, expr: Expr) -> Arg {
         if !matches!(expr, Expr::Const(_) | Expr::Step(_)) {
             self.ops += 1;
         }
@@ -282,7 +319,7 @@ impl Builder<'_> {
     }
 
     /// `m_x = RN(|x^| + s)`, bound once per value.
-    fn mag(&mut self, x: &Operand) -> Arg {
+    pub(crate) fn mag(&mut self, x: &Operand) -> Arg {
         if let Some(m) = self.mags.get(x) {
             return m.clone();
         }
@@ -405,8 +442,8 @@ impl Builder<'_> {
                     depth: ba.depth + 4,
                 }
             }
-            Op::MulAdd(..) | Op::MulSub(..) | Op::NegMulAdd(..) => {
-                return Err(Unsupported(format!("the fused step {}", s.name)))
+            Op::MulAdd(a, b, c) | Op::MulSub(a, b, c) | Op::NegMulAdd(a, b, c) => {
+                self.fused(a, b, c, &z)
             }
             Op::Sqrt(_) => return Err(Unsupported(format!("the square root {}", s.name))),
             Op::SelectLt(_) => return Err(Unsupported(format!("the select {}", s.name))),
@@ -421,6 +458,45 @@ impl Builder<'_> {
         };
         self.bounds.insert(z, bounded);
         Ok(())
+    }
+
+    /// The fused step `z = a b + c` (or `a b - c`, `c - a b`), one rounding:
+    /// `e_z = [m_a e_b + (m_b + e_b) e_a] + e_c + u m_z`, the product's term as in the
+    /// product rule without its own rounding.
+    fn fused(&mut self, a: &Operand, b: &Operand, c: &Operand, z: &Operand) -> Bounded {
+        let (ba, bb, bc) = (self.bounded(a), self.bounded(b), self.bounded(c));
+        let mz = self.mag(z);
+        let r = self.bind(Expr::Mul(self.u(), mz));
+        let product = match (ba.error.clone(), bb.error.clone()) {
+            (None, None) => None,
+            (Some(ea), None) => {
+                let mb = self.mag(b);
+                Some((self.bind(Expr::Mul(mb, ea)), ba.depth + 1))
+            }
+            (None, Some(eb)) => {
+                let ma = self.mag(a);
+                Some((self.bind(Expr::Mul(ma, eb)), bb.depth + 1))
+            }
+            (Some(ea), Some(eb)) => {
+                let (ma, mb) = (self.mag(a), self.mag(b));
+                let p1 = self.bind(Expr::Mul(ma, eb.clone()));
+                let sb = self.bind(Expr::Add(mb, eb));
+                let p2 = self.bind(Expr::Mul(sb, ea));
+                Some((self.bind(Expr::Add(p1, p2)), ba.depth + bb.depth + 3))
+            }
+        };
+        let terms = product
+            .into_iter()
+            .chain(bc.error.map(|e| (e, bc.depth)))
+            .chain(std::iter::once((r, 0)));
+        // A sum loses one rounding on top of the deeper of its two operands.
+        let (error, depth) = terms
+            .reduce(|(acc, da), (t, dt)| (self.bind(Expr::Add(acc, t)), da.max(dt) + 1))
+            .expect("the rounding term");
+        Bounded {
+            error: Some(error),
+            depth,
+        }
     }
 
     fn output(&mut self, x: &Operand) -> Arg {
@@ -443,9 +519,19 @@ impl Builder<'_> {
 impl Certified {
     /// The companion of `program` in `format`: its steps in order, each followed by its
     /// bound's statements, then the bound of every output. Refuses a program with fused
-    /// steps, square roots or selects (the no-slip and rough kernels have none in their
-    /// plain form).
+    /// square roots or selects (the no-slip and rough kernels have none).
     pub fn derive(program: &Program, format: Format) -> Result<Certified, Unsupported> {
+        Certified::derive_rounded(program, format, &[])
+    }
+
+    /// [`Certified::derive`] with the inputs of each [`rounded::Rounding`] taken as rounded:
+    /// their bound `e_x` is the run-time `rho`'s ([`rounded`]), and the outputs are bounded
+    /// against the exact map on the intended real inputs.
+    pub fn derive_rounded(
+        program: &Program,
+        format: Format,
+        rounded: &[rounded::Rounding],
+    ) -> Result<Certified, Unsupported> {
         let mut b = Builder {
             program,
             format,
@@ -463,6 +549,9 @@ impl Certified {
                     depth: 0,
                 },
             );
+        }
+        for r in rounded {
+            r.bind_inputs(&mut b);
         }
         for (k, c) in program.constants.iter().enumerate() {
             b.stmts.push(Stmt {
@@ -502,13 +591,15 @@ impl Certified {
             outputs,
             bound_ops,
             scheme: Scheme::Running,
+            rounded: rounded.to_vec(),
         })
     }
 
-    /// The companion of the plain no-slip kernel `variant` in dimension `dim`.
-    pub fn of(dim: usize, variant: Variant, format: Format) -> Certified {
+    /// The companion of the no-slip kernel `variant` in dimension `dim`, plain or FMA
+    /// (`arith`).
+    pub fn of(dim: usize, variant: Variant, arith: crate::Arith, format: Format) -> Certified {
         let kernel = crate::model::build(dim, variant);
-        let program = Program::lower(&kernel, crate::Arith::Plain);
-        Certified::derive(&program, format).expect("the plain no-slip kernels have + - * / only")
+        let program = Program::lower(&kernel, arith);
+        Certified::derive(&program, format).expect("the no-slip kernels have + - * / and FMA only")
     }
 }

@@ -2,29 +2,56 @@
 //! and `{free_f32, fixed_f32}`, monomorphic, returning the plain kernel's outputs and a bound
 //! per output component in the same layout.
 
+use super::rounded::Rounding;
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::model::{names, skew_pairs, Variant};
+use crate::program::Program;
 use std::fmt::Write;
 
-/// A literal of `format`: the float's shortest round-trip decimal, suffixed.
+/// A literal of the kernel's type in `format`: the float's shortest round-trip decimal,
+/// suffixed.
 fn literal(format: Format, x: f64) -> String {
     match format {
         Format::F64 => format!("{x:e}f64"),
-        Format::F32 => format!("{:e}f32", x as f32),
+        Format::F32 | Format::F32Wide => format!("{:e}f32", x as f32),
     }
 }
 
+/// A literal of the bound's type in `format`.
+fn bound_literal(format: Format, x: f64) -> String {
+    if format.bound_in_f64() {
+        format!("{x:e}f64")
+    } else {
+        format!("{:e}f32", x as f32)
+    }
+}
+
+/// The kernel's type.
 fn ty(format: Format) -> &'static str {
     match format {
         Format::F64 => "f64",
-        Format::F32 => "f32",
+        Format::F32 | Format::F32Wide => "f32",
     }
 }
 
-fn arg(format: Format, a: &Arg) -> String {
+/// The bound's type.
+fn bound_ty(format: Format) -> &'static str {
+    if format.bound_in_f64() {
+        "f64"
+    } else {
+        "f32"
+    }
+}
+
+/// An argument of a bound statement; a kernel value (`kernel` holds their names) widened to
+/// `f64` (exactly) where the bound runs in `f64` and the kernel in `f32`.
+fn arg(format: Format, kernel: &std::collections::HashSet<&str>, a: &Arg) -> String {
     match a {
+        Arg::Name(n) if format == Format::F32Wide && kernel.contains(n.as_str()) => {
+            format!("f64::from({n})")
+        }
         Arg::Name(n) => n.clone(),
-        Arg::Lit(x) => literal(format, *x),
+        Arg::Lit(x) => bound_literal(format, *x),
     }
 }
 
@@ -61,6 +88,9 @@ pub fn function(c: &Certified, name: &str) -> String {
     let mut out = String::new();
     let variant = p.variant;
     let how = match c.scheme {
+        Scheme::Running if f == Format::F32Wide => "(running error analysis, the bound in `f64`:\n\
+             /// tighter than `f32`'s and without its overflow, `noslip_codegen::certify::wide`)"
+            .to_string(),
         Scheme::Running => "(running error analysis, `noslip_codegen::certify`)".to_string(),
         Scheme::Fast { floor } => format!(
             "(a constant fixed at generation times a magnitude of each output computed from the\n\
@@ -73,28 +103,57 @@ pub fn function(c: &Certified, name: &str) -> String {
         "/// [`super::{}`] in `{t}` (the same operations, bit for bit) with a rigorous bound on the\n\
          /// absolute error of every output for these inputs, computed in the same branch-free pass\n\
          /// {how}: returns `(outputs, bounds)`, each\n\
-         /// bound in its output's slot, `|computed - exact| <= bound` for the exact map on the given\n\
-         /// floats; `+inf` where no bound holds (a divisor not provably nonzero, overflow, a\n\
+         /// bound in its output's slot, `|computed - exact| <= bound` for the exact map on {}; `+inf` where no bound holds (a divisor not provably nonzero, overflow, a\n\
          /// non-finite input).\n\
          ///\n\
          /// Ops: {} of the kernel, {} of the bound.",
-        variant.name(),
+        match p.arith {
+            crate::Arith::Plain => variant.name().to_string(),
+            crate::Arith::Fma => format!("{}_fma", variant.name()),
+        },
+        if c.rounded.is_empty() {
+            "the given\n/// floats".to_string()
+        } else {
+            "the intended real inputs:\n\
+             /// `rho.nu` and `rho.gamma2` bound the relative rounding of each normal component and\n\
+             /// each `gamma2` given (`|x^ - x| <= rho |x|`, `rho < 2^-10`; `noslip_codegen::certify::rounded`)".to_string()
+        },
         p.ops,
         c.bound_ops
     );
+    // The FMA companions, like the FMA kernels, are always inlined: compiled with their
+    // caller's target features (`collide_certified_fma_by`), so `mul_add` is an instruction.
+    let inline = match p.arith {
+        crate::Arith::Plain => "#[inline]",
+        crate::Arith::Fma => "#[inline(always)]",
+    };
+    let bt = bound_ty(f);
+    let bstate = format!("BodyState<{bt}, {n}, {s}>");
     let (params, ret) = match variant {
         Variant::Free => (
             format!("nu: &[{t}; {n}], ball1: &Ball<{t}>, ball2: &Ball<{t}>, state1: &{state}, state2: &{state}"),
-            format!("([{state}; 2], [{state}; 2])"),
+            format!("([{state}; 2], [{bstate}; 2])"),
         ),
         Variant::Fixed => (
             format!("nu: &[{t}; {n}], radius1: &{t}, ball2: &Ball<{t}>, state1: &{state}, state2: &{state}"),
-            format!("({state}, {state})"),
+            format!("({state}, {bstate})"),
         ),
     };
+    let kernel: std::collections::HashSet<&str> = p
+        .inputs
+        .iter()
+        .map(String::as_str)
+        .chain(p.constants.iter().map(|c| c.name.as_str()))
+        .chain(p.steps.iter().map(|s| s.name.as_str()))
+        .collect();
+    let arg = |f: Format, a: &Arg| arg(f, &kernel, a);
+    let mut params = params;
+    if !c.rounded.is_empty() {
+        params.push_str(&format!(", rho: &InputRounding<{t}>"));
+    }
     let _ = writeln!(
         out,
-        "#[inline]\n#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::neg_multiply)]\n\
+        "{inline}\n#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::neg_multiply)]\n\
          pub fn {name}({params}) -> {ret} {{"
     );
     for (input, access) in rust_inputs(n, variant) {
@@ -102,23 +161,33 @@ pub fn function(c: &Certified, name: &str) -> String {
             let _ = writeln!(out, "let {input}: {t} = {access};");
         }
     }
+    for r in &c.rounded {
+        let field = r.param.trim_start_matches("rho_");
+        let _ = writeln!(out, "let {}: {t} = rho.{field};", r.param);
+    }
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => literal(f, f_round(f, &p.constants[*k].value)),
-            Expr::Step(k) => super::infix_step(p, &p.steps[*k].op),
-            Expr::Abs(a) => format!("{t}::abs({})", arg(f, a)),
+            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, &format!("{t}::mul_add")),
+            Expr::Abs(a) => format!("{bt}::abs({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
             Expr::Mul(a, b) => format!("{} * {}", arg(f, a), arg(f, b)),
             Expr::Div(a, b) => format!("{} / {}", arg(f, a), arg(f, b)),
-            Expr::PositiveOr(x, y) => format!("{t}::positive_or_inf({}, {})", arg(f, x), arg(f, y)),
-            Expr::BoundOrInf(x) => format!("{t}::bound_or_inf({})", arg(f, x)),
+            Expr::PositiveOr(x, y) => {
+                format!("{bt}::positive_or_inf({}, {})", arg(f, x), arg(f, y))
+            }
+            Expr::BoundOrInf(x) => format!("{bt}::bound_or_inf({})", arg(f, x)),
             Expr::AtLeast(x, y) => {
                 let (x, y) = (arg(f, x), arg(f, y));
                 format!("if {x} > {y} {{ {x} }} else {{ {y} }}")
             }
         };
-        let _ = writeln!(out, "let {}: {t} = {e};", st.name);
+        let st_ty = match st.expr {
+            Expr::Const(_) | Expr::Step(_) => t,
+            _ => bt,
+        };
+        let _ = writeln!(out, "let {}: {st_ty} = {e};", st.name);
     }
     let body = |o: &super::CertifiedOutput, values: bool| {
         let items: Vec<String> = if values {
@@ -150,55 +219,109 @@ fn f_round(f: Format, v: &num_rational::BigRational) -> f64 {
     f.round(v)
 }
 
+/// The Rust name of a companion: `free`, `fixed_fast`, `free_fma`, `fixed_fma_fast_f32`, ...
+pub fn function_name(variant: Variant, arith: crate::Arith, fast: bool, format: Format) -> String {
+    let fma = match arith {
+        crate::Arith::Plain => "",
+        crate::Arith::Fma => "_fma",
+    };
+    let fast = if fast { "_fast" } else { "" };
+    let f32 = match format {
+        Format::F64 => "",
+        Format::F32 => "_f32",
+        Format::F32Wide => "_f32_wide",
+    };
+    format!("{}{fma}{fast}{f32}", variant.name())
+}
+
+/// The Rust name of a running companion with rounded inputs: `free_rounded`,
+/// `fixed_fma_rounded_f32`, ...
+pub fn rounded_name(variant: Variant, arith: crate::Arith, format: Format) -> String {
+    let fma = match arith {
+        crate::Arith::Plain => "",
+        crate::Arith::Fma => "_fma",
+    };
+    let f32 = match format {
+        Format::F64 => "",
+        Format::F32 => "_f32",
+        Format::F32Wide => "_f32_wide",
+    };
+    format!("{}{fma}_rounded{f32}", variant.name())
+}
+
 /// The file name of dimension `dim`'s companions: `certified_{dim}.rs`.
 pub fn file_name(dim: usize) -> String {
     format!("certified_{dim}.rs")
 }
 
 /// The companions of dimension `dim` (`free`, `fixed` in `f64`; `free_f32`, `fixed_f32`;
-/// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`)
+/// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`; and those of
+/// the FMA kernels, `free_fma`, `free_fma_fast`, `free_fma_f32`, ...: [`function_name`])
 /// as one formatted file; `crate_path` as for [`crate::generate`].
 pub fn generate(dim: usize, crate_path: &str) -> String {
-    let mut src =
-        format!("use {crate_path}::{{Ball, BodyState}};\nuse {crate_path}::certified::Certify;\n");
+    let mut src = format!(
+        "use {crate_path}::{{Ball, BodyState}};\nuse {crate_path}::certified::{{Certify, InputRounding}};\n"
+    );
     let mut header = format!(
         "// @generated by noslip-codegen (codegen/src/certify): certified companions for n = {dim}.\n\
          // Do not edit: it is rewritten by collision-core's build.rs.\n"
     );
     for format in [Format::F64, Format::F32] {
+        for arith in crate::Arith::ALL {
+            for variant in Variant::ALL {
+                for fast in [false, true] {
+                    let c = match fast {
+                        false => Certified::of(dim, variant, arith, format),
+                        true => Certified::of_fast(dim, variant, arith, format),
+                    };
+                    let name = function_name(variant, arith, fast, format);
+                    let _ = writeln!(
+                        header,
+                        "// {name}: kernel {}; bound {} ops.",
+                        c.program.ops, c.bound_ops
+                    );
+                    src.push_str(&function(&c, &name));
+                }
+                // The running companion with the normal and gamma2 taken as rounded.
+                let program = Program::lower(&crate::model::build(dim, variant), arith);
+                let rounded = Rounding::no_slip(dim, &program.inputs);
+                let c = Certified::derive_rounded(&program, format, &rounded)
+                    .expect("the no-slip kernels have + - * / and FMA only");
+                let name = rounded_name(variant, arith, format);
+                let _ = writeln!(
+                    header,
+                    "// {name}: kernel {}; bound {} ops.",
+                    c.program.ops, c.bound_ops
+                );
+                src.push_str(&function(&c, &name));
+            }
+        }
+    }
+    // The f32 kernels' running companions with the bound computed in f64.
+    for arith in crate::Arith::ALL {
         for variant in Variant::ALL {
-            let c = Certified::of(dim, variant, format);
-            let name = match format {
-                Format::F64 => variant.name().to_string(),
-                Format::F32 => format!("{}_f32", variant.name()),
-            };
+            let c = Certified::of(dim, variant, arith, Format::F32Wide);
+            let name = function_name(variant, arith, false, Format::F32Wide);
             let _ = writeln!(
                 header,
-                "// {name}: kernel {}; bound {} ops.",
+                "// {name}: kernel {}; bound {} ops (in f64).",
                 c.program.ops, c.bound_ops
             );
             src.push_str(&function(&c, &name));
-            let fast = Certified::of_fast(dim, variant, format);
-            let name = match format {
-                Format::F64 => format!("{}_fast", variant.name()),
-                Format::F32 => format!("{}_fast_f32", variant.name()),
-            };
-            let _ = writeln!(
-                header,
-                "// {name}: kernel {}; bound {} ops.",
-                fast.program.ops, fast.bound_ops
-            );
-            src.push_str(&function(&fast, &name));
         }
     }
     src.push_str(
         "/// The `f64` companions under the names generic code uses.\n\
          pub mod in_f64 {\n\
          pub use super::{fixed, fixed_fast, free, free_fast};\n\
+         pub use super::{fixed_fma, fixed_fma_fast, free_fma, free_fma_fast};\n\
+         pub use super::{fixed_fma_rounded, fixed_rounded, free_fma_rounded, free_rounded};\n\
          }\n\
          /// The `f32` companions under the names generic code uses.\n\
          pub mod in_f32 {\n\
          pub use super::{fixed_f32 as fixed, fixed_fast_f32 as fixed_fast, free_f32 as free, free_fast_f32 as free_fast};\n\
+         pub use super::{fixed_fma_f32 as fixed_fma, fixed_fma_fast_f32 as fixed_fma_fast, free_fma_f32 as free_fma, free_fma_fast_f32 as free_fma_fast};\n\
+         pub use super::{fixed_fma_rounded_f32 as fixed_fma_rounded, fixed_rounded_f32 as fixed_rounded, free_fma_rounded_f32 as free_fma_rounded, free_rounded_f32 as free_rounded};\n\
          }\n",
     );
     let file = crate::emit::parse(src.parse().expect("certified source tokenizes"));

@@ -4,8 +4,11 @@ use super::*;
 fn every_plain_no_slip_kernel_has_a_companion_with_every_step_in_order() {
     for n in crate::DIMS {
         for v in Variant::ALL {
-            for f in [Format::F64, Format::F32] {
-                let c = Certified::of(n, v, f);
+            for (f, arith) in [Format::F64, Format::F32, Format::F32Wide]
+                .into_iter()
+                .flat_map(|f| crate::Arith::ALL.map(|a| (f, a)))
+            {
+                let c = Certified::of(n, v, arith, f);
                 let steps: Vec<usize> = c
                     .stmts
                     .iter()
@@ -64,6 +67,18 @@ fn the_inflation_factor_covers_the_lost_roundings() {
     }
 }
 
+/// `F32Wide`: the kernel's roundings in `f32` (`u s` at least the `f32` subnormal
+/// half-spacing `2^-150`), the bound's products normal in `f64`.
+#[test]
+fn the_wide_floor_covers_f32_underflow_and_keeps_f64_products_normal() {
+    let f = Format::F32Wide;
+    let (u, s) = (f.unit_roundoff(), f.floor());
+    assert_eq!(u, 2f64.powi(-24));
+    assert!(u * s >= 2f64.powi(-150));
+    assert!(s * s * u >= 2f64.powi(-1022));
+    assert!(f.bound_in_f64() && !Format::F32.bound_in_f64());
+}
+
 #[test]
 fn the_floor_makes_every_product_of_the_bound_normal() {
     for (f, e_min) in [(Format::F64, -1022), (Format::F32, -126)] {
@@ -76,9 +91,37 @@ fn the_floor_makes_every_product_of_the_bound_normal() {
 }
 
 #[test]
-fn fused_steps_are_refused_with_their_name() {
+fn square_roots_are_refused_with_their_name() {
     let kernel = crate::model::build(3, Variant::Free);
-    let program = Program::lower(&kernel, crate::Arith::Fma);
+    let mut program = Program::lower(&kernel, crate::Arith::Plain);
+    let x = Operand::Input(program.inputs.iter().next().expect("inputs").clone());
+    program.steps[0].op = Op::Sqrt(x);
     let err = Certified::derive(&program, Format::F64).unwrap_err();
-    assert!(err.to_string().contains("fused step"), "{err}");
+    assert!(err.to_string().contains("square root"), "{err}");
+}
+
+/// The FMA kernels' companions bound every fused step with one rounding: a fused step's
+/// bound reads the three operands' bounds and a single `u m_z`, and every fused step of the
+/// program is there.
+#[test]
+fn the_fma_companions_bound_every_fused_step() {
+    for v in Variant::ALL {
+        let c = Certified::of(3, v, crate::Arith::Fma, Format::F64);
+        let fused = c
+            .program
+            .steps
+            .iter()
+            .filter(|s| matches!(s.op, Op::MulAdd(..) | Op::MulSub(..) | Op::NegMulAdd(..)))
+            .count();
+        assert!(fused > 0, "{v:?}: no fused step");
+        let plain = Certified::of(3, v, crate::Arith::Plain, Format::F64);
+        // Fewer roundings, so fewer `u m_z` terms: fewer bound operations than the plain
+        // companion, which has one more product per fused step.
+        assert!(
+            c.bound_ops < plain.bound_ops,
+            "{} {}",
+            c.bound_ops,
+            plain.bound_ops
+        );
+    }
 }

@@ -64,6 +64,46 @@ macro_rules! certified_kernel_impl {
                     }
                 }
             }
+
+            #[inline(always)]
+            fn free_fma(
+                companion: crate::certified::Companion,
+                nu: &[$t; $n],
+                ball1: &Ball<$t>,
+                ball2: &Ball<$t>,
+                state1: &BodyState<$t, $n, $s>,
+                state2: &BodyState<$t, $n, $s>,
+            ) -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]) {
+                use $module::certified::$format as c;
+                match companion {
+                    crate::certified::Companion::Running => {
+                        c::free_fma(nu, ball1, ball2, state1, state2)
+                    }
+                    crate::certified::Companion::Fast => {
+                        c::free_fma_fast(nu, ball1, ball2, state1, state2)
+                    }
+                }
+            }
+
+            #[inline(always)]
+            fn fixed_fma(
+                companion: crate::certified::Companion,
+                nu: &[$t; $n],
+                radius1: &$t,
+                ball2: &Ball<$t>,
+                state1: &BodyState<$t, $n, $s>,
+                state2: &BodyState<$t, $n, $s>,
+            ) -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>) {
+                use $module::certified::$format as c;
+                match companion {
+                    crate::certified::Companion::Running => {
+                        c::fixed_fma(nu, radius1, ball2, state1, state2)
+                    }
+                    crate::certified::Companion::Fast => {
+                        c::fixed_fma_fast(nu, radius1, ball2, state1, state2)
+                    }
+                }
+            }
         }
     };
 }
@@ -92,7 +132,13 @@ macro_rules! generated {
             /// output's absolute error for these inputs (`noslip_codegen::certify`,
             /// `docs/accuracy.md` "Certified companions"); and the fast companions
             /// `free_fast`, `fixed_fast` (`_f32`), whose bound is a constant times a
-            /// magnitude carried beside each value (`noslip_codegen::certify::fast`).
+            /// magnitude carried beside each value (`noslip_codegen::certify::fast`); and
+            /// the companions of [`free_fma`] and [`fixed_fma`] (`free_fma`, `free_fma_fast`,
+            /// ..., each fused step bounded with its one rounding); `free_rounded`,
+            /// `fixed_rounded` (and `_fma`, `_f32` forms), whose bound also covers the
+            /// rounding of the normal and `gamma2` given
+            /// ([`crate::certified::InputRounding`]); and `free_f32_wide`, `fixed_f32_wide`
+            /// (and `_fma`), the `f32` kernels with the bound computed in `f64`.
             pub mod certified {
                 include!(concat!(env!("OUT_DIR"), "/", $certified));
             }
