@@ -4,8 +4,8 @@
 //! before a call runs ([`LawRows::check`]: the shape, then every value's range, naming the
 //! field and the row); gathered into the lanes of the `_each` kernels a pass at a time.
 
-use crate::batch::lanes::{Lane, Lanewise, LANES};
-use crate::batch::law_lanes::{FamilyLaw, WithLaw};
+use crate::batch::lanes::{Lanes, LANES};
+use crate::batch::law_lanes::{FamilyLaw, RestitutionLanes, WaltonLanes, WithLaw};
 use crate::error::InputError;
 use crate::{Restitution, Scalar, Walton};
 use std::fmt;
@@ -73,6 +73,10 @@ pub trait LawRows<T>: Sync {
     /// Rows `range` (a shared column stays shared).
     fn slice(&self, range: Range<usize>) -> Self;
 
+    /// The laws of rows `start..end` (at most 8) into `lanes`, lane `l` row `start + l`, the
+    /// lanes past `end` repeating row `start`'s law.
+    fn gather_block(&self, start: usize, end: usize, lanes: &mut <Self::Law as FamilyLaw>::Lanes);
+
     /// Checked for `len` contacts: every column one value per contact or a single one, and
     /// every row's law within its ranges (`Restitution::new` / `Walton::new`: `e` in
     /// `[0, 1]`, `beta` in `[-1, 1]`, `mu >= 0`, none NaN); the error names the field and,
@@ -102,11 +106,47 @@ fn at<T: Clone>(x: &[T], i: usize) -> T {
     x[if x.len() == 1 { 0 } else { i }].clone()
 }
 
-/// Checks each row from 0 to `rows` (1 when every column is shared) with `law`.
+/// Rows `start..end` (at most 8) of `column` into `lanes`, the lanes past `end` repeating
+/// row `start`: 8 consecutive values copied as they are, or the one value of a shared column.
+#[inline(always)]
+fn column_into<T: Clone>(column: &[T], start: usize, end: usize, lanes: &mut Lanes<T>) {
+    if column.len() == 1 {
+        lanes.fill(column[0].clone());
+    } else if end - start == LANES {
+        lanes.clone_from_slice(&column[start..end]);
+    } else {
+        for (l, x) in lanes.iter_mut().enumerate() {
+            let i = if start + l < end { start + l } else { start };
+            *x = column[i].clone();
+        }
+    }
+}
+
+/// Whether every value of `column` is in `[lo, hi]` (NaN is not; a loop without early exit
+/// that LLVM vectorizes: the fast path of the checks).
+fn all_within<T: Scalar>(column: &[T], lo: &T, hi: &T) -> bool {
+    column.iter().fold(true, |ok, x| ok & (lo <= x) & (x <= hi))
+}
+
+/// Whether every value of `column` is finite and `>= 0`.
+fn all_finite_non_negative<T: Scalar>(column: &[T]) -> bool {
+    let zero = T::zero();
+    column
+        .iter()
+        .fold(true, |ok, x| ok & (&zero <= x) & x.is_finite())
+}
+
+/// Checks each row from 0 to `rows` (1 when every column is shared) with `law`, unless
+/// `fast` (every column within its range) says every row passes: `law` then names the first
+/// refused row and field.
 fn check_rows<L>(
     rows: usize,
+    fast: bool,
     law: impl Fn(usize) -> Result<L, InputError>,
 ) -> Result<(), LawRowError> {
+    if fast {
+        return Ok(());
+    }
     for i in 0..rows {
         law(i).map_err(|error| LawRowError {
             row: Some(i),
@@ -116,10 +156,11 @@ fn check_rows<L>(
     Ok(())
 }
 
-/// The number of rows to check: `len`, or 1 when every column is shared.
+/// The number of rows to check: `len`, or 1 when every column is shared (its one law is
+/// checked even for no contacts).
 fn rows_to_check<T>(columns: &[&[T]], len: usize) -> usize {
     if columns.iter().all(|c| c.len() == 1) {
-        len.min(1)
+        1
     } else {
         len
     }
@@ -158,9 +199,17 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for RestitutionRows<'a, T> {
         use crate::error::Field;
         shape(self.e, len, Field::RestitutionE)?;
         shape(self.beta, len, Field::RestitutionBeta)?;
-        check_rows(rows_to_check(&self.columns(), len), |i| {
+        let (zero, one) = (T::zero(), T::one());
+        let fast = all_within(self.e, &zero, &one) && all_within(self.beta, &-one.clone(), &one);
+        check_rows(rows_to_check(&self.columns(), len), fast, |i| {
             Restitution::new(at(self.e, i), at(self.beta, i))
         })
+    }
+
+    #[inline(always)]
+    fn gather_block(&self, start: usize, end: usize, lanes: &mut RestitutionLanes<T>) {
+        column_into(self.e, start, end, &mut lanes.e);
+        column_into(self.beta, start, end, &mut lanes.beta);
     }
 }
 
@@ -192,9 +241,20 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for WaltonRows<'a, T> {
         shape(self.e, len, Field::RestitutionE)?;
         shape(self.mu, len, Field::FrictionMu)?;
         shape(self.beta0, len, Field::WaltonBeta0)?;
-        check_rows(rows_to_check(&self.columns(), len), |i| {
+        let (zero, one) = (T::zero(), T::one());
+        let fast = all_within(self.e, &zero, &one)
+            && all_finite_non_negative(self.mu)
+            && all_within(self.beta0, &-one.clone(), &one);
+        check_rows(rows_to_check(&self.columns(), len), fast, |i| {
             Walton::new(at(self.e, i), at(self.mu, i), at(self.beta0, i))
         })
+    }
+
+    #[inline(always)]
+    fn gather_block(&self, start: usize, end: usize, lanes: &mut WaltonLanes<T>) {
+        column_into(self.e, start, end, &mut lanes.e);
+        column_into(self.mu, start, end, &mut lanes.mu);
+        column_into(self.beta0, start, end, &mut lanes.beta0);
     }
 }
 
@@ -211,10 +271,6 @@ pub(super) fn gather_laws<T, R: LawRows<T>, B>(
         if start >= range.end {
             break;
         }
-        for l in Lane::all() {
-            let i = start + l.index();
-            let i = if i < range.end { i } else { start };
-            block.law.set_lane(l, laws.law(i));
-        }
+        laws.gather_block(start, range.end.min(start + LANES), &mut block.law);
     }
 }

@@ -267,7 +267,7 @@ fn refused_laws_name_the_field_and_the_row() {
 }
 
 #[test]
-fn no_contacts_take_any_law_column_of_one_value() {
+fn no_contacts_take_a_valid_law_column_of_one_value() {
     let a = arrays::<2>(1, 0, [false, false]);
     let mut out = nan_rows::<2>(0);
     let laws = RestitutionRows {
@@ -277,4 +277,16 @@ fn no_contacts_take_any_law_column_of_one_value() {
     Exec::auto()
         .rough_free_rows::<_, f64, 2, 1>(&laws, &rows(&a), rows_mut(&mut out))
         .expect("no rows");
+    // A shared law is checked even for no contacts.
+    let laws = RestitutionRows {
+        e: &[0.5],
+        beta: &[1.5],
+    };
+    let err = Exec::auto()
+        .rough_free_rows::<_, f64, 2, 1>(&laws, &rows(&a), rows_mut(&mut out))
+        .unwrap_err();
+    assert_eq!(
+        (err.error.field, err.row),
+        (Field::RestitutionBeta, Some(0))
+    );
 }
