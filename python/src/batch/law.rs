@@ -14,7 +14,7 @@
 //! those. Not split on the validated path, and not interrupted by Ctrl-C (a batch of 10^6
 //! rows takes about 0.1 s unvalidated, 1-2 s validated).
 
-use super::inputs::{nu_row, Inputs};
+use super::inputs::{nu_row, param, Inputs};
 use super::outputs::{put, state_rows_mut, Outputs};
 use collision_core::batch::{
     EachLawBatchKernel, Exec, LawRowError, LawRows, RestitutionLanes, RestitutionRows,
@@ -135,11 +135,15 @@ where
         }
         .map_err(law_error)?;
     }
-    // The rows with an immovable body: the `fixed` kernel, as `collide_unchecked` routes them.
+    // The rows with an immovable body: the `fixed` kernel, as `collide_unchecked` routes them
+    // (none to look for when both bodies share a finite mass).
     let zero = T::zero();
+    let [w1, w2] = [&a.inv_mass, &b.inv_mass];
+    if w1.len() == 1 && w2.len() == 1 && w1[0] != zero && w2[0] != zero {
+        return Ok(());
+    }
     for i in 0..rows {
-        let (_, [b1, b2]) = row(i);
-        if b1.inv_mass == zero || b2.inv_mass == zero {
+        if param(w1, i) == zero || param(w2, i) == zero {
             let [p1, p2] = unchecked(i);
             put(&mut out, i, 0, &p1, &pairs);
             put(&mut out, i, 1, &p2, &pairs);
