@@ -63,6 +63,10 @@ pub enum Params {
     PerContact,
     /// One set for the whole batch, passed as scalars (broadcast).
     Shared,
+    /// The ball parameters *and the law* of the rough-ball family per contact: each block
+    /// carries the lanes of its contacts' laws (`WithLaw { block, law }`), so nothing is
+    /// computed once per call. Emitted for the rough and Walton kernels only.
+    Each,
 }
 
 impl Params {
@@ -74,6 +78,7 @@ impl Params {
         match self {
             Params::PerContact => variant.name().to_string(),
             Params::Shared => format!("{}_shared", variant.name()),
+            Params::Each => format!("{}_each", variant.name()),
         }
     }
 
@@ -150,20 +155,25 @@ fn uniform_nodes(graph: &Graph, shared: &BTreeSet<String>) -> Vec<bool> {
 /// The place of a kernel input in the batch: a path to a lane array (indexed by `l`) or, for
 /// a shared parameter, to a scalar.
 fn input_path(name: &str, n: usize, variant: Variant, params: Params) -> TokenStream {
+    // The law: one for the call (`law.e`), or a lane of the block's law lanes (`law.e[l]`).
+    let lane = match params {
+        Params::Each => quote!([l]),
+        _ => quote!(),
+    };
     if name == names::restitution_e() {
-        return quote!(law.e);
+        return quote!(law.e #lane);
     }
     if name == names::restitution_beta() {
-        return quote!(law.beta);
+        return quote!(law.beta #lane);
     }
     if name == names::friction_mu() {
-        return quote!(law.mu);
+        return quote!(law.mu #lane);
     }
     if name == names::walton_beta0() {
-        return quote!(law.beta0);
+        return quote!(law.beta0 #lane);
     }
     let contact = match params {
-        Params::PerContact => quote!(block.contact),
+        Params::PerContact | Params::Each => quote!(block.contact),
         Params::Shared => quote!(block),
     };
     for k in 0..n {
@@ -197,9 +207,9 @@ fn input_path(name: &str, n: usize, variant: Variant, params: Params) -> TokenSt
                 (Params::Shared, Variant::Fixed, 1) => quote!(radius1),
                 (Params::Shared, _, 1) => quote!(ball1.#field),
                 (Params::Shared, _, _) => quote!(ball2.#field),
-                (Params::PerContact, Variant::Fixed, 1) => quote!(block.radius1[l]),
-                (Params::PerContact, Variant::Fixed, _) => quote!(block.ball2.#field[l]),
-                (Params::PerContact, Variant::Free, _) => quote!(block.balls[#b].#field[l]),
+                (_, Variant::Fixed, 1) => quote!(block.radius1[l]),
+                (_, Variant::Fixed, _) => quote!(block.ball2.#field[l]),
+                (_, Variant::Free, _) => quote!(block.balls[#b].#field[l]),
             };
         }
     }
@@ -240,9 +250,21 @@ fn signature(
         Variant::Free => quote!([StateLanes<T, #nl, #sl>; 2]),
         Variant::Fixed => quote!(StateLanes<T, #nl, #sl>),
     };
+    let law_lanes = match law {
+        model::Law::Walton => quote!(WaltonLanes<T>),
+        _ => quote!(RestitutionLanes<T>),
+    };
     let (shared, block) = match (params, variant) {
         (Params::PerContact, Variant::Free) => (quote!(), quote!(FreeLanes<T, #nl, #sl>)),
         (Params::PerContact, Variant::Fixed) => (quote!(), quote!(FixedLanes<T, #nl, #sl>)),
+        (Params::Each, Variant::Free) => (
+            quote!(),
+            quote!(WithLaw<FreeLanes<T, #nl, #sl>, #law_lanes>),
+        ),
+        (Params::Each, Variant::Fixed) => (
+            quote!(),
+            quote!(WithLaw<FixedLanes<T, #nl, #sl>, #law_lanes>),
+        ),
         (Params::Shared, Variant::Free) => (
             quote!(ball1: &Ball<T>, ball2: &Ball<T>,),
             quote!(ContactLanes<T, #nl, #sl>),
@@ -252,10 +274,10 @@ fn signature(
             quote!(ContactLanes<T, #nl, #sl>),
         ),
     };
-    let law = match law {
-        model::Law::Rough => quote!(law: &Restitution<T>,),
-        model::Law::Walton => quote!(law: &Walton<T>,),
-        model::Law::NoSlip => quote!(),
+    let law = match (law, params) {
+        (_, Params::Each) | (model::Law::NoSlip, _) => quote!(),
+        (model::Law::Rough, _) => quote!(law: &Restitution<T>,),
+        (model::Law::Walton, _) => quote!(law: &Walton<T>,),
     };
     (
         quote!(#shared #law blocks: &[#block], out: &mut [#post]),
@@ -281,18 +303,23 @@ fn docs(
         ),
         "lane by lane, for `min(blocks.len(), out.len())` blocks.".into(),
     ];
-    match kernel.law {
-        model::Law::Rough => lines.push(
+    match (kernel.law, params) {
+        (model::Law::Rough | model::Law::Walton, Params::Each) => lines.push(
+            "The law: per contact, in the lanes of each block's `law`; computed in the lane loop.".into(),
+        ),
+        (model::Law::Rough, _) => lines.push(
             "The law `(e, beta)`: shared by every contact; `h_n`, `h_t` are computed once.".into(),
         ),
-        model::Law::Walton => lines.push(
+        (model::Law::Walton, _) => lines.push(
             "The law `(e, mu, beta0)`: shared by every contact; what depends on it alone is computed once."
                 .into(),
         ),
-        model::Law::NoSlip => {}
+        (model::Law::NoSlip, _) => {}
     }
     match params {
-        Params::PerContact => lines.push("Ball parameters: per contact, in the lanes.".into()),
+        Params::PerContact | Params::Each => {
+            lines.push("Ball parameters: per contact, in the lanes.".into())
+        }
         Params::Shared => lines.push(
             "Ball parameters: shared by every contact; what depends on them alone is computed once."
                 .into(),
@@ -332,10 +359,11 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
     let sched: Schedule = schedule(&kernel.graph, roots);
     let namer = Namer::new(kernel, &sched, &sched.steps);
     let mut shared = match params {
-        Params::PerContact => BTreeSet::new(),
+        Params::PerContact | Params::Each => BTreeSet::new(),
         Params::Shared => shared_inputs(variant),
     };
     match kernel.law {
+        _ if params == Params::Each => {}
         model::Law::Rough => shared.extend([names::restitution_e(), names::restitution_beta()]),
         model::Law::Walton => shared.extend([
             names::restitution_e(),
@@ -445,6 +473,12 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
         model::Law::Walton => quote!(ScalarRoot),
         _ => quote!(Scalar),
     };
+    let block_binding = match params {
+        Params::Each => {
+            quote!(let (block, law, post) = (&blocks[k].block, &blocks[k].law, &mut out[k]);)
+        }
+        _ => quote!(let (block, post) = (&blocks[k], &mut out[k]);),
+    };
     let tokens = quote! {
         #doc
         #[inline(always)]
@@ -460,7 +494,7 @@ fn emit_batch(kernel: &KernelGraph, params: Params) -> EmittedBatch {
             let ahead = prefetch_distance::<#block_ty>();
             for k in 0..blocks.len().min(out.len()) {
                 prefetch(blocks.get(k + ahead));
-                let (block, post) = (&blocks[k], &mut out[k]);
+                #block_binding
                 for group in 0..LANES / W {
                     for l in group * W..group * W + W {
                         #(#lane_bindings)*
@@ -503,7 +537,8 @@ fn header(dim: usize, kernels: &[BatchSummary]) -> String {
 
 /// Generate the batch kernels of dimension `dim` (`free`, `fixed`, `free_shared`,
 /// `fixed_shared`, and the rough-ball and Walton laws' `rough_free`, ..., `walton_free`, ...,
-/// with the law shared by the call) as one formatted source file; `crate_path` as in
+/// with the law shared by the call, and `rough_free_each`, `rough_fixed_each`,
+/// `walton_free_each`, `walton_fixed_each` with a law per contact) as one formatted source file; `crate_path` as in
 /// [`crate::generate`].
 ///
 /// Panics if the emission is not valid Rust: a generator bug.
@@ -516,13 +551,20 @@ pub fn generate(dim: usize, crate_path: &str) -> BatchModule {
                 .map(|&v| crate::walton::build_walton(dim, v)),
         )
         .collect();
+    // The no-slip kernels in two modes; the family's in three (`Params::Each`: the law per
+    // contact).
+    let each = built
+        .iter()
+        .filter(|k| k.law != model::Law::NoSlip)
+        .map(|k| emit_batch(k, Params::Each));
     let emitted: Vec<EmittedBatch> = Params::ALL
         .iter()
         .flat_map(|&p| built.iter().map(move |k| emit_batch(k, p)))
+        .chain(each)
         .collect();
     let path: syn::Path = syn::parse_str(crate_path).expect("crate path is a Rust path");
     let imports = quote! {
-        use #path::batch::{prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance};
+        use #path::batch::{prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance, RestitutionLanes, WaltonLanes, WithLaw};
         use #path::{Ball, RefArith, Restitution, Scalar, ScalarRoot, Walton};
     };
     let items = emitted.iter().map(|e| &e.tokens);
@@ -605,6 +647,8 @@ mod tests {
                 };
                 match k.params {
                     Params::PerContact => assert_eq!(k.per_batch, law),
+                    // The law per contact: nothing is left for the call.
+                    Params::Each => assert_eq!(k.per_batch, OpCount::default(), "{k:?}"),
                     // D, g_1 g_2 / D and the rho_i leave the lane loop; of `fixed`,
                     // g_2 / (1 + g_2) does, and the divisions of y_k = .. / R_2 stay in it
                     // (`crate::unbiased`).
@@ -622,12 +666,13 @@ mod tests {
         for dim in DIMS {
             let source = generate(dim, "crate").source;
             let file = syn::parse_file(&source).expect("generated source parses");
-            assert_eq!(file.items.len(), 2 + 12, "two use items, twelve kernels");
+            assert_eq!(file.items.len(), 2 + 16, "two use items, sixteen kernels");
             for (law, v) in [model::Law::NoSlip, model::Law::Rough, model::Law::Walton]
                 .into_iter()
                 .flat_map(|l| Variant::ALL.map(|v| (l, v)))
             {
-                for p in Params::ALL {
+                let each = (law != model::Law::NoSlip).then_some(Params::Each);
+                for p in Params::ALL.into_iter().chain(each) {
                     let name = p.function_name_of(law, v);
                     let body = source
                         .split(&format!("pub fn {name}<"))
@@ -695,6 +740,38 @@ mod tests {
                 !in_loop.contains("law."),
                 "{name}: the law is read per lane"
             );
+        }
+    }
+
+    /// With a law per contact (`_each`), every law field is read per lane from the block's
+    /// law lanes, and `h_n` is computed in the lane loop.
+    #[test]
+    fn the_law_per_contact_is_read_in_the_lane_loop() {
+        let source = generate(3, "crate").source;
+        for (name, fields) in [
+            ("rough_free_each", &["law.e[l]", "law.beta[l]"][..]),
+            ("rough_fixed_each", &["law.e[l]", "law.beta[l]"]),
+            (
+                "walton_free_each",
+                &["law.e[l]", "law.mu[l]", "law.beta0[l]"],
+            ),
+            (
+                "walton_fixed_each",
+                &["law.e[l]", "law.mu[l]", "law.beta0[l]"],
+            ),
+        ] {
+            let body = source.split(&format!("pub fn {name}<")).nth(1).unwrap();
+            let (before_loop, in_loop) = body.split_once("for k in 0..").unwrap();
+            let in_loop = in_loop.split("\npub fn ").next().unwrap();
+            assert!(before_loop.contains("WithLaw<"), "{name}");
+            assert!(
+                !before_loop.contains("law."),
+                "{name}: nothing of the law per call"
+            );
+            for f in fields {
+                assert!(in_loop.contains(f), "{name}: {f} per lane");
+            }
+            assert!(in_loop.contains("let h_n: T ="), "{name}");
         }
     }
 

@@ -29,13 +29,15 @@
 
 #[path = "support/cases.rs"]
 mod cases;
+#[path = "support/rounds.rs"]
+mod rounds;
 
 use cases::{batch, Case};
 use collision_core::batch::{
-    BallRows, BatchKernel, Contact, Exec, FreeBatch, FreeLanes, FreeRows, Isa, PairBatch,
-    StateLanes, StateRows, StateRowsMut, LANES,
+    BatchKernel, Contact, Exec, FreeBatch, FreeLanes, Isa, PairBatch, StateLanes, LANES,
 };
 use collision_core::{BodyState, Generated, Kernel};
+use rounds::{summary, thread_seconds, RowArrays};
 use std::hint::black_box;
 
 const SEED: u64 = 0x6e6f_736c_6970; // "noslip"
@@ -49,27 +51,6 @@ const IN_CACHE: usize = 512;
 /// Bytes read and written per contact: normal, two balls, two states in; two states out.
 fn bytes_per_contact(n: usize, s: usize) -> usize {
     8 * (n + 6 + 4 * (n + s))
-}
-
-/// CPU seconds of the calling thread.
-fn thread_seconds() -> f64 {
-    let mut t = libc_timespec::default();
-    // SAFETY: `t` is a valid timespec to write into; clock 3 is CLOCK_THREAD_CPUTIME_ID.
-    let rc = unsafe { clock_gettime(3, &mut t) };
-    assert_eq!(rc, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID)");
-    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
-}
-
-#[repr(C)]
-#[derive(Default)]
-#[allow(non_camel_case_types)]
-struct libc_timespec {
-    tv_sec: i64,
-    tv_nsec: i64,
-}
-
-extern "C" {
-    fn clock_gettime(clock: i32, t: *mut libc_timespec) -> i32;
 }
 
 /// The floor's work on one block: every input lane read, every output lane written.
@@ -167,74 +148,6 @@ fn flat_sum(w: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + rest
 }
 
-/// The contacts as row-major arrays (one contact per row, full skew matrices), as NumPy
-/// holds them, and outputs of the same shape.
-struct RowArrays {
-    nu: Vec<f64>,
-    spin: [Vec<f64>; 2],
-    velocity: [Vec<f64>; 2],
-    params: [[Vec<f64>; 3]; 2],
-    out: [[Vec<f64>; 2]; 2],
-}
-
-impl RowArrays {
-    fn new<const N: usize, const S: usize>(cases: &[Case<N, S>]) -> Self {
-        let pairs: Vec<(usize, usize)> = collision_core::skew_pairs(N).collect();
-        let mut a = RowArrays {
-            nu: cases.iter().flat_map(|c| c.nu).collect(),
-            spin: [vec![], vec![]],
-            velocity: [vec![], vec![]],
-            params: Default::default(),
-            out: Default::default(),
-        };
-        for b in 0..2 {
-            for c in cases {
-                let s = &c.states[b];
-                let mut m = vec![0.0; N * N];
-                for (&x, &(r, k)) in s.spin.iter().zip(&pairs) {
-                    m[r * N + k] = x;
-                    m[k * N + r] = -x;
-                }
-                a.spin[b].extend(m);
-                a.velocity[b].extend(s.velocity);
-                let ball = &c.balls[b];
-                a.params[b][0].push(ball.inv_mass);
-                a.params[b][1].push(ball.radius);
-                a.params[b][2].push(ball.gamma2);
-            }
-            a.out[b] = [vec![0.0; cases.len() * N * N], vec![0.0; cases.len() * N]];
-        }
-        a
-    }
-
-    fn split(&mut self) -> (FreeRows<'_, f64>, [StateRowsMut<'_, f64>; 2]) {
-        let [[s1, v1], [s2, v2]] = &mut self.out;
-        let rows = FreeRows {
-            nu: &self.nu,
-            states: [0, 1].map(|b| StateRows {
-                spin: &self.spin[b],
-                velocity: &self.velocity[b],
-            }),
-            balls: [0, 1].map(|b| BallRows {
-                inv_mass: &self.params[b][0],
-                radius: &self.params[b][1],
-                gamma2: &self.params[b][2],
-            }),
-        };
-        let out = [
-            StateRowsMut {
-                spin: s1,
-                velocity: v1,
-            },
-            StateRowsMut {
-                spin: s2,
-                velocity: v2,
-            },
-        ];
-        (rows, out)
-    }
-}
-
 /// The rows before `Exec::free_rows`: chunks of 512 rows gathered, run and scattered.
 #[inline(never)]
 fn rows_steps<const N: usize, const S: usize>(a: &mut RowArrays)
@@ -319,11 +232,6 @@ fn args() -> Args {
         }
     }
     a
-}
-
-fn summary(v: &mut [f64]) -> String {
-    v.sort_by(f64::total_cmp);
-    format!("{:.2} ({:.2}-{:.2})", v[v.len() / 2], v[0], v[v.len() - 1])
 }
 
 fn run_dim<const N: usize, const S: usize>(a: &Args)

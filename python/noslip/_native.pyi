@@ -35,6 +35,26 @@ def collide_batch_f32(
     parallel: bool,
     out: _BatchOut | None = None,
 ) -> _BatchOut: ...
+def collide_batch_law_f64(
+    normal: npt.NDArray[Any],
+    body1: _BodyArrays,
+    body2: _BodyArrays,
+    kind: str,
+    law: list[npt.NDArray[Any]],
+    validate: bool,
+    parallel: bool,
+    out: _BatchOut | None = None,
+) -> _BatchOut: ...
+def collide_batch_law_f32(
+    normal: npt.NDArray[Any],
+    body1: _BodyArrays,
+    body2: _BodyArrays,
+    kind: str,
+    law: list[npt.NDArray[Any]],
+    validate: bool,
+    parallel: bool,
+    out: _BatchOut | None = None,
+) -> _BatchOut: ...
 def reference_seconds(
     normal: npt.NDArray[np.float64],
     body1: _BodyArrays,

@@ -207,11 +207,13 @@ def collide_batch(
     normal: npt.ArrayLike,
     bodies: Sequence[Mapping[str, Any]],
     *,
+    contact: Union[str, Mapping[str, Any], None] = None,
     validate: bool = True,
     parallel: bool = True,
     out: Optional[Sequence[Mapping[str, _Array]]] = None,
 ) -> Tuple[Dict[str, _Array], Dict[str, _Array]]:
-    """The no-slip collision map on every row of a batch.
+    """The no-slip collision map (or another law of the rough-ball family) on every row of a
+    batch.
 
     Row ``k`` is one contact: ``xi_k+ = 2 P_G(q_k) xi_k - xi_k`` (see :func:`noslip.collide`).
     With ``validate`` (the default) every row goes through :func:`noslip.collide`'s own
@@ -262,6 +264,18 @@ def collide_batch(
         and ``gamma2`` row by row by the constructor :func:`noslip.collide` builds its balls
         with (``Ball::new``: the same numbers, bit for bit, and the same checks, with or
         without ``validate``).
+    contact : str or mapping, optional
+        The contact law, as :func:`noslip.collide` takes it: ``"no-slip"`` (the default),
+        ``"smooth"`` (``(e, beta) = (1, -1)``), ``{"e": e, "beta": beta}`` (the rough-ball
+        law) or ``{"e": e, "mu": mu, "beta0": beta0}`` (the Walton law); here each number is
+        a scalar shared by every row or an ``(N,)`` array, one law per row (``e`` in
+        ``[0, 1]``, ``beta`` and ``beta0`` in ``[-1, 1]``, ``mu >= 0``, no NaN: a refused
+        value names the row and the field, ``row 3: contact.e: ...``). With a law other than
+        no-slip, ``validate`` runs each row through ``collide_rough`` / ``collide_walton``
+        (Rust; :func:`noslip.collide`'s checks and rounding under that row's law) on the
+        calling thread, and without it the rows go through ``Exec::rough_free_rows``: the
+        scalar family kernel's bits on every row (docs/batch.md, "Laws as columns"); such a
+        batch is not interrupted by Ctrl-C.
     validate : bool
         Check every row as :func:`noslip.collide` does (finite; unit normal; valid balls;
         skew ``U``; approaching, ``(u_2 - u_1) . nu <= 0``; a result that fits the float
@@ -312,6 +326,7 @@ def collide_batch(
     if len(bodies) != 2:
         raise InputError(f"bodies: expected two bodies, got {len(bodies)}")
     parsed = [_parse_body(bodies[b], b) for b in range(2)]
+    law = _parse_contact(contact)
     dtype = result_dtype(
         [("normal", nu)]
         + [
@@ -320,14 +335,23 @@ def collide_batch(
             for k, x in body.items()
             if k != "distribution"
         ]
+        + ([] if law is None else [(f"contact.{k}", x) for k, x in law[1].items()])
     )
     nu = _cast(nu, dtype, "normal")
     if single:
         nu = nu.reshape(1, n)
     b1, b2 = (_body_arrays(parsed[b], b, dtype, rows, n, single) for b in range(2))
-    run = _native.collide_batch_f64 if dtype == np.float64 else _native.collide_batch_f32
     arrays = None if out is None else _out(out, dtype, rows, n, single)
-    s1, v1, s2, v2 = run(nu, b1, b2, validate, parallel, arrays)
+    if law is None:
+        run = _native.collide_batch_f64 if dtype == np.float64 else _native.collide_batch_f32
+        s1, v1, s2, v2 = run(nu, b1, b2, validate, parallel, arrays)
+    else:
+        kind, values = law
+        columns = [_law_column(x, dtype, f"contact.{k}", rows, single) for k, x in values.items()]
+        run_law = (
+            _native.collide_batch_law_f64 if dtype == np.float64 else _native.collide_batch_law_f32
+        )
+        s1, v1, s2, v2 = run_law(nu, b1, b2, kind, columns, validate, parallel, arrays)
     if out is not None:
         return (
             {"angular_velocity": out[0]["angular_velocity"], "velocity": out[0]["velocity"]},
@@ -339,6 +363,47 @@ def collide_batch(
         {"angular_velocity": s1, "velocity": v1},
         {"angular_velocity": s2, "velocity": v2},
     )
+
+
+#: The keys of each law of the family in ``contact``, in the native order of its columns.
+_LAW_KEYS = {"rough": ("e", "beta"), "walton": ("e", "mu", "beta0")}
+
+
+def _parse_contact(contact: Any) -> Optional[Tuple[str, Dict[str, Any]]]:
+    """``contact`` as ``(kind, {key: number or array})`` (``"rough"`` or ``"walton"``, the keys
+    in their native order), or ``None`` for the no-slip map; a bad law names ``contact``."""
+    if contact is None or (isinstance(contact, str) and contact == "no-slip"):
+        return None
+    if isinstance(contact, str):
+        if contact == "smooth":
+            return ("rough", {"e": 1, "beta": -1})
+        raise InputError(
+            f'contact: expected "no-slip", "smooth", {{"e", "beta"}} or {{"e", "mu", "beta0"}}, '
+            f"got {contact!r}"
+        )
+    if not isinstance(contact, Mapping):
+        raise InputError(
+            f'contact: expected "no-slip", "smooth" or a mapping, got {type(contact).__name__}'
+        )
+    keys = set(contact)
+    for kind, wanted in _LAW_KEYS.items():
+        if keys == set(wanted):
+            return (kind, {k: _numeric(contact[k], f"contact.{k}") for k in wanted})
+    raise InputError(
+        "contact: expected the keys e, beta (the rough-ball law) or e, mu, beta0 (the Walton "
+        f"law), got {', '.join(sorted(str(k) for k in keys)) or 'none'}"
+    )
+
+
+def _law_column(x: Any, dtype: np.dtype[Any], field: str, rows: int, single: bool) -> _Array:
+    """One column of the law: ``(rows,)`` or one value, of ``dtype``, C-contiguous."""
+    a = _cast(x, dtype, field)
+    if a.ndim == 0:
+        a = a.reshape(1)
+    elif single or a.ndim != 1 or len(a) not in (1, rows):
+        expected = "a scalar" if single else f"({rows},) or a scalar"
+        raise _shape_error(field, expected, a.shape)
+    return np.ascontiguousarray(a)
 
 
 def _out(

@@ -38,6 +38,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(case::collide_case, m)?)?;
     m.add_function(wrap_pyfunction!(batch::collide_batch_f64, m)?)?;
     m.add_function(wrap_pyfunction!(batch::collide_batch_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::collide_batch_law_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::collide_batch_law_f32, m)?)?;
     m.add_function(wrap_pyfunction!(reference::reference_seconds, m)?)?;
     m.add_function(wrap_pyfunction!(batch::isa, m)?)?;
     m.add_function(wrap_pyfunction!(batch::params::batch_params_f64, m)?)?;

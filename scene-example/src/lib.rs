@@ -16,6 +16,12 @@ pub mod sinai {
     include!(concat!(env!("OUT_DIR"), "/sinai.rs"));
 }
 
+/// `walton_box.toml` (not a shipped scene): every kind of kernel with a Walton law folded in,
+/// for `tests/walton.rs`.
+pub mod walton_box {
+    include!(concat!(env!("OUT_DIR"), "/walton_box.rs"));
+}
+
 use noslip_scene::PairSet;
 use num_rational::BigRational;
 

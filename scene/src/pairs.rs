@@ -46,10 +46,11 @@ pub struct PairSet {
 }
 
 /// The contact law a [`PairSet`]'s kernels of each kind apply, folded into them as exact
-/// constants: [`ContactKind::NoSlip`] or a [`ContactKind::Rough`] law `(e, beta)`. Smooth
-/// contacts need no kernel, and Walton's law (a square root of the contact's own numbers)
-/// keeps the generic kernels: pairs with those laws are not in the set (and a kind with no
-/// pair in the set has the default law here, which nothing applies).
+/// constants: [`ContactKind::NoSlip`], a [`ContactKind::Rough`] law `(e, beta)` or a
+/// [`ContactKind::Walton`] law `(e, mu, beta0)` (its one square root, of the contact's own
+/// numbers, stays in the kernel). Smooth contacts need no kernel: pairs with that law are not
+/// in the set (and a kind with no pair in the set has the default law here, which nothing
+/// applies).
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct PairLaws {
     /// The law of every ball-ball pair.
@@ -70,9 +71,14 @@ impl PairLaws {
         }
     }
 
-    /// Whether a kernel can have `law` folded into it: the no-slip map and a rough law.
+    /// Whether a kernel can have `law` folded into it: the no-slip map, a rough law and a
+    /// Walton law (its `e`, `mu` and `beta0` folded; its square root stays, of the contact's
+    /// own numbers).
     pub fn foldable(law: &ContactKind) -> bool {
-        matches!(law, ContactKind::NoSlip | ContactKind::Rough { .. })
+        matches!(
+            law,
+            ContactKind::NoSlip | ContactKind::Rough { .. } | ContactKind::Walton { .. }
+        )
     }
 }
 
@@ -141,7 +147,7 @@ pub(crate) fn module_name(stem: &str) -> String {
 impl Scene {
     /// The pair kinds this scene can meet, each with its law folded in ([`PairLaws`]):
     /// ball-ball for every pair of species present (a species with itself only if it has two
-    /// balls) if the balls' contact is no-slip or rough; ball-wall for every present species and
+    /// balls) if the balls' contact is no-slip, rough or Walton; ball-wall for every present species and
     /// walled axis side of the box if the box's contact is; ball-obstacle for every present
     /// species if obstacles or other boundaries ([`Scene::boundaries`]) have such a contact:
     /// the ball-obstacle kernel is the `fixed` map with the local normal that every immovable
@@ -163,8 +169,7 @@ impl Scene {
             }
         }
         let foldable = PairLaws::foldable;
-        // Box walls of another kind use no `fixed` kernel of their own (smooth: none; a
-        // Walton law: the generic Walton kernels).
+        // Smooth box walls use no `fixed` kernel of their own.
         let walls: Vec<usize> = (0..self.boundary.len())
             .filter(|&k| self.boundary[k] == Boundary::Wall && foldable(&self.box_contact))
             .collect();

@@ -8,7 +8,16 @@
 //! (`kernels::dN::walton`, §15.1) `beta = min(beta0, beta_C)`, `beta_C` the tangential
 //! restitution at which the tangential impulse is `mu` times the normal one.
 
-use collision_core::kernels::{d2, d3, d4, d5, d6};
+#[cfg(feature = "d2")]
+use collision_core::kernels::d2;
+#[cfg(feature = "d3")]
+use collision_core::kernels::d3;
+#[cfg(feature = "d4")]
+use collision_core::kernels::d4;
+#[cfg(feature = "d5")]
+use collision_core::kernels::d5;
+#[cfg(feature = "d6")]
+use collision_core::kernels::d6;
 use collision_core::{Ball, BodyState, Restitution, Walton};
 
 /// A rough law's parameters: constant `(e, beta)`, or Walton's `(e, mu, beta0)`.
@@ -53,12 +62,19 @@ pub fn pair<const N: usize, const S: usize>(
             [state(&a), state(&b)]
         }};
     }
+    // Each dimension only with its feature (a build of n = 2 alone, as noslip-scene-example's).
     match N {
+        #[cfg(feature = "d2")]
         2 => free!(d2),
+        #[cfg(feature = "d3")]
         3 => free!(d3),
+        #[cfg(feature = "d4")]
         4 => free!(d4),
+        #[cfg(feature = "d5")]
         5 => free!(d5),
-        _ => free!(d6),
+        #[cfg(feature = "d6")]
+        6 => free!(d6),
+        n => panic!("n = {n}: no rough kernels (noslip-sim built without feature d{n})"),
     }
 }
 
@@ -79,12 +95,19 @@ pub fn fixed<const N: usize, const S: usize>(
             })
         }};
     }
+    // Each dimension only with its feature (a build of n = 2 alone, as noslip-scene-example's).
     match N {
+        #[cfg(feature = "d2")]
         2 => fixed!(d2),
+        #[cfg(feature = "d3")]
         3 => fixed!(d3),
+        #[cfg(feature = "d4")]
         4 => fixed!(d4),
+        #[cfg(feature = "d5")]
         5 => fixed!(d5),
-        _ => fixed!(d6),
+        #[cfg(feature = "d6")]
+        6 => fixed!(d6),
+        n => panic!("n = {n}: no rough kernels (noslip-sim built without feature d{n})"),
     }
 }
 

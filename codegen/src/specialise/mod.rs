@@ -1,6 +1,7 @@
 //! Kernels specialised to a scene: only its dimension, only its pair kinds, each species'
-//! constants and each kind's contact law (the no-slip map, or a rough law's exact `e` and
-//! `beta`: [`noslip_scene::PairLaws`]) folded into exact literals before scheduling.
+//! constants and each kind's contact law (the no-slip map, a rough law's exact `e` and
+//! `beta`, or a Walton law's exact `e`, `mu` and `beta0`: [`noslip_scene::PairLaws`]) folded
+//! into exact literals before scheduling.
 //!
 //! The same model builder ([`crate::model::build_on`]) runs with constants in place of the
 //! parameters, so the exact constant folding of [`crate::ir`] removes every division (the
@@ -151,6 +152,15 @@ pub fn build(set: &PairSet, pair: Pair) -> KernelGraph {
             let outputs = model::build_rough_on(&mut g, &inputs, variant(pair), law);
             (model::Law::Rough, outputs)
         }
+        ContactKind::Walton { e, mu, beta0 } => {
+            let law = crate::walton::WaltonInputs {
+                e: constant(&mut g, e),
+                mu: constant(&mut g, mu),
+                beta0: constant(&mut g, beta0),
+            };
+            let outputs = crate::walton::build_walton_on(&mut g, &inputs, variant(pair), law);
+            (model::Law::Walton, outputs)
+        }
         ContactKind::NoSlip => (
             model::Law::NoSlip,
             model::build_on(&mut g, &inputs, variant(pair)),
@@ -167,19 +177,23 @@ pub fn build(set: &PairSet, pair: Pair) -> KernelGraph {
 }
 
 /// The generic kernel `pair`'s kernel replaces, by its path below `kernels::dN`: `free`,
-/// `fixed`, or under a rough law `rough::free`, `rough::fixed`.
+/// `fixed`, or under a rough law `rough::free`, `rough::fixed` (Walton: `walton::free`, ...).
 pub fn generic_name(set: &PairSet, pair: Pair) -> String {
     match set.laws.of(pair) {
         ContactKind::Rough { .. } => format!("rough::{}", variant(pair).name()),
+        ContactKind::Walton { .. } => format!("walton::{}", variant(pair).name()),
         _ => variant(pair).name().to_string(),
     }
 }
 
 /// The law folded into `pair`'s kernel, as the kernels' docs name it: `no-slip`, or
-/// `rough (e = .., beta = ..)`.
+/// `rough (e = .., beta = ..)`, `Walton (e = .., mu = .., beta0 = ..)`.
 pub fn law_name(set: &PairSet, pair: Pair) -> String {
     match set.laws.of(pair) {
         ContactKind::Rough { e, beta } => format!("rough (e = {e}, beta = {beta})"),
+        ContactKind::Walton { e, mu, beta0 } => {
+            format!("Walton (e = {e}, mu = {mu}, beta0 = {beta0})")
+        }
         _ => "no-slip".into(),
     }
 }
@@ -230,6 +244,7 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
     } = emit::emit_body(&kernel);
     let generic = emit::emit_body(&match set.laws.of(pair) {
         ContactKind::Rough { .. } => model::build_rough(n, variant(pair)),
+        ContactKind::Walton { .. } => crate::walton::build_walton(n, variant(pair)),
         _ => model::build(n, variant(pair)),
     });
     let (nl, sl) = (lit(n), lit(n * (n - 1) / 2));
@@ -266,11 +281,12 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
     ));
     let doc = doc_lines(&doc);
     let name = ident(&pair.fn_name());
+    let bound = scalar_bound(set.laws.of(pair));
     let tokens = quote! {
         #doc
         #[inline]
         #[allow(non_snake_case, unused_variables)]
-        pub fn #name<T: Scalar>(#params) -> #ret_ty
+        pub fn #name<T: #bound>(#params) -> #ret_ty
         where
             for<'a> &'a T: RefArith<T>,
         {
@@ -286,6 +302,23 @@ fn emit_pair(set: &PairSet, pair: Pair) -> (TokenStream, PairSummary) {
         generic_ops: generic.ops,
     };
     (tokens, summary)
+}
+
+/// The scalar bound of a kernel under `law`: `ScalarRoot` for the Walton law (a square root),
+/// else `Scalar`.
+fn scalar_bound(law: &ContactKind) -> TokenStream {
+    match law {
+        ContactKind::Walton { .. } => quote!(ScalarRoot),
+        _ => quote!(Scalar),
+    }
+}
+
+/// Whether a kernel of `set` takes a square root (has a Walton law): its module then needs
+/// `ScalarRoot`, and so does its dispatch.
+fn needs_root(set: &PairSet) -> bool {
+    set.all()
+        .into_iter()
+        .any(|p| matches!(set.laws.of(p), ContactKind::Walton { .. }))
 }
 
 /// The `impl PairKernels` that dispatches by species (and wall) to the kernels. A pair that
@@ -331,19 +364,28 @@ fn dispatch(set: &PairSet, sim_path: &syn::Path) -> TokenStream {
                 );
                 quote!(Some(#sim_path::ContactKind::Rough { e: #e, beta: #beta }))
             }
+            ContactKind::Walton { e, mu, beta0 } => {
+                let [e, mu, beta0] = [e, mu, beta0].map(|x| f64_tokens(nearest_floats(x).0));
+                quote!(Some(#sim_path::ContactKind::Walton { e: #e, mu: #mu, beta0: #beta0 }))
+            }
             _ => quote!(Some(#sim_path::ContactKind::NoSlip)),
         }
     };
     let ball_law = law(!set.ball_ball.is_empty(), &set.laws.ball);
     let wall_law = law(!set.ball_wall.is_empty(), &set.laws.wall);
     let fixed_law = law(!set.ball_obstacle.is_empty(), &set.laws.fixed);
+    let bound = if needs_root(set) {
+        quote!(ScalarRoot)
+    } else {
+        quote!(Scalar)
+    };
     quote! {
         /// The scene's kernels, dispatched by species for the simulator.
         #[derive(Clone, Copy, Debug, Default)]
         pub struct Kernels;
 
         #[allow(unused_variables, clippy::match_single_binding)]
-        impl<T: Scalar> #sim_path::PairKernels<T, #nl, #sl> for Kernels
+        impl<T: #bound> #sim_path::PairKernels<T, #nl, #sl> for Kernels
         where
             for<'a> &'a T: RefArith<T>,
         {
@@ -396,7 +438,17 @@ pub fn generate(
     check_ranges(set).map_err(GenerateError::OutOfRange)?;
     let (kernels, pairs): (Vec<TokenStream>, Vec<PairSummary>) =
         set.all().into_iter().map(|p| emit_pair(set, p)).unzip();
-    let imports = quote!(use #path::{BodyState, RefArith, Scalar};);
+    // `Scalar` bounds the no-slip and rough kernels (and the dispatch without a Walton
+    // kernel), `ScalarRoot` the Walton ones (and then the dispatch): import what is used.
+    let plain = set
+        .all()
+        .into_iter()
+        .any(|p| !matches!(set.laws.of(p), ContactKind::Walton { .. }));
+    let imports = match (plain || !needs_root(set), needs_root(set)) {
+        (true, true) => quote!(use #path::{BodyState, RefArith, Scalar, ScalarRoot};),
+        (false, true) => quote!(use #path::{BodyState, RefArith, ScalarRoot};),
+        _ => quote!(use #path::{BodyState, RefArith, Scalar};),
+    };
     let kernel_file = emit::parse(quote!(#imports #(#kernels)*));
     let violations = crate::straight_line::check(&kernel_file);
     assert!(

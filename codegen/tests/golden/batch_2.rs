@@ -13,9 +13,14 @@
 // rough_fixed_shared: per contact 16 add, 21 mul, 2 div, 0 neg (39 total); per call 8 add, 8 mul, 1 div, 0 neg (17 total).
 // walton_free_shared: per contact 1 sqrt, 2 select, 18 add, 30 mul, 2 div, 0 neg (53 total); per call 6 add, 19 mul, 3 div, 0 neg (28 total).
 // walton_fixed_shared: per contact 1 sqrt, 2 select, 17 add, 30 mul, 3 div, 0 neg (53 total); per call 8 add, 10 mul, 1 div, 0 neg (19 total).
+// rough_free_each: per contact 23 add, 37 mul, 4 div, 0 neg (64 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
+// rough_fixed_each: per contact 24 add, 29 mul, 3 div, 0 neg (56 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
+// walton_free_each: per contact 1 sqrt, 2 select, 24 add, 49 mul, 5 div, 0 neg (81 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
+// walton_fixed_each: per contact 1 sqrt, 2 select, 25 add, 40 mul, 4 div, 0 neg (72 total); per call 0 add, 0 mul, 0 div, 0 neg (0 total).
 
 use crate::batch::{
     prefetch, ContactLanes, FixedLanes, FreeLanes, StateLanes, LANES, prefetch_distance,
+    RestitutionLanes, WaltonLanes, WithLaw,
 };
 use crate::{Ball, RefArith, Restitution, Scalar, ScalarRoot, Walton};
 /// Batch form of [`crate::kernels::d2::free`]: block `k` of `blocks` into `out[k]`,
@@ -1611,6 +1616,570 @@ where
                 let tmp22: T = nu_1 * &pe_n;
                 let tmp23: T = &t_1 * &pe_t;
                 let p_1: T = &tmp22 + &tmp23;
+                let q2e_head: T = &h_t * &q2_head;
+                let q2e_tail: T = &h_t * &q2_tail;
+                let tmp28: T = &t_0 * &q2e_head;
+                let tmp29: T = &t_0 * &q2e_tail;
+                let tmp30: T = &tmp28 + &tmp29;
+                let y_0: T = &tmp30 / radius2;
+                let tmp31: T = &t_1 * &q2e_head;
+                let tmp32: T = &t_1 * &q2e_tail;
+                let tmp33: T = &tmp31 + &tmp32;
+                let y_1: T = &tmp33 / radius2;
+                let tmp34: T = nu_1 * &y_0;
+                let tmp35: T = nu_0 * &y_1;
+                let nu_y_01: T = &tmp34 - &tmp35;
+                let tmp36: T = &lit_2 * &p_0;
+                let tmp37: T = u2_0 - &tmp36;
+                post.velocity[0][l] = tmp37;
+                let tmp38: T = &lit_2 * &p_1;
+                let tmp39: T = u2_1 - &tmp38;
+                post.velocity[1][l] = tmp39;
+                let tmp40: T = U2_01 + &nu_y_01;
+                post.spin[0][l] = tmp40;
+            }
+        }
+    }
+}
+/// Batch form of [`crate::kernels::d2::rough::free`]: block `k` of `blocks` into `out[k]`,
+/// lane by lane, for `min(blocks.len(), out.len())` blocks.
+/// The law: per contact, in the lanes of each block's `law`; computed in the lane loop.
+/// Ball parameters: per contact, in the lanes.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
+///
+/// Rough-ball collision of two free balls in R^2 with normal restitution `e` and
+/// tangential restitution `beta` (`docs/derivation.md` §15): returns `[body 1, body 2]`.
+///
+/// ```text
+/// c    = (R_1 U_1 + R_2 U_2) nu
+/// du   = u_2 - u_1,            dn = du . nu
+/// t    = du - dn nu - c                                  (slip of the contact point)
+/// D    = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2)
+/// h_n  = (1 + e) / 2,          h_t = (1 + beta) / 2
+/// P    = h_n dn / (w_1 + w_2) nu + h_t (g_1 g_2 / D) t   (half the impulse on body 1)
+/// u_1+ = u_1 + 2 w_1 P                u_2+ = u_2 - 2 w_2 P
+/// U_1+ = U_1 + h_t (2 w_1 g_2 / (R_1 D)) nu ^ t
+/// U_2+ = U_2 + h_t (2 w_2 g_1 / (R_2 D)) nu ^ t
+/// dn+  = -e dn,                t+ = -beta t              (the law)
+/// ```
+///
+/// `w_i` = `inv_mass` (0: immovable), `g_i` = `gamma2` = 2 lambda_i / R_i^2;
+/// `e` in `[0, 1]`, `beta` in `[-1, 1]`: `(1, 1)` is the no-slip map [`crate::kernels::d2::free`]
+/// (the same values, bit for bit, also in floats), `(1, -1)` the smooth one. Energy change
+/// `-(1 - e^2) dn^2 / (2 (w_1 + w_2)) - (1 - beta^2) g_1 g_2 |t|^2 / (2 D)`.
+/// Requires `D > 0` and `w_1 + w_2 > 0`, as [`crate::kernels::d2::free`].
+///
+/// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
+///
+/// Ops per contact: 23 add, 37 mul, 4 div, 0 neg (64 total).
+#[inline(always)]
+#[allow(non_snake_case, clippy::needless_range_loop)]
+pub fn rough_free_each<T: Scalar, const W: usize>(
+    blocks: &[WithLaw<FreeLanes<T, 2, 1>, RestitutionLanes<T>>],
+    out: &mut [[StateLanes<T, 2, 1>; 2]],
+)
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
+    let lit_1: T = T::from_ratio(1, 1);
+    let lit_1_2: T = T::from_ratio(1, 2);
+    let lit_2: T = T::from_ratio(2, 1);
+    let ahead = prefetch_distance::<WithLaw<FreeLanes<T, 2, 1>, RestitutionLanes<T>>>();
+    for k in 0..blocks.len().min(out.len()) {
+        prefetch(blocks.get(k + ahead));
+        let (block, law, post) = (&blocks[k].block, &blocks[k].law, &mut out[k]);
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.contact.states[0].spin[0][l];
+                let U2_01: &T = &block.contact.states[1].spin[0][l];
+                let beta: &T = &law.beta[l];
+                let e: &T = &law.e[l];
+                let gamma2_1: &T = &block.balls[0].gamma2[l];
+                let gamma2_2: &T = &block.balls[1].gamma2[l];
+                let inv_mass1: &T = &block.balls[0].inv_mass[l];
+                let inv_mass2: &T = &block.balls[1].inv_mass[l];
+                let nu_0: &T = &block.contact.nu[0][l];
+                let nu_1: &T = &block.contact.nu[1][l];
+                let radius1: &T = &block.balls[0].radius[l];
+                let radius2: &T = &block.balls[1].radius[l];
+                let u1_0: &T = &block.contact.states[0].velocity[0][l];
+                let u1_1: &T = &block.contact.states[0].velocity[1][l];
+                let u2_0: &T = &block.contact.states[1].velocity[0][l];
+                let u2_1: &T = &block.contact.states[1].velocity[1][l];
+                let tmp0: T = e + &lit_1;
+                let h_n: T = &lit_1_2 * &tmp0;
+                let tmp1: T = beta + &lit_1;
+                let h_t: T = &lit_1_2 * &tmp1;
+                let tmp2: T = U1_01 * radius1;
+                let tmp3: T = U2_01 * radius2;
+                let tmp4: T = &tmp2 + &tmp3;
+                let c_0: T = nu_1 * &tmp4;
+                let tmp5: T = nu_0 * &tmp4;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp6: T = nu_0 * &du_0;
+                let tmp7: T = nu_1 * &du_1;
+                let dn: T = &tmp6 + &tmp7;
+                let tmp8: T = nu_0 * &dn;
+                let tmp9: T = &du_0 - &tmp8;
+                let t_0: T = &tmp9 - &c_0;
+                let tmp10: T = nu_1 * &dn;
+                let tmp11: T = &du_1 - &tmp10;
+                let t_1: T = &tmp5 + &tmp11;
+                let tmp12: T = inv_mass1 + inv_mass2;
+                let p_n: T = &dn / &tmp12;
+                let pe_n: T = &h_n * &p_n;
+                let tmp13: T = gamma2_1 + &lit_1;
+                let tmp14: T = gamma2_2 + &lit_1;
+                let tmp15: T = inv_mass1 * gamma2_2;
+                let tmp16: T = &tmp13 * &tmp15;
+                let tmp17: T = gamma2_1 * inv_mass2;
+                let tmp18: T = &tmp14 * &tmp17;
+                let d: T = &tmp16 + &tmp18;
+                let tmp19: T = gamma2_1 * gamma2_2;
+                let p_t: T = &tmp19 / &d;
+                let pe_t: T = &h_t * &p_t;
+                let tmp20: T = nu_0 * &pe_n;
+                let tmp21: T = &t_0 * &pe_t;
+                let p_0: T = &tmp20 + &tmp21;
+                let tmp22: T = nu_1 * &pe_n;
+                let tmp23: T = &t_1 * &pe_t;
+                let p_1: T = &tmp22 + &tmp23;
+                let tmp24: T = nu_1 * &t_0;
+                let tmp25: T = nu_0 * &t_1;
+                let nu_t_01: T = &tmp24 - &tmp25;
+                let tmp26: T = &lit_2 * inv_mass1;
+                let tmp27: T = &p_0 * &tmp26;
+                let tmp28: T = u1_0 + &tmp27;
+                post[0].velocity[0][l] = tmp28;
+                let tmp29: T = &p_1 * &tmp26;
+                let tmp30: T = u1_1 + &tmp29;
+                post[0].velocity[1][l] = tmp30;
+                let tmp31: T = gamma2_2 * &tmp26;
+                let tmp32: T = radius1 * &d;
+                let rho1: T = &tmp31 / &tmp32;
+                let rhoe1: T = &h_t * &rho1;
+                let tmp33: T = &nu_t_01 * &rhoe1;
+                let tmp34: T = U1_01 + &tmp33;
+                post[0].spin[0][l] = tmp34;
+                let tmp35: T = &lit_2 * inv_mass2;
+                let tmp36: T = &p_0 * &tmp35;
+                let tmp37: T = u2_0 - &tmp36;
+                post[1].velocity[0][l] = tmp37;
+                let tmp38: T = &p_1 * &tmp35;
+                let tmp39: T = u2_1 - &tmp38;
+                post[1].velocity[1][l] = tmp39;
+                let tmp40: T = gamma2_1 * &tmp35;
+                let tmp41: T = radius2 * &d;
+                let rho2: T = &tmp40 / &tmp41;
+                let rhoe2: T = &h_t * &rho2;
+                let tmp42: T = &nu_t_01 * &rhoe2;
+                let tmp43: T = U2_01 + &tmp42;
+                post[1].spin[0][l] = tmp43;
+            }
+        }
+    }
+}
+/// Batch form of [`crate::kernels::d2::rough::fixed`]: block `k` of `blocks` into `out[k]`,
+/// lane by lane, for `min(blocks.len(), out.len())` blocks.
+/// The law: per contact, in the lanes of each block's `law`; computed in the lane loop.
+/// Ball parameters: per contact, in the lanes.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
+///
+/// Rough-ball collision in R^2 of a free ball (body 2) with an immovable one (body 1),
+/// normal restitution `e`, tangential restitution `beta`: returns body 2 after contact.
+/// The `w_1 -> 0` limit of [`free`]; body 2's mass drops out.
+///
+/// ```text
+/// c    = (R_1 U_1 + R_2 U_2) nu
+/// du   = u_2 - u_1,            dn = du . nu
+/// t    = du - dn nu - c                                  (slip of the contact point)
+/// h_n  = (1 + e) / 2,          h_t = (1 + beta) / 2
+/// P    = h_n dn nu + h_t (g_2 / (1 + g_2)) t
+/// u_2+ = u_2 - 2 P
+/// U_2+ = U_2 + h_t (2 / (R_2 (1 + g_2))) nu ^ t
+/// dn+  = -e dn,                t+ = -beta t              (the law)
+/// ```
+///
+/// Finite for every `gamma2` in `[0, 2/n]`; `(e, beta) = (1, 1)` is [`crate::kernels::d2::fixed`].
+///
+/// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
+///
+/// Ops per contact: 24 add, 29 mul, 3 div, 0 neg (56 total).
+#[inline(always)]
+#[allow(non_snake_case, clippy::needless_range_loop)]
+pub fn rough_fixed_each<T: Scalar, const W: usize>(
+    blocks: &[WithLaw<FixedLanes<T, 2, 1>, RestitutionLanes<T>>],
+    out: &mut [StateLanes<T, 2, 1>],
+)
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
+    let lit_1: T = T::from_ratio(1, 1);
+    let lit_1_2: T = T::from_ratio(1, 2);
+    let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
+    let ahead = prefetch_distance::<WithLaw<FixedLanes<T, 2, 1>, RestitutionLanes<T>>>();
+    for k in 0..blocks.len().min(out.len()) {
+        prefetch(blocks.get(k + ahead));
+        let (block, law, post) = (&blocks[k].block, &blocks[k].law, &mut out[k]);
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.contact.states[0].spin[0][l];
+                let U2_01: &T = &block.contact.states[1].spin[0][l];
+                let beta: &T = &law.beta[l];
+                let e: &T = &law.e[l];
+                let gamma2_2: &T = &block.ball2.gamma2[l];
+                let nu_0: &T = &block.contact.nu[0][l];
+                let nu_1: &T = &block.contact.nu[1][l];
+                let radius1: &T = &block.radius1[l];
+                let radius2: &T = &block.ball2.radius[l];
+                let u1_0: &T = &block.contact.states[0].velocity[0][l];
+                let u1_1: &T = &block.contact.states[0].velocity[1][l];
+                let u2_0: &T = &block.contact.states[1].velocity[0][l];
+                let u2_1: &T = &block.contact.states[1].velocity[1][l];
+                let tmp0: T = &lit_1 + e;
+                let h_n: T = &lit_1_2 * &tmp0;
+                let tmp1: T = &lit_1 + beta;
+                let h_t: T = &lit_1_2 * &tmp1;
+                let tmp2: T = U1_01 * radius1;
+                let tmp3: T = U2_01 * radius2;
+                let tmp4: T = &tmp2 + &tmp3;
+                let c_0: T = nu_1 * &tmp4;
+                let tmp5: T = nu_0 * &tmp4;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp6: T = nu_0 * &du_0;
+                let tmp7: T = nu_1 * &du_1;
+                let dn: T = &tmp6 + &tmp7;
+                let tmp8: T = nu_0 * &dn;
+                let tmp9: T = &du_0 - &tmp8;
+                let t_0: T = &tmp9 - &c_0;
+                let tmp10: T = nu_1 * &dn;
+                let tmp11: T = &du_1 - &tmp10;
+                let t_1: T = &tmp5 + &tmp11;
+                let pe_n: T = &h_n * &dn;
+                let d: T = &lit_1 + gamma2_2;
+                let p_t: T = gamma2_2 / &d;
+                let pe_t: T = &h_t * &p_t;
+                let tmp12: T = nu_0 * &pe_n;
+                let tmp13: T = &t_0 * &pe_t;
+                let p_0: T = &tmp12 + &tmp13;
+                let tmp14: T = nu_1 * &pe_n;
+                let tmp15: T = &t_1 * &pe_t;
+                let p_1: T = &tmp14 + &tmp15;
+                let q_hi: T = &lit_1 - &p_t;
+                let tmp16: T = &lit_1 - &q_hi;
+                let q_lo: T = &tmp16 - &p_t;
+                let q2_head: T = &lit_1048575_524288 * &q_hi;
+                let tmp17: T = &lit_2 * &q_hi;
+                let tmp18: T = &tmp17 - &q2_head;
+                let tmp19: T = &lit_2 * &q_lo;
+                let q2_tail: T = &tmp18 + &tmp19;
+                let q2e_head: T = &h_t * &q2_head;
+                let q2e_tail: T = &h_t * &q2_tail;
+                let tmp20: T = &t_0 * &q2e_head;
+                let tmp21: T = &t_0 * &q2e_tail;
+                let tmp22: T = &tmp20 + &tmp21;
+                let y_0: T = &tmp22 / radius2;
+                let tmp23: T = &t_1 * &q2e_head;
+                let tmp24: T = &t_1 * &q2e_tail;
+                let tmp25: T = &tmp23 + &tmp24;
+                let y_1: T = &tmp25 / radius2;
+                let tmp26: T = nu_1 * &y_0;
+                let tmp27: T = nu_0 * &y_1;
+                let nu_y_01: T = &tmp26 - &tmp27;
+                let tmp28: T = &lit_2 * &p_0;
+                let tmp29: T = u2_0 - &tmp28;
+                post.velocity[0][l] = tmp29;
+                let tmp30: T = &lit_2 * &p_1;
+                let tmp31: T = u2_1 - &tmp30;
+                post.velocity[1][l] = tmp31;
+                let tmp32: T = U2_01 + &nu_y_01;
+                post.spin[0][l] = tmp32;
+            }
+        }
+    }
+}
+/// Batch form of [`crate::kernels::d2::walton::free`]: block `k` of `blocks` into `out[k]`,
+/// lane by lane, for `min(blocks.len(), out.len())` blocks.
+/// The law: per contact, in the lanes of each block's `law`; computed in the lane loop.
+/// Ball parameters: per contact, in the lanes.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
+///
+/// Walton-law collision of two free balls in R^2: normal restitution `e`, friction
+/// coefficient `mu`, tangential restitution `beta = min(beta0, beta_C)`, where `beta_C` makes
+/// the tangential impulse `mu` times the normal one (`docs/derivation.md` §15.1): returns
+/// `[body 1, body 2]`.
+///
+/// ```text
+/// c    = (R_1 U_1 + R_2 U_2) nu
+/// du   = u_2 - u_1,            dn = du . nu
+/// t    = du - dn nu - c                                  (slip of the contact point)
+/// D    = w_1 g_2 (1 + g_1) + w_2 g_1 (1 + g_2),          a = w_1 + w_2
+/// h_n  = (1 + e) / 2,          h_0 = (1 + beta0) / 2
+/// L    = (h_0 g_1 g_2 a)^2 |t|^2,  C = (mu h_n D)^2 dn^2  (sliding: C < L)
+/// rho  = select(C < L, C, 1) / select(C < L, L, 1)
+/// h_t  = h_0 sqrt(rho)         = (1 + min(beta0, beta_C)) / 2
+/// P    = h_n dn / a nu + h_t (g_1 g_2 / D) t              (half the impulse on body 1)
+/// u_1+ = u_1 + 2 w_1 P                u_2+ = u_2 - 2 w_2 P
+/// U_1+ = U_1 + h_t (2 w_1 g_2 / (R_1 D)) nu ^ t
+/// U_2+ = U_2 + h_t (2 w_2 g_1 / (R_2 D)) nu ^ t
+/// dn+  = -e dn;  sticking: t+ = -beta0 t;  sliding: |J_t| = mu |J_n|
+/// ```
+///
+/// While sticking (`C >= L`, including `t = 0`) the outputs are [`crate::kernels::d2::rough::free`]'s at
+/// `beta = beta0`, bit for bit. Requires `D > 0` and `w_1 + w_2 > 0`, as [`crate::kernels::d2::free`], and
+/// `L` and `C` finite (floats: `|t|`, `|dn|` far below the square root of the largest value).
+///
+/// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
+///
+/// Ops per contact: 1 sqrt, 2 select, 24 add, 49 mul, 5 div, 0 neg (81 total).
+#[inline(always)]
+#[allow(non_snake_case, clippy::needless_range_loop)]
+pub fn walton_free_each<T: ScalarRoot, const W: usize>(
+    blocks: &[WithLaw<FreeLanes<T, 2, 1>, WaltonLanes<T>>],
+    out: &mut [[StateLanes<T, 2, 1>; 2]],
+)
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
+    let lit_1: T = T::from_ratio(1, 1);
+    let lit_1_2: T = T::from_ratio(1, 2);
+    let lit_2: T = T::from_ratio(2, 1);
+    let ahead = prefetch_distance::<WithLaw<FreeLanes<T, 2, 1>, WaltonLanes<T>>>();
+    for k in 0..blocks.len().min(out.len()) {
+        prefetch(blocks.get(k + ahead));
+        let (block, law, post) = (&blocks[k].block, &blocks[k].law, &mut out[k]);
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.contact.states[0].spin[0][l];
+                let U2_01: &T = &block.contact.states[1].spin[0][l];
+                let beta0: &T = &law.beta0[l];
+                let e: &T = &law.e[l];
+                let gamma2_1: &T = &block.balls[0].gamma2[l];
+                let gamma2_2: &T = &block.balls[1].gamma2[l];
+                let inv_mass1: &T = &block.balls[0].inv_mass[l];
+                let inv_mass2: &T = &block.balls[1].inv_mass[l];
+                let mu: &T = &law.mu[l];
+                let nu_0: &T = &block.contact.nu[0][l];
+                let nu_1: &T = &block.contact.nu[1][l];
+                let radius1: &T = &block.balls[0].radius[l];
+                let radius2: &T = &block.balls[1].radius[l];
+                let u1_0: &T = &block.contact.states[0].velocity[0][l];
+                let u1_1: &T = &block.contact.states[0].velocity[1][l];
+                let u2_0: &T = &block.contact.states[1].velocity[0][l];
+                let u2_1: &T = &block.contact.states[1].velocity[1][l];
+                let tmp0: T = e + &lit_1;
+                let h_n: T = &lit_1_2 * &tmp0;
+                let tmp1: T = beta0 + &lit_1;
+                let h_0: T = &lit_1_2 * &tmp1;
+                let tmp2: T = U1_01 * radius1;
+                let tmp3: T = U2_01 * radius2;
+                let tmp4: T = &tmp2 + &tmp3;
+                let c_0: T = nu_1 * &tmp4;
+                let tmp5: T = nu_0 * &tmp4;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp6: T = nu_0 * &du_0;
+                let tmp7: T = nu_1 * &du_1;
+                let dn: T = &tmp6 + &tmp7;
+                let tmp8: T = nu_0 * &dn;
+                let tmp9: T = &du_0 - &tmp8;
+                let t_0: T = &tmp9 - &c_0;
+                let tmp10: T = nu_1 * &dn;
+                let tmp11: T = &du_1 - &tmp10;
+                let t_1: T = &tmp5 + &tmp11;
+                let tmp12: T = gamma2_1 + &lit_1;
+                let tmp13: T = gamma2_2 + &lit_1;
+                let tmp14: T = inv_mass1 * gamma2_2;
+                let tmp15: T = &tmp12 * &tmp14;
+                let tmp16: T = gamma2_1 * inv_mass2;
+                let tmp17: T = &tmp13 * &tmp16;
+                let d: T = &tmp15 + &tmp17;
+                let tmp18: T = inv_mass1 + inv_mass2;
+                let tmp19: T = gamma2_1 * gamma2_2;
+                let tmp20: T = &h_0 * &tmp19;
+                let tmp21: T = &tmp18 * &tmp20;
+                let tmp22: T = &tmp21 * &tmp21;
+                let tmp23: T = &t_0 * &t_0;
+                let tmp24: T = &t_1 * &t_1;
+                let tt: T = &tmp23 + &tmp24;
+                let side_l: T = &tmp22 * &tt;
+                let tmp25: T = mu * &h_n;
+                let tmp26: T = &d * &tmp25;
+                let tmp27: T = &tmp26 * &tmp26;
+                let tmp28: T = &dn * &dn;
+                let side_c: T = &tmp27 * &tmp28;
+                let rho_num: T = T::select_lt(&side_c, &side_l, &side_c, &lit_1);
+                let rho_den: T = T::select_lt(&side_c, &side_l, &side_l, &lit_1);
+                let rho: T = &rho_num / &rho_den;
+                let sqrt_rho: T = T::sqrt(&rho);
+                let h_t: T = &h_0 * &sqrt_rho;
+                let p_n: T = &dn / &tmp18;
+                let pe_n: T = &h_n * &p_n;
+                let p_t: T = &tmp19 / &d;
+                let pe_t: T = &h_t * &p_t;
+                let tmp29: T = nu_0 * &pe_n;
+                let tmp30: T = &t_0 * &pe_t;
+                let p_0: T = &tmp29 + &tmp30;
+                let tmp31: T = nu_1 * &pe_n;
+                let tmp32: T = &t_1 * &pe_t;
+                let p_1: T = &tmp31 + &tmp32;
+                let tmp33: T = nu_1 * &t_0;
+                let tmp34: T = nu_0 * &t_1;
+                let nu_t_01: T = &tmp33 - &tmp34;
+                let tmp35: T = &lit_2 * inv_mass1;
+                let tmp36: T = &p_0 * &tmp35;
+                let tmp37: T = u1_0 + &tmp36;
+                post[0].velocity[0][l] = tmp37;
+                let tmp38: T = &p_1 * &tmp35;
+                let tmp39: T = u1_1 + &tmp38;
+                post[0].velocity[1][l] = tmp39;
+                let tmp40: T = gamma2_2 * &tmp35;
+                let tmp41: T = radius1 * &d;
+                let rho1: T = &tmp40 / &tmp41;
+                let rhoe1: T = &h_t * &rho1;
+                let tmp42: T = &nu_t_01 * &rhoe1;
+                let tmp43: T = U1_01 + &tmp42;
+                post[0].spin[0][l] = tmp43;
+                let tmp44: T = &lit_2 * inv_mass2;
+                let tmp45: T = &p_0 * &tmp44;
+                let tmp46: T = u2_0 - &tmp45;
+                post[1].velocity[0][l] = tmp46;
+                let tmp47: T = &p_1 * &tmp44;
+                let tmp48: T = u2_1 - &tmp47;
+                post[1].velocity[1][l] = tmp48;
+                let tmp49: T = gamma2_1 * &tmp44;
+                let tmp50: T = radius2 * &d;
+                let rho2: T = &tmp49 / &tmp50;
+                let rhoe2: T = &h_t * &rho2;
+                let tmp51: T = &nu_t_01 * &rhoe2;
+                let tmp52: T = U2_01 + &tmp51;
+                post[1].spin[0][l] = tmp52;
+            }
+        }
+    }
+}
+/// Batch form of [`crate::kernels::d2::walton::fixed`]: block `k` of `blocks` into `out[k]`,
+/// lane by lane, for `min(blocks.len(), out.len())` blocks.
+/// The law: per contact, in the lanes of each block's `law`; computed in the lane loop.
+/// Ball parameters: per contact, in the lanes.
+/// Each lane runs the scalar kernel's operations on the same operands: the same bits in floats.
+///
+/// Walton-law collision in R^2 of a free ball (body 2) with an immovable one (body 1):
+/// returns body 2 after contact. The `w_1 -> 0` limit of [`free`].
+///
+/// ```text
+/// c    = (R_1 U_1 + R_2 U_2) nu
+/// du   = u_2 - u_1,            dn = du . nu
+/// t    = du - dn nu - c                                  (slip of the contact point)
+/// h_n  = (1 + e) / 2,          h_0 = (1 + beta0) / 2
+/// L    = (h_0 g_2)^2 |t|^2,    C = (mu h_n (1 + g_2))^2 dn^2  (sliding: C < L)
+/// rho  = select(C < L, C, 1) / select(C < L, L, 1)
+/// h_t  = h_0 sqrt(rho)         = (1 + min(beta0, beta_C)) / 2
+/// P    = h_n dn nu + h_t (g_2 / (1 + g_2)) t
+/// u_2+ = u_2 - 2 P
+/// U_2+ = U_2 + h_t (2 / (R_2 (1 + g_2))) nu ^ t
+/// dn+  = -e dn;  sticking: t+ = -beta0 t;  sliding: |J_t| = mu |J_n|
+/// ```
+///
+/// While sticking the outputs are [`crate::kernels::d2::rough::fixed`]'s at `beta = beta0`, bit for bit.
+///
+/// Skew storage: entries `(i, j)`, `i < j`, in the order [(0, 1)].
+///
+/// Ops per contact: 1 sqrt, 2 select, 25 add, 40 mul, 4 div, 0 neg (72 total).
+#[inline(always)]
+#[allow(non_snake_case, clippy::needless_range_loop)]
+pub fn walton_fixed_each<T: ScalarRoot, const W: usize>(
+    blocks: &[WithLaw<FixedLanes<T, 2, 1>, WaltonLanes<T>>],
+    out: &mut [StateLanes<T, 2, 1>],
+)
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    const { assert!(W > 0 && LANES % W == 0, "W divides LANES") };
+    let lit_1: T = T::from_ratio(1, 1);
+    let lit_1_2: T = T::from_ratio(1, 2);
+    let lit_2: T = T::from_ratio(2, 1);
+    let lit_1048575_524288: T = T::from_ratio(1048575, 524288);
+    let ahead = prefetch_distance::<WithLaw<FixedLanes<T, 2, 1>, WaltonLanes<T>>>();
+    for k in 0..blocks.len().min(out.len()) {
+        prefetch(blocks.get(k + ahead));
+        let (block, law, post) = (&blocks[k].block, &blocks[k].law, &mut out[k]);
+        for group in 0..LANES / W {
+            for l in group * W..group * W + W {
+                let U1_01: &T = &block.contact.states[0].spin[0][l];
+                let U2_01: &T = &block.contact.states[1].spin[0][l];
+                let beta0: &T = &law.beta0[l];
+                let e: &T = &law.e[l];
+                let gamma2_2: &T = &block.ball2.gamma2[l];
+                let mu: &T = &law.mu[l];
+                let nu_0: &T = &block.contact.nu[0][l];
+                let nu_1: &T = &block.contact.nu[1][l];
+                let radius1: &T = &block.radius1[l];
+                let radius2: &T = &block.ball2.radius[l];
+                let u1_0: &T = &block.contact.states[0].velocity[0][l];
+                let u1_1: &T = &block.contact.states[0].velocity[1][l];
+                let u2_0: &T = &block.contact.states[1].velocity[0][l];
+                let u2_1: &T = &block.contact.states[1].velocity[1][l];
+                let tmp0: T = &lit_1 + e;
+                let h_n: T = &lit_1_2 * &tmp0;
+                let tmp1: T = &lit_1 + beta0;
+                let h_0: T = &lit_1_2 * &tmp1;
+                let tmp2: T = U1_01 * radius1;
+                let tmp3: T = U2_01 * radius2;
+                let tmp4: T = &tmp2 + &tmp3;
+                let c_0: T = nu_1 * &tmp4;
+                let tmp5: T = nu_0 * &tmp4;
+                let du_0: T = u2_0 - u1_0;
+                let du_1: T = u2_1 - u1_1;
+                let tmp6: T = nu_0 * &du_0;
+                let tmp7: T = nu_1 * &du_1;
+                let dn: T = &tmp6 + &tmp7;
+                let tmp8: T = nu_0 * &dn;
+                let tmp9: T = &du_0 - &tmp8;
+                let t_0: T = &tmp9 - &c_0;
+                let tmp10: T = nu_1 * &dn;
+                let tmp11: T = &du_1 - &tmp10;
+                let t_1: T = &tmp5 + &tmp11;
+                let d: T = &lit_1 + gamma2_2;
+                let tmp12: T = gamma2_2 * &h_0;
+                let tmp13: T = &tmp12 * &tmp12;
+                let tmp14: T = &t_0 * &t_0;
+                let tmp15: T = &t_1 * &t_1;
+                let tt: T = &tmp14 + &tmp15;
+                let side_l: T = &tmp13 * &tt;
+                let tmp16: T = mu * &h_n;
+                let tmp17: T = &d * &tmp16;
+                let tmp18: T = &tmp17 * &tmp17;
+                let tmp19: T = &dn * &dn;
+                let side_c: T = &tmp18 * &tmp19;
+                let rho_num: T = T::select_lt(&side_c, &side_l, &side_c, &lit_1);
+                let rho_den: T = T::select_lt(&side_c, &side_l, &side_l, &lit_1);
+                let rho: T = &rho_num / &rho_den;
+                let sqrt_rho: T = T::sqrt(&rho);
+                let h_t: T = &h_0 * &sqrt_rho;
+                let pe_n: T = &h_n * &dn;
+                let p_t: T = gamma2_2 / &d;
+                let pe_t: T = &h_t * &p_t;
+                let tmp20: T = nu_0 * &pe_n;
+                let tmp21: T = &t_0 * &pe_t;
+                let p_0: T = &tmp20 + &tmp21;
+                let tmp22: T = nu_1 * &pe_n;
+                let tmp23: T = &t_1 * &pe_t;
+                let p_1: T = &tmp22 + &tmp23;
+                let q_hi: T = &lit_1 - &p_t;
+                let tmp24: T = &lit_1 - &q_hi;
+                let q_lo: T = &tmp24 - &p_t;
+                let q2_head: T = &lit_1048575_524288 * &q_hi;
+                let tmp25: T = &lit_2 * &q_hi;
+                let tmp26: T = &tmp25 - &q2_head;
+                let tmp27: T = &lit_2 * &q_lo;
+                let q2_tail: T = &tmp26 + &tmp27;
                 let q2e_head: T = &h_t * &q2_head;
                 let q2e_tail: T = &h_t * &q2_tail;
                 let tmp28: T = &t_0 * &q2e_head;

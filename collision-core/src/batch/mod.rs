@@ -53,10 +53,12 @@
 
 mod container;
 mod dispatch;
+mod each;
 mod exec;
 mod kept;
 pub mod kernels;
 pub mod lanes;
+mod law_lanes;
 mod prefetch;
 mod rough;
 mod rows;
@@ -68,17 +70,19 @@ mod tests;
 
 pub use container::Batch;
 pub use dispatch::{Isa, AVX2_WIDTH, AVX512_WIDTH, BASELINE_WIDTH};
+pub use each::{EachLawBatchKernel, FixedEachBatch, FreeEachBatch};
 pub use exec::{BatchError, Exec, PARALLEL_FROM_BYTES};
 pub use kernels::BatchKernel;
 pub use lanes::{
     BallLanes, Contact, ContactLanes, FixedLanes, FreeLanes, Lane, Lanes, Lanewise, StateLanes,
     BLOCK_ALIGN, LANES,
 };
+pub use law_lanes::{FamilyLaw, RestitutionLanes, WaltonLanes, WithLaw};
 pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
 pub use rough::RoughBatchKernel;
 pub use rows::{
-    BallRows, FreeRows, StateRows, StateRowsMut, ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES,
-    ROWS_PASS_BYTES_OUT_OF_CACHE, STREAM_FROM_BYTES,
+    BallRows, FreeRows, LawRowError, LawRows, RestitutionRows, StateRows, StateRowsMut, WaltonRows,
+    ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE, STREAM_FROM_BYTES,
 };
 #[cfg(feature = "parallel")]
 pub use share::share_rows;

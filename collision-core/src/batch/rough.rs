@@ -187,8 +187,8 @@ impl Exec {
 }
 
 /// The jobs: one kernel each, with the law (and the shared balls) of the call.
-struct RoughFree<'a, L> {
-    law: &'a L,
+pub(crate) struct RoughFree<'a, L> {
+    pub(crate) law: &'a L,
 }
 
 impl<L, T, const N: usize, const S: usize> Job<FreeLanes<T, N, S>, [StateLanes<T, N, S>; 2]>

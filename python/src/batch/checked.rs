@@ -65,7 +65,7 @@ where
 /// `collide`'s error on a row, its field named by the batch's keys: the batch takes
 /// `inv_mass` where `collide` takes `mass` (collision-core's `BodyField::Mass` stands for
 /// both), so that field is `bodies[b].inv_mass`; the others are named as in a case.
-fn row_error(e: collision_core::InputError) -> CaseError {
+pub(super) fn row_error(e: collision_core::InputError) -> CaseError {
     match e.field {
         Field::Body(b, BodyField::Mass) => {
             CaseError::new(format!("bodies[{b}].inv_mass"), e.message)

@@ -13,12 +13,15 @@
 //!   0.25 kB per running thread, whatever the number of rows, kept by that thread between
 //!   calls.
 //!
+//! With a contact law (`contact=`), `law.rs` runs the rows under the rough-ball family.
+//!
 //! The inputs' shapes are checked and their rows read by `inputs.rs`. The outputs are new
 //! arrays, or the caller's (`out=`, `outputs.rs`: shapes and layout checked, borrowed
 //! read-write, so an output sharing memory with an input or another output is refused).
 
 mod checked;
 mod inputs;
+mod law;
 mod outputs;
 pub mod params;
 mod run;
@@ -26,7 +29,7 @@ mod unchecked;
 
 use crate::error::input_error;
 use crate::signals::Signals;
-use collision_core::batch::Exec;
+use collision_core::batch::{Exec, RestitutionRows, WaltonRows};
 use collision_core::{RefArith, Scalar};
 pub(crate) use inputs::{BodyViews, Inputs};
 use num_traits::Float;
@@ -80,6 +83,27 @@ where
     for<'x> &'x T::Unbounded: RefArith<T::Unbounded>,
 {
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
+    let n = input.dim;
+    into_outputs(py, &input, out, |out, interrupted| {
+        collision_core::with_dim!(
+            n,
+            |N, S| run_all::<T, N, S>(&input, validate, parallel, out, interrupted),
+            Err(Stop::Refused(format!("dimension {n} has no batch kernels")))
+        )
+    })
+}
+
+/// `run` on the outputs of `input` (`out`, checked, or new arrays), the GIL released; the
+/// arrays, or the error `run` stopped with (a Python signal first).
+fn into_outputs<'py, T>(
+    py: Python<'py>,
+    input: &Inputs<'_, T>,
+    out: Option<OutIn<'py, T>>,
+    run: impl FnOnce(Outputs<'_, T>, &(dyn Fn() -> bool + Sync)) -> Result<(), Stop> + Send,
+) -> PyResult<BatchOut<'py, T>>
+where
+    T: Element + Scalar + Send + Sync,
+{
     let (rows, n) = (input.rows, input.dim);
     let (spin, velocity) = match out {
         Some(out) => {
@@ -117,13 +141,7 @@ where
         // the clock is read every time, far below the cost of a run.
         let signals = Signals::new(1);
         let interrupted = || signals.interrupted();
-        let done = py.detach(|| {
-            collision_core::with_dim!(
-                n,
-                |N, S| run_all::<T, N, S>(&input, validate, parallel, out, &interrupted),
-                Err(Stop::Refused(format!("dimension {n} has no batch kernels")))
-            )
-        });
+        let done = py.detach(|| run(out, &interrupted));
         match (done, signals.raised()) {
             (_, Some(e)) => Err(e),
             (Err(Stop::Refused(m)), None) => Err(input_error(m)),
@@ -137,6 +155,100 @@ where
     let [s1, s2] = spin;
     let [v1, v2] = velocity;
     Ok((s1, v1, s2, v2))
+}
+
+/// `collide_batch` under a law of the rough-ball family (`law.rs`): `kind` `"rough"` with
+/// the columns `[e, beta]` or `"walton"` with `[e, mu, beta0]`, each 1-D, C-contiguous, of
+/// the rows' length or 1.
+#[allow(clippy::too_many_arguments)]
+fn collide_batch_law<'py, T>(
+    py: Python<'py>,
+    normal: PyReadonlyArray2<'py, T>,
+    body1: BodyIn<'py, T>,
+    body2: BodyIn<'py, T>,
+    kind: &str,
+    law: Vec<PyReadonlyArray1<'py, T>>,
+    validate: bool,
+    parallel: bool,
+    out: Option<OutIn<'py, T>>,
+) -> PyResult<BatchOut<'py, T>>
+where
+    T: Element + Scalar + collision_core::ScalarRoot + Float + Send + Sync + 'static,
+    T::Unbounded: collision_core::ScalarRoot,
+    for<'x> &'x T: RefArith<T>,
+    for<'x> &'x T::Unbounded: RefArith<T::Unbounded>,
+{
+    let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
+    let names: &[&str] = match kind {
+        "rough" => &["e", "beta"],
+        "walton" => &["e", "mu", "beta0"],
+        _ => return Err(input_error(format!("contact: unknown law {kind:?}"))),
+    };
+    if law.len() != names.len() {
+        return Err(input_error(format!(
+            "contact: {} columns for the {kind} law, expected {}",
+            law.len(),
+            names.len()
+        )));
+    }
+    let columns: Vec<&[T]> = law
+        .iter()
+        .zip(names)
+        .map(|(c, name)| {
+            c.as_slice()
+                .map_err(|_| input_error(format!("contact.{name}: must be C-contiguous")))
+        })
+        .collect::<PyResult<_>>()?;
+    let laws = match columns[..] {
+        [e, beta] => law::LawColumns::Rough(RestitutionRows { e, beta }),
+        [e, mu, beta0] => law::LawColumns::Walton(WaltonRows { e, mu, beta0 }),
+        _ => unreachable!("two or three columns"),
+    };
+    let n = input.dim;
+    into_outputs(py, &input, out, |out, _| {
+        collision_core::with_dim!(
+            n,
+            |N, S| law::run_law::<T, N, S>(&input, &laws, validate, parallel, out)
+                .map_err(Stop::Refused),
+            Err(Stop::Refused(format!("dimension {n} has no batch kernels")))
+        )
+    })
+}
+
+/// ``collide_batch`` with ``contact=`` on ``float64`` arrays (see the Python docstring).
+#[pyfunction]
+#[pyo3(signature = (normal, body1, body2, kind, law, validate, parallel, out=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn collide_batch_law_f64<'py>(
+    py: Python<'py>,
+    normal: PyReadonlyArray2<'py, f64>,
+    body1: BodyIn<'py, f64>,
+    body2: BodyIn<'py, f64>,
+    kind: &str,
+    law: Vec<PyReadonlyArray1<'py, f64>>,
+    validate: bool,
+    parallel: bool,
+    out: Option<OutIn<'py, f64>>,
+) -> PyResult<BatchOut<'py, f64>> {
+    collide_batch_law::<f64>(py, normal, body1, body2, kind, law, validate, parallel, out)
+}
+
+/// ``collide_batch`` with ``contact=`` on ``float32`` arrays (see the Python docstring).
+#[pyfunction]
+#[pyo3(signature = (normal, body1, body2, kind, law, validate, parallel, out=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn collide_batch_law_f32<'py>(
+    py: Python<'py>,
+    normal: PyReadonlyArray2<'py, f32>,
+    body1: BodyIn<'py, f32>,
+    body2: BodyIn<'py, f32>,
+    kind: &str,
+    law: Vec<PyReadonlyArray1<'py, f32>>,
+    validate: bool,
+    parallel: bool,
+    out: Option<OutIn<'py, f32>>,
+) -> PyResult<BatchOut<'py, f32>> {
+    collide_batch_law::<f32>(py, normal, body1, body2, kind, law, validate, parallel, out)
 }
 
 /// ``collide_batch`` on ``float64`` arrays (see the Python docstring).

@@ -1,6 +1,13 @@
 //! Specialised kernels (a scene's species constants and contact laws folded in) against the
 //! generic map with the same constants, exactly: the no-slip kernels, or for a pair kind with
-//! a rough law `(e, beta)` the generic rough kernels with the same exact `e` and `beta`.
+//! a rough law `(e, beta)` the generic rough kernels with the same exact `e` and `beta`, with
+//! a Walton law `(e, mu, beta0)` the generic Walton kernels with the same exact law.
+//!
+//! A Walton kernel's one square root (of `rho = C / L` while the contact slides) is of the
+//! contact's own numbers: both sides take it as `Exact::sqrt_rounded` does (exact when
+//! rational, else truncated to 256 bits), a function of the rational under the root alone,
+//! and the folded DAG computes the same rational there; so the two sides are equal exactly at
+//! every point, sliding or sticking, a rational root or not.
 //!
 //! Each specialised kernel's DAG is evaluated in exact rationals at random points (random
 //! exactly unit normals, random states with entries from `S = {1..2^20}`) and must equal the
@@ -13,7 +20,9 @@
 use crate::sample::{element, normal};
 use crate::under_test::input_values;
 use collision_core::rng::Rng;
-use collision_core::{Ball, BodyState, Exact, Generated, Kernel, Restitution, RoughKernel};
+use collision_core::{
+    Ball, BodyState, Exact, Generated, Kernel, Restitution, RoughKernel, Walton, WaltonKernel,
+};
 use noslip_codegen::specialise;
 use noslip_scene::Pair;
 use noslip_scene::{ContactKind, PairSet, WallSide};
@@ -72,6 +81,38 @@ where
     }
 }
 
+/// The generic Walton kernels under `law` for `pair`, as [`rough`] runs the rough ones.
+fn walton<const N: usize, const S: usize>(
+    pair: Pair,
+    balls: &[Ball<Exact>],
+    law: &Walton<Exact>,
+    nu: &[Exact; N],
+    states: &[BodyState<Exact, N, S>; 2],
+) -> Vec<BodyState<Exact, N, S>>
+where
+    Generated: WaltonKernel<Exact, N, S>,
+{
+    let (one, rest) = (Exact::from_integer(1), BodyState::zero());
+    match pair {
+        Pair::BallBall(a, b) => {
+            Generated::walton_free(nu, &balls[a], &balls[b], law, &states[0], &states[1]).to_vec()
+        }
+        Pair::BallWall(s, axis, side) => {
+            let sign = if side == WallSide::Upper { -1 } else { 1 };
+            let wall =
+                std::array::from_fn(|k| Exact::from_integer(if k == axis { sign } else { 0 }));
+            vec![Generated::walton_fixed(
+                &wall, &one, &balls[s], law, &rest, &states[1],
+            )]
+        }
+        Pair::BallObstacle(s) => {
+            vec![Generated::walton_fixed(
+                nu, &one, &balls[s], law, &rest, &states[1],
+            )]
+        }
+    }
+}
+
 /// Compare every pair kind of `set` at `points` random points.
 pub fn check<const N: usize, const S: usize>(
     set: &PairSet,
@@ -79,8 +120,10 @@ pub fn check<const N: usize, const S: usize>(
     seed: u64,
 ) -> Vec<PairCheck>
 where
-    Generated:
-        Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S> + RoughKernel<Exact, N, S>,
+    Generated: Kernel<Exact, N, S>
+        + Kernel<collision_core::ExactRelaxed, N, S>
+        + RoughKernel<Exact, N, S>
+        + WaltonKernel<Exact, N, S>,
 {
     compare::<N, S>(set, set, points, seed)
 }
@@ -94,8 +137,10 @@ fn compare<const N: usize, const S: usize>(
     seed: u64,
 ) -> Vec<PairCheck>
 where
-    Generated:
-        Kernel<Exact, N, S> + Kernel<collision_core::ExactRelaxed, N, S> + RoughKernel<Exact, N, S>,
+    Generated: Kernel<Exact, N, S>
+        + Kernel<collision_core::ExactRelaxed, N, S>
+        + RoughKernel<Exact, N, S>
+        + WaltonKernel<Exact, N, S>,
 {
     assert_eq!(set.dim, N);
     let balls: Vec<Ball<Exact>> = species_balls(&set.species, Exact::from_fraction);
@@ -114,7 +159,11 @@ where
                 let inputs = input_values(&nu, [&balls[0], &balls[0]], [&states[0], &states[1]]);
                 let values = kernel
                     .graph
-                    .eval_all(&|name| inputs.get(name).cloned(), &|_, _, _| None)
+                    .eval_all_rooted(
+                        &|name| inputs.get(name).cloned(),
+                        &|_, _, _| None,
+                        &|x: &Exact| Some(x.sqrt_rounded()),
+                    )
                     .expect("specialised kernels have constant, non-zero denominators");
                 let read = |o: &noslip_codegen::model::BodyOutput| BodyState::<Exact, N, S> {
                     spin: std::array::from_fn(|k| values[o.spin[k].0 as usize].clone()),
@@ -128,6 +177,14 @@ where
                             beta: Exact::from_fraction(&beta),
                         };
                         rough(pair, &balls, &law, &nu, &states)
+                    }
+                    ContactKind::Walton { e, mu, beta0 } => {
+                        let law = Walton {
+                            e: Exact::from_fraction(&e),
+                            mu: Exact::from_fraction(&mu),
+                            beta0: Exact::from_fraction(&beta0),
+                        };
+                        walton(pair, &balls, &law, &nu, &states)
                     }
                     _ => match pair {
                         Pair::BallBall(a, b) => generic
@@ -177,6 +234,67 @@ contact = { e = "0.8", beta = "-1/3" }
 [contact]
 balls = { e = "0.9", beta = "1/2" }
 "#;
+
+    /// The same box under Walton laws: a small `mu` (most contacts slide) on the walls and the
+    /// obstacle, a large one (most stick) between the balls.
+    const WALTON: &str = r#"
+dim = 2
+[box]
+size = [10, 10]
+boundary = ["wall", "periodic"]
+contact = { e = "0.8", mu = "1/10", beta0 = "1/2" }
+[[species]]
+mass = 1
+radius = "1/2"
+gamma2 = "1/2"
+count = 3
+[[obstacle]]
+position = [5, 5]
+radius = 1
+contact = { e = "0.8", mu = "1/10", beta0 = "1/2" }
+[contact]
+balls = { e = "0.9", mu = "3", beta0 = "-1/3" }
+"#;
+
+    #[test]
+    fn walton_kernels_equal_the_generic_walton_kernels_and_a_wrong_law_is_caught() {
+        let set = Scene::from_toml(WALTON, "walton.toml").unwrap().pairs();
+        assert!(matches!(set.laws.ball, ContactKind::Walton { .. }));
+        assert!(matches!(set.laws.wall, ContactKind::Walton { .. }));
+        assert!(matches!(set.laws.fixed, ContactKind::Walton { .. }));
+        let results = check::<2, 1>(&set, 8, 1);
+        assert_eq!(results.len(), 4); // ball-ball, two walls, obstacle
+        assert!(results.iter().all(|r| r.mismatches == 0), "{results:?}");
+        // Against another mu (which changes the sliding contacts only) some points differ,
+        // against the rough law with beta = beta0 (the sticking branch) too, at the sliding ones.
+        for law in [
+            |l: &ContactKind| match l {
+                ContactKind::Walton { e, beta0, .. } => ContactKind::Walton {
+                    e: e.clone(),
+                    mu: "1/7".parse().unwrap(),
+                    beta0: beta0.clone(),
+                },
+                _ => unreachable!(),
+            },
+            |l: &ContactKind| match l {
+                ContactKind::Walton { e, beta0, .. } => ContactKind::Rough {
+                    e: e.clone(),
+                    beta: beta0.clone(),
+                },
+                _ => unreachable!(),
+            },
+        ] {
+            let mut other = set.clone();
+            other.laws = noslip_scene::PairLaws {
+                ball: law(&set.laws.ball),
+                wall: law(&set.laws.wall),
+                fixed: law(&set.laws.fixed),
+            };
+            let results = compare::<2, 1>(&set, &other, 8, 1);
+            let wrong: usize = results.iter().map(|r| r.mismatches).sum();
+            assert!(wrong > 0, "{results:?}");
+        }
+    }
 
     #[test]
     fn rough_kernels_equal_the_generic_rough_kernels_and_a_wrong_law_is_caught() {

@@ -3,14 +3,14 @@
 //! `Exec`'s instruction set.
 
 use super::gather::{item, Gather};
+use super::pass::{NoSlip, Pass};
 use super::scatter::Scatter;
 use super::stream::{fence, stream_copy, STREAM_FROM_BYTES};
 use super::{FreeRows, StateRowsMut};
-use crate::batch::dispatch::{at_level, run_on};
-use crate::batch::exec::Free;
+use crate::batch::dispatch::at_level;
 use crate::batch::kept::Kept;
 use crate::batch::kernels::BatchKernel;
-use crate::batch::lanes::{FreeLanes, Lanewise, StateLanes, LANES};
+use crate::batch::lanes::{Lanewise, StateLanes, LANES};
 use crate::batch::Exec;
 use crate::kernels::Generated;
 use crate::{BodyState, RefArith, Scalar};
@@ -45,14 +45,14 @@ pub(crate) const fn pass_rows<B, O>(bytes: usize) -> usize {
 
 /// The pass of a call on `len` contacts of `N`-dimensional rows of `T` (row-major bytes in
 /// and out: `nu`, parameters and two states in, two states out).
-fn pass_for<T, const N: usize, const S: usize>(len: usize) -> usize {
+fn pass_for<T, const N: usize, const S: usize, B>(len: usize) -> usize {
     let row = std::mem::size_of::<T>() * (N + 6 + 4 * (N * N + N));
     let bytes = if len * row <= ROWS_IN_CACHE_BYTES {
         ROWS_PASS_BYTES
     } else {
         ROWS_PASS_BYTES_OUT_OF_CACHE
     };
-    pass_rows::<FreeLanes<T, N, S>, [StateLanes<T, N, S>; 2]>(bytes)
+    pass_rows::<B, [StateLanes<T, N, S>; 2]>(bytes)
 }
 
 /// Contacts per run of rows shared between threads: about 8 runs per thread (as
@@ -106,6 +106,21 @@ impl Exec {
         for<'a> &'a T: RefArith<T>,
         Generated: BatchKernel<T, N, S>,
     {
+        self.rows_in_passes::<T, N, S, _>(&NoSlip, rows, out, stream_from)
+    }
+
+    /// The row path with the kernel `pass` ([`Pass`]): the checks of the lengths, the
+    /// split across threads, then [`Exec::rows_here`] on each part.
+    pub(crate) fn rows_in_passes<T, const N: usize, const S: usize, K>(
+        &self,
+        kernel: &K,
+        rows: &FreeRows<'_, T>,
+        out: [StateRowsMut<'_, T>; 2],
+        stream_from: usize,
+    ) where
+        T: Scalar + Send + Sync + 'static,
+        K: Pass<T, N, S>,
+    {
         let len = rows.len::<N>();
         for o in &out {
             assert_eq!(o.spin.len(), len * N * N, "spin: n^2 per contact");
@@ -113,8 +128,8 @@ impl Exec {
         }
         let stream = len * std::mem::size_of::<T>() * 2 * (N * N + N) >= stream_from;
         #[cfg(feature = "parallel")]
-        if self.splits::<FreeLanes<T, N, S>, [StateLanes<T, N, S>; 2]>(len.div_ceil(LANES)) {
-            let pass = pass_for::<T, N, S>(len.div_ceil(rayon::current_num_threads()));
+        if self.splits::<K::Block, [StateLanes<T, N, S>; 2]>(len.div_ceil(LANES)) {
+            let pass = pass_for::<T, N, S, K::Block>(len.div_ceil(rayon::current_num_threads()));
             let chunk = run_rows(len, rayon::current_num_threads(), pass);
             let [StateRowsMut {
                 spin: s1,
@@ -128,7 +143,8 @@ impl Exec {
                 [N * N, N, N * N, N],
                 chunk,
                 &|first, [s1, v1, s2, v2]| {
-                    let part = rows.slice::<N>(first..first + v1.len() / N);
+                    let range = first..first + v1.len() / N;
+                    let part = rows.slice::<N>(range.clone());
                     let out = [
                         StateRowsMut {
                             spin: s1,
@@ -139,26 +155,32 @@ impl Exec {
                             velocity: v2,
                         },
                     ];
-                    self.free_rows_here(&part, out, pass, stream);
+                    self.rows_here(&kernel.slice(range), &part, out, pass, stream);
                 },
             );
             return;
         }
-        self.free_rows_here(rows, out, pass_for::<T, N, S>(len), stream);
+        self.rows_here(
+            kernel,
+            rows,
+            out,
+            pass_for::<T, N, S, K::Block>(len),
+            stream,
+        );
     }
 
-    /// [`Exec::free_rows`] on the calling thread, `pass` contacts at a time, the results
+    /// The row path on the calling thread, `pass` contacts at a time, the results
     /// streamed (`stream.rs`) or stored.
-    fn free_rows_here<T, const N: usize, const S: usize>(
+    fn rows_here<T, const N: usize, const S: usize, K>(
         &self,
+        kernel: &K,
         rows: &FreeRows<'_, T>,
         mut out: [StateRowsMut<'_, T>; 2],
         pass: usize,
         stream: bool,
     ) where
         T: Scalar + Send + Sync + 'static,
-        for<'a> &'a T: RefArith<T>,
-        Generated: BatchKernel<T, N, S>,
+        K: Pass<T, N, S>,
     {
         let len = rows.len::<N>();
         if len == 0 {
@@ -168,10 +190,10 @@ impl Exec {
         let blocks_per_pass = pass.div_ceil(LANES);
         // The pass's blocks, kept by this thread between calls (`kept.rs`); the gather
         // overwrites every lane of the blocks a pass uses.
-        let mut kept = Kept::<(Vec<FreeLanes<T, N, S>>, Vec<[StateLanes<T, N, S>; 2]>)>::take();
+        let mut kept = Kept::<(Vec<K::Block>, Vec<[StateLanes<T, N, S>; 2]>)>::take();
         let (blocks, pairs) = &mut *kept;
         if blocks.len() < blocks_per_pass {
-            let first = FreeLanes::splat(&item(rows, 0));
+            let first = kernel.splat(&item(rows, 0), 0);
             blocks.resize(blocks_per_pass, first);
             let zero = [BodyState::zero(), BodyState::zero()];
             pairs.resize(blocks_per_pass, Lanewise::splat(&zero));
@@ -190,13 +212,14 @@ impl Exec {
             let (blocks, pairs) = (&mut blocks[..used], &mut pairs[..used]);
             at_level(
                 isa,
-                Gather {
+                Gather::<T, K::Block, N, S> {
                     rows,
                     range: start..end,
                     blocks,
                 },
             );
-            run_on(isa, &Free, blocks, pairs);
+            kernel.fill(start..end, blocks);
+            kernel.run(isa, blocks, pairs);
             let [o1, o2] = &mut out;
             let (k, range) = (end - start, start..end);
             let Some([s1, v1, s2, v2]) = stage.as_deref_mut() else {

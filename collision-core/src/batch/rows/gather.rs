@@ -117,14 +117,17 @@ fn partial_block<T: Clone, const N: usize, const S: usize>(
     }
 }
 
-/// Contacts `range` of `rows` into the first `range.len().div_ceil(8)` of `blocks`.
+/// Contacts `range` of `rows` into the first `range.len().div_ceil(8)` of `blocks` (the
+/// contact part of each: a [`FreeLanes`], or that of a block with its laws,
+/// [`WithLaw`](crate::batch::WithLaw)).
 #[inline(always)]
-pub(super) fn gather<T: Clone, const N: usize, const S: usize>(
+pub(super) fn gather<T: Clone, const N: usize, const S: usize, B: AsMut<FreeLanes<T, N, S>>>(
     rows: &FreeRows<'_, T>,
     range: Range<usize>,
-    blocks: &mut [FreeLanes<T, N, S>],
+    blocks: &mut [B],
 ) {
     for (b, block) in blocks.iter_mut().enumerate() {
+        let block = block.as_mut();
         let start = range.start + b * LANES;
         if start >= range.end {
             break;
@@ -138,17 +141,19 @@ pub(super) fn gather<T: Clone, const N: usize, const S: usize>(
 }
 
 /// [`gather`] as work compiled per level.
-pub(super) struct Gather<'r, 'b, T, const N: usize, const S: usize> {
+pub(super) struct Gather<'r, 'b, T, B, const N: usize, const S: usize> {
     pub(super) rows: &'r FreeRows<'r, T>,
     pub(super) range: Range<usize>,
-    pub(super) blocks: &'b mut [FreeLanes<T, N, S>],
+    pub(super) blocks: &'b mut [B],
 }
 
-impl<T: Clone, const N: usize, const S: usize> AtLevel for Gather<'_, '_, T, N, S> {
+impl<T: Clone, const N: usize, const S: usize, B: AsMut<FreeLanes<T, N, S>>> AtLevel
+    for Gather<'_, '_, T, B, N, S>
+{
     type Output = ();
     #[inline(always)]
     fn run<const W: usize>(self) {
-        gather(self.rows, self.range, self.blocks)
+        gather::<T, N, S, B>(self.rows, self.range, self.blocks)
     }
 }
 
@@ -224,7 +229,7 @@ impl<T: Clone, const N: usize, const S: usize> FreeBatch<T, N, S> {
         let blocks = self.blocks_mut();
         at_level(
             isa,
-            Gather {
+            Gather::<T, _, N, S> {
                 rows,
                 range,
                 blocks,

@@ -14,7 +14,10 @@
 //! - `scatter.rs`: blocks into rows ([`PairBatch::write_rows`](super::PairBatch::write_rows));
 //! - `exec.rs`: both around the kernel, a few blocks at a time
 //!   ([`Exec::free_rows`](super::Exec::free_rows)), so that the blocks stay in the L1 cache
-//!   and the row-major arrays are read and written once, in address order.
+//!   and the row-major arrays are read and written once, in address order;
+//! - `law.rs`, `pass.rs`, `rough_exec.rs`: the same under laws of the rough-ball family
+//!   given as columns, one shared or one per row
+//!   ([`Exec::rough_free_rows`](super::Exec::rough_free_rows)).
 //!
 //! The gather and the scatter are compiled for each instruction-set level, as the kernels
 //! are (`dispatch::at_level`), and run on the level [`Isa::detect`](super::Isa::detect)
@@ -22,9 +25,15 @@
 
 mod exec;
 mod gather;
+mod law;
+mod pass;
+mod rough_exec;
 
 pub use exec::{ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE};
+pub use law::{LawRowError, LawRows, RestitutionRows, WaltonRows};
 pub use stream::STREAM_FROM_BYTES;
+#[cfg(test)]
+mod law_tests;
 mod scatter;
 mod stream;
 #[cfg(test)]

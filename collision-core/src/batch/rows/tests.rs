@@ -11,14 +11,14 @@ use rand_chacha::ChaCha8Rng;
 
 /// Random row-major arrays of `len` contacts (not physical: any numbers are moved
 /// alike); `shared[b]`: body `b`'s parameters one value for all.
-struct Arrays {
-    nu: Vec<f64>,
-    spin: [Vec<f64>; 2],
-    velocity: [Vec<f64>; 2],
-    params: [[Vec<f64>; 3]; 2],
+pub(super) struct Arrays {
+    pub(super) nu: Vec<f64>,
+    pub(super) spin: [Vec<f64>; 2],
+    pub(super) velocity: [Vec<f64>; 2],
+    pub(super) params: [[Vec<f64>; 3]; 2],
 }
 
-fn arrays<const N: usize>(seed: u64, len: usize, shared: [bool; 2]) -> Arrays {
+pub(super) fn arrays<const N: usize>(seed: u64, len: usize, shared: [bool; 2]) -> Arrays {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut v = |k: usize| -> Vec<f64> { (0..k).map(|_| rng.random_range(-1.0..1.0)).collect() };
     let nu = v(len * N);
@@ -36,7 +36,7 @@ fn arrays<const N: usize>(seed: u64, len: usize, shared: [bool; 2]) -> Arrays {
     }
 }
 
-fn rows(a: &Arrays) -> FreeRows<'_, f64> {
+pub(super) fn rows(a: &Arrays) -> FreeRows<'_, f64> {
     FreeRows {
         nu: &a.nu,
         states: [0, 1].map(|b| StateRows {
@@ -52,7 +52,7 @@ fn rows(a: &Arrays) -> FreeRows<'_, f64> {
 }
 
 /// Contact `i` built by hand from the arrays, field by field.
-fn by_hand<const N: usize, const S: usize>(
+pub(super) fn by_hand<const N: usize, const S: usize>(
     a: &Arrays,
     i: usize,
 ) -> (Contact<f64, N, S>, [Ball<f64>; 2]) {
@@ -191,7 +191,7 @@ fn rows_of_the_wrong_length_panic() {
 
 /// `a` with every parameter made positive (`|x| + 0.1`), so that the kernel's results are
 /// finite numbers (NaN payloads are not compared bit for bit across instruction sets).
-fn physical(mut a: Arrays) -> Arrays {
+pub(super) fn physical(mut a: Arrays) -> Arrays {
     for p in a.params.iter_mut().flatten().flatten() {
         *p = p.abs() + 0.1;
     }
@@ -199,11 +199,11 @@ fn physical(mut a: Arrays) -> Arrays {
 }
 
 /// Row-major outputs of `len` contacts, every entry NaN, so that one left unwritten shows.
-fn nan_rows<const N: usize>(len: usize) -> [[Vec<f64>; 2]; 2] {
+pub(super) fn nan_rows<const N: usize>(len: usize) -> [[Vec<f64>; 2]; 2] {
     [0, 1].map(|_| [vec![f64::NAN; len * N * N], vec![f64::NAN; len * N]])
 }
 
-fn rows_mut(o: &mut [[Vec<f64>; 2]; 2]) -> [StateRowsMut<'_, f64>; 2] {
+pub(super) fn rows_mut(o: &mut [[Vec<f64>; 2]; 2]) -> [StateRowsMut<'_, f64>; 2] {
     let [[s1, v1], [s2, v2]] = o;
     [
         StateRowsMut {
@@ -217,7 +217,7 @@ fn rows_mut(o: &mut [[Vec<f64>; 2]; 2]) -> [StateRowsMut<'_, f64>; 2] {
     ]
 }
 
-fn bits(o: &[[Vec<f64>; 2]; 2]) -> Vec<u64> {
+pub(super) fn bits(o: &[[Vec<f64>; 2]; 2]) -> Vec<u64> {
     o.iter().flatten().flatten().map(|x| x.to_bits()).collect()
 }
 

@@ -1,0 +1,159 @@
+"""noslip.collide_batch with a contact law of the rough-ball family (issue 27): validated rows
+bit for bit `noslip.collide(..., contact=...)`, unvalidated rows bit for bit the same kernel
+row by row, a law per row or one shared, and bad laws refused naming the row and field."""
+
+import numpy as np
+import pytest
+
+import noslip
+from test_batch import random_batch, same_bits
+
+
+def round_trip_masses(bodies):
+    """inv_mass values whose 1/(1/w) is w, so that `collide` (which takes the mass) runs on
+    the batch's parameters (as test_batch does)."""
+    for b in bodies:
+        w = b["inv_mass"]
+        ok = (w == 0) | (1.0 / (1.0 / np.where(w == 0, 1, w)) == w)
+        b["inv_mass"] = np.where(ok, w, 1.0)
+
+
+def single(nu, bodies, i, contact):
+    case_bodies = []
+    for b in bodies:
+        w = float(b["inv_mass"][i])
+        case_bodies.append(
+            {
+                "mass": "inf" if w == 0 else 1.0 / w,
+                "radius": float(b["radius"][i]),
+                "gamma2": float(b["gamma2"][i]),
+                "angular_velocity": b["angular_velocity"][i].tolist(),
+                "velocity": b["velocity"][i].tolist(),
+            }
+        )
+    return noslip.collide(nu[i].tolist(), case_bodies, contact=contact)
+
+
+def laws(rng, rows, kind):
+    """Per-row laws: the family's ends among uniform draws."""
+    e = rng.uniform(0, 1, rows)
+    e[:4] = [0.0, 1.0, 1.0, 0.5]
+    if kind == "rough":
+        beta = rng.uniform(-1, 1, rows)
+        beta[:4] = [-1.0, 1.0, -1.0, 0.0]
+        return {"e": e, "beta": beta}
+    mu = rng.uniform(0, 2, rows) * rng.integers(0, 2, rows)
+    beta0 = rng.uniform(-1, 1, rows)
+    return {"e": e, "mu": mu, "beta0": beta0}
+
+
+def row_law(law, i):
+    return {k: float(np.asarray(v).reshape(-1)[i if np.ndim(v) else 0]) for k, v in law.items()}
+
+
+@pytest.mark.parametrize("kind", ["rough", "walton"])
+@pytest.mark.parametrize("n", [2, 3, 4, 5, 6])
+def test_validated_rows_are_collide_with_their_law_bit_for_bit(n, kind):
+    rng = np.random.default_rng(27 + n)
+    nu, bodies = random_batch(rng, 41, n)
+    round_trip_masses(bodies)
+    law = laws(rng, 41, kind)
+    after = noslip.collide_batch(nu, bodies, contact=law)
+    for i in range(41):
+        want = single(nu, bodies, i, row_law(law, i))
+        for b in range(2):
+            for key in ("angular_velocity", "velocity"):
+                assert same_bits(after[b][key][i], want[b][key]), (n, kind, i, b, key)
+
+
+@pytest.mark.parametrize("kind", ["rough", "walton"])
+@pytest.mark.parametrize("n", [2, 3, 6])
+def test_unvalidated_rows_are_the_kernel_under_each_rows_law(n, kind):
+    """Each row of a batch with a law per row has the bits of that row alone under its law
+    as a shared scalar law (the shared-law kernel), C-contiguous or strided, serial or not."""
+    rng = np.random.default_rng(270 + n)
+    rows = 1100  # more than a pass and a split
+    nu, bodies = random_batch(rng, rows, n)
+    law = laws(rng, rows, kind)
+    after = noslip.collide_batch(nu, bodies, contact=law, validate=False)
+    serial = noslip.collide_batch(nu, bodies, contact=law, validate=False, parallel=False)
+    # Strided inputs (every other row of a twice longer array) take the row-by-row path.
+    wide_nu = np.repeat(nu, 2, axis=0)[::2]
+    wide = [{k: np.repeat(v, 2, axis=0)[::2] for k, v in b.items()} for b in bodies]
+    strided = noslip.collide_batch(wide_nu, wide, contact=law, validate=False)
+    for i in list(range(40)) + list(range(rows - 9, rows)):
+        one = [{k: v[i : i + 1] for k, v in b.items()} for b in bodies]
+        want = noslip.collide_batch(nu[i : i + 1], one, contact=row_law(law, i), validate=False)
+        for got in (after, serial, strided):
+            for b in range(2):
+                for key in ("angular_velocity", "velocity"):
+                    assert same_bits(got[b][key][i], want[b][key][0]), (n, kind, i, b, key)
+
+
+@pytest.mark.parametrize("n", [2, 4])
+def test_the_elastic_ends_are_the_no_slip_and_smooth_maps(n):
+    rng = np.random.default_rng(2700 + n)
+    nu, bodies = random_batch(rng, 300, n)
+    no_slip = noslip.collide_batch(nu, bodies, validate=False)
+    ends = noslip.collide_batch(nu, bodies, contact={"e": 1, "beta": 1}, validate=False)
+    smooth = noslip.collide_batch(nu, bodies, contact="smooth", validate=False)
+    rough_smooth = noslip.collide_batch(nu, bodies, contact={"e": 1, "beta": -1}, validate=False)
+    for b in range(2):
+        for key in ("angular_velocity", "velocity"):
+            assert same_bits(ends[b][key], no_slip[b][key])
+            assert same_bits(smooth[b][key], rough_smooth[b][key])
+    # The smooth map leaves every spin as it was.
+    for b in range(2):
+        assert same_bits(smooth[b]["angular_velocity"], bodies[b]["angular_velocity"])
+
+
+def test_out_and_float32_with_a_law():
+    rng = np.random.default_rng(5)
+    nu, bodies = random_batch(rng, 50, 3, dtype=np.float32)
+    law = {"e": np.float32(0.9), "mu": np.full(50, 0.3, dtype=np.float32), "beta0": 0.5}
+    got = noslip.collide_batch(nu, bodies, contact=law, validate=False)
+    assert got[0]["velocity"].dtype == np.float32
+    out = [
+        {"angular_velocity": np.empty((50, 3, 3), np.float32), "velocity": np.empty((50, 3), np.float32)}
+        for _ in range(2)
+    ]
+    back = noslip.collide_batch(nu, bodies, contact=law, validate=False, out=out)
+    for b in range(2):
+        assert back[b]["velocity"] is out[b]["velocity"]
+        assert same_bits(out[b]["velocity"], got[b]["velocity"])
+        assert same_bits(out[b]["angular_velocity"], got[b]["angular_velocity"])
+
+
+@pytest.mark.parametrize("validate", [True, False])
+def test_bad_laws_name_the_row_and_the_field(validate):
+    rng = np.random.default_rng(9)
+    nu, bodies = random_batch(rng, 6, 3)
+    e = np.full(6, 0.5)
+    e[2] = 1.5
+    cases = [
+        ({"e": e, "beta": 0.0}, "row 2: contact.e: must be in [0, 1], got 1.5"),
+        ({"e": 0.5, "beta": np.array([0, 0, 0, 0, 0, -1.01])}, "row 5: contact.beta"),
+        ({"e": 0.5, "beta": np.nan}, "row 0: contact.beta"),
+        ({"e": 1.0, "mu": np.array([0.1, 0.1, 0.1, -0.1, 0.1, 0.1]), "beta0": 0}, "row 3: contact.mu"),
+        ({"e": 1.0, "mu": 0.1, "beta0": 2}, "row 0: contact.beta0"),
+        ({"e": np.full(5, 0.5), "beta": 0.0}, "contact.e: expected shape (6,) or a scalar, got (5,)"),
+        ({"e": np.full((6, 1), 0.5), "beta": 0.0}, "contact.e: expected shape"),
+        ({"e": 0.5}, "contact: expected the keys e, beta"),
+        ({"e": 0.5, "beta": 0, "mu": 1}, "contact: expected the keys"),
+        ("rough", 'contact: expected "no-slip", "smooth"'),
+        (3, "contact: expected"),
+        ({"e": "x", "beta": 0}, "contact.e: dtype"),
+    ]
+    for contact, message in cases:
+        with pytest.raises(noslip.InputError) as err:
+            noslip.collide_batch(nu, bodies, contact=contact, validate=validate)
+        assert message in str(err.value), (contact, str(err.value))
+
+
+def test_a_refused_row_names_the_row_under_a_law():
+    """With validate, a bad contact row under a law is refused as collide refuses it."""
+    rng = np.random.default_rng(10)
+    nu, bodies = random_batch(rng, 5, 2)
+    bodies[1]["gamma2"][3] = 5.0
+    with pytest.raises(noslip.InputError, match="row 3: bodies"):
+        noslip.collide_batch(nu, bodies, contact={"e": 0.9, "beta": 0.1})
