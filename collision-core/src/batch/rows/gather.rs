@@ -144,10 +144,35 @@ pub(super) struct Gather<'r, 'b, T, const N: usize, const S: usize> {
     pub(super) blocks: &'b mut [FreeLanes<T, N, S>],
 }
 
-impl<T: Clone, const N: usize, const S: usize> AtLevel for Gather<'_, '_, T, N, S> {
+impl<T: Clone + 'static, const N: usize, const S: usize> AtLevel for Gather<'_, '_, T, N, S> {
     type Output = ();
     #[inline(always)]
     fn run<const W: usize>(self) {
+        #[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
+        if W == crate::batch::dispatch::AVX512_WIDTH
+            && std::any::TypeId::of::<T>() == std::any::TypeId::of::<f64>()
+            && Isa::Avx512.is_available()
+        {
+            let full = self.range.len() / LANES;
+            let (head, tail) = self.blocks.split_at_mut(full);
+            // SAFETY: `T` is `f64` (same type id), so the casts change no type.
+            let (rows, head) = unsafe {
+                (
+                    &*(self.rows as *const FreeRows<'_, T>).cast::<FreeRows<'_, f64>>(),
+                    std::slice::from_raw_parts_mut(
+                        head.as_mut_ptr().cast::<FreeLanes<f64, N, S>>(),
+                        head.len(),
+                    ),
+                )
+            };
+            // SAFETY: the CPU has AVX-512F (checked just now).
+            unsafe { super::avx512::gather(rows, self.range.start, head) };
+            let start = self.range.start + full * LANES;
+            if start < self.range.end {
+                partial_block(self.rows, start, self.range.end, &mut tail[0]);
+            }
+            return;
+        }
         gather(self.rows, self.range, self.blocks)
     }
 }
@@ -192,7 +217,7 @@ pub(super) fn item<T: Clone, const N: usize, const S: usize>(
     )
 }
 
-impl<T: Clone, const N: usize, const S: usize> FreeBatch<T, N, S> {
+impl<T: Clone + 'static, const N: usize, const S: usize> FreeBatch<T, N, S> {
     /// Replace the batch's contacts by contacts `range` of `rows`, in order, reusing the
     /// blocks already allocated: the batch that [`Batch::push`](crate::batch::Batch::push)
     /// of each row's `(Contact, [Ball; 2])` would build (`Contact::states[b].spin` the

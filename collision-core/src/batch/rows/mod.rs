@@ -20,8 +20,12 @@
 //! are (`dispatch::at_level`), and run on the level [`Isa::detect`](super::Isa::detect)
 //! picks (or the `Exec`'s own level in `free_rows`).
 
+#[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
+mod avx512;
 mod exec;
 mod gather;
+#[cfg(any(test, all(target_arch = "x86_64", noslip_avx512_intrinsics)))]
+mod plan;
 
 pub use exec::{ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE};
 pub use stream::STREAM_FROM_BYTES;
