@@ -16,6 +16,14 @@ use core::arch::x86_64::{
     _mm512_permutex2var_pd, _mm512_setzero_pd, _mm512_storeu_pd, _mm_loadl_epi64,
 };
 
+/// The largest n whose full blocks are gathered and scattered here. From n = 5 on, a
+/// spin's lane array or a piece of 8 values of the rows' matrices draws on 8 vectors or
+/// lane arrays (4 to 5 permutes of two 256-bit halves each on Zen 4 for 8 values), and the
+/// portable transposes were faster: in cache (512 contacts, 4 December 2026)
+/// `Exec::free_rows` took 1.02x (n = 5) and 1.07-1.11x (n = 6) its time with them when
+/// only the gather ran here, 1.09x and 1.27x when both did.
+pub(super) const PERMUTES_UP_TO: usize = 4;
+
 /// A plan known at compile time, so that [`run`] unrolls it into straight-line permutes
 /// with constant indices and masks.
 trait Planned {
@@ -56,10 +64,7 @@ unsafe fn destination<P: Planned, const D: usize>(src: *const f64, dst: *mut f64
     if D >= P::PLAN.destinations {
         return;
     }
-    let (first, end) = (
-        P::PLAN.starts[D] as usize,
-        P::PLAN.starts[D + 1] as usize,
-    );
+    let (first, end) = (P::PLAN.starts[D] as usize, P::PLAN.starts[D + 1] as usize);
     // SAFETY (every block below): the caller's; the plan's loads and stores are within.
     unsafe {
         let zero = _mm512_setzero_pd();
@@ -120,8 +125,14 @@ pub(super) unsafe fn gather<const N: usize, const S: usize>(
 ) {
     let end = start + LANES * blocks.len();
     let nu = &rows.nu[start * N..end * N];
-    let spins = rows.states.each_ref().map(|s| &s.spin[start * N * N..end * N * N]);
-    let velocities = rows.states.each_ref().map(|s| &s.velocity[start * N..end * N]);
+    let spins = rows
+        .states
+        .each_ref()
+        .map(|s| &s.spin[start * N * N..end * N * N]);
+    let velocities = rows
+        .states
+        .each_ref()
+        .map(|s| &s.velocity[start * N..end * N]);
     for (b, block) in blocks.iter_mut().enumerate() {
         let vectors = |x: &[f64]| x[b * LANES * N..(b + 1) * LANES * N].as_ptr();
         // SAFETY: AVX-512F (the caller's); the block's 8 rows of `n` values (`n` sources)
@@ -178,9 +189,7 @@ pub(super) unsafe fn scatter<const N: usize, const S: usize>(
             let spin = &mut spins[k][b * LANES * N * N..(b + 1) * LANES * N * N];
             // SAFETY: AVX-512F (the caller's); `S` lane arrays in, 8 rows of `n^2` values
             // (`n^2` destinations) out.
-            unsafe {
-                run::<ScatterSpins<N, S>>(block[k].spin.as_ptr().cast(), spin.as_mut_ptr())
-            };
+            unsafe { run::<ScatterSpins<N, S>>(block[k].spin.as_ptr().cast(), spin.as_mut_ptr()) };
             let velocity = &mut velocities[k][b * LANES * N..(b + 1) * LANES * N];
             // SAFETY: as above, `n` lane arrays in, 8 rows of `n` values out.
             unsafe {

@@ -150,6 +150,7 @@ impl<T: Clone + 'static, const N: usize, const S: usize> AtLevel for Gather<'_, 
     fn run<const W: usize>(self) {
         #[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
         if W == crate::batch::dispatch::AVX512_WIDTH
+            && N <= super::avx512::PERMUTES_UP_TO
             && std::any::TypeId::of::<T>() == std::any::TypeId::of::<f64>()
             && Isa::Avx512.is_available()
         {

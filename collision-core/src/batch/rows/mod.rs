@@ -16,11 +16,18 @@
 //!   ([`Exec::free_rows`](super::Exec::free_rows)), so that the blocks stay in the L1 cache
 //!   and the row-major arrays are read and written once, in address order.
 //!
+//! - `plan.rs`, `avx512.rs`: a full block's transpose in `f64` at AVX-512 for n <= 4, as
+//!   two-source permutes (`vpermt2pd`) planned at compile time.
+//!
 //! The gather and the scatter are compiled for each instruction-set level, as the kernels
 //! are (`dispatch::at_level`), and run on the level [`Isa::detect`](super::Isa::detect)
 //! picks (or the `Exec`'s own level in `free_rows`).
 
+// The AVX-512 intrinsics are stable from Rust 1.89: this module is compiled only from that
+// version on (`cfg(noslip_avx512_intrinsics)`, set by build.rs), and the crate's older minimum
+// still builds, with the portable transposes at every level.
 #[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
+#[clippy::msrv = "1.89"]
 mod avx512;
 mod exec;
 mod gather;

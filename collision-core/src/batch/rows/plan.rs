@@ -69,7 +69,11 @@ const NO_STEP: Step = Step {
 impl Plan {
     /// The plan of `destinations` destinations whose value `p` comes from `from[d][p]`,
     /// the sources numbered below `sources`.
-    const fn new(destinations: usize, sources: usize, from: &[[Value; 8]; MAX_DESTINATIONS]) -> Plan {
+    const fn new(
+        destinations: usize,
+        sources: usize,
+        from: &[[Value; 8]; MAX_DESTINATIONS],
+    ) -> Plan {
         assert!(destinations <= MAX_DESTINATIONS && sources <= 256);
         let mut plan = Plan {
             steps: [NO_STEP; MAX_STEPS],
@@ -264,7 +268,9 @@ mod tests {
 
     /// `m` rows... as the sources of a block of 8 rows of width `m`: value `f` is `f`.
     fn numbered(m: usize) -> Vec<[f64; 8]> {
-        (0..m).map(|j| std::array::from_fn(|p| (8 * j + p) as f64 + 1.0)).collect()
+        (0..m)
+            .map(|j| std::array::from_fn(|p| (8 * j + p) as f64 + 1.0))
+            .collect()
     }
 
     fn plans_transpose<const N: usize, const S: usize>() {
@@ -301,7 +307,11 @@ mod tests {
                         std::cmp::Ordering::Equal => 0.0,
                         std::cmp::Ordering::Greater => 0.0 - below,
                     };
-                    assert_eq!(x.to_bits(), want.to_bits(), "n = {N}: U[{r}][{c}] of row {l}");
+                    assert_eq!(
+                        x.to_bits(),
+                        want.to_bits(),
+                        "n = {N}: U[{r}][{c}] of row {l}"
+                    );
                 }
             }
         }
@@ -329,6 +339,9 @@ mod tests {
         let plan = const { gather_vectors::<2>() };
         assert_eq!(plan.starts[..3], [0, 1, 2]);
         assert_eq!(plan.steps[0].idx, [0, 2, 4, 6, 8, 10, 12, 14]);
-        assert_eq!((plan.steps[0].a, plan.steps[0].b, plan.steps[0].mask), (0, 1, 0xff));
+        assert_eq!(
+            (plan.steps[0].a, plan.steps[0].b, plan.steps[0].mask),
+            (0, 1, 0xff)
+        );
     }
 }

@@ -113,14 +113,13 @@ pub(super) struct Scatter<'b, 'o, 'x, T, const N: usize, const S: usize> {
     pub(super) out: &'x mut [StateRowsMut<'o, T>; 2],
 }
 
-impl<T: Scalar + 'static, const N: usize, const S: usize> AtLevel
-    for Scatter<'_, '_, '_, T, N, S>
-{
+impl<T: Scalar + 'static, const N: usize, const S: usize> AtLevel for Scatter<'_, '_, '_, T, N, S> {
     type Output = ();
     #[inline(always)]
     fn run<const W: usize>(self) {
         #[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
         if W == crate::batch::dispatch::AVX512_WIDTH
+            && N <= super::avx512::PERMUTES_UP_TO
             && std::any::TypeId::of::<T>() == std::any::TypeId::of::<f64>()
             && Isa::Avx512.is_available()
         {
