@@ -21,8 +21,10 @@ use core::arch::x86_64::{
 /// lane arrays (4 to 5 permutes of two 256-bit halves each on Zen 4 for 8 values), and the
 /// portable transposes were faster: in cache (512 contacts, 4 December 2026)
 /// `Exec::free_rows` took 1.02x (n = 5) and 1.07-1.11x (n = 6) its time with them when
-/// only the gather ran here, 1.09x and 1.27x when both did.
-pub(super) const PERMUTES_UP_TO: usize = 4;
+/// only the gather ran here, 1.09x and 1.27x when both did. At n = 4 the permutes took 0.98x
+/// in cache and 1.04x (0.99-1.14) out of cache, and `collide_batch` `out=` 1.04x (1.03-1.22)
+/// at 10^6 rows (docs/batch.md): n = 4 keeps the portable transposes too.
+pub(super) const PERMUTES_UP_TO: usize = 3;
 
 /// A plan known at compile time, so that [`run`] unrolls it into straight-line permutes
 /// with constant indices and masks.

@@ -16,7 +16,7 @@
 //!   ([`Exec::free_rows`](super::Exec::free_rows)), so that the blocks stay in the L1 cache
 //!   and the row-major arrays are read and written once, in address order.
 //!
-//! - `plan.rs`, `avx512.rs`: a full block's transpose in `f64` at AVX-512 for n <= 4, as
+//! - `plan.rs`, `avx512.rs`: a full block's transpose in `f64` at AVX-512 for n <= 3, as
 //!   two-source permutes (`vpermt2pd`) planned at compile time.
 //!
 //! The gather and the scatter are compiled for each instruction-set level, as the kernels
