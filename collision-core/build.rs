@@ -32,6 +32,7 @@ fn main() {
     }
     noslip_codegen::write_if_changed(&out_dir.join("dims.rs"), &dims_table(&dims))
         .expect("write the dimension table to OUT_DIR");
+    avx512_intrinsics();
     // The generator is a build dependency: cargo rebuilds this script when it changes.
     // The script reads no other input.
     println!("cargo:rerun-if-changed=build.rs");
@@ -87,4 +88,27 @@ fn dims_table(dims: &[usize]) -> String {
          \x20   }};\n\
          }}\n"
     )
+}
+
+/// Sets `cfg(noslip_avx512_intrinsics)` when the compiler has the AVX-512 intrinsics of
+/// `core::arch` (stable from Rust 1.89; the crate's minimum is older): the row-major gather
+/// and scatter's AVX-512 permutes (`src/batch/rows/avx512.rs`) are compiled only then, and
+/// an older compiler runs the portable transposes at every level.
+fn avx512_intrinsics() {
+    println!("cargo:rustc-check-cfg=cfg(noslip_avx512_intrinsics)");
+    let rustc = std::env::var_os("RUSTC").unwrap_or_else(|| "rustc".into());
+    let version = std::process::Command::new(rustc)
+        .arg("--version")
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+        .unwrap_or_default();
+    // "rustc 1.95.0 (59807616e 2026-04-14)"
+    let minor = version
+        .split_whitespace()
+        .nth(1)
+        .and_then(|v| v.split('.').nth(1))
+        .and_then(|m| m.parse::<u32>().ok());
+    if minor.is_some_and(|m| m >= 89) {
+        println!("cargo:rustc-cfg=noslip_avx512_intrinsics");
+    }
 }

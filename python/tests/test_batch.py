@@ -112,6 +112,27 @@ def test_serial_and_threaded_batches_are_identical():
             assert same_bits(a[body][k], b[body][k])
 
 
+@pytest.mark.parametrize("n", [2, 3])
+def test_unvalidated_runs_of_rows_give_the_bits_of_short_batches(n):
+    """Without validation the serial path takes row-major arrays in runs of 32768 rows (then
+    reruns the rows with an immovable body by `fixed`): over two whole runs and a part of a
+    third, at n = 2 and 3 (the AVX-512 permutes of the gather and scatter where the CPU has
+    them), serial and split, every row is what a batch of 1000 rows (one short run) gives."""
+    rng = np.random.default_rng(40 + n)
+    rows = 2 * 32768 + 4099
+    nu, bodies = random_batch(rng, rows, n, unit_exactly=False)
+    parts = []
+    for i in range(0, rows, 1000):
+        part = [{k: v[i : i + 1000] for k, v in b.items()} for b in bodies]
+        parts.append(noslip.collide_batch(nu[i : i + 1000], part, validate=False))
+    want = [{k: np.concatenate([p[b][k] for p in parts]) for k in parts[0][b]} for b in range(2)]
+    for parallel in (False, True):
+        got = noslip.collide_batch(nu, bodies, validate=False, parallel=parallel)
+        for b in range(2):
+            for k in ("angular_velocity", "velocity"):
+                assert same_bits(got[b][k], want[b][k]), (n, b, k, parallel)
+
+
 def test_float32_is_the_float64_map_up_to_f32_rounding():
     """The same f32 inputs, computed in f32 and in f64: the kernel's error is a few eps per
     body in its energy norm for typical inputs (docs/accuracy.md bounds it by 16 eps), and

@@ -36,6 +36,13 @@ pub(crate) fn piece_rows(chunks: usize, chunk: usize) -> usize {
 /// A run costs two thread-local lookups of a scratch and one atomic step, far below that.
 const RUN_CHUNKS: usize = 8;
 
+/// The chunks in a run of the serial path for row-major arrays without validation: 64
+/// chunks (32768 rows, 0.5-3.5 ms at n = 2..6). `Exec::free_rows` picks its passes by the
+/// size of its call, and a run of [`RUN_CHUNKS`] chunks at n = 2 (1 MiB of rows) took the
+/// short passes meant for arrays in cache: out of cache (10^6 rows, one thread) that cost
+/// 1.26x the one call of the Rust reference on the same arrays (docs/python.md).
+const ROW_RUN_CHUNKS: usize = 64;
+
 /// Why a batch stopped before its last row.
 #[derive(Debug, PartialEq)]
 pub(super) enum Stop {
@@ -48,7 +55,8 @@ pub(super) enum Stop {
 
 /// The whole batch, into `out` (`rows` rows), chunk by chunk; shared with rayon's threads
 /// when `parallel` and there is more than one chunk. `interrupted()` is asked before each run
-/// of at most [`RUN_CHUNKS`] chunks (0.1-0.4 ms of work, serial or split alike); once it
+/// of at most [`RUN_CHUNKS`] chunks (0.1-0.4 ms of work; [`ROW_RUN_CHUNKS`], 0.5-3.5 ms, on
+/// the serial path of row-major arrays without validation); once it
 /// answers true the runs not yet started are skipped.
 pub(super) fn run_all<T, const N: usize, const S: usize>(
     input: &Inputs<'_, T>,
@@ -143,7 +151,11 @@ where
         first_error.into_inner().unwrap_or_else(|p| p.into_inner())
     } else {
         // The same runs, one after the other on this thread.
-        let run_rows = RUN_CHUNKS * CHUNK;
+        let run_chunks = match (validate, &rows) {
+            (false, Some(_)) => ROW_RUN_CHUNKS,
+            _ => RUN_CHUNKS,
+        };
+        let run_rows = run_chunks * CHUNK;
         let mut scratch = Scratch::<T, N, S>::take();
         let result = s1
             .chunks_mut(run_rows * N * N)

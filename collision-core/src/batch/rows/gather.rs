@@ -147,12 +147,45 @@ pub(super) struct Gather<'r, 'b, T, B, const N: usize, const S: usize> {
     pub(super) blocks: &'b mut [B],
 }
 
-impl<T: Clone, const N: usize, const S: usize, B: AsMut<FreeLanes<T, N, S>>> AtLevel
-    for Gather<'_, '_, T, B, N, S>
+impl<
+        T: Clone + 'static,
+        const N: usize,
+        const S: usize,
+        B: AsMut<FreeLanes<T, N, S>> + 'static,
+    > AtLevel for Gather<'_, '_, T, B, N, S>
 {
     type Output = ();
     #[inline(always)]
     fn run<const W: usize>(self) {
+        // The permutes take plain `f64` blocks (not a block with its laws).
+        #[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
+        if W == crate::batch::dispatch::AVX512_WIDTH
+            && N <= super::avx512::PERMUTES_UP_TO
+            && std::any::TypeId::of::<T>() == std::any::TypeId::of::<f64>()
+            && std::any::TypeId::of::<B>() == std::any::TypeId::of::<FreeLanes<f64, N, S>>()
+            && Isa::Avx512.is_available()
+        {
+            let full = self.range.len() / LANES;
+            let (head, tail) = self.blocks.split_at_mut(full);
+            // SAFETY: `T` is `f64` and `B` is `FreeLanes<f64, N, S>` (same type ids), so the
+            // casts change no type.
+            let (rows, head) = unsafe {
+                (
+                    &*(self.rows as *const FreeRows<'_, T>).cast::<FreeRows<'_, f64>>(),
+                    std::slice::from_raw_parts_mut(
+                        head.as_mut_ptr().cast::<FreeLanes<f64, N, S>>(),
+                        head.len(),
+                    ),
+                )
+            };
+            // SAFETY: the CPU has AVX-512F (checked just now).
+            unsafe { super::avx512::gather(rows, self.range.start, head) };
+            let start = self.range.start + full * LANES;
+            if start < self.range.end {
+                partial_block(self.rows, start, self.range.end, tail[0].as_mut());
+            }
+            return;
+        }
         gather::<T, N, S, B>(self.rows, self.range, self.blocks)
     }
 }
@@ -197,7 +230,7 @@ pub(super) fn item<T: Clone, const N: usize, const S: usize>(
     )
 }
 
-impl<T: Clone, const N: usize, const S: usize> FreeBatch<T, N, S> {
+impl<T: Clone + 'static, const N: usize, const S: usize> FreeBatch<T, N, S> {
     /// Replace the batch's contacts by contacts `range` of `rows`, in order, reusing the
     /// blocks already allocated: the batch that [`Batch::push`](crate::batch::Batch::push)
     /// of each row's `(Contact, [Ball; 2])` would build (`Contact::states[b].spin` the

@@ -19,14 +19,25 @@
 //!   given as columns, one shared or one per row
 //!   ([`Exec::rough_free_rows`](super::Exec::rough_free_rows)).
 //!
+//! - `plan.rs`, `avx512.rs`: a full block's transpose in `f64` at AVX-512 for n <= 3, as
+//!   two-source permutes (`vpermt2pd`) planned at compile time.
+//!
 //! The gather and the scatter are compiled for each instruction-set level, as the kernels
 //! are (`dispatch::at_level`), and run on the level [`Isa::detect`](super::Isa::detect)
 //! picks (or the `Exec`'s own level in `free_rows`).
 
+// The AVX-512 intrinsics are stable from Rust 1.89: this module is compiled only from that
+// version on (`cfg(noslip_avx512_intrinsics)`, set by build.rs), and the crate's older minimum
+// still builds, with the portable transposes at every level.
+#[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
+#[clippy::msrv = "1.89"]
+mod avx512;
 mod exec;
 mod gather;
 mod law;
 mod pass;
+#[cfg(any(test, all(target_arch = "x86_64", noslip_avx512_intrinsics)))]
+mod plan;
 mod rough_exec;
 
 pub use exec::{ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE};

@@ -113,15 +113,43 @@ pub(super) struct Scatter<'b, 'o, 'x, T, const N: usize, const S: usize> {
     pub(super) out: &'x mut [StateRowsMut<'o, T>; 2],
 }
 
-impl<T: Scalar, const N: usize, const S: usize> AtLevel for Scatter<'_, '_, '_, T, N, S> {
+impl<T: Scalar + 'static, const N: usize, const S: usize> AtLevel for Scatter<'_, '_, '_, T, N, S> {
     type Output = ();
     #[inline(always)]
     fn run<const W: usize>(self) {
+        #[cfg(all(target_arch = "x86_64", noslip_avx512_intrinsics))]
+        if W == crate::batch::dispatch::AVX512_WIDTH
+            && N <= super::avx512::PERMUTES_UP_TO
+            && std::any::TypeId::of::<T>() == std::any::TypeId::of::<f64>()
+            && Isa::Avx512.is_available()
+        {
+            let full = self.len / LANES;
+            // SAFETY: `T` is `f64` (same type id), so the casts change no type.
+            let (blocks, out) = unsafe {
+                (
+                    std::slice::from_raw_parts(
+                        self.blocks.as_ptr().cast::<[StateLanes<f64, N, S>; 2]>(),
+                        full,
+                    ),
+                    &mut *(self.out as *mut [StateRowsMut<'_, T>; 2])
+                        .cast::<[StateRowsMut<'_, f64>; 2]>(),
+                )
+            };
+            // SAFETY: the CPU has AVX-512F (checked just now).
+            unsafe { super::avx512::scatter(blocks, out) };
+            let start = full * LANES;
+            if start < self.len {
+                for (lanes, o) in self.blocks[full].iter().zip(self.out.iter_mut()) {
+                    scatter_state(lanes, o, start, self.len - start);
+                }
+            }
+            return;
+        }
         scatter(self.blocks, self.len, self.out)
     }
 }
 
-impl<T: Scalar, const N: usize, const S: usize> PairBatch<T, N, S> {
+impl<T: Scalar + 'static, const N: usize, const S: usize> PairBatch<T, N, S> {
     /// Write every item `[body 1, body 2]` of the batch into contact rows `0..len` of `out`
     /// (body `b` into `out[b]`): the compact entries as the full skew matrix
     /// (`U_rr = +0`, `U_rc` for `r < c`, `U_cr = 0 - U_rc`) and the velocity, as

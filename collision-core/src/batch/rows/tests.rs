@@ -344,3 +344,84 @@ fn slices_of_rows_keep_shared_parameters() {
     assert_eq!(part.balls[1].radius, &a.params[1][1][4..9]);
     assert_eq!(part.states[1].spin, &a.spin[1][36..81]);
 }
+
+/// Row-major arrays of any bits: random words and, among them, `+0`, `-0`, infinities,
+/// quiet and signalling NaNs with payloads of either sign, subnormals.
+fn any_bits<const N: usize>(seed: u64, len: usize) -> Arrays {
+    let mut a = arrays::<N>(seed, len, [false, false]);
+    let special = [
+        0.0,
+        -0.0,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::from_bits(0x7ff8_0000_dead_beef),
+        f64::from_bits(0xfff0_0000_0000_0001),
+        f64::MIN_POSITIVE / 3.0,
+        -f64::MIN_POSITIVE / 7.0,
+    ];
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
+    let fields = a.spin.iter_mut().chain(&mut a.velocity);
+    for x in a.nu.iter_mut().chain(fields.flatten()) {
+        *x = if rng.random_bool(0.3) {
+            special[rng.random_range(0..special.len())]
+        } else {
+            f64::from_bits(rng.random())
+        };
+    }
+    for p in a.params.iter_mut().flatten().flatten() {
+        *p = f64::from_bits(rng.random());
+    }
+    a
+}
+
+/// The words of `f64` blocks (lane arrays only: no padding in `f64`,
+/// `blocks_are_cache_line_aligned_without_padding_in_f64`), so that NaNs compare by bits.
+fn block_words<B>(blocks: &[B]) -> Vec<u64> {
+    let words = std::mem::size_of_val(blocks) / 8;
+    // SAFETY: the blocks are `f64` lane arrays without padding, 64-byte aligned: `words`
+    // initialised `u64`s.
+    unsafe { std::slice::from_raw_parts(blocks.as_ptr().cast::<u64>(), words) }.to_vec()
+}
+
+/// Every level (the AVX-512 permutes of `avx512.rs` where this CPU has them) gathers and
+/// scatters any bits as the baseline does: every start of a range within a block, every
+/// tail of 0 to 7 rows after whole blocks; a scattered `0 - x` (below the diagonal) of
+/// `-0`, NaNs and infinities included.
+fn levels_move_any_bits<const N: usize, const S: usize>() {
+    let a = any_bits::<N>(N as u64, 8 * 5 + 7 + 3);
+    for start in 0..3 {
+        for len in (0..=23).chain([40, 47]) {
+            let range = start..start + len;
+            let mut want = FreeBatch::<f64, N, S>::new();
+            want.fill_from_rows_on(Isa::Baseline, &rows(&a), range.clone());
+            let pairs: PairBatch<f64, N, S> = (range.clone())
+                .map(|i| by_hand::<N, S>(&a, i).0.states)
+                .collect();
+            let mut want_rows = nan_rows::<N>(len);
+            pairs.write_rows_on(Isa::Baseline, rows_mut(&mut want_rows));
+            for isa in Isa::available() {
+                let mut got = FreeBatch::<f64, N, S>::new();
+                got.fill_from_rows_on(isa, &rows(&a), range.clone());
+                let at = format!("n = {N}, {isa}, rows {range:?}");
+                assert_eq!(got.len(), want.len(), "{at}");
+                assert_eq!(
+                    block_words(got.blocks()),
+                    block_words(want.blocks()),
+                    "{at}"
+                );
+                let mut got_rows = nan_rows::<N>(len);
+                pairs.write_rows_on(isa, rows_mut(&mut got_rows));
+                assert_eq!(bits(&got_rows), bits(&want_rows), "{at}: scatter");
+            }
+        }
+    }
+}
+
+#[test]
+fn every_level_moves_any_bits_as_the_baseline() {
+    levels_move_any_bits::<2, 1>();
+    levels_move_any_bits::<3, 3>();
+    levels_move_any_bits::<4, 6>();
+    levels_move_any_bits::<5, 10>();
+    levels_move_any_bits::<6, 15>();
+}
