@@ -149,7 +149,9 @@ fn collide_all<V: Node>(input: &V, mode: Mode, json: &mut String) -> Result<(), 
 /// one that path reports.
 pub fn collide_json(input: &str, mode: Mode) -> Result<String, RunError> {
     if let Some(tree) = text::parse(input) {
-        let mut json = String::new();
+        // Room for an answer of about twice the input (exact answers run longer than the
+        // case), so that it is rarely grown.
+        let mut json = String::with_capacity(2 * input.len() + 256);
         if collide_all(&tree, mode, &mut json).is_ok() {
             return Ok(json);
         }
