@@ -75,7 +75,7 @@ fn repeated_key(input: &Value, path: &[PathStep]) -> RunError {
 }
 
 /// One case, JSON in, JSON text out (one line).
-pub fn collide_case<T>(case: &Value) -> Result<String, CaseError>
+pub fn collide_case<T, V: Node>(case: &V) -> Result<String, CaseError>
 where
     T: InputScalar,
     for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
@@ -87,7 +87,7 @@ where
 
 /// [`collide_case`] for a case whose JSON numbers are floats of `T` in their shortest
 /// round-trip form ([`Case::from_floats`]: the Python package's floats).
-pub fn collide_floats<T>(case: &Value) -> Result<String, CaseError>
+pub fn collide_floats<T, V: Node>(case: &V) -> Result<String, CaseError>
 where
     T: InputScalar,
     for<'a> &'a T::Unbounded: RefArith<T::Unbounded>,
@@ -149,7 +149,9 @@ fn collide_all<V: Node>(input: &V, mode: Mode, json: &mut String) -> Result<(), 
 /// one that path reports.
 pub fn collide_json(input: &str, mode: Mode) -> Result<String, RunError> {
     if let Some(tree) = text::parse(input) {
-        let mut json = String::new();
+        // Room for an answer of about twice the input (exact answers run longer than the
+        // case), so that it is rarely grown.
+        let mut json = String::with_capacity(2 * input.len() + 256);
         if collide_all(&tree, mode, &mut json).is_ok() {
             return Ok(json);
         }

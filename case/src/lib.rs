@@ -28,6 +28,7 @@ pub mod keys;
 pub mod node;
 pub mod number;
 pub mod output;
+mod short;
 pub mod solve;
 pub mod text;
 mod tiny;

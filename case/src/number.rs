@@ -66,7 +66,11 @@ pub trait InputScalar: Scalar<Unbounded: collision_core::ScalarRoot> {
 pub const SUBNORMAL_ERROR: f64 = f64::MIN_POSITIVE * f64::EPSILON / 2.0;
 
 impl InputScalar for Exact {
+    /// A short number in one pass (`crate::short`), anything else by the scan.
     fn parse_number(text: &str) -> Result<Self, String> {
+        if let Some(x) = crate::short::exact(text) {
+            return Ok(x);
+        }
         exact(&scan(text)?, text)
     }
 

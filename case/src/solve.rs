@@ -65,12 +65,24 @@ fn ball<T: InputScalar>(dim: usize, body: &BodyInput<T>, i: usize) -> Result<Bal
 }
 
 fn array<T, const K: usize>(v: Vec<T>) -> Result<[T; K], CaseError> {
-    v.try_into().map_err(|v: Vec<T>| {
-        CaseError::new(
-            "",
-            format!("internal error: expected {K} values, got {}", v.len()),
-        )
-    })
+    v.try_into().map_err(|v: Vec<T>| wrong_length::<K>(v.len()))
+}
+
+/// The error of a vector of `len` values where `K` were expected (an internal error: the
+/// case's reader checks every length).
+fn wrong_length<const K: usize>(len: usize) -> CaseError {
+    CaseError::new(
+        "",
+        format!("internal error: expected {K} values, got {len}"),
+    )
+}
+
+/// [`array`] of a borrowed slice: its values cloned straight into the array.
+fn array_of<T: Clone, const K: usize>(v: &[T]) -> Result<[T; K], CaseError> {
+    if v.len() != K {
+        return Err(wrong_length::<K>(v.len()));
+    }
+    Ok(std::array::from_fn(|k| v[k].clone()))
 }
 
 /// The state of body `i` in the form the kernels take.
@@ -78,14 +90,18 @@ fn state<T: InputScalar, const N: usize, const S: usize>(
     body: &BodyInput<T>,
     i: usize,
 ) -> Result<BodyState<T, N, S>, CaseError> {
-    let velocity: [T; N] = array(body.velocity.clone())?;
+    let velocity: [T; N] = array_of(&body.velocity)?;
     match &body.spin {
         Spin::Matrix(rows) => {
-            let rows = rows
-                .iter()
-                .map(|r| array::<T, N>(r.clone()))
-                .collect::<Result<Vec<_>, _>>()?;
-            Ok(BodyState::from_matrix(i, &array(rows)?, velocity)?)
+            if let Some(row) = rows.iter().find(|r| r.len() != N) {
+                return Err(wrong_length::<N>(row.len()));
+            }
+            if rows.len() != N {
+                return Err(wrong_length::<N>(rows.len()));
+            }
+            let rows: [[T; N]; N] =
+                std::array::from_fn(|r| std::array::from_fn(|c| rows[r][c].clone()));
+            Ok(BodyState::from_matrix(i, &rows, velocity)?)
         }
         Spin::Scalar(c) => {
             let s = State2::from_scalar_spin(c.clone(), array(body.velocity.clone())?);

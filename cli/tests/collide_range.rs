@@ -356,7 +356,7 @@ where
         let ec = exact_case(&nu, &bodies);
         let exact = exact_collide::<N, S>(&ec)
             .unwrap_or_else(|e| panic!("exact arithmetic refused {what}: {e}"));
-        match collide_case::<f64>(&case) {
+        match collide_case::<f64, _>(&case) {
             Ok(float) => {
                 tally.accepted += 1;
                 let float: Value = serde_json::from_str(&float).expect("the answer is JSON");

@@ -112,14 +112,12 @@ impl<T: Scalar> Ball<T> {
                 w
             }
         };
-        let n = T::from_ratio(dim as i64, 1);
-        let shell = two::<T>() / n.clone();
         let gamma2 = match inertia {
-            Inertia::Uniform => two::<T>() / (n + two::<T>()),
-            Inertia::Shell => shell,
+            Inertia::Uniform => two_over::<T>(dim + 2),
+            Inertia::Shell => two_over::<T>(dim),
             Inertia::Gamma2(g) => {
                 finite(&g, BodyField::Gamma2)?;
-                in_range(&g, &shell, BodyField::Gamma2, "2/n")?
+                in_range(&g, &two_over::<T>(dim), BodyField::Gamma2, "2/n")?
             }
             Inertia::Lambda(l) => {
                 finite(&l, BodyField::Lambda)?;
@@ -181,11 +179,21 @@ impl<T: Scalar> Ball<T> {
         if self.radius <= T::zero() {
             return Err(err(BodyField::Radius, "must be positive"));
         }
-        let shell = two::<T>() / T::from_ratio(dim as i64, 1);
+        let shell = two_over::<T>(dim);
         Ok(Ball {
             gamma2: in_range(&self.gamma2, &shell, BodyField::Gamma2, "2/n")?,
             ..self.clone()
         })
+    }
+}
+
+/// `2/k`: in exact arithmetic the reduced ratio made at once, in floats `2 / k` divided
+/// (as before, so that every float keeps its bits).
+fn two_over<T: Scalar>(k: usize) -> T {
+    if T::EXACT {
+        T::from_ratio(2, k as i64)
+    } else {
+        two::<T>() / T::from_ratio(k as i64, 1)
     }
 }
 
@@ -203,6 +211,15 @@ fn gamma2_of_lambda<T: Scalar>(dim: usize, radius: &T, lambda: &T) -> Result<T, 
         BodyField::Lambda,
         "R^2/n",
     )?;
+    if T::EXACT {
+        // `0 <= lambda <= R^2/n` exactly gives `0 <= 2 lambda / R^2 <= 2/n`, and nothing is
+        // rounded: the two checks below cannot fail, so they run in debug builds only.
+        let gamma2 = two * l / r2;
+        debug_assert!(
+            in_range(&gamma2, &two_over(dim), BodyField::Lambda, "2/n").is_ok_and(|g| g == gamma2)
+        );
+        return Ok(T::from_unbounded(&gamma2));
+    }
     let exact = in_range(
         &(two.clone() * l / r2),
         &(two / n),

@@ -112,12 +112,16 @@ pub trait ScalarRoot: Scalar {
 
 /// The rounding allowance of a quantity of scale `s`: `rounding_slack() |s|`.
 pub(crate) fn allowance<T: Scalar>(s: &T) -> T {
+    if T::EXACT {
+        // `rounding_slack() = 0`: the product is 0 whatever `s`, with no product made.
+        return T::zero();
+    }
     T::rounding_slack() * s.abs()
 }
 
-/// `2` in any scalar.
+/// `2` in any scalar (`from_ratio(2, 1)`: exactly 2 in every type, no addition made).
 pub(crate) fn two<T: Scalar>() -> T {
-    T::one() + T::one()
+    T::from_ratio(2, 1)
 }
 
 #[cfg(test)]

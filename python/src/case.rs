@@ -6,7 +6,9 @@
 //! means the same thing from Python and from the command line, bit for bit; in `f64` the
 //! JSON numbers are read as the floats they were ([`noslip_case::case::Case::from_floats`]), so a
 //! subnormal float is taken as it is, where the command refuses a decimal that would round
-//! below the normal range.
+//! below the normal range. The text is read by the command's one-pass reader
+//! (`noslip_case::text`) when it can be; otherwise, and whenever the case fails, by
+//! serde_json as before, which reports every error.
 
 use crate::error::input_error;
 use collision_core::Exact;
@@ -20,13 +22,27 @@ use serde_json::Value;
 #[pyfunction]
 #[pyo3(signature = (case, exact))]
 pub fn collide_case(py: Python<'_>, case: &str, exact: bool) -> PyResult<String> {
+    // The one-pass reader first (`noslip_case::text`, as `noslip collide` reads); a text it
+    // does not read, or a case that fails, goes to serde_json's `Value` below, so that every
+    // error is the one that path reports.
+    let fast = py.detach(|| {
+        let tree = noslip_case::text::parse(case)?;
+        if exact {
+            solve_case::<Exact, _>(&tree).ok()
+        } else {
+            collide_floats::<f64, _>(&tree).ok()
+        }
+    });
+    if let Some(json) = fast {
+        return Ok(json);
+    }
     let value: Value =
         serde_json::from_str(case).map_err(|e| input_error(format!("malformed case: {e}")))?;
     let out: Result<String, CaseError> = py.detach(|| {
         if exact {
-            solve_case::<Exact>(&value)
+            solve_case::<Exact, _>(&value)
         } else {
-            collide_floats::<f64>(&value)
+            collide_floats::<f64, _>(&value)
         }
     });
     out.map_err(|e| input_error(e.to_string()))

@@ -5,7 +5,11 @@
 //! from `10^4` up to `MAX_N` (default `10^6`) by factors of 10, and prints one line per run:
 //! dimension, placement, fraction, `N`, seconds of wall clock, microseconds per ball. `DIM`,
 //! `PLACEMENT` and `FRACTION` keep only the runs with that dimension, placement and fraction
-//! (`-- 1000000 3 random 0.3` times that one case); `-` keeps all. Random placement
+//! (`-- 1000000 3 random 0.3` times that one case); `-` keeps all. Each line also gives the
+//! seconds of this thread's CPU time (`/proc/thread-self/schedstat`, user and system; steadier
+//! than the wall clock on a shared machine) and a hash of every placed ball (FNV-1a 64 over the
+//! bits of its species, centre, velocity and spin, in order), which two builds must share if
+//! they place the same bits. Random placement
 //! is skipped beyond random sequential saturation (`noslip_sim::setup::saturation`: 0.54 in
 //! 2D, 0.39 in 3D), where it would spend its whole attempt budget (`AVERAGE_ATTEMPTS` per
 //! ball) before refusing; an error prints its start instead of a time.
@@ -35,13 +39,40 @@ fn scene(dim: usize, count: usize, fraction: f64, placement: &str) -> String {
     )
 }
 
-fn time<const N: usize, const S: usize>(text: &str) -> Result<f64, String> {
+/// Seconds of CPU time this thread has run (Linux; 0 elsewhere).
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(0.0, |ns| ns * 1e-9)
+}
+
+/// FNV-1a 64 of `words`' little-endian bytes, continuing from `hash`.
+fn fnv1a(mut hash: u64, words: impl IntoIterator<Item = u64>) -> u64 {
+    for w in words {
+        for byte in w.to_le_bytes() {
+            hash = (hash ^ u64::from(byte)).wrapping_mul(0x100_0000_01b3);
+        }
+    }
+    hash
+}
+
+/// Wall and CPU seconds of `setup()` for the scene `text`, and the hash of what it placed.
+fn time<const N: usize, const S: usize>(text: &str) -> Result<(f64, f64, u64), String> {
     let scene = Scene::from_toml(text, "placement").map_err(|e| e.to_string())?;
-    let start = Instant::now();
+    let (start, cpu) = (Instant::now(), cpu_seconds());
     let placed = setup::<N, S>(&scene)?;
     let seconds = start.elapsed().as_secs_f64();
+    let cpu = cpu_seconds() - cpu;
     assert_eq!(placed.bodies.len(), scene.ball_count());
-    Ok(seconds)
+    let hash = placed.bodies.iter().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        let h = fnv1a(h, [b.species as u64]);
+        let h = fnv1a(h, bits(&b.position));
+        let h = fnv1a(h, bits(&b.state.velocity));
+        fnv1a(h, bits(&b.state.spin))
+    });
+    Ok((seconds, cpu, hash))
 }
 
 fn main() {
@@ -51,7 +82,7 @@ fn main() {
         .map_or(1_000_000, |s| s.parse().expect("MAX_N: a whole number"));
     // A filter: keep a run if the argument is absent, `-`, or equal to the run's value.
     let keep = |k: usize, value: &str| args.get(k).is_none_or(|a| a == "-" || a == value);
-    println!("dim placement fraction N seconds us/ball");
+    println!("dim placement fraction N seconds us/ball cpu_seconds hash");
     for dim in [2, 3] {
         for placement in ["random", "lattice"] {
             for fraction in [0.1, 0.2, 0.3, 0.4] {
@@ -73,8 +104,8 @@ fn main() {
                         _ => time::<3, 3>(&text),
                     };
                     match result {
-                        Ok(s) => println!(
-                            "{dim} {placement} {fraction} {count} {s:.3} {:.2}",
+                        Ok((s, cpu, hash)) => println!(
+                            "{dim} {placement} {fraction} {count} {s:.3} {:.2} {cpu:.3} {hash:016x}",
                             s * 1e6 / count as f64
                         ),
                         Err(e) => {

@@ -180,13 +180,13 @@ impl<const N: usize> Cells<N> {
         if N > 3 {
             return;
         }
-        let (rows, count) = near.rows();
         let last = N - 1;
-        for &(row, _) in &rows[..count] {
+        near.rows(|row, _| {
             for &term in &near.terms[last][..near.len[last]] {
                 collision_core::batch::prefetch(self.cells.get(row + term));
             }
-        }
+            true
+        });
     }
 
     /// `true` if `clear(index, centre, radius)` holds for every item in the cells that come
@@ -209,9 +209,8 @@ impl<const N: usize> Cells<N> {
         if N > 3 {
             return self.walk(near, 0, 0.0, 0, clear);
         }
-        let (rows, count) = near.rows();
         let last = N - 1;
-        for &(row, row_gap2) in &rows[..count] {
+        near.rows(|row, row_gap2| {
             for c in 0..near.len[last] {
                 if row_gap2 + near.gaps[last][c] < near.reach2
                     && !self.clear_cell(row + near.terms[last][c], clear)
@@ -219,8 +218,8 @@ impl<const N: usize> Cells<N> {
                     return false;
                 }
             }
-        }
-        true
+            true
+        })
     }
 
     /// The items of cell `flat` tested by `clear`, up to the first that fails.
@@ -246,20 +245,24 @@ impl<const N: usize> Cells<N> {
 
     /// The cells around `x` along each axis (see [`Near`]).
     pub(crate) fn near(&self, x: &[f64; N]) -> Near<N> {
+        let mut near = Near::NONE;
+        self.near_into(x, &mut near);
+        near
+    }
+
+    /// [`Cells::near`] written into `near` (no copy of the result; only the entries in use
+    /// are written, and those are all [`Cells::visit`] reads).
+    #[inline]
+    pub(crate) fn near_into(&self, x: &[f64; N], near: &mut Near<N>) {
         let reach = self.reach * (1.0 + 1.0 / (1u64 << 20) as f64);
-        let mut near = Near {
-            terms: [[0; 3]; N],
-            gaps: [[0.0; 3]; N],
-            len: [1; N],
-            reach2: reach * reach,
-        };
+        near.reach2 = reach * reach;
         for k in 0..N {
             let (n, w, stride) = (self.n[k], self.width[k], self.stride[k]);
             let c = self.cell(x, k);
             let lo = (x[k] - c as f64 * w).max(0.0);
             let hi = (w - lo).max(0.0);
             let (terms, gaps) = (&mut near.terms[k], &mut near.gaps[k]);
-            terms[0] = c * stride;
+            (terms[0], gaps[0]) = (c * stride, 0.0);
             let mut len = 1;
             let wrap = self.periodic[k];
             if n == 1 {
@@ -284,7 +287,6 @@ impl<const N: usize> Cells<N> {
             }
             near.len[k] = len;
         }
-        near
     }
 
     /// The cells of axes `k..N` below the flat index terms `flat` of axes `0..k`, whose
@@ -338,25 +340,24 @@ impl<const N: usize> Near<N> {
     };
 
     /// In up to 3 dimensions, the rows along the last axis: every combination of the cells
-    /// of axes `0..N-1` as its flat index terms and squared gap summed, the own first, and
-    /// their count (at most 9).
-    fn rows(&self) -> ([(usize, f64); 9], usize) {
-        let mut rows = [(0usize, 0.0f64); 9];
-        let mut count = 1;
-        for k in 0..N.saturating_sub(1).min(2) {
-            let before = count;
-            for c in 1..self.len[k] {
-                for i in 0..before {
-                    let (flat, gap2) = rows[i];
-                    rows[count] = (flat + self.terms[k][c], gap2 + self.gaps[k][c]);
-                    count += 1;
-                }
-            }
-            for row in &mut rows[..before] {
-                row.0 += self.terms[k][0];
-            }
+    /// of axes `0..N-1` as its flat index terms and squared gap summed (`terms[0][a] +
+    /// terms[1][b]`, `gaps[0][a] + gaps[1][b]` in 3D), the own first, then with axis 0's
+    /// cell varying fastest, each given to `row` until it returns `false`; whether none did.
+    /// Nothing is built: the rows are sums made as they are visited.
+    #[inline(always)]
+    fn rows(&self, mut row: impl FnMut(usize, f64) -> bool) -> bool {
+        match N {
+            1 => row(0, 0.0),
+            2 => (0..self.len[0]).all(|a| row(self.terms[0][a], self.gaps[0][a])),
+            _ => (0..self.len[1]).all(|b| {
+                (0..self.len[0]).all(|a| {
+                    row(
+                        self.terms[0][a] + self.terms[1][b],
+                        self.gaps[0][a] + self.gaps[1][b],
+                    )
+                })
+            }),
         }
-        (rows, count)
     }
 }
 

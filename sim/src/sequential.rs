@@ -7,8 +7,8 @@
 //! cells around the draws the cover does not refuse, then the draws are tested in order, a
 //! covered one refused at once, the others by the full test. Drawing ahead changes nothing:
 //! the kept centre is the first clear one of the stream, and the stream is left just after
-//! its draws (it is rewound to the batch's start and the draws up to the kept one are made
-//! again), so velocity and spin then take the same words as when each centre was drawn and
+//! its draws (set to the batch's start in the stream's words, [`Rng::word_pos`], plus the `2 N`
+//! words of each draw up to the kept one), so velocity and spin then take the same words as when each centre was drawn and
 //! tested in turn.
 
 use crate::cover::Cover;
@@ -74,7 +74,7 @@ impl<const N: usize, F: Fn(&[f64; N], f64) -> bool> Region<'_, N, F> {
         let mut ahead = ahead.clamp(1, AHEAD);
         while spent < limit {
             let count = ahead.min(limit - spent);
-            let start = (count > 1).then(|| rng.clone());
+            let start = rng.word_pos();
             for (p, voxel) in batch.points[..count].iter_mut().zip(&mut batch.voxels) {
                 *p = random_position(rng, &self.size, &self.periodic, r);
                 *voxel = self.cover.locate(p);
@@ -84,7 +84,7 @@ impl<const N: usize, F: Fn(&[f64; N], f64) -> bool> Region<'_, N, F> {
             let draws = batch.points[..count].iter().zip(&batch.voxels);
             for ((p, voxel), near) in draws.zip(&mut batch.near) {
                 if !self.cover.is_covered(*voxel) {
-                    *near = self.balls.near(p);
+                    self.balls.near_into(p, near);
                     self.balls.prefetch(near);
                 }
             }
@@ -94,12 +94,10 @@ impl<const N: usize, F: Fn(&[f64; N], f64) -> bool> Region<'_, N, F> {
                     && self.balls.clear_near(near, p, r)
                     && (self.inside)(p, r)
                 {
-                    if let Some(start) = start.filter(|_| j + 1 < count) {
-                        // Rewind, and draw again up to the kept centre.
-                        *rng = start;
-                        for _ in 0..=j {
-                            random_position(rng, &self.size, &self.periodic, r);
-                        }
+                    if j + 1 < count {
+                        // Back to just after the kept centre's draw: `N` words of two
+                        // 32-bit words each per draw.
+                        rng.set_word_pos(start + (2 * N * (j + 1)) as u128);
                     }
                     return (Some(*p), spent + j + 1);
                 }

@@ -86,8 +86,12 @@ pub(crate) fn prepare<T: Scalar>(
         .fold(T::Unbounded::zero(), |s, x| s + x.clone() * x.clone());
     let one = T::Unbounded::one();
     let ulps = normal_ulps(n);
-    let slack =
-        allowance(&norm2) * T::Unbounded::from_ratio(i64::from(ulps), i64::from(allowance::ULPS));
+    // Exact arithmetic takes no allowance (`allowance` is 0): no product is made.
+    let slack = if T::EXACT {
+        T::Unbounded::zero()
+    } else {
+        allowance(&norm2) * T::Unbounded::from_ratio(i64::from(ulps), i64::from(allowance::ULPS))
+    };
     if allowance::within(&norm2, &one, &one, &slack).is_none() {
         let how = if T::EXACT {
             "exactly".to_string()

@@ -108,7 +108,12 @@ macro_rules! by_operators {
 }
 
 impl Backend for RBig {
+    /// An integer (`den = 1`, or `num = 0`) is made without a gcd, as `RBig::from(num)`:
+    /// `num / 1` is reduced already. Other ratios are reduced by dashu.
     fn from_ratio(num: i64, den: i64) -> Self {
+        if den == 1 || (num == 0 && den != 0) {
+            return RBig::from(num);
+        }
         RBig::from_parts_signed(IBig::from(num), IBig::from(den))
     }
     fn from_decimal(num: &str, den: &str) -> Option<Self> {
@@ -118,7 +123,42 @@ impl Backend for RBig {
     fn from_f64(x: f64) -> Option<Self> {
         RBig::try_from(x).ok()
     }
-    by_operators!();
+    // `0 + b = b`, `a + 0 = a`, `a - 0 = a`, `0 b = a 0 = 0`: the reduced value at once,
+    // without dashu's cross gcds (an exact case has many zeros: the diagonal of every
+    // angular velocity, an immovable body's state).
+    fn add(a: &Self, b: &Self) -> Self {
+        if a.is_zero() {
+            b.clone()
+        } else if b.is_zero() {
+            a.clone()
+        } else {
+            a + b
+        }
+    }
+    fn sub(a: &Self, b: &Self) -> Self {
+        if b.is_zero() {
+            a.clone()
+        } else if a.is_zero() {
+            -b
+        } else {
+            a - b
+        }
+    }
+    fn mul(a: &Self, b: &Self) -> Self {
+        if a.is_zero() || b.is_zero() {
+            RBig::ZERO
+        } else {
+            a * b
+        }
+    }
+    #[inline]
+    fn div(a: &Self, b: &Self) -> Self {
+        a / b
+    }
+    #[inline]
+    fn neg(a: &Self) -> Self {
+        -a
+    }
     fn trunc(a: &Self) -> Self {
         RBig::from(a.trunc())
     }

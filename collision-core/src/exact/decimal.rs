@@ -66,6 +66,12 @@ fn chunk_digits(mut x: u64) -> [u8; 19] {
 /// Write the decimal digits of the unsigned integer whose little-endian words are `words`
 /// (no leading zeros; `0` for no words or only zero words).
 pub fn write_words<W: fmt::Write>(words: &[Word], w: &mut W) -> fmt::Result {
+    if words.len() <= 1 {
+        // No word (zero) or one (most small rationals): the digits straight from a `u64`,
+        // with no arrays of `MAX_WORDS` words to clear.
+        #[allow(clippy::unnecessary_cast)]
+        return write_word(words.first().map_or(0, |&x| x as u64), w);
+    }
     if Word::BITS != 64 || words.len() > MAX_WORDS {
         return write!(w, "{}", UBig::from_words(words));
     }
@@ -107,6 +113,25 @@ pub fn write_words<W: fmt::Write>(words: &[Word], w: &mut W) -> fmt::Result {
         .map_or(digits.len() - 1, |k| start + k);
     // The digits are ASCII: always UTF-8.
     w.write_str(std::str::from_utf8(&digits[first..]).map_err(|_| fmt::Error)?)
+}
+
+/// The decimal digits of `x` (no leading zeros; `0` for 0), two at a time from the end.
+fn write_word<W: fmt::Write>(mut x: u64, w: &mut W) -> fmt::Result {
+    let mut buf = [0u8; 20];
+    let mut start = buf.len();
+    while x >= 10 {
+        let pair = (x % 100) as usize * 2;
+        x /= 100;
+        start -= 2;
+        buf[start..start + 2].copy_from_slice(&PAIRS[pair..pair + 2]);
+    }
+    // The leading digit, unless the last pair (10 to 99) led already.
+    if x > 0 || start == buf.len() {
+        start -= 1;
+        buf[start] = b'0' + x as u8;
+    }
+    // The digits are ASCII: always UTF-8.
+    w.write_str(std::str::from_utf8(&buf[start..]).map_err(|_| fmt::Error)?)
 }
 
 #[cfg(test)]
