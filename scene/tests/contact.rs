@@ -198,8 +198,8 @@ fn walton_laws_are_read_exactly_and_bad_ones_refused_naming_the_key() {
 }
 
 /// `[box] contact`: the box walls' law, read exactly (no-slip by default and without a box),
-/// bad values refused naming `box.contact`; box walls with a rough law have their `fixed`
-/// kernels with the law folded in, smooth and Walton walls none (`Scene::pairs`).
+/// bad values refused naming `box.contact`; box walls with a rough or Walton law have their
+/// `fixed` kernels with the law folded in, smooth walls none (`Scene::pairs`).
 #[test]
 fn the_box_takes_a_contact_law() {
     let boxed = |contact: &str| {
@@ -229,7 +229,8 @@ fn the_box_takes_a_contact_law() {
     assert!(smooth.pairs().ball_wall.is_empty());
     let walton = boxed("{ e = 1, mu = \"0.2\", beta0 = 1 }").unwrap();
     assert!(matches!(walton.box_contact, ContactKind::Walton { .. }));
-    assert!(walton.pairs().ball_wall.is_empty());
+    assert_eq!(walton.pairs().ball_wall.len(), 4);
+    assert_eq!(walton.pairs().laws.wall, walton.box_contact);
     for (contact, place) in [
         ("{ e = 2, beta = 0 }", "box.contact.e"),
         ("{ e = 0.5, mu = -1, beta0 = 0 }", "box.contact.mu"),
@@ -243,10 +244,10 @@ fn the_box_takes_a_contact_law() {
 }
 
 /// The laws `Scene::pairs` folds into each kind of kernel: the balls' and the box's own law
-/// when no-slip or rough (Walton and smooth contacts have no kernels in the set); the fixed
-/// bodies' no-slip law if any is no-slip, else their one rough law, else none.
+/// when no-slip, rough or Walton (smooth contacts have no kernels in the set); the fixed
+/// bodies' no-slip law if any is no-slip, else their one rough or Walton law, else none.
 #[test]
-fn pairs_fold_rough_laws_and_leave_walton_out() {
+fn pairs_fold_rough_and_walton_laws() {
     let rough = |e: &str, beta: &str| ContactKind::Rough {
         e: q(e),
         beta: q(beta),
@@ -257,7 +258,9 @@ fn pairs_fold_rough_laws_and_leave_walton_out() {
     assert_eq!(p.laws.ball, rough("9/10", "1/2"));
     assert_eq!(p.laws.wall, ContactKind::NoSlip);
     let walton = scene("[contact]\nballs = { e = 1, mu = \"0.2\", beta0 = 1 }\n").unwrap();
-    assert!(walton.pairs().ball_ball.is_empty());
+    assert_eq!(walton.pairs().ball_ball, [(0, 0)]);
+    assert_eq!(walton.pairs().laws.ball, walton.ball_contact);
+    assert!(matches!(walton.ball_contact, ContactKind::Walton { .. }));
     let obstacle = |contact: &str| {
         format!("[[obstacle]]\nposition = [5, 5]\nradius = 1\ncontact = {contact}\n")
     };
@@ -282,9 +285,14 @@ fn pairs_fold_rough_laws_and_leave_walton_out() {
     // Two rough laws and no no-slip one: no ball-obstacle kernel.
     let p = scene(&(obstacle(law_a) + &wall(law_b))).unwrap().pairs();
     assert!(p.ball_obstacle.is_empty());
-    // Smooth and Walton fixed bodies need none either.
-    let p = scene(&(obstacle("\"smooth\"") + &wall("{ e = 1, mu = 1, beta0 = 0 }")))
+    // Smooth fixed bodies need none; beside them, one Walton law is folded like a rough one.
+    let p = scene(&(obstacle("\"smooth\"") + &wall("\"smooth\"")))
         .unwrap()
         .pairs();
     assert!(p.ball_obstacle.is_empty());
+    let walton = "{ e = 1, mu = 1, beta0 = 0 }";
+    let s = scene(&(obstacle("\"smooth\"") + &wall(walton))).unwrap();
+    let p = s.pairs();
+    assert_eq!(p.ball_obstacle.len(), 1);
+    assert!(matches!(p.laws.fixed, ContactKind::Walton { .. }));
 }
