@@ -20,90 +20,43 @@ mod walton;
 pub use rough::RoughKernel;
 pub use walton::WaltonKernel;
 
+/// One method of `CertifiedKernel`: the running companion `$running` or the fast one `$fast`
+/// of `kernels::$module::certified::$format`, as `companion` picks.
+macro_rules! certified_method {
+    ($module:ident $format:ident $name:ident: $running:ident | $fast:ident
+        ($($arg:ident: $ty:ty),*) -> $ret:ty) => {
+        #[inline(always)]
+        fn $name(companion: crate::certified::Companion, $($arg: $ty),*) -> $ret {
+            use $module::certified::$format as c;
+            match companion {
+                crate::certified::Companion::Running => c::$running($($arg),*),
+                crate::certified::Companion::Fast => c::$fast($($arg),*),
+            }
+        }
+    };
+}
+
 /// `CertifiedKernel<$t>` for dimension `$n` from the companions' per-format names
 /// (`kernels::dN::certified::in_f64`, `in_f32`).
 macro_rules! certified_kernel_impl {
     ($module:ident $n:literal $s:literal $t:ident $format:ident) => {
         impl crate::certified::CertifiedKernel<$t, $n, $s> for Generated {
-            #[inline(always)]
-            fn free(
-                companion: crate::certified::Companion,
-                nu: &[$t; $n],
-                ball1: &Ball<$t>,
-                ball2: &Ball<$t>,
-                state1: &BodyState<$t, $n, $s>,
-                state2: &BodyState<$t, $n, $s>,
-            ) -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]) {
-                use $module::certified::$format as c;
-                match companion {
-                    crate::certified::Companion::Running => {
-                        c::free(nu, ball1, ball2, state1, state2)
-                    }
-                    crate::certified::Companion::Fast => {
-                        c::free_fast(nu, ball1, ball2, state1, state2)
-                    }
-                }
-            }
-
-            #[inline(always)]
-            fn fixed(
-                companion: crate::certified::Companion,
-                nu: &[$t; $n],
-                radius1: &$t,
-                ball2: &Ball<$t>,
-                state1: &BodyState<$t, $n, $s>,
-                state2: &BodyState<$t, $n, $s>,
-            ) -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>) {
-                use $module::certified::$format as c;
-                match companion {
-                    crate::certified::Companion::Running => {
-                        c::fixed(nu, radius1, ball2, state1, state2)
-                    }
-                    crate::certified::Companion::Fast => {
-                        c::fixed_fast(nu, radius1, ball2, state1, state2)
-                    }
-                }
-            }
-
-            #[inline(always)]
-            fn free_fma(
-                companion: crate::certified::Companion,
-                nu: &[$t; $n],
-                ball1: &Ball<$t>,
-                ball2: &Ball<$t>,
-                state1: &BodyState<$t, $n, $s>,
-                state2: &BodyState<$t, $n, $s>,
-            ) -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]) {
-                use $module::certified::$format as c;
-                match companion {
-                    crate::certified::Companion::Running => {
-                        c::free_fma(nu, ball1, ball2, state1, state2)
-                    }
-                    crate::certified::Companion::Fast => {
-                        c::free_fma_fast(nu, ball1, ball2, state1, state2)
-                    }
-                }
-            }
-
-            #[inline(always)]
-            fn fixed_fma(
-                companion: crate::certified::Companion,
-                nu: &[$t; $n],
-                radius1: &$t,
-                ball2: &Ball<$t>,
-                state1: &BodyState<$t, $n, $s>,
-                state2: &BodyState<$t, $n, $s>,
-            ) -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>) {
-                use $module::certified::$format as c;
-                match companion {
-                    crate::certified::Companion::Running => {
-                        c::fixed_fma(nu, radius1, ball2, state1, state2)
-                    }
-                    crate::certified::Companion::Fast => {
-                        c::fixed_fma_fast(nu, radius1, ball2, state1, state2)
-                    }
-                }
-            }
+            certified_method!($module $format free: free | free_fast
+                (nu: &[$t; $n], ball1: &Ball<$t>, ball2: &Ball<$t>,
+                 state1: &BodyState<$t, $n, $s>, state2: &BodyState<$t, $n, $s>)
+                -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]));
+            certified_method!($module $format fixed: fixed | fixed_fast
+                (nu: &[$t; $n], radius1: &$t, ball2: &Ball<$t>,
+                 state1: &BodyState<$t, $n, $s>, state2: &BodyState<$t, $n, $s>)
+                -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>));
+            certified_method!($module $format free_fma: free_fma | free_fma_fast
+                (nu: &[$t; $n], ball1: &Ball<$t>, ball2: &Ball<$t>,
+                 state1: &BodyState<$t, $n, $s>, state2: &BodyState<$t, $n, $s>)
+                -> ([BodyState<$t, $n, $s>; 2], [BodyState<$t, $n, $s>; 2]));
+            certified_method!($module $format fixed_fma: fixed_fma | fixed_fma_fast
+                (nu: &[$t; $n], radius1: &$t, ball2: &Ball<$t>,
+                 state1: &BodyState<$t, $n, $s>, state2: &BodyState<$t, $n, $s>)
+                -> (BodyState<$t, $n, $s>, BodyState<$t, $n, $s>));
         }
     };
 }
