@@ -47,9 +47,43 @@ fn state<const N: usize, const S: usize>(rng: &mut Rng) -> BodyState<Exact, N, S
     }
 }
 
-/// The generic rough kernels under `law` for `pair`, as the engines run them: ball-ball the
-/// `free` map; a wall or obstacle the `fixed` map with body 1 at rest (radius 1: it
-/// multiplies a zero spin) and the wall's normal `+-e_axis` or the given `nu`.
+/// A pair's generic kernel as the engines run it: ball-ball the `free` map; a wall or
+/// obstacle the `fixed` map with body 1 at rest (radius 1: it multiplies a zero spin) and the
+/// wall's normal `+-e_axis` or the given `nu`.
+fn as_engines<const N: usize, const S: usize>(
+    pair: Pair,
+    balls: &[Ball<Exact>],
+    nu: &[Exact; N],
+    states: &[BodyState<Exact, N, S>; 2],
+    free: impl Fn(
+        &[Exact; N],
+        &Ball<Exact>,
+        &Ball<Exact>,
+        &BodyState<Exact, N, S>,
+        &BodyState<Exact, N, S>,
+    ) -> [BodyState<Exact, N, S>; 2],
+    fixed: impl Fn(
+        &[Exact; N],
+        &Exact,
+        &Ball<Exact>,
+        &BodyState<Exact, N, S>,
+        &BodyState<Exact, N, S>,
+    ) -> BodyState<Exact, N, S>,
+) -> Vec<BodyState<Exact, N, S>> {
+    let (one, rest) = (Exact::from_integer(1), BodyState::zero());
+    match pair {
+        Pair::BallBall(a, b) => free(nu, &balls[a], &balls[b], &states[0], &states[1]).to_vec(),
+        Pair::BallWall(s, axis, side) => {
+            let sign = if side == WallSide::Upper { -1 } else { 1 };
+            let wall =
+                std::array::from_fn(|k| Exact::from_integer(if k == axis { sign } else { 0 }));
+            vec![fixed(&wall, &one, &balls[s], &rest, &states[1])]
+        }
+        Pair::BallObstacle(s) => vec![fixed(nu, &one, &balls[s], &rest, &states[1])],
+    }
+}
+
+/// The generic rough kernels under `law` for `pair`, as the engines run them ([`as_engines`]).
 fn rough<const N: usize, const S: usize>(
     pair: Pair,
     balls: &[Ball<Exact>],
@@ -60,25 +94,14 @@ fn rough<const N: usize, const S: usize>(
 where
     Generated: RoughKernel<Exact, N, S>,
 {
-    let (one, rest) = (Exact::from_integer(1), BodyState::zero());
-    match pair {
-        Pair::BallBall(a, b) => {
-            Generated::rough_free(nu, &balls[a], &balls[b], law, &states[0], &states[1]).to_vec()
-        }
-        Pair::BallWall(s, axis, side) => {
-            let sign = if side == WallSide::Upper { -1 } else { 1 };
-            let wall =
-                std::array::from_fn(|k| Exact::from_integer(if k == axis { sign } else { 0 }));
-            vec![Generated::rough_fixed(
-                &wall, &one, &balls[s], law, &rest, &states[1],
-            )]
-        }
-        Pair::BallObstacle(s) => {
-            vec![Generated::rough_fixed(
-                nu, &one, &balls[s], law, &rest, &states[1],
-            )]
-        }
-    }
+    as_engines(
+        pair,
+        balls,
+        nu,
+        states,
+        |nu, b1, b2, s1, s2| Generated::rough_free(nu, b1, b2, law, s1, s2),
+        |nu, r1, b2, s1, s2| Generated::rough_fixed(nu, r1, b2, law, s1, s2),
+    )
 }
 
 /// The generic Walton kernels under `law` for `pair`, as [`rough`] runs the rough ones.
@@ -92,25 +115,14 @@ fn walton<const N: usize, const S: usize>(
 where
     Generated: WaltonKernel<Exact, N, S>,
 {
-    let (one, rest) = (Exact::from_integer(1), BodyState::zero());
-    match pair {
-        Pair::BallBall(a, b) => {
-            Generated::walton_free(nu, &balls[a], &balls[b], law, &states[0], &states[1]).to_vec()
-        }
-        Pair::BallWall(s, axis, side) => {
-            let sign = if side == WallSide::Upper { -1 } else { 1 };
-            let wall =
-                std::array::from_fn(|k| Exact::from_integer(if k == axis { sign } else { 0 }));
-            vec![Generated::walton_fixed(
-                &wall, &one, &balls[s], law, &rest, &states[1],
-            )]
-        }
-        Pair::BallObstacle(s) => {
-            vec![Generated::walton_fixed(
-                nu, &one, &balls[s], law, &rest, &states[1],
-            )]
-        }
-    }
+    as_engines(
+        pair,
+        balls,
+        nu,
+        states,
+        |nu, b1, b2, s1, s2| Generated::walton_free(nu, b1, b2, law, s1, s2),
+        |nu, r1, b2, s1, s2| Generated::walton_fixed(nu, r1, b2, law, s1, s2),
+    )
 }
 
 /// Compare every pair kind of `set` at `points` random points.
