@@ -105,6 +105,35 @@ where
     Generated::fixed(nu, &1.0, ball, &BodyState::zero(), s)
 }
 
+/// The kernel's rational map evaluated exactly on the float inputs, each output rounded once
+/// to `f64` (test-only reference: the best any `f64` kernel of this map can do).
+fn correctly_rounded<const N: usize, const S: usize>(
+    nu: &[f64; N],
+    ball: &Ball<f64>,
+    s: &BodyState<f64, N, S>,
+) -> BodyState<f64, N, S>
+where
+    Generated: Kernel<Exact, N, S>,
+{
+    let x = |v: f64| Exact::from_float(v).expect("finite");
+    let nu: [Exact; N] = std::array::from_fn(|k| x(nu[k]));
+    let ball = Ball {
+        inv_mass: x(ball.inv_mass),
+        radius: x(ball.radius),
+        gamma2: x(ball.gamma2),
+    };
+    let state = BodyState::<Exact, N, S> {
+        spin: std::array::from_fn(|k| x(s.spin[k])),
+        velocity: std::array::from_fn(|k| x(s.velocity[k])),
+    };
+    let after =
+        <Generated as Kernel<Exact, N, S>>::fixed(&nu, &x(1.0), &ball, &BodyState::zero(), &state);
+    BodyState {
+        spin: std::array::from_fn(|k| after.spin[k].to_f64()),
+        velocity: std::array::from_fn(|k| after.velocity[k].to_f64()),
+    }
+}
+
 /// The form the kernel had before (test-only reference): `u+ = u - 2 (dn nu + p t)`,
 /// `U+ = U + rho (nu ^ t)` with `p = g / (1 + g)` and `rho = 2 / (R (1 + g))` each rounded.
 fn two_rounded_constants<const N: usize, const S: usize>(
@@ -228,6 +257,72 @@ fn one_ball_between_walls_has_no_energy_bias() {
     check::<4, 6>();
     check::<5, 10>();
     check::<6, 15>();
+}
+
+/// At radii that are not powers of two (`1/20`, `3/10`, where the shipped kernel's residual
+/// bias shows: `docs/accuracy.md`, "Energy bias") the correctly rounded map has none: the
+/// statistic of [`run`] with the same band, `|z| <= 4` (module docs), at `n = 2` (exact
+/// rationals are slow in the debug profile; scratch runs at `n = 3` and 10 times as many
+/// contacts agree). This is the reference the residual is measured against (the map can be
+/// unbiased in `f64`); the shipped kernel at these radii is checked by
+/// [`at_radii_that_are_not_powers_of_two_the_kernel_has_no_energy_bias`] (ignored: it fails).
+#[test]
+fn the_correctly_rounded_map_has_no_energy_bias_at_any_radius() {
+    fn at<const N: usize, const S: usize>()
+    where
+        Generated: Kernel<f64, N, S> + Kernel<Exact, N, S>,
+    {
+        for (i, (gamma2, radius)) in [(0.5, 0.05), (0.3, 0.3)].into_iter().enumerate() {
+            let ball = Ball {
+                inv_mass: 1.0,
+                radius,
+                gamma2,
+            };
+            let seed = 1000 + 100 * N as u64 + i as u64;
+            let (mean, se, _) = run::<N, S>(&ball, seed, correctly_rounded);
+            assert!(
+                mean.abs() <= BAND * se,
+                "n = {N}, g = {gamma2}, R = {radius}: the correctly rounded map drifts {mean:.4} eps per contact, {:.1} standard errors ({se:.4})",
+                mean / se
+            );
+        }
+    }
+    at::<2, 1>();
+}
+
+/// Issue 28 item 4's test at radii that are not powers of two: the shipped kernel must stay
+/// within the band of [`check`] there too. **It does not** (the residual bias of
+/// `docs/accuracy.md`, "Energy bias": at `n = 2`, `g = 3/10`, `R = 3/10` it drifts 0.018 eps
+/// per contact, 4.4 standard errors), so it is ignored until a kernel without that bias is
+/// built:
+/// `cargo test -p collision-core --lib energy_drift -- --ignored`.
+#[test]
+#[ignore = "fails: the fixed kernel's residual energy bias at radii 1/20 and 3/10 (docs/accuracy.md)"]
+fn at_radii_that_are_not_powers_of_two_the_kernel_has_no_energy_bias() {
+    fn at<const N: usize, const S: usize>()
+    where
+        Generated: Kernel<f64, N, S>,
+    {
+        for (i, (gamma2, radius)) in [(0.5, 0.05), (0.3, 0.3)].into_iter().enumerate() {
+            let ball = Ball {
+                inv_mass: 1.0,
+                radius,
+                gamma2,
+            };
+            let seed = 1000 + 100 * N as u64 + i as u64;
+            let (mean, se, _) = run::<N, S>(&ball, seed, generated);
+            assert!(
+                mean.abs() <= BAND * se,
+                "n = {N}, g = {gamma2}, R = {radius}: fixed drifts {mean:.4} eps per contact, {:.1} standard errors ({se:.4})",
+                mean / se
+            );
+        }
+    }
+    at::<2, 1>();
+    at::<3, 3>();
+    at::<4, 6>();
+    at::<5, 10>();
+    at::<6, 15>();
 }
 
 /// The reason for the two constants: a point mass (`g = 0`, so `p = 0`) against an immovable
