@@ -1,6 +1,12 @@
 //! One ball bouncing between walls (the one-ball tables of `docs/scenes.md`), n = 2..6, in
-//! `f64`: the generated `fixed` kernel has no energy bias, where the two-rounded-constant form
-//! it replaced drifts at the rate its constants' rounding predicts.
+//! `f64`: the generated `fixed` kernel does not have the constants' energy bias, where the
+//! two-rounded-constant form it replaced drifts at the rate its constants' rounding predicts.
+//! It is **not** unbiased: a residual remains at these dyadic radii (the rounded `p^` itself;
+//! `docs/accuracy.md`, "Energy bias"), which 40 000 contacts do not resolve but 400 000 do
+//! (scratch runs at `R = 1/4`, `g = 1/2`: up to 17 standard errors, about 0.02 eps per
+//! contact against the constants' 0.16 to 0.19), so the test asserts a claim that does not
+//! depend on the run's length: the kernel's drift is within a quarter of the constants'
+//! predicted bias, plus the band.
 //!
 //! Walls have exactly unit normals `+-e_k`; the axis of each contact comes from a seeded stream
 //! and the side is the one the ball moves towards.
@@ -24,9 +30,11 @@
 //! the standard error of the batch means, `s_B / sqrt(B)`. Batches of `K / B` contacts absorb
 //! the correlation of neighbouring contacts (the sign-changing term alternates), so with no
 //! bias `z` follows Student's t with `B - 1` degrees of freedom: `|z| > 4` has probability
-//! below `3e-4` per run at `B = 40`. An unbiased kernel must stay within 4 standard errors; a
-//! biased one at `-0.18 eps` per contact against a standard error of about
-//! `0.9 eps / sqrt(K)` lands tens of standard errors out.
+//! below `3e-4` per run at `B = 40`. The kernel's mean must be within a quarter of the old
+//! form's predicted bias `b` plus 4 standard errors, `|mean| <= |b| / 4 + 4 se` (a kernel with
+//! the constants' bias, at `-0.18 eps` per contact against a standard error of about
+//! `0.9 eps / sqrt(K)`, lands tens of standard errors out), and the old form must land on its
+//! prediction.
 
 use crate::kernels::Generated;
 use crate::{Ball, BodyState, Exact, Kernel};
@@ -228,15 +236,15 @@ where
         };
         let seed = 100 * N as u64 + i as u64;
         let (mean, se, _) = run::<N, S>(&ball, seed, generated);
-        assert!(
-            mean.abs() <= BAND * se,
-            "n = {N}, g = {gamma2}, R = {radius}: fixed drifts {mean:.4} eps per contact, {:.1} standard errors ({se:.4})",
-            mean / se
-        );
         // The same statistic on the old form: as far out as its constants predict, and
         // outside the band wherever that prediction is (n = 4's uniform ball has the exact
         // `p = 1/4` and `rho = 3 / (2 R)`: no bias to find).
         let (old, old_se, predicted) = run::<N, S>(&ball, seed, two_rounded_constants);
+        assert!(
+            mean.abs() <= predicted.abs() / 4.0 + BAND * se,
+            "n = {N}, g = {gamma2}, R = {radius}: fixed drifts {mean:.4} eps per contact, {:.1} standard errors ({se:.4}), against the constants' {predicted:.4}",
+            mean / se
+        );
         assert!(
             (old - predicted).abs() <= BAND * old_se,
             "n = {N}, g = {gamma2}, R = {radius}: the old form drifts {old:.4} eps per contact, predicted {predicted:.4} (se {old_se:.4})"
@@ -251,7 +259,7 @@ where
 }
 
 #[test]
-fn one_ball_between_walls_has_no_energy_bias() {
+fn one_ball_between_walls_has_not_the_constants_energy_bias() {
     check::<2, 1>();
     check::<3, 3>();
     check::<4, 6>();
