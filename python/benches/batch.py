@@ -14,7 +14,8 @@ median (min-max) of the ratios within each round.
   `mmap` advised for huge pages), which pays the first touch of new pages as a call
   returning new arrays must;
 - `np copy`, `np copy new`: the same floor written with NumPy (`np.copyto` into the reused
-  arrays, `np.array(..., copy=True)` for new ones, `sum` of the rest);
+  arrays, `np.array(..., copy=True)` for new ones, all four returned together as
+  `collide_batch` returns its outputs, `sum` of the rest);
 - `kernel`: `Exec::free` alone on the rows already in its blocked layout;
 - `steps`: the Rust batch path before issue 30: chunks of 512 rows gathered into a
   `FreeBatch` (`fill_from_rows`), run by `Exec::free`, scattered by `write_rows`;
@@ -99,19 +100,23 @@ def numpy_peer(nu: np.ndarray, bodies: Bodies) -> tuple[dict[str, np.ndarray], .
     )
 
 
-def numpy_copy(nu: np.ndarray, bodies: Bodies, out: Any = None) -> float:
+def numpy_copy(nu: np.ndarray, bodies: Bodies, out: Any = None) -> tuple[float, list[Any]]:
     """The copy floor in NumPy: the normals and parameters summed, each body's states copied
-    into `out` (reused arrays) or into new arrays."""
+    into `out` (reused arrays) or into new arrays, which are returned, all four alive at
+    once as `collide_batch`'s are (a copy dropped before the next is made lets glibc's
+    `malloc` hand the same pages back at n = 2, where the arrays are under its 32 MiB `mmap`
+    threshold, so that floor never paid the first touch `collide_batch` pays)."""
     total = float(nu.sum())
+    new = []
     for b in range(2):
         for key in ("inv_mass", "radius", "gamma2"):
             total += float(bodies[b][key].sum())
         for key in ("angular_velocity", "velocity"):
             if out is None:
-                np.array(bodies[b][key], copy=True)
+                new.append(np.array(bodies[b][key], copy=True))
             else:
                 np.copyto(out[b][key], bodies[b][key])
-    return total
+    return total, new
 
 
 def load_native(path: str) -> ModuleType:
