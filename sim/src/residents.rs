@@ -197,7 +197,7 @@ impl<const N: usize> Residents<N> {
     /// `*count` past them. The first four places are written whatever the list's length (one
     /// store, and no branch on a length that varies from cell to cell: a scan's loop over the
     /// places has one trip count instead of one per cell); `out` grows when it must.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn gather(&self, cell: usize, out: &mut Vec<u32>, count: &mut usize) {
         let span = self.spans[cell];
         let (start, len) = (span.start, span.len as usize);

@@ -39,9 +39,12 @@
 //! one slab in the order of the cells, laid out again at the start and at every re-basing
 //! (which also predict the balls cell after cell), so a scan of the `3^n` cells within reach
 //! (`Grid::near`, no division; an interior cell's from a table of flat offsets) reads a few
-//! stretches of memory. Without obstacles, an interior cell's scan gathers its neighbours'
-//! slab places first and meets them in one loop (`Residents::gather`): one loop exit per scan
-//! instead of a mispredicted one per cell. The velocity there
+//! stretches of memory. Without obstacles, a scan gathers its neighbours' slab places first
+//! (`Residents::gather`; a cell at a periodic face tags its places with its image), then
+//! computes their pair times four at a time in vector registers (`lanes.rs`, AVX2 where the
+//! CPU has it) and offers only those at the least time to the scalar path, which recomputes
+//! the canonical time: one loop exit per scan instead of a mispredicted one per cell, and
+//! no branch per partner. The velocity there
 //! is a copy of the ball's state's, written at each contact. Contact times in the scan are
 //! taken without branches (`predict::contact_time_or_nan`, the same bits as
 //! `contact_time`). The calendar's lists, the slab and the scan reuse their memory:
@@ -95,6 +98,7 @@
 mod contacts;
 mod events;
 mod kick;
+mod lanes;
 mod quiet;
 mod record;
 mod scan;
@@ -143,7 +147,7 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// the caches ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
     /// The slab places of the balls a scan meets ([`Residents::gather`]), kept between scans.
-    near: Vec<u32>,
+    near: lanes::Gathered<N>,
     /// The order of the balls' pending events (their slots are in `balls`).
     queue: Calendar,
     /// The local clock; the absolute time is `origin + origin_low + now`.
@@ -248,7 +252,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
             prefetch,
-            near: Vec::new(),
+            near: lanes::Gathered::default(),
             queue: Calendar::new(),
             now: 0.0,
             origin: 0.0,

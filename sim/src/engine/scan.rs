@@ -2,6 +2,7 @@
 //! table's boundaries, the box walls and its cell's faces, every contact time canonical
 //! ([`crate::canonical`]); and the cell crossings, which move no record.
 
+use super::lanes::{Flight, Gathered, LANES};
 use super::record::key_of;
 use super::Simulation;
 use crate::canonical::{self, obstacle_time, pair_time};
@@ -23,6 +24,12 @@ impl<const N: usize> Best<N> {
     #[inline]
     fn may_beat(&self, t: f64) -> bool {
         self.best.as_ref().is_none_or(|&(b, _)| t <= b)
+    }
+
+    /// The best time so far (infinite if none): an event later than it cannot beat it.
+    #[inline]
+    fn bound(&self) -> f64 {
+        self.best.as_ref().map_or(f64::INFINITY, |&(b, _)| b)
     }
 
     /// Offers event `what` at `t` (the least `(t, key)` stays, `canonical::order`).
@@ -118,7 +125,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         best: &mut Best<N>,
         c: &[usize; N],
         only: Option<(usize, i64)>,
-        near: &mut Vec<u32>,
+        near: &mut Gathered<N>,
     ) {
         let home = self.balls[i].home;
         let m = *self.motion.get(home);
@@ -132,14 +139,32 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let obstacles = !self.obstacles.is_empty();
         let cells = self.grid.near(c, only);
-        if cells.unshifted() && !obstacles {
+        if !obstacles {
             let mut count = 0;
-            for nb in cells {
-                self.motion.gather(nb.cell, near, &mut count);
+            if cells.unshifted() {
+                near.unshifted(w_i.map(f64::from));
+                for nb in cells {
+                    self.motion.gather(nb.cell, &mut near.places, &mut count);
+                }
+            } else {
+                near.shifted();
+                for nb in cells {
+                    let before = count;
+                    self.motion.gather(nb.cell, &mut near.places, &mut count);
+                    // The cell's image in i's record coordinates, s + W_i (whole numbers).
+                    let base = std::array::from_fn(|k| f64::from(nb.shift[k]) + f64::from(w_i[k]));
+                    near.tag(before, count, base);
+                }
             }
-            let base: [f64; N] = w_i.map(f64::from);
-            for &at in &near[..count] {
-                self.offer_ball(i, best, &m, &base, self.motion.at(at));
+            if count <= LANES {
+                // One chunk or less (a layer, a 2D neighbourhood): the lanes would not pay.
+                for p in 0..count {
+                    let resident = self.motion.at(near.places[p]);
+                    self.offer_ball(i, best, &m, near.base(p), resident);
+                }
+            } else {
+                near.pad(count, home);
+                self.offer_gathered(i, best, &m, near, count);
             }
             return;
         }
@@ -160,6 +185,28 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, size) {
                     best.offer(t, || What::Obstacle { o, image });
                 }
+            }
+        }
+    }
+
+    /// Offers ball `i` (flight `m`) meeting the balls of the first `count` places of `near`:
+    /// their times [`LANES`] at a time ([`super::lanes`]), then to [`Self::offer_ball`] only
+    /// those at the least time found (or the best's, if earlier).
+    #[inline(always)]
+    fn offer_gathered(
+        &self,
+        i: usize,
+        best: &mut Best<N>,
+        m: &Motion<N>,
+        near: &mut Gathered<N>,
+        count: usize,
+    ) {
+        let bound = near.least(best.bound(), Flight(m, &self.motion, &self.grid.size));
+        for p in 0..count {
+            // NaN (no contact) compares false.
+            if near.time(p) <= bound {
+                let resident = self.motion.at(near.places[p]);
+                self.offer_ball(i, best, m, near.base(p), resident);
             }
         }
     }

@@ -1,0 +1,328 @@
+//! The pair times of a gathered neighbourhood, [`LANES`] partners at a time, in front of
+//! the scalar offer.
+//!
+//! A full scan in 3D meets about a dozen partners (27 cells of 0.4 balls at `phi` 0.2) and
+//! keeps one. The scalar path spent about a hundred instructions on each (the canonical
+//! [`crate::canonical::pair_time`], its loads one record at a time, and a branch on each
+//! result). Here a first pass computes the times of all of them, [`LANES`] records at once,
+//! component by component, in arrays the compiler keeps in vector registers (compiled for
+//! AVX2 where the CPU has it, detected once), and keeps the least; a second pass offers to
+//! the scalar path only the partners whose time is at most that least time (or the best
+//! already held, if earlier): in general one.
+//!
+//! **Same events, same bits.** The lanes spell [`crate::canonical::pair_time`]'s operations
+//! in its order (`Motion::at`, `(q - p) + k L`, the dot products summed over `k = 0, 1, ...`
+//! from `0.0`, `1 / a`, the closest-approach root), each an IEEE operation on one lane, and
+//! Rust never fuses a product into a sum, so a lane's time is the scalar time (NaN exactly
+//! where the scalar is NaN; `max` and `sqrt` give the same numbers, up to the sign of a zero,
+//! which no comparison sees): the test below checks it on 400 000 pairs. The passes only
+//! *drop* partners whose time is later than another's (or NaN), which the scalar loop's
+//! `may_beat` would have refused or replaced; every partner at the least time is offered,
+//! and the scalar offer computes the canonical time itself and keeps the least `(t, key)`,
+//! which does not depend on the order of the offers. So the events taken, their times and
+//! their order are the scalar loop's, and logs are unchanged (the reference tests compare the
+//! cell engine's log with the all-pairs engine's, byte for byte).
+//!
+//! A neighbourhood of at most one chunk (a layer in 3D, a 2D neighbourhood at low density)
+//! goes straight to the scalar offer: there the padding and the second pass cost more than
+//! they save.
+
+use crate::motion::Motion;
+use crate::residents::{Resident, Residents};
+
+/// Partners per chunk.
+pub(super) const LANES: usize = 4;
+
+/// What [`Gathered::least`] meets the places with: the scanning ball's flight, the records,
+/// and the box's sides.
+pub(super) struct Flight<'a, const N: usize>(
+    pub(super) &'a Motion<N>,
+    pub(super) &'a Residents<N>,
+    pub(super) &'a [f64; N],
+);
+
+/// The slab places of the balls a scan meets, the image of each one's cell, and their pair
+/// times, kept between scans (no allocation per event once they have grown).
+#[derive(Debug)]
+pub(super) struct Gathered<const N: usize> {
+    /// The places ([`crate::residents::Residents::gather`]), padded to whole chunks.
+    pub(super) places: Vec<u32>,
+    /// Per place, in a scan with shifted cells: the index of its cell's image in `bases`.
+    codes: Vec<u16>,
+    /// The cells' images `s + W_i` in the scanning ball's record coordinates: one for the
+    /// whole scan, or one per cell if some cell is shifted (a periodic image).
+    bases: Vec<[f64; N]>,
+    /// Whether the cells have images of their own (`codes` is then set).
+    shifted: bool,
+    /// The pair time of each place.
+    times: Vec<f64>,
+    /// The padded length, a multiple of [`LANES`].
+    len: usize,
+    /// Whether this CPU runs AVX2, detected once: the chunks' loop is then compiled for it
+    /// (four lanes in one register; the same IEEE operations, so the same numbers).
+    avx2: bool,
+}
+
+impl<const N: usize> Default for Gathered<N> {
+    fn default() -> Self {
+        Gathered {
+            places: Vec::new(),
+            codes: Vec::new(),
+            bases: Vec::new(),
+            shifted: false,
+            times: Vec::new(),
+            len: 0,
+            #[cfg(target_arch = "x86_64")]
+            avx2: is_x86_feature_detected!("avx2"),
+            #[cfg(not(target_arch = "x86_64"))]
+            avx2: false,
+        }
+    }
+}
+
+impl<const N: usize> Gathered<N> {
+    /// Starts a scan whose cells all have the image `base` (no periodic shift).
+    #[inline]
+    pub(super) fn unshifted(&mut self, base: [f64; N]) {
+        self.bases.clear();
+        self.bases.push(base);
+        self.shifted = false;
+    }
+
+    /// Starts a scan whose cells each have their own image ([`Self::tag`]).
+    #[inline]
+    pub(super) fn shifted(&mut self) {
+        self.bases.clear();
+        self.shifted = true;
+    }
+
+    /// In a shifted scan: the places `before..count`, one cell's, have the image `base`. As
+    /// [`crate::residents::Residents::gather`] does, four codes are written whatever the
+    /// cell holds (one store, no branch on its length).
+    #[inline]
+    pub(super) fn tag(&mut self, before: usize, count: usize, base: [f64; N]) {
+        let code = self.bases.len() as u16;
+        self.bases.push(base);
+        let need = before + (count - before).max(LANES);
+        if self.codes.len() < need {
+            self.codes.resize(need.next_power_of_two(), 0);
+        }
+        self.codes[before..before + LANES].fill(code);
+        for c in &mut self.codes[before + LANES.min(count - before)..count] {
+            *c = code;
+        }
+    }
+
+    /// The image of place `p`'s cell.
+    #[inline(always)]
+    pub(super) fn base(&self, p: usize) -> &[f64; N] {
+        if self.shifted {
+            &self.bases[self.codes[p] as usize]
+        } else {
+            &self.bases[0]
+        }
+    }
+
+    /// Pads the first `count` places to whole chunks with `own`, the scanning ball's own
+    /// place: its time with itself is NaN (`dv = 0`, so `d . dv` is not negative) whatever
+    /// the image.
+    #[inline]
+    pub(super) fn pad(&mut self, count: usize, own: u32) {
+        let len = count.next_multiple_of(LANES);
+        if self.places.len() < len {
+            self.places.resize(len, own);
+        }
+        self.places[count..len].fill(own);
+        if self.shifted {
+            if self.codes.len() < len {
+                self.codes.resize(len, 0);
+            }
+            self.codes[count..len].fill(0);
+        }
+        if self.times.len() < len {
+            self.times.resize(len, f64::NAN);
+        }
+        self.len = len;
+    }
+
+    /// The pair time of place `p` (after [`Self::least`]).
+    #[inline(always)]
+    pub(super) fn time(&self, p: usize) -> f64 {
+        self.times[p]
+    }
+
+    /// Fills the times of the padded places with flight `a` ([`pair_times`], a chunk at a
+    /// time; the records in `residents`, in a box of sides `size`), and returns the least of
+    /// them and `bound` (NaNs skipped).
+    #[inline(always)]
+    pub(super) fn least(&mut self, bound: f64, flight: Flight<'_, N>) -> f64 {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: the CPU runs AVX2 (detected in `default`).
+            return unsafe {
+                if self.shifted {
+                    self.least_avx2::<true>(bound, flight)
+                } else {
+                    self.least_avx2::<false>(bound, flight)
+                }
+            };
+        }
+        if self.shifted {
+            self.least_portable::<true>(bound, flight)
+        } else {
+            self.least_portable::<false>(bound, flight)
+        }
+    }
+
+    /// [`Self::least`] compiled for AVX2 (`times_of` inlined into it).
+    ///
+    /// # Safety
+    /// The CPU must run AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn least_avx2<const SHIFTED: bool>(&mut self, bound: f64, flight: Flight<'_, N>) -> f64 {
+        self.least_portable::<SHIFTED>(bound, flight)
+    }
+
+    /// [`Self::least`] for the target's baseline; `SHIFTED` as `self.shifted`.
+    #[inline(always)]
+    fn least_portable<const SHIFTED: bool>(&mut self, bound: f64, flight: Flight<'_, N>) -> f64 {
+        let Flight(a, residents, size) = flight;
+        let mut least = [bound; LANES];
+        for c in 0..self.len / LANES {
+            let at = c * LANES;
+            let chunk: &[u32; LANES] = self.places[at..at + LANES].try_into().unwrap();
+            let bases: [&[f64; N]; LANES] = if SHIFTED {
+                std::array::from_fn(|l| &self.bases[self.codes[at + l] as usize])
+            } else {
+                [&self.bases[0]; LANES]
+            };
+            let lanes: [&Resident<N>; LANES] = std::array::from_fn(|l| residents.at(chunk[l]));
+            let t = pair_times(a, lanes, bases, size);
+            for l in 0..LANES {
+                // NaN compares false.
+                if t[l] < least[l] {
+                    least[l] = t[l];
+                }
+            }
+            self.times[at..at + LANES].copy_from_slice(&t);
+        }
+        least.iter().fold(bound, |a, &b| a.min(b))
+    }
+}
+
+/// The pair times of flight `a` with the flights of `lanes` ([`crate::canonical::pair_time`],
+/// lane by lane): lane `l`'s ball at image `bases[l] - W_b` (`bases[l] = s + W_a`, its
+/// cell's image in `a`'s record coordinates), in a box of sides `size`; NaN where the pair
+/// never meets.
+#[inline(always)]
+pub(super) fn pair_times<const N: usize>(
+    a: &Motion<N>,
+    lanes: [&Resident<N>; LANES],
+    bases: [&[f64; N]; LANES],
+    size: &[f64; N],
+) -> [f64; LANES] {
+    let t_ref: [f64; LANES] = std::array::from_fn(|l| a.since.max(lanes[l].motion.since));
+    // Motion::at's dt, for a and for b.
+    let dt_a: [f64; LANES] = std::array::from_fn(|l| t_ref[l] - a.since);
+    let dt_b: [f64; LANES] = std::array::from_fn(|l| t_ref[l] - lanes[l].motion.since);
+    let mut d = [[0.0; LANES]; N];
+    let mut dv = [[0.0; LANES]; N];
+    for k in 0..N {
+        for l in 0..LANES {
+            let b = &lanes[l].motion;
+            let p = a.pos[k] + a.velocity[k] * dt_a[l];
+            let q = b.pos[k] + b.velocity[k] * dt_b[l];
+            let image = bases[l][k] - f64::from(lanes[l].wraps[k]);
+            d[k][l] = (q - p) + image * size[k];
+            dv[k][l] = b.velocity[k] - a.velocity[k];
+        }
+    }
+    // contact_time_or_nan, lane by lane.
+    let mut aa = [0.0; LANES];
+    let mut bb = [0.0; LANES];
+    for k in 0..N {
+        for l in 0..LANES {
+            aa[l] += dv[k][l] * dv[k][l];
+            bb[l] += d[k][l] * dv[k][l];
+        }
+    }
+    let inv_a: [f64; LANES] = std::array::from_fn(|l| 1.0 / aa[l]);
+    let t0: [f64; LANES] = std::array::from_fn(|l| -bb[l] * inv_a[l]);
+    let mut h2 = [0.0; LANES];
+    for k in 0..N {
+        for l in 0..LANES {
+            let h = d[k][l] + t0[l] * dv[k][l];
+            h2[l] += h * h;
+        }
+    }
+    std::array::from_fn(|l| {
+        let sigma = a.radius + lanes[l].motion.radius;
+        let gap = sigma * sigma - h2[l];
+        let t = (t0[l] - (gap * inv_a[l]).max(0.0).sqrt()).max(0.0);
+        let t = if bb[l] < 0.0 && gap >= 0.0 {
+            t
+        } else {
+            f64::NAN
+        };
+        t_ref[l] + t
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::canonical::pair_time;
+
+    /// 400 000 pairs in 2D and 3D (near, far, receding, grazing, at rest,
+    /// from records of different times, at images): each lane's time is the scalar
+    /// canonical time, bit for bit (NaN where it is NaN; zeros compared by value).
+    fn lanes_are_the_scalar_time<const N: usize>(seed: u64) {
+        let mut state = seed;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+        };
+        let size = [7.5; N];
+        let mut met = 0;
+        for round in 0..50_000 {
+            let flight = |next: &mut dyn FnMut() -> f64| Motion::<N> {
+                pos: std::array::from_fn(|_| next() * 3.0),
+                since: if round % 3 == 0 { 0.0 } else { next().abs() },
+                velocity: std::array::from_fn(|_| if round % 11 == 0 { 0.0 } else { next() }),
+                radius: 1.0 + next().abs(),
+            };
+            let a = flight(&mut next);
+            let residents: [Resident<N>; LANES] = std::array::from_fn(|_| Resident {
+                motion: flight(&mut next),
+                wraps: std::array::from_fn(|_| (next() * 1.5).round() as i16),
+                ball: 1,
+            });
+            let bases: [[f64; N]; LANES] =
+                std::array::from_fn(|_| std::array::from_fn(|_| (next() * 1.5).round()));
+            let lanes = std::array::from_fn(|l| &residents[l]);
+            let got = pair_times(&a, lanes, std::array::from_fn(|l| &bases[l]), &size);
+            for l in 0..LANES {
+                let image: [f64; N] =
+                    std::array::from_fn(|k| bases[l][k] - f64::from(residents[l].wraps[k]));
+                let want = pair_time(&a, &residents[l].motion, &image, &size);
+                assert_eq!(got[l].is_nan(), want.is_nan(), "{round} {l}");
+                if !want.is_nan() {
+                    met += 1;
+                    assert_eq!(got[l], want, "{round} {l}");
+                    assert!(got[l] == 0.0 || got[l].to_bits() == want.to_bits());
+                }
+            }
+        }
+        // The sample meets often enough to test the times, not only the NaNs.
+        assert!(met > 1_000, "{met}");
+    }
+
+    #[test]
+    fn lanes_give_the_scalar_times() {
+        lanes_are_the_scalar_time::<2>(0x9e37_79b9_7f4a_7c15);
+        lanes_are_the_scalar_time::<3>(0x2545_f491_4f6c_dd1d);
+    }
+}
