@@ -147,7 +147,7 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// the caches ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
     /// The slab places of the balls a scan meets ([`Residents::gather`]), kept between scans.
-    near: lanes::Gathered<N>,
+    near: std::cell::RefCell<lanes::Gathered<N>>,
     /// The order of the balls' pending events (their slots are in `balls`).
     queue: Calendar,
     /// The local clock; the absolute time is `origin + origin_low + now`.
@@ -252,7 +252,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             orientation: orientation.then(|| vec![identity::<N>(); n]),
             unturned: vec![0.0; if orientation { n } else { 0 }],
             prefetch,
-            near: lanes::Gathered::default(),
+            near: Default::default(),
             queue: Calendar::new(),
             now: 0.0,
             origin: 0.0,
