@@ -1,35 +1,54 @@
 //! The certified companions spelled in C99: `noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
 //! `..._certified_fast_...`, and those of the FMA kernels `noslip_d{n}_{free|fixed}_fma_certified_...`
-//! (fused steps through `fma`/`fmaf`, contraction off as in the plain kernels), appended to
-//! the C header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
+//! (fused steps through `fma`/`fmaf`, contraction off as in the plain kernels); the running
+//! companions with rounded inputs `noslip_d{n}_{free|fixed}[_fma]_certified_rounded_{f64|f32}`
+//! (two more parameters, `rho_nu` and `rho_gamma2`, after the kernel's; [`super::rounded`]);
+//! and the `float` kernels' running companions with the bound in `double`,
+//! `noslip_d{n}_{free|fixed}[_fma]_certified_f32_wide` ([`super::wide`]): appended to the C
+//! header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
 //! output array.
 
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::backend::{constant_literal, Precision};
 use crate::model::{names, skew_pairs, Variant};
 use crate::Arith;
+use std::collections::HashSet;
 use std::fmt::Write;
 
+/// The kernel's precision: `float` for both `f32` formats.
 fn precision(f: Format) -> Precision {
     match f {
         Format::F64 => Precision::F64,
-        Format::F32 => Precision::F32,
-        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
+        Format::F32 | Format::F32Wide => Precision::F32,
     }
 }
 
-/// A C literal of a float of `format`: its shortest round-trip decimal (`f`-suffixed in
-/// `float`), so a correctly rounding compiler restores the same bits.
+/// The bound's C type: `double` but for [`Format::F32`].
+fn bound_type(f: Format) -> &'static str {
+    if f.bound_in_f64() {
+        "double"
+    } else {
+        "float"
+    }
+}
+
+/// A C literal of a float of the bound's type: its shortest round-trip decimal (`f`-suffixed
+/// in `float`), so a correctly rounding compiler restores the same bits.
 fn literal(f: Format, x: f64) -> String {
-    match f {
-        Format::F64 => format!("{x:e}"),
-        Format::F32 => format!("{:e}f", x as f32),
-        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
+    if f.bound_in_f64() {
+        format!("{x:e}")
+    } else {
+        format!("{:e}f", x as f32)
     }
 }
 
-fn arg(f: Format, a: &Arg) -> String {
+/// An argument of a bound statement; a kernel value (`kernel` holds their names) converted
+/// to `double` (exactly) where the bound runs in `double` and the kernel in `float`.
+fn arg(f: Format, kernel: &HashSet<&str>, a: &Arg) -> String {
     match a {
+        Arg::Name(n) if f == Format::F32Wide && kernel.contains(n.as_str()) => {
+            format!("(double){n}")
+        }
         Arg::Name(n) => n.clone(),
         Arg::Lit(x) => literal(f, *x),
     }
@@ -56,26 +75,47 @@ fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
 }
 
 /// The name of the C function: `noslip_d3_free_certified_f64`, for the fast scheme
-/// `noslip_d3_free_certified_fast_f64`, for the FMA kernel `noslip_d3_free_fma_certified_f64`.
+/// `noslip_d3_free_certified_fast_f64`, for the FMA kernel `noslip_d3_free_fma_certified_f64`,
+/// with rounded inputs `noslip_d3_free_certified_rounded_f64`, with the bound in `double`
+/// `noslip_d3_free_certified_f32_wide`.
 pub fn function_name(
     n: usize,
     variant: Variant,
     arith: Arith,
     f: Format,
     scheme: Scheme,
+    rounded: bool,
 ) -> String {
-    let fast = match scheme {
-        Scheme::Running => "",
-        Scheme::Fast { .. } => "fast_",
+    let kind = match (scheme, rounded) {
+        (Scheme::Running, false) => "",
+        (Scheme::Running, true) => "rounded_",
+        (Scheme::Fast { .. }, _) => "fast_",
     };
     let fma = match arith {
         Arith::Plain => "",
         Arith::Fma => "_fma",
     };
+    let format = match f {
+        Format::F64 => "f64",
+        Format::F32 => "f32",
+        Format::F32Wide => "f32_wide",
+    };
     format!(
-        "noslip_d{n}_{}{fma}_certified_{fast}{}",
-        variant.name(),
-        precision(f).suffix()
+        "noslip_d{n}_{}{fma}_certified_{kind}{format}",
+        variant.name()
+    )
+}
+
+/// The C name of `c`'s function ([`function_name`]).
+pub fn name_of(c: &Certified) -> String {
+    let p = &c.program;
+    function_name(
+        p.dim,
+        p.variant,
+        p.arith,
+        c.format,
+        c.scheme,
+        !c.rounded.is_empty(),
     )
 }
 
@@ -84,12 +124,22 @@ pub fn function(c: &Certified) -> String {
     let (p, f) = (&c.program, c.format);
     let n = p.dim;
     let ty = precision(f).c_type();
+    let bty = bound_type(f);
     let len = n * (n - 1) / 2 + n;
-    let (fabs, fma) = match f {
-        Format::F64 => ("fabs", "fma"),
-        Format::F32 => ("fabsf", "fmaf"),
-        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
+    let fabs = if f.bound_in_f64() { "fabs" } else { "fabsf" };
+    let fma = match precision(f) {
+        Precision::F64 => "fma",
+        Precision::F32 => "fmaf",
     };
+    let kernel: HashSet<&str> = p
+        .inputs
+        .iter()
+        .map(String::as_str)
+        .chain(p.constants.iter().map(|c| c.name.as_str()))
+        .chain(p.steps.iter().map(|s| s.name.as_str()))
+        .chain(c.rounded.iter().map(|r| r.param.as_str()))
+        .collect();
+    let arg = |f: Format, a: &Arg| arg(f, &kernel, a);
     let mut s = String::new();
     let fma_suffix = match p.arith {
         Arith::Plain => "",
@@ -100,17 +150,27 @@ pub fn function(c: &Certified) -> String {
         p.variant.name(),
         precision(f).suffix()
     );
+    let against = if c.rounded.is_empty() {
+        "the given floats".to_string()
+    } else {
+        "the intended real inputs: rho_nu and\n\
+         // rho_gamma2 bound the relative rounding of each normal component and each gamma2 given\n\
+         // (|x^ - x| <= rho |x|, rho < 2^-10), docs/accuracy.md \"Rounded inputs\""
+            .to_string()
+    };
     let _ = writeln!(
         s,
         "// {plain} (the same operations, bit for bit) and a rigorous bound on the absolute\n\
          // error of every output for these inputs, in the same branch-free pass ({}): bound1/bound2 hold, slot by slot,\n\
-         // B >= |out - exact| for the exact map on the given floats, or +inf where none holds.\n\
-         // Ops: kernel {}; bound {} ops.",
+         // B >= |out - exact| for the exact map on {against}, or +inf where none holds.\n\
+         // Ops: kernel {}; bound {} ops{}.",
         match c.scheme {
             Scheme::Running => "running error\n// analysis, docs/accuracy.md \"Certified companions\"".to_string(),
             Scheme::Fast { floor } => format!("a constant per output times\n// magnitudes from the inputs' largest absolute values, docs/accuracy.md \"Fast certified\n// companions\", magnitude floor {floor:e}"),
         },
-        p.ops, c.bound_ops
+        p.ops,
+        c.bound_ops,
+        if f == Format::F32Wide { " (in double)" } else { "" }
     );
     let arrays = arrays(n, p.variant);
     let mut params: Vec<String> = arrays
@@ -121,16 +181,19 @@ pub fn function(c: &Certified) -> String {
     if p.variant == Variant::Fixed {
         params.insert(1, format!("{ty} radius1"));
     }
+    for r in &c.rounded {
+        params.push(format!("{ty} {}", r.param));
+    }
     for b in &outs {
         params.push(format!("{ty} out{b}[{len}]"));
     }
     for b in &outs {
-        params.push(format!("{ty} bound{b}[{len}]"));
+        params.push(format!("{bty} bound{b}[{len}]"));
     }
     let _ = writeln!(
         s,
         "static inline NOSLIP_NO_CONTRACT void {}({})\n{{\n    NOSLIP_FP_CONTRACT_OFF",
-        function_name(n, p.variant, p.arith, f, c.scheme),
+        name_of(c),
         params.join(", ")
     );
     for (a, elems) in &arrays {
@@ -158,18 +221,22 @@ pub fn function(c: &Certified) -> String {
             Expr::Mul(a, b) => format!("{} * {}", arg(f, a), arg(f, b)),
             Expr::Div(a, b) => format!("{} / {}", arg(f, a), arg(f, b)),
             Expr::PositiveOr(x, y) => {
-                format!("{} > 0 ? {} : ({ty})INFINITY", arg(f, x), arg(f, y))
+                format!("{} > 0 ? {} : ({bty})INFINITY", arg(f, x), arg(f, y))
             }
             Expr::BoundOrInf(x) => {
                 let x = arg(f, x);
-                format!("{x} >= 0 ? {x} : ({ty})INFINITY")
+                format!("{x} >= 0 ? {x} : ({bty})INFINITY")
             }
             Expr::AtLeast(x, y) => {
                 let (x, y) = (arg(f, x), arg(f, y));
                 format!("{x} > {y} ? {x} : {y}")
             }
         };
-        let _ = writeln!(s, "    const {ty} {} = {e};", st.name);
+        let st_ty = match st.expr {
+            Expr::Const(_) | Expr::Step(_) => ty,
+            _ => bty,
+        };
+        let _ = writeln!(s, "    const {st_ty} {} = {e};", st.name);
     }
     for o in &c.outputs {
         for (k, x) in o.values.iter().enumerate() {
@@ -183,21 +250,34 @@ pub fn function(c: &Certified) -> String {
     s
 }
 
-/// The companions of `dims` in both formats (`f64` first), for the C header.
+/// The companions of `dims` for the C header: per format (`f64`, then `f32`), dimension,
+/// kernel (plain, FMA) and variant, the running, fast and rounded-input companions; then the
+/// `float` kernels' running companions with the bound in `double`.
 pub fn functions(dims: &[usize]) -> String {
     let mut s = String::from(
-        "\n/* Certified companions: the plain kernels' parameters, then out arrays, then one\n \
-         * bound array per out array (the same layout). */\n",
+        "\n/* Certified companions: the plain kernels' parameters (and rho_nu, rho_gamma2 for the\n \
+         * rounded-input ones), then out arrays, then one bound array per out array (the same\n \
+         * layout; double for the _f32_wide ones). */\n",
     );
+    let push = |s: &mut String, c: &Certified| {
+        s.push('\n');
+        s.push_str(&function(c));
+    };
     for f in [Format::F64, Format::F32] {
         for &n in dims {
             for arith in Arith::ALL {
                 for v in Variant::ALL {
-                    s.push('\n');
-                    s.push_str(&function(&Certified::of(n, v, arith, f)));
-                    s.push('\n');
-                    s.push_str(&function(&Certified::of_fast(n, v, arith, f)));
+                    push(&mut s, &Certified::of(n, v, arith, f));
+                    push(&mut s, &Certified::of_fast(n, v, arith, f));
+                    push(&mut s, &Certified::of_rounded(n, v, arith, f));
                 }
+            }
+        }
+    }
+    for &n in dims {
+        for arith in Arith::ALL {
+            for v in Variant::ALL {
+                push(&mut s, &Certified::of(n, v, arith, Format::F32Wide));
             }
         }
     }

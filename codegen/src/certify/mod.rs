@@ -602,4 +602,18 @@ impl Certified {
         let program = Program::lower(&kernel, arith);
         Certified::derive(&program, format).expect("the no-slip kernels have + - * / and FMA only")
     }
+
+    /// The running companion of the no-slip kernel `variant` in dimension `dim` with the
+    /// normal and `gamma2` taken as rounded ([`rounded::Rounding::no_slip`]).
+    pub fn of_rounded(
+        dim: usize,
+        variant: Variant,
+        arith: crate::Arith,
+        format: Format,
+    ) -> Certified {
+        let program = Program::lower(&crate::model::build(dim, variant), arith);
+        let rounded = rounded::Rounding::no_slip(dim, &program.inputs);
+        Certified::derive_rounded(&program, format, &rounded)
+            .expect("the no-slip kernels have + - * / and FMA only")
+    }
 }
