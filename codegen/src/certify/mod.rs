@@ -603,6 +603,20 @@ impl Certified {
         Certified::derive(&program, format).expect("the no-slip kernels have + - * / and FMA only")
     }
 
+    /// The running companion of the rough-ball kernel `variant` (constant `(e, beta)`,
+    /// [`crate::model::build_rough`]) in dimension `dim`, plain or FMA: its inputs `e` and
+    /// `beta` are floats given, exact like the others.
+    pub fn of_rough(
+        dim: usize,
+        variant: Variant,
+        arith: crate::Arith,
+        format: Format,
+    ) -> Certified {
+        let program = Program::lower(&crate::model::build_rough(dim, variant), arith);
+        Certified::derive(&program, format)
+            .expect("the rough-ball kernels have + - * / and FMA only")
+    }
+
     /// The running companion of the no-slip kernel `variant` in dimension `dim` with the
     /// normal and `gamma2` taken as rounded ([`rounded::Rounding::no_slip`]).
     pub fn of_rounded(

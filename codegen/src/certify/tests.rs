@@ -125,3 +125,33 @@ fn the_fma_companions_bound_every_fused_step() {
         );
     }
 }
+
+/// The rough-ball kernels (constant `(e, beta)`) have running companions in every
+/// dimension, format and arithmetic, reading `e` and `beta`; the Walton kernels are refused
+/// with the name of their first unsupported step (a select or the square root).
+#[test]
+fn the_rough_kernels_have_companions_and_the_walton_kernels_are_refused() {
+    for n in crate::DIMS {
+        for v in Variant::ALL {
+            for arith in crate::Arith::ALL {
+                for f in [Format::F64, Format::F32] {
+                    let c = Certified::of_rough(n, v, arith, f);
+                    assert!(rust::is_rough(&c.program), "n = {n} {v:?}");
+                    let steps = c
+                        .stmts
+                        .iter()
+                        .filter(|s| matches!(s.expr, Expr::Step(_)))
+                        .count();
+                    assert_eq!(steps, c.program.steps.len());
+                }
+                let walton = Program::lower(&crate::walton::build_walton(n, v), arith);
+                assert!(!rust::is_rough(&walton));
+                let err = Certified::derive(&walton, Format::F64).unwrap_err();
+                assert!(
+                    err.0.contains("select") || err.0.contains("square root"),
+                    "{err}"
+                );
+            }
+        }
+    }
+}
