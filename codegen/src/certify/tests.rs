@@ -1,4 +1,5 @@
 use super::*;
+use crate::model::Variant;
 
 #[test]
 fn every_plain_no_slip_kernel_has_a_companion_with_every_step_in_order() {
