@@ -23,92 +23,122 @@
 //! is live).
 
 use collision_core::rng::Rng;
-use collision_core::{validate, Ball, BodyState, Exact, Relaxing, Restitution, RoughKernel};
+use collision_core::{
+    validate, Ball, BodyState, Exact, Generated, Relaxing, Restitution, RoughKernel, Walton,
+    WaltonKernel,
+};
 use noslip_accuracy::case::{flatten, Case};
-use noslip_accuracy::family::{FamilyRegime, Law};
+use noslip_accuracy::family::{coulomb_slope, FamilyRegime, Law};
 use noslip_accuracy::Regime;
 use num_traits::Signed;
 
 /// Cases per source and n in the quick test.
 const QUICK: usize = 40;
 
-/// A companion of `rough_free`.
-type Free<T, const N: usize, const S: usize> =
+/// A companion of `rough_free` (`L = Restitution<T>`) or `walton_free` (`L = Walton<T>`).
+type Free<T, L, const N: usize, const S: usize> =
     fn(
         &[T; N],
         &Ball<T>,
         &Ball<T>,
-        &Restitution<T>,
+        &L,
         &BodyState<T, N, S>,
         &BodyState<T, N, S>,
     ) -> ([BodyState<T, N, S>; 2], [BodyState<T, N, S>; 2]);
 
-/// A companion of `rough_fixed`.
-type Fixed<T, const N: usize, const S: usize> = fn(
+/// A companion of `rough_fixed` or `walton_fixed`.
+type Fixed<T, L, const N: usize, const S: usize> = fn(
     &[T; N],
     &T,
     &Ball<T>,
-    &Restitution<T>,
+    &L,
     &BodyState<T, N, S>,
     &BodyState<T, N, S>,
 ) -> (BodyState<T, N, S>, BodyState<T, N, S>);
 
-/// The plain rough kernels (`kernels::dN::rough::free`, `fixed`, ...).
-type PlainFree<T, const N: usize, const S: usize> = fn(
+/// The plain kernels (`kernels::dN::rough::free`, `walton::fixed`, ...).
+type PlainFree<T, L, const N: usize, const S: usize> = fn(
     &[T; N],
     &Ball<T>,
     &Ball<T>,
-    &Restitution<T>,
+    &L,
     &BodyState<T, N, S>,
     &BodyState<T, N, S>,
 ) -> [BodyState<T, N, S>; 2];
-type PlainFixed<T, const N: usize, const S: usize> = fn(
-    &[T; N],
-    &T,
-    &Ball<T>,
-    &Restitution<T>,
-    &BodyState<T, N, S>,
-    &BodyState<T, N, S>,
-) -> BodyState<T, N, S>;
+type PlainFixed<T, L, const N: usize, const S: usize> =
+    fn(&[T; N], &T, &Ball<T>, &L, &BodyState<T, N, S>, &BodyState<T, N, S>) -> BodyState<T, N, S>;
 
 /// One kernel (plain or FMA) in one format: the companions and the plain kernels.
-struct Kind<T, const N: usize, const S: usize> {
-    certified: (Free<T, N, S>, Fixed<T, N, S>),
-    plain: (PlainFree<T, N, S>, PlainFixed<T, N, S>),
+struct Kind<T, L, const N: usize, const S: usize> {
+    certified: (Free<T, L, N, S>, Fixed<T, L, N, S>),
+    plain: (PlainFree<T, L, N, S>, PlainFixed<T, L, N, S>),
 }
 
-/// Per dimension: `[plain, FMA]` in `f64` and in `f32`.
-struct Kinds<const N: usize, const S: usize> {
-    f64: [Kind<f64, N, S>; 2],
-    f32: [Kind<f32, N, S>; 2],
+/// Per dimension and law family (`Restitution`, `Walton`): `[plain, FMA]` in `f64` and in
+/// `f32`.
+struct Kinds<L64, L32, const N: usize, const S: usize> {
+    f64: [Kind<f64, L64, N, S>; 2],
+    f32: [Kind<f32, L32, N, S>; 2],
 }
 
+/// The [`Kinds`] of `kernels::$m`'s family `$family` (`rough`, `walton`), companions named
+/// `$family_free`, ....
 macro_rules! kinds {
-    ($m:ident) => {{
-        use collision_core::kernels::$m::{certified as c, rough as r};
+    ($m:ident $family:ident) => {{
+        use collision_core::kernels::$m::{certified as c, $family as r};
+        paste_kinds!(c r $family)
+    }};
+}
+
+macro_rules! paste_kinds {
+    ($c:ident $r:ident rough) => {
         crate::Kinds {
             f64: [
                 crate::Kind {
-                    certified: (c::rough_free, c::rough_fixed),
-                    plain: (r::free, r::fixed),
+                    certified: ($c::rough_free, $c::rough_fixed),
+                    plain: ($r::free, $r::fixed),
                 },
                 crate::Kind {
-                    certified: (c::rough_free_fma, c::rough_fixed_fma),
-                    plain: (r::free_fma, r::fixed_fma),
+                    certified: ($c::rough_free_fma, $c::rough_fixed_fma),
+                    plain: ($r::free_fma, $r::fixed_fma),
                 },
             ],
             f32: [
                 crate::Kind {
-                    certified: (c::rough_free_f32, c::rough_fixed_f32),
-                    plain: (r::free, r::fixed),
+                    certified: ($c::rough_free_f32, $c::rough_fixed_f32),
+                    plain: ($r::free, $r::fixed),
                 },
                 crate::Kind {
-                    certified: (c::rough_free_fma_f32, c::rough_fixed_fma_f32),
-                    plain: (r::free_fma, r::fixed_fma),
+                    certified: ($c::rough_free_fma_f32, $c::rough_fixed_fma_f32),
+                    plain: ($r::free_fma, $r::fixed_fma),
                 },
             ],
         }
-    }};
+    };
+    ($c:ident $r:ident walton) => {
+        crate::Kinds {
+            f64: [
+                crate::Kind {
+                    certified: ($c::walton_free, $c::walton_fixed),
+                    plain: ($r::free, $r::fixed),
+                },
+                crate::Kind {
+                    certified: ($c::walton_free_fma, $c::walton_fixed_fma),
+                    plain: ($r::free_fma, $r::fixed_fma),
+                },
+            ],
+            f32: [
+                crate::Kind {
+                    certified: ($c::walton_free_f32, $c::walton_fixed_f32),
+                    plain: ($r::free, $r::fixed),
+                },
+                crate::Kind {
+                    certified: ($c::walton_free_fma_f32, $c::walton_fixed_fma_f32),
+                    plain: ($r::free_fma, $r::fixed_fma),
+                },
+            ],
+        }
+    };
 }
 
 /// `collide_rough_unchecked`'s dispatch: body 1 immovable, `fixed`; body 2 immovable,
@@ -117,12 +147,13 @@ macro_rules! kinds {
 #[allow(clippy::type_complexity)]
 fn dispatch<
     T: collision_core::Scalar + Copy + Default + std::ops::Neg<Output = T>,
+    L,
     const N: usize,
     const S: usize,
 >(
-    (free, fixed): (Free<T, N, S>, Fixed<T, N, S>),
+    (free, fixed): (Free<T, L, N, S>, Fixed<T, L, N, S>),
     c: &Case<T, N, S>,
-    law: &Restitution<T>,
+    law: &L,
 ) -> ([BodyState<T, N, S>; 2], [BodyState<T, N, S>; 2]) {
     let ([b1, b2], [s1, s2]) = (&c.balls, &c.states);
     let zero = BodyState {
@@ -143,12 +174,13 @@ fn dispatch<
 /// The plain kernels under the same dispatch.
 fn plain<
     T: collision_core::Scalar + Copy + std::ops::Neg<Output = T>,
+    L,
     const N: usize,
     const S: usize,
 >(
-    (free, fixed): (PlainFree<T, N, S>, PlainFixed<T, N, S>),
+    (free, fixed): (PlainFree<T, L, N, S>, PlainFixed<T, L, N, S>),
     c: &Case<T, N, S>,
-    law: &Restitution<T>,
+    law: &L,
 ) -> [BodyState<T, N, S>; 2] {
     let ([b1, b2], [s1, s2]) = (&c.balls, &c.states);
     if b1.is_immovable() {
@@ -163,33 +195,116 @@ fn plain<
     }
 }
 
-/// The exact map on the same floats (the law included).
-fn exact<const N: usize, const S: usize>(c: &Case<f64, N, S>, law: &Restitution<f64>) -> Vec<Exact>
-where
-    Relaxing: RoughKernel<Exact, N, S>,
-{
-    let x = |v: f64| Exact::from_float(v).expect("finite");
-    let law = Restitution {
-        e: x(law.e),
-        beta: x(law.beta),
-    };
-    let c = c.to_exact();
+/// The exact map on the same floats (the law included): the rough kernels through the
+/// fast exact path ([`Relaxing`]), the Walton kernels in [`Exact`] (their one square root
+/// exact where `rho` is a rational square, else truncated to 256 bits,
+/// `collision_core::exact::root`: a relative `2^-256`, far below any bound here).
+trait Family: Clone + std::fmt::Debug {
+    /// The law in `f32` (each parameter rounded once), if `f32` holds it.
+    type F32: Clone + std::fmt::Debug;
+    fn to_f32(&self) -> Option<Self::F32>;
+    fn widen(l: &Self::F32) -> Self;
+    fn exact<const N: usize, const S: usize>(&self, c: &Case<f64, N, S>) -> Vec<Exact>
+    where
+        Relaxing: RoughKernel<Exact, N, S>,
+        Generated: WaltonKernel<Exact, N, S>;
+}
+
+/// `collide_rough_unchecked`'s dispatch on exact inputs, with `free` and `fixed`.
+fn exact_dispatch<L, const N: usize, const S: usize>(
+    c: &Case<Exact, N, S>,
+    law: &L,
+    free: impl Fn(
+        &[Exact; N],
+        &Ball<Exact>,
+        &Ball<Exact>,
+        &L,
+        &BodyState<Exact, N, S>,
+        &BodyState<Exact, N, S>,
+    ) -> [BodyState<Exact, N, S>; 2],
+    fixed: impl Fn(
+        &[Exact; N],
+        &Exact,
+        &Ball<Exact>,
+        &L,
+        &BodyState<Exact, N, S>,
+        &BodyState<Exact, N, S>,
+    ) -> BodyState<Exact, N, S>,
+) -> Vec<Exact> {
     let ([b1, b2], [s1, s2]) = (&c.balls, &c.states);
     let out = if b1.is_immovable() {
-        [
-            s1.clone(),
-            Relaxing::rough_fixed(&c.nu, &b1.radius, b2, &law, s1, s2),
-        ]
+        [s1.clone(), fixed(&c.nu, &b1.radius, b2, law, s1, s2)]
     } else if b2.is_immovable() {
         let minus = c.nu.clone().map(|v| -v);
-        [
-            Relaxing::rough_fixed(&minus, &b2.radius, b1, &law, s2, s1),
-            s2.clone(),
-        ]
+        [fixed(&minus, &b2.radius, b1, law, s2, s1), s2.clone()]
     } else {
-        Relaxing::rough_free(&c.nu, b1, b2, &law, s1, s2)
+        free(&c.nu, b1, b2, law, s1, s2)
     };
     flatten(&out)
+}
+
+fn q(v: f64) -> Exact {
+    Exact::from_float(v).expect("finite")
+}
+
+impl Family for Restitution<f64> {
+    type F32 = Restitution<f32>;
+    fn to_f32(&self) -> Option<Restitution<f32>> {
+        Restitution::new(self.e as f32, self.beta as f32).ok()
+    }
+    fn widen(l: &Restitution<f32>) -> Self {
+        Restitution {
+            e: f64::from(l.e),
+            beta: f64::from(l.beta),
+        }
+    }
+    fn exact<const N: usize, const S: usize>(&self, c: &Case<f64, N, S>) -> Vec<Exact>
+    where
+        Relaxing: RoughKernel<Exact, N, S>,
+        Generated: WaltonKernel<Exact, N, S>,
+    {
+        let law = Restitution {
+            e: q(self.e),
+            beta: q(self.beta),
+        };
+        exact_dispatch(
+            &c.to_exact(),
+            &law,
+            Relaxing::rough_free,
+            Relaxing::rough_fixed,
+        )
+    }
+}
+
+impl Family for Walton<f64> {
+    type F32 = Walton<f32>;
+    fn to_f32(&self) -> Option<Walton<f32>> {
+        Walton::new(self.e as f32, self.mu as f32, self.beta0 as f32).ok()
+    }
+    fn widen(l: &Walton<f32>) -> Self {
+        Walton {
+            e: f64::from(l.e),
+            mu: f64::from(l.mu),
+            beta0: f64::from(l.beta0),
+        }
+    }
+    fn exact<const N: usize, const S: usize>(&self, c: &Case<f64, N, S>) -> Vec<Exact>
+    where
+        Relaxing: RoughKernel<Exact, N, S>,
+        Generated: WaltonKernel<Exact, N, S>,
+    {
+        let law = Walton {
+            e: q(self.e),
+            mu: q(self.mu),
+            beta0: q(self.beta0),
+        };
+        exact_dispatch(
+            &c.to_exact(),
+            &law,
+            Generated::walton_free,
+            Generated::walton_fixed,
+        )
+    }
 }
 
 /// What one kind saw in one format.
@@ -209,17 +324,16 @@ struct Seen {
 }
 
 /// Check one kind on one case (inputs and law in the kind's format `T`, `wide` widening
-/// them exactly).
-fn check<T, const N: usize, const S: usize>(
-    kind: &Kind<T, N, S>,
-    case: &Case<T, N, S>,
-    law: &Restitution<T>,
+/// them exactly; `truth` the exact map on the widened inputs).
+fn check<T, L, const N: usize, const S: usize>(
+    kind: &Kind<T, L, N, S>,
+    (case, law): (&Case<T, N, S>, &L),
+    truth: &[Exact],
     wide: fn(T) -> f64,
     seen: &mut Seen,
-    what: &str,
+    what: &dyn Fn() -> String,
 ) where
-    T: collision_core::Scalar + Copy + Default + std::ops::Neg<Output = T> + PartialEq,
-    Relaxing: RoughKernel<Exact, N, S>,
+    T: collision_core::Scalar + Copy + Default + std::ops::Neg<Output = T>,
 {
     let (out, bound) = dispatch(kind.certified, case, law);
     let reference = plain(kind.plain, case, law);
@@ -228,30 +342,25 @@ fn check<T, const N: usize, const S: usize>(
     for (k, (a, b)) in values.iter().zip(&expected).enumerate() {
         assert!(
             a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
-            "{what}: component {k} {a:e} differs from the plain rough kernel's {b:e}"
+            "{}: component {k} {a:e} differs from the plain kernel's {b:e}",
+            what()
         );
     }
-    let ran_on = case.map(|&x| wide(x));
-    let law64 = Restitution {
-        e: wide(law.e),
-        beta: wide(law.beta),
-    };
-    let truth = exact(&ran_on, &law64);
     let bounds: Vec<f64> = flatten(&bound).into_iter().map(wide).collect();
     seen.cases += 1;
     for k in 0..values.len() {
         let e = bounds[k];
-        assert!(e >= 0.0, "{what}: component {k} has a bound {e}");
+        assert!(e >= 0.0, "{}: component {k} has a bound {e}", what());
         if e.is_infinite() {
             seen.infinite += 1;
             continue;
         }
         let v = Exact::from_float(values[k]).expect("a finite bound has a finite output");
         let err = (v - &truth[k]).abs();
-        let b = Exact::from_float(e).unwrap();
         assert!(
-            err <= b,
-            "{what}: component {k} error {:e} above its bound {e:e}",
+            err <= q(e),
+            "{}: component {k} error {:e} above its bound {e:e}",
+            what(),
             err.to_f64()
         );
         seen.components += 1;
@@ -264,9 +373,9 @@ fn check<T, const N: usize, const S: usize>(
     }
 }
 
-/// A law beside a no-slip regime's case: typical (`e = U(0,1)`, `beta = U(-1,1)`) half the
-/// time, else at or near the ends.
-fn law(rng: &mut Rng) -> Restitution<f64> {
+/// A rough law beside a no-slip regime's case: typical (`e = U(0,1)`, `beta = U(-1,1)`)
+/// half the time, else at or near the ends.
+fn rough_law(rng: &mut Rng) -> Restitution<f64> {
     let near = |rng: &mut Rng| 1.0 - 10f64.powf(rng.uniform(-15.0, -1.0));
     let sign = |rng: &mut Rng| if rng.coin() { 1.0 } else { -1.0 };
     let (e, beta) = match rng.integer(0..=3) {
@@ -277,8 +386,32 @@ fn law(rng: &mut Rng) -> Restitution<f64> {
     Restitution::new(e, beta).expect("in range")
 }
 
-/// A typical case with several extremes at once (as `proven.rs`'s adversarial mix), with a
-/// law near its ends.
+/// A Walton law beside a case: `e = U(0,1)`, `beta0 = U(-1,1)`, and `mu = 10^U(-2,1)` half
+/// the time, else `mu` putting the case within a relative `10^-U(3,15)` of the switch (as
+/// the family's `WaltonSwitch`), or `mu = 0`.
+fn walton_law<const N: usize, const S: usize>(
+    rng: &mut Rng,
+    case: &Case<f64, N, S>,
+) -> Walton<f64> {
+    let (e, beta0) = (rng.uniform(0.0, 1.0), rng.uniform(-1.0, 1.0));
+    let mu = match rng.integer(0..=3) {
+        0 | 1 => 10f64.powf(rng.uniform(-2.0, 1.0)),
+        2 => {
+            let sign = if rng.coin() { 1.0 } else { -1.0 };
+            let side = 1.0 + sign * 10f64.powf(rng.uniform(-15.0, -3.0));
+            let mu = (1.0 + beta0) * side / coulomb_slope(case, e);
+            if mu.is_finite() && mu >= 0.0 {
+                mu
+            } else {
+                1.0
+            }
+        }
+        _ => 0.0,
+    };
+    Walton::new(e, mu, beta0).expect("in range")
+}
+
+/// A typical case with several extremes at once (as `proven.rs`'s adversarial mix).
 fn adversarial<const N: usize, const S: usize>(rng: &mut Rng) -> Case<f64, N, S> {
     let mut case = Regime::Typical.sample::<N, S>(rng);
     let pow10 = |rng: &mut Rng, lo: f64, hi: f64| 10f64.powf(rng.uniform(lo, hi));
@@ -309,72 +442,118 @@ fn adversarial<const N: usize, const S: usize>(rng: &mut Rng) -> Case<f64, N, S>
     case
 }
 
-/// The sources: the report's regimes, the family's rough regimes, the adversarial mix.
-fn sources() -> Vec<String> {
+/// The sources of one family: the report's regimes (a law drawn beside), the family's
+/// regimes of that kernel, the adversarial mix.
+fn sources(kernel: &str) -> Vec<String> {
     Regime::ALL
         .iter()
         .map(|r| r.name().to_string())
         .chain(
             FamilyRegime::ALL
                 .iter()
-                .filter(|r| r.kernel() == "rough")
+                .filter(|r| r.kernel() == kernel)
                 .map(|r| r.name().to_string()),
         )
         .chain(std::iter::once("adversarial".to_string()))
         .collect()
 }
 
-/// `per_source` cases from every source; per source, `[[f64 plain, f64 FMA], [f32 plain,
-/// f32 FMA]]`.
-fn run<const N: usize, const S: usize>(
-    kinds: &Kinds<N, S>,
+/// One sampled case of source `source` of the family `kernel`, and its law.
+trait Sample: Family {
+    const KERNEL: &'static str;
+    fn beside<const N: usize, const S: usize>(rng: &mut Rng, case: &Case<f64, N, S>) -> Self;
+    fn of(law: Law<f64>) -> Self;
+}
+
+impl Sample for Restitution<f64> {
+    const KERNEL: &'static str = "rough";
+    fn beside<const N: usize, const S: usize>(rng: &mut Rng, _: &Case<f64, N, S>) -> Self {
+        rough_law(rng)
+    }
+    fn of(law: Law<f64>) -> Self {
+        match law {
+            Law::Rough(l) => l,
+            Law::Walton(_) => unreachable!("a rough regime"),
+        }
+    }
+}
+
+impl Sample for Walton<f64> {
+    const KERNEL: &'static str = "walton";
+    fn beside<const N: usize, const S: usize>(rng: &mut Rng, case: &Case<f64, N, S>) -> Self {
+        walton_law(rng, case)
+    }
+    fn of(law: Law<f64>) -> Self {
+        match law {
+            Law::Walton(l) => l,
+            Law::Rough(_) => unreachable!("a Walton regime"),
+        }
+    }
+}
+
+/// `per_source` cases from every source of the family `L`; per source, `[[f64 plain, f64
+/// FMA], [f32 plain, f32 FMA]]`.
+fn run<L: Sample, const N: usize, const S: usize>(
+    kinds: &Kinds<L, L::F32, N, S>,
     per_source: usize,
     seed: u64,
 ) -> Vec<[[Seen; 2]; 2]>
 where
     Relaxing: RoughKernel<Exact, N, S>,
+    Generated: WaltonKernel<Exact, N, S>,
 {
     let mut rng = Rng::new(seed ^ ((N as u64) << 40));
     let family: Vec<FamilyRegime> = FamilyRegime::ALL
         .into_iter()
-        .filter(|r| r.kernel() == "rough")
+        .filter(|r| r.kernel() == L::KERNEL)
         .collect();
-    let names = sources();
+    let names = sources(L::KERNEL);
     let mut seen: Vec<[[Seen; 2]; 2]> = vec![Default::default(); names.len()];
     for (source, name) in names.iter().enumerate() {
         for _ in 0..per_source {
             let (case, law) = if let Some(r) = Regime::ALL.get(source) {
-                (r.sample::<N, S>(&mut rng), law(&mut rng))
+                let case = r.sample::<N, S>(&mut rng);
+                let law = L::beside(&mut rng, &case);
+                (case, law)
             } else if let Some(f) = family.get(source - Regime::ALL.len()) {
-                match f.sample::<N, S>(&mut rng) {
-                    (c, Law::Rough(l)) => (c, l),
-                    (_, Law::Walton(_)) => unreachable!("a rough regime"),
-                }
+                let (case, law) = f.sample::<N, S>(&mut rng);
+                (case, L::of(law))
             } else {
-                let near = 1.0 - 10f64.powf(rng.uniform(-15.0, -1.0));
-                (
-                    adversarial::<N, S>(&mut rng),
-                    Restitution::new(near, -near).unwrap(),
-                )
+                let case = adversarial::<N, S>(&mut rng);
+                let law = L::beside(&mut rng, &case);
+                (case, law)
             };
             if validate(&case.nu, case.ball_refs(), case.state_refs()).is_err() {
                 continue;
             }
+            let truth = law.exact(&case);
             for (k, kind) in kinds.f64.iter().enumerate() {
-                let what = format!("n = {N} {name} f64 kind {k} {case:?} {law:?}");
-                check(kind, &case, &law, |x| x, &mut seen[source][0][k], &what);
+                let what = || format!("n = {N} {name} f64 kind {k} {case:?} {law:?}");
+                check(
+                    kind,
+                    (&case, &law),
+                    &truth,
+                    |x| x,
+                    &mut seen[source][0][k],
+                    &what,
+                );
             }
             let Ok(c32) = case.to_f32() else { continue };
             if validate(&c32.nu, c32.ball_refs(), c32.state_refs()).is_err() {
                 continue;
             }
-            let l32 = Restitution {
-                e: law.e as f32,
-                beta: law.beta as f32,
-            };
+            let Some(l32) = law.to_f32() else { continue };
+            let truth = L::widen(&l32).exact(&c32.map(|&x| f64::from(x)));
             for (k, kind) in kinds.f32.iter().enumerate() {
-                let what = format!("n = {N} {name} f32 kind {k} {c32:?} {l32:?}");
-                check(kind, &c32, &l32, f64::from, &mut seen[source][1][k], &what);
+                let what = || format!("n = {N} {name} f32 kind {k} {c32:?} {l32:?}");
+                check(
+                    kind,
+                    (&c32, &l32),
+                    &truth,
+                    f64::from,
+                    &mut seen[source][1][k],
+                    &what,
+                );
             }
         }
     }
@@ -388,12 +567,13 @@ fn median_max(v: &[f64]) -> Option<(f64, f64)> {
     Some((*v.get(v.len() / 2)?, *v.last()?))
 }
 
-fn quick<const N: usize, const S: usize>(kinds: Kinds<N, S>)
+fn quick<L: Sample, const N: usize, const S: usize>(kinds: Kinds<L, L::F32, N, S>)
 where
     Relaxing: RoughKernel<Exact, N, S>,
+    Generated: WaltonKernel<Exact, N, S>,
 {
     let seen = run(&kinds, QUICK, 0xB0D);
-    let names = sources();
+    let names = sources(L::KERNEL);
     for (source, s) in seen.iter().enumerate() {
         for (k, s) in s[0].iter().enumerate() {
             assert!(
@@ -417,7 +597,12 @@ macro_rules! per_dim {
         mod $m {
             #[test]
             fn the_rough_companions_bound_the_error_in_every_regime() {
-                super::quick::<$n, $s>(kinds!($m));
+                super::quick::<collision_core::Restitution<f64>, $n, $s>(kinds!($m rough));
+            }
+
+            #[test]
+            fn the_walton_companions_bound_the_error_in_every_regime() {
+                super::quick::<collision_core::Walton<f64>, $n, $s>(kinds!($m walton));
             }
         }
     )*};
@@ -425,11 +610,32 @@ macro_rules! per_dim {
 
 per_dim!((d2 2 1) (d3 3 3) (d4 4 6) (d5 5 10) (d6 6 15));
 
-/// The long run: prints, per source, format and kind, the bound over the measured error
-/// (median and max), the infinite bounds and the worst measured / bound.
+/// Print one family's run.
+fn print(n: usize, kernel: &str, seen: &[[[Seen; 2]; 2]], start: std::time::Instant) {
+    for (source, name) in sources(kernel).iter().enumerate() {
+        for (f, format) in ["f64", "f32"].iter().enumerate() {
+            for (k, kind) in ["plain", "fma"].iter().enumerate() {
+                let s = &seen[source][f][k];
+                let (med, max) = median_max(&s.over_measured).unwrap_or((f64::NAN, f64::NAN));
+                println!(
+                    "n = {n} {kernel} {kind} {format} {name:<24} cases {:>7} components {:>8} inf {:>6}; bound/measured median {med:.1} max {max:.3e}; worst measured/bound {:.4} ({:.0} s)",
+                    s.cases,
+                    s.components,
+                    s.infinite,
+                    s.worst,
+                    start.elapsed().as_secs_f64()
+                );
+                assert!(s.worst <= 1.0);
+            }
+        }
+    }
+}
+
+/// The long run: prints, per family, source, format and kind, the bound over the measured
+/// error (median and max), the infinite bounds and the worst measured / bound.
 #[test]
-#[ignore = "long: NOSLIP_ROUGH_CASES (default 10^5) cases per n in a release build"]
-fn the_rough_companions_long() {
+#[ignore = "long: NOSLIP_ROUGH_CASES (default 10^5) cases per n and family in a release build"]
+fn the_rough_and_walton_companions_long() {
     let total: usize = std::env::var("NOSLIP_ROUGH_CASES")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -438,33 +644,25 @@ fn the_rough_companions_long() {
         .ok()
         .map(|s| s.split(',').filter_map(|d| d.parse().ok()).collect())
         .unwrap_or_else(|| (2..=6).collect());
-    let per_source = total.div_ceil(sources().len());
+    let rough = total.div_ceil(sources("rough").len());
+    let walton = total.div_ceil(sources("walton").len());
+    macro_rules! both {
+        ($m:ident $n:literal) => {{
+            let start = std::time::Instant::now();
+            let s = run(&kinds!($m rough), rough, 0x1E6);
+            print($n, "rough", &s, start);
+            let s = run(&kinds!($m walton), walton, 0x1E6);
+            print($n, "walton", &s, start);
+        }};
+    }
     for n in dims {
-        let start = std::time::Instant::now();
-        let seen = match n {
-            2 => run(&kinds!(d2), per_source, 0x1E6),
-            3 => run(&kinds!(d3), per_source, 0x1E6),
-            4 => run(&kinds!(d4), per_source, 0x1E6),
-            5 => run(&kinds!(d5), per_source, 0x1E6),
-            6 => run(&kinds!(d6), per_source, 0x1E6),
+        match n {
+            2 => both!(d2 2),
+            3 => both!(d3 3),
+            4 => both!(d4 4),
+            5 => both!(d5 5),
+            6 => both!(d6 6),
             _ => panic!("n = {n} has no kernels"),
-        };
-        for (source, name) in sources().iter().enumerate() {
-            for (f, format) in ["f64", "f32"].iter().enumerate() {
-                for (k, kind) in ["plain", "fma"].iter().enumerate() {
-                    let s = &seen[source][f][k];
-                    let (med, max) = median_max(&s.over_measured).unwrap_or((f64::NAN, f64::NAN));
-                    println!(
-                        "n = {n} rough {kind} {format} {name:<24} cases {:>7} components {:>8} inf {:>6}; bound/measured median {med:.1} max {max:.3e}; worst measured/bound {:.4} ({:.0} s)",
-                        s.cases,
-                        s.components,
-                        s.infinite,
-                        s.worst,
-                        start.elapsed().as_secs_f64()
-                    );
-                    assert!(s.worst <= 1.0);
-                }
-            }
         }
     }
 }

@@ -126,10 +126,14 @@ pub fn function(c: &Certified) -> String {
     let ty = precision(f).c_type();
     let bty = bound_type(f);
     let len = n * (n - 1) / 2 + n;
-    let fabs = if f.bound_in_f64() { "fabs" } else { "fabsf" };
-    let fma = match precision(f) {
-        Precision::F64 => "fma",
-        Precision::F32 => "fmaf",
+    let (fabs, bsqrt) = if f.bound_in_f64() {
+        ("fabs", "sqrt")
+    } else {
+        ("fabsf", "sqrtf")
+    };
+    let (fma, ksqrt) = match precision(f) {
+        Precision::F64 => ("fma", "sqrt"),
+        Precision::F32 => ("fmaf", "sqrtf"),
     };
     let kernel: HashSet<&str> = p
         .inputs
@@ -214,7 +218,19 @@ pub fn function(c: &Certified) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => constant_literal(&p.constants[*k].value, precision(f)),
-            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, fma),
+            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, fma, ksqrt, false),
+            Expr::Sqrt(a) => format!("{bsqrt}({})", arg(f, a)),
+            Expr::AtMost(x, y) => {
+                let (x, y) = (arg(f, x), arg(f, y));
+                format!("{x} < {y} ? {x} : {y}")
+            }
+            Expr::GreaterOr(a, b, x, y) => format!(
+                "{} > {} ? {} : {}",
+                arg(f, a),
+                arg(f, b),
+                arg(f, x),
+                arg(f, y)
+            ),
             Expr::Abs(a) => format!("{fabs}({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),

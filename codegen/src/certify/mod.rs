@@ -72,6 +72,7 @@
 //! a normal or `gamma2` within a run-time relative `rho` of the intended value).
 
 pub mod c;
+mod clamp;
 pub mod fast;
 mod format;
 pub mod rounded;
@@ -121,6 +122,12 @@ pub enum Expr {
     BoundOrInf(Arg),
     /// `x` if `x > y`, else `y` (a NaN `x` gives `y`): `max` as x86's `maxsd`.
     AtLeast(Arg, Arg),
+    /// `x` if `x < y`, else `y` (a NaN `x` gives `y`): `min`.
+    AtMost(Arg, Arg),
+    /// `sqrt(a)`, correctly rounded.
+    Sqrt(Arg),
+    /// `x` if `a > b`, else `y` (a NaN comparison gives `y`).
+    GreaterOr(Arg, Arg, Arg, Arg),
 }
 
 /// How a companion bounds its outputs.
@@ -188,7 +195,15 @@ pub struct Certified {
 /// A kernel step as the plain kernels spell it in Rust and C alike: one IEEE operation
 /// (`a + b`, `a - b`, `a * b`, `a / b`, `-a`), or a fused one through `fma` (`f64::mul_add`,
 /// `fma`, ...) as the FMA kernels call it: `fma(a, b, c)`, `fma(a, b, -c)`, `fma(-a, b, c)`.
-pub(crate) fn step_expr(program: &Program, op: &Op, fma: &str) -> String {
+/// A square root is `{sqrt}(a)`; a select `if x < y { a } else { b }` in Rust
+/// (`select_rust`), `x < y ? a : b` in C, as the plain kernels spell them.
+pub(crate) fn step_expr(
+    program: &Program,
+    op: &Op,
+    fma: &str,
+    sqrt: &str,
+    select_rust: bool,
+) -> String {
     let o = |x: &Operand| program.name(x).to_string();
     match op {
         Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
@@ -199,7 +214,11 @@ pub(crate) fn step_expr(program: &Program, op: &Op, fma: &str) -> String {
         Op::MulAdd(a, b, c) => format!("{fma}({}, {}, {})", o(a), o(b), o(c)),
         Op::MulSub(a, b, c) => format!("{fma}({}, {}, -{})", o(a), o(b), o(c)),
         Op::NegMulAdd(a, b, c) => format!("{fma}(-{}, {}, {})", o(a), o(b), o(c)),
-        _ => unreachable!("Certified::derive and derive_fast refuse it"),
+        Op::Sqrt(a) => format!("{sqrt}({})", o(a)),
+        Op::SelectLt([x, y, a, b]) if select_rust => {
+            format!("if {} < {} {{ {} }} else {{ {} }}", o(x), o(y), o(a), o(b))
+        }
+        Op::SelectLt([x, y, a, b]) => format!("{} < {} ? {} : {}", o(x), o(y), o(a), o(b)),
     }
 }
 

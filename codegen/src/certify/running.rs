@@ -18,6 +18,8 @@ pub(crate) struct Builder<'a> {
     pub(crate) mags: HashMap<Operand, Arg>,
     pub(crate) temp: usize,
     pub(crate) ops: usize,
+    /// The clamped quotients ([`super::clamp`]), whose square roots are bounded.
+    pub(crate) clamped: std::collections::HashSet<Operand>,
 }
 
 impl Builder<'_> {
@@ -38,7 +40,7 @@ impl Builder<'_> {
         Arg::Name(name)
     }
 
-    fn value(&self, x: &Operand) -> Arg {
+    pub(crate) fn value(&self, x: &Operand) -> Arg {
         Arg::Name(self.program.name(x).to_string())
     }
 
@@ -61,12 +63,12 @@ impl Builder<'_> {
         m
     }
 
-    fn bounded(&self, x: &Operand) -> Bounded {
+    pub(crate) fn bounded(&self, x: &Operand) -> Bounded {
         self.bounds[x].clone()
     }
 
     /// `e_x F(d)`, rigorous, with the factor `extra` more operations deep.
-    fn rigorous(&mut self, b: &Bounded, extra: u32) -> Option<Arg> {
+    pub(crate) fn rigorous(&mut self, b: &Bounded, extra: u32) -> Option<Arg> {
         let e = b.error.clone()?;
         if b.depth == 0 && extra == 0 {
             return Some(e);
@@ -89,7 +91,27 @@ impl Builder<'_> {
             expr: Expr::Step(k),
         });
         let z = Operand::Step(k);
+        // A select's value is bounded only as part of a clamped quotient.
+        let clamp = match &s.op {
+            Op::Div(a, b) => super::clamp::clamp(self, a, b),
+            _ => None,
+        };
+        if clamp.is_none() {
+            if let Some(x) = operands(&s.op)
+                .into_iter()
+                .find(|x| !self.bounds.contains_key(x))
+            {
+                return Err(Unsupported(format!(
+                    "the select {} outside a clamped quotient",
+                    program.name(&x)
+                )));
+            }
+        }
         let bounded = match &s.op {
+            Op::Div(..) if clamp.is_some() => {
+                let (c, l) = clamp.expect("matched");
+                self.clamped_quotient(&c, &l, &z)
+            }
             Op::Neg(a) => {
                 let b = self.bounded(a);
                 if let Some(m) = self.mags.get(a).cloned() {
@@ -169,8 +191,10 @@ impl Builder<'_> {
             Op::MulAdd(a, b, c) | Op::MulSub(a, b, c) | Op::NegMulAdd(a, b, c) => {
                 self.fused(a, b, c, &z)
             }
+            Op::Sqrt(a) if self.clamped.contains(a) => self.root(a, &z),
             Op::Sqrt(_) => return Err(Unsupported(format!("the square root {}", s.name))),
-            Op::SelectLt(_) => return Err(Unsupported(format!("the select {}", s.name))),
+            // Bound where it is used, by the clamped quotient's rule.
+            Op::SelectLt(_) => return Ok(()),
         };
         let bounded = if bounded.depth > DEPTH_LIMIT {
             Bounded {
@@ -264,6 +288,7 @@ impl Certified {
             mags: HashMap::new(),
             temp: 0,
             ops: 0,
+            clamped: Default::default(),
         };
         for name in &program.inputs {
             b.bounds.insert(
@@ -293,6 +318,17 @@ impl Certified {
         }
         for k in 0..program.steps.len() {
             b.step(k)?;
+        }
+        if let Some(x) = program
+            .outputs
+            .iter()
+            .flat_map(|o| o.spin.iter().chain(&o.velocity))
+            .find(|x| !b.bounds.contains_key(x))
+        {
+            return Err(Unsupported(format!(
+                "the select {} as an output",
+                program.name(x)
+            )));
         }
         let outputs = program
             .outputs
@@ -341,6 +377,20 @@ impl Certified {
             .expect("the rough-ball kernels have + - * / and FMA only")
     }
 
+    /// The running companion of the Walton kernel `variant` (`(e, mu, beta0)`,
+    /// [`crate::walton::build_walton`]) in dimension `dim`, plain or FMA: its switch and
+    /// square root bounded by [`super::clamp`]'s rules.
+    pub fn of_walton(
+        dim: usize,
+        variant: Variant,
+        arith: crate::Arith,
+        format: Format,
+    ) -> Certified {
+        let program = Program::lower(&crate::walton::build_walton(dim, variant), arith);
+        Certified::derive(&program, format)
+            .expect("the Walton kernels' selects and root form a clamped quotient")
+    }
+
     /// The running companion of the no-slip kernel `variant` in dimension `dim` with the
     /// normal and `gamma2` taken as rounded ([`rounded::Rounding::no_slip`]).
     pub fn of_rounded(
@@ -353,5 +403,17 @@ impl Certified {
         let rounded = rounded::Rounding::no_slip(dim, &program.inputs);
         Certified::derive_rounded(&program, format, &rounded)
             .expect("the no-slip kernels have + - * / and FMA only")
+    }
+}
+
+/// The operands of a kernel step.
+fn operands(op: &Op) -> Vec<Operand> {
+    match op {
+        Op::Neg(a) | Op::Sqrt(a) => vec![a.clone()],
+        Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => vec![a.clone(), b.clone()],
+        Op::MulAdd(a, b, c) | Op::MulSub(a, b, c) | Op::NegMulAdd(a, b, c) => {
+            vec![a.clone(), b.clone(), c.clone()]
+        }
+        Op::SelectLt(ids) => ids.to_vec(),
     }
 }

@@ -54,22 +54,42 @@ fn arg(format: Format, kernel: &std::collections::HashSet<&str>, a: &Arg) -> Str
     }
 }
 
-/// Whether `p` is a rough-ball kernel (constant `(e, beta)`, read from `law: &Restitution`):
-/// it reads `e` or `beta` and not the Walton law's `mu`.
-pub(crate) fn is_rough(p: &Program) -> bool {
+/// The law a rough-family kernel reads from its `law` parameter: `Restitution` (`e`,
+/// `beta`: the rough-ball kernels) or `Walton` (`e`, `mu`, `beta0`), told by the inputs it
+/// reads; `None` for a no-slip kernel.
+pub(crate) fn law_of(p: &Program) -> Option<(&'static str, Vec<String>)> {
     let reads = |x: String| p.inputs.contains(&x);
-    (reads(names::restitution_e()) || reads(names::restitution_beta()))
-        && !reads(names::friction_mu())
+    if reads(names::friction_mu()) || reads(names::walton_beta0()) {
+        Some((
+            "Walton",
+            vec![
+                names::restitution_e(),
+                names::friction_mu(),
+                names::walton_beta0(),
+            ],
+        ))
+    } else if reads(names::restitution_e()) || reads(names::restitution_beta()) {
+        Some((
+            "Restitution",
+            vec![names::restitution_e(), names::restitution_beta()],
+        ))
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+/// Whether `p` is a rough-ball kernel (constant `(e, beta)`, read from `law: &Restitution`).
+pub(crate) fn is_rough(p: &Program) -> bool {
+    law_of(p).is_some_and(|(t, _)| t == "Restitution")
 }
 
 /// How each kernel input is read from the Rust parameters (and, for a rough-ball kernel,
 /// `law`'s fields).
-pub(crate) fn rust_inputs(n: usize, variant: Variant, rough: bool) -> Vec<(String, String)> {
+pub(crate) fn rust_inputs(n: usize, variant: Variant, law: &[String]) -> Vec<(String, String)> {
     let mut v: Vec<(String, String)> = (0..n).map(|k| (names::nu(k), format!("nu[{k}]"))).collect();
-    if rough {
-        for x in [names::restitution_e(), names::restitution_beta()] {
-            v.push((x.clone(), format!("law.{x}")));
-        }
+    for x in law {
+        v.push((x.clone(), format!("law.{x}")));
     }
     for body in 1..=2 {
         if variant == Variant::Fixed && body == 1 {
@@ -100,7 +120,12 @@ pub fn function(c: &Certified, name: &str) -> String {
     let state = format!("BodyState<{t}, {n}, {s}>");
     let mut out = String::new();
     let variant = p.variant;
-    let rough = is_rough(p);
+    let law = law_of(p);
+    let family = match &law {
+        Some(("Walton", _)) => "walton::",
+        Some(_) => "rough::",
+        None => "",
+    };
     let how = match c.scheme {
         Scheme::Running if f == Format::F32Wide => "(running error analysis, the bound in `f64`:\n\
              /// tighter than `f32`'s and without its overflow, `noslip_codegen::certify::wide`)"
@@ -121,7 +146,7 @@ pub fn function(c: &Certified, name: &str) -> String {
          /// non-finite input).\n\
          ///\n\
          /// Ops: {} of the kernel, {} of the bound.",
-        if rough { "rough::" } else { "" },
+        family,
         match p.arith {
             crate::Arith::Plain => variant.name().to_string(),
             crate::Arith::Fma => format!("{}_fma", variant.name()),
@@ -163,8 +188,8 @@ pub fn function(c: &Certified, name: &str) -> String {
         .collect();
     let arg = |f: Format, a: &Arg| arg(f, &kernel, a);
     let mut params = params;
-    if rough {
-        params = params.replace(", state1:", &format!(", law: &Restitution<{t}>, state1:"));
+    if let Some((law_ty, _)) = &law {
+        params = params.replace(", state1:", &format!(", law: &{law_ty}<{t}>, state1:"));
     }
     if !c.rounded.is_empty() {
         params.push_str(&format!(", rho: &InputRounding<{t}>"));
@@ -174,7 +199,8 @@ pub fn function(c: &Certified, name: &str) -> String {
         "{inline}\n#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::neg_multiply)]\n\
          pub fn {name}({params}) -> {ret} {{"
     );
-    for (input, access) in rust_inputs(n, variant, rough) {
+    let fields = law.map(|(_, f)| f).unwrap_or_default();
+    for (input, access) in rust_inputs(n, variant, &fields) {
         if p.inputs.contains(&input) {
             let _ = writeln!(out, "let {input}: {t} = {access};");
         }
@@ -186,7 +212,25 @@ pub fn function(c: &Certified, name: &str) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => literal(f, f_round(f, &p.constants[*k].value)),
-            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, &format!("{t}::mul_add")),
+            Expr::Step(k) => super::step_expr(
+                p,
+                &p.steps[*k].op,
+                &format!("{t}::mul_add"),
+                &format!("{t}::sqrt"),
+                true,
+            ),
+            Expr::Sqrt(a) => format!("{bt}::sqrt({})", arg(f, a)),
+            Expr::AtMost(x, y) => {
+                let (x, y) = (arg(f, x), arg(f, y));
+                format!("if {x} < {y} {{ {x} }} else {{ {y} }}")
+            }
+            Expr::GreaterOr(a, b, x, y) => format!(
+                "if {} > {} {{ {} }} else {{ {} }}",
+                arg(f, a),
+                arg(f, b),
+                arg(f, x),
+                arg(f, y)
+            ),
             Expr::Abs(a) => format!("{bt}::abs({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
@@ -276,11 +320,12 @@ pub fn file_name(dim: usize) -> String {
 /// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`; those of
 /// the FMA kernels, `free_fma`, `free_fma_fast`, `free_fma_f32`, ...: [`function_name`];
 /// the rounded-input ones [`rounded_name`]; the wide ones `free_f32_wide`, ...; and the
-/// rough-ball kernels' running companions `rough_free`, `rough_fixed_fma_f32`, ...)
+/// rough-ball and Walton kernels' running companions `rough_free`, `walton_fixed_fma_f32`,
+/// ...)
 /// as one formatted file; `crate_path` as for [`crate::generate`].
 pub fn generate(dim: usize, crate_path: &str) -> String {
     let mut src = format!(
-        "use {crate_path}::{{Ball, BodyState, Restitution}};\nuse {crate_path}::certified::{{Certify, InputRounding}};\n"
+        "use {crate_path}::{{Ball, BodyState, Restitution, Walton}};\nuse {crate_path}::certified::{{Certify, InputRounding}};\n"
     );
     let mut header = format!(
         "// @generated by noslip-codegen (codegen/src/certify): certified companions for n = {dim}.\n\
@@ -329,6 +374,22 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
             }
         }
     }
+    // The Walton kernels' running companions (`(e, mu, beta0)`: the switch and the root
+    // bounded by `certify::clamp`).
+    for format in [Format::F64, Format::F32] {
+        for arith in crate::Arith::ALL {
+            for variant in Variant::ALL {
+                let c = Certified::of_walton(dim, variant, arith, format);
+                let name = format!("walton_{}", function_name(variant, arith, false, format));
+                let _ = writeln!(
+                    header,
+                    "// {name}: kernel {}; bound {} ops.",
+                    c.program.ops, c.bound_ops
+                );
+                src.push_str(&function(&c, &name));
+            }
+        }
+    }
     // The f32 kernels' running companions with the bound computed in f64.
     for arith in crate::Arith::ALL {
         for variant in Variant::ALL {
@@ -349,6 +410,7 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
          pub use super::{fixed_fma, fixed_fma_fast, free_fma, free_fma_fast};\n\
          pub use super::{fixed_fma_rounded, fixed_rounded, free_fma_rounded, free_rounded};\n\
          pub use super::{rough_fixed, rough_fixed_fma, rough_free, rough_free_fma};\n\
+         pub use super::{walton_fixed, walton_fixed_fma, walton_free, walton_free_fma};\n\
          }\n\
          /// The `f32` companions under the names generic code uses.\n\
          pub mod in_f32 {\n\
@@ -356,6 +418,7 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
          pub use super::{fixed_fma_f32 as fixed_fma, fixed_fma_fast_f32 as fixed_fma_fast, free_fma_f32 as free_fma, free_fma_fast_f32 as free_fma_fast};\n\
          pub use super::{fixed_fma_rounded_f32 as fixed_fma_rounded, fixed_rounded_f32 as fixed_rounded, free_fma_rounded_f32 as free_fma_rounded, free_rounded_f32 as free_rounded};\n\
          pub use super::{rough_fixed_f32 as rough_fixed, rough_fixed_fma_f32 as rough_fixed_fma, rough_free_f32 as rough_free, rough_free_fma_f32 as rough_free_fma};\n\
+         pub use super::{walton_fixed_f32 as walton_fixed, walton_fixed_fma_f32 as walton_fixed_fma, walton_free_f32 as walton_free, walton_free_fma_f32 as walton_free_fma};\n\
          }\n",
     );
     let file = crate::emit::parse(src.parse().expect("certified source tokenizes"));
