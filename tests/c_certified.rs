@@ -1,15 +1,17 @@
 //! The certified companions of the C header (`noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
 //! the fast ones `..._certified_fast_...`, those of the FMA kernels
 //! `noslip_d{n}_{free|fixed}_fma_certified_...`, which call `fma`/`fmaf`, the rounded-input
-//! ones `..._certified_rounded_{f64|f32}` and the `float` kernels' with the bound in `double`,
-//! `..._certified_f32_wide`) are faithful: compiled by the system C compiler at
+//! ones `..._certified_rounded_{f64|f32}`, the `float` kernels' with the bound in `double`,
+//! `..._certified_f32_wide`, and the rough-ball and Walton kernels',
+//! `noslip_d{n}_{rough|walton}_..._certified_...`) are faithful: compiled by the system C compiler at
 //! `-O2 -ffp-contract=off` and at `-O3 -march=native -ffp-contract=off`, they return bit for
 //! bit the Rust companions' outputs and bounds (`collision_core::kernels::dN::certified`),
 //! and so the plain Rust kernels' outputs (accuracy/tests/proven.rs checks the Rust
 //! companions against those and against exact truth), on [`CASES`] cases per dimension
 //! (n = 2..6), kernel (`free`, `fixed`) and format, drawn from every regime of the accuracy
-//! report ([`EXTRA_CASES`] for the rounded-input and wide companions, each rounded-input one
-//! under three pairs `(rho_nu, rho_gamma2)`). The two executables are compiled once and
+//! report ([`EXTRA_CASES`] for the rounded-input, wide and rough-family companions, each
+//! rounded-input one under three pairs `(rho_nu, rho_gamma2)`, the rough ones under two laws,
+//! the Walton ones under three). The two executables are compiled once and
 //! serve every comparison.
 
 mod backend;
@@ -244,7 +246,7 @@ where
     let mut f = check_format(dir, exes, &cases.f64);
     f.extend(check_format(dir, exes, &cases.f32));
     let cases = draw::<N, S>(EXTRA_CASES, 280 + N as u64);
-    f.extend(extra.check(dir, exes, &cases, extra::RHOS));
+    f.extend(extra.check(dir, exes, &cases, extra::RHOS, extra::LAWS));
     f
 }
 
@@ -292,11 +294,18 @@ fn with_first_sum_negated(header: &str, function: &str, prefix: &str) -> (String
     (mutated, line.trim().to_string())
 }
 
-/// One bound operation altered in each of five companions (the first sum of two bound terms
-/// of the running companion, of the FMA kernel's, of the rounded-input one and of the wide
-/// one, and the first sum of two magnitudes of the fast one, each made a difference) makes
+/// The first law of each rough family: enough for the mutation test.
+const FIRST_LAWS: extra::Laws = extra::Laws {
+    rough: &[extra::ROUGH_LAWS[0]],
+    walton: &[extra::WALTON_LAWS[0]],
+};
+
+/// One bound operation altered in each of six companions (the first sum of two bound terms
+/// of the running companion, of the FMA kernel's, of the rounded-input one, of the wide one
+/// and of the Walton kernel's, and the first sum of two magnitudes of the fast one, each made
+/// a difference) makes
 /// that companion's comparison fail: the test above compares the bounds, not only the
-/// outputs. Cheap: a header of n = 3 alone, the five alterations in one build.
+/// outputs. Cheap: a header of n = 3 alone, the six alterations in one build.
 #[test]
 fn one_altered_bound_operation_fails_the_comparison() {
     let dir = scratch("c-certified-mutation");
@@ -311,7 +320,7 @@ fn one_altered_bound_operation_fails_the_comparison() {
     let extra = extra::of!(d3);
     let good = [("good", build(&dir, &header, &flags, "good"))];
     let mut seen = check_format(&dir, &good, &cases.f64);
-    seen.extend(extra.check(&dir, &good, &cases, &extra::RHOS[..1]));
+    seen.extend(extra.check(&dir, &good, &cases, &extra::RHOS[..1], FIRST_LAWS));
     assert!(seen.is_empty(), "{seen:?}");
     let mutations = [
         ("noslip_d3_free_certified_f64", "cert", "free_certified f64"),
@@ -335,6 +344,11 @@ fn one_altered_bound_operation_fails_the_comparison() {
             "cert",
             "free_fma_certified f32_wide",
         ),
+        (
+            "noslip_d3_walton_free_certified_f64",
+            "cert",
+            "walton_free_certified f64",
+        ),
     ];
     let mut mutated = header.clone();
     let mut lines = Vec::new();
@@ -345,7 +359,7 @@ fn one_altered_bound_operation_fails_the_comparison() {
     }
     let bad = [("bad", build(&dir, &mutated, &flags, "bad"))];
     let mut seen = check_format(&dir, &bad, &cases.f64);
-    seen.extend(extra.check(&dir, &bad, &cases, &extra::RHOS[..1]));
+    seen.extend(extra.check(&dir, &bad, &cases, &extra::RHOS[..1], FIRST_LAWS));
     std::fs::remove_dir_all(&dir).unwrap();
     for ((_, _, kernel), line) in mutations.iter().zip(&lines) {
         assert!(

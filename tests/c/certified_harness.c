@@ -7,7 +7,9 @@
  * free_fma_fast, fixed_fma_fast; or the rounded-input companions free_rounded, fixed_rounded,
  * free_fma_rounded, fixed_fma_rounded, which take RHO_NU and RHO_GAMMA2 (decimals of values
  * exact in float); PRECISION f64, f32, or f32_wide (the float kernels' companions with the
- * bound in double; KERNEL free, fixed, free_fma or fixed_fma). IN holds records as for
+ * bound in double; KERNEL free, fixed, free_fma or fixed_fma); or the rough-family companions
+ * rough_free, rough_fixed_fma, walton_free, ..., which take the law (E BETA, or E MU BETA0;
+ * decimals of values exact in float) for every record. IN holds records as for
  * harness.c: nu[N], ball1[3], ball2[3], state1[S+N], state2[S+N]. OUT receives per record
  * out1, out2 (free) or out2 (fixed, radius1 = ball1[1]), each S+N values, then after all
  * records' outputs, their bounds in the same layout (double for f32_wide). Compiled with
@@ -42,6 +44,36 @@
         bounds_len = (size_t)((char *)yb - (char *)bounds);                             \
     } while (0)
 
+/* The rough-family companions: `law` (LAW[0..3)) after ball2. */
+#define LOOP_LAW(T, N, S, FREE, FIXED)                                                  \
+    do {                                                                                \
+        const size_t rec = (N) + 6 + 2 * ((S) + (N)), len = (S) + (N);                  \
+        const T law_t[3] = {(T)law[0], (T)law[1], (T)law[2]};                           \
+        count = in_len / (rec * sizeof(T));                                             \
+        const T *x = (const T *)in;                                                     \
+        T *y = (T *)out;                                                                \
+        T *yb = (T *)bounds;                                                            \
+        for (size_t c = 0; c < count; c++, x += rec) {                                  \
+            const T *nu = x, *b1 = x + (N), *b2 = x + (N) + 3, *s1 = x + (N) + 6,       \
+                    *s2 = x + (N) + 6 + len;                                            \
+            if (free_) {                                                                \
+                FREE(nu, b1, b2, law_t, s1, s2, y, y + len, yb, yb + len);              \
+                y += 2 * len;                                                           \
+                yb += 2 * len;                                                          \
+            } else {                                                                    \
+                FIXED(nu, b1[1], b2, law_t, s1, s2, y, yb);                             \
+                y += len;                                                               \
+                yb += len;                                                              \
+            }                                                                           \
+        }                                                                               \
+        out_len = (size_t)((char *)y - (char *)out);                                    \
+        bounds_len = (size_t)((char *)yb - (char *)bounds);                             \
+    } while (0)
+
+#define FAMILY(N, S, LAW, FMA)                                                                     \
+    if (f64) LOOP_LAW(double, N, S, noslip_d##N##_##LAW##_free##FMA##_certified_f64, noslip_d##N##_##LAW##_fixed##FMA##_certified_f64); \
+    else LOOP_LAW(float, N, S, noslip_d##N##_##LAW##_free##FMA##_certified_f32, noslip_d##N##_##LAW##_fixed##FMA##_certified_f32);
+
 #define KIND(N, S, FMA, FAST)                                                                      \
     if (f64) LOOP(double, double, N, S, noslip_d##N##_free##FMA##_certified_##FAST##f64, noslip_d##N##_fixed##FMA##_certified_##FAST##f64, ); \
     else LOOP(float, float, N, S, noslip_d##N##_free##FMA##_certified_##FAST##f32, noslip_d##N##_fixed##FMA##_certified_##FAST##f32, );
@@ -54,7 +86,11 @@
     LOOP(float, double, N, S, noslip_d##N##_free##FMA##_certified_f32_wide, noslip_d##N##_fixed##FMA##_certified_f32_wide, );
 
 #define DIM(N, S)                                                                                  \
-    if (n == (N) && wide && !fma) { WIDE(N, S, ) }                                                 \
+    if (n == (N) && rough && !fma) { FAMILY(N, S, rough, ) }                                       \
+    else if (n == (N) && rough && fma) { FAMILY(N, S, rough, _fma) }                               \
+    else if (n == (N) && walton && !fma) { FAMILY(N, S, walton, ) }                                \
+    else if (n == (N) && walton && fma) { FAMILY(N, S, walton, _fma) }                             \
+    else if (n == (N) && wide && !fma) { WIDE(N, S, ) }                                            \
     else if (n == (N) && wide && fma) { WIDE(N, S, _fma) }                                         \
     else if (n == (N) && rounded && !fma) { ROUNDED(N, S, ) }                                      \
     else if (n == (N) && rounded && fma) { ROUNDED(N, S, _fma) }                                   \
@@ -76,21 +112,26 @@ static void *read_all(const char *path, size_t *len) {
 }
 
 int main(int argc, char **argv) {
-    if (argc != 6 && argc != 8) {
-        fprintf(stderr, "usage: certified_harness N KERNEL PRECISION IN OUT [RHO_NU RHO_GAMMA2]\n");
+    if (argc < 6 || argc > 9) {
+        fprintf(stderr, "usage: certified_harness N KERNEL PRECISION IN OUT [RHO_NU RHO_GAMMA2 | E BETA | E MU BETA0]\n");
         return 2;
     }
     const int n = atoi(argv[1]);
-    const int free_ = !strncmp(argv[2], "free", 4);
+    const int rough = !strncmp(argv[2], "rough_", 6), walton = !strncmp(argv[2], "walton_", 7);
+    const char *kernel = argv[2] + (rough ? 6 : walton ? 7 : 0);
+    const int free_ = !strncmp(kernel, "free", 4);
     const int fast = strstr(argv[2], "_fast") != NULL;
     const int fma = strstr(argv[2], "_fma") != NULL;
     const int rounded = strstr(argv[2], "_rounded") != NULL;
     const int wide = !strcmp(argv[3], "f32_wide");
     const int f64 = !strcmp(argv[3], "f64");
-    if (rounded != (argc == 8)) {
-        fprintf(stderr, "certified_harness: the _rounded kernels and only they take RHO_NU RHO_GAMMA2\n");
+    if (argc != 6 + (rounded || rough ? 2 : walton ? 3 : 0)) {
+        fprintf(stderr, "certified_harness: the _rounded kernels take RHO_NU RHO_GAMMA2, rough_ E BETA, walton_ E MU BETA0, others nothing\n");
         return 2;
     }
+    double law[3] = {0.0, 0.0, 0.0};
+    for (int k = 6; k < argc && (rough || walton); k++) law[k - 6] = strtod(argv[k], NULL);
+    (void)law;
     /* Exact: the test passes values representable in float, as shortest decimals. */
     const double rho_nu = rounded ? strtod(argv[6], NULL) : 0.0;
     const double rho_gamma2 = rounded ? strtod(argv[7], NULL) : 0.0;

@@ -4,7 +4,10 @@
 //! companions with rounded inputs `noslip_d{n}_{free|fixed}[_fma]_certified_rounded_{f64|f32}`
 //! (two more parameters, `rho_nu` and `rho_gamma2`, after the kernel's; [`super::rounded`]);
 //! and the `float` kernels' running companions with the bound in `double`,
-//! `noslip_d{n}_{free|fixed}[_fma]_certified_f32_wide` ([`super::wide`]): appended to the C
+//! `noslip_d{n}_{free|fixed}[_fma]_certified_f32_wide` ([`super::wide`]); and the running
+//! companions of the rough-ball and Walton kernels,
+//! `noslip_d{n}_{rough|walton}_{free|fixed}[_fma]_certified_{f64|f32}` (`law` after `ball2`
+//! as in their plain kernels): appended to the C
 //! header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
 //! output array.
 
@@ -54,8 +57,13 @@ fn arg(f: Format, kernel: &HashSet<&str>, a: &Arg) -> String {
     }
 }
 
-/// Each parameter array and the kernel inputs its elements hold (`radius1` a scalar).
-fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
+/// Each parameter array and the kernel inputs its elements hold (`radius1` a scalar); a
+/// rough-family kernel's `law` (its fields, [`super::rust::law_of`]) after `ball2`.
+fn arrays(
+    n: usize,
+    variant: Variant,
+    law: Option<Vec<String>>,
+) -> Vec<(&'static str, Vec<String>)> {
     let ball = |b: usize| vec![names::inv_mass(b), names::radius(b), names::gamma2(b)];
     let state = |b: usize| -> Vec<String> {
         skew_pairs(n)
@@ -69,6 +77,9 @@ fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
         v.push(("ball1", ball(1)));
     }
     v.push(("ball2", ball(2)));
+    if let Some(fields) = law {
+        v.push(("law", fields));
+    }
     v.push(("state1", state(1)));
     v.push(("state2", state(2)));
     v
@@ -106,17 +117,28 @@ pub fn function_name(
     )
 }
 
-/// The C name of `c`'s function ([`function_name`]).
+/// The C name of `c`'s function ([`function_name`]; a rough-family kernel's with its
+/// prefix, `noslip_d3_rough_free_certified_f64`, `noslip_d3_walton_fixed_fma_certified_f32`).
 pub fn name_of(c: &Certified) -> String {
     let p = &c.program;
-    function_name(
+    let name = function_name(
         p.dim,
         p.variant,
         p.arith,
         c.format,
         c.scheme,
         !c.rounded.is_empty(),
-    )
+    );
+    match super::rust::law_of(p) {
+        Some(("Walton", _)) => {
+            name.replacen("_free", "_walton_free", 1)
+                .replacen("_fixed", "_walton_fixed", 1)
+        }
+        Some(_) => name
+            .replacen("_free", "_rough_free", 1)
+            .replacen("_fixed", "_rough_fixed", 1),
+        None => name,
+    }
 }
 
 /// The C function of `c`, with its comment.
@@ -149,8 +171,14 @@ pub fn function(c: &Certified) -> String {
         Arith::Plain => "",
         Arith::Fma => "_fma",
     };
+    let law = super::rust::law_of(p);
+    let family = match &law {
+        Some(("Walton", _)) => "walton_",
+        Some(_) => "rough_",
+        None => "",
+    };
     let plain = format!(
-        "noslip_d{n}_{}{fma_suffix}_{}",
+        "noslip_d{n}_{family}{}{fma_suffix}_{}",
         p.variant.name(),
         precision(f).suffix()
     );
@@ -176,7 +204,7 @@ pub fn function(c: &Certified) -> String {
         c.bound_ops,
         if f == Format::F32Wide { " (in double)" } else { "" }
     );
-    let arrays = arrays(n, p.variant);
+    let arrays = arrays(n, p.variant, law.as_ref().map(|(_, f)| f.clone()));
     let mut params: Vec<String> = arrays
         .iter()
         .map(|(a, e)| format!("const {ty} {a}[{}]", e.len()))
@@ -294,6 +322,17 @@ pub fn functions(dims: &[usize]) -> String {
         for arith in Arith::ALL {
             for v in Variant::ALL {
                 push(&mut s, &Certified::of(n, v, arith, Format::F32Wide));
+            }
+        }
+    }
+    // The rough-ball and Walton kernels' running companions.
+    for f in [Format::F64, Format::F32] {
+        for &n in dims {
+            for arith in Arith::ALL {
+                for v in Variant::ALL {
+                    push(&mut s, &Certified::of_rough(n, v, arith, f));
+                    push(&mut s, &Certified::of_walton(n, v, arith, f));
+                }
             }
         }
     }
