@@ -20,8 +20,11 @@
 //! `|q - C/L|` is bounded by the quotient rule of [`super`]: `(e_C + m_q E_L) / L_low`,
 //! with `m_q = RN(|RN(C^ / L^)| + s)` computed in the bound's arithmetic (the kernel has not
 //! computed `q` when it stuck); `L_low > 0` also proves `L > 0`, so the exact map's `rho` is
-//! `min(1, C/L)` (it slides iff `C < L`). Where `L` is not provably positive the bound is
-//! `+inf`. And where the sticking branch is decided, `C^ - L^ > e_C + e_L` (checked as
+//! `min(1, C/L)` (it slides iff `C < L`). Both `rho^` and the exact `rho` lie in `[0, 1]`
+//! (`C^ >= 0` and `C >= 0` are products of squares, `L >= 0` likewise; sliding needs
+//! `C < L`), so the bound is also at most 1: where `L` is not provably positive (`L = 0`
+//! exactly when both `gamma2` or `t` vanish, or `mu = 0` makes `C = 0` beside a tiny `L`)
+//! it is 1, not `+inf`. And where the sticking branch is decided, `C^ - L^ > e_C + e_L` (checked as
 //! `RN(RN(C^ - L^)(1 - 2u)) > RN(e_C F + e_L F)`, each side rounded the safe way), the
 //! exact map sticks too and `rho^ = 1` exactly: the bound is 0. So a different branch near
 //! the switch is covered, not excluded: both branches' values lie within the bound of the
@@ -95,6 +98,8 @@ impl Builder<'_> {
         let quotient = self.bind(Expr::Div(num, low.clone()));
         let quotient = self.bind(Expr::PositiveOr(low, quotient));
         let quotient = self.bind(Expr::Add(quotient, r));
+        // Both rho^ and the exact rho lie in [0, 1]: never more than 1 apart.
+        let quotient = self.bind(Expr::AtMost(quotient, Arg::Lit(1.0)));
         // Decided sticking: RN(RN(C^ - L^)(1 - 2u)) > RN(e_C F + e_L F) gives 0.
         let gap = self.bind(Expr::Sub(self.value(c), self.value(l)));
         let gap = self.bind(Expr::Mul(gap, shrink));
