@@ -72,7 +72,7 @@
 //! a normal or `gamma2` within a run-time relative `rho` of the intended value).
 
 pub mod c;
-mod clamp;
+pub mod clamp;
 pub mod fast;
 mod format;
 pub mod rounded;
