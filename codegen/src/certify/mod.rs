@@ -4,7 +4,8 @@
 //!
 //! [`Certified::derive`] turns a lowered [`Program`] into a language-neutral list of
 //! statements ([`Stmt`]): each kernel step as the plain kernel spells it, followed by the
-//! float arithmetic of its bound. [`rust`] and [`c`] spell that list.
+//! float arithmetic of its bound. [`rust`] and [`c`] spell that list. The Walton kernels'
+//! switch and square root have their own rules ([`clamp`]).
 //!
 //! # The rules (a point input, run in format `F` with unit roundoff `u`)
 //!
@@ -222,7 +223,8 @@ pub(crate) fn step_expr(
     }
 }
 
-/// A kernel operation the companions do not bound (`sqrt`, selects).
+/// A kernel operation the companions do not bound (a square root or select outside the
+/// Walton kernels' clamped quotient, [`clamp`]).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unsupported(pub String);
 

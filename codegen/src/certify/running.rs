@@ -266,8 +266,9 @@ impl Builder<'_> {
 
 impl Certified {
     /// The companion of `program` in `format`: its steps in order, each followed by its
-    /// bound's statements, then the bound of every output. Refuses a program with fused
-    /// square roots or selects (the no-slip and rough kernels have none).
+    /// bound's statements, then the bound of every output. Refuses a program with square
+    /// roots or selects other than the Walton kernels' clamped quotient and its root
+    /// ([`super::clamp`]; the no-slip and rough kernels have none).
     pub fn derive(program: &Program, format: Format) -> Result<Certified, Unsupported> {
         Certified::derive_rounded(program, format, &[])
     }
