@@ -85,11 +85,18 @@ impl ProvenBound {
             Method::F32 => (Arith::Plain, Format::F32),
             _ => return None,
         };
-        Some(ProvenBound {
+        Some(ProvenBound::of_kernel(n, arith, format))
+    }
+
+    /// The bounds of the kernels `arith` in `format`, whether or not a report method runs
+    /// them (the `f32` FMA kernels: the certified companions' tightness is measured against
+    /// them, `accuracy/tests/proven.rs`).
+    pub fn of_kernel(n: usize, arith: Arith, format: Format) -> ProvenBound {
+        ProvenBound {
             format,
             free: Located::new(n, Variant::Free, arith, format),
             fixed: Located::new(n, Variant::Fixed, arith, format),
-        })
+        }
     }
 
     /// The format the kernels run in.

@@ -1,42 +1,69 @@
 //! The certified companions spelled in C99: `noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
 //! `..._certified_fast_...`, and those of the FMA kernels `noslip_d{n}_{free|fixed}_fma_certified_...`
-//! (fused steps through `fma`/`fmaf`, contraction off as in the plain kernels), appended to
-//! the C header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
+//! (fused steps through `fma`/`fmaf`, contraction off as in the plain kernels); the running
+//! companions with rounded inputs `noslip_d{n}_{free|fixed}[_fma]_certified_rounded_{f64|f32}`
+//! (two more parameters, `rho_nu` and `rho_gamma2`, after the kernel's; [`super::rounded`]);
+//! and the `float` kernels' running companions with the bound in `double`,
+//! `noslip_d{n}_{free|fixed}[_fma]_certified_f32_wide` ([`super::wide`]); and the running
+//! companions of the rough-ball and Walton kernels,
+//! `noslip_d{n}_{rough|walton}_{free|fixed}[_fma]_certified_{f64|f32}` (`law` after `ball2`
+//! as in their plain kernels): appended to the C
+//! header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
 //! output array.
 
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::backend::{constant_literal, Precision};
 use crate::model::{names, skew_pairs, Variant};
 use crate::Arith;
+use std::collections::HashSet;
 use std::fmt::Write;
 
+/// The kernel's precision: `float` for both `f32` formats.
 fn precision(f: Format) -> Precision {
     match f {
         Format::F64 => Precision::F64,
-        Format::F32 => Precision::F32,
-        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
+        Format::F32 | Format::F32Wide => Precision::F32,
     }
 }
 
-/// A C literal of a float of `format`: its shortest round-trip decimal (`f`-suffixed in
-/// `float`), so a correctly rounding compiler restores the same bits.
+/// The bound's C type: `double` but for [`Format::F32`].
+fn bound_type(f: Format) -> &'static str {
+    if f.bound_in_f64() {
+        "double"
+    } else {
+        "float"
+    }
+}
+
+/// A C literal of a float of the bound's type: its shortest round-trip decimal (`f`-suffixed
+/// in `float`), so a correctly rounding compiler restores the same bits.
 fn literal(f: Format, x: f64) -> String {
-    match f {
-        Format::F64 => format!("{x:e}"),
-        Format::F32 => format!("{:e}f", x as f32),
-        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
+    if f.bound_in_f64() {
+        format!("{x:e}")
+    } else {
+        format!("{:e}f", x as f32)
     }
 }
 
-fn arg(f: Format, a: &Arg) -> String {
+/// An argument of a bound statement; a kernel value (`kernel` holds their names) converted
+/// to `double` (exactly) where the bound runs in `double` and the kernel in `float`.
+fn arg(f: Format, kernel: &HashSet<&str>, a: &Arg) -> String {
     match a {
+        Arg::Name(n) if f == Format::F32Wide && kernel.contains(n.as_str()) => {
+            format!("(double){n}")
+        }
         Arg::Name(n) => n.clone(),
         Arg::Lit(x) => literal(f, *x),
     }
 }
 
-/// Each parameter array and the kernel inputs its elements hold (`radius1` a scalar).
-fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
+/// Each parameter array and the kernel inputs its elements hold (`radius1` a scalar); a
+/// rough-family kernel's `law` (its fields, [`super::rust::law_of`]) after `ball2`.
+fn arrays(
+    n: usize,
+    variant: Variant,
+    law: Option<Vec<String>>,
+) -> Vec<(&'static str, Vec<String>)> {
     let ball = |b: usize| vec![names::inv_mass(b), names::radius(b), names::gamma2(b)];
     let state = |b: usize| -> Vec<String> {
         skew_pairs(n)
@@ -50,33 +77,68 @@ fn arrays(n: usize, variant: Variant) -> Vec<(&'static str, Vec<String>)> {
         v.push(("ball1", ball(1)));
     }
     v.push(("ball2", ball(2)));
+    if let Some(fields) = law {
+        v.push(("law", fields));
+    }
     v.push(("state1", state(1)));
     v.push(("state2", state(2)));
     v
 }
 
 /// The name of the C function: `noslip_d3_free_certified_f64`, for the fast scheme
-/// `noslip_d3_free_certified_fast_f64`, for the FMA kernel `noslip_d3_free_fma_certified_f64`.
+/// `noslip_d3_free_certified_fast_f64`, for the FMA kernel `noslip_d3_free_fma_certified_f64`,
+/// with rounded inputs `noslip_d3_free_certified_rounded_f64`, with the bound in `double`
+/// `noslip_d3_free_certified_f32_wide`.
 pub fn function_name(
     n: usize,
     variant: Variant,
     arith: Arith,
     f: Format,
     scheme: Scheme,
+    rounded: bool,
 ) -> String {
-    let fast = match scheme {
-        Scheme::Running => "",
-        Scheme::Fast { .. } => "fast_",
+    let kind = match (scheme, rounded) {
+        (Scheme::Running, false) => "",
+        (Scheme::Running, true) => "rounded_",
+        (Scheme::Fast { .. }, _) => "fast_",
     };
     let fma = match arith {
         Arith::Plain => "",
         Arith::Fma => "_fma",
     };
+    let format = match f {
+        Format::F64 => "f64",
+        Format::F32 => "f32",
+        Format::F32Wide => "f32_wide",
+    };
     format!(
-        "noslip_d{n}_{}{fma}_certified_{fast}{}",
-        variant.name(),
-        precision(f).suffix()
+        "noslip_d{n}_{}{fma}_certified_{kind}{format}",
+        variant.name()
     )
+}
+
+/// The C name of `c`'s function ([`function_name`]; a rough-family kernel's with its
+/// prefix, `noslip_d3_rough_free_certified_f64`, `noslip_d3_walton_fixed_fma_certified_f32`).
+pub fn name_of(c: &Certified) -> String {
+    let p = &c.program;
+    let name = function_name(
+        p.dim,
+        p.variant,
+        p.arith,
+        c.format,
+        c.scheme,
+        !c.rounded.is_empty(),
+    );
+    match super::rust::law_of(p) {
+        Some(("Walton", _)) => {
+            name.replacen("_free", "_walton_free", 1)
+                .replacen("_fixed", "_walton_fixed", 1)
+        }
+        Some(_) => name
+            .replacen("_free", "_rough_free", 1)
+            .replacen("_fixed", "_rough_fixed", 1),
+        None => name,
+    }
 }
 
 /// The C function of `c`, with its comment.
@@ -84,35 +146,65 @@ pub fn function(c: &Certified) -> String {
     let (p, f) = (&c.program, c.format);
     let n = p.dim;
     let ty = precision(f).c_type();
+    let bty = bound_type(f);
     let len = n * (n - 1) / 2 + n;
-    let (fabs, fma) = match f {
-        Format::F64 => ("fabs", "fma"),
-        Format::F32 => ("fabsf", "fmaf"),
-        Format::F32Wide => unreachable!("the f32 companions with f64 bounds are Rust only"),
+    let (fabs, bsqrt) = if f.bound_in_f64() {
+        ("fabs", "sqrt")
+    } else {
+        ("fabsf", "sqrtf")
     };
+    let (fma, ksqrt) = match precision(f) {
+        Precision::F64 => ("fma", "sqrt"),
+        Precision::F32 => ("fmaf", "sqrtf"),
+    };
+    let kernel: HashSet<&str> = p
+        .inputs
+        .iter()
+        .map(String::as_str)
+        .chain(p.constants.iter().map(|c| c.name.as_str()))
+        .chain(p.steps.iter().map(|s| s.name.as_str()))
+        .chain(c.rounded.iter().map(|r| r.param.as_str()))
+        .collect();
+    let arg = |f: Format, a: &Arg| arg(f, &kernel, a);
     let mut s = String::new();
     let fma_suffix = match p.arith {
         Arith::Plain => "",
         Arith::Fma => "_fma",
     };
+    let law = super::rust::law_of(p);
+    let family = match &law {
+        Some(("Walton", _)) => "walton_",
+        Some(_) => "rough_",
+        None => "",
+    };
     let plain = format!(
-        "noslip_d{n}_{}{fma_suffix}_{}",
+        "noslip_d{n}_{family}{}{fma_suffix}_{}",
         p.variant.name(),
         precision(f).suffix()
     );
+    let against = if c.rounded.is_empty() {
+        "the given floats".to_string()
+    } else {
+        "the intended real inputs: rho_nu and\n\
+         // rho_gamma2 bound the relative rounding of each normal component and each gamma2 given\n\
+         // (|x^ - x| <= rho |x|, rho < 2^-10), docs/accuracy.md \"Rounded inputs\""
+            .to_string()
+    };
     let _ = writeln!(
         s,
         "// {plain} (the same operations, bit for bit) and a rigorous bound on the absolute\n\
          // error of every output for these inputs, in the same branch-free pass ({}): bound1/bound2 hold, slot by slot,\n\
-         // B >= |out - exact| for the exact map on the given floats, or +inf where none holds.\n\
-         // Ops: kernel {}; bound {} ops.",
+         // B >= |out - exact| for the exact map on {against}, or +inf where none holds.\n\
+         // Ops: kernel {}; bound {} ops{}.",
         match c.scheme {
             Scheme::Running => "running error\n// analysis, docs/accuracy.md \"Certified companions\"".to_string(),
             Scheme::Fast { floor } => format!("a constant per output times\n// magnitudes from the inputs' largest absolute values, docs/accuracy.md \"Fast certified\n// companions\", magnitude floor {floor:e}"),
         },
-        p.ops, c.bound_ops
+        p.ops,
+        c.bound_ops,
+        if f == Format::F32Wide { " (in double)" } else { "" }
     );
-    let arrays = arrays(n, p.variant);
+    let arrays = arrays(n, p.variant, law.as_ref().map(|(_, f)| f.clone()));
     let mut params: Vec<String> = arrays
         .iter()
         .map(|(a, e)| format!("const {ty} {a}[{}]", e.len()))
@@ -121,16 +213,19 @@ pub fn function(c: &Certified) -> String {
     if p.variant == Variant::Fixed {
         params.insert(1, format!("{ty} radius1"));
     }
+    for r in &c.rounded {
+        params.push(format!("{ty} {}", r.param));
+    }
     for b in &outs {
         params.push(format!("{ty} out{b}[{len}]"));
     }
     for b in &outs {
-        params.push(format!("{ty} bound{b}[{len}]"));
+        params.push(format!("{bty} bound{b}[{len}]"));
     }
     let _ = writeln!(
         s,
         "static inline NOSLIP_NO_CONTRACT void {}({})\n{{\n    NOSLIP_FP_CONTRACT_OFF",
-        function_name(n, p.variant, p.arith, f, c.scheme),
+        name_of(c),
         params.join(", ")
     );
     for (a, elems) in &arrays {
@@ -151,25 +246,41 @@ pub fn function(c: &Certified) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => constant_literal(&p.constants[*k].value, precision(f)),
-            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, fma),
+            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, fma, ksqrt, false),
+            Expr::Sqrt(a) => format!("{bsqrt}({})", arg(f, a)),
+            Expr::AtMost(x, y) => {
+                let (x, y) = (arg(f, x), arg(f, y));
+                format!("{x} < {y} ? {x} : {y}")
+            }
+            Expr::GreaterOr(a, b, x, y) => format!(
+                "{} > {} ? {} : {}",
+                arg(f, a),
+                arg(f, b),
+                arg(f, x),
+                arg(f, y)
+            ),
             Expr::Abs(a) => format!("{fabs}({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
             Expr::Mul(a, b) => format!("{} * {}", arg(f, a), arg(f, b)),
             Expr::Div(a, b) => format!("{} / {}", arg(f, a), arg(f, b)),
             Expr::PositiveOr(x, y) => {
-                format!("{} > 0 ? {} : ({ty})INFINITY", arg(f, x), arg(f, y))
+                format!("{} > 0 ? {} : ({bty})INFINITY", arg(f, x), arg(f, y))
             }
             Expr::BoundOrInf(x) => {
                 let x = arg(f, x);
-                format!("{x} >= 0 ? {x} : ({ty})INFINITY")
+                format!("{x} >= 0 ? {x} : ({bty})INFINITY")
             }
             Expr::AtLeast(x, y) => {
                 let (x, y) = (arg(f, x), arg(f, y));
                 format!("{x} > {y} ? {x} : {y}")
             }
         };
-        let _ = writeln!(s, "    const {ty} {} = {e};", st.name);
+        let st_ty = match st.expr {
+            Expr::Const(_) | Expr::Step(_) => ty,
+            _ => bty,
+        };
+        let _ = writeln!(s, "    const {st_ty} {} = {e};", st.name);
     }
     for o in &c.outputs {
         for (k, x) in o.values.iter().enumerate() {
@@ -183,20 +294,44 @@ pub fn function(c: &Certified) -> String {
     s
 }
 
-/// The companions of `dims` in both formats (`f64` first), for the C header.
+/// The companions of `dims` for the C header: per format (`f64`, then `f32`), dimension,
+/// kernel (plain, FMA) and variant, the running, fast and rounded-input companions; then the
+/// `float` kernels' running companions with the bound in `double`.
 pub fn functions(dims: &[usize]) -> String {
     let mut s = String::from(
-        "\n/* Certified companions: the plain kernels' parameters, then out arrays, then one\n \
-         * bound array per out array (the same layout). */\n",
+        "\n/* Certified companions: the plain kernels' parameters (and rho_nu, rho_gamma2 for the\n \
+         * rounded-input ones), then out arrays, then one bound array per out array (the same\n \
+         * layout; double for the _f32_wide ones). */\n",
     );
+    let push = |s: &mut String, c: &Certified| {
+        s.push('\n');
+        s.push_str(&function(c));
+    };
     for f in [Format::F64, Format::F32] {
         for &n in dims {
             for arith in Arith::ALL {
                 for v in Variant::ALL {
-                    s.push('\n');
-                    s.push_str(&function(&Certified::of(n, v, arith, f)));
-                    s.push('\n');
-                    s.push_str(&function(&Certified::of_fast(n, v, arith, f)));
+                    push(&mut s, &Certified::of(n, v, arith, f));
+                    push(&mut s, &Certified::of_fast(n, v, arith, f));
+                    push(&mut s, &Certified::of_rounded(n, v, arith, f));
+                }
+            }
+        }
+    }
+    for &n in dims {
+        for arith in Arith::ALL {
+            for v in Variant::ALL {
+                push(&mut s, &Certified::of(n, v, arith, Format::F32Wide));
+            }
+        }
+    }
+    // The rough-ball and Walton kernels' running companions.
+    for f in [Format::F64, Format::F32] {
+        for &n in dims {
+            for arith in Arith::ALL {
+                for v in Variant::ALL {
+                    push(&mut s, &Certified::of_rough(n, v, arith, f));
+                    push(&mut s, &Certified::of_walton(n, v, arith, f));
                 }
             }
         }

@@ -2,7 +2,6 @@
 //! and `{free_f32, fixed_f32}`, monomorphic, returning the plain kernel's outputs and a bound
 //! per output component in the same layout.
 
-use super::rounded::Rounding;
 use super::{Arg, Certified, Expr, Format, Scheme};
 use crate::model::{names, skew_pairs, Variant};
 use crate::program::Program;
@@ -55,9 +54,43 @@ fn arg(format: Format, kernel: &std::collections::HashSet<&str>, a: &Arg) -> Str
     }
 }
 
-/// How each kernel input is read from the Rust parameters.
-pub(crate) fn rust_inputs(n: usize, variant: Variant) -> Vec<(String, String)> {
+/// The law a rough-family kernel reads from its `law` parameter: `Restitution` (`e`,
+/// `beta`: the rough-ball kernels) or `Walton` (`e`, `mu`, `beta0`), told by the inputs it
+/// reads; `None` for a no-slip kernel.
+pub(crate) fn law_of(p: &Program) -> Option<(&'static str, Vec<String>)> {
+    let reads = |x: String| p.inputs.contains(&x);
+    if reads(names::friction_mu()) || reads(names::walton_beta0()) {
+        Some((
+            "Walton",
+            vec![
+                names::restitution_e(),
+                names::friction_mu(),
+                names::walton_beta0(),
+            ],
+        ))
+    } else if reads(names::restitution_e()) || reads(names::restitution_beta()) {
+        Some((
+            "Restitution",
+            vec![names::restitution_e(), names::restitution_beta()],
+        ))
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+/// Whether `p` is a rough-ball kernel (constant `(e, beta)`, read from `law: &Restitution`).
+pub(crate) fn is_rough(p: &Program) -> bool {
+    law_of(p).is_some_and(|(t, _)| t == "Restitution")
+}
+
+/// How each kernel input is read from the Rust parameters (and, for a rough-ball kernel,
+/// `law`'s fields).
+pub(crate) fn rust_inputs(n: usize, variant: Variant, law: &[String]) -> Vec<(String, String)> {
     let mut v: Vec<(String, String)> = (0..n).map(|k| (names::nu(k), format!("nu[{k}]"))).collect();
+    for x in law {
+        v.push((x.clone(), format!("law.{x}")));
+    }
     for body in 1..=2 {
         if variant == Variant::Fixed && body == 1 {
             v.push((names::radius(1), "*radius1".into()));
@@ -87,6 +120,12 @@ pub fn function(c: &Certified, name: &str) -> String {
     let state = format!("BodyState<{t}, {n}, {s}>");
     let mut out = String::new();
     let variant = p.variant;
+    let law = law_of(p);
+    let family = match &law {
+        Some(("Walton", _)) => "walton::",
+        Some(_) => "rough::",
+        None => "",
+    };
     let how = match c.scheme {
         Scheme::Running if f == Format::F32Wide => "(running error analysis, the bound in `f64`:\n\
              /// tighter than `f32`'s and without its overflow, `noslip_codegen::certify::wide`)"
@@ -100,13 +139,14 @@ pub fn function(c: &Certified, name: &str) -> String {
     };
     let _ = writeln!(
         out,
-        "/// [`super::{}`] in `{t}` (the same operations, bit for bit) with a rigorous bound on the\n\
+        "/// [`super::{}{}`] in `{t}` (the same operations, bit for bit) with a rigorous bound on the\n\
          /// absolute error of every output for these inputs, computed in the same branch-free pass\n\
          /// {how}: returns `(outputs, bounds)`, each\n\
          /// bound in its output's slot, `|computed - exact| <= bound` for the exact map on {}; `+inf` where no bound holds (a divisor not provably nonzero, overflow, a\n\
          /// non-finite input).\n\
          ///\n\
          /// Ops: {} of the kernel, {} of the bound.",
+        family,
         match p.arith {
             crate::Arith::Plain => variant.name().to_string(),
             crate::Arith::Fma => format!("{}_fma", variant.name()),
@@ -148,6 +188,9 @@ pub fn function(c: &Certified, name: &str) -> String {
         .collect();
     let arg = |f: Format, a: &Arg| arg(f, &kernel, a);
     let mut params = params;
+    if let Some((law_ty, _)) = &law {
+        params = params.replace(", state1:", &format!(", law: &{law_ty}<{t}>, state1:"));
+    }
     if !c.rounded.is_empty() {
         params.push_str(&format!(", rho: &InputRounding<{t}>"));
     }
@@ -156,7 +199,8 @@ pub fn function(c: &Certified, name: &str) -> String {
         "{inline}\n#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::neg_multiply)]\n\
          pub fn {name}({params}) -> {ret} {{"
     );
-    for (input, access) in rust_inputs(n, variant) {
+    let fields = law.map(|(_, f)| f).unwrap_or_default();
+    for (input, access) in rust_inputs(n, variant, &fields) {
         if p.inputs.contains(&input) {
             let _ = writeln!(out, "let {input}: {t} = {access};");
         }
@@ -168,7 +212,25 @@ pub fn function(c: &Certified, name: &str) -> String {
     for st in &c.stmts {
         let e = match &st.expr {
             Expr::Const(k) => literal(f, f_round(f, &p.constants[*k].value)),
-            Expr::Step(k) => super::step_expr(p, &p.steps[*k].op, &format!("{t}::mul_add")),
+            Expr::Step(k) => super::step_expr(
+                p,
+                &p.steps[*k].op,
+                &format!("{t}::mul_add"),
+                &format!("{t}::sqrt"),
+                true,
+            ),
+            Expr::Sqrt(a) => format!("{bt}::sqrt({})", arg(f, a)),
+            Expr::AtMost(x, y) => {
+                let (x, y) = (arg(f, x), arg(f, y));
+                format!("if {x} < {y} {{ {x} }} else {{ {y} }}")
+            }
+            Expr::GreaterOr(a, b, x, y) => format!(
+                "if {} > {} {{ {} }} else {{ {} }}",
+                arg(f, a),
+                arg(f, b),
+                arg(f, x),
+                arg(f, y)
+            ),
             Expr::Abs(a) => format!("{bt}::abs({})", arg(f, a)),
             Expr::Add(a, b) => format!("{} + {}", arg(f, a), arg(f, b)),
             Expr::Sub(a, b) => format!("{} - {}", arg(f, a), arg(f, b)),
@@ -255,12 +317,15 @@ pub fn file_name(dim: usize) -> String {
 }
 
 /// The companions of dimension `dim` (`free`, `fixed` in `f64`; `free_f32`, `fixed_f32`;
-/// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`; and those of
-/// the FMA kernels, `free_fma`, `free_fma_fast`, `free_fma_f32`, ...: [`function_name`])
+/// the fast ones `free_fast`, `fixed_fast`, `free_fast_f32`, `fixed_fast_f32`; those of
+/// the FMA kernels, `free_fma`, `free_fma_fast`, `free_fma_f32`, ...: [`function_name`];
+/// the rounded-input ones [`rounded_name`]; the wide ones `free_f32_wide`, ...; and the
+/// rough-ball and Walton kernels' running companions `rough_free`, `walton_fixed_fma_f32`,
+/// ...)
 /// as one formatted file; `crate_path` as for [`crate::generate`].
 pub fn generate(dim: usize, crate_path: &str) -> String {
     let mut src = format!(
-        "use {crate_path}::{{Ball, BodyState}};\nuse {crate_path}::certified::{{Certify, InputRounding}};\n"
+        "use {crate_path}::{{Ball, BodyState, Restitution, Walton}};\nuse {crate_path}::certified::{{Certify, InputRounding}};\n"
     );
     let mut header = format!(
         "// @generated by noslip-codegen (codegen/src/certify): certified companions for n = {dim}.\n\
@@ -283,11 +348,39 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
                     src.push_str(&function(&c, &name));
                 }
                 // The running companion with the normal and gamma2 taken as rounded.
-                let program = Program::lower(&crate::model::build(dim, variant), arith);
-                let rounded = Rounding::no_slip(dim, &program.inputs);
-                let c = Certified::derive_rounded(&program, format, &rounded)
-                    .expect("the no-slip kernels have + - * / and FMA only");
+                let c = Certified::of_rounded(dim, variant, arith, format);
                 let name = rounded_name(variant, arith, format);
+                let _ = writeln!(
+                    header,
+                    "// {name}: kernel {}; bound {} ops.",
+                    c.program.ops, c.bound_ops
+                );
+                src.push_str(&function(&c, &name));
+            }
+        }
+    }
+    // The rough-ball kernels' running companions (constant `(e, beta)`).
+    for format in [Format::F64, Format::F32] {
+        for arith in crate::Arith::ALL {
+            for variant in Variant::ALL {
+                let c = Certified::of_rough(dim, variant, arith, format);
+                let name = format!("rough_{}", function_name(variant, arith, false, format));
+                let _ = writeln!(
+                    header,
+                    "// {name}: kernel {}; bound {} ops.",
+                    c.program.ops, c.bound_ops
+                );
+                src.push_str(&function(&c, &name));
+            }
+        }
+    }
+    // The Walton kernels' running companions (`(e, mu, beta0)`: the switch and the root
+    // bounded by `certify::clamp`).
+    for format in [Format::F64, Format::F32] {
+        for arith in crate::Arith::ALL {
+            for variant in Variant::ALL {
+                let c = Certified::of_walton(dim, variant, arith, format);
+                let name = format!("walton_{}", function_name(variant, arith, false, format));
                 let _ = writeln!(
                     header,
                     "// {name}: kernel {}; bound {} ops.",
@@ -316,12 +409,16 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
          pub use super::{fixed, fixed_fast, free, free_fast};\n\
          pub use super::{fixed_fma, fixed_fma_fast, free_fma, free_fma_fast};\n\
          pub use super::{fixed_fma_rounded, fixed_rounded, free_fma_rounded, free_rounded};\n\
+         pub use super::{rough_fixed, rough_fixed_fma, rough_free, rough_free_fma};\n\
+         pub use super::{walton_fixed, walton_fixed_fma, walton_free, walton_free_fma};\n\
          }\n\
          /// The `f32` companions under the names generic code uses.\n\
          pub mod in_f32 {\n\
          pub use super::{fixed_f32 as fixed, fixed_fast_f32 as fixed_fast, free_f32 as free, free_fast_f32 as free_fast};\n\
          pub use super::{fixed_fma_f32 as fixed_fma, fixed_fma_fast_f32 as fixed_fma_fast, free_fma_f32 as free_fma, free_fma_fast_f32 as free_fma_fast};\n\
          pub use super::{fixed_fma_rounded_f32 as fixed_fma_rounded, fixed_rounded_f32 as fixed_rounded, free_fma_rounded_f32 as free_fma_rounded, free_rounded_f32 as free_rounded};\n\
+         pub use super::{rough_fixed_f32 as rough_fixed, rough_fixed_fma_f32 as rough_fixed_fma, rough_free_f32 as rough_free, rough_free_fma_f32 as rough_free_fma};\n\
+         pub use super::{walton_fixed_f32 as walton_fixed, walton_fixed_fma_f32 as walton_fixed_fma, walton_free_f32 as walton_free, walton_free_fma_f32 as walton_free_fma};\n\
          }\n",
     );
     let file = crate::emit::parse(src.parse().expect("certified source tokenizes"));

@@ -1,4 +1,5 @@
 use super::*;
+use crate::model::Variant;
 
 #[test]
 fn every_plain_no_slip_kernel_has_a_companion_with_every_step_in_order() {
@@ -25,13 +26,15 @@ fn every_plain_no_slip_kernel_has_a_companion_with_every_step_in_order() {
                     c.program.inputs.iter().cloned().collect();
                 for s in &c.stmts {
                     let args: Vec<&Arg> = match &s.expr {
-                        Expr::Abs(a) | Expr::BoundOrInf(a) => vec![a],
+                        Expr::Abs(a) | Expr::BoundOrInf(a) | Expr::Sqrt(a) => vec![a],
                         Expr::Add(a, b)
                         | Expr::Sub(a, b)
                         | Expr::Mul(a, b)
                         | Expr::Div(a, b)
                         | Expr::PositiveOr(a, b)
-                        | Expr::AtLeast(a, b) => vec![a, b],
+                        | Expr::AtLeast(a, b)
+                        | Expr::AtMost(a, b) => vec![a, b],
+                        Expr::GreaterOr(a, b, x, y) => vec![a, b, x, y],
                         Expr::Const(_) | Expr::Step(_) => vec![],
                     };
                     for a in args {
@@ -124,4 +127,65 @@ fn the_fma_companions_bound_every_fused_step() {
             plain.bound_ops
         );
     }
+}
+
+/// The rough-ball kernels (constant `(e, beta)`) have running companions in every
+/// dimension, format and arithmetic, reading `e` and `beta`; so do the Walton kernels, their
+/// selects bound through the clamped quotient (a decided-sticking test in the bound).
+#[test]
+fn the_rough_and_walton_kernels_have_companions() {
+    for n in crate::DIMS {
+        for v in Variant::ALL {
+            for arith in crate::Arith::ALL {
+                for f in [Format::F64, Format::F32] {
+                    let c = Certified::of_rough(n, v, arith, f);
+                    assert!(rust::is_rough(&c.program), "n = {n} {v:?}");
+                    let steps = c
+                        .stmts
+                        .iter()
+                        .filter(|s| matches!(s.expr, Expr::Step(_)))
+                        .count();
+                    assert_eq!(steps, c.program.steps.len());
+                }
+                let walton = Program::lower(&crate::walton::build_walton(n, v), arith);
+                assert!(!rust::is_rough(&walton));
+                for f in [Format::F64, Format::F32] {
+                    let c = Certified::derive(&walton, f).expect("a clamped quotient");
+                    // The two selects are bound through their quotient, not on their own.
+                    let steps = c
+                        .stmts
+                        .iter()
+                        .filter(|s| matches!(s.expr, Expr::Step(_)))
+                        .count();
+                    assert_eq!(steps, walton.steps.len());
+                    assert!(c
+                        .stmts
+                        .iter()
+                        .any(|s| matches!(s.expr, Expr::GreaterOr(..))));
+                }
+            }
+        }
+    }
+}
+
+/// A select used anywhere but in a clamped quotient is refused by name.
+#[test]
+fn a_select_outside_a_clamped_quotient_is_refused() {
+    let mut program = Program::lower(
+        &crate::walton::build_walton(2, Variant::Fixed),
+        crate::Arith::Plain,
+    );
+    let k = program
+        .steps
+        .iter()
+        .position(|s| matches!(s.op, Op::SelectLt(_)))
+        .expect("a select");
+    let user = program
+        .steps
+        .iter()
+        .position(|s| matches!(s.op, Op::Div(..)) && s.name == "rho")
+        .expect("the quotient rho");
+    program.steps[user].op = Op::Add(Operand::Step(k), Operand::Step(k));
+    let err = Certified::derive(&program, Format::F64).unwrap_err();
+    assert!(err.0.contains("outside a clamped quotient"), "{err}");
 }

@@ -90,8 +90,10 @@ macro_rules! generated {
             /// ..., each fused step bounded with its one rounding); `free_rounded`,
             /// `fixed_rounded` (and `_fma`, `_f32` forms), whose bound also covers the
             /// rounding of the normal and `gamma2` given
-            /// ([`crate::certified::InputRounding`]); and `free_f32_wide`, `fixed_f32_wide`
-            /// (and `_fma`), the `f32` kernels with the bound computed in `f64`.
+            /// ([`crate::certified::InputRounding`]); `free_f32_wide`, `fixed_f32_wide`
+            /// (and `_fma`), the `f32` kernels with the bound computed in `f64`; and
+            /// `rough_free`, `rough_fixed` (and `_fma`, `_f32` forms), the running
+            /// companions of the rough-ball kernels [`rough`] (constant `(e, beta)`).
             pub mod certified {
                 include!(concat!(env!("OUT_DIR"), "/", $certified));
             }
