@@ -162,9 +162,8 @@ impl Exec {
                 }
             }
             None => {
-                let mut batch = FixedEachBatch::<T, N, S, LanesOf<T, R>>::with_capacity(
-                    CHUNK_ROWS.min(len),
-                );
+                let mut batch =
+                    FixedEachBatch::<T, N, S, LanesOf<T, R>>::with_capacity(CHUNK_ROWS.min(len));
                 for range in chunks {
                     batch.clear();
                     for i in range.clone() {

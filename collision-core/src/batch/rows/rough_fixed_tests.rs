@@ -7,10 +7,10 @@ use super::rough_fixed::CHUNK_ROWS;
 use super::tests::{arrays, by_hand, physical, Arrays};
 use super::*;
 use crate::batch::each::tests::{restitutions, waltons};
+use crate::batch::lanes::Contact;
 use crate::batch::{Exec, Isa};
 use crate::error::Field;
 use crate::kernels::{RoughKernel, WaltonKernel};
-use crate::batch::lanes::Contact;
 use crate::{skew_pairs, Ball, BodyState, Generated, Kernel, Restitution, Walton};
 
 /// The arrays as fixed rows: body 1's radius `R_1` (its other parameters unused), body 2's
@@ -48,6 +48,10 @@ fn by_hand_rows<const N: usize, const S: usize>(states: &[BodyState<f64, N, S>])
     }
     [spin, velocity]
 }
+
+/// A scalar `fixed` kernel on row `i`: `(i, contact, R_1, ball_2)` to body 2's state after.
+type RowKernel<'a, const N: usize, const S: usize> =
+    dyn Fn(usize, &Contact<f64, N, S>, f64, &Ball<f64>) -> BodyState<f64, N, S> + 'a;
 
 fn bits(o: &[Vec<f64>; 2]) -> Vec<u64> {
     o.iter().flatten().map(|x| x.to_bits()).collect()
@@ -109,7 +113,7 @@ where
         let (we, (mu, beta0)): (Vec<f64>, (Vec<f64>, Vec<f64>)) =
             w.iter().map(|l| (l.e, (l.mu, l.beta0))).unzip();
         // Row i by the scalar kernel `kernel(nu, R_1, ball_2, s1, s2)`.
-        let scalar = |kernel: &dyn Fn(usize, &Contact<f64, N, S>, f64, &Ball<f64>) -> _| {
+        let scalar = |kernel: &RowKernel<'_, N, S>| {
             let states: Vec<BodyState<f64, N, S>> = (0..len)
                 .map(|i| {
                     let (c, [b1, b2]) = by_hand::<N, S>(&a, i);
@@ -195,11 +199,7 @@ fn refused_fixed_laws_name_the_field_and_the_row() {
     let exec = Exec::auto();
     let rough = |e: &[f64], beta: &[f64]| {
         run(&|out| {
-            exec.rough_fixed_rows::<_, f64, 3, 3>(
-                &RestitutionRows { e, beta },
-                &fixed_rows(a),
-                out,
-            )
+            exec.rough_fixed_rows::<_, f64, 3, 3>(&RestitutionRows { e, beta }, &fixed_rows(a), out)
         })
     };
     let ok = [0.5; 6];
