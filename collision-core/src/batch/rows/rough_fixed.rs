@@ -5,7 +5,8 @@
 //!
 //! Row `i` gives `kernels::dN::rough::fixed(nu, R_1, ball_2, law_i, state_1, state_2)` (or
 //! `walton::fixed`), body 2's state after the contact, bit for bit: the rows are gathered a
-//! chunk at a time into a [`FixedBatch`] (or a [`FixedEachBatch`] with the laws' lanes), run
+//! chunk at a time straight into the lanes of a [`FixedBatch`] (or a [`FixedEachBatch`] with
+//! the laws' lanes, `LawRows::gather_block`), the blocks reused from chunk to chunk, run
 //! by [`Exec::rough_fixed`] (or [`Exec::fixed_each`]) and scattered back as
 //! [`super::Exec::rough_free_rows`]'s outputs are (each compact state as its full skew
 //! matrix).
@@ -14,7 +15,7 @@ use super::law::{LawRowError, LawRows};
 use super::scatter::scatter_state;
 use super::{pairs, BallRows, StateRows, StateRowsMut};
 use crate::batch::each::{EachLawBatchKernel, FixedEachBatch};
-use crate::batch::lanes::{Contact, StateLanes, LANES};
+use crate::batch::lanes::{Contact, FixedLanes, Lanewise, StateLanes, LANES};
 use crate::batch::law_lanes::FamilyLaw;
 use crate::batch::{Exec, FixedBatch, RoughBatchKernel, StateBatch};
 use crate::kernels::Generated;
@@ -72,7 +73,8 @@ impl<T> FixedRows<'_, T> {
     }
 }
 
-/// Contact `i` of `rows` as a [`FixedBatch`] item: `(contact, R_1, ball_2)`.
+/// Contact `i` of `rows` as a [`FixedBatch`] item: `(contact, R_1, ball_2)` (the padding
+/// lanes' first fill).
 fn fixed_item<T: Clone, const N: usize, const S: usize>(
     rows: &FixedRows<'_, T>,
     i: usize,
@@ -96,6 +98,56 @@ fn fixed_item<T: Clone, const N: usize, const S: usize>(
             gamma2: p(b.gamma2),
         },
     )
+}
+
+/// Contact `i` of `rows` straight into lane `l` of `block` (no item in between): what
+/// [`Batch::push`](crate::batch::Batch::push) of [`fixed_item`] writes there.
+#[inline(always)]
+fn fixed_lane<T: Clone, const N: usize, const S: usize>(
+    rows: &FixedRows<'_, T>,
+    i: usize,
+    l: usize,
+    block: &mut FixedLanes<T, N, S>,
+) {
+    let pairs = const { pairs::<N, S>() };
+    for (k, x) in block.contact.nu.iter_mut().enumerate() {
+        x[l] = rows.nu[i * N + k].clone();
+    }
+    for (lanes, s) in block.contact.states.iter_mut().zip(&rows.states) {
+        for (x, &(r, c)) in lanes.spin.iter_mut().zip(&pairs) {
+            x[l] = s.spin[i * N * N + r * N + c].clone();
+        }
+        for (k, x) in lanes.velocity.iter_mut().enumerate() {
+            x[l] = s.velocity[i * N + k].clone();
+        }
+    }
+    let p = |x: &[T]| x[if x.len() == 1 { 0 } else { i }].clone();
+    block.radius1[l] = p(rows.radius1);
+    let b = &rows.ball2;
+    block.ball2.inv_mass[l] = p(b.inv_mass);
+    block.ball2.radius[l] = p(b.radius);
+    block.ball2.gamma2[l] = p(b.gamma2);
+}
+
+/// Rows `range` of `rows` into `blocks` (`range.len().div_ceil(8)` of them), lane by lane; the
+/// last block's lanes past the range repeat its first row, as `push` leaves them.
+fn gather_fixed<T: Clone, const N: usize, const S: usize, B: AsMut<FixedLanes<T, N, S>>>(
+    rows: &FixedRows<'_, T>,
+    range: Range<usize>,
+    blocks: &mut [B],
+) {
+    for (b, block) in blocks.iter_mut().enumerate() {
+        let start = range.start + b * LANES;
+        let block = block.as_mut();
+        for l in 0..LANES {
+            let i = if start + l < range.end {
+                start + l
+            } else {
+                start
+            };
+            fixed_lane(rows, i, l, block);
+        }
+    }
 }
 
 /// The blocks of `states` (rows `range` of the call) into `out`.
@@ -153,10 +205,9 @@ impl Exec {
             Some(law) => {
                 let mut batch = FixedBatch::<T, N, S>::with_capacity(CHUNK_ROWS.min(len));
                 for range in chunks {
-                    batch.clear();
-                    for i in range.clone() {
-                        batch.push(fixed_item(rows, i));
-                    }
+                    let first = fixed_item(rows, range.start);
+                    batch.resize_with(range.len(), || Lanewise::splat(&first));
+                    gather_fixed(rows, range.clone(), batch.blocks_mut());
                     self.rough_fixed(&law, &batch, &mut states);
                     scatter_chunk(states.blocks(), &mut out, range);
                 }
@@ -165,9 +216,13 @@ impl Exec {
                 let mut batch =
                     FixedEachBatch::<T, N, S, LanesOf<T, R>>::with_capacity(CHUNK_ROWS.min(len));
                 for range in chunks {
-                    batch.clear();
-                    for i in range.clone() {
-                        batch.push((fixed_item(rows, i), laws.law(i)));
+                    let first = (fixed_item(rows, range.start), laws.law(range.start));
+                    batch.resize_with(range.len(), || Lanewise::splat(&first));
+                    gather_fixed(rows, range.clone(), batch.blocks_mut());
+                    for (b, block) in batch.blocks_mut().iter_mut().enumerate() {
+                        let start = range.start + b * LANES;
+                        let end = (start + LANES).min(range.end);
+                        laws.gather_block(start, end, &mut block.law);
                     }
                     self.fixed_each(&batch, &mut states);
                     scatter_chunk(states.blocks(), &mut out, range);
