@@ -214,7 +214,10 @@ impl std::io::Write for LogColumns {
             if self.line.last() == Some(&b'\n') {
                 let e: Value = serde_json::from_slice(&self.line)
                     .map_err(|e| std::io::Error::other(format!("a log line: {e}")))?;
-                self.columns.push(&e, self.n, self.s);
+                // A thermostat's kick (`run::kick_json`) is no contact: not a row of `events`.
+                if e.get("kick").is_none() {
+                    self.columns.push(&e, self.n, self.s);
+                }
                 self.line.clear();
             }
         }

@@ -104,3 +104,13 @@ def test_a_bad_thermostat_in_a_scene_is_named() -> None:
             assert says in str(e), str(e)
         else:
             raise AssertionError("accepted")
+
+
+def test_a_driven_log_keeps_the_contacts_as_its_events() -> None:
+    # The kick lines of the events log (docs/granular.md) are not contacts: `events` holds
+    # one row per contact, as many as the summary counts, in time order.
+    scene = driven_gas(0.9, 0.9, strength=0.185, interval=0.05, balls=100)
+    run = noslip.simulate(scene, time=2.0, log=True)
+    assert run.summary["kicks"] == 40
+    assert len(run.events["time"]) == run.summary["events"] > 0
+    assert (np.diff(run.events["time"]) >= 0).all()

@@ -166,6 +166,18 @@ pub fn event_json<const N: usize, const S: usize>(index: u64, e: &Event<N, S>) -
     v
 }
 
+/// One events-log line for a thermostat's kick: `{"kick": k, "time": t_k, "velocities":
+/// [u'_0, u'_1, ...], "energy_injected": dE}`, every ball's velocity after the kick in ball
+/// order (spins are not kicked), so that the log with the start replays every velocity.
+pub fn kick_json<const N: usize>(k: &Kick<N>) -> Value {
+    json!({
+        "kick": k.index,
+        "time": k.time,
+        "velocities": k.after.iter().map(|u| u.to_vec()).collect::<Vec<_>>(),
+        "energy_injected": k.injected,
+    })
+}
+
 fn scales<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
@@ -260,7 +272,8 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
 
 /// [`run_observed`], also calling `on_kick(kick, sim)` after each kick of the thermostat
 /// ([`Kick`]: what the granular observables' displacements and injected energy need,
-/// [`crate::granular::Sampler::kick`]); its error ends the run.
+/// [`crate::granular::Sampler::kick`]); its error ends the run. The log, if given, holds a
+/// line for each kick between the contacts' ([`kick_json`]).
 pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &mut Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
@@ -308,6 +321,9 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         if let (Some(noise), Some(_), true) = (&mut noise, kick_at, due) {
             let k = kick(sim, species, noise, &mut tracer, traced, &at);
             injected += k.injected;
+            if let Some(w) = log.as_deref_mut() {
+                writeln!(w, "{}", kick_json(&k))?;
+            }
             on_kick(&k, sim)?;
             continue;
         }

@@ -310,3 +310,67 @@ fn every_interval_balances_the_injected_and_the_lost_energy() {
     assert!(intervals >= 79, "{intervals}");
     eprintln!("{intervals} intervals balanced, worst at {worst:.2e} of its bound");
 }
+
+/// A driven run's events log is complete: from the start's velocities, each contact line's
+/// `post` velocities (of its balls) and each kick line's `velocities` (of every ball), in the
+/// log's order, replay every ball's velocity at the end bit for bit (the log's numbers are
+/// the f64 values in shortest round-trip form). A log without the kicks would leave every
+/// velocity off by the kicks' sum since the ball's last contact.
+#[test]
+fn a_driven_log_replays_every_velocity() {
+    let text = WALLED.replace("{box}", "12").replace("{count}", "40");
+    let scene = Scene::from_toml(&text, "t.toml").unwrap();
+    let setup = setup::<2, 1>(&scene).unwrap();
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let mut velocities: Vec<[f64; 2]> = (0..sim.len()).map(|i| sim.state(i).velocity).collect();
+    let limits = Limits {
+        events: None,
+        time: Some(10.0),
+        samples: 1,
+        traced: 0,
+        contact_points: 0,
+    };
+    let mut log = Vec::new();
+    let (summary, _) = run_watched(
+        &mut sim,
+        &species,
+        &limits,
+        Some(&mut log),
+        &mut |_| {},
+        &mut |_, _, _| Ok(()),
+        &mut |_, _| Ok(()),
+    )
+    .unwrap();
+    let pair = |v: &serde_json::Value| [0, 1].map(|k| v[k].as_f64().unwrap());
+    let (mut contacts, mut kicks, mut last) = (0, 0, 0.0);
+    for line in String::from_utf8(log).unwrap().lines() {
+        let v: serde_json::Value = serde_json::from_str(line).unwrap();
+        let time = v["time"].as_f64().unwrap();
+        assert!(time >= last, "the log is in time order");
+        last = time;
+        if let Some(k) = v.get("kick") {
+            kicks += 1;
+            assert_eq!(k.as_u64(), Some(kicks));
+            let after = v["velocities"].as_array().unwrap();
+            assert_eq!(after.len(), velocities.len());
+            for (u, a) in velocities.iter_mut().zip(after) {
+                *u = pair(a);
+            }
+        } else {
+            contacts += 1;
+            for (k, b) in v["balls"].as_array().unwrap().iter().enumerate() {
+                velocities[b.as_u64().unwrap() as usize] = pair(&v["post"][k]["velocity"]);
+            }
+        }
+    }
+    assert_eq!((contacts, kicks), (summary.events, summary.kicks));
+    assert!(kicks == 100 && contacts > 100, "{summary:?}");
+    for (i, u) in velocities.iter().enumerate() {
+        let want = sim.state(i).velocity;
+        assert_eq!(u.map(f64::to_bits), want.map(f64::to_bits), "ball {i}");
+    }
+}
