@@ -1,6 +1,6 @@
 //! `noslip simulate` on the shipped driven gas (`scenes/driven3d.toml`, a `[thermostat]`):
 //! the kicks counted in summary.json and their energy in the balance, the observables
-//! written (msd NaN: kicks are not flights), and a bad thermostat, lyapunov and orbits
+//! written (msd across the kicks, the injected energy's column in each interval's balance), and a bad thermostat, lyapunov and orbits
 //! refused (exit 2, the field named).
 
 mod support;
@@ -51,10 +51,35 @@ fn the_driven_gas_is_kicked_and_accounts_for_its_energy() {
     let last = rows.last().unwrap();
     assert!(last[6] > 0.0 && last[6] < start + injected, "{last:?}");
     assert!(end > 0.5 * start && end < 2.0 * start, "{start} -> {end}");
+    // The kicks end the displacements' flights: msd is known, from 0 at the start.
     assert!(
-        rows.iter().all(|r| r[12].is_nan() && r[13].is_nan()),
+        rows.iter().all(|r| r[13].is_finite() && r[14].is_finite()) && rows[0][13] == 0.0,
         "{csv}"
     );
+    assert!(last[13] > 0.0 && last[14] <= last[13], "{last:?}");
+    // The injected column (10) balances each interval with the losses (6..10), to the
+    // rounding bound of sim/tests/driven_observables.rs: C contacts and K kicks in the
+    // interval, 500 balls, E_max twice the largest energy, W the largest running total.
+    assert_eq!(rows[0][10], 0.0);
+    assert!(
+        last[10] > 0.0 && last[10] < injected + 6.0 * 50.4,
+        "{last:?}"
+    );
+    let e_max = 2.0 * rows.iter().map(|r| r[4]).fold(0.0, f64::max);
+    let w = last[6..11].iter().copied().fold(0.0, f64::max);
+    for pair in rows.windows(2) {
+        let (a, b) = (&pair[0], &pair[1]);
+        let c = b[1] - a[1];
+        let k = (b[0] / 0.43).floor() - (a[0] / 0.43).floor();
+        let lost: f64 = (6..10).map(|j| b[j] - a[j]).sum();
+        let off = (b[4] - a[4]) - ((b[10] - a[10]) - lost);
+        let bound = (64.0 * c + 1016.0 * k + 20000.0) * f64::EPSILON * e_max
+            + (c + k + 10.0) * f64::EPSILON * w;
+        assert!(
+            off.abs() <= bound,
+            "{a:?} -> {b:?}: off by {off:e} > {bound:e}"
+        );
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

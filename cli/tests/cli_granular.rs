@@ -51,7 +51,7 @@ fn the_granular_gas_writes_its_observables() {
         "time [T],contacts [1],T_tr [M L^2 T^-2],T_rot [M L^2 T^-2],energy [M L^2 T^-2],\
          collision_frequency [T^-1],lost_ball_ball [M L^2 T^-2],lost_ball_wall [M L^2 T^-2],\
          lost_ball_obstacle [M L^2 T^-2],lost_ball_boundary [M L^2 T^-2],\
-         pressure [M L^-1 T^-2],a2 [1],msd [L^2],msd_cm [L^2]"
+         injected [M L^2 T^-2],pressure [M L^-1 T^-2],a2 [1],msd [L^2],msd_cm [L^2]"
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
@@ -73,8 +73,10 @@ fn the_granular_gas_writes_its_observables() {
     assert!(((first[4] - last[4]) - last[6]).abs() <= bound, "{last:?}");
     // No displacement at the start; then msd_cm <= msd (equal masses: msd - msd_cm is the
     // centre of mass's |D|^2).
-    assert_eq!((first[12], first[13]), (0.0, 0.0));
-    assert!(last[13] > 0.0 && last[13] <= last[12], "{last:?}");
+    assert_eq!((first[13], first[14]), (0.0, 0.0));
+    assert!(last[14] > 0.0 && last[14] <= last[13], "{last:?}");
+    // No thermostat: nothing injected.
+    assert!(rows.iter().all(|r| r[10] == 0.0), "{csv}");
     // pair-correlation.csv: 30 bins of width 0.1 up to 3, none below contact (the bin
     // [0.9, 1) may hold a pair touching at a row's contact), g near 1 far out.
     let pairs = std::fs::read_to_string(dir.join("pair-correlation.csv")).unwrap();

@@ -72,11 +72,13 @@ class SimulationResult:
         ``energy``, ``collision_frequency`` [1/T] (ball-ball contacts per ball and unit time
         since the previous row, NaN in the first), ``lost_ball_ball``, ``lost_ball_wall``,
         ``lost_ball_obstacle``, ``lost_ball_boundary`` (energy lost so far at each kind of
-        contact), ``pressure`` [M L^(2-n) T^-2] (kinetic plus the collisional virial since
+        contact), ``injected`` (energy injected so far by a thermostat's kicks, 0 without
+        one), ``pressure`` [M L^(2-n) T^-2] (kinetic plus the collisional virial since
         the previous row; a periodic box without obstacles only, else NaN), ``a2`` (the
         velocity cumulant, 0 for a Maxwellian), ``msd`` and ``msd_cm`` [L^2] (the mean
         square displacement since the start, unwrapped across periodic faces, and the same
-        about the centre of mass) and, in a mixture, ``T_tr_s`` and
+        about the centre of mass; exact under a thermostat too, whose kicks end the
+        flights) and, in a mixture, ``T_tr_s`` and
         ``T_rot_s`` for each species index ``s``, then ``msd_cm_s`` for each. Empty without
         ``observables``.
     pair_correlation : dict of ndarray

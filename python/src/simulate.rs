@@ -14,7 +14,7 @@ use crate::signals::Signals;
 use collision_core::{Generated, Kernel};
 use noslip_sim::boundary_map::{self, Row};
 use noslip_sim::granular::{self, Sampler};
-use noslip_sim::run::{check_time, run_observed, Limits, Summary, Trace};
+use noslip_sim::run::{check_time, run_watched, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Simulation};
 use numpy::{PyArray1, PyArrayMethods};
@@ -101,7 +101,9 @@ where
             .transpose()
             .map_err(|e| RunError::Input(format!("pair_correlation: {e}")))?;
     }
-    let (summary, trace) = run_observed(
+    // The sampler is told of contacts (the observer) and of kicks (the kick observer).
+    let sampler = std::cell::RefCell::new(sampler);
+    let (summary, trace) = run_watched(
         &mut sim,
         &species,
         limits,
@@ -114,10 +116,13 @@ where
             if let Some(r) = &mut recorder {
                 r.observe(index, e, sim, &species);
             }
-            if let Some(s) = &mut sampler {
-                s.contact(e, sim, &species);
-            }
-            let samples = sampler.as_ref().map_or(0, |s| s.rows().len() as u64);
+            let samples = match sampler.borrow_mut().as_mut() {
+                Some(s) => {
+                    s.contact(e, sim, &species);
+                    s.rows().len() as u64
+                }
+                None => 0,
+            };
             // `index * per_contact > max_memory` is `index > keep.contacts` (the quotient).
             if index.saturating_mul(keep.per_contact) + samples * observable_bytes(species.len())
                 > keep.max_memory
@@ -129,12 +134,19 @@ where
             }
             Ok(())
         },
+        &mut |k, _| {
+            if let Some(s) = sampler.borrow_mut().as_mut() {
+                s.kick(k);
+            }
+            Ok(())
+        },
     )
     .map_err(|e| match e.to_string().as_str() {
         CAPPED => RunError::Capped(sim.now()),
         INTERRUPTED => RunError::Interrupted,
         _ => RunError::Input(format!("internal error: the log in memory failed: {e}")),
     })?;
+    let sampler = sampler.into_inner();
     Ok(Run {
         summary,
         trace,
@@ -202,7 +214,10 @@ impl std::io::Write for LogColumns {
             if self.line.last() == Some(&b'\n') {
                 let e: Value = serde_json::from_slice(&self.line)
                     .map_err(|e| std::io::Error::other(format!("a log line: {e}")))?;
-                self.columns.push(&e, self.n, self.s);
+                // A thermostat's kick (`run::kick_json`) is no contact: not a row of `events`.
+                if e.get("kick").is_none() {
+                    self.columns.push(&e, self.n, self.s);
+                }
                 self.line.clear();
             }
         }

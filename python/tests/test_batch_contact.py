@@ -157,3 +157,30 @@ def test_a_refused_row_names_the_row_under_a_law():
     bodies[1]["gamma2"][3] = 5.0
     with pytest.raises(noslip.InputError, match="row 3: bodies"):
         noslip.collide_batch(nu, bodies, contact={"e": 0.9, "beta": 0.1})
+
+
+@pytest.mark.parametrize("kind", ["rough", "walton"])
+@pytest.mark.parametrize("n", [2, 3, 5])
+def test_rows_with_an_immovable_body_are_the_fixed_kernel(n, kind):
+    """The rows with an immovable body (a third of them) take the row path of the `fixed`
+    kernel (`Exec::rough_fixed_rows`, body 2 immovable swapped with `-nu`): every row bit for
+    bit the row-by-row path of strided inputs (`collide_*_unchecked`), with a law per row
+    and one shared, over more rows than the row path's chunk (2048)."""
+    rng = np.random.default_rng(2750 + n)
+    rows = 2600
+    nu, bodies = random_batch(rng, rows, n)
+    fixed = (bodies[0]["inv_mass"] == 0) | (bodies[1]["inv_mass"] == 0)
+    assert fixed.sum() > rows // 4
+    each = laws(rng, rows, kind)
+    wide_nu = np.repeat(nu, 2, axis=0)[::2]
+    wide = [{k: np.repeat(v, 2, axis=0)[::2] for k, v in b.items()} for b in bodies]
+    for law in (each, row_law(each, 7)):
+        after = noslip.collide_batch(nu, bodies, contact=law, validate=False)
+        strided = noslip.collide_batch(wide_nu, wide, contact=law, validate=False)
+        for b in range(2):
+            for key in ("angular_velocity", "velocity"):
+                assert same_bits(after[b][key], strided[b][key]), (n, kind, b, key)
+        # The immovable body keeps its state.
+        for b in range(2):
+            still = bodies[b]["inv_mass"] == 0
+            assert same_bits(after[b]["velocity"][still], bodies[b]["velocity"][still])

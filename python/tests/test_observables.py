@@ -27,6 +27,7 @@ COLUMNS = [
     "lost_ball_wall",
     "lost_ball_obstacle",
     "lost_ball_boundary",
+    "injected",
     "pressure",
     "a2",
     "msd",

@@ -8,10 +8,13 @@
 //! d_i(t) = sum over the flights of i before t of u (t_end - t_start) + u_i (t - t_i),
 //! ```
 //!
-//! `t_i` the time of ball `i`'s last contact (the start if none) and `u_i` its velocity since.
-//! Each contact adds its balls' finished flight (`pre.velocity` times the time since their
-//! previous contact); a sample adds the flight in progress. This is exact in any box (walls,
-//! obstacles and boundaries change velocities only at contacts).
+//! `t_i` the time of ball `i`'s last contact or kick (the start if none) and `u_i` its velocity
+//! since. Each contact adds its balls' finished flight (`pre.velocity` times the time since
+//! their previous contact or kick); a thermostat's kick ([`crate::thermostat`]) ends every
+//! ball's flight at its time (`Kick::before` times the time since), as the position is
+//! continuous across a kick and only the velocity jumps; a sample adds the flight in progress.
+//! This is exact in any box, driven or not (walls, obstacles and boundaries change velocities
+//! only at contacts, the thermostat only at kicks), to the rounding of the sums.
 //!
 //! With `D = sum_i m_i d_i / M` the centre of mass's displacement (`M = sum_i m_i`),
 //!
@@ -25,6 +28,7 @@
 //! and adds `|V|^2 t^2` to `msd` (several per cent of `2 n D t` after tens of collision times
 //! with a thousand balls); the self-diffusion coefficient is read from `msd_cm`.
 
+use crate::thermostat::Kick;
 use crate::{Contact, Event, PairKernels, Simulation};
 use collision_core::Ball;
 
@@ -66,6 +70,18 @@ impl Displacements {
                 *d += u * dt;
             }
             self.since[i] = e.time;
+        }
+    }
+
+    /// Adds the flights kick `k` ended: every ball's, at `k.time`, with its velocity before it.
+    pub fn kick<const N: usize>(&mut self, k: &Kick<N>) {
+        debug_assert_eq!(self.dim, N);
+        for (i, u) in k.before.iter().enumerate() {
+            let dt = k.time - self.since[i];
+            for (d, u) in self.flown[N * i..N * (i + 1)].iter_mut().zip(u) {
+                *d += u * dt;
+            }
+            self.since[i] = k.time;
         }
     }
 
@@ -147,18 +163,6 @@ pub struct MeanSquares {
     pub msd_cm: f64,
     /// `msd_cm` over the balls of each species.
     pub species_cm: Vec<f64>,
-}
-
-impl MeanSquares {
-    /// Every figure `NaN`, for `species` species: displacements that are not known (a
-    /// thermostat changes velocities between contacts).
-    pub fn unknown(species: usize) -> MeanSquares {
-        MeanSquares {
-            msd: f64::NAN,
-            msd_cm: f64::NAN,
-            species_cm: vec![f64::NAN; species],
-        }
-    }
 }
 
 #[cfg(test)]

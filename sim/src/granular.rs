@@ -1,6 +1,7 @@
 //! Granular-gas observables sampled over a run (docs/granular.md): the translational and
 //! rotational granular temperatures (of the whole gas and, in a mixture, of each species), the
-//! collision frequency, the kinetic energy lost per contact kind, the pressure, the
+//! collision frequency, the kinetic energy lost per contact kind and injected by a thermostat's
+//! kicks, the pressure, the
 //! velocity distribution's cumulant `a_2` and the mean square displacement (of the balls'
 //! unwrapped displacements, also about the centre of mass: [`crate::displacement`]), written
 //! as CSV with the units in the header; on request the pair correlation `g(r)`
@@ -25,7 +26,15 @@
 //!
 //! The collision frequency between two samples is `2 C_bb / (N_b dt)`: ball-ball contacts
 //! `C_bb` in the interval, two balls each, per ball and unit time. The energy lost by a
-//! contact is the kinetic energy of its balls before minus after.
+//! contact is the kinetic energy of its balls before minus after; the energy injected by a
+//! kick is the balls' kinetic energy after minus before ([`crate::Simulation::kick`]). Both are
+//! kept as totals since the start, so that between any two rows
+//!
+//! ```text
+//! E_b - E_a = (injected_b - injected_a) - sum over the kinds of (lost_b - lost_a),
+//! ```
+//!
+//! an identity up to rounding (`sim/tests/driven_observables.rs` bounds it).
 //!
 //! The pressure of a periodic box of volume `V_box` without obstacles or other boundaries
 //! (NaN otherwise: they take momentum the bulk formula does not count) is the kinetic part now plus the
@@ -43,9 +52,10 @@
 //! (and one at the start): the row's time is that contact's, and the state is the one just
 //! after it (the velocities are constant between contacts, so the row is exact at its time).
 
-use crate::displacement::{Displacements, MeanSquares};
+use crate::displacement::Displacements;
 use crate::observe::energy_of;
 use crate::pair_correlation::PairCorrelation;
+use crate::thermostat::Kick;
 use crate::{Contact, Event, PairKernels, Simulation};
 use collision_core::Ball;
 
@@ -73,6 +83,8 @@ pub struct Row {
     pub frequency: f64,
     /// Energy lost so far per contact kind ([`KINDS`]).
     pub lost: [f64; 4],
+    /// Energy injected so far by the thermostat's kicks (0 without one).
+    pub injected: f64,
     /// The pressure (module docs; `NaN` in the first row and outside a periodic box).
     pub pressure: f64,
     /// The cumulant `a_2` of the translational velocities (module docs).
@@ -101,6 +113,7 @@ impl Row {
             self.frequency,
         ];
         v.extend(self.lost);
+        v.push(self.injected);
         v.extend([self.pressure, self.a2, self.msd, self.msd_cm]);
         v.extend(self.species.iter().flatten());
         v.extend(&self.msd_species);
@@ -244,11 +257,8 @@ pub struct Sampler {
     /// `sum r_ij . J_i` over the ball-ball contacts since the last row.
     virial: f64,
     lost: [f64; 4],
+    injected: f64,
     displacements: Displacements,
-    /// Whether the run is driven by a thermostat ([`crate::thermostat`]): its kicks change
-    /// velocities between contacts, which the displacements (summed over the flights the
-    /// contacts end) do not see, so `msd` and `msd_cm` are NaN.
-    kicked: bool,
     /// The box's sides: its volume, and the cells of [`Sampler::with_pair_correlation`].
     sides: Vec<f64>,
     pair_correlation: Option<PairCorrelation>,
@@ -276,8 +286,8 @@ impl Sampler {
             last: (sim.now(), 0),
             virial: 0.0,
             lost: [0.0; 4],
+            injected: 0.0,
             displacements: Displacements::start(sim),
-            kicked: sim.table().thermostat.is_some(),
             sides: sim.box_size().to_vec(),
             pair_correlation: None,
             rows: Vec::new(),
@@ -310,6 +320,14 @@ impl Sampler {
         }
     }
 
+    /// Accounts kick `k` (the last thing `sim` did, [`crate::run::run_watched`]): it ends every
+    /// ball's flight for the displacements and adds its energy to `injected`. No row is
+    /// written at a kick (rows are taken at contacts, module docs).
+    pub fn kick<const N: usize>(&mut self, k: &Kick<N>) {
+        self.displacements.kick(k);
+        self.injected += k.injected;
+    }
+
     fn row<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         &mut self,
         sim: &Simulation<N, S, K>,
@@ -318,12 +336,7 @@ impl Sampler {
         let time = sim.now();
         let m = moments(sim, species);
         let [t_tr, t_rot] = m.temperatures;
-        // Kicks change velocities between the contacts the displacements add up: unknown.
-        let squares = if self.kicked {
-            MeanSquares::unknown(species.len())
-        } else {
-            self.displacements.mean_squares(sim, species)
-        };
+        let squares = self.displacements.mean_squares(sim, species);
         if let Some(g) = &mut self.pair_correlation {
             g.sample(sim);
         }
@@ -349,6 +362,7 @@ impl Sampler {
             energy: sim.energy(),
             frequency,
             lost: self.lost,
+            injected: self.injected,
             pressure,
             a2: m.a2,
             msd: squares.msd,
@@ -406,7 +420,7 @@ impl Sampler {
     /// units of mass `M`, length `L` and time `T` (`1` a count or a pure number). The CSV's
     /// header, the Parquet table's columns and the Python package's arrays share these names:
     /// `time`, `contacts`, `T_tr`, `T_rot`, `energy`, `collision_frequency`, `lost_KIND`
-    /// ([`KINDS`]), `pressure`, `a2`, `msd`, `msd_cm`, and in a mixture `T_tr_s`, `T_rot_s` for each species
+    /// ([`KINDS`]), `injected`, `pressure`, `a2`, `msd`, `msd_cm`, and in a mixture `T_tr_s`, `T_rot_s` for each species
     /// index `s`, then `msd_cm_s` for each.
     pub fn columns(&self) -> Vec<(String, String)> {
         let mut c: Vec<(String, String)> = [
@@ -421,6 +435,7 @@ impl Sampler {
         .map(|&(a, b)| (a.to_string(), b.to_string()))
         .collect();
         c.extend(KINDS.iter().map(|k| (format!("lost_{k}"), ENERGY.into())));
+        c.push(("injected".into(), ENERGY.into()));
         // Force per (n-1)-area: M L^(2-n) T^-2.
         let pressure = match 2 - self.dim as i64 {
             0 => "M T^-2".to_string(),

@@ -3,7 +3,7 @@
 //! the caller how it goes ([`Progress`]).
 
 use crate::dilute::out_of_reach;
-use crate::thermostat::Noise;
+use crate::thermostat::{Kick, Noise};
 use crate::trace::{Tracer, CONTACT_DOTS};
 use crate::{Contact, Event, PairKernels, Simulation, Step};
 use collision_core::BodyState;
@@ -166,6 +166,18 @@ pub fn event_json<const N: usize, const S: usize>(index: u64, e: &Event<N, S>) -
     v
 }
 
+/// One events-log line for a thermostat's kick: `{"kick": k, "time": t_k, "velocities":
+/// [u'_0, u'_1, ...], "energy_injected": dE}`, every ball's velocity after the kick in ball
+/// order (spins are not kicked), so that the log with the start replays every velocity.
+pub fn kick_json<const N: usize>(k: &Kick<N>) -> Value {
+    json!({
+        "kick": k.index,
+        "time": k.time,
+        "velocities": k.after.iter().map(|u| u.to_vec()).collect::<Vec<_>>(),
+        "energy_injected": k.injected,
+    })
+}
+
 fn scales<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
@@ -237,15 +249,39 @@ pub fn quiet_stop<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
 pub type Observer<'a, const N: usize, const S: usize, K> =
     dyn FnMut(u64, &Event<N, S>, &Simulation<N, S, K>) -> io::Result<()> + 'a;
 
+/// What [`run_watched`] calls after each thermostat kick: `(kick, simulation)`, the simulation
+/// after the kick.
+pub type KickObserver<'a, const N: usize, const S: usize, K> =
+    dyn FnMut(&Kick<N>, &Simulation<N, S, K>) -> io::Result<()> + 'a;
+
 /// [`run`], calling `observe(index, event, sim)` after each contact (the boundary map's
-/// writer, [`crate::boundary_map`]); its error ends the run.
+/// writer, [`crate::boundary_map`]); its error ends the run. Kicks are not observed
+/// ([`run_watched`] observes them too).
 pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+    sim: &mut Simulation<N, S, K>,
+    species: &[collision_core::Ball<f64>],
+    limits: &Limits,
+    log: Option<&mut dyn Write>,
+    progress: &mut dyn FnMut(Progress),
+    observe: &mut Observer<'_, N, S, K>,
+) -> io::Result<(Summary, Trace)> {
+    run_watched(sim, species, limits, log, progress, observe, &mut |_, _| {
+        Ok(())
+    })
+}
+
+/// [`run_observed`], also calling `on_kick(kick, sim)` after each kick of the thermostat
+/// ([`Kick`]: what the granular observables' displacements and injected energy need,
+/// [`crate::granular::Sampler::kick`]); its error ends the run. The log, if given, holds a
+/// line for each kick between the contacts' ([`kick_json`]).
+pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &mut Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
     limits: &Limits,
     mut log: Option<&mut dyn Write>,
     progress: &mut dyn FnMut(Progress),
     observe: &mut Observer<'_, N, S, K>,
+    on_kick: &mut KickObserver<'_, N, S, K>,
 ) -> io::Result<(Summary, Trace)> {
     let start = sim.observables();
     let (p_scale, l_scale) = scales(sim, species);
@@ -283,7 +319,12 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             _ => false,
         };
         if let (Some(noise), Some(_), true) = (&mut noise, kick_at, due) {
-            injected += kick(sim, species, noise, &mut tracer, traced, &at);
+            let k = kick(sim, species, noise, &mut tracer, traced, &at);
+            injected += k.injected;
+            if let Some(w) = log.as_deref_mut() {
+                writeln!(w, "{}", kick_json(&k))?;
+            }
+            on_kick(&k, sim)?;
             continue;
         }
         let e = match step {
@@ -378,7 +419,7 @@ pub fn run_observed<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
 }
 
 /// Applies `noise`'s next kick to `sim` ([`Simulation::kick`]) and restarts the traced balls'
-/// paths with their new velocities; returns the energy the kick added.
+/// paths with their new velocities; returns the kick as applied.
 fn kick<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &mut Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
@@ -386,17 +427,27 @@ fn kick<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     tracer: &mut Tracer,
     traced: usize,
     at: &dyn Fn(&[f64; N]) -> [f64; 2],
-) -> f64 {
+) -> Kick<N> {
     let inv_mass: Vec<f64> = (0..sim.len())
         .map(|i| species[sim.species_of(i)].inv_mass)
         .collect();
+    let velocities = |sim: &Simulation<N, S, K>| -> Vec<[f64; N]> {
+        (0..sim.len()).map(|i| sim.state(i).velocity).collect()
+    };
+    let before = velocities(sim);
     let dv = noise.kick::<N>(&inv_mass);
-    let added = sim.kick(&dv);
+    let injected = sim.kick(&dv);
     for b in 0..traced {
         let u = sim.state(b).velocity;
         tracer.flight(b, sim.now(), at(&sim.position(b)), [u[0], u[1]]);
     }
-    added
+    Kick {
+        index: noise.done(),
+        time: sim.now(),
+        before,
+        after: velocities(sim),
+        injected,
+    }
 }
 
 /// The contact point `Q`: `a_i + R_i nu` for two balls, `a - R nu` for a ball on a wall, an

@@ -37,6 +37,24 @@ pub struct Thermostat {
     pub seed: u64,
 }
 
+/// One kick as a run applied it ([`crate::run::run_watched`] tells its observer, the events
+/// log records it): every ball's velocity before and after, `u'_i = u_i + dv_i` (one rounding
+/// per component), at the clock's time `t_k`; spins are unchanged.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Kick<const N: usize> {
+    /// The kick's number `k` (1 for the first), so its time is `k dt` ([`Noise::next_time`]).
+    pub index: u64,
+    /// Its time `t_k`.
+    pub time: f64,
+    /// `u_i` before the kick, in ball order (the velocity of the flight the kick ends).
+    pub before: Vec<[f64; N]>,
+    /// `u'_i` after it (of the flight it starts).
+    pub after: Vec<[f64; N]>,
+    /// The kinetic energy it added, `sum_i m_i (|u'_i|^2 - |u_i|^2) / 2`
+    /// ([`crate::Simulation::kick`]).
+    pub injected: f64,
+}
+
 /// The kicks of a run: the thermostat, its random stream and the index of the next kick.
 #[derive(Clone)]
 pub struct Noise {

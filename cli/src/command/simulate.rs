@@ -298,7 +298,9 @@ where
         .html
         .as_ref()
         .map(|_| Recorder::new(&sim, &species, &title));
-    let (summary, trace) = run::run_observed(
+    // The sampler is told of contacts (the observer) and of kicks (the kick observer).
+    let sampler = std::cell::RefCell::new(sampler);
+    let (summary, trace) = run::run_watched(
         &mut sim,
         &species,
         &limits,
@@ -308,7 +310,7 @@ where
             if let Some(r) = &mut recorder {
                 r.observe(index, e, sim, &species);
             }
-            if let Some(s) = &mut sampler {
+            if let Some(s) = sampler.borrow_mut().as_mut() {
                 s.contact(e, sim, &species);
             }
             if let Some(table) = &mut events_parquet {
@@ -325,8 +327,15 @@ where
             }
             Ok(())
         },
+        &mut |k, _| {
+            if let Some(s) = sampler.borrow_mut().as_mut() {
+                s.kick(k);
+            }
+            Ok(())
+        },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
+    let sampler = sampler.into_inner();
     if let Some(pb) = progress {
         pb.finish_and_clear();
     }

@@ -4,7 +4,7 @@
 //! (`rough_free_each`, ...: lane `l` runs `kernels::dN::rough::free` under its own law
 //! `(e_l, beta_l)`).
 
-use super::lanes::{FreeLanes, Lane, Lanes, Lanewise};
+use super::lanes::{FixedLanes, FreeLanes, Lane, Lanes, Lanewise};
 use crate::{Restitution, Walton};
 
 /// The laws `(e, beta)` of a block's contacts: lane `l` is contact `l`'s [`Restitution`].
@@ -130,6 +130,20 @@ impl<T, const N: usize, const S: usize, L> AsMut<FreeLanes<T, N, S>>
     for WithLaw<FreeLanes<T, N, S>, L>
 {
     fn as_mut(&mut self) -> &mut FreeLanes<T, N, S> {
+        &mut self.block
+    }
+}
+
+impl<T, const N: usize, const S: usize> AsMut<FixedLanes<T, N, S>> for FixedLanes<T, N, S> {
+    fn as_mut(&mut self) -> &mut FixedLanes<T, N, S> {
+        self
+    }
+}
+
+impl<T, const N: usize, const S: usize, L> AsMut<FixedLanes<T, N, S>>
+    for WithLaw<FixedLanes<T, N, S>, L>
+{
+    fn as_mut(&mut self) -> &mut FixedLanes<T, N, S> {
         &mut self.block
     }
 }

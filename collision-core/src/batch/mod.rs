@@ -81,8 +81,9 @@ pub use law_lanes::{FamilyLaw, RestitutionLanes, WaltonLanes, WithLaw};
 pub use prefetch::{prefetch, prefetch_distance, PREFETCH_BYTES};
 pub use rough::RoughBatchKernel;
 pub use rows::{
-    BallRows, FreeRows, LawRowError, LawRows, RestitutionRows, StateRows, StateRowsMut, WaltonRows,
-    ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE, STREAM_FROM_BYTES,
+    BallRows, FixedRows, FreeRows, LawRowError, LawRows, RestitutionRows, StateRows, StateRowsMut,
+    WaltonRows, ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE,
+    STREAM_FROM_BYTES,
 };
 #[cfg(feature = "parallel")]
 pub use share::share_rows;

@@ -8,13 +8,13 @@
 //! `collide_walton` (`collide`'s checks, unbounded-exponent kernel and rounding, under the
 //! row's law), on the calling thread. Without, row-major arrays go through
 //! `Exec::rough_free_rows` (the shared-law kernel when every column is one value, else the
-//! `_each` kernel: the scalar family kernel's bits on every row), then each row with an
-//! immovable body is rerun by `collide_rough_unchecked` / `collide_walton_unchecked` (the
-//! `fixed` kernel, as `collide_unchecked` routes it); other strides go row by row through
-//! those. Not split on the validated path, and not interrupted by Ctrl-C (a batch of 10^6
+//! `_each` kernel: the scalar family kernel's bits on every row), then the rows with an
+//! immovable body are gathered and rerun by `Exec::rough_fixed_rows` (the `fixed` kernel, as
+//! `collide_unchecked` routes it: `fixed_law.rs`); other strides go row by row through
+//! `collide_rough_unchecked` / `collide_walton_unchecked`. Not split on the validated path, and not interrupted by Ctrl-C (a batch of 10^6
 //! rows takes about 0.1 s unvalidated, 1-2 s validated).
 
-use super::inputs::{nu_row, param, Inputs};
+use super::inputs::{nu_row, Inputs};
 use super::outputs::{put, state_rows_mut, Outputs};
 use collision_core::batch::{
     EachLawBatchKernel, Exec, LawRowError, LawRows, RestitutionLanes, RestitutionRows,
@@ -135,19 +135,12 @@ where
         }
         .map_err(law_error)?;
     }
-    // The rows with an immovable body: the `fixed` kernel, as `collide_unchecked` routes them
-    // (none to look for when both bodies share a finite mass).
+    // The rows with an immovable body: the `fixed` kernel on the row path, as
+    // `collide_unchecked` routes them (none to look for when both bodies share a finite mass).
     let zero = T::zero();
     let [w1, w2] = [&a.inv_mass, &b.inv_mass];
     if w1.len() == 1 && w2.len() == 1 && w1[0] != zero && w2[0] != zero {
         return Ok(());
     }
-    for i in 0..rows {
-        if param(w1, i) == zero || param(w2, i) == zero {
-            let [p1, p2] = unchecked(i);
-            put(&mut out, i, 0, &p1, &pairs);
-            put(&mut out, i, 1, &p2, &pairs);
-        }
-    }
-    Ok(())
+    super::fixed_law::run_fixed_rows::<T, N, S>(input, laws, exec, &mut out).map_err(law_error)
 }

@@ -20,6 +20,7 @@
 //! read-write, so an output sharing memory with an input or another output is refused).
 
 mod checked;
+mod fixed_law;
 mod inputs;
 mod law;
 mod outputs;

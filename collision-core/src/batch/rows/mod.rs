@@ -17,7 +17,9 @@
 //!   and the row-major arrays are read and written once, in address order;
 //! - `law.rs`, `pass.rs`, `rough_exec.rs`: the same under laws of the rough-ball family
 //!   given as columns, one shared or one per row
-//!   ([`Exec::rough_free_rows`](super::Exec::rough_free_rows)).
+//!   ([`Exec::rough_free_rows`](super::Exec::rough_free_rows));
+//! - `rough_fixed.rs`: the family's `fixed` kernels (body 1 immovable) on row-major arrays
+//!   ([`Exec::rough_fixed_rows`](super::Exec::rough_fixed_rows), [`FixedRows`]).
 //!
 //! - `plan.rs`, `avx512.rs`: a full block's transpose in `f64` at AVX-512 for n <= 3, as
 //!   two-source permutes (`vpermt2pd`) planned at compile time.
@@ -39,9 +41,13 @@ mod pass;
 #[cfg(any(test, all(target_arch = "x86_64", noslip_avx512_intrinsics)))]
 mod plan;
 mod rough_exec;
+mod rough_fixed;
+#[cfg(test)]
+mod rough_fixed_tests;
 
 pub use exec::{ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE};
 pub use law::{LawRowError, LawRows, RestitutionRows, WaltonRows};
+pub use rough_fixed::FixedRows;
 pub use stream::STREAM_FROM_BYTES;
 #[cfg(test)]
 mod law_tests;

@@ -11,7 +11,7 @@ use crate::Scalar;
 
 /// Lanes `0..count` of one body's state block into rows `start..start + count` of `out`.
 #[inline(always)]
-fn scatter_state<T: Scalar, const N: usize, const S: usize>(
+pub(super) fn scatter_state<T: Scalar, const N: usize, const S: usize>(
     lanes: &StateLanes<T, N, S>,
     out: &mut StateRowsMut<'_, T>,
     start: usize,
