@@ -324,6 +324,15 @@ pub fn file_name(dim: usize) -> String {
 /// ...)
 /// as one formatted file; `crate_path` as for [`crate::generate`].
 pub fn generate(dim: usize, crate_path: &str) -> String {
+    // One companion: its line in the header (op counts) and its function.
+    fn push(header: &mut String, src: &mut String, c: &Certified, name: &str, unit: &str) {
+        let _ = writeln!(
+            header,
+            "// {name}: kernel {}; bound {} ops{unit}.",
+            c.program.ops, c.bound_ops
+        );
+        src.push_str(&function(c, name));
+    }
     let mut src = format!(
         "use {crate_path}::{{Ball, BodyState, Restitution, Walton}};\nuse {crate_path}::certified::{{Certify, InputRounding}};\n"
     );
@@ -340,22 +349,12 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
                         true => Certified::of_fast(dim, variant, arith, format),
                     };
                     let name = function_name(variant, arith, fast, format);
-                    let _ = writeln!(
-                        header,
-                        "// {name}: kernel {}; bound {} ops.",
-                        c.program.ops, c.bound_ops
-                    );
-                    src.push_str(&function(&c, &name));
+                    push(&mut header, &mut src, &c, &name, "");
                 }
                 // The running companion with the normal and gamma2 taken as rounded.
                 let c = Certified::of_rounded(dim, variant, arith, format);
                 let name = rounded_name(variant, arith, format);
-                let _ = writeln!(
-                    header,
-                    "// {name}: kernel {}; bound {} ops.",
-                    c.program.ops, c.bound_ops
-                );
-                src.push_str(&function(&c, &name));
+                push(&mut header, &mut src, &c, &name, "");
             }
         }
     }
@@ -365,12 +364,7 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
             for variant in Variant::ALL {
                 let c = Certified::of_rough(dim, variant, arith, format);
                 let name = format!("rough_{}", function_name(variant, arith, false, format));
-                let _ = writeln!(
-                    header,
-                    "// {name}: kernel {}; bound {} ops.",
-                    c.program.ops, c.bound_ops
-                );
-                src.push_str(&function(&c, &name));
+                push(&mut header, &mut src, &c, &name, "");
             }
         }
     }
@@ -381,12 +375,7 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
             for variant in Variant::ALL {
                 let c = Certified::of_walton(dim, variant, arith, format);
                 let name = format!("walton_{}", function_name(variant, arith, false, format));
-                let _ = writeln!(
-                    header,
-                    "// {name}: kernel {}; bound {} ops.",
-                    c.program.ops, c.bound_ops
-                );
-                src.push_str(&function(&c, &name));
+                push(&mut header, &mut src, &c, &name, "");
             }
         }
     }
@@ -395,12 +384,7 @@ pub fn generate(dim: usize, crate_path: &str) -> String {
         for variant in Variant::ALL {
             let c = Certified::of(dim, variant, arith, Format::F32Wide);
             let name = function_name(variant, arith, false, Format::F32Wide);
-            let _ = writeln!(
-                header,
-                "// {name}: kernel {}; bound {} ops (in f64).",
-                c.program.ops, c.bound_ops
-            );
-            src.push_str(&function(&c, &name));
+            push(&mut header, &mut src, &c, &name, " (in f64)");
         }
     }
     src.push_str(
