@@ -1,7 +1,8 @@
 //! `noslip simulate --html FILE`: the run as an animation in one self-contained HTML page
 //! (`noslip_sim::animation`), a member of the output set like `--log`.
 
-use super::{lexical, same_dir, same_file, Args, SET_FILES};
+use super::paths::{lexical, same_dir, same_file, SET_FILES};
+use super::Args;
 use crate::exit::Failure;
 use crate::publish::Staging;
 use std::path::Path;
