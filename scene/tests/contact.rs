@@ -298,9 +298,12 @@ fn pairs_fold_rough_and_walton_laws() {
     assert!(matches!(p.laws.fixed, ContactKind::Walton { .. }));
 }
 
-/// Every place a law can be written, as a whole scene with the law `{law}` and the key path
-/// validation names it by.
-fn law_places() -> Vec<(&'static str, Box<dyn Fn(&str) -> String>)> {
+/// A whole scene with the given law written at one place.
+type WithLaw = Box<dyn Fn(&str) -> String>;
+
+/// Every place a law can be written: the key path validation names it by, and the scene
+/// with a law there.
+fn law_places() -> Vec<(&'static str, WithLaw)> {
     let boxed =
         |extra: &'static str| move |law: &str| format!("{BASE}{}", extra.replace("{law}", law));
     vec![
