@@ -69,8 +69,14 @@ where
 }
 
 /// The scene comparison and the simulator-level one for the shipped scene `name`.
-fn same_bits<const N: usize, const S: usize>(name: &str, after: &[&str], balls: bool, events: u64)
-where
+/// `kinds`: the contact kinds the log must hold (so that each law written is exercised).
+fn same_bits<const N: usize, const S: usize>(
+    name: &str,
+    after: &[&str],
+    balls: bool,
+    kinds: &[&str],
+    events: u64,
+) where
     Generated: Kernel<f64, N, S>,
 {
     let mut references = Vec::new();
@@ -87,6 +93,14 @@ where
             lines >= events,
             "{name}: {lines} log lines for {events} contacts"
         );
+        let text = String::from_utf8_lossy(&reference);
+        for kind in kinds {
+            let quoted = format!("\"kind\":\"{kind}\"");
+            assert!(
+                text.contains(&quoted),
+                "{name}: no {kind} contact in the log"
+            );
+        }
         let (log, _) = log_of(setup::<N, S>(&member_scene).unwrap(), events);
         assert!(
             log == reference,
@@ -117,6 +131,7 @@ fn gas2d_elastic_members_write_the_no_slip_and_smooth_logs() {
         "gas2d.toml",
         &["boundary = [\"wall\", \"wall\"]"],
         true,
+        &["ball-ball", "ball-wall"],
         3000,
     );
 }
@@ -131,6 +146,7 @@ fn sinai_square_elastic_members_write_the_no_slip_and_smooth_logs() {
             "radius = \"3/10\"",
         ],
         false,
+        &["ball-boundary", "ball-obstacle"],
         3000,
     );
 }
