@@ -288,6 +288,8 @@ impl Emitter {
 /// them in its `line L, column C` places).
 fn offset_of(text: &str, place: &str) -> Option<usize> {
     let (line, column) = place.strip_prefix("line ")?.split_once(", column ")?;
+    // `line 3, column 5: contact.balls.e`: the scene's key path follows the column.
+    let column = column.split_once(':').map_or(column, |(c, _)| c);
     let (line, column): (usize, usize) = (line.parse().ok()?, column.parse().ok()?);
     let line_start = if line == 1 {
         0

@@ -180,6 +180,67 @@ def test_dict_errors_name_the_dict_path_not_toml_lines(scene, message):
     assert "line" not in str(e.value)
 
 
+BOXED_GAS = """dim = 2
+[box]
+size = [10, 10]
+boundary = ["wall", "wall"]
+[[species]]
+mass = 1
+radius = "1/2"
+count = 3
+"""
+
+
+@pytest.mark.parametrize(
+    "law_at, field",
+    [
+        ("[contact]\nballs = {law}\n", "contact.balls"),
+        ("[[obstacle]]\nposition = [5, 5]\nradius = 1\ncontact = {law}\n", "obstacle[0].contact"),
+        ("[[wall]]\npoint = [0, 1]\nnormal = [0, 1]\ncontact = {law}\n", "wall[0].contact"),
+    ],
+)
+@pytest.mark.parametrize(
+    "law, key, says",
+    [
+        ("{ e = nan, beta = 0 }", "e", "must be finite, got NaN"),
+        ("{ e = 0.5, beta = inf }", "beta", "must be finite, got inf"),
+        ("{ e = 0.5, mu = 1, beta0 = -nan }", "beta0", "must be finite, got NaN"),
+        ("{ e = 1.5, beta = 0 }", "e", "must be in [0, 1], got 3/2"),
+        ("{ e = 0.5, beta = -2 }", "beta", "must be in [-1, 1], got -2"),
+        ('{ e = 0.5, mu = "-1/4", beta0 = 0 }', "mu", "must be >= 0, got -1/4"),
+        ("{ e = 0.5, mu = 1, beta0 = 2 }", "beta0", "must be in [-1, 1], got 2"),
+    ],
+)
+def test_a_bad_contact_law_is_refused_naming_the_field(law_at, field, law, key, says):
+    """Issue 27: a NaN, an infinity or an out-of-range number in a contact law (ball-ball,
+    obstacle, wall) is an InputError naming the field: after the line and column for what
+    the TOML reader refuses, as the place for what validation refuses; from a dict, the dict
+    path alone."""
+    path = f"{field}.{key}"
+    with pytest.raises(noslip.InputError) as e:
+        noslip.Scene(BOXED_GAS + law_at.replace("{law}", law))
+    text = str(e.value)
+    if "finite" in says:
+        assert text.startswith("<string>: line ") and f": {path}: {says}" in text, text
+    else:
+        assert text.startswith(f"<string>: {path}: {says}"), text
+    # The same law from a dict (TOML's nan and inf are Python's float ones).
+    table = dict(item.split(" = ") for item in law.strip("{} ").split(", "))
+    value = {k: {"nan": float("nan"), "-nan": float("nan"), "inf": float("inf")}.get(v, v.strip('"'))
+             for k, v in table.items()}
+    scene = {"dim": 2, "box": {"size": [10, 10], "boundary": ["wall", "wall"]},
+             "species": [{"mass": 1, "radius": "1/2", "count": 3}]}
+    if field == "contact.balls":
+        scene["contact"] = {"balls": value}
+    elif field == "obstacle[0].contact":
+        scene["obstacle"] = [{"position": [5, 5], "radius": 1, "contact": value}]
+    else:
+        scene["wall"] = [{"point": [0, 1], "normal": [0, 1], "contact": value}]
+    with pytest.raises(noslip.InputError) as e:
+        noslip.Scene.from_dict(scene)
+    assert str(e.value).startswith(f"<dict>: {path}: {says}"), str(e.value)
+
+
 def test_a_deep_or_self_referencing_dict_is_an_input_error():
     """A dict inside itself, or nested 10000 deep, once overflowed the stack converting it
     to TOML (Python died with SIGSEGV): now an InputError naming the path where the depth

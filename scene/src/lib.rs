@@ -10,8 +10,10 @@
 //! no kernels, no floating point and no simulation.
 //!
 //! [`Scene::from_toml`] parses ([`raw`], unknown keys refused) and validates (`validate`)
-//! in exact rationals; every error names the place: a line and column for syntax and
-//! unknown keys, a key path such as `species[1].radius` or `ball[3].position` otherwise.
+//! in exact rationals; every error names the place: a line and column for syntax, followed by
+//! the key path when the parser's error points at a key or a value (an unknown key, a NaN or
+//! a non-number: `line 17, column 15: contact.balls.e`), a key path such as
+//! `species[1].radius` or `ball[3].position` for what validation refuses.
 //! The generator needs [`Scene::pairs`]; the simulator also needs the placement.
 
 #![warn(missing_docs, unreachable_pub)]
@@ -19,6 +21,7 @@
 mod contact;
 mod convex;
 mod ctx;
+mod key_path;
 mod number;
 mod pairs;
 pub mod raw;
@@ -185,7 +188,9 @@ pub struct Scene {
 pub struct SceneError {
     /// Where the scene came from (a file name).
     pub origin: String,
-    /// `line 4, column 1`, or a key path like `species[1].radius`.
+    /// `line 4, column 1` (a syntax error), `line 4, column 15: contact.balls.e` (a value or
+    /// key the parser refuses: a NaN, a non-number, an unknown key), or a key path like
+    /// `species[1].radius` (what validation refuses).
     pub place: String,
     /// What is wrong, in one line.
     pub message: String,
@@ -213,7 +218,10 @@ impl Scene {
             let place = match e.span() {
                 Some(span) => {
                     let (l, c) = line_column(text, span.start);
-                    format!("line {l}, column {c}")
+                    match key_path::key_path(text, span.start) {
+                        Some(path) => format!("line {l}, column {c}: {path}"),
+                        None => format!("line {l}, column {c}"),
+                    }
                 }
                 None => "scene".to_string(),
             };

@@ -87,11 +87,12 @@ fn bad_laws_are_refused_naming_the_key() {
         assert!(e.starts_with(&format!("t.toml: {place}: ")), "{extra}: {e}");
     }
     // NaN, a non-number, a missing or an unknown key, an unknown name: refused at parsing,
-    // with the line and what was expected.
+    // with the line and what was expected (and the key path where the parser points at a
+    // value or a key).
     for (extra, says) in [
         (
             "[contact]\nballs = { e = nan, beta = 0 }\n",
-            "must be finite",
+            "contact.balls.e: must be finite",
         ),
         ("[contact]\nballs = { e = \"x\", beta = 0 }\n", "\"x\""),
         (
@@ -295,4 +296,132 @@ fn pairs_fold_rough_and_walton_laws() {
     let p = s.pairs();
     assert_eq!(p.ball_obstacle.len(), 1);
     assert!(matches!(p.laws.fixed, ContactKind::Walton { .. }));
+}
+
+/// A whole scene with the given law written at one place.
+type WithLaw = Box<dyn Fn(&str) -> String>;
+
+/// Every place a law can be written: the key path validation names it by, and the scene
+/// with a law there.
+fn law_places() -> Vec<(&'static str, WithLaw)> {
+    let boxed =
+        |extra: &'static str| move |law: &str| format!("{BASE}{}", extra.replace("{law}", law));
+    vec![
+        (
+            "contact.balls",
+            Box::new(boxed("[contact]\nballs = {law}\n")),
+        ),
+        (
+            "box.contact",
+            Box::new(|law: &str| {
+                BASE.replace(
+                    "boundary = [\"wall\", \"wall\"]\n",
+                    &format!("boundary = [\"wall\", \"wall\"]\ncontact = {law}\n"),
+                )
+            }),
+        ),
+        (
+            "obstacle[0].contact",
+            Box::new(boxed(
+                "[[obstacle]]\nposition = [5, 5]\nradius = 1\ncontact = {law}\n",
+            )),
+        ),
+        (
+            "wall[0].contact",
+            Box::new(boxed(
+                "[[wall]]\npoint = [0, 1]\nnormal = [0, 1]\ncontact = {law}\n",
+            )),
+        ),
+        (
+            "container[0].contact",
+            Box::new(boxed(
+                "[[container]]\ncentre = [5, 5]\nradius = 20\ncontact = {law}\n",
+            )),
+        ),
+        (
+            "polygon[0].contact",
+            Box::new(boxed(
+                "[[polygon]]\nvertices = [[4, 4], [6, 4], [5, 6]]\ncontact = {law}\n",
+            )),
+        ),
+        (
+            "table.contact",
+            Box::new(|law: &str| {
+                format!(
+                    "dim = 2\n[table]\npolygon = [[0, 0], [1, 0], [1, 1], [0, 1]]\n\
+                     contact = {law}\n[[species]]\nmass = 1\nradius = \"1/20\"\n\
+                     [[ball]]\nspecies = 0\nposition = [\"1/2\", \"1/2\"]\n"
+                )
+            }),
+        ),
+    ]
+}
+
+/// Issue 27: a bad number in a contact law is refused naming the field, in every place a law
+/// can be written: out of range (`e` outside `[0, 1]`, `beta` or `beta0` outside `[-1, 1]`,
+/// `mu < 0`) by validation, with the key path as the place; NaN and infinities by the parser,
+/// with the line, the column and the key path.
+#[test]
+fn bad_numbers_in_every_law_are_refused_naming_the_field() {
+    let outside = [
+        ("{ e = \"1.01\", beta = 0 }", "e", "in [0, 1], got 101/100"),
+        ("{ e = -1e-9, beta = 0 }", "e", "in [0, 1]"),
+        (
+            "{ e = 0.5, beta = \"-1.5\" }",
+            "beta",
+            "in [-1, 1], got -3/2",
+        ),
+        ("{ e = 0.5, beta = 2 }", "beta", "in [-1, 1]"),
+        ("{ e = 2, mu = 1, beta0 = 0 }", "e", "in [0, 1]"),
+        (
+            "{ e = 0.5, mu = \"-1/4\", beta0 = 0 }",
+            "mu",
+            ">= 0, got -1/4",
+        ),
+        (
+            "{ e = 0.5, mu = 1, beta0 = \"3/2\" }",
+            "beta0",
+            "in [-1, 1]",
+        ),
+        ("{ e = 0.5, mu = 1, beta0 = -2 }", "beta0", "in [-1, 1]"),
+    ];
+    let not_finite = [
+        ("{ e = nan, beta = 0 }", "e", "must be finite, got NaN"),
+        (
+            "{ e = 0.5, beta = -nan }",
+            "beta",
+            "must be finite, got NaN",
+        ),
+        ("{ e = inf, beta = 0 }", "e", "must be finite, got inf"),
+        ("{ e = 0.5, mu = nan, beta0 = 0 }", "mu", "must be finite"),
+        (
+            "{ e = 0.5, mu = 1, beta0 = -inf }",
+            "beta0",
+            "must be finite, got -inf",
+        ),
+        ("{ e = nan, mu = 1, beta0 = 0 }", "e", "must be finite"),
+    ];
+    for (place, scene_with) in law_places() {
+        // The place is right: a good law there is read.
+        let good = Scene::from_toml(&scene_with("{ e = 0.5, beta = 0 }"), "t.toml");
+        assert!(good.is_ok(), "{place}: {good:?}");
+        for (law, key, says) in outside {
+            let e = Scene::from_toml(&scene_with(law), "t.toml")
+                .unwrap_err()
+                .to_string();
+            let named = format!("t.toml: {place}.{key}: must be {says}");
+            assert!(e.starts_with(&named), "{place} = {law}: {e}");
+        }
+        for (law, key, says) in not_finite {
+            let text = scene_with(law);
+            let e = Scene::from_toml(&text, "t.toml").unwrap_err().to_string();
+            // The line of the law, and the field's path after the column.
+            let line = 1 + text[..text.find(law).unwrap()].matches('\n').count();
+            let named = format!(": {place}.{key}: {says}");
+            assert!(
+                e.starts_with(&format!("t.toml: line {line}, column ")) && e.contains(&named),
+                "{place} = {law}: {e}"
+            );
+        }
+    }
 }

@@ -75,7 +75,7 @@ fn pairs_follow_the_scene() {
 #[test]
 fn bad_scenes_name_the_place() {
     let cases = [
-        ("[[ball]]\nspecies = 0\nposition = [1, 1]\nradius = 2\n", "t.toml: line 12, column 1: unknown field `radius`"),
+        ("[[ball]]\nspecies = 0\nposition = [1, 1]\nradius = 2\n", "t.toml: line 12, column 1: ball[0].radius: unknown field `radius`"),
         ("[[ball]]\nspecies = 0\nposition = [1, 1]\n[[ball]]\nspecies = 0\nposition = [1.5, 1]\n", "t.toml: ball[1].position: overlaps ball[0]"),
         ("[[ball]]\nspecies = 0\nposition = [0.25, 1]\n", "t.toml: ball[0].position[0]: the ball is outside the box"),
         ("[[ball]]\nspecies = 0\nposition = [1, 10]\n", "t.toml: ball[0].position[1]: the ball is outside the box"),
@@ -89,7 +89,7 @@ fn bad_scenes_name_the_place() {
         ("[[obstacle]]\nposition = [5, 5]\nradius = 2\n[[ball]]\nspecies = 0\nposition = [5, 7]\n", "t.toml: ball[0].position: overlaps obstacle[0]"),
         ("[random]\nspeed = -1\n", "t.toml: random.speed: must be >= 0"),
         ("[random]\nplacement = \"grid\"\n", "t.toml: random.placement: must be \"random\" or \"lattice\", got \"grid\""),
-        ("[random]\nplacement = 1\n", "t.toml: line 10, column 13: invalid type: integer `1`, expected a string"),
+        ("[random]\nplacement = 1\n", "t.toml: line 10, column 13: random.placement: invalid type: integer `1`, expected a string"),
         ("[[ball]]\nspecies = 0\nposition = [\"1/0\", 1]\n", "zero denominator"),
     ];
     for (extra, want) in cases {

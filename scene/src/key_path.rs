@@ -1,0 +1,96 @@
+//! The key path of the value (or key) at a byte offset of a TOML document, such as
+//! `contact.balls.e`, `obstacle[0].contact.beta0` or `ball[2].position[1]`: the parser's
+//! errors (a NaN, a non-number, an unknown key) carry a byte span and no key, and a scene
+//! error names the field ([`crate::SceneError`]). Tables of an array of tables and elements
+//! of an array are numbered from 0, as validation numbers them.
+
+use std::ops::Range;
+use toml_edit::{ImDocument, InlineTable, Item, Table, Value};
+
+/// The path of the innermost key or value of `text` whose span holds byte `offset`; `None`
+/// when `text` is not TOML or nothing there holds it (a table header, a comment).
+pub(crate) fn key_path(text: &str, offset: usize) -> Option<String> {
+    let document = ImDocument::parse(text).ok()?;
+    in_table(document.as_table(), "", offset)
+}
+
+fn holds(span: Option<Range<usize>>, offset: usize) -> bool {
+    span.is_some_and(|s| s.contains(&offset))
+}
+
+fn child(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
+    }
+}
+
+fn in_table(table: &Table, prefix: &str, offset: usize) -> Option<String> {
+    table.iter().find_map(|(key, item)| {
+        let path = child(prefix, key);
+        in_item(item, &path, offset)
+            .or_else(|| holds(table.key(key).and_then(|k| k.span()), offset).then_some(path))
+    })
+}
+
+fn in_inline_table(table: &InlineTable, prefix: &str, offset: usize) -> Option<String> {
+    table.iter().find_map(|(key, value)| {
+        let path = child(prefix, key);
+        in_value(value, &path, offset)
+            .or_else(|| holds(table.key(key).and_then(|k| k.span()), offset).then_some(path))
+    })
+}
+
+fn in_item(item: &Item, path: &str, offset: usize) -> Option<String> {
+    match item {
+        Item::None => None,
+        Item::Value(value) => in_value(value, path, offset),
+        Item::Table(table) => in_table(table, path, offset),
+        Item::ArrayOfTables(tables) => tables
+            .iter()
+            .enumerate()
+            .find_map(|(i, t)| in_table(t, &format!("{path}[{i}]"), offset)),
+    }
+}
+
+fn in_value(value: &Value, path: &str, offset: usize) -> Option<String> {
+    let inner = match value {
+        Value::InlineTable(table) => in_inline_table(table, path, offset),
+        Value::Array(array) => array
+            .iter()
+            .enumerate()
+            .find_map(|(i, v)| in_value(v, &format!("{path}[{i}]"), offset)),
+        _ => None,
+    };
+    inner.or_else(|| holds(value.span(), offset).then(|| path.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::key_path;
+
+    fn at(text: &str, needle: &str) -> Option<String> {
+        key_path(text, text.find(needle).unwrap())
+    }
+
+    #[test]
+    fn paths_name_tables_arrays_and_inline_tables() {
+        let text = "dim = 2\n[contact]\nballs = { e = nan, beta = 0 }\n\
+                    [[obstacle]]\nradius = 1\n[[obstacle]]\nposition = [5, inf]\n\
+                    contact = { e = 1, mu = 0.5, beta0 = -nan }\n\
+                    [box]\ncontact.e = 7\n";
+        assert_eq!(at(text, "nan,").as_deref(), Some("contact.balls.e"));
+        assert_eq!(at(text, "beta = 0").as_deref(), Some("contact.balls.beta"));
+        assert_eq!(at(text, "inf").as_deref(), Some("obstacle[1].position[1]"));
+        assert_eq!(
+            at(text, "-nan").as_deref(),
+            Some("obstacle[1].contact.beta0")
+        );
+        assert_eq!(at(text, "7").as_deref(), Some("box.contact.e"));
+        assert_eq!(at(text, "dim").as_deref(), Some("dim"));
+        // A table header holds no value; text that is not TOML has no paths.
+        assert_eq!(at(text, "[box]"), None);
+        assert_eq!(key_path("a = [", 4), None);
+    }
+}
