@@ -23,9 +23,9 @@
 //! their order are the scalar loop's, and logs are unchanged (the reference tests compare the
 //! cell engine's log with the all-pairs engine's, byte for byte).
 //!
-//! A neighbourhood of at most one chunk (a layer in 3D, a 2D neighbourhood at low density)
-//! goes straight to the scalar offer: there the padding and the second pass cost more than
-//! they save.
+//! A neighbourhood of at most one chunk (a layer in 3D) goes straight to the scalar offer, and
+//! 2D scans never come here (two to five balls a neighbourhood): there the padding and the
+//! second pass cost more than they save.
 
 use crate::motion::Motion;
 use crate::residents::{Resident, Residents};

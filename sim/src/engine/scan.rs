@@ -111,9 +111,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// Offers ball `i`'s contacts with the balls and obstacles of the cells within reach of
-    /// cell `c`, or of its layer `only` ([`crate::cells::Grid::near`]). Without obstacles, the
-    /// neighbours of an interior cell (image shift 0 for all) are first gathered into `near`
-    /// ([`crate::residents::Residents::gather`]), then met in one loop.
+    /// cell `c`, or of its layer `only` ([`crate::cells::Grid::near`]). Without obstacles the
+    /// neighbours' places are first gathered ([`crate::residents::Residents::gather`]): in 2D
+    /// (interior cells) they are met in one scalar loop; from 3D on, every cell's, then their
+    /// times are computed [`LANES`] at a time ([`super::lanes`]).
     #[inline]
     fn scan(&self, i: usize, best: &mut Best<N>, c: &[usize; N], only: Option<(usize, i64)>) {
         let near = &mut *self.near.borrow_mut();
@@ -155,9 +156,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 for nb in cells {
                     let before = count;
                     self.motion.gather(nb.cell, &mut near.places, &mut count);
-                    // The cell's image in i's record coordinates, s + W_i (whole numbers).
-                    let base = std::array::from_fn(|k| f64::from(nb.shift[k]) + f64::from(w_i[k]));
-                    near.tag(before, count, base);
+                    near.tag(before, count, cell_image(&nb.shift, &w_i));
                 }
             }
             if count <= LANES {
@@ -173,9 +172,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             return;
         }
         for nb in cells {
-            // The cell's image in i's record coordinates, s + W_i (whole numbers in f64).
-            let base: [f64; N] =
-                std::array::from_fn(|k| f64::from(nb.shift[k]) + f64::from(w_i[k]));
+            let base = cell_image(&nb.shift, &w_i);
             for resident in self.motion.cell(nb.cell) {
                 self.offer_ball(i, best, &m, &base, resident);
             }
@@ -351,4 +348,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         }
     }
+}
+
+/// A neighbour cell's image in the scanning ball's record coordinates, `s + W_i` (whole
+/// numbers, exact in `f64`).
+#[inline]
+fn cell_image<const N: usize>(shift: &[i8; N], wraps: &[i16; N]) -> [f64; N] {
+    std::array::from_fn(|k| f64::from(shift[k]) + f64::from(wraps[k]))
 }
