@@ -329,6 +329,16 @@ impl<const N: usize> Near<'_, N> {
     pub(crate) fn unshifted(&self) -> bool {
         self.odometer.is_none()
     }
+
+    /// For an interior cell: its flat index and the flat offsets of the cells within reach
+    /// (distinct cells, shift 0), so that a scan can walk them without the iterator.
+    #[inline]
+    pub(crate) fn interior(&self) -> Option<(usize, &[isize])> {
+        match self.odometer {
+            None => Some((self.flat as usize, self.offsets.as_slice())),
+            Some(_) => None,
+        }
+    }
 }
 
 impl<const N: usize> Iterator for Near<'_, N> {

@@ -193,6 +193,32 @@ impl<const N: usize> Residents<N> {
         &self.slab[start..start + span.len as usize]
     }
 
+    /// Writes the slab places of the records of the cells `flat + offsets[..]`, which must
+    /// be distinct cells (an interior cell's neighbourhood), to `out` from its start, and
+    /// returns their number. As [`Residents::gather`] does, four places are written per cell
+    /// whatever its length; `out` must hold `balls + 4` places (so no check per cell that it
+    /// has room: distinct cells hold at most every ball once).
+    #[inline(always)]
+    pub(crate) fn gather_cells(&self, flat: usize, offsets: &[isize], out: &mut [u32]) -> usize {
+        assert!(
+            out.len() >= self.balls + 4,
+            "room for every ball and four more"
+        );
+        let spans = &self.spans[..];
+        let mut count = 0;
+        for &offset in offsets {
+            let span = spans[flat.wrapping_add_signed(offset)];
+            let (start, len) = (span.start, span.len as usize);
+            let first: &mut [u32; 4] = (&mut out[count..count + 4]).try_into().unwrap();
+            *first = [start, start + 1, start + 2, start + 3];
+            for k in 4..len {
+                out[count + k] = start + k as u32;
+            }
+            count += len;
+        }
+        count
+    }
+
     /// Writes the slab places of cell `cell`'s records to `out[*count..]` and advances
     /// `*count` past them. The first four places are written whatever the list's length (one
     /// store, and no branch on a length that varies from cell to cell: a scan's loop over the

@@ -113,6 +113,16 @@ impl<const N: usize> Gathered<N> {
         }
     }
 
+    /// The places, with room for at least `balls + 4` of them (for
+    /// [`crate::residents::Residents::gather_cells`]; they grow once, then stay).
+    #[inline]
+    pub(super) fn room(&mut self, balls: usize) -> &mut [u32] {
+        if self.places.len() < balls + LANES {
+            self.places.resize(balls + LANES, 0);
+        }
+        &mut self.places
+    }
+
     /// The image of place `p`'s cell.
     #[inline(always)]
     pub(super) fn base(&self, p: usize) -> &[f64; N] {

@@ -134,10 +134,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             // In 2D a neighbourhood holds two or three balls at `phi` 0.2, five at 0.4: the
             // lanes would not pay (callgrind: 6 % more instructions, 9 % more mispredicted
             // branches); the gathered places go to the scalar offer in one loop.
-            let mut count = 0;
-            for nb in cells {
-                self.motion.gather(nb.cell, &mut near.places, &mut count);
-            }
+            let (flat, offsets) = cells.interior().expect("an unshifted scan");
+            let count = self
+                .motion
+                .gather_cells(flat, offsets, near.room(self.motion.len()));
             let base: [f64; N] = w_i.map(f64::from);
             for &at in &near.places[..count] {
                 self.offer_ball(i, best, &m, &base, self.motion.at(at));
@@ -146,11 +146,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         if N > 2 && !obstacles {
             let mut count = 0;
-            if cells.unshifted() {
+            if let Some((flat, offsets)) = cells.interior() {
                 near.unshifted(w_i.map(f64::from));
-                for nb in cells {
-                    self.motion.gather(nb.cell, &mut near.places, &mut count);
-                }
+                count = self
+                    .motion
+                    .gather_cells(flat, offsets, near.room(self.motion.len()));
             } else {
                 near.shifted();
                 for nb in cells {
