@@ -324,21 +324,22 @@ pub(crate) struct Near<'a, const N: usize> {
 }
 
 impl<const N: usize> Near<'_, N> {
-    /// Whether every cell listed has image shift 0 (an interior cell's neighbours).
+    /// How the cells are listed: an interior cell's flat index and the flat offsets of the
+    /// cells within reach (distinct cells, shift 0), or, at the grid's edge, the odometer,
+    /// not yet walked; so that a scan can walk them without the iterator.
     #[inline]
-    pub(crate) fn unshifted(&self) -> bool {
-        self.odometer.is_none()
-    }
-
-    /// For an interior cell: its flat index and the flat offsets of the cells within reach
-    /// (distinct cells, shift 0), so that a scan can walk them without the iterator.
-    #[inline]
-    pub(crate) fn interior(&self) -> Option<(usize, &[isize])> {
-        match self.odometer {
-            None => Some((self.flat as usize, self.offsets.as_slice())),
-            Some(_) => None,
+    pub(crate) fn listing(&self) -> Listing<'_, N> {
+        match &self.odometer {
+            None => Listing::Interior(self.flat as usize, self.offsets.as_slice()),
+            Some(odometer) => Listing::Edge(odometer),
         }
     }
+}
+
+/// [`Near::listing`].
+pub(crate) enum Listing<'a, const N: usize> {
+    Interior(usize, &'a [isize]),
+    Edge(&'a Odometer<N>),
 }
 
 impl<const N: usize> Iterator for Near<'_, N> {
@@ -357,12 +358,16 @@ impl<const N: usize> Iterator for Near<'_, N> {
 }
 
 /// An odometer over the product of each axis' cells (the last axis fastest).
-struct Odometer<const N: usize> {
-    part: [[usize; 5]; N],
-    shifts: [[i8; 5]; N],
-    len: [usize; N],
+pub(crate) struct Odometer<const N: usize> {
+    /// Per axis, the flat index's term `t_k stride_k` of each of its cells.
+    pub(crate) part: [[usize; 5]; N],
+    /// Per axis, the image shift of each of its cells.
+    pub(crate) shifts: [[i8; 5]; N],
+    /// Per axis, its number of cells.
+    pub(crate) len: [usize; N],
     at: [usize; N],
-    done: bool,
+    /// Whether the walk is over (or, before it starts, lists no cell).
+    pub(crate) done: bool,
 }
 
 impl<const N: usize> Iterator for Odometer<N> {

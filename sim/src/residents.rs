@@ -193,10 +193,18 @@ impl<const N: usize> Residents<N> {
         &self.slab[start..start + span.len as usize]
     }
 
+    /// Where cell `cell`'s list starts in the slab, and its length.
+    #[inline(always)]
+    pub(crate) fn span(&self, cell: usize) -> (u32, usize) {
+        let span = self.spans[cell];
+        (span.start, span.len as usize)
+    }
+
     /// Writes the slab places of the records of the cells `flat + offsets[..]`, which must
     /// be distinct cells (an interior cell's neighbourhood), to `out` from its start, and
-    /// returns their number. As [`Residents::gather`] does, four places are written per cell
-    /// whatever its length; `out` must hold `balls + 4` places (so no check per cell that it
+    /// returns their number. Four places are written per cell whatever its length (one store,
+    /// and no branch on a length that varies from cell to cell: a scan's loop over the places
+    /// has one trip count instead of one per cell); `out` must hold `balls + 4` places (so no check per cell that it
     /// has room: distinct cells hold at most every ball once).
     #[inline(always)]
     pub(crate) fn gather_cells(&self, flat: usize, offsets: &[isize], out: &mut [u32]) -> usize {
@@ -219,27 +227,7 @@ impl<const N: usize> Residents<N> {
         count
     }
 
-    /// Writes the slab places of cell `cell`'s records to `out[*count..]` and advances
-    /// `*count` past them. The first four places are written whatever the list's length (one
-    /// store, and no branch on a length that varies from cell to cell: a scan's loop over the
-    /// places has one trip count instead of one per cell); `out` grows when it must.
-    #[inline(always)]
-    pub(crate) fn gather(&self, cell: usize, out: &mut Vec<u32>, count: &mut usize) {
-        let span = self.spans[cell];
-        let (start, len) = (span.start, span.len as usize);
-        let need = *count + len.max(4);
-        if out.len() < need {
-            out.resize(need.next_power_of_two(), 0);
-        }
-        let first: &mut [u32; 4] = (&mut out[*count..*count + 4]).try_into().unwrap();
-        *first = [start, start + 1, start + 2, start + 3];
-        for k in 4..len {
-            out[*count + k] = start + k as u32;
-        }
-        *count += len;
-    }
-
-    /// The record at slab place `at` (from [`Residents::gather`]).
+    /// The record at slab place `at` (from [`Residents::gather_cells`]).
     #[inline]
     pub(crate) fn at(&self, at: u32) -> &Resident<N> {
         &self.slab[at as usize]

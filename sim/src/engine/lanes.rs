@@ -27,6 +27,7 @@
 //! 2D scans never come here (two to five balls a neighbourhood): there the padding and the
 //! second pass cost more than they save.
 
+use crate::cells::Odometer;
 use crate::motion::Motion;
 use crate::residents::{Resident, Residents};
 
@@ -45,7 +46,8 @@ pub(super) struct Flight<'a, const N: usize>(
 /// times, kept between scans (no allocation per event once they have grown).
 #[derive(Debug)]
 pub(super) struct Gathered<const N: usize> {
-    /// The places ([`crate::residents::Residents::gather`]), padded to whole chunks.
+    /// The places ([`crate::residents::Residents::gather_cells`], [`Self::gather_walk`]),
+    /// padded to whole chunks.
     pub(super) places: Vec<u32>,
     /// Per place, in a scan with shifted cells: the index of its cell's image in `bases`.
     codes: Vec<u16>,
@@ -89,27 +91,69 @@ impl<const N: usize> Gathered<N> {
         self.shifted = false;
     }
 
-    /// Starts a scan whose cells each have their own image ([`Self::tag`]).
+    /// Starts a scan whose cells each have their own image ([`Self::gather_walk`]).
     #[inline]
     pub(super) fn shifted(&mut self) {
         self.bases.clear();
         self.shifted = true;
     }
 
-    /// In a shifted scan: the places `before..count`, one cell's, have the image `base`. As
-    /// [`crate::residents::Residents::gather`] does, four codes are written whatever the
-    /// cell holds (one store, no branch on its length).
-    #[inline]
-    pub(super) fn tag(&mut self, before: usize, count: usize, base: [f64; N]) {
-        let code = self.bases.len() as u16;
-        self.bases.push(base);
-        let need = before + (count - before).max(LANES);
-        if self.codes.len() < need {
-            self.codes.resize(need.next_power_of_two(), 0);
+    /// Starts a shifted scan ([`Self::shifted`]) and gathers the places of the cells of
+    /// `walk` (a cell at the grid's edge: [`crate::cells::Near::walk`]) with their images
+    /// `s + W_i` (`s` the cell's shift, `w_i` the scanning ball's wraps): per cell, four
+    /// places and codes whatever its length, as in
+    /// [`crate::residents::Residents::gather_cells`], in one loop with the odometer's
+    /// position in locals; returns the number of places.
+    #[inline(always)]
+    pub(super) fn gather_walk(
+        &mut self,
+        residents: &Residents<N>,
+        walk: &Odometer<N>,
+        w_i: &[i16; N],
+    ) -> usize {
+        self.shifted();
+        let mut count = 0;
+        if walk.done {
+            return 0;
         }
-        self.codes[before..before + LANES].fill(code);
-        for c in &mut self.codes[before + LANES.min(count - before)..count] {
-            *c = code;
+        let mut at = [0usize; N];
+        loop {
+            let cell: usize = (0..N).map(|k| walk.part[k][at[k]]).sum();
+            let code = self.bases.len() as u16;
+            self.bases.push(std::array::from_fn(|k| {
+                f64::from(walk.shifts[k][at[k]]) + f64::from(w_i[k])
+            }));
+            let (start, len) = residents.span(cell);
+            let need = count + len.max(LANES);
+            if self.places.len() < need {
+                self.places.resize(need.next_power_of_two(), 0);
+            }
+            if self.codes.len() < need {
+                self.codes.resize(need.next_power_of_two(), 0);
+            }
+            let places: &mut [u32; LANES] =
+                (&mut self.places[count..count + LANES]).try_into().unwrap();
+            *places = [start, start + 1, start + 2, start + 3];
+            let codes: &mut [u16; LANES] =
+                (&mut self.codes[count..count + LANES]).try_into().unwrap();
+            *codes = [code; LANES];
+            for k in LANES..len {
+                self.places[count + k] = start + k as u32;
+                self.codes[count + k] = code;
+            }
+            count += len;
+            let mut k = N;
+            loop {
+                if k == 0 {
+                    return count;
+                }
+                k -= 1;
+                at[k] += 1;
+                if at[k] < walk.len[k] {
+                    break;
+                }
+                at[k] = 0;
+            }
         }
     }
 

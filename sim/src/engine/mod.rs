@@ -40,7 +40,8 @@
 //! (which also predict the balls cell after cell), so a scan of the `3^n` cells within reach
 //! (`Grid::near`, no division; an interior cell's from a table of flat offsets) reads a few
 //! stretches of memory. Without obstacles, a scan gathers its neighbours' slab places first
-//! (`Residents::gather`; a cell at a periodic face tags its places with its image), then
+//! (`Residents::gather_cells`; a cell at a periodic face tags its places with its image,
+//! `Gathered::gather_walk`), then
 //! computes their pair times four at a time in vector registers (`lanes.rs`, AVX2 where the
 //! CPU has it) and offers only those at the least time to the scalar path, which recomputes
 //! the canonical time: one loop exit per scan instead of a mispredicted one per cell, and
@@ -146,7 +147,7 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// Whether a prediction prefetches its neighbour cells' lists: a cell list larger than
     /// the caches ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
-    /// The slab places of the balls a scan meets ([`Residents::gather`]), kept between scans.
+    /// The slab places of the balls a scan meets ([`Residents::gather_cells`]), kept between scans.
     near: std::cell::RefCell<lanes::Gathered<N>>,
     /// The order of the balls' pending events (their slots are in `balls`).
     queue: Calendar,

@@ -6,6 +6,7 @@ use super::lanes::{Flight, Gathered, LANES};
 use super::record::key_of;
 use super::Simulation;
 use crate::canonical::{self, obstacle_time, pair_time};
+use crate::cells::Listing;
 use crate::motion::Motion;
 use crate::predict::exit_time;
 use crate::queue::What;
@@ -112,7 +113,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Offers ball `i`'s contacts with the balls and obstacles of the cells within reach of
     /// cell `c`, or of its layer `only` ([`crate::cells::Grid::near`]). Without obstacles the
-    /// neighbours' places are first gathered ([`crate::residents::Residents::gather`]): in 2D
+    /// neighbours' places are first gathered ([`crate::residents::Residents::gather_cells`],
+    /// [`super::lanes::Gathered::gather_walk`]): in 2D
     /// (interior cells) they are met in one scalar loop; from 3D on, every cell's, then their
     /// times are computed [`LANES`] at a time ([`super::lanes`]).
     #[inline]
@@ -130,11 +132,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let obstacles = !self.obstacles.is_empty();
         let cells = self.grid.near(c, only);
-        if N == 2 && cells.unshifted() && !obstacles {
+        if let (2, Listing::Interior(flat, offsets), false) = (N, cells.listing(), obstacles) {
             // In 2D a neighbourhood holds two or three balls at `phi` 0.2, five at 0.4: the
             // lanes would not pay (callgrind: 6 % more instructions, 9 % more mispredicted
             // branches); the gathered places go to the scalar offer in one loop.
-            let (flat, offsets) = cells.interior().expect("an unshifted scan");
             let count = self
                 .motion
                 .gather_cells(flat, offsets, near.room(self.motion.len()));
@@ -145,20 +146,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             return;
         }
         if N > 2 && !obstacles {
-            let mut count = 0;
-            if let Some((flat, offsets)) = cells.interior() {
-                near.unshifted(w_i.map(f64::from));
-                count = self
-                    .motion
-                    .gather_cells(flat, offsets, near.room(self.motion.len()));
-            } else {
-                near.shifted();
-                for nb in cells {
-                    let before = count;
-                    self.motion.gather(nb.cell, &mut near.places, &mut count);
-                    near.tag(before, count, cell_image(&nb.shift, &w_i));
+            let count = match cells.listing() {
+                Listing::Interior(flat, offsets) => {
+                    near.unshifted(w_i.map(f64::from));
+                    let room = near.room(self.motion.len());
+                    self.motion.gather_cells(flat, offsets, room)
                 }
-            }
+                Listing::Edge(walk) => near.gather_walk(&self.motion, walk, &w_i),
+            };
             if count <= LANES {
                 // One chunk or less (a layer): the lanes would not pay.
                 for p in 0..count {
