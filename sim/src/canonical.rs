@@ -120,11 +120,29 @@ pub(crate) fn fold<const N: usize>(
 ) -> [f64; N] {
     std::array::from_fn(|k| {
         if periodic[k] {
-            x[k] - (x[k] / size[k]).floor() * size[k]
+            x[k] - floor(x[k] / size[k]) * size[k]
         } else {
             x[k]
         }
     })
+}
+
+/// `floor(q)`, the same bits as [`f64::floor`] (signed zeros, infinities and NaN included),
+/// without its library call on a baseline x86-64 (no `roundsd`): below `2^52` in magnitude
+/// the truncation `t = q as i64` (exact), carrying `q`'s sign onto a zero, is `floor(q)`
+/// unless it exceeds `q`, then `t - 1`; from `2^52` on (and for NaN) `q` is its own floor.
+#[inline]
+fn floor(q: f64) -> f64 {
+    if q.abs() < 4_503_599_627_370_496.0 {
+        let t = ((q as i64) as f64).copysign(q);
+        if t > q {
+            t - 1.0
+        } else {
+            t
+        }
+    } else {
+        q
+    }
 }
 
 /// The local clock is re-based when the fastest ball could have moved this many widths of
@@ -224,6 +242,59 @@ pub(crate) fn key<const N: usize>(first: usize, kind: u8, other: u32, image: &[i
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn floor_gives_the_library_floor_s_bits() {
+        let two52 = 4_503_599_627_370_496.0_f64;
+        let mut cases = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            5e-324,
+            -5e-324,
+            two52,
+            -two52,
+            two52 - 0.5,
+            -(two52 - 0.5),
+            two52 * 2.0 + 2.0,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            9.223_372_036_854_776e18,
+            -9.223_372_036_854_776e18,
+        ];
+        // Every magnitude from 2^-60 to 2^70, and one ulp either side of integers.
+        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let e = (state % 131) as i32 - 60;
+            let mantissa = 1.0 + (state >> 11) as f64 / (1u64 << 53) as f64;
+            let q = mantissa * 2f64.powi(e) * if state & 1 == 1 { -1.0 } else { 1.0 };
+            cases.push(q);
+            let n = q.round();
+            if n != 0.0 {
+                // One ulp up and down in magnitude: both sides of the integer.
+                let b = n.to_bits();
+                cases.extend([n, f64::from_bits(b + 1), f64::from_bits(b - 1)]);
+            }
+        }
+        for q in cases {
+            let (got, want) = (floor(q), q.floor());
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "floor({q:e}) = {got:e}, library {want:e}"
+            );
+        }
+    }
 
     fn m(pos: [f64; 2], since: f64, velocity: [f64; 2]) -> Motion<2> {
         Motion {

@@ -196,11 +196,11 @@ impl<const N: usize> Grid<N> {
         (0..N).map(|k| c[k] * self.stride[k]).sum()
     }
 
-    /// The cell of a point inside the box (clamped, for points on the far boundary).
+    /// The cell of a point inside the box (clamped, for points on the far boundary):
+    /// `min(floor(max(x_k / w_k, 0)), n_k - 1)`, the floor being the conversion's
+    /// truncation of a number at least 0 (no library call).
     pub(crate) fn cell_of(&self, x: &[f64; N]) -> [usize; N] {
-        std::array::from_fn(|k| {
-            ((x[k] / self.width[k]).floor().max(0.0) as usize).min(self.n[k] - 1)
-        })
+        std::array::from_fn(|k| ((x[k] / self.width[k]).max(0.0) as usize).min(self.n[k] - 1))
     }
 
     /// Calls `f` for every cell within reach of cell `c` (with its image shift), in the order
