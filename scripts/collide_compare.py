@@ -36,9 +36,10 @@ ROOT = Path(__file__).resolve().parent.parent
 PLAIN = {"on": False}
 
 
-def spell(x: Fraction, rng: random.Random) -> str:
-    """A JSON value for the rational x, in one of the format's spellings."""
-    form = rng.choice([0, 1, 6, 7, 8, 9]) if PLAIN["on"] else rng.randrange(10)
+def spell(x: Fraction, rng: random.Random, form=None) -> str:
+    """A JSON value for the rational x, in one of the format's spellings (`form`, else drawn)."""
+    if form is None:
+        form = draw_form(rng)
     if form == 0 and x.denominator == 1:
         return str(x.numerator)
     if form == 1:
@@ -64,6 +65,10 @@ def spell(x: Fraction, rng: random.Random) -> str:
     return json.dumps(str(x))
 
 
+def draw_form(rng: random.Random) -> int:
+    return rng.choice([0, 1, 6, 7, 8, 9]) if PLAIN["on"] else rng.randrange(10)
+
+
 def small(rng: random.Random, top: int) -> Fraction:
     return Fraction(rng.randint(-top, top), rng.choice([1, 2, 3, 4, 5, 7, 10]))
 
@@ -87,14 +92,17 @@ def body(dim, rng, immovable, spoil_mass, spoil_skew):
     elif kind == 2:
         b["gamma2"] = spell(t * 2 / dim, rng)
     elif kind == 3:
-        b["distribution"] = json.dumps(rng.choice(["uniform", "shell", "solid"]))
+        b["distribution"] = json.dumps(rng.choice(["uniform", "shell"] * 5 + ["solid"]))
     form = rng.randrange(6)
     if dim == 2 and form == 0:
         b["angular_velocity"] = spell(small(rng, 5), rng)
     elif dim == 3 and form == 0:
         b["angular_velocity"] = "[" + ", ".join(spell(small(rng, 5), rng) for _ in range(3)) + "]"
     else:
+        # Each entry and its opposite spelled in one form (x and -x then read as exact
+        # opposites in both modes).
         upper = {(i, j): small(rng, 5) for i in range(dim) for j in range(i + 1, dim)}
+        forms = {key: draw_form(rng) for key in upper}
         rows = []
         for i in range(dim):
             row = []
@@ -102,10 +110,10 @@ def body(dim, rng, immovable, spoil_mass, spoil_skew):
                 if i == j:
                     row.append(spell(Fraction(0), rng))
                 elif i < j:
-                    row.append(spell(upper[(i, j)], rng))
+                    row.append(spell(upper[(i, j)], rng, forms[(i, j)]))
                 else:
                     x = -upper[(j, i)] + (Fraction(1, 9) if spoil_skew else 0)
-                    row.append(spell(x, rng))
+                    row.append(spell(x, rng, forms[(j, i)]))
             rows.append("[" + ", ".join(row) + "]")
         b["angular_velocity"] = "[" + ", ".join(rows) + "]"
     return b
@@ -123,7 +131,7 @@ def case(k: int, rng: random.Random) -> str:
         u.reverse()
     fixed = rng.randrange(3)
     bodies = [
-        body(dim, rng, fixed == 1, k % 10 == 3 and b == 0, k % 10 == 5 and b == 1)
+        body(dim, rng, fixed == 1 and b == 0, k % 10 == 3 and b == 0, k % 10 == 5 and b == 1)
         for b in range(2)
     ]
     for b in range(2):
