@@ -47,11 +47,18 @@ fn list(items: &[String], rng: &mut Rng) -> String {
     format!("[{}]", items.join(sep))
 }
 
-/// The ways a generated case breaks a rule (0: none).
+/// The ways a generated case is changed (0: none). Rules broken: 1 a normal off by 1/1000,
+/// 2 a radius not positive, 3 a mass not positive (unless immovable), 4 `lambda` or
+/// `gamma2` 1001/1000 of its bound (unless uniform), 5 a nonzero diagonal entry, 6
+/// separating (unless grazing), 7 both immovable, 8 an unknown key, 9 a repeated key, 14
+/// both `lambda` and `gamma2`, 15 a pair not skew, 16 a short velocity, 17 `lambda` or
+/// `gamma2` 0 in both (point masses, unless one is immovable). Valid but not plain: 10 the
+/// scalar (2D) or omega (3D) spin, 11 a number with an exponent or 19 digits, 12 a
+/// distribution, 13 a contact law, 18 an array of one case.
 const SPOILS: u64 = 18;
 
-/// A random plain case in `dim` dimensions, approaching along its normal, broken by
-/// `spoil` (see the match below).
+/// A random plain case in `dim` dimensions, approaching along its normal, changed by
+/// `spoil` (see [`SPOILS`]).
 fn case_text(dim: usize, spoil: u64, rng: &mut Rng) -> String {
     let y: Vec<Exact> = (0..dim - 1)
         .map(|_| Exact::from_ratio(rng.integer(0..=40) as i64 - 20, 7))
