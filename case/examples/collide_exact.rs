@@ -1,10 +1,11 @@
 //! Microseconds per case of `noslip collide --exact` without the process: `cargo run --release
 //! -p noslip-case --example collide_exact [-- ROUNDS]` times, for three 3D cases (below), the
 //! library entry the command calls (`collide_json(text, Mode::Exact)`: JSON in, validation,
-//! the collision, JSON out) against its pieces: `kernel`, the kernel alone (`collide_unchecked`
+//! the collision, JSON out; on these cases the direct path, `case/src/direct.rs`) against the
+//! pieces of the general path: `kernel`, the kernel alone (`collide_unchecked`
 //! on the parsed inputs, what the exact-arithmetic benchmarks time); `checked_collide`, the
 //! kernel with collision-core's checks; `solve`, the case's balls and states built and checked,
-//! then `checked_collide`; `read`, the case read as `collide_json` reads it (`read:text` the
+//! then `checked_collide`; `read`, the case read as the general path reads it (`read:text` the
 //! text into the borrowed tree, `noslip_case::text::parse`; `read:case` `Case::from_json` on
 //! that tree); `read:serde`, the same by serde_json's `Value` with the test for repeated keys
 //! (the path of inputs the fast reader declines, and of errors); `write`, the answer written

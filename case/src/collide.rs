@@ -143,14 +143,34 @@ fn collide_all<V: Node>(input: &V, mode: Mode, json: &mut String) -> Result<(), 
 /// A key given twice in one object is an error (naming its case and path). Stops at the
 /// first invalid case; nothing is output then.
 ///
-/// The input is read in one pass into a borrowed tree ([`crate::text`]) when it can be;
-/// when it cannot, or when any case fails, it is read again by serde_json and run again
-/// from the start, so that every error (the JSON's, a repeated key's, a case's) is the
-/// one that path reports.
+/// In exact mode a plain case (one case, matrix spins, short numbers: `crate::plain`) that
+/// passes every check on machine integers is run straight from the text (`crate::direct`).
+/// Otherwise the input is read in one pass into a borrowed tree ([`crate::text`]) when it
+/// can be; when it cannot, or when any case fails, it is read again by serde_json and run
+/// again from the start, so that every error (the JSON's, a repeated key's, a case's) is
+/// the one that path reports.
 pub fn collide_json(input: &str, mode: Mode) -> Result<String, RunError> {
+    if mode == Mode::Exact {
+        if let Some(json) = crate::direct::collide(input) {
+            return Ok(json);
+        }
+    }
     if let Some(tree) = text::parse(input) {
         // Room for an answer of about twice the input (exact answers run longer than the
         // case), so that it is rarely grown.
+        let mut json = String::with_capacity(2 * input.len() + 256);
+        if collide_all(&tree, mode, &mut json).is_ok() {
+            return Ok(json);
+        }
+    }
+    collide_json_serde(input, mode)
+}
+
+/// [`collide_json`] without the direct path: the borrowed tree when it reads the input and
+/// every case passes, serde_json otherwise (the reference the direct path is tested
+/// against, `case/tests/direct_path.rs`).
+pub fn collide_json_general(input: &str, mode: Mode) -> Result<String, RunError> {
+    if let Some(tree) = text::parse(input) {
         let mut json = String::with_capacity(2 * input.len() + 256);
         if collide_all(&tree, mode, &mut json).is_ok() {
             return Ok(json);

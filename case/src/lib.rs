@@ -15,6 +15,8 @@
 //!   generated kernels (2..=6) or the general-n reference.
 //! - [`output`]: the output schema.
 //! - [`collide`]: a whole input (one case or an array), in and out.
+//! - `direct` (with `plain` and `fraction`): `--exact` on a plain case straight from the text,
+//!   checked on machine integers (the general path for everything else).
 //! - [`error`]: the one-line error of a case, naming the field.
 
 #![warn(missing_docs, unreachable_pub)]
@@ -23,11 +25,14 @@ mod body;
 pub mod case;
 pub mod collide;
 pub mod contact;
+mod direct;
 pub mod error;
+mod fraction;
 pub mod keys;
 pub mod node;
 pub mod number;
 pub mod output;
+mod plain;
 mod short;
 pub mod solve;
 pub mod text;

@@ -54,34 +54,57 @@ fn numbers<T: InputScalar>(
     Ok(())
 }
 
-/// Body `i`'s angular velocity in the given form.
+/// The form an angular velocity was given in, which its output keeps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Form {
+    /// The full matrix.
+    Matrix,
+    /// 2D: the scalar `c` of `U = c J`.
+    Scalar,
+    /// 3D: the vector `omega`.
+    Omega,
+}
+
+impl<T> Spin<T> {
+    /// The form of this angular velocity.
+    pub(crate) fn form(&self) -> Form {
+        match self {
+            Spin::Matrix(_) => Form::Matrix,
+            Spin::Scalar(_) => Form::Scalar,
+            Spin::Omega(_) => Form::Omega,
+        }
+    }
+}
+
+/// Body `i`'s angular velocity (compact entries `spin`, velocity `velocity`) in the given form.
 fn spin<T: InputScalar>(
-    form: &Spin<T>,
-    out: &BodyOutput<T>,
+    form: Form,
+    out: (&[T], &[T]),
     dim: usize,
     i: usize,
     json: &mut String,
 ) -> Result<(), CaseError> {
     const KEY: &str = "angular_velocity";
+    let (spin, velocity) = out;
     match form {
-        Spin::Scalar(_) => {
-            let [x] = <[T; 1]>::try_from(out.spin.clone()).map_err(|_| internal("2D spin"))?;
+        Form::Scalar => {
+            let [x] = <[T; 1]>::try_from(spin.to_vec()).map_err(|_| internal("2D spin"))?;
             let [v0, v1] =
-                <[T; 2]>::try_from(out.velocity.clone()).map_err(|_| internal("2D velocity"))?;
+                <[T; 2]>::try_from(velocity.to_vec()).map_err(|_| internal("2D velocity"))?;
             let s = State2 {
                 spin: [x],
                 velocity: [v0, v1],
             };
             number(&s.scalar_spin(), i, KEY, json)
         }
-        Spin::Omega(_) => {
-            let spin = <[T; 3]>::try_from(out.spin.clone()).map_err(|_| internal("3D spin"))?;
+        Form::Omega => {
+            let spin = <[T; 3]>::try_from(spin.to_vec()).map_err(|_| internal("3D spin"))?;
             let velocity =
-                <[T; 3]>::try_from(out.velocity.clone()).map_err(|_| internal("3D velocity"))?;
+                <[T; 3]>::try_from(velocity.to_vec()).map_err(|_| internal("3D velocity"))?;
             numbers(&State3 { spin, velocity }.omega(), i, KEY, json)
         }
-        Spin::Matrix(_) => {
-            if out.spin.len() != dim * (dim - 1) / 2 {
+        Form::Matrix => {
+            if spin.len() != dim * (dim - 1) / 2 {
                 return Err(internal("spin length"));
             }
             // Entry (r, c), r < c, is compact entry `at[r * dim + c]`; the one below the
@@ -100,11 +123,9 @@ fn spin<T: InputScalar>(
                     }
                     match r.cmp(&c) {
                         std::cmp::Ordering::Equal => number(&zero, i, KEY, json)?,
-                        std::cmp::Ordering::Less => {
-                            number(&out.spin[at[r * dim + c]], i, KEY, json)?
-                        }
+                        std::cmp::Ordering::Less => number(&spin[at[r * dim + c]], i, KEY, json)?,
                         std::cmp::Ordering::Greater => {
-                            let x = &out.spin[at[c * dim + r]];
+                            let x = &spin[at[c * dim + r]];
                             if !x.write_negated_json(json) {
                                 return Err(not_finite(&field(i, KEY)));
                             }
@@ -126,16 +147,29 @@ pub fn write<T: InputScalar>(
     out: &[BodyOutput<T>; 2],
     json: &mut String,
 ) -> Result<(), CaseError> {
+    let forms = [case.bodies[0].spin.form(), case.bodies[1].spin.form()];
+    let parts = [0, 1].map(|b| (out[b].spin.as_slice(), out[b].velocity.as_slice()));
+    write_parts(forms, parts, case.dim, json)
+}
+
+/// [`write()`] from the parts: each body's form, and its compact spin entries and velocity
+/// after the collision (the direct path's writer too, [`crate::direct`]).
+pub(crate) fn write_parts<T: InputScalar>(
+    forms: [Form; 2],
+    parts: [(&[T], &[T]); 2],
+    dim: usize,
+    json: &mut String,
+) -> Result<(), CaseError> {
     json.push_str("{\"bodies\":[");
-    for (i, body) in out.iter().enumerate() {
+    for (i, (form, body)) in forms.into_iter().zip(parts).enumerate() {
         json.push_str(if i > 0 {
             ",{\"angular_velocity\":"
         } else {
             "{\"angular_velocity\":"
         });
-        spin(&case.bodies[i].spin, body, case.dim, i, json)?;
+        spin(form, body, dim, i, json)?;
         json.push_str(",\"velocity\":");
-        numbers(&body.velocity, i, "velocity", json)?;
+        numbers(body.1, i, "velocity", json)?;
         json.push('}');
     }
     json.push_str("]}");

@@ -11,6 +11,7 @@
 //! read here (`None`): the general reader ([`crate::number`]) reads it, with its errors. Where
 //! this reader answers, the value is the general reader's (tested on many inputs below).
 
+use crate::fraction::Fraction;
 use collision_core::{Exact, Scalar};
 use num_traits::Zero;
 
@@ -31,8 +32,18 @@ fn digits(b: &[u8], mut i: usize) -> Option<(i64, usize)> {
     Some((value, i))
 }
 
-/// The exact value of `text` if it is a short number (see the module); `None` otherwise.
-pub(crate) fn exact(text: &str) -> Option<Exact> {
+/// A short number's integers as read, before any reduction.
+enum Short {
+    /// `[+-] digits`.
+    Integer(i64),
+    /// `[+-] digits / digits`, the denominator positive.
+    Ratio(i64, i64),
+    /// `[+-] digits . digits`: `m / 10^k`.
+    Decimal(i64, u32),
+}
+
+/// The integers of `text` if it is a short number (see the module); `None` otherwise.
+fn scan(text: &str) -> Option<Short> {
     let b = text.as_bytes();
     let (negative, start) = match b.first() {
         Some(b'-') => (true, 1),
@@ -43,10 +54,10 @@ pub(crate) fn exact(text: &str) -> Option<Exact> {
     let (int, i) = digits(b, start)?;
     let int_len = i - start;
     match b.get(i) {
-        None if int_len > 0 => Some(Exact::from_integer(sign(int))),
+        None if int_len > 0 => Some(Short::Integer(sign(int))),
         Some(b'/') if int_len > 0 => {
             let (q, end) = digits(b, i + 1)?;
-            (end > i + 1 && end == b.len() && q != 0).then(|| Exact::from_ratio(sign(int), q))
+            (end > i + 1 && end == b.len() && q != 0).then(|| Short::Ratio(sign(int), q))
         }
         Some(b'.') => {
             let (frac, end) = digits(b, i + 1)?;
@@ -55,19 +66,45 @@ pub(crate) fn exact(text: &str) -> Option<Exact> {
                 return None;
             }
             // `int_len + k <= 18` digits: `m < 10^18` fits.
-            let m = int * 10i64.pow(k as u32) + frac;
-            Some(if m == 0 {
-                Exact::zero()
-            } else {
-                decimal(sign(m), k as u32)
-            })
+            Some(Short::Decimal(
+                sign(int * 10i64.pow(k as u32) + frac),
+                k as u32,
+            ))
         }
         _ => None,
     }
 }
 
-/// `m / 10^k` in lowest terms by removing the common 2s and 5s (`m != 0`, `k <= 18`).
-fn decimal(m: i64, k: u32) -> Exact {
+/// The exact value of `text` if it is a short number (see the module); `None` otherwise.
+pub(crate) fn exact(text: &str) -> Option<Exact> {
+    Some(match scan(text)? {
+        Short::Integer(p) => Exact::from_integer(p),
+        Short::Ratio(p, q) => Exact::from_ratio(p, q),
+        Short::Decimal(0, _) => Exact::zero(),
+        Short::Decimal(m, k) => match decimal(m, k) {
+            (p, 1) => Exact::from_integer(p),
+            (p, q) => Exact::from_ratio(p, q),
+        },
+    })
+}
+
+/// The value of `text` in lowest terms on machine integers if it is a short number (see the
+/// module); `None` otherwise. The same value as [`exact`] (tested below).
+pub(crate) fn fraction(text: &str) -> Option<Fraction> {
+    Some(match scan(text)? {
+        Short::Integer(p) => Fraction::integer(p),
+        Short::Ratio(p, q) => Fraction::reduced(p, q),
+        Short::Decimal(0, _) => Fraction::integer(0),
+        Short::Decimal(m, k) => {
+            let (p, q) = decimal(m, k);
+            Fraction { p, q }
+        }
+    })
+}
+
+/// `m / 10^k` in lowest terms `(p, q)` by removing the common 2s and 5s (`m != 0`,
+/// `k <= 18`).
+fn decimal(m: i64, k: u32) -> (i64, i64) {
     let a = m.trailing_zeros().min(k);
     let mut p = m >> a;
     let mut b = 0;
@@ -75,12 +112,7 @@ fn decimal(m: i64, k: u32) -> Exact {
         p /= 5;
         b += 1;
     }
-    let q = (1i64 << (k - a)) * 5i64.pow(k - b);
-    if q == 1 {
-        Exact::from_integer(p)
-    } else {
-        Exact::from_ratio(p, q)
-    }
+    (p, (1i64 << (k - a)) * 5i64.pow(k - b))
 }
 
 #[cfg(test)]
@@ -113,6 +145,7 @@ mod tests {
             };
             let got = exact(&text);
             assert_eq!(got.is_some(), short, "{text}");
+            assert_eq!(fraction(&text).map(Fraction::exact), got, "{text}");
             if let Some(v) = got {
                 answered += 1;
                 assert_eq!(Ok(v), parse_general(&text), "{text}");

@@ -40,37 +40,57 @@ pub struct Object<'a>(Vec<(&'a str, Json<'a>)>);
 
 /// The value `text` holds, if [`parse`] can read it (see the module documentation).
 pub fn parse(text: &str) -> Option<Json<'_>> {
-    let mut p = Parser {
-        text,
-        bytes: text.as_bytes(),
-        at: 0,
-    };
+    let mut p = Parser::new(text);
     let value = p.value(0)?;
-    p.skip_whitespace();
-    (p.at == p.bytes.len()).then_some(value)
+    p.end()?;
+    Some(value)
 }
 
-struct Parser<'a> {
+/// A reader of JSON text from a position on; its pieces (whitespace, strings without
+/// escapes, number literals, expected bytes) are also those of the direct path's reader
+/// ([`crate::plain`]).
+pub(crate) struct Parser<'a> {
     text: &'a str,
     bytes: &'a [u8],
     at: usize,
 }
 
 impl<'a> Parser<'a> {
-    fn peek(&self) -> Option<u8> {
+    /// A reader at the start of `text`.
+    pub(crate) fn new(text: &'a str) -> Self {
+        Parser {
+            text,
+            bytes: text.as_bytes(),
+            at: 0,
+        }
+    }
+
+    /// The next byte, not consumed.
+    pub(crate) fn peek(&self) -> Option<u8> {
         self.bytes.get(self.at).copied()
     }
 
-    fn skip_whitespace(&mut self) {
+    /// Skip the next byte (after a [`Parser::peek`] that saw it).
+    pub(crate) fn skip(&mut self) {
+        self.at += 1;
+    }
+
+    pub(crate) fn skip_whitespace(&mut self) {
         while let Some(b' ' | b'\n' | b'\t' | b'\r') = self.peek() {
             self.at += 1;
         }
     }
 
     /// Skip whitespace, then `byte`.
-    fn expect(&mut self, byte: u8) -> Option<()> {
+    pub(crate) fn expect(&mut self, byte: u8) -> Option<()> {
         self.skip_whitespace();
         (self.peek()? == byte).then(|| self.at += 1)
+    }
+
+    /// Skip whitespace; `Some` if the text ends there.
+    pub(crate) fn end(&mut self) -> Option<()> {
+        self.skip_whitespace();
+        (self.at == self.bytes.len()).then_some(())
     }
 
     fn value(&mut self, depth: usize) -> Option<Json<'a>> {
@@ -95,7 +115,7 @@ impl<'a> Parser<'a> {
     }
 
     /// A string at `"`: its contents, if they hold no escape and no control character.
-    fn string(&mut self) -> Option<&'a str> {
+    pub(crate) fn string(&mut self) -> Option<&'a str> {
         let start = self.at + 1;
         let len = self.bytes[start..]
             .iter()
@@ -117,7 +137,8 @@ impl<'a> Parser<'a> {
         (self.at > start).then_some(())
     }
 
-    fn number(&mut self) -> Option<&'a str> {
+    /// A number literal (RFC 8259) here: its text.
+    pub(crate) fn number(&mut self) -> Option<&'a str> {
         let start = self.at;
         if self.peek() == Some(b'-') {
             self.at += 1;

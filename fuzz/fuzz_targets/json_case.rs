@@ -8,11 +8,14 @@
 //! `-rss_limit_mb`); a refused input is an error (`RunError`, exit 2 in the CLI) whose message
 //! is one line; an accepted input gives JSON of the same shape (an array of as many cases, or
 //! one object) whose every number is finite (f64 mode: a JSON number that reads back as a
-//! finite f64; exact mode: a string `p` or `p/q` of decimal integers, q > 0).
+//! finite f64; exact mode: a string `p` or `p/q` of decimal integers, q > 0). In exact mode
+//! the answer or error is also that of `collide_json_general` (the path without the direct
+//! path of plain cases, `case/src/direct.rs`), byte for byte.
 
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use noslip::json::collide::collide_json_general;
 use noslip::json::{collide_json, Mode};
 use serde_json::Value;
 
@@ -21,7 +24,16 @@ fuzz_target!(|data: &[u8]| {
         return; // the CLI: "cannot read FILE: stream did not contain valid UTF-8", exit 2
     };
     for mode in [Mode::Float, Mode::Exact] {
-        match collide_json(input, mode) {
+        let answer = collide_json(input, mode);
+        if mode == Mode::Exact {
+            let general = collide_json_general(input, mode);
+            assert_eq!(
+                answer.as_ref().map_err(ToString::to_string),
+                general.as_ref().map_err(ToString::to_string),
+                "the direct path differs from the general path"
+            );
+        }
+        match answer {
             Ok(out) => check_answer(input, &out, mode),
             Err(e) => {
                 let line = e.to_string();
