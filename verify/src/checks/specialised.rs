@@ -301,6 +301,7 @@ balls = { e = "0.9", mu = "3", beta0 = "-1/3" }
                 ball: law(&set.laws.ball),
                 wall: law(&set.laws.wall),
                 fixed: law(&set.laws.fixed),
+                pairs: Vec::new(),
             };
             let results = compare::<2, 1>(&set, &other, 8, 1);
             let wrong: usize = results.iter().map(|r| r.mismatches).sum();
@@ -331,6 +332,7 @@ balls = { e = "0.9", mu = "3", beta0 = "-1/3" }
                 ball: law.clone(),
                 wall: law.clone(),
                 fixed: law,
+                pairs: Vec::new(),
             };
             let results = compare::<2, 1>(&set, &other, 4, 1);
             assert!(results.iter().all(|r| r.mismatches == 4), "{results:?}");
