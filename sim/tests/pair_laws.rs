@@ -156,3 +156,54 @@ fn every_contact_of_each_pair_follows_that_pairs_law() {
         "each pair kind occurs: {seen:?}"
     );
 }
+
+/// The observables' `lost_ball_ball` with several pair laws is the energy lost at every
+/// ball-ball contact, whatever the pair's law: the sum of the per-contact losses
+/// (`noslip_sim::granular::lost`) of the three pairs, added in the same order (so equal to
+/// the bit in every row), each pair's share positive (every law dissipates), and the energy balance
+/// `E_0 - E = lost` within the bound of `sim/tests/granular.rs` (64 eps of the start energy
+/// per contact for the loss's roundings, plus the energy sums' own).
+#[test]
+fn lost_ball_ball_is_the_loss_of_every_pair_law() {
+    use noslip_sim::granular::{lost, Sampler};
+    let s = scene(&mixture(
+        "[[contact.pair]]\nspecies = [\"grain\", \"tracer\"]\nlaw = { e = \"0.6\", beta = \"-0.3\" }\n\
+         [[contact.pair]]\nspecies = [\"tracer\", \"tracer\"]\nlaw = { e = \"0.7\", mu = \"0.3\", beta0 = \"0.6\" }\n",
+    ));
+    let setup = setup::<2, 1>(&s).unwrap();
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let mut sampler = Sampler::start(1.0, &sim, &species);
+    let (mut total, mut per_pair) = (0.0, [0.0f64; 3]);
+    // The losses summed here when each row was written.
+    let mut at_rows = vec![0.0];
+    while let Step::Contact(e) = sim.step(5.0) {
+        let Contact::Ball { i, j } = e.contact else {
+            unreachable!("a periodic gas")
+        };
+        let loss = lost(&e, &sim, &species);
+        total += loss;
+        per_pair[sim.species_of(i) + sim.species_of(j)] += loss;
+        sampler.contact(&e, &sim, &species);
+        if sampler.rows().len() > at_rows.len() {
+            at_rows.push(total);
+        }
+    }
+    let rows = sampler.rows();
+    assert!(rows.len() >= 5, "a row per unit time");
+    let row_losses: Vec<f64> = rows.iter().map(|r| r.lost[0]).collect();
+    assert_eq!(row_losses, at_rows);
+    let (first, last) = (&rows[0], rows.last().unwrap());
+    let total = last.lost[0];
+    assert!(per_pair.iter().all(|&l| l > 0.0), "{per_pair:?}");
+    let contacts = sim.contacts() as f64;
+    let bound = (64.0 * contacts + 40.0 * 170.0) * f64::EPSILON * first.energy;
+    let drop = first.energy - last.energy;
+    assert!((drop - total).abs() <= bound, "{drop} {total} {bound}");
+    eprintln!(
+        "{contacts} contacts; lost per pair {per_pair:?}, lost_ball_ball at the last row {total}"
+    );
+}
