@@ -11,7 +11,7 @@
 //! The law is a key of its own (`law`, not `e` and `beta` beside `species`) so that it takes
 //! exactly the forms, and the reader, of every other contact law of the format
 //! ([`ContactKind`]): a bad one is named `contact.pair[1].law.e`. Validation
-//! ([`pair_laws`]) refuses a pair that does not name two species, an unknown species (or a
+//! (`pair_laws`) refuses a pair that does not name two species, an unknown species (or a
 //! name two species share), and a pair listed twice in either order.
 
 use crate::ctx::Ctx;
