@@ -397,3 +397,32 @@ fn scene_opencl_kernels_are_bit_identical_to_the_rust_scene_kernels() {
     assert!(check.failures.is_empty(), "{}", check.failures.join("\n"));
     assert_eq!(check.compared, kernels * 2);
 }
+
+/// The shipped mixture's module (`scenes/mixture2d.toml`: three species pairs, three laws)
+/// names each pair's law in either order, and `laws().ball` is `None` (several laws); the
+/// one-law gas keeps `laws().ball` and answers it for every pair.
+#[test]
+fn a_mixtures_dispatch_names_each_pairs_law() {
+    use noslip_sim::ContactKind;
+    let k = scenes::mixture2d::Kernels;
+    let law = |a, b| PairKernels::<f64, 2, 1>::ball_law(&k, a, b);
+    let grains = ContactKind::Rough { e: 0.9, beta: 0.5 };
+    let mixed = ContactKind::Rough { e: 0.8, beta: -0.2 };
+    let tracers = ContactKind::Walton {
+        e: 0.7,
+        mu: 0.3,
+        beta0: 0.6,
+    };
+    assert_eq!(law(0, 0), Some(grains));
+    assert_eq!(law(0, 1), Some(mixed));
+    assert_eq!(law(1, 0), Some(mixed));
+    assert_eq!(law(1, 1), Some(tracers));
+    assert_eq!(PairKernels::<f64, 2, 1>::laws(&k).ball, None);
+    let one = scenes::granular3d::Kernels;
+    let granular = ContactKind::Rough { e: 0.9, beta: 0.5 };
+    assert_eq!(PairKernels::<f64, 3, 3>::laws(&one).ball, Some(granular));
+    assert_eq!(
+        PairKernels::<f64, 3, 3>::ball_law(&one, 0, 0),
+        Some(granular)
+    );
+}

@@ -26,6 +26,7 @@ pub mod dynamics;
 pub mod error;
 pub mod reference;
 pub mod scene;
+mod scene_laws;
 pub mod signals;
 pub mod simulate;
 

@@ -477,6 +477,16 @@ impl Scene {
         self.inner.ball_count()
     }
 
+    /// dict: the ball-ball contact law of every pair of species, keyed by the two species'
+    /// names ``(a, b)`` in the order of ``species`` (a species with itself: ``(a, a)``): the
+    /// pair's ``contact.pair`` law, else ``contact.balls``. Each law is ``"no-slip"``,
+    /// ``"smooth"``, ``{"e": Fraction, "beta": Fraction}`` (rough) or ``{"e", "mu",
+    /// "beta0"}`` (Walton), exact, as ``Scene.from_dict`` takes it.
+    #[getter]
+    fn ball_laws<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        crate::scene_laws::ball_laws(py, &self.inner)
+    }
+
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
         let me = slf.get();
         Ok((

@@ -23,6 +23,7 @@ mod convex;
 mod ctx;
 mod key_path;
 mod number;
+pub mod pair_law;
 mod pairs;
 pub mod raw;
 pub mod table;
@@ -30,6 +31,7 @@ mod thermostat;
 mod validate;
 
 pub use number::{parse_exact, Number, MAX_DIGITS};
+pub use pair_law::PairContact;
 pub use pairs::{Pair, PairLaws, PairSet, WallSide};
 pub use raw::{Boundary, ContactKind, Distribution};
 
@@ -160,8 +162,13 @@ pub struct Scene {
     /// The polygons (the table's and the obstacles'), counterclockwise, that polygon pieces
     /// of [`Scene::boundaries`] refer to.
     pub polygons: Vec<Vec<Vec<BigRational>>>,
-    /// The contact kind of every ball-ball pair (`[contact] balls`).
+    /// The contact kind of every ball-ball pair of species not in [`Scene::pair_contacts`]
+    /// (`[contact] balls`); [`Scene::ball_law`] gives any pair's.
     pub ball_contact: ContactKind,
+    /// The ball-ball laws of the species pairs the scene lists (`[[contact.pair]]`, in file
+    /// order, each unordered pair at most once); every other pair has
+    /// [`Scene::ball_contact`].
+    pub pair_contacts: Vec<PairContact>,
     /// The contact kind of the box's walls (`[box] contact`; no-slip without a box).
     pub box_contact: ContactKind,
     /// The TC model's contact duration (`[contact] tc`, `> 0`): a contact of a ball within
@@ -261,6 +268,16 @@ impl Scene {
     /// Number of balls: explicit ones and those placed at random.
     pub fn ball_count(&self) -> usize {
         self.balls.len() + self.species.iter().map(|s| s.count).sum::<usize>()
+    }
+
+    /// The ball-ball law of species `a` and `b` (either order): the law
+    /// `[[contact.pair]]` gives the pair, else `[contact] balls`.
+    pub fn ball_law(&self, a: usize, b: usize) -> &ContactKind {
+        let key = [a.min(b), a.max(b)];
+        self.pair_contacts
+            .iter()
+            .find(|p| p.species == key)
+            .map_or(&self.ball_contact, |p| &p.contact)
     }
 
     /// Balls of each species (explicit and random).

@@ -53,8 +53,11 @@ pub struct PairSet {
 /// applies).
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct PairLaws {
-    /// The law of every ball-ball pair.
+    /// The law of every ball-ball pair not in [`PairLaws::pairs`].
     pub ball: ContactKind,
+    /// The ball-ball laws of the species pairs `(a, b)`, `a <= b`, whose law is not
+    /// [`PairLaws::ball`] (a scene's `[[contact.pair]]`); empty when one law holds for all.
+    pub pairs: Vec<((usize, usize), ContactKind)>,
     /// The law of the box walls.
     pub wall: ContactKind,
     /// The law of the ball-obstacle kernel (obstacles and the table's other boundaries).
@@ -65,10 +68,19 @@ impl PairLaws {
     /// The law folded into `pair`'s kernel.
     pub fn of(&self, pair: Pair) -> &ContactKind {
         match pair {
-            Pair::BallBall(..) => &self.ball,
+            Pair::BallBall(a, b) => self.ball_law(a, b),
             Pair::BallWall(..) => &self.wall,
             Pair::BallObstacle(..) => &self.fixed,
         }
+    }
+
+    /// The law of the ball-ball kernel of species `a` and `b` (either order).
+    pub fn ball_law(&self, a: usize, b: usize) -> &ContactKind {
+        let key = (a.min(b), a.max(b));
+        self.pairs
+            .iter()
+            .find(|(p, _)| *p == key)
+            .map_or(&self.ball, |(_, law)| law)
     }
 
     /// Whether a kernel can have `law` folded into it: the no-slip map, a rough law and a
@@ -147,7 +159,9 @@ pub(crate) fn module_name(stem: &str) -> String {
 impl Scene {
     /// The pair kinds this scene can meet, each with its law folded in ([`PairLaws`]):
     /// ball-ball for every pair of species present (a species with itself only if it has two
-    /// balls) if the balls' contact is no-slip, rough or Walton; ball-wall for every present species and
+    /// balls) if that pair's law ([`Scene::ball_law`]) is no-slip, rough or Walton, each
+    /// pair's kernel with its own law (a scene whose pairs use several laws has kernels of
+    /// each); ball-wall for every present species and
     /// walled axis side of the box if the box's contact is; ball-obstacle for every present
     /// species if obstacles or other boundaries ([`Scene::boundaries`]) have such a contact:
     /// the ball-obstacle kernel is the `fixed` map with the local normal that every immovable
@@ -200,9 +214,8 @@ impl Scene {
         } else {
             Vec::new()
         };
-        if !foldable(&self.ball_contact) {
-            ball_ball.clear();
-        }
+        // Smooth pairs use no kernel.
+        ball_ball.retain(|&(a, b)| foldable(self.ball_law(a, b)));
         let folded = |c: &ContactKind| {
             if foldable(c) {
                 c.clone()
@@ -210,8 +223,16 @@ impl Scene {
                 ContactKind::NoSlip
             }
         };
+        // The pairs of `ball_ball` whose law is not the default's (listed pairs with the
+        // default's law fold the same kernel, so they need no entry).
+        let pairs = (ball_ball.iter())
+            .map(|&(a, b)| ((a, b), self.ball_law(a, b)))
+            .filter(|&(_, law)| law != &self.ball_contact)
+            .map(|(p, law)| (p, law.clone()))
+            .collect();
         let laws = PairLaws {
             ball: folded(&self.ball_contact),
+            pairs,
             wall: folded(&self.box_contact),
             fixed: fixed.unwrap_or_default(),
         };

@@ -2,6 +2,7 @@
 
 pub use crate::contact::ContactKind;
 use crate::number::Number;
+pub use crate::pair_law::{RawPair, SpeciesRef};
 use serde::Deserialize;
 
 /// A scene file's top level as written, before validation into a [`Scene`](crate::Scene).
@@ -227,14 +228,18 @@ pub struct RawWedge {
 #[derive(Deserialize, Debug, Default)]
 #[serde(deny_unknown_fields)]
 pub struct RawContact {
-    /// `balls`: the contact kind of every ball-ball pair (default `"no-slip"`; or `"smooth"`,
-    /// or `{ e = ..., beta = ... }`).
+    /// `balls`: the contact kind of every ball-ball pair not listed in `pair` (default
+    /// `"no-slip"`; or `"smooth"`, `{ e = ..., beta = ... }` or `{ e = ..., mu = ..., beta0 = ... }`).
     #[serde(default)]
     pub balls: ContactKind,
     /// `tc`: the contact duration of the TC model (Luding & McNamara): a contact of a ball
     /// within `tc` of its previous contact is elastic. `> 0`; absent: none.
     #[serde(default)]
     pub tc: Option<Number>,
+    /// `[[contact.pair]]`: a law per unordered pair of species, overriding `balls` for the
+    /// pairs listed ([`crate::pair_law`]).
+    #[serde(default)]
+    pub pair: Vec<RawPair>,
 }
 
 /// The `[random]` table: the placement of the species' `count` balls.

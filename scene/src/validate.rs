@@ -163,6 +163,31 @@ pub(crate) fn distance2(a: &[Q], b: &[Q], size: &[Q], boundary: &[Boundary]) -> 
 }
 
 /// The number of balls, explicit and random, summed in `u128` (no overflow), is at most
+/// Two point masses (`lambda = 0`) that can collide under a law with a tangential part: the
+/// no-slip map (and the rough one with `beta > -1`) is undefined there. Refused naming
+/// `species` when the law is `contact.balls`, else the pair's `contact.pair[i].law`.
+fn point_masses(ctx: &Ctx, scene: &Scene) -> Result<(), SceneError> {
+    let per_species = scene.balls_per_species();
+    let points: Vec<usize> = (0..scene.species.len())
+        .filter(|&k| scene.species[k].gamma2.is_zero() && per_species[k] > 0)
+        .collect();
+    for (i, &a) in points.iter().enumerate() {
+        for &b in &points[i..] {
+            if (a == b && per_species[a] < 2) || !scene.ball_law(a, b).tangential() {
+                continue;
+            }
+            let listed = (scene.pair_contacts.iter()).position(|p| p.species == [a, b]);
+            return Err(ctx.err(
+                listed.map_or("species".into(), |k| format!("contact.pair[{k}].law")),
+                "two point masses (lambda = 0) could collide, where the no-slip map (and the \
+                 rough one with beta > -1) is undefined: at most one ball may have lambda = 0, \
+                 or point masses need a smooth law between them",
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// [`MAX_BALLS`]; the error names the species whose `count` passes it.
 fn count_limit(ctx: &Ctx, raw: &RawScene) -> Result<(), SceneError> {
     let mut total = raw.ball.len() as u128;
@@ -343,6 +368,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         },
         orientation: raw.simulation.orientation,
     };
+    let pair_contacts = crate::pair_law::pair_laws(&ctx, &raw.contact.pair, &species)?;
     let mut scene = Scene {
         origin: origin.to_string(),
         description: raw.description.unwrap_or_default(),
@@ -357,6 +383,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         boundaries,
         polygons,
         ball_contact: ctx.contact("contact.balls", &raw.contact.balls)?,
+        pair_contacts,
         box_contact: match &raw.domain {
             Some(domain) => ctx.contact("box.contact", &domain.contact)?,
             None => ContactKind::NoSlip,
@@ -488,18 +515,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         }
         scene.balls.push(spec);
     }
-    let per_species = scene.balls_per_species();
-    let points: usize = (0..scene.species.len())
-        .filter(|&k| scene.species[k].gamma2.is_zero())
-        .map(|k| per_species[k])
-        .sum();
-    if points > 1 && scene.ball_contact.tangential() {
-        return Err(ctx.err(
-            "species",
-            "two point masses (lambda = 0) could collide, where the no-slip map (and the rough \
-             one with beta > -1) is undefined: at most one ball may have lambda = 0",
-        ));
-    }
+    point_masses(&ctx, &scene)?;
     if scene.ball_count() == 0 {
         return Err(ctx.err(
             "species",

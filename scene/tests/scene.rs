@@ -43,6 +43,7 @@ fn shipped_scenes_are_valid() {
             "gas5d",
             "gas6d",
             "granular3d",
+            "mixture2d",
             "sector",
             "sinai",
             "sinai_square",

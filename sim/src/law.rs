@@ -83,7 +83,8 @@ impl From<&noslip_scene::ContactKind> for ContactKind {
 /// law).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct FoldedLaws {
-    /// The law of [`PairKernels::ball_ball`].
+    /// The law of [`PairKernels::ball_ball`] for every pair of species (`None` also when the
+    /// pairs' laws differ: [`PairKernels::ball_law`] then names each pair's).
     pub ball: Option<ContactKind>,
     /// The law of [`PairKernels::ball_wall`].
     pub wall: Option<ContactKind>,
@@ -125,7 +126,7 @@ pub(crate) fn pair<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     nu: &[f64; N],
     pre: &[BodyState<f64, N, S>; 2],
 ) -> [BodyState<f64, N, S>; 2] {
-    if kernels.laws().ball == Some(kind) {
+    if kernels.ball_law(a, b) == Some(kind) {
         return kernels.ball_ball(a, b, nu, &pre[0], &pre[1]);
     }
     match kind {
@@ -292,6 +293,72 @@ mod tests {
             wall,
             crate::rough::fixed(&[0.0, 1.0], &species[0], &law, &pre[1])
         );
+    }
+
+    /// Kernels with a law per pair of species (`PairKernels::ball_law`): the marker kernel
+    /// of the ball-ball kind serves the pair `(0, 1)` (either order) under `ROUGH` only.
+    struct PerPair;
+
+    impl PairKernels<f64, 2, 1> for PerPair {
+        fn laws(&self) -> FoldedLaws {
+            FoldedLaws {
+                ball: None,
+                wall: None,
+                fixed: None,
+            }
+        }
+        fn ball_law(&self, a: usize, b: usize) -> Option<ContactKind> {
+            match (a, b) {
+                (0, 1) | (1, 0) => Some(ROUGH),
+                (0, 0) => Some(ContactKind::NoSlip),
+                _ => None,
+            }
+        }
+        fn ball_ball(
+            &self,
+            _: usize,
+            _: usize,
+            _: &[f64; 2],
+            _: &State2<f64>,
+            _: &State2<f64>,
+        ) -> [State2<f64>; 2] {
+            [marker(1.0), marker(1.0)]
+        }
+        fn ball_wall(&self, _: usize, _: usize, _: bool, _: &State2<f64>) -> State2<f64> {
+            marker(2.0)
+        }
+        fn ball_obstacle(&self, _: usize, _: &[f64; 2], _: &State2<f64>) -> State2<f64> {
+            marker(3.0)
+        }
+    }
+
+    #[test]
+    fn ball_contacts_take_the_kernel_of_their_pairs_law() {
+        let ball = Ball {
+            inv_mass: 1.0,
+            radius: 0.5,
+            gamma2: 0.5,
+        };
+        let species = [ball.clone(), ball];
+        let nu = [0.6, 0.8];
+        let state = |c: f64, u: [f64; 2]| BodyState {
+            spin: [c],
+            velocity: u,
+        };
+        let pre = [state(0.3, [1.0, 0.5]), state(-0.2, [-1.0, 0.25])];
+        let k = PerPair;
+        let marked = [marker(1.0), marker(1.0)];
+        assert_eq!(pair(&k, &species, ROUGH, [0, 1], &nu, &pre), marked);
+        assert_eq!(pair(&k, &species, ROUGH, [1, 0], &nu, &pre), marked);
+        assert_eq!(
+            pair(&k, &species, ContactKind::NoSlip, [0, 0], &nu, &pre),
+            marked
+        );
+        // The same law on a pair the kernels fold another law (or none) into: generic.
+        let law = crate::rough::RoughLaw::Constant(Restitution { e: 0.5, beta: 0.25 });
+        let generic = crate::rough::pair(&nu, &species[1], &species[1], &law, &pre[0], &pre[1]);
+        assert_eq!(pair(&k, &species, ROUGH, [1, 1], &nu, &pre), generic);
+        assert_ne!(pair(&k, &species, ROUGH, [0, 0], &nu, &pre), marked);
     }
 
     #[test]

@@ -72,6 +72,7 @@ pub mod run;
 pub mod sequential;
 pub mod setup;
 pub mod smooth;
+pub mod species_laws;
 pub mod table;
 #[cfg(test)]
 mod table_tests;
@@ -100,6 +101,15 @@ pub trait PairKernels<T, const N: usize, const S: usize> {
     /// rough law folded in.
     fn laws(&self) -> law::FoldedLaws {
         law::FoldedLaws::NO_SLIP
+    }
+    /// The law `ball_ball(a, b, ..)` applies (either order of `a`, `b`): by default
+    /// [`law::FoldedLaws::ball`] of [`PairKernels::laws`] for every pair; kernels specialised
+    /// to a scene whose species pairs have several laws (`[[contact.pair]]`) name each pair's,
+    /// with `laws().ball` then `None`. The engines call `ball_ball` for a contact of this law
+    /// and the generic kernels of its law otherwise.
+    fn ball_law(&self, a: usize, b: usize) -> Option<ContactKind> {
+        let _ = (a, b);
+        self.laws().ball
     }
     /// The states of balls of species `a` (body 1) and `b` (body 2) after their contact.
     fn ball_ball(

@@ -129,6 +129,14 @@ pub fn table<const N: usize>(scene: &Scene) -> Table<N> {
             .map(|o| ContactKind::from(&o.contact))
             .collect(),
         ball_contact: ContactKind::from(&scene.ball_contact),
+        // Only a scene that lists pairs gets the table (the rest look up nothing).
+        pair_contact: if scene.pair_contacts.is_empty() {
+            Default::default()
+        } else {
+            crate::species_laws::SpeciesLaws::new(scene.species.len(), |a, b| {
+                ContactKind::from(scene.ball_law(a, b))
+            })
+        },
         box_contact: ContactKind::from(&scene.box_contact),
         tc: scene.tc.as_ref().map_or(0.0, f),
         origin: extent::<N>(scene).0,

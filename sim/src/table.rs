@@ -110,8 +110,11 @@ pub struct Table<const N: usize> {
     pub boundaries: Vec<Boundary<N>>,
     /// The contact kind of each [`crate::Setup::obstacles`] entry (missing entries: no-slip).
     pub obstacle_contact: Vec<ContactKind>,
-    /// The contact kind of every ball-ball pair.
+    /// The contact kind of every ball-ball pair of species not in [`Table::pair_contact`].
     pub ball_contact: ContactKind,
+    /// The ball-ball laws per pair of species (a scene's `[[contact.pair]]`); empty: every
+    /// pair has [`Table::ball_contact`]. [`Table::ball_law`] reads both.
+    pub pair_contact: crate::species_laws::SpeciesLaws,
     /// The contact kind of the box walls.
     pub box_contact: ContactKind,
     /// The TC model's contact duration `t_c` ([`crate::law::tc_law`]); 0: none.
@@ -132,11 +135,19 @@ impl<const N: usize> Table<N> {
             boundaries: Vec::new(),
             obstacle_contact: Vec::new(),
             ball_contact: ContactKind::NoSlip,
+            pair_contact: Default::default(),
             box_contact: ContactKind::NoSlip,
             tc: 0.0,
             origin: [0.0; N],
             thermostat: None,
         }
+    }
+
+    /// The contact kind of balls of species `a` and `b` (either order): the pair's in
+    /// [`Table::pair_contact`], else [`Table::ball_contact`].
+    #[inline]
+    pub fn ball_law(&self, a: usize, b: usize) -> ContactKind {
+        self.pair_contact.get(a, b).unwrap_or(self.ball_contact)
     }
 
     /// Obstacle `o`'s contact kind.

@@ -37,6 +37,7 @@ fn with_law(name: &str, after: &[&str], balls: bool, law: &str) -> Scene {
 /// Every law of the set-up replaced by `law` (ball-ball, box walls, boundaries, obstacles).
 fn set_law<const N: usize, const S: usize>(setup: &mut Setup<N, S>, law: ContactKind) {
     setup.table.ball_contact = law;
+    setup.table.pair_contact = Default::default();
     setup.table.box_contact = law;
     for b in &mut setup.table.boundaries {
         b.contact = law;

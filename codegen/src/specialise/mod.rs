@@ -371,7 +371,37 @@ fn dispatch(set: &PairSet, sim_path: &syn::Path) -> TokenStream {
             _ => quote!(Some(#sim_path::ContactKind::NoSlip)),
         }
     };
-    let ball_law = law(!set.ball_ball.is_empty(), &set.laws.ball);
+    // One law for every ball-ball kernel: `laws().ball` names it. Several (a scene's
+    // `[[contact.pair]]`): `laws().ball` is `None` and `ball_law` names each pair's.
+    let pair_laws: Vec<&ContactKind> = (set.ball_ball.iter())
+        .map(|&(a, b)| set.laws.ball_law(a, b))
+        .collect();
+    let one_law = pair_laws.windows(2).all(|w| w[0] == w[1]);
+    let ball_law = match pair_laws.first() {
+        Some(first) if one_law => law(true, first),
+        _ => quote!(None),
+    };
+    let per_pair = if one_law {
+        quote!()
+    } else {
+        let arms = set.ball_ball.iter().map(|&(a, b)| {
+            let (la, lb) = (lit(a), lit(b));
+            let l = law(true, set.laws.ball_law(a, b));
+            if a == b {
+                quote!((#la, #lb) => #l,)
+            } else {
+                quote!((#la, #lb) | (#lb, #la) => #l,)
+            }
+        });
+        quote! {
+            fn ball_law(&self, a: usize, b: usize) -> Option<#sim_path::ContactKind> {
+                match (a, b) {
+                    #(#arms)*
+                    _ => None,
+                }
+            }
+        }
+    };
     let wall_law = law(!set.ball_wall.is_empty(), &set.laws.wall);
     let fixed_law = law(!set.ball_obstacle.is_empty(), &set.laws.fixed);
     let bound = if needs_root(set) {
@@ -396,6 +426,7 @@ fn dispatch(set: &PairSet, sim_path: &syn::Path) -> TokenStream {
                     fixed: #fixed_law,
                 }
             }
+            #per_pair
             fn ball_ball(&self, a: usize, b: usize, nu: &[T; #nl], state1: &#state_ty, state2: &#state_ty) -> [#state_ty; 2] {
                 match (a, b) {
                     #(#bb)*

@@ -361,6 +361,7 @@ pub fn overridden<const N: usize, const S: usize>(
         let table = &mut setup.table;
         table.box_contact = kind;
         table.ball_contact = kind;
+        table.pair_contact = Default::default();
         table.obstacle_contact = vec![kind; setup.obstacles.len()];
         for b in &mut table.boundaries {
             b.contact = kind;

@@ -69,15 +69,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.settle(lo, t);
         self.settle(hi, t);
         let pre = [self.balls[lo].state.clone(), self.balls[hi].state.clone()];
-        let kind = self.law(self.table.ball_contact, [lo, hi], t);
-        let [s1, s2] = law::pair(
-            &self.kernels,
-            &self.species,
-            kind,
-            [self.balls[lo].kind as usize, self.balls[hi].kind as usize],
-            &nu,
-            &pre,
-        );
+        let species = [self.balls[lo].kind as usize, self.balls[hi].kind as usize];
+        let pair_law = self.table.ball_law(species[0], species[1]);
+        let kind = self.law(pair_law, [lo, hi], t);
+        let [s1, s2] = law::pair(&self.kernels, &self.species, kind, species, &nu, &pre);
         self.balls[lo].last = 0;
         self.balls[hi].last = 0;
         self.balls[lo].state = s1;

@@ -382,10 +382,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// The contact kind of `contact` as the table sets it (the box's, an obstacle's, a
-    /// boundary's, or the ball-ball pairs').
+    /// boundary's, or the ball-ball pair's of the two balls' species: [`Table::ball_law`]).
     pub fn contact_kind(&self, contact: &Contact) -> ContactKind {
         match *contact {
-            Contact::Ball { .. } => self.table.ball_contact,
+            Contact::Ball { i, j } => self.table.ball_law(self.species_of(i), self.species_of(j)),
             Contact::Wall { .. } => self.table.box_contact,
             Contact::Obstacle { obstacle, .. } => self.table.obstacle(obstacle),
             Contact::Boundary { boundary, .. } => self.table.boundaries[boundary].contact,

@@ -374,8 +374,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         self.move_record(lo, t);
         self.move_record(hi, t);
         let pre = [self.state[lo].clone(), self.state[hi].clone()];
-        let kind = self.law(self.table.ball_contact, [lo, hi], t);
         let species = [self.kind[lo], self.kind[hi]];
+        let kind = self.law(self.table.ball_law(species[0], species[1]), [lo, hi], t);
         let post = law::pair(&self.kernels, &self.species, kind, species, &nu, &pre);
         self.last[lo] = 0;
         self.last[hi] = 0;

@@ -301,6 +301,7 @@ balls = { e = "0.9", mu = "3", beta0 = "-1/3" }
                 ball: law(&set.laws.ball),
                 wall: law(&set.laws.wall),
                 fixed: law(&set.laws.fixed),
+                pairs: Vec::new(),
             };
             let results = compare::<2, 1>(&set, &other, 8, 1);
             let wrong: usize = results.iter().map(|r| r.mismatches).sum();
@@ -331,9 +332,56 @@ balls = { e = "0.9", mu = "3", beta0 = "-1/3" }
                 ball: law.clone(),
                 wall: law.clone(),
                 fixed: law,
+                pairs: Vec::new(),
             };
             let results = compare::<2, 1>(&set, &other, 4, 1);
             assert!(results.iter().all(|r| r.mismatches == 4), "{results:?}");
         }
+    }
+
+    /// Two species whose three pairs have three laws (`[[contact.pair]]`): rough between the
+    /// grains (the default), another rough law between grain and tracer, Walton between the
+    /// tracers.
+    const PAIRS: &str = r#"
+dim = 2
+[box]
+size = [10, 10]
+boundary = ["periodic", "periodic"]
+[[species]]
+name = "grain"
+mass = 1
+radius = "1/2"
+gamma2 = "1/2"
+count = 3
+[[species]]
+name = "tracer"
+mass = 4
+radius = 1
+gamma2 = "2/5"
+count = 2
+[contact]
+balls = { e = "0.9", beta = "1/2" }
+[[contact.pair]]
+species = ["tracer", "grain"]
+law = { e = "0.8", beta = "-1/5" }
+[[contact.pair]]
+species = ["tracer", "tracer"]
+law = { e = "0.7", mu = "3/10", beta0 = "3/5" }
+"#;
+
+    #[test]
+    fn each_pair_kernel_folds_its_own_law_and_a_swapped_law_is_caught() {
+        let set = Scene::from_toml(PAIRS, "pairs.toml").unwrap().pairs();
+        assert_eq!(set.ball_ball, [(0, 0), (0, 1), (1, 1)]);
+        let results = check::<2, 1>(&set, 8, 1);
+        assert_eq!(results.len(), 3);
+        assert!(results.iter().all(|r| r.mismatches == 0), "{results:?}");
+        // The grain-tracer pair checked against the default law instead of its own: its
+        // kernel differs at every point, the other pairs' kernels at none.
+        let mut other = set.clone();
+        other.laws.pairs.retain(|(p, _)| *p != (0, 1));
+        let results = compare::<2, 1>(&set, &other, 8, 1);
+        let wrong: Vec<usize> = results.iter().map(|r| r.mismatches).collect();
+        assert_eq!(wrong, [0, 8, 0], "{results:?}");
     }
 }

@@ -1,0 +1,209 @@
+//! A ball-ball law per pair of species (`[[contact.pair]]`, issue 27) in whole runs:
+//!
+//! - a scene listing every pair with the law of `contact.balls` writes the very event log
+//!   (byte for byte) of the scene without pairs, and so does the shipped mixture with its
+//!   pairs all set to one law;
+//! - in a two-species gas whose three pairs have three rough laws, every contact of each pair
+//!   leaves the normal and the tangential contact-point velocity `-e` and `-beta` times what
+//!   they were, with that pair's `(e, beta)` (first principles, `docs/derivation.md` §15),
+//!   and each pair kind occurs.
+
+use collision_core::BodyState;
+use noslip_scene::Scene;
+use noslip_sim::run::{run, Limits};
+use noslip_sim::setup::setup;
+use noslip_sim::{Contact, GenericKernels, Setup, Simulation, Step};
+use std::path::Path;
+
+/// The shipped mixture (`scenes/mixture2d.toml`) without its `[[contact.pair]]` tables and
+/// its TC model, followed by `tail`.
+fn mixture(tail: &str) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/mixture2d.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let (head, rest) = text.split_once("[[contact.pair]]").expect("pairs");
+    let (_, random) = rest.split_once("[random]").expect("a [random] table");
+    let head = head
+        .lines()
+        .filter(|l| !l.starts_with("tc ="))
+        .collect::<Vec<_>>()
+        .join("\n");
+    format!("{head}\n{tail}\n[random]{random}")
+}
+
+fn scene(text: &str) -> Scene {
+    Scene::from_toml(text, "mixture.toml").unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The event log of the first `events` contacts of `setup` (generic kernels).
+fn log_of(setup: Setup<2, 1>, events: u64) -> Vec<u8> {
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let limits = Limits {
+        events: Some(events),
+        time: None,
+        samples: 10,
+        traced: 0,
+        contact_points: 0,
+    };
+    let mut log = Vec::new();
+    let (summary, _) = run(&mut sim, &species, &limits, Some(&mut log), &mut |_| {}).unwrap();
+    assert_eq!(summary.events, events);
+    log
+}
+
+#[test]
+fn listing_every_pair_with_the_default_law_changes_no_byte_of_the_log() {
+    const EVENTS: u64 = 3000;
+    let plain = scene(&mixture(""));
+    assert!(plain.pair_contacts.is_empty());
+    let reference = log_of(setup::<2, 1>(&plain).unwrap(), EVENTS);
+    // The default's law written another way (exact 9/10 and 1/2), pairs by name and index.
+    let listed = scene(&mixture(
+        "[[contact.pair]]\nspecies = [\"grain\", \"grain\"]\nlaw = { e = \"9/10\", beta = \"1/2\" }\n\
+         [[contact.pair]]\nspecies = [1, \"grain\"]\nlaw = { e = \"0.9\", beta = \"0.5\" }\n\
+         [[contact.pair]]\nspecies = [\"tracer\", 1]\nlaw = { e = 0.9, beta = 0.5 }\n",
+    ));
+    assert_eq!(listed.pair_contacts.len(), 3);
+    let start = setup::<2, 1>(&listed).unwrap();
+    assert!(!start.table.pair_contact.is_empty(), "the table is built");
+    let log = log_of(start, EVENTS);
+    let first = log.iter().zip(&reference).position(|(a, b)| a != b);
+    assert!(log == reference, "the logs differ from byte {first:?}");
+    // The logs see the pair laws: one other law for the grain-tracer pair changes them.
+    let other = scene(&mixture(
+        "[[contact.pair]]\nspecies = [\"grain\", \"tracer\"]\nlaw = { e = 0.9, beta = 0.4 }\n",
+    ));
+    assert!(log_of(setup::<2, 1>(&other).unwrap(), EVENTS) != reference);
+}
+
+/// The contact-point relative velocity `g = (u_2 - R_2 U_2 nu) - (u_1 + R_1 U_1 nu)` of two
+/// disks in contact (`nu` from 1 to 2), split into its normal part `g . nu` and tangential
+/// part `g - (g . nu) nu` (in 2D, `U x = c J x` with `J x = (x_1, -x_0)` for the compact
+/// entry `c = U_01`), and the scale of the velocities it is made of.
+fn contact_velocity(
+    nu: &[f64; 2],
+    radii: [f64; 2],
+    s: &[BodyState<f64, 2, 1>; 2],
+) -> (f64, [f64; 2], f64) {
+    let spin = |c: f64, x: &[f64; 2]| [c * x[1], -c * x[0]];
+    let (w1, w2) = (spin(s[0].spin[0], nu), spin(s[1].spin[0], nu));
+    let g: [f64; 2] = std::array::from_fn(|k| {
+        (s[1].velocity[k] - radii[1] * w2[k]) - (s[0].velocity[k] + radii[0] * w1[k])
+    });
+    let gn = g[0] * nu[0] + g[1] * nu[1];
+    let gt = [g[0] - gn * nu[0], g[1] - gn * nu[1]];
+    let scale = s.iter().zip(radii).fold(0.0, |acc, (b, r)| {
+        acc + b.velocity[0].abs() + b.velocity[1].abs() + r * b.spin[0].abs()
+    });
+    (gn, gt, scale)
+}
+
+/// Each pair's contacts follow that pair's `(e, beta)`. Tolerance: the rough kernels' largest
+/// measured `f64` error is 28.6 eps of the states' norm (docs/accuracy.md, "The rough-ball
+/// family"), and forming `g` from the states adds a few roundings of the same size, so
+/// `|g_n+ + e g_n| <= 64 eps s` and `|t+ + beta t| <= 64 eps s`, `s` the sum of the
+/// magnitudes of the velocities and the spins times radii before and after (`e` and `beta`
+/// are the nearest doubles of the scene's decimals, 2^-53 relative: inside the bound).
+#[test]
+fn every_contact_of_each_pair_follows_that_pairs_law() {
+    // grain-grain (0.9, 0.5) by default; grain-tracer (0.6, -0.3); tracer-tracer (0.3, 0.8).
+    let laws = [[0.9, 0.5], [0.6, -0.3], [0.3, 0.8]];
+    let s = scene(&mixture(
+        "[[contact.pair]]\nspecies = [\"grain\", \"tracer\"]\nlaw = { e = \"0.6\", beta = \"-0.3\" }\n\
+         [[contact.pair]]\nspecies = [\"tracer\", \"tracer\"]\nlaw = { e = \"0.3\", beta = \"0.8\" }\n",
+    ));
+    let setup = setup::<2, 1>(&s).unwrap();
+    let radii: Vec<f64> = setup.species.iter().map(|b| b.radius).collect();
+    let kernels = GenericKernels {
+        species: setup.species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let mut seen = [0usize; 3];
+    let mut worst = [0.0f64; 2];
+    while sim.contacts() < 4000 {
+        let e = match sim.step(f64::INFINITY) {
+            Step::Contact(e) => e,
+            Step::Quiet { .. } | Step::Until => continue,
+            Step::Never(why) => panic!("the gas stopped: {why:?}"),
+        };
+        let Contact::Ball { i, j } = e.contact else {
+            panic!("a periodic gas has ball-ball contacts only: {e:?}");
+        };
+        let (a, b) = (sim.species_of(i), sim.species_of(j));
+        let pair = a + b; // 0: grain-grain, 1: grain-tracer, 2: tracer-tracer
+        let [el, beta] = laws[pair];
+        let r = [radii[a], radii[b]];
+        let (gn, gt, s0) = contact_velocity(&e.nu, r, &e.pre);
+        let (gn1, gt1, s1) = contact_velocity(&e.nu, r, &e.post);
+        let tol = 64.0 * f64::EPSILON * (s0 + s1);
+        let normal = (gn1 + el * gn).abs();
+        let tangential = (gt1[0] + beta * gt[0]).hypot(gt1[1] + beta * gt[1]);
+        assert!(
+            normal <= tol && tangential <= tol,
+            "contact {} of species ({a}, {b}): g_n {gn} -> {gn1} (e = {el}), t {gt:?} -> \
+             {gt1:?} (beta = {beta}), tolerance {tol:e}",
+            sim.contacts()
+        );
+        worst = [worst[0].max(normal / tol), worst[1].max(tangential / tol)];
+        seen[pair] += 1;
+    }
+    eprintln!("contacts per pair {seen:?}; largest deviation / tolerance {worst:?}");
+    assert!(
+        seen.iter().all(|&k| k > 0),
+        "each pair kind occurs: {seen:?}"
+    );
+}
+
+/// The observables' `lost_ball_ball` with several pair laws is the energy lost at every
+/// ball-ball contact, whatever the pair's law: the sum of the per-contact losses
+/// (`noslip_sim::granular::lost`) of the three pairs, added in the same order (so equal to
+/// the bit in every row), each pair's share positive (every law dissipates), and the energy balance
+/// `E_0 - E = lost` within the bound of `sim/tests/granular.rs` (64 eps of the start energy
+/// per contact for the loss's roundings, plus the energy sums' own).
+#[test]
+fn lost_ball_ball_is_the_loss_of_every_pair_law() {
+    use noslip_sim::granular::{lost, Sampler};
+    let s = scene(&mixture(
+        "[[contact.pair]]\nspecies = [\"grain\", \"tracer\"]\nlaw = { e = \"0.6\", beta = \"-0.3\" }\n\
+         [[contact.pair]]\nspecies = [\"tracer\", \"tracer\"]\nlaw = { e = \"0.7\", mu = \"0.3\", beta0 = \"0.6\" }\n",
+    ));
+    let setup = setup::<2, 1>(&s).unwrap();
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let mut sampler = Sampler::start(1.0, &sim, &species);
+    let (mut total, mut per_pair) = (0.0, [0.0f64; 3]);
+    // The losses summed here when each row was written.
+    let mut at_rows = vec![0.0];
+    while let Step::Contact(e) = sim.step(5.0) {
+        let Contact::Ball { i, j } = e.contact else {
+            unreachable!("a periodic gas")
+        };
+        let loss = lost(&e, &sim, &species);
+        total += loss;
+        per_pair[sim.species_of(i) + sim.species_of(j)] += loss;
+        sampler.contact(&e, &sim, &species);
+        if sampler.rows().len() > at_rows.len() {
+            at_rows.push(total);
+        }
+    }
+    let rows = sampler.rows();
+    assert!(rows.len() >= 5, "a row per unit time");
+    let row_losses: Vec<f64> = rows.iter().map(|r| r.lost[0]).collect();
+    assert_eq!(row_losses, at_rows);
+    let (first, last) = (&rows[0], rows.last().unwrap());
+    let total = last.lost[0];
+    assert!(per_pair.iter().all(|&l| l > 0.0), "{per_pair:?}");
+    let contacts = sim.contacts() as f64;
+    let bound = (64.0 * contacts + 40.0 * 170.0) * f64::EPSILON * first.energy;
+    let drop = first.energy - last.energy;
+    assert!((drop - total).abs() <= bound, "{drop} {total} {bound}");
+    eprintln!(
+        "{contacts} contacts; lost per pair {per_pair:?}, lost_ball_ball at the last row {total}"
+    );
+}
