@@ -69,6 +69,7 @@ mod reference;
 mod residents;
 pub mod rough;
 pub mod run;
+pub mod self_diffusion;
 pub mod sequential;
 pub mod setup;
 pub mod smooth;
