@@ -1,6 +1,7 @@
 //! `noslip simulate --observables DT` on the shipped granular gas: the CSV's header with its
 //! units, one row per interval, the gas cooling, the mean square displacement, g(r) with
-//! --pair-correlation, the Parquet table equal to the CSV, and bad intervals, radii and laws
+//! --pair-correlation, the Parquet table equal to the CSV, the plots with their axes' units,
+//! the self-diffusion blocks, and bad intervals, radii, blocks and laws
 //! refused (exit 2, the option or the field named).
 
 mod support;
@@ -121,6 +122,44 @@ fn the_granular_gas_writes_its_observables() {
     // observables.svg: the temperatures against time, titled with the scene.
     let svg = std::fs::read_to_string(dir.join("observables.svg")).unwrap();
     assert!(svg.contains("granular3d.toml: granular temperatures"));
+    // The other observables' plots, each titled and its axes named with units (the pressure
+    // of a 3D box in M L^-1 T^-2).
+    for (file, texts) in [
+        (
+            "observables-pressure.svg",
+            &[
+                "granular3d.toml: pressure",
+                "time [T]",
+                "pressure [M L^-1 T^-2]",
+            ][..],
+        ),
+        (
+            "observables-a2.svg",
+            &["velocity cumulant a_2", "a_2 [1]", "Maxwellian (0)"][..],
+        ),
+        (
+            "observables-msd.svg",
+            &[
+                "mean square displacement [L^2]",
+                "msd_cm (about the centre of mass)",
+            ][..],
+        ),
+        (
+            "pair-correlation.svg",
+            &[
+                "granular3d.toml: pair correlation",
+                "r [L]",
+                "g(r) [1]",
+                "uncorrelated (1)",
+            ][..],
+        ),
+    ] {
+        let svg = std::fs::read_to_string(dir.join(file)).unwrap();
+        for text in texts {
+            assert!(svg.contains(text), "{file}: {text}");
+        }
+        assert!(!svg.contains("no finite values"), "{file}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -53,6 +53,7 @@ mod motion;
 mod nearest;
 pub mod no_contact;
 mod normal;
+pub mod observables_plot;
 mod observe;
 mod orientation;
 pub mod pair_correlation;

@@ -96,12 +96,13 @@ pub struct Args {
     /// Sample the granular-gas observables every DT of simulated time (translational and
     /// rotational temperatures, collision frequency, energy lost per contact kind) into
     /// --out as observables.csv, units in its header, and observables.parquet, units in its
-    /// metadata (docs/granular.md).
+    /// metadata, with plots: observables.svg (temperatures), observables-pressure.svg,
+    /// observables-a2.svg and observables-msd.svg (docs/granular.md).
     #[arg(long, value_name = "DT", allow_negative_numbers = true)]
     observables: Option<f64>,
     /// With --observables: also sample the pair correlation g(r) of the centres at every
     /// row, r in [0, R_MAX] (at most half the box's shortest side) in --pair-bins bins, and
-    /// write its average over the rows to --out as pair-correlation.csv and .parquet (a
+    /// write its average over the rows to --out as pair-correlation.csv, .parquet and .svg (a
     /// periodic box without obstacles or boundaries only; docs/granular.md).
     #[arg(
         long,
@@ -418,6 +419,17 @@ where
         )?;
         set.write("observables.svg", svg.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
+        use noslip_sim::observables_plot as plot;
+        let charts = [
+            ("observables-pressure.svg", plot::pressure_svg(&title, s)),
+            ("observables-a2.svg", plot::a2_svg(&title, s)),
+            ("observables-msd.svg", plot::msd_svg(&title, s)),
+        ];
+        for (name, svg) in charts {
+            let svg = staged(svg, name)?;
+            set.write(name, svg.as_bytes())
+                .map_err(|e| crate::exit::publish_failure(&e))?;
+        }
         if let Some(g) = s.pair_correlation() {
             set.write("pair-correlation.csv", g.csv().as_bytes())
                 .map_err(|e| crate::exit::publish_failure(&e))?;
@@ -425,6 +437,12 @@ where
                 Failure::output(format!("cannot write pair-correlation.parquet: {e}"))
             })?;
             set.write("pair-correlation.parquet", &table)
+                .map_err(|e| crate::exit::publish_failure(&e))?;
+            let svg = staged(
+                plot::pair_correlation_svg(&title, g),
+                "pair-correlation.svg",
+            )?;
+            set.write("pair-correlation.svg", svg.as_bytes())
                 .map_err(|e| crate::exit::publish_failure(&e))?;
         }
         if let Some(d) = s.self_diffusion() {
