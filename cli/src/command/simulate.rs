@@ -6,7 +6,7 @@ use crate::publish::Staging;
 use collision_core::Generated;
 use collision_core::Kernel;
 use indicatif::{ProgressBar, ProgressStyle};
-use noslip_columnar::events::{event_row, events_table};
+use noslip_columnar::events::{event_row, events_table, kick_rows};
 use noslip_columnar::{self as columnar, is_parquet};
 use noslip_scene::Scene;
 use noslip_sim::animation::Recorder;
@@ -272,7 +272,7 @@ where
         Some(p) => Some(open(p, &members[0])?),
         None => None,
     };
-    let mut events_parquet = match (&args.log, &mut log) {
+    let events_parquet = match (&args.log, &mut log) {
         (Some(p), log @ Some(_)) if is_parquet(p) => Some(
             events_table(log.take().expect("matched Some"), N)
                 .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
@@ -332,6 +332,8 @@ where
         .map(|_| Recorder::new(&sim, &species, &title));
     // The sampler is told of contacts (the observer) and of kicks (the kick observer).
     let sampler = std::cell::RefCell::new(sampler);
+    // So is the Parquet log (a kick's rows among the contacts').
+    let events_parquet = std::cell::RefCell::new(events_parquet);
     let (summary, trace) = run::run_watched(
         &mut sim,
         &species,
@@ -345,7 +347,7 @@ where
             if let Some(s) = sampler.borrow_mut().as_mut() {
                 s.contact(e, sim, &species);
             }
-            if let Some(table) = &mut events_parquet {
+            if let Some(table) = events_parquet.borrow_mut().as_mut() {
                 table.push(&event_row(index, e))?;
             }
             if let Some(row) = map
@@ -363,10 +365,16 @@ where
             if let Some(s) = sampler.borrow_mut().as_mut() {
                 s.kick(k);
             }
+            if let Some(table) = events_parquet.borrow_mut().as_mut() {
+                for row in kick_rows(k, S) {
+                    table.push(&row)?;
+                }
+            }
             Ok(())
         },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
+    let events_parquet = events_parquet.into_inner();
     let sampler = sampler.into_inner();
     if let Some(pb) = progress {
         pb.finish_and_clear();
