@@ -41,8 +41,9 @@ start) and writes to --out, published as one set (the whole directory is replace
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
 drift over events), with --observables DT observables.csv and observables.parquet (granular
 temperatures, collision frequency, pressure, a2 and energy lost per contact kind every DT,
-the same numbers; docs/granular.md) and observables.svg (the temperatures against time) and,
-in 2D,
+the same numbers; docs/granular.md), observables.svg (the temperatures against time) and
+observables-pressure.svg, -a2.svg, -msd.svg (with --pair-correlation also
+pair-correlation.csv, .parquet, .svg; with --self-diffusion self-diffusion.csv) and, in 2D,
 trajectories.svg (a few balls' paths, cut at periodic wraps
 and thinned, and the contact points). --log and --boundary-map belong to the set: a file
 directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
