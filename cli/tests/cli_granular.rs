@@ -1,6 +1,7 @@
 //! `noslip simulate --observables DT` on the shipped granular gas: the CSV's header with its
 //! units, one row per interval, the gas cooling, the mean square displacement, g(r) with
-//! --pair-correlation, the Parquet table equal to the CSV, and bad intervals, radii and laws
+//! --pair-correlation, the Parquet table equal to the CSV, the plots with their axes' units,
+//! the self-diffusion blocks, and bad intervals, radii, blocks and laws
 //! refused (exit 2, the option or the field named).
 
 mod support;
@@ -121,6 +122,106 @@ fn the_granular_gas_writes_its_observables() {
     // observables.svg: the temperatures against time, titled with the scene.
     let svg = std::fs::read_to_string(dir.join("observables.svg")).unwrap();
     assert!(svg.contains("granular3d.toml: granular temperatures"));
+    // The other observables' plots, each titled and its axes named with units (the pressure
+    // of a 3D box in M L^-1 T^-2).
+    for (file, texts) in [
+        (
+            "observables-pressure.svg",
+            &[
+                "granular3d.toml: pressure",
+                "time [T]",
+                "pressure [M L^-1 T^-2]",
+            ][..],
+        ),
+        (
+            "observables-a2.svg",
+            &["velocity cumulant a_2", "a_2 [1]", "Maxwellian (0)"][..],
+        ),
+        (
+            "observables-msd.svg",
+            &[
+                "mean square displacement [L^2]",
+                "msd_cm (about the centre of mass)",
+            ][..],
+        ),
+        (
+            "pair-correlation.svg",
+            &[
+                "granular3d.toml: pair correlation",
+                "r [L]",
+                "g(r) [1]",
+                "uncorrelated (1)",
+            ][..],
+        ),
+    ] {
+        let svg = std::fs::read_to_string(dir.join(file)).unwrap();
+        for text in texts {
+            assert!(svg.contains(text), "{file}: {text}");
+        }
+        assert!(!svg.contains("no finite values"), "{file}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--self-diffusion BLOCK`: blocks from the start's row on the grid of BLOCK, each ending at
+/// the first row at or after its nominal end and starting the next, written to
+/// self-diffusion.csv with units; the estimate on stdout is the blocks' mean.
+#[test]
+fn the_self_diffusion_blocks_are_written_with_units() {
+    let dir = temp("granular-diffusion");
+    let out = noslip()
+        .args([
+            "simulate",
+            "scenes/driven3d.toml",
+            "--time",
+            "12.5",
+            "--observables",
+            "0.25",
+            "--self-diffusion",
+            "3",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let csv = std::fs::read_to_string(dir.join("self-diffusion.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "block [1],start [T],end [T],D [L^2 T^-1]"
+    );
+    let blocks: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    // From t = 0: blocks ending at the first row at or after 3, 6, 9, 12 (rows at the first
+    // contact at or after each multiple of 0.25; the grid does not drift).
+    assert_eq!(blocks.len(), 4, "{csv}");
+    assert_eq!(blocks[0][1], 0.0, "{csv}");
+    for (k, b) in blocks.iter().enumerate() {
+        assert_eq!(b[0], k as f64);
+        let nominal = 3.0 * (k + 1) as f64;
+        assert!(b[2] >= nominal && b[2] < nominal + 0.25, "{csv}");
+        assert!(b[3] > 0.0, "{csv}");
+        if k > 0 {
+            assert_eq!(b[1], blocks[k - 1][2], "{csv}");
+        }
+    }
+    let mean = blocks.iter().map(|b| b[3]).sum::<f64>() / 4.0;
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("self-diffusion: D = "))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    let printed: f64 = line["self-diffusion: D = ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((printed - mean).abs() <= 1e-6 * mean, "{line} {mean}");
+    assert!(line.contains("[L^2 T^-1] (4 blocks of 3 from 0"), "{line}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -151,6 +252,32 @@ fn bad_intervals_and_laws_exit_2_naming_them() {
             "--quiet",
         ],
         "--pair-correlation: the pair correlation's r_max = 8 must be in (0, 7]",
+    );
+    refused(
+        &[
+            "simulate",
+            gas,
+            "--observables",
+            "1",
+            "--self-diffusion",
+            "3",
+            "--quiet",
+        ],
+        "--self-diffusion: the block (3) must be at least 4 sampling intervals (4)",
+    );
+    refused(
+        &[
+            "simulate",
+            gas,
+            "--observables",
+            "1",
+            "--self-diffusion",
+            "8",
+            "--self-diffusion-from",
+            "-1",
+            "--quiet",
+        ],
+        "--self-diffusion: the start must be at least 0 and finite, got -1",
     );
     let dir = temp("granular-bad");
     std::fs::create_dir_all(&dir).unwrap();

@@ -119,6 +119,83 @@ fn compare_log(lines: &str, parquet: &Path) -> usize {
     lines.len()
 }
 
+/// The log of a driven run, as JSON lines and as Parquet: each contact's line is its row (as
+/// [`compare_log`] checks), each kick's line `{"kick", "time", "velocities",
+/// "energy_injected"}` is `balls` rows in ball order, kind "kick", `ball_0` the ball, its
+/// velocity after the kick in `post_0_velocity_k` bit for bit, the kick's number in `kick`
+/// and its energy in `energy_injected` on the first row (null on the others), `event` null.
+/// Returns (contacts, kicks).
+fn compare_driven_log(lines: &str, parquet: &Path, balls: usize) -> (usize, usize) {
+    let (rows, meta) = read(parquet);
+    let units: Value = serde_json::from_str(&meta["noslip.units"]).unwrap();
+    assert_eq!(
+        units["kick"],
+        "1 (the thermostat's kick number, from 1; null on a contact's row)"
+    );
+    assert_eq!(units["energy_injected"], "M L^2 T^-2");
+    let field = |row: &Row, name: &str| row.iter().find(|c| c.0 == name).unwrap().1.clone();
+    let (mut at, mut contacts, mut kicks) = (0, 0, 0);
+    let (mut contact_lines, mut contact_rows) = (String::new(), Vec::new());
+    for line in lines.lines() {
+        let v: Value = serde_json::from_str(line).unwrap();
+        if v.get("kick").is_none() {
+            contact_lines.push_str(line);
+            contact_lines.push('\n');
+            contact_rows.push(rows[at].clone());
+            assert_eq!(field(&rows[at], "kick"), Field::Null);
+            assert_eq!(field(&rows[at], "energy_injected"), Field::Null);
+            at += 1;
+            contacts += 1;
+            continue;
+        }
+        kicks += 1;
+        let velocities = v["velocities"].as_array().unwrap();
+        assert_eq!(velocities.len(), balls);
+        for (i, u) in velocities.iter().enumerate() {
+            let row = &rows[at + i];
+            assert_eq!(field(row, "kind"), Field::Str("kick".into()));
+            assert_eq!(field(row, "event"), Field::Null);
+            assert_eq!(field(row, "ball_0"), Field::Long(i as i64));
+            assert_eq!(field(row, "kick"), Field::Long(v["kick"].as_i64().unwrap()));
+            let Field::Double(t) = field(row, "time") else {
+                panic!()
+            };
+            assert_eq!(t.to_bits(), float(&v["time"]).to_bits());
+            for (k, x) in u.as_array().unwrap().iter().enumerate() {
+                let Field::Double(y) = field(row, &format!("post_0_velocity_{k}")) else {
+                    panic!("{row:?}")
+                };
+                assert_eq!(y.to_bits(), float(x).to_bits(), "kick {kicks}, ball {i}");
+                assert!(matches!(
+                    field(row, &format!("pre_0_velocity_{k}")),
+                    Field::Double(_)
+                ));
+                assert_eq!(field(row, &format!("nu_{k}")), Field::Null);
+            }
+            let energy = field(row, "energy_injected");
+            match (i, energy) {
+                (0, Field::Double(e)) => {
+                    assert_eq!(e.to_bits(), float(&v["energy_injected"]).to_bits())
+                }
+                (0, other) => panic!("{other:?}"),
+                (_, other) => assert_eq!(other, Field::Null),
+            }
+        }
+        at += balls;
+    }
+    assert_eq!(at, rows.len());
+    // The contacts' rows equal their lines as for an undriven run.
+    for (row, line) in contact_rows.iter().zip(contact_lines.lines()) {
+        let line: Value = serde_json::from_str(line).unwrap();
+        for (name, f) in row {
+            if let (Field::Double(x), Some(v)) = (f, json_field(&line, name)) {
+                assert_eq!(x.to_bits(), float(&v).to_bits(), "{name} in {line}");
+            }
+        }
+    }
+    (contacts, kicks)
+}
+
 /// The boundary map as CSV and as Parquet agree in every column of every row.
 fn compare_map(csv: &str, parquet: &Path) -> usize {
     let (rows, meta) = read(parquet);
@@ -178,5 +255,32 @@ fn parquet_log_and_map_equal_the_text_ones_value_for_value() {
             assert!(dir.join("columns").join(member).is_file(), "{member}");
         }
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A driven run's Parquet log holds its kicks as the JSON lines log does, velocity for
+/// velocity (`compare_driven_log`): with the start, the contacts' `post` velocities and the
+/// kicks' rows replay every ball's velocity, as the JSON log does
+/// (`sim/tests/driven_observables.rs`, `a_driven_log_replays_every_velocity`).
+#[test]
+fn parquet_log_holds_the_kicks_as_the_json_log_does() {
+    let dir = temp("parquet-kicks");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (out, log) in [("text", "e.jsonl"), ("columns", "e.parquet")] {
+        run_ok(
+            noslip()
+                .args(["simulate", "scenes/driven3d.toml", "--quiet", "--time", "2"])
+                .arg("--out")
+                .arg(dir.join(out))
+                .arg("--log")
+                .arg(dir.join(log)),
+        );
+    }
+    let text = std::fs::read_to_string(dir.join("e.jsonl")).unwrap();
+    let (contacts, kicks) = compare_driven_log(&text, &dir.join("e.parquet"), 500);
+    // Kicks every 0.43 up to t = 2: at 0.43, 0.86, 1.29, 1.72.
+    assert_eq!(kicks, 4);
+    assert!(contacts > 100, "{contacts}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

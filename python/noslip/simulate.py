@@ -45,7 +45,13 @@ class SimulationResult:
         ``obstacle`` (E,) (-1 if none), ``boundary`` (E,) (the table's boundary, -1 if none), ``nu`` (E, n) (from the first ball to the other body), ``positions``
         (E, 2, n), and per slot the states before and after: ``pre_spin``, ``post_spin``
         (E, 2, n(n-1)/2) (the compact entries ``U_ij``, ``i < j``), ``pre_velocity``,
-        ``post_velocity`` (E, 2, n). A one-ball contact's second slot is NaN.
+        ``post_velocity`` (E, 2, n). A one-ball contact's second slot is NaN. A scene with
+        a ``[thermostat]`` adds its kicks (K of them, in time order; the log's kick lines):
+        ``kick`` (K,) (the kick's number, from 1), ``kick_time`` (K,),
+        ``kick_velocities`` (K, N_b, n) (every ball's velocity after the kick, in ball
+        order; spins are not kicked) and ``kick_energy_injected`` (K,), so that the start,
+        the contacts' ``post_velocity`` and the kicks replay every velocity (K = 0 without a
+        thermostat; ``3 (8 n N_b + 24)`` bytes a kick count against ``max_memory``).
     boundary_map : dict of ndarray
         The boundary map, one row per contact of a ball with an immovable body (box wall,
         obstacle, table boundary), under the columns of ``noslip simulate --boundary-map``'s
@@ -85,6 +91,13 @@ class SimulationResult:
         ``g(r)`` averaged over the observables' rows (``pair_correlation=R_MAX``), as
         ``noslip simulate --pair-correlation`` writes ``pair-correlation.csv``: ``r`` [L]
         (the bins' centres) and ``g``. Empty without ``pair_correlation``.
+    self_diffusion : dict
+        The self-diffusion coefficient from the mean square displacement about the centre of
+        mass in blocks of time (``self_diffusion=BLOCK``), as ``noslip simulate
+        --self-diffusion`` writes ``self-diffusion.csv``: per block ``start`` and ``end`` [T]
+        and ``D`` [L^2/T] (the slope of the block's msd over its second half over ``2 n``),
+        and the estimate ``mean`` [L^2/T] with its ``standard_error`` over the blocks
+        (floats; NaN with fewer than two blocks). Empty without ``self_diffusion``.
     """
 
     summary: dict[str, Any]
@@ -94,6 +107,7 @@ class SimulationResult:
     html: str | None = field(repr=False, default=None)
     observables: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
     pair_correlation: dict[str, npt.NDArray[Any]] = field(repr=False, default_factory=dict)
+    self_diffusion: dict[str, Any] = field(repr=False, default_factory=dict)
 
     def __repr__(self) -> str:
         s = self.summary
@@ -123,6 +137,8 @@ def simulate(
     observables: float | None = None,
     pair_correlation: float | None = None,
     pair_bins: int = 100,
+    self_diffusion: float | None = None,
+    self_diffusion_from: float = 0.0,
 ) -> SimulationResult:
     """Run a scene with the event-driven simulator of ``noslip simulate``.
 
@@ -170,6 +186,12 @@ def simulate(
         :attr:`SimulationResult.pair_correlation` (``docs/granular.md``).
     pair_bins : int
         The bins of ``pair_correlation`` (default 100).
+    self_diffusion : float, optional
+        Also estimate the self-diffusion coefficient in blocks of this much
+        simulated time (needs ``observables``; at least 4 of its intervals), each its own
+        time origin: :attr:`SimulationResult.self_diffusion` (``docs/granular.md``).
+    self_diffusion_from : float
+        The start of the first block (default 0: the start's row).
 
     Raises
     ------
@@ -192,6 +214,8 @@ def simulate(
         observables,
         pair_correlation,
         pair_bins,
+        self_diffusion,
+        self_diffusion_from,
     )
     summary = json.loads(out["summary"])
     energy = dict(out["energy"])
@@ -205,4 +229,5 @@ def simulate(
         html=out["html"],
         observables=dict(out["observables"]),
         pair_correlation=dict(out["pair_correlation"]),
+        self_diffusion=dict(out["self_diffusion"]),
     )

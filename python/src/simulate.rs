@@ -34,7 +34,12 @@ struct Run {
     observables: (Vec<(String, String)>, Vec<granular::Row>),
     /// `g(r)` averaged over the rows, `(r, g)` per bin (none without `pair_correlation`).
     pair_correlation: Vec<[f64; 2]>,
+    /// The self-diffusion blocks and the estimate (none without `self_diffusion`).
+    self_diffusion: Option<Diffusion>,
 }
+
+/// The self-diffusion blocks `(start, end, D_b)` and the estimate `(D, s_D)`.
+type Diffusion = (Vec<[f64; 3]>, (f64, f64));
 
 /// What a run keeps of each contact, and at most how many contacts' worth.
 #[derive(Clone, Copy)]
@@ -49,6 +54,8 @@ struct Keep {
     observables: Option<f64>,
     /// Sample `g(r)` up to this distance in this many bins at each row.
     pair_correlation: Option<(f64, usize)>,
+    /// Estimate the self-diffusion coefficient in blocks of this length from this time.
+    self_diffusion: Option<(f64, f64)>,
     /// The memory cap, in bytes, which the observables' rows share with the records.
     max_memory: u64,
     /// The bytes the records of a contact take ([`bytes_per_contact`]).
@@ -101,8 +108,18 @@ where
             .transpose()
             .map_err(|e| RunError::Input(format!("pair_correlation: {e}")))?;
     }
+    if let Some((block, from)) = keep.self_diffusion {
+        sampler = sampler
+            .map(|s| s.with_self_diffusion(block, from))
+            .transpose()
+            .map_err(|e| RunError::Input(format!("self_diffusion: {e}")))?;
+    }
     // The sampler is told of contacts (the observer) and of kicks (the kick observer).
     let sampler = std::cell::RefCell::new(sampler);
+    // The kicks kept in the log's columns, and the bytes each holds (every ball's velocity,
+    // counted three times like the records).
+    let kicked = std::cell::Cell::new(0u64);
+    let kick_bytes = 3 * (8 * N * sim.len() + 24) as u64;
     let (summary, trace) = run_watched(
         &mut sim,
         &species,
@@ -124,7 +141,9 @@ where
                 None => 0,
             };
             // `index * per_contact > max_memory` is `index > keep.contacts` (the quotient).
-            if index.saturating_mul(keep.per_contact) + samples * observable_bytes(species.len())
+            if index.saturating_mul(keep.per_contact)
+                + samples * observable_bytes(species.len())
+                + kicked.get() * kick_bytes
                 > keep.max_memory
             {
                 return Err(std::io::Error::other(CAPPED));
@@ -137,6 +156,9 @@ where
         &mut |k, _| {
             if let Some(s) = sampler.borrow_mut().as_mut() {
                 s.kick(k);
+            }
+            if keep.log {
+                kicked.set(kicked.get() + 1);
             }
             Ok(())
         },
@@ -157,6 +179,10 @@ where
             .as_ref()
             .and_then(|s| s.pair_correlation())
             .map_or_else(Vec::new, |g| g.g()),
+        self_diffusion: sampler.as_ref().and_then(|s| s.self_diffusion()).map(|d| {
+            let blocks = d.blocks().iter().map(|b| [b.start, b.end, b.d]).collect();
+            (blocks, d.estimate())
+        }),
         observables: sampler.map_or_else(Default::default, |s| (s.columns(), s.rows().to_vec())),
     })
 }
@@ -214,9 +240,11 @@ impl std::io::Write for LogColumns {
             if self.line.last() == Some(&b'\n') {
                 let e: Value = serde_json::from_slice(&self.line)
                     .map_err(|e| std::io::Error::other(format!("a log line: {e}")))?;
-                // A thermostat's kick (`run::kick_json`) is no contact: not a row of `events`.
+                // A thermostat's kick (`run::kick_json`) is no contact: its own arrays.
                 if e.get("kick").is_none() {
                     self.columns.push(&e, self.n, self.s);
+                } else {
+                    self.columns.push_kick(&e);
                 }
                 self.line.clear();
             }
@@ -265,6 +293,12 @@ struct Columns {
     pre_velocity: Vec<f64>,
     post_spin: Vec<f64>,
     post_velocity: Vec<f64>,
+    /// The thermostat's kicks: number, time, every ball's velocity after it (ball order),
+    /// energy injected.
+    kick: Vec<i64>,
+    kick_time: Vec<f64>,
+    kick_velocities: Vec<f64>,
+    kick_energy_injected: Vec<f64>,
 }
 
 fn numbers(v: &Value) -> Vec<f64> {
@@ -274,6 +308,19 @@ fn numbers(v: &Value) -> Vec<f64> {
 }
 
 impl Columns {
+    /// Append one kick's log line (`run::kick_json`).
+    fn push_kick(&mut self, e: &Value) {
+        self.kick.push(e["kick"].as_i64().unwrap_or(-1));
+        self.kick_time.push(e["time"].as_f64().unwrap_or(f64::NAN));
+        if let Some(v) = e["velocities"].as_array() {
+            for u in v {
+                self.kick_velocities.extend(numbers(u));
+            }
+        }
+        self.kick_energy_injected
+            .push(e["energy_injected"].as_f64().unwrap_or(f64::NAN));
+    }
+
     /// Append one log line; a one-ball contact's second slot is NaN (ball index -1).
     fn push(&mut self, e: &Value, n: usize, s: usize) {
         self.time.push(e["time"].as_f64().unwrap_or(f64::NAN));
@@ -395,7 +442,7 @@ fn time_of(t: f64) -> PyResult<f64> {
 /// animation page with ``html``, else None), ``observables`` (with ``observables`` the
 /// sampling interval, the rows' columns as arrays; else empty).
 #[pyfunction]
-#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false, observables=None, pair_correlation=None, pair_bins=None))]
+#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false, observables=None, pair_correlation=None, pair_bins=None, self_diffusion=None, self_diffusion_from=0.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -409,11 +456,19 @@ pub fn simulate<'py>(
     observables: Option<f64>,
     pair_correlation: Option<f64>,
     pair_bins: Option<Bound<'py, PyAny>>,
+    self_diffusion: Option<f64>,
+    self_diffusion_from: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let pair_bins = unsigned_opt(pair_bins.as_ref(), "pair_bins", 1, 1 << 20)?.unwrap_or(100);
     if pair_correlation.is_some() && observables.is_none() {
         return Err(input_error(
             "pair_correlation: g(r) is sampled at the observables' rows: give observables too",
+        ));
+    }
+    if self_diffusion.is_some() && observables.is_none() {
+        return Err(input_error(
+            "self_diffusion: the displacements are sampled at the observables' rows: give \
+             observables too",
         ));
     }
     if let Some(dt) = observables.filter(|dt| !(*dt > 0.0 && dt.is_finite())) {
@@ -446,6 +501,7 @@ pub fn simulate<'py>(
         contacts: max_memory.checked_div(per_contact).unwrap_or(u64::MAX),
         observables,
         pair_correlation: pair_correlation.map(|r| (r, pair_bins as usize)),
+        self_diffusion: self_diffusion.map(|b| (b, self_diffusion_from)),
         max_memory,
         per_contact,
     };
@@ -532,6 +588,18 @@ pub fn simulate<'py>(
         "post_velocity",
         array(py, cols.post_velocity, &[count, 2, n])?,
     )?;
+    let kicks = cols.kick.len();
+    let balls = done.summary.balls;
+    ev.set_item("kick", array(py, cols.kick, &[kicks])?)?;
+    ev.set_item("kick_time", array(py, cols.kick_time, &[kicks])?)?;
+    ev.set_item(
+        "kick_velocities",
+        array(py, cols.kick_velocities, &[kicks, balls, n])?,
+    )?;
+    ev.set_item(
+        "kick_energy_injected",
+        array(py, cols.kick_energy_injected, &[kicks])?,
+    )?;
     let (sample_events, drift): (Vec<u64>, Vec<f64>) = done.trace.energy.iter().copied().unzip();
     let samples = sample_events.len();
     let energy = PyDict::new(py);
@@ -567,5 +635,18 @@ pub fn simulate<'py>(
         )?,
     )?;
     out.set_item("pair_correlation", g)?;
+    let d = PyDict::new(py);
+    if let Some((blocks, (mean, se))) = done.self_diffusion {
+        let k = blocks.len();
+        for (c, name) in ["start", "end", "D"].into_iter().enumerate() {
+            d.set_item(
+                name,
+                array(py, blocks.iter().map(|b| b[c]).collect(), &[k])?,
+            )?;
+        }
+        d.set_item("mean", mean)?;
+        d.set_item("standard_error", se)?;
+    }
+    out.set_item("self_diffusion", d)?;
     Ok(out)
 }

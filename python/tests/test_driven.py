@@ -5,6 +5,7 @@ scene with a white-noise thermostat, its kicks counted and their energy in the s
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -114,3 +115,24 @@ def test_a_driven_log_keeps_the_contacts_as_its_events() -> None:
     assert run.summary["kicks"] == 40
     assert len(run.events["time"]) == run.summary["events"] > 0
     assert (np.diff(run.events["time"]) >= 0).all()
+    # The kicks have arrays of their own (the log's kick lines): numbered from 1, every 0.05,
+    # every ball's velocity after each.
+    ev = run.events
+    assert ev["kick"].tolist() == list(range(1, 41))
+    assert np.allclose(ev["kick_time"], 0.05 * ev["kick"], rtol=1e-12, atol=0)
+    assert ev["kick_velocities"].shape == (40, 100, 3)
+    assert ev["kick_energy_injected"].shape == (40,)
+    # Their energies add up to the summary's, in the same order (the same bits).
+    total = 0.0
+    for e in ev["kick_energy_injected"]:
+        total += float(e)
+    assert total == run.summary["energy_injected"]
+    # The total momentum (equal masses: the velocities' sum) is the same after every kick:
+    # the contacts and the kicks keep it, to rounding.
+    p = ev["kick_velocities"].sum(axis=1)
+    scale = np.abs(ev["kick_velocities"]).sum(axis=1).max()
+    assert np.abs(p - p[0]).max() <= 1e-12 * scale
+    # Without a thermostat, no kicks.
+    cooling = Path(__file__).resolve().parents[2] / "scenes" / "granular3d.toml"
+    calm = noslip.simulate(cooling, events=100, log=True).events
+    assert calm["kick"].shape == (0,) and calm["kick_velocities"].shape[0] == 0

@@ -123,3 +123,30 @@ def test_pair_correlation_equals_the_cli_csv(cli: Path, tmp_path: Path) -> None:
         noslip.simulate(scene, events=10, observables=0.5, pair_correlation=1e6)
     with pytest.raises(noslip.InputError, match="pair_correlation: .*give observables"):
         noslip.simulate(scene, events=10, pair_correlation=2)
+
+
+def test_self_diffusion_equals_the_cli_csv(cli: Path, tmp_path: Path) -> None:
+    """The self-diffusion blocks of the CLI's self-diffusion.csv, bit for bit, and the
+    estimate their mean and standard error; bad blocks and a missing interval named."""
+    scene = ROOT / "scenes" / "driven3d.toml"
+    out = tmp_path / "run"
+    run_cli(cli, "simulate", str(scene), "--quiet", "--time", "40", "--observables",
+            "0.5", "--self-diffusion", "8", "--self-diffusion-from", "4", "--out", str(out))
+    with open(out / "self-diffusion.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    assert rows[0] == ["block [1]", "start [T]", "end [T]", "D [L^2 T^-1]"]
+    text = np.array([[float(x) for x in r] for r in rows[1:]])
+    got = noslip.simulate(scene, time=40.0, observables=0.5, self_diffusion=8.0,
+                          self_diffusion_from=4.0).self_diffusion
+    # Blocks from the first row at or after 4 on the grid 4 + 8 k: four finished by t = 40.
+    assert got["D"].shape == (4,)
+    for k, name in enumerate(["start", "end", "D"], start=1):
+        assert np.array_equal(got[name].view(np.int64), text[:, k].view(np.int64)), name
+    assert got["mean"] == pytest.approx(np.mean(got["D"]), rel=1e-15)
+    assert got["standard_error"] == pytest.approx(np.std(got["D"], ddof=1) / 2.0, rel=1e-12)
+    assert np.all(got["start"][1:] == got["end"][:-1]) and got["start"][0] >= 4.0
+    with pytest.raises(noslip.InputError, match=r"self_diffusion: the block \(1\) must be"):
+        noslip.simulate(scene, time=5.0, observables=0.5, self_diffusion=1.0)
+    with pytest.raises(noslip.InputError, match="self_diffusion: .*give observables"):
+        noslip.simulate(scene, time=5.0, self_diffusion=8.0)
+    assert noslip.simulate(scene, time=1.0, observables=0.5).self_diffusion == {}

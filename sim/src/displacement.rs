@@ -73,6 +73,11 @@ impl Displacements {
         }
     }
 
+    /// The number of balls.
+    pub fn balls(&self) -> usize {
+        self.since.len()
+    }
+
     /// Adds the flights kick `k` ended: every ball's, at `k.time`, with its velocity before it.
     pub fn kick<const N: usize>(&mut self, k: &Kick<N>) {
         debug_assert_eq!(self.dim, N);
@@ -98,6 +103,27 @@ impl Displacements {
                 let dt = now - self.since[i];
                 std::array::from_fn(|k| self.flown[N * i + k] + u[k] * dt)
             })
+            .collect()
+    }
+
+    /// Each ball's displacement about the centre of mass's now, `d_i - D` (module docs), `N`
+    /// numbers a ball.
+    pub fn about_centre<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
+        &self,
+        sim: &Simulation<N, S, K>,
+        species: &[Ball<f64>],
+    ) -> Vec<f64> {
+        let d = self.now(sim);
+        let (mut mass, mut centre) = (0.0, [0.0; N]);
+        for (i, di) in d.iter().enumerate() {
+            let m = 1.0 / species[sim.species_of(i)].inv_mass;
+            mass += m;
+            for (c, x) in centre.iter_mut().zip(di) {
+                *c += m * x;
+            }
+        }
+        d.iter()
+            .flat_map(|di| std::array::from_fn::<f64, N, _>(|k| di[k] - centre[k] / mass))
             .collect()
     }
 

@@ -5,7 +5,8 @@
 //! velocity distribution's cumulant `a_2` and the mean square displacement (of the balls'
 //! unwrapped displacements, also about the centre of mass: [`crate::displacement`]), written
 //! as CSV with the units in the header; on request the pair correlation `g(r)`
-//! ([`Sampler::with_pair_correlation`], [`crate::pair_correlation`]).
+//! ([`Sampler::with_pair_correlation`], [`crate::pair_correlation`]) and the self-diffusion
+//! coefficient ([`Sampler::with_self_diffusion`], [`crate::self_diffusion`]).
 //!
 //! With `N_b` balls in R^n, `S = n(n-1)/2`, masses `m_i` and moments of inertia `I_i = 2 m_i
 //! lambda_i` (the project's convention: a ball's kinetic energy is `1/2 m |u|^2 + 1/2 I
@@ -55,6 +56,7 @@
 use crate::displacement::Displacements;
 use crate::observe::energy_of;
 use crate::pair_correlation::PairCorrelation;
+use crate::self_diffusion::SelfDiffusion;
 use crate::thermostat::Kick;
 use crate::{Contact, Event, PairKernels, Simulation};
 use collision_core::Ball;
@@ -262,6 +264,7 @@ pub struct Sampler {
     /// The box's sides: its volume, and the cells of [`Sampler::with_pair_correlation`].
     sides: Vec<f64>,
     pair_correlation: Option<PairCorrelation>,
+    self_diffusion: Option<SelfDiffusion>,
     rows: Vec<Row>,
 }
 
@@ -290,6 +293,7 @@ impl Sampler {
             displacements: Displacements::start(sim),
             sides: sim.box_size().to_vec(),
             pair_correlation: None,
+            self_diffusion: None,
             rows: Vec::new(),
         };
         s.row(sim, species);
@@ -339,6 +343,9 @@ impl Sampler {
         let squares = self.displacements.mean_squares(sim, species);
         if let Some(g) = &mut self.pair_correlation {
             g.sample(sim);
+        }
+        if let Some(d) = &mut self.self_diffusion {
+            d.sample(time, &self.displacements.about_centre(sim, species));
         }
         let (t0, c0) = self.last;
         let first = self.rows.is_empty();
@@ -404,6 +411,36 @@ impl Sampler {
         }
         self.pair_correlation = Some(PairCorrelation::new(r_max, bins, &self.sides)?);
         Ok(self)
+    }
+
+    /// Estimates the self-diffusion coefficient from the rows' displacements in blocks of
+    /// `block` of simulated time from the first row at or after `from` (the start's row too,
+    /// when called right after [`Sampler::start`])
+    /// ([`crate::self_diffusion`]); any box (the displacements are unwrapped and taken about
+    /// the centre of mass).
+    pub fn with_self_diffusion(mut self, block: f64, from: f64) -> Result<Sampler, String> {
+        if block < 4.0 * self.every {
+            return Err(format!(
+                "the block ({block}) must be at least 4 sampling intervals ({}): its second \
+                 half is fitted",
+                4.0 * self.every
+            ));
+        }
+        let mut d = SelfDiffusion::new(self.dim, block, from)?;
+        // The start's row, taken before: every displacement is zero there.
+        if let [start] = self.rows.as_slice() {
+            d.sample(
+                start.time,
+                &vec![0.0; self.dim * self.displacements.balls()],
+            );
+        }
+        self.self_diffusion = Some(d);
+        Ok(self)
+    }
+
+    /// The self-diffusion blocks so far, if asked for ([`Sampler::with_self_diffusion`]).
+    pub fn self_diffusion(&self) -> Option<&SelfDiffusion> {
+        self.self_diffusion.as_ref()
     }
 
     /// The box's volume when it is periodic (`periodic`), else `None` (the pressure is `NaN`).

@@ -8,7 +8,6 @@
 mod common;
 use common::{ball_volume, contact_chi, mean_se, periodic_gas, rows, T_5};
 use noslip_sim::granular::Row;
-use std::f64::consts::PI;
 
 /// `count` balls of diameter 1 at packing fraction `phi` (2D or 3D) in a periodic cube, a
 /// Maxwellian start (`{seed}` to be replaced), and the cube's side.
@@ -248,60 +247,6 @@ fn slope(x: &[f64], y: &[f64]) -> f64 {
     let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
     let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
     sxy / sxx
-}
-
-/// Self-diffusion in a dilute elastic gas of smooth hard spheres: `msd_cm` grows as `6 D t`
-/// once the velocities have forgotten their start, with the Enskog coefficient (Chapman &
-/// Cowling ch. 10 and 16; the first Sonine approximation of the Boltzmann equation's
-/// `[D]_1 = 3 / (8 rho sigma^2) sqrt(T / (pi m))`, divided by the contact value `chi` of the
-/// pair correlation)
-///
-/// ```text
-/// D = 1.01896 * 3 / (8 rho sigma^2 chi) sqrt(T / (pi m)),   chi = (1 - phi/2) / (1 - phi)^3,
-/// ```
-///
-/// the factor `1.01896` the converged Sonine expansion for hard spheres over its first term
-/// (`1 + 1/56` at the second, Hirschfelder, Curtiss & Bird eq. 8.2-44 with `A* = C* = 1`).
-/// The slope is fitted over `t` in `[8, 30] tau_v`, `tau_v = m D / T` the velocity's
-/// correlation time (about 1.5 collision times): its start is forgotten to `e^-8`. One run's
-/// `D` has a relative error of about `sqrt(2 / (n N_b))` however long it runs (one time
-/// origin per ball): hence many balls. Not in the
-/// theory: the ring collisions (velocity correlations beyond Enskog's, the `t^-3/2` tail), a
-/// relative correction of order `phi` that molecular dynamics finds below 1 % of `D` at `phi <
-/// 0.04` (Alder, Gass & Wainwright 1970), allowed for beside `t s`; the momentum conservation
-/// of `N_b` balls (`1/N_b`, 0.1 %).
-#[test]
-fn self_diffusion_of_a_dilute_smooth_gas_is_enskogs() {
-    let (count, phi, t) = (16000usize, 0.03f64, 1.0);
-    let side = (count as f64 * ball_volume(3) / phi).cbrt();
-    let gas = periodic_gas(
-        3,
-        side,
-        count,
-        "[contact]\nballs = \"smooth\"\n[random]\nseed = {seed}\nvelocities = \"maxwellian\"\n",
-    );
-    let rho = count as f64 / side.powi(3);
-    let chi = contact_chi(3, phi);
-    let enskog = |t: f64| 1.01896 * 3.0 / (8.0 * rho * chi) * (t / PI).sqrt();
-    let tau_v = enskog(t) / t;
-    let d: Vec<f64> = (0..6)
-        .map(|seed| {
-            let s = sampler(&gas, seed, tau_v / 2.0, 30.0 * tau_v, None);
-            let late: Vec<&Row> = s.rows().iter().filter(|r| r.time >= 8.0 * tau_v).collect();
-            assert!(late.len() >= 40, "{}", late.len());
-            let x: Vec<f64> = late.iter().map(|r| r.time).collect();
-            let y: Vec<f64> = late.iter().map(|r| r.msd_cm).collect();
-            let temperature = late.iter().map(|r| r.t_tr).sum::<f64>() / late.len() as f64;
-            // The lab frame's msd is msd_cm plus the centre of mass's |D|^2 (equal masses).
-            let r = late.last().unwrap();
-            assert!(r.msd >= r.msd_cm);
-            slope(&x, &y) / 6.0 / enskog(temperature)
-        })
-        .collect();
-    let (mean, se) = mean_se(&d);
-    eprintln!("3D phi = {phi}: D / D_Enskog = {mean:.4} +- {se:.4} (6 seeds)");
-    assert!(se < 0.005, "too noisy to test: {d:?}");
-    assert!((mean - 1.0).abs() < T_5 * se + 0.01, "{d:?}");
 }
 
 /// The pair correlation of an elastic gas at equilibrium (the hard-ball fluid's positions):

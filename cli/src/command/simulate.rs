@@ -6,7 +6,7 @@ use crate::publish::Staging;
 use collision_core::Generated;
 use collision_core::Kernel;
 use indicatif::{ProgressBar, ProgressStyle};
-use noslip_columnar::events::{event_row, events_table};
+use noslip_columnar::events::{event_row, events_table, kick_rows};
 use noslip_columnar::{self as columnar, is_parquet};
 use noslip_scene::Scene;
 use noslip_sim::animation::Recorder;
@@ -41,8 +41,9 @@ start) and writes to --out, published as one set (the whole directory is replace
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
 drift over events), with --observables DT observables.csv and observables.parquet (granular
 temperatures, collision frequency, pressure, a2 and energy lost per contact kind every DT,
-the same numbers; docs/granular.md) and observables.svg (the temperatures against time) and,
-in 2D,
+the same numbers; docs/granular.md), observables.svg (the temperatures against time) and
+observables-pressure.svg, -a2.svg, -msd.svg (with --pair-correlation also
+pair-correlation.csv, .parquet, .svg; with --self-diffusion self-diffusion.csv) and, in 2D,
 trajectories.svg (a few balls' paths, cut at periodic wraps
 and thinned, and the contact points). --log and --boundary-map belong to the set: a file
 directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
@@ -96,12 +97,13 @@ pub struct Args {
     /// Sample the granular-gas observables every DT of simulated time (translational and
     /// rotational temperatures, collision frequency, energy lost per contact kind) into
     /// --out as observables.csv, units in its header, and observables.parquet, units in its
-    /// metadata (docs/granular.md).
+    /// metadata, with plots: observables.svg (temperatures), observables-pressure.svg,
+    /// observables-a2.svg and observables-msd.svg (docs/granular.md).
     #[arg(long, value_name = "DT", allow_negative_numbers = true)]
     observables: Option<f64>,
     /// With --observables: also sample the pair correlation g(r) of the centres at every
     /// row, r in [0, R_MAX] (at most half the box's shortest side) in --pair-bins bins, and
-    /// write its average over the rows to --out as pair-correlation.csv and .parquet (a
+    /// write its average over the rows to --out as pair-correlation.csv, .parquet and .svg (a
     /// periodic box without obstacles or boundaries only; docs/granular.md).
     #[arg(
         long,
@@ -118,6 +120,27 @@ pub struct Args {
         requires = "pair_correlation"
     )]
     pair_bins: usize,
+    /// With --observables: estimate the self-diffusion coefficient D from the mean square
+    /// displacement about the centre of mass, in blocks of BLOCK of simulated time
+    /// (each its own time origin; D_b the slope over the block's second half / 2n; at least 4
+    /// sampling intervals), writing the blocks to --out as self-diffusion.csv and D with its
+    /// standard error over the blocks on stdout (docs/granular.md).
+    #[arg(
+        long,
+        value_name = "BLOCK",
+        requires = "observables",
+        allow_negative_numbers = true
+    )]
+    self_diffusion: Option<f64>,
+    /// The start of --self-diffusion's first block (the first row at or after it).
+    #[arg(
+        long,
+        value_name = "T0",
+        default_value_t = 0.0,
+        requires = "self_diffusion",
+        allow_negative_numbers = true
+    )]
+    self_diffusion_from: f64,
     /// Directory for summary.json and the SVG pictures (default out/simulate/SCENE).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -201,6 +224,12 @@ where
             .transpose()
             .map_err(|e| Failure::bad_input(format!("--pair-correlation: {e}")))?;
     }
+    if let Some(block) = args.self_diffusion {
+        sampler = sampler
+            .map(|s| s.with_self_diffusion(block, args.self_diffusion_from))
+            .transpose()
+            .map_err(|e| Failure::bad_input(format!("--self-diffusion: {e}")))?;
+    }
     let mut events = args.events.or(scene.simulation.events);
     let time = args.time.or(scene.simulation.time.as_ref().map(f));
     if events.is_none() && time.is_none() {
@@ -244,7 +273,7 @@ where
         Some(p) => Some(open(p, &members[0])?),
         None => None,
     };
-    let mut events_parquet = match (&args.log, &mut log) {
+    let events_parquet = match (&args.log, &mut log) {
         (Some(p), log @ Some(_)) if is_parquet(p) => Some(
             events_table(log.take().expect("matched Some"), N)
                 .map_err(|e| Failure::output(format!("cannot write {}: {e}", p.display())))?,
@@ -304,6 +333,8 @@ where
         .map(|_| Recorder::new(&sim, &species, &title));
     // The sampler is told of contacts (the observer) and of kicks (the kick observer).
     let sampler = std::cell::RefCell::new(sampler);
+    // So is the Parquet log (a kick's rows among the contacts').
+    let events_parquet = std::cell::RefCell::new(events_parquet);
     let (summary, trace) = run::run_watched(
         &mut sim,
         &species,
@@ -317,7 +348,7 @@ where
             if let Some(s) = sampler.borrow_mut().as_mut() {
                 s.contact(e, sim, &species);
             }
-            if let Some(table) = &mut events_parquet {
+            if let Some(table) = events_parquet.borrow_mut().as_mut() {
                 table.push(&event_row(index, e))?;
             }
             if let Some(row) = map
@@ -335,10 +366,16 @@ where
             if let Some(s) = sampler.borrow_mut().as_mut() {
                 s.kick(k);
             }
+            if let Some(table) = events_parquet.borrow_mut().as_mut() {
+                for row in kick_rows(k, S) {
+                    table.push(&row)?;
+                }
+            }
             Ok(())
         },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
+    let events_parquet = events_parquet.into_inner();
     let sampler = sampler.into_inner();
     if let Some(pb) = progress {
         pb.finish_and_clear();
@@ -391,6 +428,17 @@ where
         )?;
         set.write("observables.svg", svg.as_bytes())
             .map_err(|e| crate::exit::publish_failure(&e))?;
+        use noslip_sim::observables_plot as plot;
+        let charts = [
+            ("observables-pressure.svg", plot::pressure_svg(&title, s)),
+            ("observables-a2.svg", plot::a2_svg(&title, s)),
+            ("observables-msd.svg", plot::msd_svg(&title, s)),
+        ];
+        for (name, svg) in charts {
+            let svg = staged(svg, name)?;
+            set.write(name, svg.as_bytes())
+                .map_err(|e| crate::exit::publish_failure(&e))?;
+        }
         if let Some(g) = s.pair_correlation() {
             set.write("pair-correlation.csv", g.csv().as_bytes())
                 .map_err(|e| crate::exit::publish_failure(&e))?;
@@ -398,6 +446,16 @@ where
                 Failure::output(format!("cannot write pair-correlation.parquet: {e}"))
             })?;
             set.write("pair-correlation.parquet", &table)
+                .map_err(|e| crate::exit::publish_failure(&e))?;
+            let svg = staged(
+                plot::pair_correlation_svg(&title, g),
+                "pair-correlation.svg",
+            )?;
+            set.write("pair-correlation.svg", svg.as_bytes())
+                .map_err(|e| crate::exit::publish_failure(&e))?;
+        }
+        if let Some(d) = s.self_diffusion() {
+            set.write("self-diffusion.csv", d.csv().as_bytes())
                 .map_err(|e| crate::exit::publish_failure(&e))?;
         }
     }
@@ -440,6 +498,15 @@ where
     }
     set.commit().map_err(|e| crate::exit::publish_failure(&e))?;
     print_summary(&summary)?;
+    if let Some(d) = sampler.as_ref().and_then(|s| s.self_diffusion()) {
+        let (mean, se) = d.estimate();
+        outln!(
+            "self-diffusion: D = {mean:.6e} +- {se:.2e} [L^2 T^-1] ({} blocks of {} from {}; blocks in self-diffusion.csv)",
+            d.blocks().len(),
+            d.block(),
+            d.from()
+        )?;
+    }
     outln!("wrote {}", out.display())?;
     log_failed.or(map_failed).map_or(Ok(()), Err)
 }

@@ -21,7 +21,7 @@ pub(super) fn same_dir(dir: Option<&Path>, out: &Path) -> bool {
 }
 
 /// Files of every simulate set; a side output may not take their names.
-pub(super) const SET_FILES: [&str; 9] = [
+pub(super) const SET_FILES: [&str; 14] = [
     crate::publish::MARKER,
     "summary.json",
     "energy.svg",
@@ -31,6 +31,11 @@ pub(super) const SET_FILES: [&str; 9] = [
     "observables.svg",
     "pair-correlation.csv",
     "pair-correlation.parquet",
+    "self-diffusion.csv",
+    "observables-pressure.svg",
+    "observables-a2.svg",
+    "observables-msd.svg",
+    "pair-correlation.svg",
 ];
 
 /// The member of the set that `--log` and `--boundary-map` become: the file's own name
