@@ -209,6 +209,28 @@ mod tests {
 
     const ROUGH: ContactKind = ContactKind::Rough { e: 0.5, beta: 0.25 };
 
+    /// The three kernels of a test's `PairKernels`, each returning its marker.
+    macro_rules! marker_kernels {
+        () => {
+            fn ball_ball(
+                &self,
+                _: usize,
+                _: usize,
+                _: &[f64; 2],
+                _: &State2<f64>,
+                _: &State2<f64>,
+            ) -> [State2<f64>; 2] {
+                [marker(1.0), marker(1.0)]
+            }
+            fn ball_wall(&self, _: usize, _: usize, _: bool, _: &State2<f64>) -> State2<f64> {
+                marker(2.0)
+            }
+            fn ball_obstacle(&self, _: usize, _: &[f64; 2], _: &State2<f64>) -> State2<f64> {
+                marker(3.0)
+            }
+        };
+    }
+
     impl PairKernels<f64, 2, 1> for Marked {
         fn laws(&self) -> FoldedLaws {
             FoldedLaws {
@@ -217,22 +239,7 @@ mod tests {
                 fixed: Some(ROUGH),
             }
         }
-        fn ball_ball(
-            &self,
-            _: usize,
-            _: usize,
-            _: &[f64; 2],
-            _: &State2<f64>,
-            _: &State2<f64>,
-        ) -> [State2<f64>; 2] {
-            [marker(1.0), marker(1.0)]
-        }
-        fn ball_wall(&self, _: usize, _: usize, _: bool, _: &State2<f64>) -> State2<f64> {
-            marker(2.0)
-        }
-        fn ball_obstacle(&self, _: usize, _: &[f64; 2], _: &State2<f64>) -> State2<f64> {
-            marker(3.0)
-        }
+        marker_kernels!();
     }
 
     /// The engines call a kernel for the law it folds, and the generic kernels of every
@@ -314,22 +321,7 @@ mod tests {
                 _ => None,
             }
         }
-        fn ball_ball(
-            &self,
-            _: usize,
-            _: usize,
-            _: &[f64; 2],
-            _: &State2<f64>,
-            _: &State2<f64>,
-        ) -> [State2<f64>; 2] {
-            [marker(1.0), marker(1.0)]
-        }
-        fn ball_wall(&self, _: usize, _: usize, _: bool, _: &State2<f64>) -> State2<f64> {
-            marker(2.0)
-        }
-        fn ball_obstacle(&self, _: usize, _: &[f64; 2], _: &State2<f64>) -> State2<f64> {
-            marker(3.0)
-        }
+        marker_kernels!();
     }
 
     #[test]
