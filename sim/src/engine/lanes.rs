@@ -99,7 +99,7 @@ impl<const N: usize> Gathered<N> {
     }
 
     /// Starts a shifted scan ([`Self::shifted`]) and gathers the places of the cells of
-    /// `walk` (a cell at the grid's edge: [`crate::cells::Near::walk`]) with their images
+    /// `walk` (a cell at the grid's edge: [`crate::cells::Near::listing`]) with their images
     /// `s + W_i` (`s` the cell's shift, `w_i` the scanning ball's wraps): per cell, four
     /// places and codes whatever its length, as in
     /// [`crate::residents::Residents::gather_cells`], in one loop with the odometer's
@@ -120,9 +120,10 @@ impl<const N: usize> Gathered<N> {
         loop {
             let cell: usize = (0..N).map(|k| walk.part[k][at[k]]).sum();
             let code = self.bases.len() as u16;
-            self.bases.push(std::array::from_fn(|k| {
-                f64::from(walk.shifts[k][at[k]]) + f64::from(w_i[k])
-            }));
+            self.bases.push(cell_image(
+                &std::array::from_fn(|k| walk.shifts[k][at[k]]),
+                w_i,
+            ));
             let (start, len) = residents.span(cell);
             let need = count + len.max(LANES);
             if self.places.len() < need {
@@ -321,6 +322,13 @@ pub(super) fn pair_times<const N: usize>(
         };
         t_ref[l] + t
     })
+}
+
+/// A neighbour cell's image in the scanning ball's record coordinates, `s + W_i` (whole
+/// numbers, exact in `f64`).
+#[inline(always)]
+pub(super) fn cell_image<const N: usize>(shift: &[i8; N], wraps: &[i16; N]) -> [f64; N] {
+    std::array::from_fn(|k| f64::from(shift[k]) + f64::from(wraps[k]))
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! table's boundaries, the box walls and its cell's faces, every contact time canonical
 //! ([`crate::canonical`]); and the cell crossings, which move no record.
 
-use super::lanes::{Flight, Gathered, LANES};
+use super::lanes::{cell_image, Flight, Gathered, LANES};
 use super::record::key_of;
 use super::Simulation;
 use crate::canonical::{self, obstacle_time, pair_time};
@@ -343,11 +343,4 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         }
     }
-}
-
-/// A neighbour cell's image in the scanning ball's record coordinates, `s + W_i` (whole
-/// numbers, exact in `f64`).
-#[inline]
-fn cell_image<const N: usize>(shift: &[i8; N], wraps: &[i16; N]) -> [f64; N] {
-    std::array::from_fn(|k| f64::from(shift[k]) + f64::from(wraps[k]))
 }
