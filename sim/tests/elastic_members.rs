@@ -8,12 +8,13 @@
 //! `-1.0`) directly, past that naming, so that the rough maps themselves run (the path a law
 //! that only rounds to `(1, +-1)` takes) and must give the no-slip and smooth maps' bits.
 
+mod common;
+
 use collision_core::{Generated, Kernel};
 use noslip_scene::Scene;
-use noslip_sim::run::{run, Limits};
 use noslip_sim::setup::setup;
 use noslip_sim::table::ContactKind;
-use noslip_sim::{GenericKernels, Setup, Simulation};
+use noslip_sim::Setup;
 use std::path::Path;
 
 /// The shipped scene `name` with `law` written at every place `places` lists: each entry is
@@ -46,29 +47,6 @@ fn set_law<const N: usize, const S: usize>(setup: &mut Setup<N, S>, law: Contact
     setup.table.obstacle_contact = vec![law; obstacles];
 }
 
-/// The event log of `events` contacts of `setup` on the generic kernels, and the number of
-/// contacts.
-fn log_of<const N: usize, const S: usize>(setup: Setup<N, S>, events: u64) -> (Vec<u8>, u64)
-where
-    Generated: Kernel<f64, N, S>,
-{
-    let species = setup.species.clone();
-    let kernels = GenericKernels {
-        species: species.clone(),
-    };
-    let mut sim = Simulation::new(setup, kernels).unwrap();
-    let limits = Limits {
-        events: Some(events),
-        time: None,
-        samples: 10,
-        traced: 0,
-        contact_points: 0,
-    };
-    let mut log = Vec::new();
-    let (summary, _) = run(&mut sim, &species, &limits, Some(&mut log), &mut |_| {}).unwrap();
-    (log, summary.events)
-}
-
 /// The scene comparison and the simulator-level one for the shipped scene `name`.
 /// `kinds`: the contact kinds the log must hold (so that each law written is exercised).
 fn same_bits<const N: usize, const S: usize>(
@@ -87,7 +65,7 @@ fn same_bits<const N: usize, const S: usize>(
     ] {
         let named_scene = with_law(name, after, balls, named);
         let member_scene = with_law(name, after, balls, member);
-        let (reference, contacts) = log_of(setup::<N, S>(&named_scene).unwrap(), events);
+        let (reference, contacts) = common::log_of(setup::<N, S>(&named_scene).unwrap(), events);
         assert_eq!(contacts, events, "{name}: the run has {events} contacts");
         let lines = reference.iter().filter(|&&b| b == b'\n').count() as u64;
         assert!(
@@ -102,7 +80,7 @@ fn same_bits<const N: usize, const S: usize>(
                 "{name}: no {kind} contact in the log"
             );
         }
-        let (log, _) = log_of(setup::<N, S>(&member_scene).unwrap(), events);
+        let (log, _) = common::log_of(setup::<N, S>(&member_scene).unwrap(), events);
         assert!(
             log == reference,
             "{name}: {member} and {named} write different logs"
@@ -110,7 +88,7 @@ fn same_bits<const N: usize, const S: usize>(
         // Past the scene's naming: the rough maps at (1, beta).
         let mut rough = setup::<N, S>(&named_scene).unwrap();
         set_law(&mut rough, ContactKind::Rough { e: 1.0, beta });
-        let (log, _) = log_of(rough, events);
+        let (log, _) = common::log_of(rough, events);
         let first = log.iter().zip(&reference).position(|(a, b)| a != b);
         assert!(
             log == reference,

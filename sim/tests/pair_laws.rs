@@ -8,9 +8,10 @@
 //!   they were, with that pair's `(e, beta)` (first principles, `docs/derivation.md` §15),
 //!   and each pair kind occurs.
 
+mod common;
+
 use collision_core::BodyState;
 use noslip_scene::Scene;
-use noslip_sim::run::{run, Limits};
 use noslip_sim::setup::setup;
 use noslip_sim::{Contact, GenericKernels, Setup, Simulation, Step};
 use std::path::Path;
@@ -34,23 +35,11 @@ fn scene(text: &str) -> Scene {
     Scene::from_toml(text, "mixture.toml").unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// The event log of the first `events` contacts of `setup` (generic kernels).
+/// The event log of the first `events` contacts of `setup` (generic kernels,
+/// `common::log_of`), which must run them all.
 fn log_of(setup: Setup<2, 1>, events: u64) -> Vec<u8> {
-    let species = setup.species.clone();
-    let kernels = GenericKernels {
-        species: species.clone(),
-    };
-    let mut sim = Simulation::new(setup, kernels).unwrap();
-    let limits = Limits {
-        events: Some(events),
-        time: None,
-        samples: 10,
-        traced: 0,
-        contact_points: 0,
-    };
-    let mut log = Vec::new();
-    let (summary, _) = run(&mut sim, &species, &limits, Some(&mut log), &mut |_| {}).unwrap();
-    assert_eq!(summary.events, events);
+    let (log, contacts) = common::log_of(setup, events);
+    assert_eq!(contacts, events);
     log
 }
 

@@ -1,5 +1,5 @@
-//! Shared by the granular-gas tests (`granular.rs`, `boltzmann.rs`, `observables.rs`): the
-//! statistics of six seeds, runs of a gas sampled by `noslip_sim::granular::Sampler`, and the
+//! Shared by the sim crate's tests (`granular.rs`, `boltzmann.rs`, `observables.rs`, the elastic-member and
+//! pair-law log comparisons, ...): the statistics of six seeds, runs of a gas sampled by `noslip_sim::granular::Sampler`, an event log of a setup, and the
 //! two-temperature theory of the homogeneous cooling state (docs/granular.md).
 // Each test crate compiles this module and uses part of it.
 #![allow(dead_code)]
@@ -7,8 +7,9 @@
 use collision_core::{Generated, Kernel};
 use noslip_scene::Scene;
 use noslip_sim::granular::{Row, Sampler};
+use noslip_sim::run::Limits;
 use noslip_sim::setup::setup;
-use noslip_sim::{GenericKernels, Simulation, Step};
+use noslip_sim::{GenericKernels, Setup, Simulation, Step};
 use std::f64::consts::PI;
 
 pub mod cooling;
@@ -178,4 +179,28 @@ impl TwoTemperature {
         let target = eps * p / (p - m + eps * p);
         (delta0 / target).ln().max(0.0) / self.rate()
     }
+}
+
+/// The event log of `events` contacts of `setup` on the generic kernels, and the number of
+/// contacts.
+pub fn log_of<const N: usize, const S: usize>(setup: Setup<N, S>, events: u64) -> (Vec<u8>, u64)
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let species = setup.species.clone();
+    let kernels = GenericKernels {
+        species: species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let limits = Limits {
+        events: Some(events),
+        time: None,
+        samples: 10,
+        traced: 0,
+        contact_points: 0,
+    };
+    let mut log = Vec::new();
+    let (summary, _) =
+        noslip_sim::run::run(&mut sim, &species, &limits, Some(&mut log), &mut |_| {}).unwrap();
+    (log, summary.events)
 }
