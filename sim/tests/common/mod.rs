@@ -1,5 +1,6 @@
-//! Shared by the sim crate's tests (`granular.rs`, `boltzmann.rs`, `observables.rs`, the elastic-member and
-//! pair-law log comparisons, ...): the statistics of six seeds, runs of a gas sampled by `noslip_sim::granular::Sampler`, an event log of a setup, and the
+//! Shared by the sim crate's tests (`granular.rs`, `boltzmann.rs`, `observables.rs`, the
+//! elastic-member and pair-law log comparisons, ...): the statistics of six seeds, runs of a
+//! gas sampled by `noslip_sim::granular::Sampler`, an event log of a setup, and the
 //! two-temperature theory of the homogeneous cooling state (docs/granular.md).
 // Each test crate compiles this module and uses part of it.
 #![allow(dead_code)]
