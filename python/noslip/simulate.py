@@ -95,7 +95,7 @@ class SimulationResult:
         The self-diffusion coefficient from the mean square displacement about the centre of
         mass in blocks of time (``self_diffusion=BLOCK``), as ``noslip simulate
         --self-diffusion`` writes ``self-diffusion.csv``: per block ``start`` and ``end`` [T]
-        and ``D`` [L^2/T] (the slope of the block's msd over its second half over ``2 n``),
+        and ``D`` [L^2/T] (the slope of the block's msd over its last four fifths over ``2 n``),
         and the estimate ``mean`` [L^2/T] with its ``standard_error`` over the blocks
         (floats; NaN with fewer than two blocks). Empty without ``self_diffusion``.
     """

@@ -122,7 +122,7 @@ pub struct Args {
     pair_bins: usize,
     /// With --observables: estimate the self-diffusion coefficient D from the mean square
     /// displacement about the centre of mass, in blocks of BLOCK of simulated time
-    /// (each its own time origin; D_b the slope over the block's second half / 2n; at least 4
+    /// (each its own time origin; D_b the slope over the block's last four fifths / 2n; at least 4
     /// sampling intervals), writing the blocks to --out as self-diffusion.csv and D with its
     /// standard error over the blocks on stdout (docs/granular.md).
     #[arg(
