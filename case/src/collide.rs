@@ -166,6 +166,15 @@ pub fn collide_json(input: &str, mode: Mode) -> Result<String, RunError> {
     collide_json_serde(input, mode)
 }
 
+/// The direct path alone: `Some` of [`collide_json`]`(text, Mode::Exact)`'s answer when
+/// `text` is one plain case (`crate::plain`: matrix spins, short numbers, no contact law)
+/// that passes every check on machine integers, `None` otherwise (an array, another form,
+/// an error: the caller then takes the general path, which reports it). For callers that
+/// collide one case and never an array, such as the Python package's `collide_case`.
+pub fn collide_plain_exact(text: &str) -> Option<String> {
+    crate::direct::collide(text)
+}
+
 /// [`collide_json`] without the direct path: the borrowed tree when it reads the input and
 /// every case passes, serde_json otherwise (the reference the direct path is tested
 /// against, `case/tests/direct_path.rs`).

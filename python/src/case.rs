@@ -8,11 +8,12 @@
 //! subnormal float is taken as it is, where the command refuses a decimal that would round
 //! below the normal range. The text is read by the command's one-pass reader
 //! (`noslip_case::text`) when it can be; otherwise, and whenever the case fails, by
-//! serde_json as before, which reports every error.
+//! serde_json as before, which reports every error. In exact mode a plain case goes first
+//! through the command's direct path (`noslip_case::collide::collide_plain_exact`).
 
 use crate::error::input_error;
 use collision_core::Exact;
-use noslip_case::collide::{collide_case as solve_case, collide_floats};
+use noslip_case::collide::{collide_case as solve_case, collide_floats, collide_plain_exact};
 use noslip_case::CaseError;
 use pyo3::prelude::*;
 use serde_json::Value;
@@ -26,6 +27,13 @@ pub fn collide_case(py: Python<'_>, case: &str, exact: bool) -> PyResult<String>
     // does not read, or a case that fails, goes to serde_json's `Value` below, so that every
     // error is the one that path reports.
     let fast = py.detach(|| {
+        // In exact mode a plain case is run straight from the text (the command's direct
+        // path, `noslip_case::collide::collide_plain_exact`): the same bytes, faster.
+        if exact {
+            if let Some(json) = collide_plain_exact(case) {
+                return Some(json);
+            }
+        }
         let tree = noslip_case::text::parse(case)?;
         if exact {
             solve_case::<Exact, _>(&tree).ok()
