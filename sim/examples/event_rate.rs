@@ -216,14 +216,23 @@ struct Options {
     seed: u64,
 }
 
+const USAGE: &str = "usage: event_rate [--dims 2,3] [--balls 100,1000,10000,100000] \
+[--phi 0.1,0.2,0.3,0.4] [--runs 3] [--contacts C] [--warm W] [--smooth] [--seed S]";
+
+/// Print `message` and the usage line, and exit with status 2.
+fn refuse(message: &str) -> ! {
+    eprintln!("event_rate: {message}\n{USAGE}");
+    std::process::exit(2)
+}
+
 fn list<T: std::str::FromStr>(flag: &str, value: Option<&String>) -> Vec<T> {
-    let value = value.unwrap_or_else(|| panic!("{flag} needs a value"));
+    let value = value.unwrap_or_else(|| refuse(&format!("{flag} needs a value")));
     value
         .split(',')
         .map(|x| {
             x.replace('_', "")
                 .parse()
-                .unwrap_or_else(|_| panic!("{flag}: cannot read {x:?}"))
+                .unwrap_or_else(|_| refuse(&format!("{flag}: cannot read {x:?}")))
         })
         .collect()
 }
@@ -257,7 +266,11 @@ fn options() -> Options {
                 i += 1;
                 continue;
             }
-            _ => panic!("unknown argument {flag:?}"),
+            "--help" | "-h" => {
+                println!("{USAGE}");
+                std::process::exit(0)
+            }
+            _ => refuse(&format!("unknown argument {flag:?}")),
         }
         i += 2;
     }
