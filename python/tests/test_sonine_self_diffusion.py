@@ -7,8 +7,10 @@ against what is derived independently of its polynomial bookkeeping:
 - ``a_00`` gives the first approximation ``[D]_1`` derived in the docs from the momentum
   balance of a drifting ball (2D and 3D);
 - in 3D, ``a_01`` and ``a_11`` are Chapman & Cowling's brackets for mechanically identical
-  rigid spheres (their section 9.8, written with the rigid-sphere ``Omega^(l,r)``), so
-  ``[D]_2 / [D]_1 = 59/58``;
+  rigid spheres (their chapter 9's ``[S_1 C_1, C_1]'_12`` and ``[S_1 C_1, S_1 C_1]'_12`` at
+  ``M_1 = M_2 = 1/2``, written from memory with the rigid-sphere ``Omega^(l,r)``: that they
+  agree exactly with the script's independent computation is the check), so ``[D]_2 / [D]_1 =
+  59/58``;
 - ``[D]_P / [D]_1`` for ``P <= 4`` increases (each is a variational lower bound over a larger
   space) and equals the fractions in the docs' table, and the tenth order that the Rust test
   uses lies above the fourth by less than the fourth's last difference.

@@ -142,7 +142,8 @@ fn against_chapman_enskog(dim: usize, count: usize, phi: f64, blocks: usize, che
     let var_runs = se * se * k;
     let var_blocks = runs.iter().map(|r| r.1 * r.1).sum::<f64>() / k;
     let sonine = tenth_sonine(dim);
-    // The 2D tail up to the fitted half of a block, `t` in [10, 20] tau_v: ln 15.
+    // The 2D tail over a block's fit, `t` in [4, 20] tau_v: ln 15, above the fit's mean of
+    // `ln t` (about ln 12).
     let tail = if dim == 2 { phi / PI * 15f64.ln() } else { 0.0 };
     eprintln!(
         "{dim}D smooth, {count} balls, phi = {phi}: D / [D]_1 = {mean:.4} +- {se:.4} ({k} runs \
