@@ -43,7 +43,8 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// collision per particle from `skip` to `skip + window` collisions per particle: returns the
 /// mean of the samples' `T_rot / T_tr` and `<T_rot / E> / <T_tr / E>`, `E = n T_tr + S T_rot`
 /// (the ratio of the means with the cooling scaled out, as the engine's `Run::ratio_of_means`
-/// in `tests/common/cooling.rs`).
+/// in `tests/common/cooling.rs`), and the samples' mean fourth cumulant `a_2 = n / (n + 2)
+/// <|c|^4> / <|c|^2>^2 - 1` of the translational velocities `c` about their mean.
 ///
 /// Each round pairs all particles at random and draws each pair's unit vector `s` (from
 /// particle 1 to 2) uniformly; the pair collides with probability `max(0, w . s) / c`, `w =
@@ -65,7 +66,7 @@ pub fn dsmc(
     seed: u64,
     skip: f64,
     window: f64,
-) -> (f64, f64) {
+) -> (f64, f64, f64) {
     let k = 2.0 / (dim as f64 + 2.0);
     let (eta_n, eta) = ((1.0 + e) / 2.0, k * (1.0 + beta) / (2.0 * (1.0 + k)));
     let mut rng = Rng(0x5EED_0000 + seed);
@@ -96,7 +97,20 @@ pub fn dsmc(
         (tr, rot)
     };
     let mut order: Vec<usize> = (0..balls).collect();
+    let kurtosis = |v: &[[f64; 3]]| {
+        let n = balls as f64;
+        let mean: [f64; 3] = std::array::from_fn(|c| v.iter().map(|x| x[c]).sum::<f64>() / n);
+        let (mut m2, mut m4) = (0.0, 0.0);
+        for x in v {
+            let c2 = (0..dim).map(|c| (x[c] - mean[c]).powi(2)).sum::<f64>();
+            m2 += c2;
+            m4 += c2 * c2;
+        }
+        let d = dim as f64;
+        d / (d + 2.0) * (m4 / n) / (m2 / n).powi(2) - 1.0
+    };
     let (mut collisions, mut next, mut sum, mut samples) = (0u64, 0.0, 0.0, 0usize);
+    let mut a2 = 0.0;
     let mut scaled = [0.0f64; 2];
     let c_max = 7.0 * 2f64.sqrt();
     loop {
@@ -150,6 +164,7 @@ pub fn dsmc(
             if tau >= skip {
                 let (tr, rot) = temperatures(&v, &w);
                 sum += rot / tr;
+                a2 += kurtosis(&v);
                 samples += 1;
                 let energy = dim as f64 * tr + spins.len() as f64 * rot;
                 scaled[0] += tr / energy;
@@ -157,7 +172,8 @@ pub fn dsmc(
             }
         }
         if tau >= skip + window {
-            return (sum / samples as f64, scaled[1] / scaled[0]);
+            let k = samples as f64;
+            return (sum / k, scaled[1] / scaled[0], a2 / k);
         }
     }
 }
