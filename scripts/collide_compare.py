@@ -36,7 +36,7 @@ ROOT = Path(__file__).resolve().parent.parent
 PLAIN = {"on": False}
 
 
-def spell(x: Fraction, rng: random.Random, form=None) -> str:
+def spell(x: Fraction, rng: random.Random, form: int | None = None) -> str:
     """A JSON value for the rational x, in one of the format's spellings (`form`, else drawn)."""
     if form is None:
         form = draw_form(rng)
@@ -73,13 +73,15 @@ def small(rng: random.Random, top: int) -> Fraction:
     return Fraction(rng.randint(-top, top), rng.choice([1, 2, 3, 4, 5, 7, 10]))
 
 
-def normal(dim: int, rng: random.Random) -> list:
+def normal(dim: int, rng: random.Random) -> list[Fraction]:
     y = [Fraction(rng.randint(-30, 30), rng.choice([7, 11, 13])) for _ in range(dim - 1)]
-    y2 = sum(v * v for v in y)
+    y2 = sum((v * v for v in y), Fraction(0))
     return [2 * v / (y2 + 1) for v in y] + [(y2 - 1) / (y2 + 1)]
 
 
-def body(dim, rng, immovable, spoil_mass, spoil_skew):
+def body(
+    dim: int, rng: random.Random, immovable: bool, spoil_mass: bool, spoil_skew: bool
+) -> dict[str, str]:
     radius = Fraction(rng.randint(1, 30), rng.choice([1, 2, 3, 10]))
     mass = '"inf"' if immovable else spell(Fraction(rng.randint(1, 30), rng.choice([1, 2, 3])), rng)
     if spoil_mass:
@@ -139,10 +141,10 @@ def case(k: int, rng: random.Random) -> str:
     if fixed == 2:
         bodies[1]["mass"] = '"inf"'
     texts = []
-    for b in bodies:
-        members = [f'"{key}": {value}' for key, value in b.items()]
+    for members_of in bodies:
+        members = [f'"{key}": {value}' for key, value in members_of.items()]
         if k % 20 == 7:
-            members.append(f'"radius": {b["radius"]}')
+            members.append(f'"radius": {members_of["radius"]}')
         texts.append("{" + ", ".join(members) + "}")
     exact_normal = rng.randrange(10) < 7
     normal_text = "[" + ", ".join(
@@ -156,7 +158,7 @@ def case(k: int, rng: random.Random) -> str:
     return text
 
 
-def run(binary: str, exact: bool, path: Path):
+def run(binary: str, exact: bool, path: Path) -> tuple[bytes, bytes, int]:
     args = [binary, "collide"] + (["--exact"] if exact else []) + [str(path)]
     p = subprocess.run(args, capture_output=True, timeout=600)
     return p.stdout, p.stderr, p.returncode

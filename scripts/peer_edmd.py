@@ -206,20 +206,20 @@ def main() -> None:
     print("# 15 MiB), and bytes per ball added from the previous N (the memory a ball costs)")
     print("| N | phi | noslip | peer Cell | peer Single |")
     print("|---:|---:|---:|---:|---:|")
-    who = ("noslip", "Cell", "Single")
+    programs = ("noslip", "Cell", "Single")
     if before:
         print("# (the before build's memory is not shown)")
     for phi in phis:
         for k, n in enumerate(balls):
-            cells = []
-            for w in who:
-                cell = f"{peaks[(n, phi, w)] / 2**20:.0f} MiB"
+            entries = []
+            for w in programs:
+                entry = f"{peaks[(n, phi, w)] / 2**20:.0f} MiB"
                 if k > 0:
                     m = balls[k - 1]
                     per = (peaks[(n, phi, w)] - peaks[(m, phi, w)]) / (n - m)
-                    cell += f", {per:.0f} B/ball"
-                cells.append(cell)
-            print(f"| {n} | {phi} | " + " | ".join(cells) + " |")
+                    entry += f", {per:.0f} B/ball"
+                entries.append(entry)
+            print(f"| {n} | {phi} | " + " | ".join(entries) + " |")
 
 if __name__ == "__main__":
     main()

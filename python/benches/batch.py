@@ -194,7 +194,8 @@ def main() -> None:
         native_args = None
         if other:
             f64 = np.dtype(np.float64)
-            b1, b2 = (_body_arrays(_parse_body(bodies[b], b), b, f64, *nu.shape, False)
+            rows, n_dim = nu.shape
+            b1, b2 = (_body_arrays(_parse_body(bodies[b], b), b, f64, rows, n_dim, False)
                       for b in range(2))
             before_out = tuple(np.empty_like(out[b][key]) for b in range(2)
                                for key in ("angular_velocity", "velocity"))

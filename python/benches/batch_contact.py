@@ -5,11 +5,12 @@ outputs; 7 alternated rounds of the five variants, ns per row of thread CPU time
 (--validate: 20 000 approaching rows, each through the checked path)."""
 import sys
 import time, statistics, numpy as np, noslip
+from typing import Any
 VALIDATE = "--validate" in sys.argv
 N, n = (20_000 if VALIDATE else 200_000), 3
 rng = np.random.default_rng(0)
 nu = rng.normal(size=(N, n)); nu /= np.linalg.norm(nu, axis=1, keepdims=True)
-def body():
+def body() -> dict[str, Any]:
     a = rng.uniform(-1, 1, (N, n, n))
     return {"angular_velocity": a - a.transpose(0, 2, 1), "velocity": rng.uniform(-1, 1, (N, n)),
             "inv_mass": rng.uniform(0.5, 2, N), "radius": rng.uniform(0.5, 1, N), "gamma2": rng.uniform(0.1, 0.6, N)}
@@ -24,7 +25,7 @@ variants = {
 }
 nu[np.einsum("ij,ij->i", b[1]["velocity"] - b[0]["velocity"], nu) > 0] *= -1  # approaching
 out = noslip.collide_batch(nu, b, validate=False)
-t = {k: [] for k in variants}
+t: dict[str, list[float]] = {k: [] for k in variants}
 for r in range(7):
     for k, c in variants.items():
         t0 = time.thread_time()
