@@ -43,6 +43,7 @@ pub mod granular;
 pub mod granular_plot;
 pub mod huge_pages;
 mod immovable;
+mod last_contact;
 pub mod lattice;
 #[cfg(test)]
 mod lattice_tests;

@@ -94,3 +94,67 @@ fn the_tc_model_cuts_an_inelastic_collapse_short() {
         most_within(&cut, tc)
     );
 }
+
+/// The shipped cooling gas (`scenes/granular3d.toml`: 500 rough spheres, the TC model) with
+/// `e = 0`, and with the smooth member's `beta = -1` and no TC model: after an `e = 0`
+/// contact the pair's normal velocity is 0 in exact arithmetic and a rounding residue in
+/// floats. Where that residue points inwards and the law changes no bit of the states, the
+/// pair used to be predicted again at zero flight time, forever: the run stopped at `t =
+/// 0.043176` with every later contact between balls 283 and 326. Both must now reach `t =
+/// 0.2`, and no contact may repeat the pair of its balls' last contact at the same time
+/// ([`noslip_sim`]'s rule: `last_contact.rs`).
+#[test]
+fn a_sticking_pair_at_e_0_does_not_repeat_its_contact_at_once() {
+    let shipped = include_str!("../../scenes/granular3d.toml");
+    let e0 = r#"balls = { e = 0, beta = "0.5" }"#;
+    let smooth = r#"balls = { e = 0, beta = "-1" }"#;
+    let law = r#"balls = { e = "0.9", beta = "0.5" }"#;
+    assert!(shipped.contains(law), "the shipped scene's law");
+    let no_tc = |s: String| s.replace("tc = \"1e-5\"", "");
+    for (name, text) in [
+        ("e = 0, beta = 0.5, TC", shipped.replace(law, e0)),
+        (
+            "e = 0, beta = -1, no TC",
+            no_tc(shipped.replace(law, smooth)),
+        ),
+    ] {
+        let scene = noslip_scene::Scene::from_toml(&text, "granular3d.toml").unwrap();
+        let setup = noslip_sim::setup::setup::<3, 3>(&scene).unwrap();
+        let kernels = GenericKernels {
+            species: setup.species.clone(),
+        };
+        let mut sim = Simulation::new(setup, kernels).unwrap();
+        let until = 0.2;
+        let mut last: Vec<Option<(usize, f64)>> = vec![None; 500];
+        let mut contacts = 0;
+        loop {
+            let e = match sim.step(until) {
+                Step::Contact(e) => e,
+                Step::Until => break,
+                Step::Quiet { .. } => continue,
+                Step::Never(why) => panic!("{name}: {why:?} at t = {}", sim.now()),
+            };
+            contacts += 1;
+            if contacts > 99_990 {
+                eprintln!(
+                    "{:?} {:.17} {:?}",
+                    e.contact,
+                    e.time,
+                    e.post.iter().map(|s| s.velocity).collect::<Vec<_>>()
+                );
+            }
+            assert!(
+                contacts < 100_000,
+                "{name}: no end to the contacts at t = {}",
+                e.time
+            );
+            if let noslip_sim::Contact::Ball { i, j } = e.contact {
+                let repeat = last[i] == Some((j, e.time)) && last[j] == Some((i, e.time));
+                assert!(!repeat, "{name}: balls {i}, {j} again at t = {}", e.time);
+                last[i] = Some((j, e.time));
+                last[j] = Some((i, e.time));
+            }
+        }
+        eprintln!("{name}: {contacts} contacts to t = {until}");
+    }
+}

@@ -4,6 +4,7 @@
 
 use super::{Contact, Event, Simulation};
 use crate::canonical::{image_f64, obstacle_image, pair_offset, rebase_at};
+use crate::last_contact::LastContact;
 use crate::law::{self, tc_law, ContactKind};
 use crate::no_contact::QUIET_BOX_LENGTHS;
 use crate::normal::unit;
@@ -73,8 +74,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let pair_law = self.table.ball_law(species[0], species[1]);
         let kind = self.law(pair_law, [lo, hi], t);
         let [s1, s2] = law::pair(&self.kernels, &self.species, kind, species, &nu, &pre);
-        self.balls[lo].last = 0;
-        self.balls[hi].last = 0;
+        self.balls[lo].last = LastContact::ball(hi);
+        self.balls[hi].last = LastContact::ball(lo);
         self.balls[lo].state = s1;
         self.balls[hi].state = s2;
         let event = self.finish(Contact::Ball { i: lo, j: hi }, nu, [lo, hi], pre, t);
@@ -96,7 +97,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let pre = [self.balls[i].state.clone(), self.balls[i].state.clone()];
         let kind = self.law(self.table.box_contact, [i, i], t);
         self.balls[i].state = self.fixed(kind, i, Some((axis, upper)), &nu, &pre[0]);
-        self.balls[i].last = 0;
+        self.balls[i].last = LastContact::NONE;
         let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event
@@ -117,7 +118,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let pre = [self.balls[i].state.clone(), self.balls[i].state.clone()];
         let kind = self.law(self.table.obstacle(o), [i, i], t);
         self.balls[i].state = self.fixed(kind, i, None, &nu, &pre[0]);
-        self.balls[i].last = 0;
+        self.balls[i].last = LastContact::NONE;
         let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event
@@ -132,7 +133,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let pre = [self.balls[i].state.clone(), self.balls[i].state.clone()];
         let kind = self.law(self.table.boundaries[b].contact, [i, i], t);
         self.balls[i].state = self.fixed(kind, i, None, &nu, &pre[0]);
-        self.balls[i].last = b as u32 + 1;
+        self.balls[i].last = LastContact::boundary(b);
         let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event

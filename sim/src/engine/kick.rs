@@ -10,6 +10,7 @@
 //! writes the same log.
 
 use super::Simulation;
+use crate::last_contact::LastContact;
 use crate::PairKernels;
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
@@ -19,8 +20,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     ///
     /// Call it where [`Simulation::step`] stopped at the kick's time (`Step::Until` or
     /// `Step::Never` with `until` that time): no contact is pending before it. Every ball's
-    /// contact counter moves on (its velocity changed), and its last boundary is forgotten (a
-    /// kick may turn it back towards that boundary).
+    /// contact counter moves on (its velocity changed), and its last contact is forgotten (a
+    /// kick may turn it back towards that boundary or ball: [`crate::last_contact`]).
     ///
     /// # Panics
     ///
@@ -45,7 +46,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
             added += 0.5 * m * twice;
             ball.count += 1;
-            ball.last = 0;
+            ball.last = LastContact::NONE;
             let (home, velocity) = (ball.home, ball.state.velocity);
             self.motion.get_mut(home).velocity = velocity;
         }

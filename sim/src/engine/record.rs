@@ -16,6 +16,7 @@
 //! ([`key_of`]), computed when two times tie instead of stored (16 bytes a ball).
 
 use crate::canonical::{key, kind, Key};
+use crate::last_contact::LastContact;
 use crate::queue::{Slot, Slots, What};
 use crate::residents::Homes;
 use collision_core::BodyState;
@@ -45,10 +46,9 @@ pub(super) struct BallRecord<const N: usize, const S: usize> {
     pub previous: f64,
     /// Its species.
     pub kind: u32,
-    /// `b + 1` if its last contact was with boundary `b`, else 0. A boundary convex seen from
-    /// the ball cannot be touched again before another contact; a container not at the same
-    /// instant (module docs of the engine, "Boundaries").
-    pub last: u32,
+    /// Its last contact, a ball or a table boundary, whose repeat at once is refused
+    /// ([`crate::last_contact`]).
+    pub last: LastContact,
 }
 
 impl<const N: usize, const S: usize> BallRecord<N, S> {
@@ -64,7 +64,7 @@ impl<const N: usize, const S: usize> BallRecord<N, S> {
             state,
             previous: f64::NEG_INFINITY,
             kind: kind as u32,
-            last: 0,
+            last: LastContact::NONE,
         }
     }
 

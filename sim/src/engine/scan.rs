@@ -5,8 +5,9 @@
 use super::lanes::{cell_image, Flight, Gathered, LANES};
 use super::record::key_of;
 use super::Simulation;
-use crate::canonical::{self, obstacle_time, pair_time};
+use crate::canonical::{self, obstacle_time, pair_offset, pair_time};
 use crate::cells::Listing;
+use crate::last_contact::LastContact;
 use crate::motion::Motion;
 use crate::predict::exit_time;
 use crate::queue::What;
@@ -198,17 +199,29 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         count: usize,
     ) {
         let bound = near.least(best.bound(), Flight(m, &self.motion, &self.grid.size));
+        let mut refused = false;
         for p in 0..count {
             // NaN (no contact) compares false.
             if near.time(p) <= bound {
                 let resident = self.motion.at(near.places[p]);
-                self.offer_ball(i, best, m, near.base(p), resident);
+                refused |= self.offer_ball(i, best, m, near.base(p), resident);
+            }
+        }
+        if refused {
+            // The least time was a repeat ([`crate::last_contact`]): the others as the scalar
+            // loop meets them (rare: a pair touching again at zero flight time).
+            for p in 0..count {
+                if near.time(p) > bound {
+                    let resident = self.motion.at(near.places[p]);
+                    self.offer_ball(i, best, m, near.base(p), resident);
+                }
             }
         }
     }
 
     /// Offers ball `i` (flight `m`) meeting the ball of record `resident`, whose cell's
-    /// image in `i`'s record coordinates is `base` (`s + W_i`).
+    /// image in `i`'s record coordinates is `base` (`s + W_i`); true if the contact was
+    /// refused as a repeat at zero flight time ([`crate::last_contact`]).
     #[inline(always)]
     fn offer_ball(
         &self,
@@ -217,37 +230,65 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         m: &Motion<N>,
         base: &[f64; N],
         resident: &Resident<N>,
-    ) {
+    ) -> bool {
         let j = resident.ball as usize;
         if j == i {
-            return;
+            return false;
         }
         // j's image in i's record coordinates: s - W_j + W_i (exact in f64).
         let image: [f64; N] = std::array::from_fn(|k| base[k] - f64::from(resident.wraps[k]));
         // The same bits as from j's side (canonical::pair_time): no ordering here.
         let t = pair_time(m, &resident.motion, &image, &self.grid.size);
         // NaN: no contact (never better).
-        if !t.is_nan() && best.may_beat(t) {
-            best.offer(t, || What::Ball {
-                j: j as u32,
-                count: self.balls[j].count,
-                image: image.map(|k| k as i16),
-            });
+        if t.is_nan() || !best.may_beat(t) {
+            return false;
         }
+        if self.balls[i].last.is_ball(j) && self.repeats(i, j, m, &image, resident) {
+            return true;
+        }
+        best.offer(t, || What::Ball {
+            j: j as u32,
+            count: self.balls[j].count,
+            image: image.map(|k| k as i16),
+        });
+        false
+    }
+
+    /// Whether ball `i`'s contact with ball `j` (record `resident`, at `image` in `i`'s record
+    /// coordinates) is a repeat to refuse ([`crate::last_contact`]); out of line, as it is
+    /// asked only of the partner of `i`'s last contact.
+    #[cold]
+    #[inline(never)]
+    fn repeats(
+        &self,
+        i: usize,
+        j: usize,
+        m: &Motion<N>,
+        image: &[f64; N],
+        resident: &Resident<N>,
+    ) -> bool {
+        let last_j = || self.balls[j].last;
+        let offset = || {
+            let t_ref = m.since.max(resident.motion.since);
+            pair_offset(m, &resident.motion, image, &self.grid.size, t_ref)
+        };
+        let sigma = m.radius + resident.motion.radius;
+        LastContact::repeats_pair((i, self.balls[i].last), (j, last_j), offset, sigma)
     }
 
     /// Offers ball `i`'s contacts with the table's boundaries and the box walls.
     fn fixed_bodies(&self, i: usize, best: &mut Best<N>) {
         let m = self.flight(i);
+        let last = self.balls[i].last;
         for (b, boundary) in self.table.boundaries.iter().enumerate() {
             // Right after a contact with b: a convex b cannot be met again, a container not at
             // the same instant (a graze within rounding would repeat forever at t = 0).
-            let repeat = self.balls[i].last == b as u32 + 1;
-            if repeat && boundary.shape.convex_from_outside() {
+            let convex = boundary.shape.convex_from_outside();
+            if convex && last.repeats_boundary(b, true, f64::NAN) {
                 continue;
             }
             if let Some(tau) = boundary.shape.contact_time(&m.pos, &m.velocity, m.radius) {
-                if !(repeat && tau == 0.0) {
+                if !last.repeats_boundary(b, convex, tau) {
                     best.offer(m.since + tau, || What::Boundary { b: b as u32 });
                 }
             }

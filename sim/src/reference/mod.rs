@@ -18,6 +18,7 @@ use crate::canonical::{
 };
 use crate::cells::Grid;
 use crate::engine::{Contact, Event};
+use crate::last_contact::LastContact;
 use crate::law::{self, tc_law};
 use crate::motion::Motion;
 use crate::normal::unit;
@@ -90,7 +91,8 @@ pub(crate) struct Reference<const N: usize, const S: usize, K> {
     count: Vec<u64>,
     /// Per ball: the absolute time of its last contact (`-inf` before the first).
     previous: Vec<f64>,
-    last: Vec<u32>,
+    /// Per ball: its last contact, whose repeat at once is refused ([`crate::last_contact`]).
+    last: Vec<LastContact>,
     next: Vec<(u64, Next<N>)>,
     heap: BinaryHeap<Reverse<Entry>>,
     predictions: u64,
@@ -149,7 +151,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             periodic,
             count: vec![0; n],
             previous: vec![f64::NEG_INFINITY; n],
-            last: vec![0; n],
+            last: vec![LastContact::NONE; n],
             next: vec![(0, Next::Again); n],
             heap: BinaryHeap::new(),
             predictions: 0,
@@ -262,7 +264,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             let sigma = a.radius + b.radius;
             for image in self.images(&offset, &dv, sigma, (self.now - t_ref, h - t_ref)) {
                 let t = pair_time(a, b, &image_f64(&image), &self.size);
-                if !t.is_nan() {
+                let last_hi = || self.last[hi];
+                let k = image_f64(&image);
+                let offset = || pair_offset(a, b, &k, &self.size, t_ref);
+                let repeat =
+                    || LastContact::repeats_pair((lo, self.last[lo]), (hi, last_hi), offset, sigma);
+                if !t.is_nan() && !repeat() {
                     let own = if i == lo { image } else { image.map(|k| -k) };
                     let next = Next::Ball {
                         j,
@@ -287,12 +294,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             }
         }
         for (b, boundary) in self.table.boundaries.iter().enumerate() {
-            let repeat = self.last[i] == b as u32 + 1;
-            if repeat && boundary.shape.convex_from_outside() {
-                continue;
-            }
+            let convex = boundary.shape.convex_from_outside();
             if let Some(tau) = boundary.shape.contact_time(&m.pos, &m.velocity, m.radius) {
-                if !(repeat && tau == 0.0) {
+                if !self.last[i].repeats_boundary(b, convex, tau) {
                     let key = key(i, kind::BOUNDARY, b as u32, &[0; N]);
                     offer(m.since + tau, key, Next::Boundary { b });
                 }
@@ -377,8 +381,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         let species = [self.kind[lo], self.kind[hi]];
         let kind = self.law(self.table.ball_law(species[0], species[1]), [lo, hi], t);
         let post = law::pair(&self.kernels, &self.species, kind, species, &nu, &pre);
-        self.last[lo] = 0;
-        self.last[hi] = 0;
+        self.last[lo] = LastContact::ball(hi);
+        self.last[hi] = LastContact::ball(lo);
         self.finish(Contact::Ball { i: lo, j: hi }, nu, [lo, hi], pre, post, t)
     }
 
@@ -406,8 +410,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             &pre[0],
         );
         self.last[i] = match contact {
-            Contact::Boundary { boundary, .. } => boundary as u32 + 1,
-            _ => 0,
+            Contact::Boundary { boundary, .. } => LastContact::boundary(boundary),
+            _ => LastContact::NONE,
         };
         self.finish(contact, nu, [i, i], pre, [after.clone(), after], t)
     }
@@ -477,7 +481,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             }
             self.records[i].velocity = self.state[i].velocity;
             self.count[i] += 1;
-            self.last[i] = 0;
+            self.last[i] = LastContact::NONE;
         }
         self.rebase(t, false);
     }
