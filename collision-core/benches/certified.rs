@@ -4,7 +4,11 @@
 //! each round benchmarks `plain`, `certified`, `fast`, `plain_fma`, `certified_fma`,
 //! `fast_fma` (the FMA kernels and their companions, through `collide_unchecked_fma` and
 //! `collide_certified_fma_by`, so on FMA instructions), `plain_fixed`, `certified_fixed`,
-//! `fast_fixed` for every n, so a change
+//! `fast_fixed`, and the rough-ball family's kernels beside their running companions
+//! (`plain_rough`, `certified_rough`: `kernels::dN::rough::free` and
+//! `kernels::dN::certified::rough_free` under `(e, beta) = (0.9, 0.4)`; `plain_walton`,
+//! `certified_walton`: the Walton kernel and its companion under `(e, mu, beta0) = (0.9, 0.2,
+//! 0.4)`, as the `rough` bench) for every n, so a change
 //! of the shared machine's load hits both alike. Per round and variant the figure is
 //! criterion's samples' median time per collision (recorded through `iter_custom`); the
 //! summary printed at the end gives per n the median (min-max) over the rounds of each
@@ -24,8 +28,11 @@ mod timed;
 
 use cases::{batch, Case};
 use collision_core::certified::{collide_certified_fma_by, CertifiedKernel, Companion};
-use collision_core::{collide_unchecked_fma, kernels, Ball, BodyState, Generated, Kernel};
+use collision_core::{
+    collide_unchecked_fma, kernels, Ball, BodyState, Generated, Kernel, Restitution, Walton,
+};
 use criterion::{Criterion, Throughput};
+use std::hint::black_box;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 use timed::run_batch;
@@ -70,6 +77,39 @@ type Certified<const N: usize, const S: usize> =
         &BodyState<f64, N, S>,
     ) -> ([BodyState<f64, N, S>; 2], [BodyState<f64, N, S>; 2]);
 
+/// A family kernel under its law `L` (`Restitution` or `Walton`).
+type Family<const N: usize, const S: usize, L> = fn(
+    &[f64; N],
+    &Ball<f64>,
+    &Ball<f64>,
+    &L,
+    &BodyState<f64, N, S>,
+    &BodyState<f64, N, S>,
+) -> [BodyState<f64, N, S>; 2];
+
+/// A family kernel's running companion under its law `L`.
+type FamilyCertified<const N: usize, const S: usize, L> =
+    fn(
+        &[f64; N],
+        &Ball<f64>,
+        &Ball<f64>,
+        &L,
+        &BodyState<f64, N, S>,
+        &BodyState<f64, N, S>,
+    ) -> ([BodyState<f64, N, S>; 2], [BodyState<f64, N, S>; 2]);
+
+/// The rough and Walton kernels of one n, each with its running companion.
+type Families<const N: usize, const S: usize> = (
+    (
+        Family<N, S, Restitution<f64>>,
+        FamilyCertified<N, S, Restitution<f64>>,
+    ),
+    (
+        Family<N, S, Walton<f64>>,
+        FamilyCertified<N, S, Walton<f64>>,
+    ),
+);
+
 fn flat<const N: usize, const S: usize>(s: &[BodyState<f64, N, S>; 2]) -> Vec<f64> {
     s.iter()
         .flat_map(|b| b.spin.iter().chain(&b.velocity).copied())
@@ -78,8 +118,20 @@ fn flat<const N: usize, const S: usize>(s: &[BodyState<f64, N, S>; 2]) -> Vec<f6
 
 fn check<const N: usize, const S: usize>(
     cases: &[Case<N, S>],
-    plain: Plain<N, S>,
-    certified: Certified<N, S>,
+    plain: impl Fn(
+        &[f64; N],
+        &Ball<f64>,
+        &Ball<f64>,
+        &BodyState<f64, N, S>,
+        &BodyState<f64, N, S>,
+    ) -> [BodyState<f64, N, S>; 2],
+    certified: impl Fn(
+        &[f64; N],
+        &Ball<f64>,
+        &Ball<f64>,
+        &BodyState<f64, N, S>,
+        &BodyState<f64, N, S>,
+    ) -> ([BodyState<f64, N, S>; 2], [BodyState<f64, N, S>; 2]),
 ) {
     let mut worst = 0.0f64;
     for (k, case) in cases.iter().enumerate() {
@@ -137,13 +189,26 @@ fn round_dim<const N: usize, const S: usize>(
     (plain, certified): (Plain<N, S>, Certified<N, S>),
     (plain_fixed, certified_fixed): (PlainFixed<N, S>, CertifiedFixed<N, S>),
     (fast, fast_fixed): (Certified<N, S>, CertifiedFixed<N, S>),
+    ((rough, rough_certified), (walton, walton_certified)): Families<N, S>,
 ) where
     Generated: Kernel<f64, N, S> + CertifiedKernel<f64, N, S>,
 {
     let cases = batch::<N, S>(SEED ^ N as u64, BATCH);
+    let law = Restitution::new(0.9, 0.4).expect("in range");
+    let friction = Walton::new(0.9, 0.2, 0.4).expect("in range");
     if round == 0 {
         check(&cases, plain, certified);
         check(&cases, plain, fast);
+        check(
+            &cases,
+            |nu, b1, b2, s1, s2| rough(nu, b1, b2, &law, s1, s2),
+            |nu, b1, b2, s1, s2| rough_certified(nu, b1, b2, &law, s1, s2),
+        );
+        check(
+            &cases,
+            |nu, b1, b2, s1, s2| walton(nu, b1, b2, &friction, s1, s2),
+            |nu, b1, b2, s1, s2| walton_certified(nu, b1, b2, &friction, s1, s2),
+        );
         for companion in [Companion::Running, Companion::Fast] {
             for (k, case) in cases.iter().enumerate() {
                 let (b, s) = (&case.balls, &case.states);
@@ -222,6 +287,24 @@ fn round_dim<const N: usize, const S: usize>(
         let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
         fast_fixed(&case.nu, &b1.radius, b2, s1, s2)
     });
+    // The law through `black_box`, as the `rough` bench passes it: not folded in.
+    let (law, friction) = (black_box(law), black_box(friction));
+    timed(c, round, "plain_rough", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        rough(&case.nu, b1, b2, &law, s1, s2)
+    });
+    timed(c, round, "certified_rough", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        rough_certified(&case.nu, b1, b2, &law, s1, s2)
+    });
+    timed(c, round, "plain_walton", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        walton(&case.nu, b1, b2, &friction, s1, s2)
+    });
+    timed(c, round, "certified_walton", &cases, |case| {
+        let ([b1, b2], [s1, s2]) = (&case.balls, &case.states);
+        walton_certified(&case.nu, b1, b2, &friction, s1, s2)
+    });
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -237,6 +320,8 @@ fn summary(rounds: usize) {
         ("plain_fixed", "fast_fixed"),
         ("plain_fma", "certified_fma"),
         ("plain_fma", "fast_fma"),
+        ("plain_rough", "certified_rough"),
+        ("plain_walton", "certified_walton"),
     ] {
         summary_of(rounds, plain, certified);
     }
@@ -293,6 +378,16 @@ fn main() {
                     (
                         kernels::$m::certified::free_fast,
                         kernels::$m::certified::fixed_fast,
+                    ),
+                    (
+                        (
+                            kernels::$m::rough::free::<f64>,
+                            kernels::$m::certified::rough_free,
+                        ),
+                        (
+                            kernels::$m::walton::free::<f64>,
+                            kernels::$m::certified::walton_free,
+                        ),
                     ),
                 )
             };
