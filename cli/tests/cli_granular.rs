@@ -263,7 +263,8 @@ fn bad_intervals_and_laws_exit_2_naming_them() {
             "3",
             "--quiet",
         ],
-        "--self-diffusion: the block (3) must be at least 4 sampling intervals (4)",
+        "--self-diffusion: the block (3) must be at least 4 sampling intervals (4): its last four \
+         fifths are fitted",
     );
     refused(
         &[

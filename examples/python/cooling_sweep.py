@@ -11,8 +11,8 @@ into the store, so a re-run computes only the points not there yet. The seeds' m
 standard error are printed and plotted beside the theory's curve
 (noslip.granular.two_temperature_ratio). The theory assumes Maxwellian velocities and no
 correlation between translation and rotation: docs/granular.md measures where it holds (near
-beta = 1) and where the gas departs from it (1.5-5 % below at beta <= 0.5). Without
---scheduler a local cluster of processes runs it; the plot needs matplotlib.
+beta = 1) and where the gas departs from it (1.5-6 % below at 0 <= beta <= 0.4 in this
+sweep). Without --scheduler a local cluster of processes runs it; the plot needs matplotlib.
 """
 
 import argparse

@@ -421,8 +421,8 @@ impl Sampler {
     pub fn with_self_diffusion(mut self, block: f64, from: f64) -> Result<Sampler, String> {
         if block < 4.0 * self.every {
             return Err(format!(
-                "the block ({block}) must be at least 4 sampling intervals ({}): its second \
-                 half is fitted",
+                "the block ({block}) must be at least 4 sampling intervals ({}): its last \
+                 four fifths are fitted",
                 4.0 * self.every
             ));
         }
