@@ -14,6 +14,7 @@ use crate::signals::Signals;
 use collision_core::{Generated, Kernel};
 use noslip_sim::boundary_map::{self, Row};
 use noslip_sim::granular::{self, Sampler};
+use noslip_sim::pair_losses::is_count;
 use noslip_sim::run::{check_time, run_watched, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Simulation};
@@ -81,6 +82,7 @@ where
     let fail = |e: String| RunError::Input(format!("{}: {e}", scene.origin));
     let setup = setup::<N, S>(scene).map_err(|e| fail(e.to_string()))?;
     let species = setup.species.clone();
+    let names: Vec<String> = scene.species.iter().map(|s| s.name.clone()).collect();
     let kernels = GenericKernels {
         species: species.clone(),
     };
@@ -101,7 +103,7 @@ where
         .then(|| noslip_sim::animation::Recorder::new(&sim, &species, &title));
     let mut sampler = keep
         .observables
-        .map(|dt| Sampler::start(dt, &sim, &species));
+        .map(|dt| Sampler::start(dt, &sim, &species).with_species_names(&names));
     if let Some((r_max, bins)) = keep.pair_correlation {
         sampler = sampler
             .map(|s| s.with_pair_correlation(r_max, bins))
@@ -188,11 +190,16 @@ where
 }
 
 /// Bytes one row of the observables holds with `species` species, counted three times like
-/// the records (the vector's growth by doubling, then the arrays): the row and its
-/// per-species temperatures.
+/// the records (the vector's growth by doubling, then the arrays): the row and, in a mixture,
+/// its per-species temperatures and `msd_cm_s` (24 bytes a species) and its per-pair losses
+/// and contact counts (16 bytes a pair, `K (K + 1) / 2` pairs).
 fn observable_bytes(species: usize) -> u64 {
-    let per_species = if species > 1 { 16 * species } else { 0 };
-    3 * (std::mem::size_of::<granular::Row>() + per_species) as u64
+    let extra = if species > 1 {
+        24 * species + 16 * (species * (species + 1) / 2)
+    } else {
+        0
+    };
+    3 * (std::mem::size_of::<granular::Row>() + extra) as u64
 }
 
 /// The observables' rows as arrays under the CSV's column names
@@ -206,6 +213,10 @@ fn observable_columns<'py>(
     for (k, (name, _)) in columns.iter().enumerate() {
         if name == "contacts" {
             let v: Vec<i64> = rows.iter().map(|r| r.contacts as i64).collect();
+            out.set_item(name, array(py, v, &[rows.len()])?)?;
+        } else if is_count(name) {
+            // A pair's contacts (`contacts_{a}-{b}`): exact as doubles below 2^53.
+            let v: Vec<i64> = values.iter().map(|r| r[k] as i64).collect();
             out.set_item(name, array(py, v, &[rows.len()])?)?;
         } else {
             let v: Vec<f64> = values.iter().map(|r| r[k]).collect();
