@@ -51,7 +51,8 @@ class SimulationResult:
         ``kick_velocities`` (K, N_b, n) (every ball's velocity after the kick, in ball
         order; spins are not kicked) and ``kick_energy_injected`` (K,), so that the start,
         the contacts' ``post_velocity`` and the kicks replay every velocity (K = 0 without a
-        thermostat; ``3 (8 n N_b + 24)`` bytes a kick count against ``max_memory``).
+        thermostat; ``3 (8 n N_b + 24)`` bytes a kick count against ``max_memory``, asked
+        after every contact and every kick).
     boundary_map : dict of ndarray
         The boundary map, one row per contact of a ball with an immovable body (box wall,
         obstacle, table boundary), under the columns of ``noslip simulate --boundary-map``'s

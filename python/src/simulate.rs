@@ -122,6 +122,19 @@ where
     // counted three times like the records).
     let kicked = std::cell::Cell::new(0u64);
     let kick_bytes = 3 * (8 * N * sim.len() + 24) as u64;
+    // The contacts so far, and the records kept when the cap was passed: `(contacts, kicks)`
+    // within it (the contact or the kick that passed it not counted).
+    let contacts = std::cell::Cell::new(0u64);
+    let capped = std::cell::Cell::new((0u64, 0u64));
+    // The bytes the records hold with `c` contacts, `r` rows of observables and `k` kicks:
+    // over the cap? Asked after every contact and every kick (a run with few contacts may
+    // take many kicks).
+    let over = |c: u64, r: u64, k: u64| {
+        c.saturating_mul(keep.per_contact)
+            .saturating_add(r.saturating_mul(observable_bytes(species.len())))
+            .saturating_add(k.saturating_mul(kick_bytes))
+            > keep.max_memory
+    };
     let (summary, trace) = run_watched(
         &mut sim,
         &species,
@@ -142,12 +155,9 @@ where
                 }
                 None => 0,
             };
-            // `index * per_contact > max_memory` is `index > keep.contacts` (the quotient).
-            if index.saturating_mul(keep.per_contact)
-                + samples * observable_bytes(species.len())
-                + kicked.get() * kick_bytes
-                > keep.max_memory
-            {
+            contacts.set(index);
+            if over(index, samples, kicked.get()) {
+                capped.set((index - 1, kicked.get()));
                 return Err(std::io::Error::other(CAPPED));
             }
             if signals.interrupted() {
@@ -161,12 +171,25 @@ where
             }
             if keep.log {
                 kicked.set(kicked.get() + 1);
+                let samples = sampler.borrow().as_ref().map_or(0, |s| s.rows().len() as u64);
+                if over(contacts.get(), samples, kicked.get()) {
+                    capped.set((contacts.get(), kicked.get() - 1));
+                    return Err(std::io::Error::other(CAPPED));
+                }
             }
             Ok(())
         },
     )
     .map_err(|e| match e.to_string().as_str() {
-        CAPPED => RunError::Capped(sim.now()),
+        CAPPED => {
+            let (contacts, kicks) = capped.get();
+            RunError::Capped {
+                time: sim.now(),
+                contacts,
+                kicks,
+                kick_bytes,
+            }
+        }
         INTERRUPTED => RunError::Interrupted,
         _ => RunError::Input(format!("internal error: the log in memory failed: {e}")),
     })?;
@@ -230,7 +253,14 @@ fn observable_columns<'py>(
 /// simulated time, or a signal handler's exception (Ctrl-C).
 enum RunError {
     Input(String),
-    Capped(f64),
+    Capped {
+        time: f64,
+        /// The contacts and kicks whose records fit.
+        contacts: u64,
+        kicks: u64,
+        /// The bytes a kick's records count.
+        kick_bytes: u64,
+    },
     Interrupted,
 }
 
@@ -566,13 +596,27 @@ pub fn simulate<'py>(
     let done = done.map_err(|e| match e {
         RunError::Interrupted => input_error("internal error: interrupted without a signal"),
         RunError::Input(m) => input_error(m),
-        RunError::Capped(t) => input_error(format!(
+        RunError::Capped {
+            time: t,
+            contacts,
+            kicks,
+            kick_bytes,
+        } => input_error(format!(
             "time: the run to t = {} with {} reached max_memory = {max_memory} bytes after \
-             {} contacts, at t = {t} ({per_contact} bytes a contact in {n}D); give events \
-             (up to {}), keep less, or raise max_memory",
+             {contacts} contacts{}, at t = {t} ({per_contact} bytes a contact{} in {n}D); give \
+             events (up to {}), keep less, or raise max_memory",
             time.map_or("(none)".into(), |t| format!("{t:e}")),
             kept(),
-            keep.contacts,
+            if kicks > 0 {
+                format!(" and {kicks} kicks")
+            } else {
+                String::new()
+            },
+            if kicks > 0 {
+                format!(", {kick_bytes} a kick")
+            } else {
+                String::new()
+            },
             keep.contacts
         )),
     })?;
