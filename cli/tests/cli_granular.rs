@@ -1,7 +1,8 @@
 //! `noslip simulate --observables DT` on the shipped granular gas: the CSV's header with its
 //! units, one row per interval, the gas cooling, the mean square displacement, g(r) with
 //! --pair-correlation, the Parquet table equal to the CSV, the plots with their axes' units,
-//! the self-diffusion blocks, and bad intervals, radii, blocks and laws
+//! the self-diffusion blocks, a mixture's losses and contacts per pair of species, and bad
+//! intervals, radii, blocks and laws
 //! refused (exit 2, the option or the field named).
 
 mod support;
@@ -159,6 +160,79 @@ fn the_granular_gas_writes_its_observables() {
             assert!(svg.contains(text), "{file}: {text}");
         }
         assert!(!svg.contains("no finite values"), "{file}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A mixture's observables end with the energy lost and the contacts per pair of species,
+/// named by the species (`scenes/mixture2d.toml`: grain and tracer): in the CSV with units,
+/// in the Parquet table the same numbers bit for bit with the counts as integers; each row's
+/// pairs' contacts add up to its ball-ball contacts (the box is periodic: `contacts`), and
+/// its pairs' losses to `lost_ball_ball` within two summation orders' rounding, `(C + 2) eps
+/// E_0` (the losses are nonnegative and add up to at most `E_0`; `sim/tests/pair_laws.rs`).
+#[test]
+fn a_mixture_writes_the_losses_and_contacts_per_pair_of_species() {
+    let dir = temp("mixture-observables");
+    run_ok(
+        noslip()
+            .args([
+                "simulate",
+                "scenes/mixture2d.toml",
+                "--time",
+                "3",
+                "--observables",
+                "0.5",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&dir),
+    );
+    let csv = std::fs::read_to_string(dir.join("observables.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(
+        header[header.len() - 8..],
+        [
+            "msd_cm_0 [L^2]",
+            "msd_cm_1 [L^2]",
+            "lost_ball_ball_grain-grain [M L^2 T^-2]",
+            "lost_ball_ball_grain-tracer [M L^2 T^-2]",
+            "lost_ball_ball_tracer-tracer [M L^2 T^-2]",
+            "contacts_grain-grain [1]",
+            "contacts_grain-tracer [1]",
+            "contacts_tracer-tracer [1]",
+        ]
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 6, "{csv}");
+    let w = header.len();
+    let e0 = rows[0][4];
+    for r in &rows {
+        let (losses, counts) = (&r[w - 6..w - 3], &r[w - 3..]);
+        assert_eq!(counts.iter().sum::<f64>(), r[1], "{r:?}");
+        let bound = (r[1] + 2.0) * f64::EPSILON * e0;
+        assert!((losses.iter().sum::<f64>() - r[6]).abs() <= bound, "{r:?}");
+    }
+    let last = rows.last().unwrap();
+    assert!(
+        last[w - 6..].iter().all(|&x| x > 0.0),
+        "every pair met: {last:?}"
+    );
+    let table = parquet_rows(&dir.join("observables.parquet"));
+    assert_eq!(table.len(), rows.len());
+    for (got, want) in table.iter().zip(&rows) {
+        assert_eq!(got.len(), w);
+        for (k, (g, x)) in got.iter().zip(want).enumerate() {
+            match g {
+                Field::Long(c) if k == 1 || k >= w - 3 => assert_eq!(*c as f64, *x),
+                Field::Double(v) if k != 1 && k < w - 3 => {
+                    assert_eq!(v.to_bits(), x.to_bits(), "column {k}")
+                }
+                other => panic!("column {k}: {other:?}"),
+            }
+        }
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,9 +1,10 @@
 //! The granular-gas observables (`noslip simulate --observables DT`) as a table: the CSV's
-//! columns (`noslip_sim::granular::Sampler::columns`), `contacts` an integer and the rest
-//! doubles, one row per sample.
+//! columns (`noslip_sim::granular::Sampler::columns`), `contacts` and a mixture's
+//! `contacts_{a}-{b}` integers and the rest doubles, one row per sample.
 
 use crate::{Cell, Column, Kind, Table};
 use noslip_sim::granular::{Row, Sampler};
+use noslip_sim::pair_losses::is_count;
 use std::io::{self, Write};
 
 /// The columns of `sampler`'s rows, with their units.
@@ -12,7 +13,7 @@ pub fn columns(sampler: &Sampler) -> Vec<Column> {
         .columns()
         .into_iter()
         .map(|(name, unit)| {
-            let kind = if name == "contacts" {
+            let kind = if is_count(&name) {
                 Kind::Int
             } else {
                 Kind::Float
@@ -26,6 +27,11 @@ pub fn columns(sampler: &Sampler) -> Vec<Column> {
 pub fn cells(row: &Row) -> Vec<Cell<'static>> {
     let mut cells: Vec<Cell<'static>> = row.values().into_iter().map(Cell::Float).collect();
     cells[1] = Cell::Int(row.contacts as i64);
+    // The pairs' contact counts come last (`Row::values`).
+    let first = cells.len() - row.pair_contacts.len();
+    for (cell, &c) in cells[first..].iter_mut().zip(&row.pair_contacts) {
+        *cell = Cell::Int(c as i64);
+    }
     cells
 }
 

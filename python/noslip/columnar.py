@@ -164,7 +164,8 @@ def read_observables(path: str | os.PathLike[str]) -> pd.DataFrame:
         ``T_tr``, ``T_rot``, ``energy``, ``collision_frequency``, ``lost_ball_ball``,
         ``lost_ball_wall``, ``lost_ball_obstacle``, ``lost_ball_boundary``, ``injected``, ``pressure``,
         ``a2``, ``msd``, ``msd_cm`` and, in a mixture, ``T_tr_s``, ``T_rot_s`` and
-        ``msd_cm_s`` per species (``docs/granular.md``; the same as :attr:`SimulationResult.observables`).
+        ``msd_cm_s`` per species, ``lost_ball_ball_A-B`` and ``contacts_A-B`` (int64) per pair
+        of species (``docs/granular.md``; the same as :attr:`SimulationResult.observables`).
         ``attrs`` as :func:`read_log`'s (units in the scene's ``M``, ``L``, ``T``).
 
     Raises

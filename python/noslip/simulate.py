@@ -51,7 +51,8 @@ class SimulationResult:
         ``kick_velocities`` (K, N_b, n) (every ball's velocity after the kick, in ball
         order; spins are not kicked) and ``kick_energy_injected`` (K,), so that the start,
         the contacts' ``post_velocity`` and the kicks replay every velocity (K = 0 without a
-        thermostat; ``3 (8 n N_b + 24)`` bytes a kick count against ``max_memory``).
+        thermostat; ``3 (8 n N_b + 24)`` bytes a kick count against ``max_memory``, asked
+        after every contact and every kick).
     boundary_map : dict of ndarray
         The boundary map, one row per contact of a ball with an immovable body (box wall,
         obstacle, table boundary), under the columns of ``noslip simulate --boundary-map``'s
@@ -85,8 +86,13 @@ class SimulationResult:
         square displacement since the start, unwrapped across periodic faces, and the same
         about the centre of mass; exact under a thermostat too, whose kicks end the
         flights) and, in a mixture, ``T_tr_s`` and
-        ``T_rot_s`` for each species index ``s``, then ``msd_cm_s`` for each. Empty without
-        ``observables``.
+        ``T_rot_s`` for each species index ``s``, then ``msd_cm_s`` for each, then
+        ``lost_ball_ball_A-B`` [M L^2 T^-2] for each unordered pair of species ``A-B`` (the
+        energy lost so far at that pair's ball-ball contacts; they add up to
+        ``lost_ball_ball`` to rounding) and ``contacts_A-B`` (int64, its contacts so far), ``A``
+        and ``B`` the species' names (``species<i>`` for all unless every name is letters,
+        digits and ``_`` and no two are equal), pairs in the order ``(0, 0), (0, 1), ...,
+        (1, 1), ...``. Empty without ``observables``.
     pair_correlation : dict of ndarray
         ``g(r)`` averaged over the observables' rows (``pair_correlation=R_MAX``), as
         ``noslip simulate --pair-correlation`` writes ``pair-correlation.csv``: ``r`` [L]
@@ -177,8 +183,8 @@ def simulate(
     observables : float, optional
         Sample the granular-gas observables every this much simulated time (positive and
         finite), as ``noslip simulate --observables``: :attr:`SimulationResult.observables`
-        (360 bytes a row with one species, 48 more a species in a mixture, counted against
-        ``max_memory``).
+        (648 bytes a row with one species; in a mixture 72 more a species and 48 more a pair
+        of species; counted against ``max_memory``).
     pair_correlation : float, optional
         Also sample ``g(r)`` up to this distance at every row but the first (needs
         ``observables``; a box periodic on every axis, without obstacles or other

@@ -14,6 +14,7 @@ use crate::signals::Signals;
 use collision_core::{Generated, Kernel};
 use noslip_sim::boundary_map::{self, Row};
 use noslip_sim::granular::{self, Sampler};
+use noslip_sim::pair_losses::is_count;
 use noslip_sim::run::{check_time, run_watched, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
 use noslip_sim::{GenericKernels, Simulation};
@@ -81,6 +82,7 @@ where
     let fail = |e: String| RunError::Input(format!("{}: {e}", scene.origin));
     let setup = setup::<N, S>(scene).map_err(|e| fail(e.to_string()))?;
     let species = setup.species.clone();
+    let names: Vec<String> = scene.species.iter().map(|s| s.name.clone()).collect();
     let kernels = GenericKernels {
         species: species.clone(),
     };
@@ -101,7 +103,7 @@ where
         .then(|| noslip_sim::animation::Recorder::new(&sim, &species, &title));
     let mut sampler = keep
         .observables
-        .map(|dt| Sampler::start(dt, &sim, &species));
+        .map(|dt| Sampler::start(dt, &sim, &species).with_species_names(&names));
     if let Some((r_max, bins)) = keep.pair_correlation {
         sampler = sampler
             .map(|s| s.with_pair_correlation(r_max, bins))
@@ -120,6 +122,19 @@ where
     // counted three times like the records).
     let kicked = std::cell::Cell::new(0u64);
     let kick_bytes = 3 * (8 * N * sim.len() + 24) as u64;
+    // The contacts so far, and the records kept when the cap was passed: `(contacts, kicks)`
+    // within it (the contact or the kick that passed it not counted).
+    let contacts = std::cell::Cell::new(0u64);
+    let capped = std::cell::Cell::new((0u64, 0u64));
+    // The bytes the records hold with `c` contacts, `r` rows of observables and `k` kicks:
+    // over the cap? Asked after every contact and every kick (a run with few contacts may
+    // take many kicks).
+    let over = |c: u64, r: u64, k: u64| {
+        c.saturating_mul(keep.per_contact)
+            .saturating_add(r.saturating_mul(observable_bytes(species.len())))
+            .saturating_add(k.saturating_mul(kick_bytes))
+            > keep.max_memory
+    };
     let (summary, trace) = run_watched(
         &mut sim,
         &species,
@@ -140,12 +155,9 @@ where
                 }
                 None => 0,
             };
-            // `index * per_contact > max_memory` is `index > keep.contacts` (the quotient).
-            if index.saturating_mul(keep.per_contact)
-                + samples * observable_bytes(species.len())
-                + kicked.get() * kick_bytes
-                > keep.max_memory
-            {
+            contacts.set(index);
+            if over(index, samples, kicked.get()) {
+                capped.set((index - 1, kicked.get()));
                 return Err(std::io::Error::other(CAPPED));
             }
             if signals.interrupted() {
@@ -159,12 +171,25 @@ where
             }
             if keep.log {
                 kicked.set(kicked.get() + 1);
+                let samples = sampler.borrow().as_ref().map_or(0, |s| s.rows().len() as u64);
+                if over(contacts.get(), samples, kicked.get()) {
+                    capped.set((contacts.get(), kicked.get() - 1));
+                    return Err(std::io::Error::other(CAPPED));
+                }
             }
             Ok(())
         },
     )
     .map_err(|e| match e.to_string().as_str() {
-        CAPPED => RunError::Capped(sim.now()),
+        CAPPED => {
+            let (contacts, kicks) = capped.get();
+            RunError::Capped {
+                time: sim.now(),
+                contacts,
+                kicks,
+                kick_bytes,
+            }
+        }
         INTERRUPTED => RunError::Interrupted,
         _ => RunError::Input(format!("internal error: the log in memory failed: {e}")),
     })?;
@@ -188,11 +213,16 @@ where
 }
 
 /// Bytes one row of the observables holds with `species` species, counted three times like
-/// the records (the vector's growth by doubling, then the arrays): the row and its
-/// per-species temperatures.
+/// the records (the vector's growth by doubling, then the arrays): the row and, in a mixture,
+/// its per-species temperatures and `msd_cm_s` (24 bytes a species) and its per-pair losses
+/// and contact counts (16 bytes a pair, `K (K + 1) / 2` pairs).
 fn observable_bytes(species: usize) -> u64 {
-    let per_species = if species > 1 { 16 * species } else { 0 };
-    3 * (std::mem::size_of::<granular::Row>() + per_species) as u64
+    let extra = if species > 1 {
+        24 * species + 16 * (species * (species + 1) / 2)
+    } else {
+        0
+    };
+    3 * (std::mem::size_of::<granular::Row>() + extra) as u64
 }
 
 /// The observables' rows as arrays under the CSV's column names
@@ -207,6 +237,10 @@ fn observable_columns<'py>(
         if name == "contacts" {
             let v: Vec<i64> = rows.iter().map(|r| r.contacts as i64).collect();
             out.set_item(name, array(py, v, &[rows.len()])?)?;
+        } else if is_count(name) {
+            // A pair's contacts (`contacts_{a}-{b}`): exact as doubles below 2^53.
+            let v: Vec<i64> = values.iter().map(|r| r[k] as i64).collect();
+            out.set_item(name, array(py, v, &[rows.len()])?)?;
         } else {
             let v: Vec<f64> = values.iter().map(|r| r[k]).collect();
             out.set_item(name, array(py, v, &[rows.len()])?)?;
@@ -219,7 +253,14 @@ fn observable_columns<'py>(
 /// simulated time, or a signal handler's exception (Ctrl-C).
 enum RunError {
     Input(String),
-    Capped(f64),
+    Capped {
+        time: f64,
+        /// The contacts and kicks whose records fit.
+        contacts: u64,
+        kicks: u64,
+        /// The bytes a kick's records count.
+        kick_bytes: u64,
+    },
     Interrupted,
 }
 
@@ -555,13 +596,27 @@ pub fn simulate<'py>(
     let done = done.map_err(|e| match e {
         RunError::Interrupted => input_error("internal error: interrupted without a signal"),
         RunError::Input(m) => input_error(m),
-        RunError::Capped(t) => input_error(format!(
+        RunError::Capped {
+            time: t,
+            contacts,
+            kicks,
+            kick_bytes,
+        } => input_error(format!(
             "time: the run to t = {} with {} reached max_memory = {max_memory} bytes after \
-             {} contacts, at t = {t} ({per_contact} bytes a contact in {n}D); give events \
-             (up to {}), keep less, or raise max_memory",
+             {contacts} contacts{}, at t = {t} ({per_contact} bytes a contact{} in {n}D); give \
+             events (up to {}), keep less, or raise max_memory",
             time.map_or("(none)".into(), |t| format!("{t:e}")),
             kept(),
-            keep.contacts,
+            if kicks > 0 {
+                format!(" and {kicks} kicks")
+            } else {
+                String::new()
+            },
+            if kicks > 0 {
+                format!(", {kick_bytes} a kick")
+            } else {
+                String::new()
+            },
             keep.contacts
         )),
     })?;

@@ -95,12 +95,21 @@ def test_a_bad_interval_names_observables(dt: float) -> None:
 
 
 def test_the_rows_count_against_max_memory() -> None:
-    # A row at every contact (the interval far below the time between contacts), 360 bytes
-    # each (one species): 3600 bytes hold 10 rows.
+    # A row at every contact (the interval far below the time between contacts), 648 bytes
+    # each with one species (simulate's docstring): 3600 bytes hold 5 rows.
     with pytest.raises(noslip.InputError, match=r"time: .*observables=1e-12.*max_memory = 3600"):
         noslip.simulate(SCENE, time=1, observables=1e-12, max_memory=3600)
-    small = noslip.simulate(SCENE, events=5, observables=1e-12, max_memory=3600)
+    small = noslip.simulate(SCENE, events=5, observables=1e-12, max_memory=6 * 648)
     assert len(small.observables["time"]) == 6  # the start and each contact
+    with pytest.raises(noslip.InputError, match=r"max_memory = 3887 bytes after 4 contacts"):
+        noslip.simulate(SCENE, events=5, observables=1e-12, max_memory=6 * 648 - 1)
+    # A mixture's rows hold its species' and pairs' columns too: 72 bytes a species and 48 a
+    # pair, 648 + 2 * 72 + 3 * 48 = 936 for the two species (three pairs) of the mixture.
+    mixture = ROOT / "scenes" / "mixture2d.toml"
+    small = noslip.simulate(mixture, events=5, observables=1e-12, max_memory=6 * 936)
+    assert len(small.observables["time"]) == 6
+    with pytest.raises(noslip.InputError, match=r"max_memory = 5615 bytes after 4 contacts"):
+        noslip.simulate(mixture, events=5, observables=1e-12, max_memory=6 * 936 - 1)
 
 
 def test_pair_correlation_equals_the_cli_csv(cli: Path, tmp_path: Path) -> None:

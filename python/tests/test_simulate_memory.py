@@ -5,6 +5,7 @@ import subprocess
 import sys
 import textwrap
 
+import numpy as np
 import pytest
 
 import noslip
@@ -98,3 +99,53 @@ def test_a_subnormal_time_is_refused_as_the_cli_refuses_it(time):
                        r"is 2.2250738585072014e-308\)$"):
         noslip.simulate(noslip.tables.sinai(0.5, 0.3), time=time)
     noslip.simulate(noslip.tables.sinai(0.5, 0.3), time=2.2250738585072014e-308)
+
+
+#: A small driven 3D gas: 40 balls, a white-noise kick every 0.05 (docs/granular.md).
+DRIVEN = {
+    "dim": 3,
+    "box": {"size": [8, 8, 8], "boundary": ["periodic"] * 3},
+    "species": [{"mass": 1, "radius": "1/2", "count": 40}],
+    "contact": {"balls": {"e": "0.9", "beta": "0.5"}},
+    "random": {"seed": 2, "velocities": "maxwellian"},
+    "thermostat": {"kind": "white-noise", "strength": "0.5", "interval": "0.05", "seed": 2},
+}
+
+
+def test_the_kicks_count_against_max_memory():
+    """With ``log=True`` a kick's records count ``3 (8 n N_b + 24)`` bytes against
+    ``max_memory`` (simulate's docstring), beside ``3 (57 + 56 n + 32 s)`` = 963 bytes a
+    contact in 3D: a run whose contacts and kicks need exactly that many bytes runs within a
+    cap of that many, and one byte less raises ``InputError`` naming ``max_memory``, the
+    kicks and the bytes a kick. The records only grow, so the largest total is the run's
+    last, whether the cap is asked after a contact or after a kick."""
+    n, balls = 3, 40
+    per_contact, per_kick = 3 * (57 + 56 * n + 32 * 3), 3 * (8 * n * balls + 24)
+    assert (per_contact, per_kick) == (963, 2952)
+    run = noslip.simulate(DRIVEN, time=2.0, log=True)
+    contacts, kicks = len(run.events["time"]), len(run.events["kick"])
+    assert kicks == run.summary["kicks"] == 40 and contacts == run.summary["events"] > 0
+    need = contacts * per_contact + kicks * per_kick
+    exact = noslip.simulate(DRIVEN, time=2.0, log=True, max_memory=need)
+    for name in ("time", "post_velocity", "kick_velocities"):
+        assert np.array_equal(exact.events[name], run.events[name]), name
+    with pytest.raises(noslip.InputError, match=rf"^time: the run to t = 2e0 with log=True "
+                       rf"reached max_memory = {need - 1} bytes after \d+ contacts and \d+ "
+                       rf"kicks, at t = .* \(963 bytes a contact, 2952 a kick in 3D\)"):
+        noslip.simulate(DRIVEN, time=2.0, log=True, max_memory=need - 1)
+    # The contacts alone would fit: the kicks' bytes are what the cap saw.
+    assert contacts * per_contact <= need - 1
+    # Without the log nothing is kept per kick (nor per contact): any cap will do.
+    assert noslip.simulate(DRIVEN, time=2.0, max_memory=1).summary["kicks"] == 40
+
+
+def test_kicks_without_contacts_are_capped_too():
+    """A lone ball has no contacts, only kicks (to the time limit): the cap is asked after
+    each kick too, so 2000 kicks of ``3 (8 * 3 + 24)`` = 144 bytes do not fit in 100 kB (the
+    run stops after 694 of them, the 695th passing it) and fit in 288 000 bytes."""
+    lone = {**DRIVEN, "species": [{"mass": 1, "radius": "1/2", "count": 1}]}
+    with pytest.raises(noslip.InputError, match=r"reached max_memory = 100000 bytes after 0 "
+                       r"contacts and 694 kicks"):
+        noslip.simulate(lone, time=100.0, log=True, max_memory=100_000)
+    run = noslip.simulate(lone, time=100.0, log=True, max_memory=2000 * 144)
+    assert run.summary["kicks"] == len(run.events["kick"]) == 2000

@@ -1,6 +1,7 @@
 //! Granular-gas observables sampled over a run (docs/granular.md): the translational and
 //! rotational granular temperatures (of the whole gas and, in a mixture, of each species), the
-//! collision frequency, the kinetic energy lost per contact kind and injected by a thermostat's
+//! collision frequency, the kinetic energy lost per contact kind (and in a mixture per pair of
+//! species, with the pairs' contacts: [`crate::pair_losses`]) and injected by a thermostat's
 //! kicks, the pressure, the
 //! velocity distribution's cumulant `a_2` and the mean square displacement (of the balls'
 //! unwrapped displacements, also about the centre of mass: [`crate::displacement`]), written
@@ -56,6 +57,7 @@
 use crate::displacement::Displacements;
 use crate::observe::energy_of;
 use crate::pair_correlation::PairCorrelation;
+use crate::pair_losses::{pair_names, PairLosses};
 use crate::self_diffusion::SelfDiffusion;
 use crate::thermostat::Kick;
 use crate::{Contact, Event, PairKernels, Simulation};
@@ -100,6 +102,11 @@ pub struct Row {
     /// `msd_cm` over the balls of each species `s`, in a mixture (empty with one species;
     /// [`crate::displacement::MeanSquares`]).
     pub msd_species: Vec<f64>,
+    /// Energy lost so far at the ball-ball contacts of each unordered pair of species, in a
+    /// mixture, in the pairs' order of [`crate::pair_losses`] (empty with one species).
+    pub pair_lost: Vec<f64>,
+    /// Ball-ball contacts so far of each pair of species, in a mixture (empty with one).
+    pub pair_contacts: Vec<u64>,
 }
 
 impl Row {
@@ -119,6 +126,9 @@ impl Row {
         v.extend([self.pressure, self.a2, self.msd, self.msd_cm]);
         v.extend(self.species.iter().flatten());
         v.extend(&self.msd_species);
+        v.extend(&self.pair_lost);
+        // Counts as doubles: exact below 2^53.
+        v.extend(self.pair_contacts.iter().map(|&c| c as f64));
         v
     }
 }
@@ -259,6 +269,10 @@ pub struct Sampler {
     /// `sum r_ij . J_i` over the ball-ball contacts since the last row.
     virial: f64,
     lost: [f64; 4],
+    /// In a mixture, the ball-ball losses and contacts per pair of species.
+    pairs: Option<PairLosses>,
+    /// The pairs' names in the columns ([`pair_names`]).
+    pair_names: Vec<String>,
     injected: f64,
     displacements: Displacements,
     /// The box's sides: its volume, and the cells of [`Sampler::with_pair_correlation`].
@@ -289,6 +303,8 @@ impl Sampler {
             last: (sim.now(), 0),
             virial: 0.0,
             lost: [0.0; 4],
+            pairs: (species.len() > 1).then(|| PairLosses::new(species.len())),
+            pair_names: unnamed(species.len()),
             injected: 0.0,
             displacements: Displacements::start(sim),
             sides: sim.box_size().to_vec(),
@@ -307,9 +323,13 @@ impl Sampler {
         sim: &Simulation<N, S, K>,
         species: &[Ball<f64>],
     ) {
+        let loss = lost(e, sim, species);
         let k = match e.contact {
             Contact::Ball { i, j } => {
                 self.virial += virial(e, i, j, sim, species);
+                if let Some(p) = &mut self.pairs {
+                    p.add(sim.species_of(i), sim.species_of(j), loss);
+                }
                 0
             }
             Contact::Wall { .. } => 1,
@@ -318,7 +338,7 @@ impl Sampler {
         };
         self.ball_ball += u64::from(k == 0);
         self.displacements.contact(e);
-        self.lost[k] += lost(e, sim, species);
+        self.lost[k] += loss;
         if e.time >= self.next {
             self.row(sim, species);
         }
@@ -384,11 +404,28 @@ impl Sampler {
             } else {
                 Vec::new()
             },
+            pair_lost: self
+                .pairs
+                .as_ref()
+                .map_or_else(Vec::new, |p| p.lost.clone()),
+            pair_contacts: self
+                .pairs
+                .as_ref()
+                .map_or_else(Vec::new, |p| p.contacts.clone()),
         });
         self.last = (time, self.ball_ball);
         self.virial = 0.0;
         // The next multiple of `every` after `time`.
         self.next = ((time / self.every).floor() + 1.0) * self.every;
+    }
+
+    /// Names the pairs' columns by the species' `names` (in species order; [`pair_names`]:
+    /// `species<i>` unless every name is plain and distinct). Without it they are named
+    /// `species<i>`, the scene's name of an unnamed species.
+    pub fn with_species_names(mut self, names: &[String]) -> Sampler {
+        assert_eq!(names.len(), self.species, "a name for every species");
+        self.pair_names = pair_names(names);
+        self
     }
 
     /// The rows so far.
@@ -458,7 +495,9 @@ impl Sampler {
     /// header, the Parquet table's columns and the Python package's arrays share these names:
     /// `time`, `contacts`, `T_tr`, `T_rot`, `energy`, `collision_frequency`, `lost_KIND`
     /// ([`KINDS`]), `injected`, `pressure`, `a2`, `msd`, `msd_cm`, and in a mixture `T_tr_s`, `T_rot_s` for each species
-    /// index `s`, then `msd_cm_s` for each.
+    /// index `s`, then `msd_cm_s` for each, then `lost_ball_ball_{a}-{b}` for each unordered
+    /// pair of species and `contacts_{a}-{b}` for each ([`crate::pair_losses`],
+    /// [`Sampler::with_species_names`]).
     pub fn columns(&self) -> Vec<(String, String)> {
         let mut c: Vec<(String, String)> = [
             ("time", "T"),
@@ -490,6 +529,12 @@ impl Sampler {
             for s in 0..self.species {
                 c.push((format!("msd_cm_{s}"), "L^2".into()));
             }
+            for p in &self.pair_names {
+                c.push((format!("lost_ball_ball_{p}"), ENERGY.into()));
+            }
+            for p in &self.pair_names {
+                c.push((format!("contacts_{p}"), "1".into()));
+            }
         }
         c
     }
@@ -510,4 +555,13 @@ impl Sampler {
         }
         text
     }
+}
+
+/// The pairs' names of `species` species named `species<i>` ([`pair_names`]).
+fn unnamed(species: usize) -> Vec<String> {
+    pair_names(
+        &(0..species)
+            .map(|i| format!("species{i}"))
+            .collect::<Vec<_>>(),
+    )
 }

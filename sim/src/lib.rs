@@ -58,6 +58,7 @@ pub mod observables_plot;
 mod observe;
 mod orientation;
 pub mod pair_correlation;
+pub mod pair_losses;
 pub mod place;
 pub mod plot;
 mod png;

@@ -152,6 +152,13 @@ fn every_contact_of_each_pair_follows_that_pairs_law() {
 /// the bit in every row), each pair's share positive (every law dissipates), and the energy balance
 /// `E_0 - E = lost` within the bound of `sim/tests/granular.rs` (64 eps of the start energy
 /// per contact for the loss's roundings, plus the energy sums' own).
+///
+/// Each pair's columns (`lost_ball_ball_{a}-{b}`, `contacts_{a}-{b}`, named by the species)
+/// are, in every row and to the bit, that pair's per-contact losses added in contact order
+/// and its contacts counted. The pairs' columns add up to `lost_ball_ball` to rounding only
+/// (two orders of summation of the same `C` losses `x_k`): each running sum of `C` terms is
+/// within `(C - 1) u sum |x_k|` of the exact sum (`u = eps / 2`), the three pairs' sum adds
+/// two roundings, so the two differ by at most `(C + 2) eps sum |x_k|`.
 #[test]
 fn lost_ball_ball_is_the_loss_of_every_pair_law() {
     use noslip_sim::granular::{lost, Sampler};
@@ -165,26 +172,74 @@ fn lost_ball_ball_is_the_loss_of_every_pair_law() {
         species: species.clone(),
     };
     let mut sim = Simulation::new(setup, kernels).unwrap();
-    let mut sampler = Sampler::start(1.0, &sim, &species);
-    let (mut total, mut per_pair) = (0.0, [0.0f64; 3]);
-    // The losses summed here when each row was written.
+    let names = ["grain".to_string(), "tracer".to_string()];
+    let mut sampler = Sampler::start(1.0, &sim, &species).with_species_names(&names);
+    let (mut total, mut per_pair, mut contacts_of) = (0.0, [0.0f64; 3], [0u64; 3]);
+    let mut magnitudes = 0.0;
+    // The losses summed here when each row was written: the total, and per pair.
     let mut at_rows = vec![0.0];
+    let mut pairs_at_rows = vec![(vec![0.0; 3], vec![0; 3])];
     while let Step::Contact(e) = sim.step(5.0) {
         let Contact::Ball { i, j } = e.contact else {
             unreachable!("a periodic gas")
         };
         let loss = lost(&e, &sim, &species);
         total += loss;
-        per_pair[sim.species_of(i) + sim.species_of(j)] += loss;
+        magnitudes += loss.abs();
+        // 0: grain-grain, 1: grain-tracer, 2: tracer-tracer (the pairs' order).
+        let pair = sim.species_of(i) + sim.species_of(j);
+        per_pair[pair] += loss;
+        contacts_of[pair] += 1;
         sampler.contact(&e, &sim, &species);
         if sampler.rows().len() > at_rows.len() {
             at_rows.push(total);
+            pairs_at_rows.push((per_pair.to_vec(), contacts_of.to_vec()));
         }
     }
     let rows = sampler.rows();
     assert!(rows.len() >= 5, "a row per unit time");
     let row_losses: Vec<f64> = rows.iter().map(|r| r.lost[0]).collect();
     assert_eq!(row_losses, at_rows);
+    // Each pair's columns, to the bit (`f64` equality: the same additions in the same order).
+    let row_pairs: Vec<(Vec<f64>, Vec<u64>)> = rows
+        .iter()
+        .map(|r| (r.pair_lost.clone(), r.pair_contacts.clone()))
+        .collect();
+    assert_eq!(row_pairs, pairs_at_rows);
+    let columns: Vec<String> = sampler.columns().into_iter().map(|c| c.0).collect();
+    let tail: Vec<&str> = columns[columns.len() - 6..]
+        .iter()
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        tail,
+        [
+            "lost_ball_ball_grain-grain",
+            "lost_ball_ball_grain-tracer",
+            "lost_ball_ball_tracer-tracer",
+            "contacts_grain-grain",
+            "contacts_grain-tracer",
+            "contacts_tracer-tracer"
+        ]
+    );
+    let last_values = rows.last().unwrap().values();
+    assert_eq!(last_values.len(), columns.len());
+    let (lost_at_last, contacts_at_last) = pairs_at_rows.last().unwrap();
+    assert_eq!(
+        last_values[columns.len() - 6..columns.len() - 3],
+        lost_at_last[..]
+    );
+    let counts: Vec<f64> = contacts_at_last.iter().map(|&k| k as f64).collect();
+    assert_eq!(last_values[columns.len() - 3..], counts[..]);
+    // The pairs add up to the total within two summation orders' rounding.
+    let c = sim.contacts() as f64;
+    let sum_of_pairs: f64 = per_pair.iter().sum();
+    let rounding = (c + 2.0) * f64::EPSILON * magnitudes;
+    assert!(
+        (sum_of_pairs - total).abs() <= rounding,
+        "{sum_of_pairs} {total} {rounding}"
+    );
+    assert_eq!(contacts_of.iter().sum::<u64>(), sim.contacts());
     let (first, last) = (&rows[0], rows.last().unwrap());
     let total = last.lost[0];
     assert!(per_pair.iter().all(|&l| l > 0.0), "{per_pair:?}");

@@ -41,7 +41,8 @@ start) and writes to --out, published as one set (the whole directory is replace
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
 drift over events), with --observables DT observables.csv and observables.parquet (granular
 temperatures, collision frequency, pressure, a2 and energy lost per contact kind every DT,
-the same numbers; docs/granular.md), observables.svg (the temperatures against time) and
+in a mixture also per pair of species with the pair's contacts, lost_ball_ball_A-B and
+contacts_A-B; the same numbers; docs/granular.md), observables.svg (the temperatures against time) and
 observables-pressure.svg, -a2.svg, -msd.svg (with --pair-correlation also
 pair-correlation.csv, .parquet, .svg; with --self-diffusion self-diffusion.csv) and, in 2D,
 trajectories.svg (a few balls' paths, cut at periodic wraps
@@ -95,7 +96,8 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     html: Option<PathBuf>,
     /// Sample the granular-gas observables every DT of simulated time (translational and
-    /// rotational temperatures, collision frequency, energy lost per contact kind) into
+    /// rotational temperatures, collision frequency, energy lost per contact kind and, in a
+    /// mixture, per pair of species A-B with its contacts: lost_ball_ball_A-B, contacts_A-B) into
     /// --out as observables.csv, units in its header, and observables.parquet, units in its
     /// metadata, with plots: observables.svg (temperatures), observables-pressure.svg,
     /// observables-a2.svg and observables-msd.svg (docs/granular.md).
@@ -202,6 +204,7 @@ where
     let setup: Setup<N, S> =
         setup::<N, S>(scene).map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
     let species = setup.species.clone();
+    let names: Vec<String> = scene.species.iter().map(|s| s.name.clone()).collect();
     let table = Table2d::of(&setup);
     let kernels = GenericKernels {
         species: species.clone(),
@@ -214,7 +217,7 @@ where
                 "--observables: the interval must be positive and finite, got {dt}"
             )))
         }
-        Some(dt) => Some(Sampler::start(dt, &sim, &species)),
+        Some(dt) => Some(Sampler::start(dt, &sim, &species).with_species_names(&names)),
         None => None,
     };
     if let Some(r_max) = args.pair_correlation {

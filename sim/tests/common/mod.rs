@@ -110,6 +110,26 @@ pub fn haff_gas(dim: usize) -> (f64, usize) {
 /// Student's t, two-sided 99.9 %, for `K - 1 = 5` degrees of freedom.
 pub const T_5: f64 = 6.869;
 
+/// Student's t, two-sided 99.9 % (the 0.9995 quantile), for `K - 1 = 11` degrees of freedom.
+pub const T_11: f64 = 4.437;
+
+/// Student's t, two-sided 99.9 %, for `K - 1 = 23` degrees of freedom.
+pub const T_23: f64 = 3.768;
+
+/// Student's t, two-sided 99.9 %, for `K - 1 = 95` degrees of freedom.
+pub const T_95: f64 = 3.396;
+
+/// The standard normal's one-sided 99 % quantile: an estimate lies more than `Z_99` standard
+/// errors below its expectation at most 1 % of the time.
+pub const Z_99: f64 = 2.326;
+
+/// The largest standard error at which a test with band `t se` catches a departure `delta`
+/// from the theory at least 99 % of the time: `delta >= (t + Z_99) se`, so the mean, which
+/// lies within `Z_99 se` of `theory + delta` 99 % of the time, is then outside the band.
+pub fn se_to_catch(delta: f64, t: f64) -> f64 {
+    delta / (t + Z_99)
+}
+
 /// Mean and standard error of the mean.
 pub fn mean_se(x: &[f64]) -> (f64, f64) {
     let k = x.len() as f64;
