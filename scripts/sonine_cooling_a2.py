@@ -47,17 +47,6 @@ def van_noije_ernst(dim: int, e: Fraction) -> Fraction:
     return numerator / (9 + 24 * dim - e * (41 - 8 * dim) + 30 * (1 - e) * e * e)
 
 
-def laguerre(k: int, alpha: Fraction) -> list[Fraction]:
-    """The coefficients of ``L_k^(alpha)(x) = sum_j (-1)^j C(k + alpha, k - j) x^j / j!``."""
-    out = []
-    for j in range(k + 1):
-        binom = Fraction(1)
-        for i in range(1, k - j + 1):
-            binom *= (alpha + j + i) / i
-        out.append((-1) ** j * binom / math.factorial(j))
-    return out
-
-
 def as_integers(coefficients: list[Fraction]) -> tuple[list[int], int]:
     """``(integers, scale)`` with ``coefficients = integers / scale``."""
     scale = math.lcm(*(c.denominator for c in coefficients))
@@ -114,7 +103,7 @@ class Moments:
         loss = s.add(s.scale(polynomial_of(self.c1sq, [0] * half + [1]), d2h), s.scale(gain, -1))
         scale = 1
         if k is not None:
-            coefficients, scale = as_integers(laguerre(k, Fraction(self.dim - 2, 2)))
+            coefficients, scale = as_integers(s.laguerre(k, Fraction(self.dim - 2, 2)))
             weight = s.add(
                 polynomial_of(self.c1sq, coefficients), polynomial_of(self.c2sq, coefficients)
             )
@@ -132,7 +121,7 @@ def maxwell_moments(dim: int, p: int, k: int | None) -> Fraction:
     def x_moment(j: int) -> Fraction:
         return math.prod((Fraction(dim, 2) + i for i in range(j)), start=Fraction(1))
 
-    coefficients = [Fraction(1)] if k is None else laguerre(k, Fraction(dim - 2, 2))
+    coefficients = [Fraction(1)] if k is None else s.laguerre(k, Fraction(dim - 2, 2))
     return sum((c * x_moment(p // 2 + j) for j, c in enumerate(coefficients)), start=Fraction(0))
 
 

@@ -188,8 +188,32 @@ def gamma_half(twice: int) -> Surd:
     return Surd(Fraction(math.factorial(2 * k), 4**k * math.factorial(k)), 0, 1)
 
 
+def laguerre(p: int, alpha: Fraction) -> list[Fraction]:
+    """The coefficients of ``L_p^(alpha)(x) = sum_k (-1)^k C(p + alpha, p - k) x^k / k!``.
+
+    Parameters
+    ----------
+    p : int
+        The order.
+    alpha : Fraction
+        The index.
+
+    Returns
+    -------
+    list of Fraction
+        ``[s_0, ..., s_p]``, the coefficient of ``x^k`` at ``k``.
+    """
+    out = []
+    for k in range(p + 1):
+        binom = Fraction(1)
+        for i in range(1, p - k + 1):
+            binom *= (alpha + k + i) / i
+        out.append((-1) ** k * binom / math.factorial(k))
+    return out
+
+
 def sonine(p: int, dim: int) -> list[Fraction]:
-    """The coefficients of ``S_p(x) = L_p^(n/2)(x) = sum_k (-1)^k C(p + n/2, p - k) x^k / k!``.
+    """The coefficients of ``S_p(x) = L_p^(n/2)(x)`` (:func:`laguerre` at ``alpha = n/2``).
 
     Parameters
     ----------
@@ -203,14 +227,7 @@ def sonine(p: int, dim: int) -> list[Fraction]:
     list of Fraction
         ``[s_0, ..., s_p]``, the coefficient of ``x^k`` at ``k``.
     """
-    alpha = Fraction(dim, 2)
-    out = []
-    for k in range(p + 1):
-        binom = Fraction(1)
-        for i in range(1, p - k + 1):
-            binom *= (alpha + k + i) / i
-        out.append((-1) ** k * binom / math.factorial(k))
-    return out
+    return laguerre(p, Fraction(dim, 2))
 
 
 def reduce_over_g_mean(p: Poly, dim: int) -> dict[tuple[int, int, int], Fraction]:

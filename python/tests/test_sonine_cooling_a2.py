@@ -6,30 +6,13 @@ second-order values that ``sim/tests/boltzmann.rs`` holds the DSMC to are the sc
 
 from __future__ import annotations
 
-import importlib.util
 import re
-import sys
 from fractions import Fraction
-from pathlib import Path
-from types import ModuleType
 
 import pytest
+from repo_scripts import ROOT, load
 
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def script() -> ModuleType:
-    """The script, imported from its path (it imports its neighbour the same way)."""
-    path = ROOT / "scripts" / "sonine_cooling_a2.py"
-    spec = importlib.util.spec_from_file_location("sonine_cooling_a2", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
-
-
-S = script()
+S = load("sonine_cooling_a2")
 
 
 @pytest.mark.parametrize("dim", [2, 3, 4])

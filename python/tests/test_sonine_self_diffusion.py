@@ -19,31 +19,14 @@ About 1 s (``P <= 4`` in both dimensions)."""
 
 from __future__ import annotations
 
-import importlib.util
 import math
 import re
-import sys
 from fractions import Fraction
-from pathlib import Path
-from types import ModuleType
 
 import pytest
+from repo_scripts import ROOT, load
 
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def script() -> ModuleType:
-    """The script, imported from its path (it is not part of the package)."""
-    path = ROOT / "scripts" / "sonine_self_diffusion.py"
-    spec = importlib.util.spec_from_file_location("sonine_self_diffusion", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up there
-    spec.loader.exec_module(module)
-    return module
-
-
-S = script()
+S = load("sonine_self_diffusion")
 
 
 @pytest.mark.parametrize("dim", [2, 3])
