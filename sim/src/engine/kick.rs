@@ -21,7 +21,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// Call it where [`Simulation::step`] stopped at the kick's time (`Step::Until` or
     /// `Step::Never` with `until` that time): no contact is pending before it. Every ball's
     /// contact counter moves on (its velocity changed), and its last contact is forgotten (a
-    /// kick may turn it back towards that boundary or ball: [`crate::last_contact`]).
+    /// kick may turn it back towards that boundary or ball: `sim/src/last_contact.rs`).
     ///
     /// # Panics
     ///
