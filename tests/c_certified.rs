@@ -18,10 +18,10 @@ mod backend;
 #[path = "c_certified/extra.rs"]
 mod extra;
 
+use backend::companions::{of, Extra};
 use backend::{cc, compile_harness, draw, records, run, same, scratch, Float};
 use collision_core::certified::{CertifiedKernel, Companion};
 use collision_core::{BodyState, Generated, Scalar};
-use extra::Extra;
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
 use noslip_codegen::backend::{generate, Lang};
@@ -253,7 +253,7 @@ where
 macro_rules! every_dim {
     ($dir:expr, $exes:expr, $(($m:ident $n:literal $s:literal))*) => {{
         let mut failures = Vec::new();
-        $(failures.extend(check_dim::<$n, $s>($dir, $exes, &extra::of!($m)));)*
+        $(failures.extend(check_dim::<$n, $s>($dir, $exes, &of!($m)));)*
         failures
     }};
 }
@@ -317,7 +317,7 @@ fn one_altered_bound_operation_fails_the_comparison() {
         .chain(["-DNOSLIP_ONLY_N=3"])
         .collect();
     let cases = draw::<3, 3>(300, 3);
-    let extra = extra::of!(d3);
+    let extra = of!(d3);
     let good = [("good", build(&dir, &header, &flags, "good"))];
     let mut seen = check_format(&dir, &good, &cases.f64);
     seen.extend(extra.check(&dir, &good, &cases, &extra::RHOS[..1], FIRST_LAWS));

@@ -1,4 +1,6 @@
-//! The OpenCL back end is faithful where it runs: the emitted OpenCL C, built once by the
+//! The OpenCL back end is faithful where it runs: the emitted OpenCL C kernels
+//! (`kernels_source`: `noslip_kernels.cl` without its certified companions, which
+//! `opencl_certified.rs` builds and runs), built once by the
 //! OpenCL implementation (PoCL on the CPU in CI) with `-cl-fp32-correctly-rounded-divide-sqrt`,
 //! its batch kernels run on 10^5 cases per dimension (n = 2..6), kernel (`free`, `fixed`,
 //! `free_fma`, `fixed_fma`) and format (`f64`, `f32`) from every regime of the accuracy
@@ -18,7 +20,7 @@ use collision_core::{
 };
 use noslip_accuracy::case::Case;
 use noslip_accuracy::regime::Regime;
-use noslip_codegen::backend::{file_name, generate, Lang};
+use noslip_codegen::backend::{file_name, kernels_source, Lang};
 use std::fmt::Write;
 use std::path::Path;
 
@@ -85,15 +87,11 @@ where
 fn opencl_kernels_are_bit_identical_to_the_rust_kernels() {
     let dir = scratch("opencl-backend");
     let source = dir.join(file_name(Lang::OpenCl));
-    std::fs::write(&source, generate(Lang::OpenCl, &[2, 3, 4, 5, 6])).unwrap();
+    std::fs::write(&source, kernels_source(Lang::OpenCl, &[2, 3, 4, 5, 6])).unwrap();
 
     const TEST: &str = "OpenCL faithfulness test";
-    if let Err(why) = opencl::clang_check(&source) {
-        return opencl::skip(TEST, &why);
-    }
-    let host = match opencl::build_host(&dir) {
-        Ok(host) => host,
-        Err(why) => return opencl::skip(TEST, &why),
+    let Some(host) = opencl::host_for(TEST, &source, &dir) else {
+        return;
     };
     for n in collision_core::DIMS.iter().copied() {
         collision_core::with_dim!(
@@ -339,14 +337,10 @@ fn law_format<T: Float, const N: usize, const S: usize>(
 fn opencl_rough_kernels_are_bit_identical_to_the_rust_kernels() {
     let dir = scratch("opencl-backend-rough");
     let source = dir.join(file_name(Lang::OpenCl));
-    std::fs::write(&source, generate(Lang::OpenCl, &[2, 3, 4, 5, 6])).unwrap();
+    std::fs::write(&source, kernels_source(Lang::OpenCl, &[2, 3, 4, 5, 6])).unwrap();
     const TEST: &str = "OpenCL rough-kernel faithfulness test";
-    if let Err(why) = opencl::clang_check(&source) {
-        return opencl::skip(TEST, &why);
-    }
-    let host = match opencl::build_host(&dir) {
-        Ok(host) => host,
-        Err(why) => return opencl::skip(TEST, &why),
+    let Some(host) = opencl::host_for(TEST, &source, &dir) else {
+        return;
     };
     let mut list = String::new();
     for n in collision_core::DIMS.iter().copied() {

@@ -118,6 +118,7 @@ fn lang_c_and_opencl_write_their_files_into_out() {
     let cl = std::fs::read_to_string(dir.join("noslip_kernels.cl")).unwrap();
     assert!(cl.contains("#pragma OPENCL FP_CONTRACT OFF"));
     assert!(cl.contains("__kernel void noslip_d6_fixed_f64_batch("));
+    assert!(cl.contains("__kernel void noslip_d6_walton_free_fma_certified_f32_batch("));
     // Only the files: no temporaries left beside them.
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()

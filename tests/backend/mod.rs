@@ -10,6 +10,7 @@
 
 #![allow(dead_code)]
 
+pub mod companions;
 pub mod opencl;
 
 use collision_core::rng::Rng;

@@ -66,6 +66,18 @@ pub fn build_host(dir: &Path) -> Result<PathBuf, Unavailable> {
     Ok(host)
 }
 
+/// [`clang_check`] of `source`, then [`build_host`] into `dir`; `None`, after [`skip`], when
+/// either is unavailable.
+pub fn host_for(test: &str, source: &Path, dir: &Path) -> Option<PathBuf> {
+    match clang_check(source).and_then(|()| build_host(dir)) {
+        Ok(host) => Some(host),
+        Err(why) => {
+            skip(test, &why);
+            None
+        }
+    }
+}
+
 /// Run the host on `source` and the case files of `dir` (the generic kernels, or those of
 /// `list`: the usage in `cl_host.c`); print its platform line. Panics when it fails.
 pub fn run_host(

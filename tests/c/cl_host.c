@@ -7,7 +7,8 @@
  * LIST: one line per kernel, "FORMAT NAME IN_WIDTHS OUT_WIDTHS", e.g.
  * "f64 noslip_gas2d_ball_ball_0_0_f64 2,3,3 3,3": runs NAME_batch on DIR/NAME.bin, records of
  * the input widths' sum of FORMAT values split into one array per input parameter (in order),
- * and writes DIR/NAME.out, per record the output parameters' values in order.
+ * and writes DIR/NAME.out, per record the output parameters' values in order. An output width
+ * suffixed `d` ("21d") is of double whatever FORMAT (the bounds of the _f32_wide companions).
  *
  * Without LIST: for each n in 2..6 and format f64/f32 whose DIR/cases_{n}_{format}.bin exists (records as
  * in tests/c/harness.c), runs noslip_d{n}_{kernel}_{format}_batch for kernel = free, fixed,
@@ -47,10 +48,10 @@ static void *read_all(const char *path, size_t *len) {
     } while (0)
 
 /* Run kernel KNAME over COUNT work items with the input buffers INS (N_IN of them), then write
- * PATH: per work item, the N_OUT outputs of OUT_WIDTHS values of SIZE bytes each, in order. */
+ * PATH: per work item, the N_OUT outputs of OUT_WIDTHS values of OUT_SIZES bytes each, in order. */
 static int run_batch(cl_context ctx, cl_command_queue queue, cl_program program, const char *kname,
-                     size_t count, size_t size, int n_in, const cl_mem *ins, int n_out,
-                     const size_t *out_widths, const char *path) {
+                     size_t count, int n_in, const cl_mem *ins, int n_out,
+                     const size_t *out_widths, const size_t *out_sizes, const char *path) {
     cl_int err;
     cl_kernel kernel = clCreateKernel(program, kname, &err);
     CHECK(err);
@@ -60,15 +61,15 @@ static int run_batch(cl_context ctx, cl_command_queue queue, cl_program program,
     cl_mem outs[MAX_PARAMS];
     char *results[MAX_PARAMS];
     for (int o = 0; o < n_out; o++) {
-        outs[o] = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, count * out_widths[o] * size + 1, NULL, &err);
+        outs[o] = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, count * out_widths[o] * out_sizes[o] + 1, NULL, &err);
         CHECK(err);
         CHECK(clSetKernelArg(kernel, arg++, sizeof(cl_mem), &outs[o]));
-        results[o] = malloc(count * out_widths[o] * size + 1);
+        results[o] = malloc(count * out_widths[o] * out_sizes[o] + 1);
     }
     size_t global = count;
     CHECK(clEnqueueNDRangeKernel(queue, kernel, 1, NULL, &global, NULL, 0, NULL, NULL));
     for (int o = 0; o < n_out; o++)
-        CHECK(clEnqueueReadBuffer(queue, outs[o], CL_TRUE, 0, count * out_widths[o] * size, results[o], 0, NULL, NULL));
+        CHECK(clEnqueueReadBuffer(queue, outs[o], CL_TRUE, 0, count * out_widths[o] * out_sizes[o], results[o], 0, NULL, NULL));
     clReleaseKernel(kernel);
     FILE *f = fopen(path, "wb");
     if (!f) {
@@ -77,7 +78,7 @@ static int run_batch(cl_context ctx, cl_command_queue queue, cl_program program,
     }
     for (size_t c = 0; c < count; c++)
         for (int o = 0; o < n_out; o++)
-            fwrite(results[o] + c * out_widths[o] * size, size, out_widths[o], f);
+            fwrite(results[o] + c * out_widths[o] * out_sizes[o], out_sizes[o], out_widths[o], f);
     for (int o = 0; o < n_out; o++) {
         clReleaseMemObject(outs[o]);
         free(results[o]);
@@ -103,13 +104,19 @@ static void split(cl_context ctx, const char *in, size_t count, size_t size, int
     }
 }
 
-/* Parse "a,b,c" into WIDTHS; the count, or -1. */
-static int widths_of(const char *text, size_t *widths) {
+/* Parse "a,b,c" into WIDTHS and SIZES (SIZE, or sizeof(double) for a width suffixed `d`);
+ * the count, or -1. */
+static int widths_of(const char *text, size_t size, size_t *widths, size_t *sizes) {
     int n = 0;
     while (*text) {
         char *end;
         unsigned long w = strtoul(text, &end, 10);
         if (end == text || w == 0 || n == MAX_PARAMS) return -1;
+        sizes[n] = size;
+        if (*end == 'd') {
+            sizes[n] = sizeof(double);
+            end++;
+        }
         widths[n++] = (size_t)w;
         text = *end == ',' ? end + 1 : end;
         if (*end && *end != ',') return -1;
@@ -127,10 +134,12 @@ static int run_list(cl_context ctx, cl_command_queue queue, cl_program program, 
     }
     char format[8], name[256], ins[256], outs[256], path[4096], kname[300];
     while (fscanf(f, "%7s %255s %255s %255s", format, name, ins, outs) == 4) {
-        size_t in_w[MAX_PARAMS], out_w[MAX_PARAMS];
-        const int n_in = widths_of(ins, in_w), n_out = widths_of(outs, out_w);
+        size_t in_w[MAX_PARAMS], out_w[MAX_PARAMS], in_s[MAX_PARAMS], out_s[MAX_PARAMS];
         const size_t size = !strcmp(format, "f64") ? sizeof(double) : sizeof(float);
-        if (n_in < 0 || n_out < 0 || (strcmp(format, "f64") && strcmp(format, "f32"))) {
+        const int n_in = widths_of(ins, size, in_w, in_s), n_out = widths_of(outs, size, out_w, out_s);
+        int mixed = 0;
+        for (int a = 0; a < n_in; a++) mixed |= in_s[a] != size;
+        if (n_in < 0 || n_out < 0 || mixed || (strcmp(format, "f64") && strcmp(format, "f32"))) {
             fprintf(stderr, "cl_host: bad line for %s in %s\n", name, list);
             return 2;
         }
@@ -147,7 +156,7 @@ static int run_list(cl_context ctx, cl_command_queue queue, cl_program program, 
         split(ctx, in, count, size, n_in, in_w, bufs);
         snprintf(kname, sizeof kname, "%s_batch", name);
         snprintf(path, sizeof path, "%s/%s.out", dir, name);
-        if (run_batch(ctx, queue, program, kname, count, size, n_in, bufs, n_out, out_w, path)) return 1;
+        if (run_batch(ctx, queue, program, kname, count, n_in, bufs, n_out, out_w, out_s, path)) return 1;
         for (int a = 0; a < n_in; a++) clReleaseMemObject(bufs[a]);
         free(in);
     }
@@ -230,11 +239,11 @@ int main(int argc, char **argv) {
             for (int k = 0; k < 4; k++) {
                 const int fixed = strstr(kernels[k], "fixed") != NULL;
                 const cl_mem args[5] = {bufs[0], fixed ? radius_buf : bufs[1], bufs[2], bufs[3], bufs[4]};
-                const size_t out_widths[2] = {len, len};
+                const size_t out_widths[2] = {len, len}, out_sizes[2] = {size, size};
                 char kname[128];
                 snprintf(kname, sizeof kname, "noslip_d%zu_%s_%s_batch", n, kernels[k], formats[f]);
                 snprintf(path, sizeof path, "%s/%zu_%s_%s.out", argv[2], n, kernels[k], formats[f]);
-                if (run_batch(ctx, queue, program, kname, count, size, 5, args, fixed ? 1 : 2, out_widths, path))
+                if (run_batch(ctx, queue, program, kname, count, 5, args, fixed ? 1 : 2, out_widths, out_sizes, path))
                     return 1;
             }
             for (int a = 0; a < 5; a++) clReleaseMemObject(bufs[a]);

@@ -1,6 +1,6 @@
 //! The C99 and OpenCL C back ends: the hooks of [`Language`] for each.
 
-use super::{Language, Param, Precision, Unit};
+use super::{BatchParam, Language, Param, Precision, Unit};
 use std::fmt::Write;
 
 /// C99, as a self-contained header of `static inline` functions, usable from C++ as is.
@@ -31,6 +31,13 @@ impl Language for C {
         match p {
             Precision::F64 => "sqrt",
             Precision::F32 => "sqrtf",
+        }
+    }
+
+    fn fabs(&self, p: Precision) -> &'static str {
+        match p {
+            Precision::F64 => "fabs",
+            Precision::F32 => "fabsf",
         }
     }
 
@@ -92,6 +99,10 @@ impl Language for C {
         String::new()
     }
 
+    fn batch(&self, _: &str, _: &[BatchParam]) -> String {
+        String::new()
+    }
+
     fn notes(&self) -> Vec<String> {
         vec![
             "Compile without -ffast-math and (clang) -ffp-contract=fast; otherwise the header itself".into(),
@@ -125,6 +136,10 @@ impl Language for OpenCl {
 
     fn sqrt(&self, _: Precision) -> &'static str {
         "sqrt"
+    }
+
+    fn fabs(&self, _: Precision) -> &'static str {
+        "fabs"
     }
 
     fn body_prologue(&self) -> &'static str {
@@ -163,45 +178,56 @@ impl Language for OpenCl {
 
     fn after_function(&self, unit: &Unit, p: Precision) -> String {
         let ty = p.c_type();
-        let n = unit.program.dim;
-        let state = n * (n - 1) / 2 + n;
-        let name = unit.function_name(p);
-        let params: Vec<String> = std::iter::once("const uint count".to_string())
-            .chain(unit.params.iter().map(|param| match param {
-                Param::Array(a, _) => format!("__global const {ty} *{a}"),
-                Param::Scalar(a) => format!("__global const {ty} *{a}"),
-                Param::Out(a, _) => format!("__global {ty} *{a}"),
+        let state = unit.program.dim * (unit.program.dim - 1) / 2 + unit.program.dim;
+        let params: Vec<BatchParam> = unit
+            .params
+            .iter()
+            .map(|param| match param {
+                Param::Array(a, elems) => BatchParam::input(a, ty, Some(elems.len())),
+                Param::Scalar(a) => BatchParam::input(a, ty, None),
+                Param::Out(a, _) => BatchParam::output(a, ty, state),
+            })
+            .collect();
+        self.batch(&unit.function_name(p), &params)
+    }
+
+    fn batch(&self, name: &str, params: &[BatchParam]) -> String {
+        let decls: Vec<String> = std::iter::once("const uint count".to_string())
+            .chain(params.iter().map(|b| {
+                let constness = if b.out { "" } else { "const " };
+                format!("__global {constness}{} *{}", b.ty, b.name)
             }))
             .collect();
         let mut k = format!(
             "\n// {name} on contact i = get_global_id(0) < count: each parameter an array of\n\
              // count records of the scalar kernel's parameter (arrays of structures).\n\
              __kernel void {name}_batch({})\n{{\n    const size_t i = get_global_id(0);\n    if (i >= count) return;\n",
-            params.join(", ")
+            decls.join(", ")
         );
         let mut args = Vec::new();
-        for param in &unit.params {
-            match param {
-                Param::Array(a, elems) => {
-                    let len = elems.len();
+        for b in params {
+            let (a, ty) = (&b.name, b.ty);
+            match (b.len, b.out) {
+                (Some(len), false) => {
                     let _ = writeln!(k, "    {ty} {a}_i[{len}];");
                     for e in 0..len {
                         let _ = writeln!(k, "    {a}_i[{e}] = {a}[i * {len} + {e}];");
                     }
                     args.push(format!("{a}_i"));
                 }
-                Param::Scalar(a) => args.push(format!("{a}[i]")),
-                Param::Out(a, _) => {
-                    let _ = writeln!(k, "    {ty} {a}_i[{state}];");
+                (None, _) => args.push(format!("{a}[i]")),
+                (Some(len), true) => {
+                    let _ = writeln!(k, "    {ty} {a}_i[{len}];");
                     args.push(format!("{a}_i"));
                 }
             }
         }
         let _ = writeln!(k, "    {name}({});", args.join(", "));
-        for param in &unit.params {
-            if let Param::Out(a, _) = param {
-                for e in 0..state {
-                    let _ = writeln!(k, "    {a}[i * {state} + {e}] = {a}_i[{e}];");
+        for b in params {
+            if let (Some(len), true) = (b.len, b.out) {
+                let a = &b.name;
+                for e in 0..len {
+                    let _ = writeln!(k, "    {a}[i * {len} + {e}] = {a}_i[{e}];");
                 }
             }
         }
@@ -214,7 +240,8 @@ impl Language for OpenCl {
             "Build with -cl-fp32-correctly-rounded-divide-sqrt (OpenCL allows float `/` an error of".into(),
             "2.5 ulp otherwise) on a device whose float config has CL_FP_DENORM (else float subnormals".into(),
             "may flush to zero); the double kernels need cl_khr_fp64 (double `/` is correctly rounded).".into(),
-            "Batch kernels NAME_batch(count, arrays..): one contact per work item, arrays of structures.".into(),
+            "Batch kernels NAME_batch(count, arrays..): one contact per work item, arrays of structures;".into(),
+            "the certified companions' too (their bounds also need -cl-fp32-correctly-rounded-divide-sqrt).".into(),
         ]
     }
 }

@@ -112,6 +112,43 @@ pub enum Param {
     Out(&'static str, usize),
 }
 
+/// One parameter of a batch entry point ([`Language::batch`]): the scalar function's
+/// parameter `name` of C type `ty`, an array of `len` elements (`None`: one scalar), read
+/// (`out == false`) or written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BatchParam {
+    /// The parameter's name.
+    pub name: String,
+    /// Its element type: `double`, `float`.
+    pub ty: &'static str,
+    /// The array's length, or `None` for a scalar.
+    pub len: Option<usize>,
+    /// Whether the function writes it.
+    pub out: bool,
+}
+
+impl BatchParam {
+    /// An input array (`len` given) or scalar.
+    pub fn input(name: &str, ty: &'static str, len: Option<usize>) -> Self {
+        BatchParam {
+            name: name.to_string(),
+            ty,
+            len,
+            out: false,
+        }
+    }
+
+    /// An output array of `len` elements.
+    pub fn output(name: &str, ty: &'static str, len: usize) -> Self {
+        BatchParam {
+            name: name.to_string(),
+            ty,
+            len: Some(len),
+            out: true,
+        }
+    }
+}
+
 /// A kernel ready to be spelled: its name (without the precision suffix), its program, its
 /// parameters and the comment above it.
 #[derive(Clone, Debug)]
@@ -147,6 +184,8 @@ pub trait Language {
     fn fma(&self, p: Precision) -> &'static str;
     /// The correctly rounded square root of precision `p`: `sqrt`, `sqrtf`.
     fn sqrt(&self, p: Precision) -> &'static str;
+    /// The absolute value of precision `p`: `fabs`, `fabsf`.
+    fn fabs(&self, p: Precision) -> &'static str;
     /// The first line of every function body (a pragma or macro), or `""`.
     fn body_prologue(&self) -> &'static str;
     /// The file's start after the common header comment: include guard, includes, pragmas.
@@ -157,8 +196,12 @@ pub trait Language {
     fn begin(&self, p: Precision) -> String;
     /// After the functions of precision `p`.
     fn end(&self, p: Precision) -> String;
-    /// What follows each function (OpenCL: its batch kernel), or `""`.
+    /// What follows each function (OpenCL: its batch kernel, [`Language::batch`]), or `""`.
     fn after_function(&self, unit: &Unit, p: Precision) -> String;
+    /// The batch entry point `{function}_batch(count, arrays..)` of the scalar function
+    /// `function` with parameters `params` (OpenCL: a `__kernel`, one record per work item), or
+    /// `""`.
+    fn batch(&self, function: &str, params: &[BatchParam]) -> String;
     /// Lines describing the language-specific rules, for the header comment.
     fn notes(&self) -> Vec<String>;
 }
@@ -523,8 +566,8 @@ pub fn source(lang: &dyn Language, guard: &str, about: &str, units: &[Unit]) -> 
     source_with(lang, guard, about, units, "")
 }
 
-/// [`source`] with `extra` functions before the epilogue (the C header's certified
-/// companions, [`crate::certify::c`]).
+/// [`source`] with `extra` functions before the epilogue (the certified companions,
+/// [`crate::certify::c`]).
 pub fn source_with(
     lang: &dyn Language,
     guard: &str,
@@ -606,8 +649,21 @@ pub fn source_with(
     s
 }
 
-/// The generic kernels of `dims` as one file of `lang`: `noslip_kernels.{h,cl}`.
+/// The generic kernels of `dims` as one file of `lang`: `noslip_kernels.{h,cl}`, the
+/// kernels ([`kernels_source`]) followed by their certified companions
+/// ([`crate::certify::c::functions`]; in OpenCL each with its batch kernel).
 pub fn generate(lang: Lang, dims: &[usize]) -> String {
+    let extra = crate::certify::c::functions(lang.language(), dims);
+    kernels_source_with(lang, dims, &extra)
+}
+
+/// [`generate`] without the certified companions: the kernels alone (the OpenCL kernels'
+/// faithfulness test builds this, the companions' test the companions).
+pub fn kernels_source(lang: Lang, dims: &[usize]) -> String {
+    kernels_source_with(lang, dims, "")
+}
+
+fn kernels_source_with(lang: Lang, dims: &[usize], extra: &str) -> String {
     assert!(
         dims.iter().all(|d| DIMS.contains(d)),
         "dimensions must be in {DIMS:?}: {dims:?}"
@@ -626,17 +682,12 @@ pub fn generate(lang: Lang, dims: &[usize]) -> String {
         .map(usize::to_string)
         .collect::<Vec<_>>()
         .join(", ");
-    // The certified companions, in C only (OpenCL: not yet).
-    let extra = match lang {
-        Lang::C => crate::certify::c::functions(dims),
-        Lang::OpenCl => String::new(),
-    };
     source_with(
         lang.language(),
         "NOSLIP_KERNELS",
         &format!("No-slip collision kernels for n = {list}"),
         &units,
-        &extra,
+        extra,
     )
 }
 

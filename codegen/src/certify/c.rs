@@ -1,4 +1,5 @@
-//! The certified companions spelled in C99: `noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
+//! The certified companions spelled in C99 and in OpenCL C (one emitter, through the
+//! [`Language`] hooks of the kernels): `noslip_d{n}_{free|fixed}_certified_{f64|f32}`,
 //! `..._certified_fast_...`, and those of the FMA kernels `noslip_d{n}_{free|fixed}_fma_certified_...`
 //! (fused steps through `fma`/`fmaf`, contraction off as in the plain kernels); the running
 //! companions with rounded inputs `noslip_d{n}_{free|fixed}[_fma]_certified_rounded_{f64|f32}`
@@ -7,12 +8,12 @@
 //! `noslip_d{n}_{free|fixed}[_fma]_certified_f32_wide` ([`super::wide`]); and the running
 //! companions of the rough-ball and Walton kernels,
 //! `noslip_d{n}_{rough|walton}_{free|fixed}[_fma]_certified_{f64|f32}` (`law` after `ball2`
-//! as in their plain kernels): appended to the C
-//! header (`noslip gen --lang c`), with the plain kernels' ABI plus one bound array per
-//! output array.
+//! as in their plain kernels): appended to the C header (`noslip gen --lang c`) and to the
+//! OpenCL source (`--lang opencl`, each with its batch kernel `NAME_batch`), with the plain
+//! kernels' ABI plus one bound array per output array.
 
 use super::{Arg, Certified, Expr, Format, Scheme};
-use crate::backend::{constant_literal, Precision};
+use crate::backend::{constant_literal, BatchParam, Language, Precision};
 use crate::model::{names, skew_pairs, Variant};
 use crate::Arith;
 use std::collections::HashSet;
@@ -141,22 +142,22 @@ pub fn name_of(c: &Certified) -> String {
     }
 }
 
-/// The C function of `c`, with its comment.
-pub fn function(c: &Certified) -> String {
+/// The function of `c` in `lang` (C99 or OpenCL C: their qualifiers, prologue and the
+/// names of `fma`, `sqrt`, `fabs`), with its comment, and its batch entry point where `lang`
+/// has one ([`Language::batch`]).
+pub fn function(lang: &dyn Language, c: &Certified) -> String {
     let (p, f) = (&c.program, c.format);
     let n = p.dim;
     let ty = precision(f).c_type();
     let bty = bound_type(f);
     let len = n * (n - 1) / 2 + n;
-    let (fabs, bsqrt) = if f.bound_in_f64() {
-        ("fabs", "sqrt")
+    let bound_precision = if f.bound_in_f64() {
+        Precision::F64
     } else {
-        ("fabsf", "sqrtf")
+        Precision::F32
     };
-    let (fma, ksqrt) = match precision(f) {
-        Precision::F64 => ("fma", "sqrt"),
-        Precision::F32 => ("fmaf", "sqrtf"),
-    };
+    let (fabs, bsqrt) = (lang.fabs(bound_precision), lang.sqrt(bound_precision));
+    let (fma, ksqrt) = (lang.fma(precision(f)), lang.sqrt(precision(f)));
     let kernel: HashSet<&str> = p
         .inputs
         .iter()
@@ -205,29 +206,41 @@ pub fn function(c: &Certified) -> String {
         if f == Format::F32Wide { " (in double)" } else { "" }
     );
     let arrays = arrays(n, p.variant, law.as_ref().map(|(_, f)| f.clone()));
-    let mut params: Vec<String> = arrays
+    let mut batch: Vec<BatchParam> = arrays
         .iter()
-        .map(|(a, e)| format!("const {ty} {a}[{}]", e.len()))
+        .map(|(a, e)| BatchParam::input(a, ty, Some(e.len())))
         .collect();
     let outs: Vec<usize> = c.outputs.iter().map(|o| o.body).collect();
     if p.variant == Variant::Fixed {
-        params.insert(1, format!("{ty} radius1"));
+        batch.insert(1, BatchParam::input("radius1", ty, None));
     }
     for r in &c.rounded {
-        params.push(format!("{ty} {}", r.param));
+        batch.push(BatchParam::input(&r.param, ty, None));
     }
     for b in &outs {
-        params.push(format!("{ty} out{b}[{len}]"));
+        batch.push(BatchParam::output(&format!("out{b}"), ty, len));
     }
     for b in &outs {
-        params.push(format!("{bty} bound{b}[{len}]"));
+        batch.push(BatchParam::output(&format!("bound{b}"), bty, len));
     }
+    let params: Vec<String> = batch
+        .iter()
+        .map(|b| match (b.len, b.out) {
+            (Some(l), false) => format!("const {} {}[{l}]", b.ty, b.name),
+            (Some(l), true) => format!("{} {}[{l}]", b.ty, b.name),
+            (None, _) => format!("{} {}", b.ty, b.name),
+        })
+        .collect();
+    let name = name_of(c);
     let _ = writeln!(
         s,
-        "static inline NOSLIP_NO_CONTRACT void {}({})\n{{\n    NOSLIP_FP_CONTRACT_OFF",
-        name_of(c),
+        "{} void {name}({})\n{{",
+        lang.qualifiers(),
         params.join(", ")
     );
+    if !lang.body_prologue().is_empty() {
+        let _ = writeln!(s, "    {}", lang.body_prologue());
+    }
     for (a, elems) in &arrays {
         let mut any = false;
         for (k, e) in elems.iter().enumerate() {
@@ -291,29 +304,29 @@ pub fn function(c: &Certified) -> String {
         }
     }
     s.push_str("}\n");
+    s.push_str(&lang.batch(&name, &batch));
     s
 }
 
-/// The companions of `dims` for the C header: per format (`f64`, then `f32`), dimension,
-/// kernel (plain, FMA) and variant, the running, fast and rounded-input companions; then the
-/// `float` kernels' running companions with the bound in `double`.
-pub fn functions(dims: &[usize]) -> String {
-    let mut s = String::from(
-        "\n/* Certified companions: the plain kernels' parameters (and rho_nu, rho_gamma2 for the\n \
-         * rounded-input ones), then out arrays, then one bound array per out array (the same\n \
-         * layout; double for the _f32_wide ones). */\n",
-    );
-    let push = |s: &mut String, c: &Certified| {
-        s.push('\n');
-        s.push_str(&function(c));
-    };
+/// Whether `c` computes in `double` (its kernel or its bound): in OpenCL it needs
+/// `cl_khr_fp64`.
+fn uses_double(c: &Certified) -> bool {
+    c.format.bound_in_f64()
+}
+
+/// The companions of `dims` in the order of the emitted files: per format (`f64`, then
+/// `f32`), dimension, kernel (plain, FMA) and variant, the running, fast and rounded-input
+/// companions; then the `float` kernels' running companions with the bound in `double`; then
+/// the rough-ball and Walton kernels' running companions, `f64` then `f32`.
+pub fn companions(dims: &[usize]) -> Vec<Certified> {
+    let mut all = Vec::new();
     for f in [Format::F64, Format::F32] {
         for &n in dims {
             for arith in Arith::ALL {
                 for v in Variant::ALL {
-                    push(&mut s, &Certified::of(n, v, arith, f));
-                    push(&mut s, &Certified::of_fast(n, v, arith, f));
-                    push(&mut s, &Certified::of_rounded(n, v, arith, f));
+                    all.push(Certified::of(n, v, arith, f));
+                    all.push(Certified::of_fast(n, v, arith, f));
+                    all.push(Certified::of_rounded(n, v, arith, f));
                 }
             }
         }
@@ -321,7 +334,7 @@ pub fn functions(dims: &[usize]) -> String {
     for &n in dims {
         for arith in Arith::ALL {
             for v in Variant::ALL {
-                push(&mut s, &Certified::of(n, v, arith, Format::F32Wide));
+                all.push(Certified::of(n, v, arith, Format::F32Wide));
             }
         }
     }
@@ -330,11 +343,46 @@ pub fn functions(dims: &[usize]) -> String {
         for &n in dims {
             for arith in Arith::ALL {
                 for v in Variant::ALL {
-                    push(&mut s, &Certified::of_rough(n, v, arith, f));
-                    push(&mut s, &Certified::of_walton(n, v, arith, f));
+                    all.push(Certified::of_rough(n, v, arith, f));
+                    all.push(Certified::of_walton(n, v, arith, f));
                 }
             }
         }
     }
+    all
+}
+
+/// The functions of `companions` in `lang`, in order, after a comment on their ABI; each
+/// run of companions computing in `double` wrapped in `lang`'s `double` guard
+/// ([`Language::begin`], [`Language::end`]; OpenCL's `cl_khr_fp64`, nothing in C).
+pub fn functions_of(lang: &dyn Language, companions: &[Certified]) -> String {
+    let mut s = String::from(
+        "\n/* Certified companions: the plain kernels' parameters (and rho_nu, rho_gamma2 for the\n \
+         * rounded-input ones), then out arrays, then one bound array per out array (the same\n \
+         * layout; double for the _f32_wide ones). */\n",
+    );
+    let guard = |d: bool| if d { Precision::F64 } else { Precision::F32 };
+    let mut open: Option<bool> = None;
+    for c in companions {
+        let d = uses_double(c);
+        if open != Some(d) {
+            if let Some(o) = open {
+                s.push_str(&lang.end(guard(o)));
+            }
+            s.push_str(&lang.begin(guard(d)));
+            open = Some(d);
+        }
+        s.push('\n');
+        s.push_str(&function(lang, c));
+    }
+    if let Some(o) = open {
+        s.push_str(&lang.end(guard(o)));
+    }
     s
+}
+
+/// Every companion of `dims` ([`companions`]) in `lang` ([`functions_of`]): what the C
+/// header and the OpenCL source append to the kernels.
+pub fn functions(lang: &dyn Language, dims: &[usize]) -> String {
+    functions_of(lang, &companions(dims))
 }
