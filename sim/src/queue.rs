@@ -93,12 +93,20 @@ pub(crate) trait Slots {
     fn key(&self, ball: usize) -> Key;
 }
 
+/// A ball in the heap with its pending time `t_i` (a copy of its slot's), so that the
+/// heap's comparisons read the heap alone and a ball's record only when two times tie.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    time: f64,
+    ball: u32,
+}
+
 /// The calendar of pending events, one per ball (module docs). It holds the order (heap,
 /// buckets, overflow); the slots are its owner's ([`Slots`]), passed to every call.
 #[derive(Debug)]
 pub(crate) struct Calendar {
     /// Balls with `b_i <= current`, a binary heap on `(t_i, key_i, i)`.
-    heap: Vec<u32>,
+    heap: Vec<Entry>,
     /// Balls with `current < b_i < current + B`, in bucket `b_i mod B`.
     buckets: Vec<Vec<u32>>,
     /// Balls in the buckets, all together.
@@ -137,38 +145,62 @@ impl Calendar {
     }
 
     /// `b = floor(t / delta)` (saturating; 0 for `t <= 0`).
+    #[inline]
     fn bucket(&self, t: f64) -> u64 {
         (t * self.inv_width) as u64
     }
 
-    /// Whether ball `a`'s event comes before ball `b`'s: `(t_a, key_a, a) < (t_b, key_b, b)`
+    /// Whether entry `a` comes before entry `b`: `(t_a, key_a, a) < (t_b, key_b, b)`
     /// ([`order`]), the keys read only for equal times.
     #[inline]
-    fn less(slots: &(impl Slots + ?Sized), a: u32, b: u32) -> bool {
-        let (ta, tb) = (slots.slot(a as usize).time, slots.slot(b as usize).time);
-        match ta.total_cmp(&tb) {
+    fn less(slots: &(impl Slots + ?Sized), a: Entry, b: Entry) -> bool {
+        match a.time.total_cmp(&b.time) {
             std::cmp::Ordering::Equal => {
-                let (ka, kb) = (slots.key(a as usize), slots.key(b as usize));
-                order((ta, ka), (tb, kb)).then_with(|| a.cmp(&b)).is_lt()
+                let (ka, kb) = (slots.key(a.ball as usize), slots.key(b.ball as usize));
+                order((a.time, ka), (b.time, kb))
+                    .then_with(|| a.ball.cmp(&b.ball))
+                    .is_lt()
             }
             o => o.is_lt(),
         }
     }
 
     /// Ball `ball`'s pending event is now at `time` (replacing any it had); its key is
-    /// `slots.key(ball)`, already the new event's.
+    /// `slots.key(ball)`, already the new event's (the old key is never read: a ball is
+    /// compared only at its new time).
+    ///
+    /// In place when the new time keeps the ball where it is: in the heap (`b <= c`: one
+    /// sift from its place), in the same bucket, or in the overflow (`b >= c + B`); else a
+    /// removal and an insertion.
     pub(crate) fn set(&mut self, slots: &mut (impl Slots + ?Sized), ball: usize, time: f64) {
+        let b = self.bucket(time);
+        let slot = *slots.slot(ball);
+        let stays = match slot.place {
+            Place::Heap(at) if b <= self.current => {
+                slots.slot_mut(ball).time = time;
+                self.heap[at as usize].time = time;
+                self.sift(slots, at as usize);
+                return;
+            }
+            Place::Bucket(_) => b == self.bucket(slot.time),
+            Place::Overflow(_) => b.saturating_sub(self.current) >= self.buckets.len() as u64,
+            _ => false,
+        };
+        if stays {
+            slots.slot_mut(ball).time = time;
+            return;
+        }
         self.remove(slots, ball);
         slots.slot_mut(ball).time = time;
         self.insert(slots, ball as u32);
     }
 
     fn insert(&mut self, slots: &mut (impl Slots + ?Sized), ball: u32) {
-        let b = self.bucket(slots.slot(ball as usize).time);
+        let time = slots.slot(ball as usize).time;
+        let b = self.bucket(time);
         if b <= self.current {
-            self.heap.push(ball);
+            self.heap.push(Entry { time, ball });
             let at = self.heap.len() - 1;
-            slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
             self.sift_up(slots, at);
         } else if b - self.current < self.buckets.len() as u64 {
             let slot = (b & self.mask()) as usize;
@@ -190,9 +222,7 @@ impl Calendar {
                 let last = self.heap.pop().expect("a ball in the heap");
                 if at < self.heap.len() {
                     self.heap[at] = last;
-                    slots.slot_mut(last as usize).place = Place::Heap(at as u32);
-                    self.sift_down(slots, at);
-                    self.sift_up(slots, at);
+                    self.sift(slots, at);
                 }
             }
             Place::Bucket(at) => {
@@ -234,16 +264,16 @@ impl Calendar {
             let mut list = std::mem::take(&mut self.buckets[slot]);
             self.in_buckets -= list.len();
             for &ball in &list {
-                self.heap.push(ball);
+                let time = slots.slot(ball as usize).time;
+                self.heap.push(Entry { time, ball });
                 let at = self.heap.len() - 1;
-                slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
                 self.sift_up(slots, at);
             }
             list.clear();
             self.buckets[slot] = list;
         }
-        let top = self.heap[0] as usize;
-        Some((slots.slot(top).time, top))
+        let top = self.heap[0];
+        Some((top.time, top.ball as usize))
     }
 
     /// Moves the overflow's balls within reach of the buckets into them (or the heap).
@@ -265,7 +295,7 @@ impl Calendar {
     pub(crate) fn rebuild(&mut self, slots: &mut (impl Slots + ?Sized), shift: f64) {
         let mut pending = std::mem::take(&mut self.scratch);
         pending.clear();
-        pending.append(&mut self.heap);
+        pending.extend(self.heap.drain(..).map(|e| e.ball));
         pending.append(&mut self.overflow);
         for list in &mut self.buckets {
             pending.append(list);
@@ -300,24 +330,35 @@ impl Calendar {
         self.scratch = pending;
     }
 
+    /// Restores the heap's order after the entry at `at` changed (or replaced another): up
+    /// if it now precedes its parent, else down.
+    #[inline]
+    fn sift(&mut self, slots: &mut (impl Slots + ?Sized), at: usize) {
+        if at > 0 && Self::less(slots, self.heap[at], self.heap[(at - 1) / 2]) {
+            self.sift_up(slots, at);
+        } else {
+            self.sift_down(slots, at);
+        }
+    }
+
     fn sift_up(&mut self, slots: &mut (impl Slots + ?Sized), mut at: usize) {
-        let ball = self.heap[at];
+        let entry = self.heap[at];
         while at > 0 {
             let parent = (at - 1) / 2;
             let p = self.heap[parent];
-            if !Self::less(slots, ball, p) {
+            if !Self::less(slots, entry, p) {
                 break;
             }
             self.heap[at] = p;
-            slots.slot_mut(p as usize).place = Place::Heap(at as u32);
+            slots.slot_mut(p.ball as usize).place = Place::Heap(at as u32);
             at = parent;
         }
-        self.heap[at] = ball;
-        slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
+        self.heap[at] = entry;
+        slots.slot_mut(entry.ball as usize).place = Place::Heap(at as u32);
     }
 
     fn sift_down(&mut self, slots: &mut (impl Slots + ?Sized), mut at: usize) {
-        let ball = self.heap[at];
+        let entry = self.heap[at];
         let len = self.heap.len();
         loop {
             let left = 2 * at + 1;
@@ -331,15 +372,15 @@ impl Calendar {
                 left
             };
             let c = self.heap[child];
-            if !Self::less(slots, c, ball) {
+            if !Self::less(slots, c, entry) {
                 break;
             }
             self.heap[at] = c;
-            slots.slot_mut(c as usize).place = Place::Heap(at as u32);
+            slots.slot_mut(c.ball as usize).place = Place::Heap(at as u32);
             at = child;
         }
-        self.heap[at] = ball;
-        slots.slot_mut(ball as usize).place = Place::Heap(at as u32);
+        self.heap[at] = entry;
+        slots.slot_mut(entry.ball as usize).place = Place::Heap(at as u32);
     }
 }
 
@@ -374,9 +415,13 @@ mod tests {
                 slots: vec![(Slot::EMPTY, 0); balls],
             }
         }
+        /// Ball `ball`'s event at `time` with `key`: the key changed first, in its slot (as
+        /// the engine does), then the calendar told (in place where it can); for odd times'
+        /// bits the event removed first (as before it changed).
         fn set(&mut self, ball: usize, time: f64, key: Key) {
-            // The key first: it is the new event's when the calendar places it.
-            self.cal.remove(&mut self.slots, ball);
+            if time.to_bits() & 1 == 1 {
+                self.cal.remove(&mut self.slots, ball);
+            }
             self.slots[ball].1 = key;
             self.cal.set(&mut self.slots, ball, time);
         }

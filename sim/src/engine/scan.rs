@@ -102,13 +102,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             Some((_, What::Cell { axis, up })) => Some((axis, up)),
             _ => None,
         };
-        // Out of the calendar before its key (read from the record) changes.
-        self.queue.remove(self.balls.as_mut_slice(), i);
+        // The record first: the calendar reads the new key (and never the old one).
         let record = &mut self.balls[i];
         record.found = found;
         record.crossing = crossing;
-        if let Some((t, _)) = best.best {
-            self.queue.set(self.balls.as_mut_slice(), i, t);
+        match best.best {
+            Some((t, _)) => self.queue.set(self.balls.as_mut_slice(), i, t),
+            None => self.queue.remove(self.balls.as_mut_slice(), i),
         }
     }
 
