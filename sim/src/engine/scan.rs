@@ -64,8 +64,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Lays the records out in cell order ([`crate::residents::Residents::compact`]) and
     /// predicts every ball, cell after cell (so that neighbouring predictions read the same
-    /// lists), then sizes the calendar for them: the start and every re-basing.
+    /// lists), then sizes the calendar for them: the start and every re-basing. The calendar
+    /// is opened first ([`crate::queue::Calendar::open`]): the new times are placed once.
     pub(super) fn predict_all(&mut self) {
+        self.queue.open(self.balls.as_mut_slice());
         self.motion.compact(self.balls.as_mut_slice());
         let order: Vec<usize> = self.motion.in_cell_order().collect();
         for i in order {
