@@ -3,22 +3,33 @@
 //!
 //! Ball `i`'s pending event has a time `t_i >= 0` (on the engine's local clock) and a bucket
 //! `b_i = floor(t_i / delta)`. The calendar keeps a current bucket `c` and:
-//! - every ball with `b_i <= c` in a binary heap ordered by `(t_i, key_i, i)` (the key orders
-//!   the events of one time, [`crate::canonical`]);
+//! - every ball with `b_i <= c` in one list sorted on `(t_i, key_i, i)` (the key orders the
+//!   events of one time, [`crate::canonical`]), each entry with a copy of `t_i`;
 //! - every ball with `c < b_i < c + B` in bucket `b_i mod B`, an unordered list (`B`, a power
 //!   of two, the number of buckets);
 //! - every later ball in an overflow list, moved into the buckets each time `c` reaches a
 //!   multiple of `B` (before it can reach their bucket).
 //!
-//! Since `t < t'` implies `b <= b'`, the heap's least `(t_i, key_i, i)` is the least over all
-//! balls: the pop order is exactly that order, whatever `delta` and
-//! `B` (deterministic). When the heap is empty the next bucket is loaded into it (or, if every
-//! bucket is empty, `c` jumps to the overflow's earliest bucket). Setting or removing a ball's
-//! event is `O(1)` in a bucket or the overflow (a swap-remove; each ball knows its place) and
-//! `O(log h)` in the heap of `h` balls; with `delta` chosen at each [`Calendar::rebuild`] so that
-//! a bucket holds a few events on average and `B delta` spans several times the mean time to
-//! the next event, `h` is a few and the overflow small: the cost per event does not grow
-//! with the number of balls. Nothing is allocated once the lists have grown.
+//! Since `t < t'` implies `b <= b'`, the sorted list's first `(t_i, key_i, i)` is the least
+//! over all balls: the pop order is exactly that order, whatever `delta` and `B`
+//! (deterministic). When the list is empty the next bucket is loaded into it and sorted once
+//! (or, if every bucket is empty, `c` jumps to the overflow's earliest bucket).
+//!
+//! **Costs.** Setting or removing a ball's event is `O(1)` in a bucket or the overflow (a
+//! swap-remove; each ball knows its place), and in place (its time written, nothing moved)
+//! when the new time stays in the same bucket or in the overflow. The earliest event leaves
+//! the sorted list by one step of its start (`head`), moving nothing; another ball leaves or
+//! enters it by moving the shorter side of the list by one (a binary search for an entry's
+//! place), `O(h)` for `h` balls in it, against `O(log h)` in the binary heap this list
+//! replaced (issue 30, session 40: 4 % fewer instructions at `phi` 0.1 in 3D, 7 % in 2D;
+//! docs/benchmarks.md, "The calendar"). With `delta` chosen at each [`Calendar::rebuild`] so
+//! that a bucket holds a few events on average (8) and `B delta` spans several times the
+//! mean time to the next event, `h` is a few and the overflow small: the cost per event does
+//! not grow with the number of balls. A bucket that holds many balls (events bunched far
+//! more than at the last rebuild) makes the list's insertions `O(h)` each until the next
+//! rebuild. Re-predicting every ball (the start, a re-basing) goes through
+//! [`Calendar::open`]: the new times are kept unordered and placed once by the rebuild.
+//! Nothing is allocated once the lists have grown.
 
 use crate::canonical::{order, Key};
 
