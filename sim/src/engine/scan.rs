@@ -64,8 +64,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// Lays the records out in cell order ([`crate::residents::Residents::compact`]) and
     /// predicts every ball, cell after cell (so that neighbouring predictions read the same
-    /// lists), then sizes the calendar for them: the start and every re-basing.
+    /// lists), then sizes the calendar for them: the start and every re-basing. The calendar
+    /// is opened first ([`crate::queue::Calendar::open`]): the new times are placed once.
     pub(super) fn predict_all(&mut self) {
+        self.queue.open(self.balls.as_mut_slice());
         self.motion.compact(self.balls.as_mut_slice());
         let order: Vec<usize> = self.motion.in_cell_order().collect();
         for i in order {
@@ -102,13 +104,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             Some((_, What::Cell { axis, up })) => Some((axis, up)),
             _ => None,
         };
-        // Out of the calendar before its key (read from the record) changes.
-        self.queue.remove(self.balls.as_mut_slice(), i);
+        // The record first: the calendar reads the new key (and never the old one).
         let record = &mut self.balls[i];
         record.found = found;
         record.crossing = crossing;
-        if let Some((t, _)) = best.best {
-            self.queue.set(self.balls.as_mut_slice(), i, t);
+        match best.best {
+            Some((t, _)) => self.queue.set(self.balls.as_mut_slice(), i, t),
+            None => self.queue.remove(self.balls.as_mut_slice(), i),
         }
     }
 
