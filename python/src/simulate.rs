@@ -171,7 +171,10 @@ where
             }
             if keep.log {
                 kicked.set(kicked.get() + 1);
-                let samples = sampler.borrow().as_ref().map_or(0, |s| s.rows().len() as u64);
+                let samples = sampler
+                    .borrow()
+                    .as_ref()
+                    .map_or(0, |s| s.rows().len() as u64);
                 if over(contacts.get(), samples, kicked.get()) {
                     capped.set((contacts.get(), kicked.get() - 1));
                     return Err(std::io::Error::other(CAPPED));
