@@ -94,10 +94,22 @@ pub(crate) fn obstacle_time<const N: usize>(
     image: &[i16; N],
     size: &[f64; N],
 ) -> Option<f64> {
-    let b = obstacle_image(centre, image, size);
-    let d: [f64; N] = std::array::from_fn(|k| b[k] - m.pos[k]);
+    let d = obstacle_offset(m, centre, image, size);
     let dv: [f64; N] = std::array::from_fn(|k| -m.velocity[k]);
     contact_time(&d, &dv, m.radius + radius).map(|tau| m.since + tau)
+}
+
+/// Obstacle `centre` at image `image` less ball `m`'s record centre, `(c + k L) - a_i`: the
+/// difference [`obstacle_time`] solves from.
+#[inline]
+pub(crate) fn obstacle_offset<const N: usize>(
+    m: &Motion<N>,
+    centre: &[f64; N],
+    image: &[i16; N],
+    size: &[f64; N],
+) -> [f64; N] {
+    let b = obstacle_image(centre, image, size);
+    std::array::from_fn(|k| b[k] - m.pos[k])
 }
 
 /// An obstacle's centre at image `image`: `c + k L`.

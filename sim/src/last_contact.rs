@@ -25,15 +25,23 @@
 //!   coincidence, not guarded). A pair's first zero-flight repeat used to come at once
 //!   (`t_ref`), later ones an ulp or two apart, each within the overlap: the distance, not
 //!   the time, tells them apart.
+//! - **A ball and obstacle** `o` it touched last: the same argument (a sphere, convex, and a
+//!   normal velocity left at least 0), so the obstacle at that image is refused while the
+//!   ball touches it there at its record's time, `|d|^2 <= sigma^2 (1 + 2^-26)`
+//!   ([`LastContact::repeats_obstacle`]). At `e = 0` with a smooth tangential law a ball in
+//!   the Sinai table used to repeat its obstacle contact forever (`t = 0.219265`).
 //! - **A ball and table boundary** `b` it touched last: a boundary convex seen from the ball
 //!   cannot be met again before another contact, a container not at the same instant
 //!   ([`LastContact::repeats_boundary`]).
 //!
-//! Walls and obstacles need no rule: a reflection from a plane or a sphere turns the normal
-//! velocity outwards by its own size, not by a residue.
+//! Box walls have no rule: their normals are coordinate axes, and a one-ball box at `e = 0`
+//! showed no repeat (measured, not proved for every law).
 
-/// The tag of a ball partner: the high bit (boundaries are `b + 1 < 2^31`).
+/// The tag of a ball partner: the high bit.
 const BALL: u32 = 1 << 31;
+
+/// The tag of an obstacle: the next bit (boundaries are `b + 1 < 2^30`).
+const OBSTACLE: u32 = 1 << 30;
 
 /// Ball `i`'s last contact, as far as a repeat matters (module docs): a ball, a table
 /// boundary, or anything else (none yet, a wall, an obstacle, a kick).
@@ -47,8 +55,28 @@ impl LastContact {
     /// Table boundary `b`.
     #[inline]
     pub(crate) fn boundary(b: usize) -> Self {
-        debug_assert!(b + 1 < BALL as usize, "boundary index in range");
+        debug_assert!(b + 1 < OBSTACLE as usize, "boundary index in range");
         LastContact(b as u32 + 1)
+    }
+
+    /// Obstacle `o`.
+    #[inline]
+    pub(crate) fn obstacle(o: usize) -> Self {
+        debug_assert!(o < OBSTACLE as usize, "obstacle index in range");
+        LastContact(OBSTACLE | o as u32)
+    }
+
+    /// Whether a contact with obstacle `o` is a repeat to refuse (module docs): this is `o`,
+    /// and at the ball's record time it touches the obstacle's image, `offset` the centres'
+    /// difference there (evaluated only if this is `o`) and `sigma` the contact distance.
+    #[inline]
+    pub(crate) fn repeats_obstacle<const N: usize>(
+        self,
+        o: usize,
+        offset: impl FnOnce() -> [f64; N],
+        sigma: f64,
+    ) -> bool {
+        self == LastContact::obstacle(o) && touching(&offset(), sigma)
     }
 
     /// Ball `j`.
@@ -152,5 +180,23 @@ mod tests {
         assert!(!last.repeats_boundary(2, false, 1e-300));
         assert!(!last.repeats_boundary(1, true, 0.0));
         assert!(!LastContact::ball(2).repeats_boundary(2, true, 0.0));
+        assert!(!LastContact::obstacle(2).repeats_boundary(2, true, 0.0));
+    }
+
+    #[test]
+    fn an_obstacle_repeats_only_while_touching_and_only_if_last() {
+        let last = LastContact::obstacle(5);
+        let touch = || [0.0, 1.0 - f64::EPSILON];
+        assert!(last.repeats_obstacle(5, touch, 1.0));
+        assert!(!last.repeats_obstacle(5, || [0.0, 2.0], 1.0));
+        assert!(!last.repeats_obstacle(4, touch, 1.0));
+        let unread = || -> [f64; 2] { panic!("read") };
+        for other in [
+            LastContact::NONE,
+            LastContact::ball(5),
+            LastContact::boundary(5),
+        ] {
+            assert!(!other.repeats_obstacle(5, unread, 1.0));
+        }
     }
 }

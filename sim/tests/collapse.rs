@@ -151,3 +151,39 @@ fn a_sticking_pair_at_e_0_does_not_repeat_its_contact_at_once() {
         eprintln!("{name}: {contacts} contacts to t = {until}");
     }
 }
+
+/// The shipped Sinai table (`scenes/sinai.toml`: one disk, a periodic unit square, a disk
+/// obstacle) with the obstacle's law `e = 0`, `beta = -1`: the disk left touching the
+/// obstacle used to meet it again at once, forever (100 000 obstacle contacts by `t =
+/// 0.219265`). It must now reach `t = 10` within 1000 contacts (it takes 2).
+#[test]
+fn a_ball_left_touching_an_obstacle_at_e_0_does_not_repeat_its_contact() {
+    let shipped = include_str!("../../scenes/sinai.toml");
+    let obstacle = "radius = \"3/10\"\n";
+    assert!(shipped.contains(obstacle), "the shipped obstacle");
+    let text = shipped.replace(
+        obstacle,
+        "radius = \"3/10\"\ncontact = { e = 0, beta = \"-1\" }\n",
+    );
+    let scene = noslip_scene::Scene::from_toml(&text, "sinai.toml").unwrap();
+    let setup = noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
+    let kernels = GenericKernels {
+        species: setup.species.clone(),
+    };
+    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let mut contacts = 0;
+    loop {
+        match sim.step(10.0) {
+            Step::Contact(_) => contacts += 1,
+            Step::Until => break,
+            Step::Quiet { .. } => {}
+            Step::Never(why) => panic!("{why:?} at t = {}", sim.now()),
+        }
+        assert!(
+            contacts < 1000,
+            "no end to the contacts at t = {}",
+            sim.now()
+        );
+    }
+    eprintln!("{contacts} contacts to t = 10");
+}

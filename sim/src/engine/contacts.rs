@@ -118,7 +118,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let pre = [self.balls[i].state.clone(), self.balls[i].state.clone()];
         let kind = self.law(self.table.obstacle(o), [i, i], t);
         self.balls[i].state = self.fixed(kind, i, None, &nu, &pre[0]);
-        self.balls[i].last = LastContact::NONE;
+        self.balls[i].last = LastContact::obstacle(o);
         let event = self.finish(Contact::Obstacle { i, obstacle: o }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event

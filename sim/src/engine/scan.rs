@@ -5,7 +5,7 @@
 use super::lanes::{cell_image, Flight, Gathered, LANES};
 use super::record::key_of;
 use super::Simulation;
-use crate::canonical::{self, obstacle_time, pair_offset, pair_time};
+use crate::canonical::{self, obstacle_offset, obstacle_time, pair_offset, pair_time};
 use crate::cells::Listing;
 use crate::last_contact::LastContact;
 use crate::motion::Motion;
@@ -182,7 +182,14 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 let f = &self.obstacles[o as usize];
                 let size = &self.grid.size;
                 if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, size) {
-                    best.offer(t, || What::Obstacle { o, image });
+                    let offset = || obstacle_offset(&m, &f.position, &image, size);
+                    let sigma = m.radius + f.radius;
+                    if !self.balls[i]
+                        .last
+                        .repeats_obstacle(o as usize, offset, sigma)
+                    {
+                        best.offer(t, || What::Obstacle { o, image });
+                    }
                 }
             }
         }

@@ -13,8 +13,8 @@
 //! ball) skipped at their pop.
 
 use crate::canonical::{
-    self, image_f64, key, kind, obstacle_image, obstacle_time, order, pair_offset, pair_time,
-    rebase_at, Key,
+    self, image_f64, key, kind, obstacle_image, obstacle_offset, obstacle_time, order, pair_offset,
+    pair_time, rebase_at, Key,
 };
 use crate::cells::Grid;
 use crate::engine::{Contact, Event};
@@ -288,8 +288,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
                 // The ball's image k relative to the obstacle is the obstacle's -k.
                 let image = minus.map(|k| -k);
                 if let Some(t) = obstacle_time(&m, &f.position, f.radius, &image, &self.size) {
-                    let next = Next::Obstacle { o, image };
-                    offer(t, key(i, kind::OBSTACLE, o as u32, &image), next);
+                    let offset = || obstacle_offset(&m, &f.position, &image, &self.size);
+                    if !self.last[i].repeats_obstacle(o, offset, sigma) {
+                        let next = Next::Obstacle { o, image };
+                        offer(t, key(i, kind::OBSTACLE, o as u32, &image), next);
+                    }
                 }
             }
         }
@@ -411,6 +414,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
         );
         self.last[i] = match contact {
             Contact::Boundary { boundary, .. } => LastContact::boundary(boundary),
+            Contact::Obstacle { obstacle, .. } => LastContact::obstacle(obstacle),
             _ => LastContact::NONE,
         };
         self.finish(contact, nu, [i, i], pre, [after.clone(), after], t)

@@ -158,12 +158,13 @@ fn the_shipped_granular_gas_logs_the_same_bytes_in_both_engines() {
 }
 
 /// The shipped cooling gas at `e = 0` (under its TC model, and with `beta = -1` and no TC
-/// model): pairs left touching with a rounding residue of normal velocity, whose repeat both
-/// engines refuse by the same rule (`crate::last_contact`; the 12th contact of the first is
-/// such a pair, which used to repeat forever). 2000 contacts each (fewer if the gas freezes:
-/// both logs must then end together).
+/// model), and a 2D gas at `e = 0` around an obstacle with `(e, beta) = (0, -1)`: pairs and
+/// obstacle contacts left touching with a rounding residue of normal velocity, whose repeat
+/// both engines refuse by the same rules (`crate::last_contact`; the 12th contact of the
+/// first is such a pair, which used to repeat forever). 2000 contacts each (fewer if the gas
+/// freezes: both logs must then end together).
 #[test]
-fn the_cooling_gas_at_e_0_logs_the_same_bytes_in_both_engines() {
+fn gases_at_e_0_log_the_same_bytes_in_both_engines() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let text = std::fs::read_to_string(dir.join("granular3d.toml")).unwrap();
     let law = r#"balls = { e = "0.9", beta = "0.5" }"#;
@@ -176,6 +177,29 @@ fn the_cooling_gas_at_e_0_logs_the_same_bytes_in_both_engines() {
         let scene = Scene::from_toml(&text, name).unwrap();
         compare(name, setup::<3, 3>(&scene).unwrap(), 2000);
     }
+    // Disks left touching an obstacle too (periodic images of it included).
+    let obstacle = r#"
+dim = 2
+[box]
+size = [6, 6]
+boundary = ["periodic", "periodic"]
+[[species]]
+mass = 1
+radius = "1/4"
+count = 30
+[[obstacle]]
+position = [3, 3]
+radius = 1
+contact = { e = 0, beta = "-1" }
+[contact]
+balls = { e = 0, beta = "0.5" }
+[random]
+seed = 5
+speed = 1
+spin = 1
+"#;
+    let scene = Scene::from_toml(obstacle, "e = 0 obstacle").unwrap();
+    compare("e = 0, obstacle", setup::<2, 1>(&scene).unwrap(), 2000);
 }
 
 /// The mixture cools and clusters, and its contacts past the first few thousand come slowly
