@@ -46,8 +46,8 @@ pub(super) struct BallRecord<const N: usize, const S: usize> {
     pub previous: f64,
     /// Its species.
     pub kind: u32,
-    /// Its last contact, a ball or a table boundary, whose repeat at once is refused
-    /// ([`crate::last_contact`]).
+    /// Its last contact (a ball, an obstacle or a table boundary), whose repeat while still
+    /// touching is refused ([`crate::last_contact`]).
     pub last: LastContact,
 }
 

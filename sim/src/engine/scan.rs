@@ -217,8 +217,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         }
         if refused {
-            // The least time was a repeat ([`crate::last_contact`]): the others as the scalar
-            // loop meets them (rare: a pair touching again at zero flight time).
+            // The least time was a refused repeat ([`crate::last_contact`]): the others as the
+            // scalar loop meets them (rare: a pair left touching, its residue pointing inwards).
             for p in 0..count {
                 if near.time(p) > bound {
                     let resident = self.motion.at(near.places[p]);
@@ -293,9 +293,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             // Right after a contact with b: a convex b cannot be met again, a container not at
             // the same instant (a graze within rounding would repeat forever at t = 0).
             let convex = boundary.shape.convex_from_outside();
-            if convex && last.repeats_boundary(b, true, f64::NAN) {
-                continue;
-            }
             if let Some(tau) = boundary.shape.contact_time(&m.pos, &m.velocity, m.radius) {
                 if !last.repeats_boundary(b, convex, tau) {
                     best.offer(m.since + tau, || What::Boundary { b: b as u32 });
