@@ -370,6 +370,54 @@ fn bad_intervals_and_laws_exit_2_naming_them() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A disk that collapses against the circle's wall (`e = 1/2`, no TC model) leaves along it
+/// after 33 contacts: `simulate` exits 2 naming the ball and the container, after writing
+/// the run up to it (the log's 33 lines, the summary with `left_table`); at `e = 0` the
+/// scene is refused naming `e`.
+#[test]
+fn a_ball_leaving_its_container_exits_2_naming_it_and_keeps_the_run() {
+    let dir = temp("granular-left");
+    std::fs::create_dir_all(&dir).unwrap();
+    let shipped = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/circle.toml"),
+    )
+    .unwrap();
+    let with =
+        |law: &str| shipped.replacen("radius = 1\n", &format!("radius = 1\ncontact = {law}\n"), 1);
+    let scene = dir.join("collapse.toml");
+    std::fs::write(&scene, with("{ e = \"0.5\", beta = \"-1\" }")).unwrap();
+    let out = dir.join("out");
+    let log = out.join("events.jsonl");
+    refused(
+        &[
+            "simulate",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--log",
+            log.to_str().unwrap(),
+            "--quiet",
+        ],
+        "collapse.toml: ball 0 left the table through container[0] after its contact at t = ",
+    );
+    assert_eq!(std::fs::read_to_string(&log).unwrap().lines().count(), 33);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["left_table"]["ball"], 0);
+    assert_eq!(summary["left_table"]["boundary"], 0);
+    assert!(summary["stopped"]
+        .as_str()
+        .unwrap()
+        .contains("container[0]"));
+    let zero = dir.join("zero.toml");
+    std::fs::write(&zero, with("{ e = 0, beta = \"0.5\" }")).unwrap();
+    refused(
+        &["simulate", zero.to_str().unwrap(), "--quiet"],
+        "zero.toml: container[0].contact.e: must be > 0 on a container",
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// The tangent maps of `lyapunov` and the exact return maps of `orbits` are those of the
 /// elastic laws: a scene with a rough law is refused (exit 2, the place named), not run with
 /// a wrong map.

@@ -196,6 +196,11 @@ where
         INTERRUPTED => RunError::Interrupted,
         _ => RunError::Input(format!("internal error: the log in memory failed: {e}")),
     })?;
+    // A ball that left the table through a container: the run cannot go on
+    // (`noslip_sim::left_table`), a ValueError naming the container.
+    if let Some(left) = summary.left_table {
+        return Err(fail(left.message(&scene.boundaries[left.boundary].place)));
+    }
     let sampler = sampler.into_inner();
     Ok(Run {
         summary,

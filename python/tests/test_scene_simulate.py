@@ -99,6 +99,21 @@ def test_bad_scenes_and_limits_name_the_place():
         noslip.simulate(noslip.tables.sinai(0.5, 0.3), events=0)
 
 
+def test_a_ball_leaving_its_container_is_an_input_error_naming_it(root):
+    # An inelastic collapse against the circle's wall (e = 1/2, no TC model) ends with the
+    # ball's normal velocity rounded to 0 or out: the run cannot go on (docs/granular.md).
+    text = (root / "scenes" / "circle.toml").read_text()
+    collapsing = text.replace("radius = 1\n", "radius = 1\ncontact = { e = 0.5, beta = -1 }\n", 1)
+    with pytest.raises(noslip.InputError, match=r"ball 0 left the table through container\[0\]"):
+        noslip.simulate(noslip.Scene(collapsing), events=1000)
+    # With the TC model the collapse ends and the run goes on.
+    run = noslip.simulate(noslip.Scene(collapsing + '[contact]\ntc = "1e-3"\n'), events=1000)
+    assert run.summary["events"] == 1000 and run.summary["left_table"] is None
+    # At e = 0 the scene itself is refused, naming e.
+    with pytest.raises(noslip.InputError, match=r"container\[0\]\.contact\.e: must be > 0"):
+        noslip.Scene(text.replace("radius = 1\n", "radius = 1\ncontact = { e = 0, beta = 0 }\n", 1))
+
+
 @pytest.mark.parametrize("scene, events", [("sinai.toml", 800), ("sector.toml", 800),
                                            ("wedge.toml", 50), ("cube3d.toml", 400)])
 def test_the_boundary_map_is_the_cli_csv_bit_for_bit(root, cli, tmp_path, scene, events):

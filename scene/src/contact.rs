@@ -99,6 +99,14 @@ impl ContactKind {
         }
     }
 
+    /// The normal restitution `e`: 1 for [`ContactKind::NoSlip`] and [`ContactKind::Smooth`].
+    pub fn e(&self) -> BigRational {
+        match self {
+            ContactKind::NoSlip | ContactKind::Smooth => BigRational::one(),
+            ContactKind::Rough { e, .. } | ContactKind::Walton { e, .. } => e.clone(),
+        }
+    }
+
     /// Whether the law has a tangential part: every kind but [`ContactKind::Smooth`] and the
     /// rough law with `beta = -1` (whose tangential impulse is 0).
     pub fn tangential(&self) -> bool {

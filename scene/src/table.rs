@@ -290,12 +290,24 @@ pub(crate) fn boundaries(
                 format!("must be positive, got {}", c.radius.0),
             ));
         }
+        let contact = ctx.contact(&format!("{at}.contact"), &c.contact)?;
+        if contact.e().is_zero() {
+            // noslip_sim::left_table: after a slanted contact at e = 0 the ball moves along
+            // the wall's tangent, out of the container.
+            return Err(ctx.err(
+                format!("{at}.contact.e"),
+                "must be > 0 on a container: at e = 0 a ball leaves its first slanted contact \
+                 along the wall's tangent, out of the container (the true motion slides along \
+                 the concave wall, which an event-driven run cannot follow); use e > 0 with \
+                 [contact] tc (the TC model)",
+            ));
+        }
         out.push(TableBoundary {
             shape: Shape::Container {
                 centre,
                 radius: c.radius.0.clone(),
             },
-            contact: ctx.contact(&format!("{at}.contact"), &c.contact)?,
+            contact,
             place: at,
             polygon: None,
         });

@@ -56,6 +56,34 @@ fn rough_laws_are_read_exactly_everywhere() {
     assert_eq!(scene("").unwrap().ball_contact, ContactKind::NoSlip);
 }
 
+/// A container at `e = 0` would lose a ball at its first slanted contact (it leaves along
+/// the wall's tangent: `noslip_sim::left_table`): refused naming `e`, in both law forms and
+/// under the TC model; `e > 0` on a container and `e = 0` on a flat wall or an obstacle are
+/// read.
+#[test]
+fn a_container_at_e_0_is_refused_naming_e() {
+    let container =
+        |law: &str| format!("[[container]]\ncentre = [5, 5]\nradius = 20\ncontact = {law}\n");
+    for law in [
+        "{ e = 0, beta = \"-1\" }",
+        "{ e = 0, beta = \"0.5\" }",
+        "{ e = 0, mu = \"0.2\", beta0 = \"0.5\" }",
+    ] {
+        for tc in ["", "[contact]\ntc = \"1e-3\"\n"] {
+            let e = scene(&(container(law) + tc)).unwrap_err();
+            assert!(
+                e.starts_with("t.toml: container[0].contact.e: must be > 0 on a container"),
+                "{law} {tc}: {e}"
+            );
+        }
+    }
+    assert!(scene(&container("{ e = \"1e-9\", beta = \"-1\" }")).is_ok());
+    let wall = "[[wall]]\npoint = [0, 1]\nnormal = [0, 1]\ncontact = { e = 0, beta = 0 }\n";
+    let obstacle = "[[obstacle]]\nposition = [5, 5]\nradius = 1\ncontact = { e = 0, beta = 0 }\n";
+    assert!(scene(wall).is_ok());
+    assert!(scene(obstacle).is_ok());
+}
+
 #[test]
 fn bad_laws_are_refused_naming_the_key() {
     let cases = [

@@ -48,6 +48,7 @@ pub mod lattice;
 #[cfg(test)]
 mod lattice_tests;
 pub mod law;
+pub mod left_table;
 pub mod log;
 pub mod maxwell;
 mod motion;
@@ -86,6 +87,7 @@ pub mod thermostat;
 pub mod trace;
 
 pub use engine::{Contact, Event, SetupError, Simulation, Step};
+pub use left_table::LeftTable;
 pub use no_contact::NoContact;
 pub use observe::Observables;
 pub use table::{Boundary, ContactKind, Geometry, Shape, Table};

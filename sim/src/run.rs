@@ -105,6 +105,10 @@ pub struct Summary {
     /// Why the run stopped before its limits: the engine found that no contact will happen
     /// again ([`crate::NoContact`]), or none came within [`MAX_QUIET_BOX_LENGTHS`].
     pub stopped: Option<String>,
+    /// The ball that left the table through a container ([`crate::left_table`]), which ended
+    /// the run: a failure, not an end (the front ends report it as an error naming the
+    /// container, after writing what the run did up to it).
+    pub left_table: Option<crate::LeftTable>,
     /// The thermostat's kicks applied ([`crate::thermostat`]; 0 without one).
     pub kicks: u64,
     /// The kinetic energy the kicks added, the sum of [`Simulation::kick`]'s returns (0
@@ -304,6 +308,7 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let clock = Instant::now();
     let mut done = 0u64;
     let mut stopped = None;
+    let mut left_table = None;
     let mut noise = sim.table().thermostat.map(Noise::new);
     let mut injected = 0.0;
     while done < events {
@@ -332,6 +337,11 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             Step::Until => break,
             Step::Never(why) => {
                 stopped = Some(why.to_string());
+                break;
+            }
+            Step::LeftTable(left) => {
+                stopped = Some(left.to_string());
+                left_table = Some(left);
                 break;
             }
             Step::Quiet { box_lengths } => {
@@ -412,6 +422,7 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         momentum_drift: distance(&end.momentum, &start.momentum) / p_scale,
         angular_momentum_drift: distance(&end.angular_momentum, &start.angular_momentum) / l_scale,
         stopped,
+        left_table,
         kicks: noise.as_ref().map_or(0, Noise::done),
         energy_injected: injected,
     };

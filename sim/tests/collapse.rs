@@ -55,7 +55,7 @@ fn contact_times(tc: f64) -> Vec<f64> {
                 assert_eq!(why, NoContact::Escaped);
                 return times;
             }
-            Step::Quiet { .. } | Step::Until => panic!("the disks fly apart"),
+            Step::Quiet { .. } | Step::Until | Step::LeftTable(_) => panic!("the disks fly apart"),
         }
         assert!(times.len() < 10_000, "no end to the contacts");
     }
@@ -134,6 +134,7 @@ fn a_sticking_pair_at_e_0_does_not_repeat_its_contact_at_once() {
                 Step::Until => break,
                 Step::Quiet { .. } => continue,
                 Step::Never(why) => panic!("{name}: {why:?} at t = {}", sim.now()),
+                Step::LeftTable(left) => panic!("{name}: {left}"),
             };
             contacts += 1;
             assert!(
@@ -178,6 +179,7 @@ fn a_ball_left_touching_an_obstacle_at_e_0_does_not_repeat_its_contact() {
             Step::Until => break,
             Step::Quiet { .. } => {}
             Step::Never(why) => panic!("{why:?} at t = {}", sim.now()),
+            Step::LeftTable(left) => panic!("{left}"),
         }
         assert!(
             contacts < 1000,
@@ -186,4 +188,80 @@ fn a_ball_left_touching_an_obstacle_at_e_0_does_not_repeat_its_contact() {
         );
     }
     eprintln!("{contacts} contacts to t = 10");
+}
+
+/// An inelastic collapse against a concave wall (`noslip_sim::left_table`): the shipped
+/// circle table with the container's law `e = 1/2`, `beta = -1` (the spin untouched, the
+/// tangential velocity kept) and no TC model. A chord of a circle meets the wall at its two
+/// ends at the same angle, so the normal speed at each contact is `e` times that at the one
+/// before, exactly. In floats the contact point's distance from the centre is `rho` within
+/// `delta`, a few ulps of `rho`; that moves the chord's end by an angle `delta / (rho theta)`
+/// for a chord at angle `theta` to the wall, a relative change `delta / (rho theta^2)` of
+/// the normal speed `v_n = |u| theta` (here `|u| = 1`). So each ratio is checked to within
+/// `4 eps / v_n^2` (`eps = 2^-52`; measured: at most `0.002 eps / v_n^2`) while `v_n >
+/// 1e-5`, a tolerance below `1e-5`: 16 ratios. The speeds halve from about 1, so at least 20
+/// contacts come before `v_n` passes `1e-6`, and at most 53 before it passes `eps`, by which
+/// rounding has taken the normal velocity to 0 or outwards (in this run after 33 contacts,
+/// the last pre-contact speed 4.6e-10, the next 3.5e-18). The run must
+/// then stop with [`Step::LeftTable`] naming the ball and the container (it used to end
+/// with the false note that the table is unbounded). With `tc = 1e-3` the contacts within
+/// `t_c` of the previous one are elastic, the collapse ends, and the run goes on (20 000 contacts).
+#[test]
+fn a_ball_collapsing_against_a_container_stops_the_run_naming_it() {
+    let shipped = include_str!("../../scenes/circle.toml");
+    let wall = "radius = 1\n";
+    assert!(shipped.contains(wall), "the shipped container");
+    let text = shipped.replacen(
+        wall,
+        "radius = 1\ncontact = { e = \"0.5\", beta = \"-1\" }\n",
+        1,
+    );
+    // The normal speeds before each contact, and how the run ended (`None`: `most` contacts).
+    let run = |text: &str, most: usize| {
+        let scene = noslip_scene::Scene::from_toml(text, "circle.toml").unwrap();
+        let setup = noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
+        let kernels = GenericKernels {
+            species: setup.species.clone(),
+        };
+        let mut sim = Simulation::new(setup, kernels).unwrap();
+        let mut speeds = Vec::new();
+        let end = loop {
+            if speeds.len() == most {
+                break None;
+            }
+            match sim.step(f64::INFINITY) {
+                Step::Contact(e) => {
+                    let u = e.pre[0].velocity;
+                    speeds.push((u[0] * e.nu[0] + u[1] * e.nu[1]).abs());
+                }
+                Step::Quiet { .. } => {}
+                other => break Some(other),
+            }
+        };
+        (speeds, end)
+    };
+    let (speeds, end) = run(&text, 100_000);
+    let Some(Step::LeftTable(left)) = end else {
+        panic!("the run must stop with the ball gone: {end:?}");
+    };
+    assert_eq!((left.ball, left.boundary), (0, 0));
+    assert!(
+        left.outward_speed >= 0.0 && left.outward_speed < 1e-15,
+        "{left:?}"
+    );
+    assert!(
+        (21..=54).contains(&speeds.len()),
+        "{} contacts",
+        speeds.len()
+    );
+    let mut checked = 0;
+    for w in speeds.windows(2).filter(|w| w[1] > 1e-5) {
+        let tolerance = 4.0 * f64::EPSILON / (w[1] * w[1]);
+        assert!((w[1] / w[0] - 0.5).abs() < tolerance, "{w:?}");
+        checked += 1;
+    }
+    assert!(checked >= 15, "{checked} ratios checked");
+    let (speeds, end) = run(&format!("{text}\n[contact]\ntc = \"1e-3\"\n"), 20_000);
+    assert_eq!(end, None, "with the TC model the run goes on");
+    assert_eq!(speeds.len(), 20_000);
 }

@@ -117,6 +117,7 @@ fn every_contact_of_each_pair_follows_that_pairs_law() {
             Step::Contact(e) => e,
             Step::Quiet { .. } | Step::Until => continue,
             Step::Never(why) => panic!("the gas stopped: {why:?}"),
+            Step::LeftTable(left) => panic!("the gas stopped: {left}"),
         };
         let Contact::Ball { i, j } = e.contact else {
             panic!("a periodic gas has ball-ball contacts only: {e:?}");

@@ -338,7 +338,7 @@ where
     let sampler = std::cell::RefCell::new(sampler);
     // So is the Parquet log (a kick's rows among the contacts').
     let events_parquet = std::cell::RefCell::new(events_parquet);
-    let (summary, trace) = run::run_watched(
+    let (mut summary, trace) = run::run_watched(
         &mut sim,
         &species,
         &limits,
@@ -378,6 +378,15 @@ where
         },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
+    // A ball that left the table is a failure (exit 2) named by the container's scene key,
+    // reported after the outputs of the run up to it are published.
+    let left_table = summary.left_table.map(|left| {
+        let place = &scene.boundaries[left.boundary].place;
+        left.message(place)
+    });
+    if let Some(message) = &left_table {
+        summary.stopped = Some(message.clone());
+    }
     let events_parquet = events_parquet.into_inner();
     let sampler = sampler.into_inner();
     if let Some(pb) = progress {
@@ -511,7 +520,11 @@ where
         )?;
     }
     outln!("wrote {}", out.display())?;
-    log_failed.or(map_failed).map_or(Ok(()), Err)
+    let left_failed = left_table.map(|m| Failure::bad_input(format!("{}: {m}", scene.origin)));
+    left_failed
+        .or(log_failed)
+        .or(map_failed)
+        .map_or(Ok(()), Err)
 }
 
 /// Where a CSV boundary map's text goes: its file, or nowhere (a Parquet map keeps the

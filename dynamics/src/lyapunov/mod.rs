@@ -258,6 +258,7 @@ fn next_contact<const N: usize, const S: usize, K: noslip_sim::PairKernels<f64, 
         match sim.step(f64::INFINITY) {
             Step::Contact(e) => return Ok(e),
             Step::Never(why) => return Err(LyapunovError::NoContact(why.to_string())),
+            Step::LeftTable(left) => return Err(LyapunovError::NoContact(left.to_string())),
             Step::Quiet { box_lengths } => {
                 if let Some(why) = noslip_sim::run::quiet_stop(sim, species, box_lengths) {
                     return Err(LyapunovError::NoContact(why));

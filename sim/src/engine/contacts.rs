@@ -6,6 +6,7 @@ use super::{Contact, Event, Simulation};
 use crate::canonical::{image_f64, obstacle_image, pair_offset, rebase_at};
 use crate::last_contact::LastContact;
 use crate::law::{self, tc_law, ContactKind};
+use crate::left_table::{leaves, LeftTable};
 use crate::no_contact::QUIET_BOX_LENGTHS;
 use crate::normal::unit;
 use crate::orientation::{exp_skew, mul};
@@ -136,6 +137,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.balls[i].last = LastContact::boundary(b);
         let event = self.finish(Contact::Boundary { i, boundary: b }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
+        let shape = &self.table.boundaries[b].shape;
+        if let Some(outward_speed) = leaves(shape, &event.position[0], &event.post[0].velocity) {
+            self.left = Some(LeftTable {
+                ball: i,
+                boundary: b,
+                time: event.time,
+                outward_speed,
+            });
+            // The next step's check returns it (mod.rs).
+            self.next_check = 0;
+        }
         event
     }
 

@@ -2,6 +2,7 @@
 //! around it ([`Event`]), what a step found ([`Step`]), and the setups it refuses
 //! ([`SetupError`]).
 
+use crate::left_table::LeftTable;
 use crate::no_contact::NoContact;
 use collision_core::BodyState;
 use std::fmt;
@@ -84,6 +85,10 @@ pub enum Step<const N: usize, const S: usize> {
     /// No contact will happen again (the clock is at `until` if that is finite, else where it
     /// was found out).
     Never(NoContact),
+    /// The run cannot go on: a ball left the table through a container after its last
+    /// contact (that contact was the last [`Step::Contact`]; the state stays as it was then,
+    /// and stepping again returns this again). See [`crate::left_table`].
+    LeftTable(LeftTable),
     /// A notice, not an end: no contact yet while every moving ball travelled `box_lengths`
     /// times the longest box side since the last contact (first at
     /// [`QUIET_BOX_LENGTHS`](crate::no_contact::QUIET_BOX_LENGTHS), then at twice, four times

@@ -108,6 +108,7 @@ pub use events::{Contact, Event, SetupError, Step};
 
 use super::canonical::{clock_span2, d_max, rebase_at};
 use super::cells::Grid;
+use super::left_table::LeftTable;
 use super::motion::Motion;
 use super::no_contact::{NoContact, QUIET_BOX_LENGTHS};
 use super::observe::Observables;
@@ -169,6 +170,9 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// whether contacts can still happen.
     quiet: u64,
     next_check: u64,
+    /// A ball that left the table through a container at the last contact
+    /// ([`crate::left_table`]): every later step returns it.
+    left: Option<LeftTable>,
     /// The travel (box lengths) at which the next [`Step::Quiet`] notice is due.
     next_notice: f64,
     contacts: u64,
@@ -265,6 +269,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             last_contact: 0.0,
             quiet: 0,
             next_check: 0,
+            left: None,
             next_notice: QUIET_BOX_LENGTHS,
             contacts: 0,
             crossings: 0,
@@ -444,6 +449,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         loop {
             let until = self.local(until);
             if self.quiet >= self.next_check {
+                // A ball that left the table sets `next_check` to 0 (contacts.rs): no cost
+                // on the hot path.
+                if let Some(left) = self.left {
+                    return Step::LeftTable(left);
+                }
                 self.next_check = self.next_check.saturating_mul(2).max(self.first_check());
                 if let Some(why) = self.no_contact() {
                     return self.never(why, until);

@@ -39,7 +39,7 @@ where
             let fast_event = loop {
                 match fast.step(t) {
                     Step::Contact(e) => break Some(e),
-                    Step::Until | Step::Never(_) => break None,
+                    Step::Until | Step::Never(_) | Step::LeftTable(_) => break None,
                     Step::Quiet { .. } => {}
                 }
             };

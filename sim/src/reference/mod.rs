@@ -20,6 +20,7 @@ use crate::cells::Grid;
 use crate::engine::{Contact, Event};
 use crate::last_contact::LastContact;
 use crate::law::{self, tc_law};
+use crate::left_table::{leaves, LeftTable};
 use crate::motion::Motion;
 use crate::normal::unit;
 use crate::predict::exit_time;
@@ -103,6 +104,9 @@ pub(crate) struct Reference<const N: usize, const S: usize, K> {
     span2: f64,
     rebase_at: f64,
     quiet_rebases: u32,
+    /// A ball that left the table through a container ([`crate::left_table`]): no contact
+    /// comes after it.
+    left: Option<LeftTable>,
 }
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, K> {
@@ -162,6 +166,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             span2: canonical::clock_span2(&grid.width),
             rebase_at: f64::INFINITY,
             quiet_rebases: 0,
+            left: None,
         };
         sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
         sim.rebase_at = rebase_at(sim.span2, sim.speed2, 0, sim.periodic.contains(&true));
@@ -195,6 +200,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
     /// then (the clock then at `until` if that is finite), as the cell engine's
     /// [`crate::Simulation::step`].
     pub(crate) fn next_contact_until(&mut self, until: f64) -> Option<Event<N, S>> {
+        if self.left.is_some() {
+            return None;
+        }
         loop {
             let local = (until - self.origin) - self.origin_low;
             while let Some(Reverse(Entry(_, _, i, number))) = self.heap.peek() {
@@ -417,7 +425,26 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Reference<N, S, 
             Contact::Obstacle { obstacle, .. } => LastContact::obstacle(obstacle),
             _ => LastContact::NONE,
         };
-        self.finish(contact, nu, [i, i], pre, [after.clone(), after], t)
+        let event = self.finish(contact, nu, [i, i], pre, [after.clone(), after], t);
+        if let Contact::Boundary { boundary, .. } = contact {
+            let shape = &self.table.boundaries[boundary].shape;
+            if let Some(outward_speed) = leaves(shape, &event.position[0], &event.post[0].velocity)
+            {
+                self.left = Some(LeftTable {
+                    ball: i,
+                    boundary,
+                    time: event.time,
+                    outward_speed,
+                });
+            }
+        }
+        event
+    }
+
+    /// The ball that left the table through a container, if one did (the cell engine's
+    /// [`crate::Step::LeftTable`]); no contact comes after it.
+    pub(crate) fn left(&self) -> Option<LeftTable> {
+        self.left
     }
 
     /// `kind` under the TC model for a contact of `balls` at local time `t`.
