@@ -12,6 +12,7 @@ use crate::error::{input_error, unsigned_opt};
 use crate::scene::Scene;
 use crate::signals::Signals;
 use collision_core::{Generated, Kernel};
+use log_columns::{log_bytes, Columns, LogColumns};
 use noslip_sim::boundary_map::{self, Row};
 use noslip_sim::granular::{self, Sampler};
 use noslip_sim::pair_losses::is_count;
@@ -21,7 +22,8 @@ use noslip_sim::{GenericKernels, Simulation};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use serde_json::Value;
+
+mod log_columns;
 
 /// A finished run: the summary, the energy samples, the events log's columns (empty
 /// without `log`) and the boundary map's rows (empty without `map`).
@@ -87,12 +89,7 @@ where
         species: species.clone(),
     };
     let mut sim = Simulation::new(setup, kernels).map_err(|e| fail(e.to_string()))?;
-    let mut lines = LogColumns {
-        line: Vec::new(),
-        columns: Columns::default(),
-        n: N,
-        s: S,
-    };
+    let mut lines = LogColumns::new(N, S);
     let writer: Option<&mut dyn std::io::Write> = if keep.log { Some(&mut lines) } else { None };
     let mut rows = Vec::new();
     let title = std::path::Path::new(&scene.origin)
@@ -205,7 +202,7 @@ where
     Ok(Run {
         summary,
         trace,
-        columns: lines.columns,
+        columns: lines.into_columns(),
         rows,
         html: recorder.map(|r| noslip_sim::animation_page::html(&r.finish(&sim))),
         pair_correlation: sampler
@@ -272,47 +269,6 @@ enum RunError {
     Interrupted,
 }
 
-/// The events log as the simulator writes it (JSON lines), read into [`Columns`] line by
-/// line as it comes: the log's text is never held whole (it was, about 0.5 kB a contact,
-/// then read into the columns: 0.9 kB a contact at the peak).
-struct LogColumns {
-    line: Vec<u8>,
-    columns: Columns,
-    n: usize,
-    s: usize,
-}
-
-impl std::io::Write for LogColumns {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        for part in buf.split_inclusive(|&b| b == b'\n') {
-            self.line.extend_from_slice(part);
-            if self.line.last() == Some(&b'\n') {
-                let e: Value = serde_json::from_slice(&self.line)
-                    .map_err(|e| std::io::Error::other(format!("a log line: {e}")))?;
-                // A thermostat's kick (`run::kick_json`) is no contact: its own arrays.
-                if e.get("kick").is_none() {
-                    self.columns.push(&e, self.n, self.s);
-                } else {
-                    self.columns.push_kick(&e);
-                }
-                self.line.clear();
-            }
-        }
-        Ok(buf.len())
-    }
-
-    fn flush(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-}
-
-/// Bytes one contact's row of the events log's columns holds, in dimension `n` (`s` spin
-/// entries): 57 + 56 n + 32 s (201 in 2D, 321 in 3D).
-fn log_bytes(n: usize) -> u64 {
-    let s = n * (n - 1) / 2;
-    (57 + 56 * n + 32 * s) as u64
-}
-
 /// Bytes one boundary map row holds while the run goes on and once it is turned into
 /// arrays: the row (and its contact point's allocation), then `14 + n` columns of 8 bytes
 /// and the `kind` text (a Python `str`, about 60 bytes).
@@ -324,103 +280,6 @@ fn map_bytes(n: usize) -> u64 {
 /// doubling, so while it moves it holds up to three times its contents).
 fn bytes_per_contact(n: usize, log: bool, map: bool) -> u64 {
     3 * (if log { log_bytes(n) } else { 0 } + if map { map_bytes(n) } else { 0 })
-}
-
-/// The columns of the events log.
-#[derive(Default)]
-struct Columns {
-    time: Vec<f64>,
-    kind: Vec<i64>,
-    balls: Vec<i64>,
-    wall_axis: Vec<i64>,
-    wall_upper: Vec<bool>,
-    obstacle: Vec<i64>,
-    boundary: Vec<i64>,
-    nu: Vec<f64>,
-    positions: Vec<f64>,
-    pre_spin: Vec<f64>,
-    pre_velocity: Vec<f64>,
-    post_spin: Vec<f64>,
-    post_velocity: Vec<f64>,
-    /// The thermostat's kicks: number, time, every ball's velocity after it (ball order),
-    /// energy injected.
-    kick: Vec<i64>,
-    kick_time: Vec<f64>,
-    kick_velocities: Vec<f64>,
-    kick_energy_injected: Vec<f64>,
-}
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect())
-        .unwrap_or_default()
-}
-
-impl Columns {
-    /// Append one kick's log line (`run::kick_json`).
-    fn push_kick(&mut self, e: &Value) {
-        self.kick.push(e["kick"].as_i64().unwrap_or(-1));
-        self.kick_time.push(e["time"].as_f64().unwrap_or(f64::NAN));
-        if let Some(v) = e["velocities"].as_array() {
-            for u in v {
-                self.kick_velocities.extend(numbers(u));
-            }
-        }
-        self.kick_energy_injected
-            .push(e["energy_injected"].as_f64().unwrap_or(f64::NAN));
-    }
-
-    /// Append one log line; a one-ball contact's second slot is NaN (ball index -1).
-    fn push(&mut self, e: &Value, n: usize, s: usize) {
-        self.time.push(e["time"].as_f64().unwrap_or(f64::NAN));
-        let kind = match e["kind"].as_str() {
-            Some("ball-ball") => 0,
-            Some("ball-wall") => 1,
-            Some("ball-obstacle") => 2,
-            _ => 3,
-        };
-        self.kind.push(kind);
-        let balls: Vec<i64> = e["balls"]
-            .as_array()
-            .map(|a| a.iter().filter_map(Value::as_i64).collect())
-            .unwrap_or_default();
-        self.balls.extend([
-            balls.first().copied().unwrap_or(-1),
-            balls.get(1).copied().unwrap_or(-1),
-        ]);
-        self.wall_axis.push(e["axis"].as_i64().unwrap_or(-1));
-        self.wall_upper.push(e["side"].as_str() == Some("upper"));
-        self.obstacle.push(e["obstacle"].as_i64().unwrap_or(-1));
-        self.boundary.push(e["boundary"].as_i64().unwrap_or(-1));
-        self.nu.extend(numbers(&e["nu"]));
-        for slot in 0..2 {
-            let fill = |out: &mut Vec<f64>, v: Option<&Value>, len: usize| match v {
-                Some(v) => out.extend(numbers(v)),
-                None => out.extend(std::iter::repeat_n(f64::NAN, len)),
-            };
-            fill(&mut self.positions, e["positions"].get(slot), n);
-            fill(
-                &mut self.pre_spin,
-                e["pre"].get(slot).map(|p| &p["spin"]),
-                s,
-            );
-            fill(
-                &mut self.pre_velocity,
-                e["pre"].get(slot).map(|p| &p["velocity"]),
-                n,
-            );
-            fill(
-                &mut self.post_spin,
-                e["post"].get(slot).map(|p| &p["spin"]),
-                s,
-            );
-            fill(
-                &mut self.post_velocity,
-                e["post"].get(slot).map(|p| &p["velocity"]),
-                n,
-            );
-        }
-    }
 }
 
 fn array<'py, T: numpy::Element>(
@@ -628,41 +487,7 @@ pub fn simulate<'py>(
             keep.contacts
         )),
     })?;
-    let s = n * (n - 1) / 2;
-    let cols = done.columns;
-    let count = cols.time.len();
-    let ev = PyDict::new(py);
-    ev.set_item("time", array(py, cols.time, &[count])?)?;
-    ev.set_item("kind", array(py, cols.kind, &[count])?)?;
-    ev.set_item("balls", array(py, cols.balls, &[count, 2])?)?;
-    ev.set_item("wall_axis", array(py, cols.wall_axis, &[count])?)?;
-    ev.set_item("wall_upper", array(py, cols.wall_upper, &[count])?)?;
-    ev.set_item("obstacle", array(py, cols.obstacle, &[count])?)?;
-    ev.set_item("boundary", array(py, cols.boundary, &[count])?)?;
-    ev.set_item("nu", array(py, cols.nu, &[count, n])?)?;
-    ev.set_item("positions", array(py, cols.positions, &[count, 2, n])?)?;
-    ev.set_item("pre_spin", array(py, cols.pre_spin, &[count, 2, s])?)?;
-    ev.set_item(
-        "pre_velocity",
-        array(py, cols.pre_velocity, &[count, 2, n])?,
-    )?;
-    ev.set_item("post_spin", array(py, cols.post_spin, &[count, 2, s])?)?;
-    ev.set_item(
-        "post_velocity",
-        array(py, cols.post_velocity, &[count, 2, n])?,
-    )?;
-    let kicks = cols.kick.len();
-    let balls = done.summary.balls;
-    ev.set_item("kick", array(py, cols.kick, &[kicks])?)?;
-    ev.set_item("kick_time", array(py, cols.kick_time, &[kicks])?)?;
-    ev.set_item(
-        "kick_velocities",
-        array(py, cols.kick_velocities, &[kicks, balls, n])?,
-    )?;
-    ev.set_item(
-        "kick_energy_injected",
-        array(py, cols.kick_energy_injected, &[kicks])?,
-    )?;
+    let ev = done.columns.into_dict(py, n, done.summary.balls)?;
     let (sample_events, drift): (Vec<u64>, Vec<f64>) = done.trace.energy.iter().copied().unzip();
     let samples = sample_events.len();
     let energy = PyDict::new(py);
