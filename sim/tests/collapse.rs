@@ -19,6 +19,22 @@ const DISK: Ball<f64> = Ball {
     gamma2: 0.5,
 };
 
+/// The simulation of scene `text` (named `name` in errors) in dimension `N`.
+fn simulation_of<const N: usize, const S: usize>(
+    text: &str,
+    name: &str,
+) -> Simulation<N, S, GenericKernels<f64>>
+where
+    collision_core::Generated: collision_core::Kernel<f64, N, S>,
+{
+    let scene = noslip_scene::Scene::from_toml(text, name).unwrap();
+    let setup = noslip_sim::setup::setup::<N, S>(&scene).unwrap();
+    let kernels = GenericKernels {
+        species: setup.species.clone(),
+    };
+    Simulation::new(setup, kernels).unwrap()
+}
+
 /// The contact times of the run (no box: the disks fly apart at the end and it stops).
 fn contact_times(tc: f64) -> Vec<f64> {
     let body = |x: f64, u: f64| Body {
@@ -119,12 +135,7 @@ fn a_sticking_pair_at_e_0_does_not_repeat_its_contact_at_once() {
             no_tc(shipped.replace(law, smooth)),
         ),
     ] {
-        let scene = noslip_scene::Scene::from_toml(&text, "granular3d.toml").unwrap();
-        let setup = noslip_sim::setup::setup::<3, 3>(&scene).unwrap();
-        let kernels = GenericKernels {
-            species: setup.species.clone(),
-        };
-        let mut sim = Simulation::new(setup, kernels).unwrap();
+        let mut sim = simulation_of::<3, 3>(&text, "granular3d.toml");
         let until = 0.2;
         let mut last: Vec<Option<(usize, f64)>> = vec![None; 500];
         let mut contacts = 0;
@@ -166,12 +177,7 @@ fn a_ball_left_touching_an_obstacle_at_e_0_does_not_repeat_its_contact() {
         obstacle,
         "radius = \"3/10\"\ncontact = { e = 0, beta = \"-1\" }\n",
     );
-    let scene = noslip_scene::Scene::from_toml(&text, "sinai.toml").unwrap();
-    let setup = noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
-    let kernels = GenericKernels {
-        species: setup.species.clone(),
-    };
-    let mut sim = Simulation::new(setup, kernels).unwrap();
+    let mut sim = simulation_of::<2, 1>(&text, "sinai.toml");
     let mut contacts = 0;
     loop {
         match sim.step(10.0) {
@@ -218,12 +224,7 @@ fn a_ball_collapsing_against_a_container_stops_the_run_naming_it() {
     );
     // The normal speeds before each contact, and how the run ended (`None`: `most` contacts).
     let run = |text: &str, most: usize| {
-        let scene = noslip_scene::Scene::from_toml(text, "circle.toml").unwrap();
-        let setup = noslip_sim::setup::setup::<2, 1>(&scene).unwrap();
-        let kernels = GenericKernels {
-            species: setup.species.clone(),
-        };
-        let mut sim = Simulation::new(setup, kernels).unwrap();
+        let mut sim = simulation_of::<2, 1>(text, "circle.toml");
         let mut speeds = Vec::new();
         let end = loop {
             if speeds.len() == most {
