@@ -409,6 +409,35 @@ fn a_ball_leaving_its_container_exits_2_naming_it_and_keeps_the_run() {
         .as_str()
         .unwrap()
         .contains("container[0]"));
+    // Contacts at one instant without end (the wedge's walls at e = 0 drive the disk into
+    // the apex): exit 2 naming the ball, where a run with --time and no event limit used to
+    // never return.
+    let wedge = dir.join("apex.toml");
+    let apex = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/wedge.toml"),
+    )
+    .unwrap()
+    .replace(
+        "[table.wedge]",
+        "[table]\ncontact = { e = 0, beta = -1 }\n[table.wedge]",
+    )
+    .replace("events = 100_000", "");
+    std::fs::write(&wedge, apex).unwrap();
+    refused(
+        &[
+            "simulate",
+            wedge.to_str().unwrap(),
+            "--time",
+            "10",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ],
+        "apex.toml: inelastic collapse at t = 2.57845",
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["collapse"]["balls"], serde_json::json!([0]));
     let zero = dir.join("zero.toml");
     std::fs::write(&zero, with("{ e = 0, beta = \"0.5\" }")).unwrap();
     refused(

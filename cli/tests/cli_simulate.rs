@@ -547,6 +547,41 @@ fn the_log_may_go_into_the_output_directory_not_yet_made() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// `--log` named inside `--out` by another spelling than `--out`'s (relative against
+/// absolute, `..` through the directory itself) is the same member of the set under its own
+/// name: a review found `--out /abs/o4 --log o4/ev.jsonl` writing `events.jsonl` and no
+/// `ev.jsonl`, and `--out o7 --log ./o7/../o7/ev.jsonl` refused as "not directly in it".
+#[test]
+fn the_log_named_inside_out_by_another_spelling_keeps_its_name() {
+    let dir = scratch("log-spelling");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/sinai.toml");
+    for (out, log) in [
+        (
+            dir.join("o4").display().to_string(),
+            "o4/ev.jsonl".to_string(),
+        ),
+        (
+            "o6".to_string(),
+            dir.join("o6/ev.jsonl").display().to_string(),
+        ),
+        ("o7".to_string(), "./o7/../o7/ev.jsonl".to_string()),
+    ] {
+        run_ok(
+            noslip()
+                .current_dir(&dir)
+                .arg("simulate")
+                .arg(&scene)
+                .args(["--events", "20", "--quiet", "--out", &out, "--log", &log]),
+        );
+        let set = dir.join(std::path::Path::new(&out).file_name().unwrap());
+        let lines = std::fs::read_to_string(set.join("ev.jsonl")).unwrap();
+        assert_eq!(lines.lines().count(), 20, "{out} {log}");
+        assert!(!set.join("events.jsonl").exists(), "{out} {log}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
 /// The entries of `dir` whose names contain `part`.
 fn entries_with(dir: &Path, part: &str) -> Vec<std::path::PathBuf> {
     let mut v: Vec<_> = std::fs::read_dir(dir)

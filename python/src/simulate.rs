@@ -198,6 +198,10 @@ where
     if let Some(left) = summary.left_table {
         return Err(fail(left.message(&scene.boundaries[left.boundary].place)));
     }
+    // Contacts at one instant without end (`noslip_sim::collapse`): the same.
+    if let Some(c) = &summary.collapse {
+        return Err(fail(c.to_string()));
+    }
     let sampler = sampler.into_inner();
     Ok(Run {
         summary,

@@ -109,6 +109,12 @@ def test_a_ball_leaving_its_container_is_an_input_error_naming_it(root):
     # With the TC model the collapse ends and the run goes on.
     run = noslip.simulate(noslip.Scene(collapsing + '[contact]\ntc = "1e-3"\n'), events=1000)
     assert run.summary["events"] == 1000 and run.summary["left_table"] is None
+    # Contacts at one instant without end (the wedge's walls at e = 0 drive the disk into
+    # the apex): an InputError naming the ball, where simulate(time=...) never returned.
+    apex = (root / "scenes" / "wedge.toml").read_text().replace(
+        "[table.wedge]", "[table]\ncontact = { e = 0, beta = -1 }\n[table.wedge]")
+    with pytest.raises(noslip.InputError, match=r"inelastic collapse at t = 2\.57845.*\(ball 0\)"):
+        noslip.simulate(noslip.Scene(apex), time=10.0)
     # At e = 0 the scene itself is refused, naming e.
     with pytest.raises(noslip.InputError, match=r"container\[0\]\.contact\.e: must be > 0"):
         noslip.Scene(text.replace("radius = 1\n", "radius = 1\ncontact = { e = 0, beta = 0 }\n", 1))

@@ -291,15 +291,16 @@ pub(crate) fn boundaries(
             ));
         }
         let contact = ctx.contact(&format!("{at}.contact"), &c.contact)?;
-        if contact.e().is_zero() {
+        // e as the engine takes it: an `e` that rounds to 0 in f64 is 0 there.
+        if contact.e().to_f64().is_none_or(|e| e == 0.0) {
             // noslip_sim::left_table: after a slanted contact at e = 0 the ball moves along
             // the wall's tangent, out of the container.
             return Err(ctx.err(
                 format!("{at}.contact.e"),
-                "must be > 0 on a container: at e = 0 a ball leaves its first slanted contact \
-                 along the wall's tangent, out of the container (the true motion slides along \
-                 the concave wall, which an event-driven run cannot follow); use e > 0 with \
-                 [contact] tc (the TC model)",
+                "must be > 0 on a container (and not round to 0 in f64): at e = 0 a ball \
+                 leaves its first slanted contact along the wall's tangent, out of the \
+                 container (the true motion slides along the concave wall, which an \
+                 event-driven run cannot follow); use e > 0 with [contact] tc (the TC model)",
             ));
         }
         out.push(TableBoundary {

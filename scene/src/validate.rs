@@ -10,7 +10,7 @@ use crate::{
 };
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero};
 
 type Q = BigRational;
 
@@ -389,7 +389,22 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
             None => ContactKind::NoSlip,
         },
         tc: match &raw.contact.tc {
-            Some(tc) => Some(ctx.positive("contact.tc", tc)?),
+            Some(tc) => {
+                let tc = ctx.positive("contact.tc", tc)?;
+                // The engine compares times in f64: a t_c below the normal range has lost its
+                // precision, and one that rounds to 0 would silently be no TC model.
+                if !tc.to_f64().is_some_and(f64::is_normal) {
+                    return Err(ctx.err(
+                        "contact.tc",
+                        format!(
+                            "{tc} is not a normal f64 (the least is {:e}): the engine's times \
+                             are f64, and a t_c that rounds to 0 is no TC model",
+                            f64::MIN_POSITIVE
+                        ),
+                    ));
+                }
+                Some(tc)
+            }
             None => None,
         },
         thermostat: crate::thermostat::thermostat(&ctx, &raw.thermostat)?,

@@ -68,6 +68,8 @@ fn a_container_at_e_0_is_refused_naming_e() {
         "{ e = 0, beta = \"-1\" }",
         "{ e = 0, beta = \"0.5\" }",
         "{ e = 0, mu = \"0.2\", beta0 = \"0.5\" }",
+        // Positive, but 0 in f64, as the engine takes it.
+        "{ e = \"1e-400\", beta = \"-1\" }",
     ] {
         for tc in ["", "[contact]\ntc = \"1e-3\"\n"] {
             let e = scene(&(container(law) + tc)).unwrap_err();
@@ -109,6 +111,9 @@ fn bad_laws_are_refused_naming_the_key() {
         ),
         ("[contact]\ntc = 0\n", "contact.tc"),
         ("[contact]\ntc = -1\n", "contact.tc"),
+        // Below the normal f64 range (1e-400 rounds to 0: no TC model at all).
+        ("[contact]\ntc = \"1e-400\"\n", "contact.tc"),
+        ("[contact]\ntc = \"1e-310\"\n", "contact.tc"),
     ];
     for (extra, place) in cases {
         let e = scene(extra).unwrap_err();

@@ -35,7 +35,10 @@
 //!   ([`LastContact::repeats_boundary`]).
 //!
 //! Box walls have no rule: their normals are coordinate axes, and a one-ball box at `e = 0`
-//! showed no repeat (measured, not proved for every law).
+//! showed no repeat (measured, not proved for every law). Contacts that alternate between
+//! partners at one instant (a ball pressed into a corner of the box by another at `e = 0`,
+//! three balls left touching) are not repeats of one contact and pass these rules; the run
+//! loop stops them ([`crate::collapse`]).
 
 /// The tag of a ball partner: the high bit.
 const BALL: u32 = 1 << 31;

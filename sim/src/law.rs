@@ -103,12 +103,15 @@ impl FoldedLaws {
 
 /// The law a contact at absolute time `time` follows under the TC model with contact
 /// duration `tc` (0: none), given the times of the previous contacts of its balls
-/// (`-inf` before the first): a rough law becomes [`ContactKind::Smooth`] when
-/// `time - previous < tc` for either ball; every other kind is kept.
+/// (`-inf` before the first): a rough law becomes [`ContactKind::Smooth`] when `tc > 0` and
+/// `time - previous < tc` for either ball; every other kind is kept. Without the model (`tc =
+/// 0`) every contact follows its law, also one whose time rounds an ulp below its ball's
+/// previous contact (a ball squeezed between two bodies; such a contact used to be made
+/// elastic by `time - previous < 0`).
 pub fn tc_law(kind: ContactKind, tc: f64, time: f64, previous: [f64; 2]) -> ContactKind {
     match kind {
         ContactKind::Rough { .. } | ContactKind::Walton { .. }
-            if previous.iter().any(|&p| time - p < tc) =>
+            if tc > 0.0 && previous.iter().any(|&p| time - p < tc) =>
         {
             ContactKind::Smooth
         }
@@ -147,6 +150,22 @@ pub(crate) fn pair<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             &pre[0],
             &pre[1],
         ),
+        // Two point masses (`gamma2 = 0`, `D = 0`) under a law without tangential impulse:
+        // the rough kernel's tangential coefficient is `0 / 0` there, so NaN times `h_t = 0`;
+        // the law is the smooth map with restitution `e` (scenes refuse point masses under a
+        // law with a tangential part).
+        ContactKind::Rough { e, beta: -1.0 }
+            if species[a].gamma2 == 0.0 && species[b].gamma2 == 0.0 =>
+        {
+            smooth::pair_restituted(
+                nu,
+                &species[a].inv_mass,
+                &species[b].inv_mass,
+                &e,
+                &pre[0],
+                &pre[1],
+            )
+        }
         ContactKind::Rough { .. } | ContactKind::Walton { .. } => crate::rough::pair(
             nu,
             &species[a],
@@ -361,8 +380,19 @@ mod tests {
         assert_eq!(tc_law(rough, 0.1, 1.0, [0.95, never]), ContactKind::Smooth);
         assert_eq!(tc_law(rough, 0.1, 1.0, [never, 0.95]), ContactKind::Smooth);
         assert_eq!(tc_law(rough, 0.1, 1.0, [0.8, 0.5]), rough);
-        // No TC model (tc = 0): even a simultaneous contact keeps its law.
+        // No TC model (tc = 0): even a simultaneous contact keeps its law, and so does one
+        // whose time rounds an ulp below its ball's previous contact (a Walton contact of a
+        // ball squeezed between a ball and an obstacle was made elastic that way).
         assert_eq!(tc_law(rough, 0.0, 1.0, [1.0, 1.0]), rough);
+        let walton = ContactKind::Walton {
+            e: 0.6,
+            mu: 0.1,
+            beta0: 1.0,
+        };
+        let before: f64 = 25196.35956634659;
+        let ulp_earlier = f64::from_bits(before.to_bits() - 1);
+        assert_eq!(tc_law(walton, 0.0, ulp_earlier, [before, never]), walton);
+        assert_eq!(tc_law(rough, 0.0, ulp_earlier, [never, before]), rough);
         assert_eq!(
             tc_law(ContactKind::NoSlip, 0.1, 1.0, [1.0, 1.0]),
             ContactKind::NoSlip

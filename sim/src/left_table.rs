@@ -58,9 +58,10 @@ impl LeftTable {
             "ball {} left the table through {place} after its contact at t = {}: its velocity \
              there points along the wall or out (outward speed {:e} >= 0), where the true motion \
              slides along the concave wall in continuous contact, which an event-driven run \
-             cannot follow; give {place} a normal restitution e > 0 and set [contact] tc (the TC \
-             model), which ends an inelastic collapse against the wall (at e = 1 the contact \
-             grazed the wall within the rounding of the positions; docs/granular.md)",
+             cannot follow. At e < 1 this ends an inelastic collapse against the wall: the TC \
+             model ([contact] tc) stops the collapse once the ball's contacts there come within \
+             t_c of each other, so set it, or raise it if it is set (or raise e); at e = 1 the \
+             contact grazed the wall within the rounding of the positions (docs/granular.md)",
             self.ball, self.time, self.outward_speed
         )
     }
@@ -126,7 +127,13 @@ mod tests {
             outward_speed: 0.0,
         };
         let m = left.message("container[0]");
-        for part in ["ball 3", "through container[0]", "t = 0.25", "e > 0", "tc"] {
+        for part in [
+            "ball 3",
+            "through container[0]",
+            "t = 0.25",
+            "raise e",
+            "[contact] tc",
+        ] {
             assert!(m.contains(part), "{part} in {m}");
         }
         assert!(left.to_string().contains("boundary 1 (a container)"));

@@ -34,6 +34,7 @@ pub mod animation_page;
 pub mod boundary_map;
 mod canonical;
 mod cells;
+pub mod collapse;
 pub mod cover;
 pub mod dilute;
 pub mod displacement;

@@ -109,6 +109,9 @@ pub struct Summary {
     /// the run: a failure, not an end (the front ends report it as an error naming the
     /// container, after writing what the run did up to it).
     pub left_table: Option<crate::LeftTable>,
+    /// The contacts at one instant that did not end ([`crate::collapse`]), which ended the
+    /// run: a failure, reported as [`Summary::left_table`] is.
+    pub collapse: Option<crate::collapse::Collapse>,
     /// The thermostat's kicks applied ([`crate::thermostat`]; 0 without one).
     pub kicks: u64,
     /// The kinetic energy the kicks added, the sum of [`Simulation::kick`]'s returns (0
@@ -309,6 +312,8 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let mut done = 0u64;
     let mut stopped = None;
     let mut left_table = None;
+    let mut streak = crate::collapse::Streak::default();
+    let mut collapse = None;
     let mut noise = sim.table().thermostat.map(Noise::new);
     let mut injected = 0.0;
     while done < events {
@@ -357,6 +362,7 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             }
         };
         done += 1;
+        let collapsed = streak.record(&e);
         let (k, balls) = match e.contact {
             Contact::Ball { i, j } => (0, [i, j]),
             Contact::Wall { i, .. } => (1, [i, i]),
@@ -389,6 +395,11 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         }
         if done % 4096 == 0 {
             progress(Progress::Events(done));
+        }
+        if let Some(c) = collapsed {
+            stopped = Some(c.to_string());
+            collapse = Some(c);
+            break;
         }
     }
     let seconds = clock.elapsed().as_secs_f64();
@@ -423,6 +434,7 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         angular_momentum_drift: distance(&end.angular_momentum, &start.angular_momentum) / l_scale,
         stopped,
         left_table,
+        collapse,
         kicks: noise.as_ref().map_or(0, Noise::done),
         energy_injected: injected,
     };

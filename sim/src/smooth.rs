@@ -67,6 +67,37 @@ where
     ]
 }
 
+/// Two balls' states after a smooth contact with normal restitution `e` (no tangential
+/// impulse: the rough law at `beta = -1`), `nu` from body 1 to body 2: the impulse `J = -(1 +
+/// e) (dv . nu) / (w_1 + w_2)` along `nu` on body 2, so `dv . nu` becomes `-e` times itself;
+/// spins are untouched. At `e = 1` it is [`pair`]'s map (its operations differ).
+pub fn pair_restituted<T: Scalar, const N: usize, const S: usize>(
+    nu: &[T; N],
+    w1: &T,
+    w2: &T,
+    e: &T,
+    state1: &BodyState<T, N, S>,
+    state2: &BodyState<T, N, S>,
+) -> [BodyState<T, N, S>; 2]
+where
+    for<'a> &'a T: RefArith<T>,
+{
+    let dv: [T; N] = std::array::from_fn(|k| &state2.velocity[k] - &state1.velocity[k]);
+    let dn = dot(&dv, nu);
+    let j = &(&(&T::from_ratio(1, 1) + e) * &dn) / &(w1 + w2);
+    let (j1, j2) = (w1 * &j, w2 * &j);
+    [
+        BodyState {
+            spin: state1.spin.clone(),
+            velocity: std::array::from_fn(|k| &state1.velocity[k] + &(&j1 * &nu[k])),
+        },
+        BodyState {
+            spin: state2.spin.clone(),
+            velocity: std::array::from_fn(|k| &state2.velocity[k] - &(&j2 * &nu[k])),
+        },
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -122,6 +153,60 @@ mod tests {
                         &a.velocity[k] / &w1 + &b.velocity[k] / &w2
                     };
                     assert_eq!(m(&p1, &p2), m(&s1, &s2));
+                }
+            }
+        }
+    }
+
+    /// The restituted smooth map: `dv . nu` becomes exactly `-e` times itself, momentum and
+    /// spins are kept, the energy lost is `(1 - e^2) (dv . nu)^2 / (2 (w_1 + w_2))` exactly,
+    /// and `e = 1` is [`pair`]'s map; with two point masses (their only law without a
+    /// tangential impulse) as with any.
+    #[test]
+    fn the_restituted_map_keeps_momentum_and_loses_the_closed_form_energy_exactly() {
+        let nu = [q(2, 7), q(3, 7), q(6, 7)];
+        let s1 = BodyState::<Exact, 3, 3> {
+            spin: [q(1, 2), q(-3, 1), q(5, 4)],
+            velocity: [q(1, 1), q(-2, 3), q(7, 5)],
+        };
+        let s2 = BodyState::<Exact, 3, 3> {
+            spin: [q(2, 1), q(0, 1), q(-1, 9)],
+            velocity: [q(-3, 2), q(1, 4), q(-2, 1)],
+        };
+        let rel = |a: &BodyState<Exact, 3, 3>, b: &BodyState<Exact, 3, 3>| {
+            let d: [Exact; 3] = std::array::from_fn(|k| &b.velocity[k] - &a.velocity[k]);
+            dot(&d, &nu)
+        };
+        for e in [q(0, 1), q(4, 5), q(1, 1)] {
+            for (w1, w2) in [(q(1, 3), q(2, 1)), (q(0, 1), q(5, 2)), (q(1, 1), q(1, 1))] {
+                let [p1, p2] = pair_restituted(&nu, &w1, &w2, &e, &s1, &s2);
+                assert_eq!(rel(&p1, &p2), -(&e * &rel(&s1, &s2)));
+                assert_eq!((&p1.spin, &p2.spin), (&s1.spin, &s2.spin));
+                // m_i = 1 / w_i where w_i > 0; an immovable body keeps its velocity.
+                let energy = |a: &BodyState<Exact, 3, 3>, b: &BodyState<Exact, 3, 3>| {
+                    let half = q(1, 2);
+                    let mut sum = q(0, 1);
+                    for (s, w) in [(a, &w1), (b, &w2)] {
+                        sum += &(&half * &dot(&s.velocity, &s.velocity)) / w;
+                    }
+                    sum
+                };
+                let dn = rel(&s1, &s2);
+                let lost = &(&(&q(1, 1) - &(&e * &e)) * &(&dn * &dn)) / &(&q(2, 1) * &(&w1 + &w2));
+                // Energy and momentum need both masses finite (an immovable body 1 that moves
+                // does work on body 2).
+                if w1 != q(0, 1) && w2 != q(0, 1) {
+                    assert_eq!(&energy(&s1, &s2) - &energy(&p1, &p2), lost);
+                    for k in 0..3 {
+                        let before = &(&s1.velocity[k] / &w1) + &(&s2.velocity[k] / &w2);
+                        let after = &(&p1.velocity[k] / &w1) + &(&p2.velocity[k] / &w2);
+                        assert_eq!(before, after);
+                    }
+                } else {
+                    assert_eq!(p1.velocity, s1.velocity);
+                }
+                if e == q(1, 1) {
+                    assert_eq!([p1, p2], pair(&nu, &w1, &w2, &s1, &s2));
                 }
             }
         }

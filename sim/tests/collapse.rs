@@ -266,3 +266,81 @@ fn a_ball_collapsing_against_a_container_stops_the_run_naming_it() {
     assert_eq!(end, None, "with the TC model the run goes on");
     assert_eq!(speeds.len(), 20_000);
 }
+
+/// Contacts at one instant without end (`noslip_sim::collapse`), through the run loop that
+/// `noslip simulate` and Python's `simulate` use, with a time limit and no event limit (the
+/// setting that used to never return):
+///
+/// - the shipped wedge (20 degrees, no box) with its walls at `e = 0`, `beta = -1`: the disk
+///   is driven into the apex, its speed shrinks to subnormal numbers and every contact comes
+///   at `t = 2.578460` (a review's reproduction);
+/// - the shipped 3D cooling gas at `e = 0`, `beta = -1` and without its TC model: three
+///   balls left touching trade contacts that change no bit at `t = 0.287340`.
+///
+/// Each run must stop at that instant with a [`noslip_sim::collapse::Collapse`] naming the
+/// balls, after `MAX_CONTACTS_AT_ONCE` contacts of the busiest, and with the TC model the
+/// same scenes must run on (the disk out of the open wedge, the gas to its time limit).
+#[test]
+fn contacts_at_one_instant_without_end_stop_the_run_naming_the_balls() {
+    use noslip_sim::collapse::MAX_CONTACTS_AT_ONCE;
+    use noslip_sim::run::{run, Limits};
+    let wedge = include_str!("../../scenes/wedge.toml").replace(
+        "[table.wedge]",
+        "[table]\ncontact = { e = 0, beta = -1 }\n[table.wedge]",
+    );
+    let gas = include_str!("../../scenes/granular3d.toml").replace(
+        r#"balls = { e = "0.9", beta = "0.5" }"#,
+        r#"balls = { e = 0, beta = "-1" }"#,
+    );
+    assert!(
+        wedge.contains("e = 0") && gas.contains("e = 0"),
+        "the laws replaced"
+    );
+    let no_tc = gas.replace(r#"tc = "1e-5""#, "");
+    assert_ne!(no_tc, gas, "the shipped TC model removed");
+    fn end<const N: usize, const S: usize>(text: &str, time: f64) -> noslip_sim::run::Summary
+    where
+        collision_core::Generated: collision_core::Kernel<f64, N, S>,
+    {
+        let scene = noslip_scene::Scene::from_toml(text, "scene.toml").unwrap();
+        let setup = noslip_sim::setup::setup::<N, S>(&scene).unwrap();
+        let species = setup.species.clone();
+        let kernels = GenericKernels {
+            species: species.clone(),
+        };
+        let mut sim = Simulation::new(setup, kernels).unwrap();
+        let limits = Limits {
+            events: None,
+            time: Some(time),
+            samples: 10,
+            traced: 0,
+            contact_points: 0,
+        };
+        run(&mut sim, &species, &limits, None, &mut |_| {})
+            .unwrap()
+            .0
+    }
+    let summaries = [
+        (end::<2, 1>(&wedge, 10.0), 2.578459, vec![0]),
+        (end::<3, 3>(&no_tc, 1.0), 0.287340, vec![412, 153, 199]),
+    ];
+    for (s, time, balls) in summaries {
+        let c = s.collapse.clone().expect("a collapse");
+        assert!((c.time - time).abs() < 1e-6, "{c:?}");
+        assert_eq!(c.balls, balls);
+        assert!(s.events >= c.contacts, "{s:?}");
+        assert!(c.contacts > u64::from(MAX_CONTACTS_AT_ONCE), "{c:?}");
+        assert!(s
+            .stopped
+            .as_deref()
+            .unwrap()
+            .starts_with("inelastic collapse at t = "));
+    }
+    // With the TC model the contacts within t_c are elastic and the runs go on: the disk
+    // leaves the open wedge (truly: it has no box), the gas runs to its time limit.
+    let s = end::<2, 1>(&format!("{wedge}\n[contact]\ntc = \"1e-4\"\n"), 10.0);
+    assert_eq!(s.collapse, None);
+    assert!(s.stopped.unwrap().contains("every ball flies off"));
+    let s = end::<3, 3>(&gas, 0.5);
+    assert_eq!((s.collapse, s.stopped), (None, None));
+}

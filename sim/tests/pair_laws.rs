@@ -252,3 +252,78 @@ fn lost_ball_ball_is_the_loss_of_every_pair_law() {
         "{contacts} contacts; lost per pair {per_pair:?}, lost_ball_ball at the last row {total}"
     );
 }
+
+/// Two point masses (`gamma2 = 0`) under laws without tangential impulse (`beta = -1`, and
+/// the Walton laws validation names so: `mu = 0`, `beta0 = -1`), the one rough law scenes
+/// allow between point masses: the rough kernel's tangential coefficient is `0 / 0` there
+/// (`D = 0`), and every state after the contact was NaN. Now the normal relative velocity
+/// becomes `-e` times itself (to a few ulps of the speeds: `1e-15`), the momentum and the
+/// spins are kept, and the run goes on to `t = 10` with finite states.
+#[test]
+fn point_masses_under_a_smooth_inelastic_law_collide_without_nan() {
+    for law in [
+        r#"{ e = "0.8", beta = -1 }"#,
+        r#"{ e = "0.8", mu = 0, beta0 = 1 }"#,
+        r#"{ e = "0.8", mu = 1, beta0 = -1 }"#,
+    ] {
+        let text = format!(
+            r#"
+dim = 2
+[box]
+size = [4, 4]
+boundary = ["periodic", "periodic"]
+[contact]
+balls = {law}
+[[species]]
+mass = 1
+radius = "1/5"
+gamma2 = 0
+[[ball]]
+species = 0
+position = [1, 1]
+velocity = [1, 0]
+[[ball]]
+species = 0
+position = [2, "1.1"]
+"#
+        );
+        let setup: Setup<2, 1> = setup(&Scene::from_toml(&text, "points.toml").unwrap()).unwrap();
+        let kernels = GenericKernels {
+            species: setup.species.clone(),
+        };
+        let mut sim = Simulation::new(setup, kernels).unwrap();
+        let Step::Contact(e) = sim.step(f64::INFINITY) else {
+            panic!("{law}: the points must meet");
+        };
+        let dn = |s: &[BodyState<f64, 2, 1>; 2]| {
+            (0..2)
+                .map(|k| (s[1].velocity[k] - s[0].velocity[k]) * e.nu[k])
+                .sum::<f64>()
+        };
+        assert!(dn(&e.pre) < 0.0, "{law}: approaching");
+        assert!(
+            (dn(&e.post) + 0.8 * dn(&e.pre)).abs() < 1e-15,
+            "{law}: {e:?}"
+        );
+        for k in 0..2 {
+            let p = |s: &[BodyState<f64, 2, 1>; 2]| s[0].velocity[k] + s[1].velocity[k];
+            assert!((p(&e.post) - p(&e.pre)).abs() < 1e-15, "{law}: momentum");
+        }
+        assert_eq!(
+            (e.post[0].spin, e.post[1].spin),
+            (e.pre[0].spin, e.pre[1].spin)
+        );
+        loop {
+            match sim.step(10.0) {
+                Step::Contact(e) => assert!(
+                    e.post
+                        .iter()
+                        .all(|s| s.velocity.iter().all(|x| x.is_finite())),
+                    "{law}: {e:?}"
+                ),
+                Step::Until => break,
+                other => panic!("{law}: {other:?}"),
+            }
+        }
+    }
+}

@@ -378,12 +378,16 @@ where
         },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
-    // A ball that left the table is a failure (exit 2) named by the container's scene key,
-    // reported after the outputs of the run up to it are published.
-    let left_table = summary.left_table.map(|left| {
-        let place = &scene.boundaries[left.boundary].place;
-        left.message(place)
-    });
+    // A ball that left the table (named by the container's scene key) and an inelastic
+    // collapse are failures (exit 2), reported after the outputs of the run up to them are
+    // published.
+    let left_table = summary
+        .left_table
+        .map(|left| {
+            let place = &scene.boundaries[left.boundary].place;
+            left.message(place)
+        })
+        .or_else(|| summary.collapse.as_ref().map(|c| c.to_string()));
     if let Some(message) = &left_table {
         summary.stopped = Some(message.clone());
     }

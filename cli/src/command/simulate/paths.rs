@@ -7,11 +7,29 @@ use crate::exit::Failure;
 use noslip_columnar::is_parquet;
 use std::path::{Path, PathBuf};
 
-/// `p` without its `.` components: two spellings of one path compare equal lexically.
+/// `p` as an absolute path (against the current directory) without `.` and `..`
+/// components: two spellings of one path (`o`, `./o`, `/cwd/o`, `o/../o`) compare equal
+/// lexically. A `..` after a symbolic link is taken lexically, as `std::path::absolute`
+/// takes the rest (neither need exist yet).
 pub(super) fn lexical(p: &Path) -> PathBuf {
-    p.components()
-        .filter(|c| !matches!(c, std::path::Component::CurDir))
-        .collect()
+    use std::path::Component;
+    let p = if p.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        p
+    };
+    let absolute = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+    let mut out = PathBuf::new();
+    for c in absolute.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                out.pop();
+            }
+            _ => out.push(c),
+        }
+    }
+    out
 }
 
 /// Whether `dir` (a log file's parent) is the output directory `out`, lexically (neither need
@@ -106,10 +124,7 @@ pub fn check_limits(args: &Args) -> Result<(), Failure> {
 pub(super) fn same_file(a: &Path, b: &Path) -> bool {
     match (a.canonicalize(), b.canonicalize()) {
         (Ok(x), Ok(y)) => x == y,
-        _ => {
-            let clean = |p: &Path| std::path::absolute(p).ok().map(|p| lexical(&p));
-            clean(a).is_some_and(|x| Some(x) == clean(b))
-        }
+        _ => lexical(a) == lexical(b),
     }
 }
 
