@@ -24,15 +24,20 @@
 //! With `--rounded` (slow: exact rationals, about a minute per 10^6 contacts), a third map:
 //! `rounded`, the correctly rounded map (the kernel's rational map evaluated in `Exact` on the
 //! float inputs, each output rounded once to `f64`: the best any `f64` kernel of this map can
-//! do), the reference for the residual that the consistent form leaves.
+//! do), the reference for the residual that the consistent form leaves. With `--once FLAGS`
+//! (`FLAGS` letters of `v`, `s`, `t`; as slow) instead the consistent form with those stages
+//! rounded once (`once.rs`): which roundings leave the residual.
 
 #[path = "forms.rs"]
 mod forms;
+#[path = "once.rs"]
+mod once;
 
 use collision_core::{Ball, BodyState, Exact, Generated, Kernel};
 use forms::{two_prod, two_sum, Form, Pair};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
+use once::Once;
 use rand::{Rng as _, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -126,6 +131,8 @@ enum Map {
     Hand(Form),
     /// The correctly rounded map.
     Rounded,
+    /// The consistent form with stages rounded once.
+    Once(Once),
 }
 
 /// Mean change of `E` per contact (eps of `E_0`), its batch-means standard error and the
@@ -143,11 +150,11 @@ where
     let form = match map {
         Map::Hand(form) => form,
         // The prediction for the rounded map is that of exact coefficients: 0.
-        Map::Rounded => Form::Consistent,
+        Map::Rounded | Map::Once(_) => Form::Consistent,
     };
     let pair = Pair::new(&balls[0], &balls[1], form);
     let delta = match map {
-        Map::Hand(_) => identity_defect(&pair, balls),
+        Map::Hand(_) | Map::Once(_) => identity_defect(&pair, balls),
         Map::Rounded => 0.0,
     };
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -173,6 +180,7 @@ where
         let next = match map {
             Map::Hand(_) => pair.collide(&nu, &balls[0], &balls[1], &s[0], &s[1]),
             Map::Rounded => correctly_rounded(&nu, balls, &s),
+            Map::Once(once) => once::collide(&pair, once, &nu, balls, &s),
         };
         if matches!(map, Map::Hand(Form::Shipped)) {
             let want: [BodyState<f64, N, S>; 2] =
@@ -227,27 +235,48 @@ where
 
 fn main() {
     let mut contacts = 400_000;
-    let mut rounded = false;
-    for a in std::env::args().skip(1) {
+    let mut third: Option<Map> = None;
+    let mut label = String::from("rounded");
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
         if a == "--rounded" {
-            rounded = true;
+            third = Some(Map::Rounded);
+            continue;
+        }
+        if a == "--once" {
+            let flags = args.next().unwrap_or_default();
+            match Once::parse(&flags) {
+                Some(once) if !flags.is_empty() => {
+                    third = Some(Map::Once(once));
+                    label = format!("once {flags}");
+                }
+                _ => {
+                    eprintln!("--once: expected letters of v, s, t, got {flags:?}");
+                    std::process::exit(2);
+                }
+            }
             continue;
         }
         match a.parse() {
             Ok(c) if c >= BATCHES => contacts = c,
             _ => {
-                eprintln!("contacts: expected an integer >= {BATCHES} or --rounded, got {a:?}");
+                eprintln!(
+                    "contacts: expected an integer >= {BATCHES}, --rounded or --once FLAGS, got {a:?}"
+                );
                 std::process::exit(2);
             }
         }
     }
     let mut mismatches = 0;
-    let extra = if rounded {
-        " rounded mean | se | z |"
+    let extra = match third {
+        None => String::new(),
+        Some(_) => format!(" {label} mean | se | z |"),
+    };
+    let extra_rule = if third.is_some() {
+        "---:|---:|---:|"
     } else {
         ""
     };
-    let extra_rule = if rounded { "---:|---:|---:|" } else { "" };
     println!(
         "| R_1, R_2 | seed | n | shipped mean | z | pred | consistent mean | se | z | pred |{extra}"
     );
@@ -284,12 +313,12 @@ fn main() {
             };
             let a = run::<2, 1>(&balls, Map::Hand(Form::Shipped), seed, contacts);
             let c = run::<2, 1>(&balls, Map::Hand(Form::Consistent), seed, contacts);
-            let r = rounded.then(|| run::<2, 1>(&balls, Map::Rounded, seed, contacts));
+            let r = third.map(|map| run::<2, 1>(&balls, map, seed, contacts));
             mismatches += a.mismatches;
             row(2, a, c, r);
             let a = run::<3, 3>(&balls, Map::Hand(Form::Shipped), seed, contacts);
             let c = run::<3, 3>(&balls, Map::Hand(Form::Consistent), seed, contacts);
-            let r = rounded.then(|| run::<3, 3>(&balls, Map::Rounded, seed, contacts));
+            let r = third.map(|map| run::<3, 3>(&balls, map, seed, contacts));
             mismatches += a.mismatches;
             row(3, a, c, r);
         }
