@@ -202,6 +202,10 @@ where
     if let Some(c) = &summary.collapse {
         return Err(fail(c.to_string()));
     }
+    // A gas cooled out of the f64 range (`noslip_sim::speed_range`): the same.
+    if let Some(b) = &summary.below_range {
+        return Err(fail(b.to_string()));
+    }
     let sampler = sampler.into_inner();
     Ok(Run {
         summary,

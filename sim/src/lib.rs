@@ -79,6 +79,7 @@ pub mod sequential;
 pub mod setup;
 pub mod smooth;
 pub mod species_laws;
+pub mod speed_range;
 pub mod table;
 #[cfg(test)]
 mod table_tests;

@@ -112,6 +112,9 @@ pub struct Summary {
     /// The contacts at one instant that did not end ([`crate::collapse`]), which ended the
     /// run: a failure, reported as [`Summary::left_table`] is.
     pub collapse: Option<crate::collapse::Collapse>,
+    /// A ball whose speed fell below the f64 range ([`crate::speed_range`]), which ended the
+    /// run: a failure, reported as [`Summary::left_table`] is.
+    pub below_range: Option<crate::speed_range::BelowRange>,
     /// The thermostat's kicks applied ([`crate::thermostat`]; 0 without one).
     pub kicks: u64,
     /// The kinetic energy the kicks added, the sum of [`Simulation::kick`]'s returns (0
@@ -233,8 +236,10 @@ pub fn quiet_stop<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     if box_lengths >= MAX_QUIET_BOX_LENGTHS {
         return Some(format!(
             "no contact while every moving ball travelled {box_lengths:.0} box lengths \
-             (t = {:.6e}): a next contact, if there is one, is out of reach of the run \
-             (--time bounds a run instead)",
+             (t = {:.6e}): a next contact, if there is one, is out of reach of the run (it \
+             stops after {MAX_QUIET_BOX_LENGTHS:.0e} box lengths without a contact, with or \
+             without --time: stepping cell by cell to a contact that far off would take too \
+             long)",
             sim.now()
         ));
     }
@@ -244,7 +249,7 @@ pub fn quiet_stop<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
              (t = {:.6e}), and this periodic gas is so dilute that kinetic theory expects at \
              most {:.1e} contacts per unit time, {:.1e} before every moving ball has travelled \
              {MAX_QUIET_BOX_LENGTHS:.0e} box lengths: a next contact, if there is one, is out \
-             of reach of the run (--time bounds a run instead)",
+             of reach of the run (it stops here with or without --time)",
             sim.now(),
             far.rate,
             far.expected
@@ -314,6 +319,7 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let mut left_table = None;
     let mut streak = crate::collapse::Streak::default();
     let mut collapse = None;
+    let mut below_range = None;
     let mut noise = sim.table().thermostat.map(Noise::new);
     let mut injected = 0.0;
     while done < events {
@@ -401,6 +407,11 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
             collapse = Some(c);
             break;
         }
+        if let Some(b) = crate::speed_range::below_range(&e) {
+            stopped = Some(b.to_string());
+            below_range = Some(b);
+            break;
+        }
     }
     let seconds = clock.elapsed().as_secs_f64();
     let ends: Vec<[f64; 2]> = (0..traced).map(|i| at(&sim.position(i))).collect();
@@ -435,6 +446,7 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         stopped,
         left_table,
         collapse,
+        below_range,
         kicks: noise.as_ref().map_or(0, Noise::done),
         energy_injected: injected,
     };

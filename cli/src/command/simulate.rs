@@ -387,7 +387,8 @@ where
             let place = &scene.boundaries[left.boundary].place;
             left.message(place)
         })
-        .or_else(|| summary.collapse.as_ref().map(|c| c.to_string()));
+        .or_else(|| summary.collapse.as_ref().map(|c| c.to_string()))
+        .or_else(|| summary.below_range.as_ref().map(|b| b.to_string()));
     if let Some(message) = &left_table {
         summary.stopped = Some(message.clone());
     }
