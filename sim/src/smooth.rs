@@ -95,18 +95,22 @@ mod tests {
         Exact::checked_ratio(p, d).expect("nonzero denominator")
     }
 
-    #[test]
-    fn smooth_maps_reverse_the_normal_velocity_and_keep_energy_exactly() {
-        // 3D, nu = (2/7, 3/7, 6/7) (unit), spins arbitrary.
-        let nu = [q(2, 7), q(3, 7), q(6, 7)];
-        let s1 = BodyState::<Exact, 3, 3> {
+    /// A 3D contact: `nu = (2/7, 3/7, 6/7)` (unit), two bodies with arbitrary spins.
+    fn contact() -> ([Exact; 3], BodyState<Exact, 3, 3>, BodyState<Exact, 3, 3>) {
+        let s1 = BodyState {
             spin: [q(1, 2), q(-3, 1), q(5, 4)],
             velocity: [q(1, 1), q(-2, 3), q(7, 5)],
         };
-        let s2 = BodyState::<Exact, 3, 3> {
+        let s2 = BodyState {
             spin: [q(2, 1), q(0, 1), q(-1, 9)],
             velocity: [q(-3, 2), q(1, 4), q(-2, 1)],
         };
+        ([q(2, 7), q(3, 7), q(6, 7)], s1, s2)
+    }
+
+    #[test]
+    fn smooth_maps_reverse_the_normal_velocity_and_keep_energy_exactly() {
+        let (nu, s1, s2) = contact();
         let post = fixed(&nu, &s1);
         assert_eq!(post.spin, s1.spin);
         assert_eq!(dot(&post.velocity, &nu), -dot(&s1.velocity, &nu));
@@ -152,15 +156,7 @@ mod tests {
     /// any.
     #[test]
     fn the_restituted_map_keeps_momentum_and_loses_the_closed_form_energy_exactly() {
-        let nu = [q(2, 7), q(3, 7), q(6, 7)];
-        let s1 = BodyState::<Exact, 3, 3> {
-            spin: [q(1, 2), q(-3, 1), q(5, 4)],
-            velocity: [q(1, 1), q(-2, 3), q(7, 5)],
-        };
-        let s2 = BodyState::<Exact, 3, 3> {
-            spin: [q(2, 1), q(0, 1), q(-1, 9)],
-            velocity: [q(-3, 2), q(1, 4), q(-2, 1)],
-        };
+        let (nu, s1, s2) = contact();
         let rel = |a: &BodyState<Exact, 3, 3>, b: &BodyState<Exact, 3, 3>| {
             let d: [Exact; 3] = std::array::from_fn(|k| &b.velocity[k] - &a.velocity[k]);
             dot(&d, &nu)

@@ -58,12 +58,8 @@ pub fn below_range<const N: usize, const S: usize>(e: &Event<N, S>) -> Option<Be
         let slow = moving && u2 < f64::MIN_POSITIVE;
         (slow || !e.time.is_finite()).then(|| BelowRange {
             ball,
-            speed: u
-                .iter()
-                .map(|x| x * x)
-                .sum::<f64>()
-                .sqrt()
-                .max(u.iter().fold(0.0f64, |m, x| m.max(x.abs()))),
+            // The largest component where the sum of squares underflows to 0.
+            speed: u2.sqrt().max(u.iter().fold(0.0f64, |m, x| m.max(x.abs()))),
             time: e.time,
         })
     })
