@@ -50,6 +50,7 @@ pub mod batch;
 pub mod certified;
 mod checked;
 mod collide;
+pub mod conserve;
 mod error;
 pub mod exact;
 mod float;

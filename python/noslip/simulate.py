@@ -145,6 +145,7 @@ def simulate(
     pair_bins: int = 100,
     self_diffusion: float | None = None,
     self_diffusion_from: float = 0.0,
+    conserve_energy: bool = False,
 ) -> SimulationResult:
     """Run a scene with the event-driven simulator of ``noslip simulate``.
 
@@ -198,6 +199,13 @@ def simulate(
         time origin: :attr:`SimulationResult.self_diffusion` (``docs/granular.md``).
     self_diffusion_from : float
         The start of the first block (default 0: the start's row).
+    conserve_energy : bool
+        Correct every no-slip contact onto the energy its balls had before it, as
+        ``noslip simulate --conserve-energy`` (``docs/accuracy.md``, "An energy-conserving
+        correction"): the energy then random-walks instead of drifting by the kernels'
+        rounding bias. The contacts differ from the uncorrected run's by an ulp or two;
+        rough and Walton contacts are left as their law gives them. Recorded as
+        ``summary["conserve_energy"]``.
 
     Raises
     ------
@@ -222,6 +230,7 @@ def simulate(
         pair_bins,
         self_diffusion,
         self_diffusion_from,
+        conserve_energy,
     )
     summary = json.loads(out["summary"])
     energy = dict(out["energy"])

@@ -18,7 +18,7 @@ use noslip_sim::granular::{self, Sampler};
 use noslip_sim::pair_losses::is_count;
 use noslip_sim::run::{check_time, run_watched, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
-use noslip_sim::{GenericKernels, Simulation};
+use noslip_sim::{Conserving, GenericKernels, Simulation};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -63,6 +63,8 @@ struct Keep {
     max_memory: u64,
     /// The bytes the records of a contact take ([`bytes_per_contact`]).
     per_contact: u64,
+    /// Correct the no-slip contacts onto their energy ([`noslip_sim::Conserving`]).
+    conserve_energy: bool,
 }
 
 /// The error of a run stopped at the memory cap (its text is replaced by [`simulate`]'s
@@ -85,8 +87,12 @@ where
     let setup = setup::<N, S>(scene).map_err(|e| fail(e.to_string()))?;
     let species = setup.species.clone();
     let names: Vec<String> = scene.species.iter().map(|s| s.name.clone()).collect();
-    let kernels = GenericKernels {
+    let kernels = Conserving {
+        kernels: GenericKernels {
+            species: species.clone(),
+        },
         species: species.clone(),
+        enabled: keep.conserve_energy,
     };
     let mut sim = Simulation::new(setup, kernels).map_err(|e| fail(e.to_string()))?;
     let mut lines = LogColumns::new(N, S);
@@ -132,7 +138,7 @@ where
             .saturating_add(k.saturating_mul(kick_bytes))
             > keep.max_memory
     };
-    let (summary, trace) = run_watched(
+    let (mut summary, trace) = run_watched(
         &mut sim,
         &species,
         limits,
@@ -206,6 +212,7 @@ where
     if let Some(b) = &summary.below_range {
         return Err(fail(b.to_string()));
     }
+    summary.conserve_energy = keep.conserve_energy;
     let sampler = sampler.into_inner();
     Ok(Run {
         summary,
@@ -358,7 +365,7 @@ fn time_of(t: f64) -> PyResult<f64> {
 /// animation page with ``html``, else None), ``observables`` (with ``observables`` the
 /// sampling interval, the rows' columns as arrays; else empty).
 #[pyfunction]
-#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false, observables=None, pair_correlation=None, pair_bins=None, self_diffusion=None, self_diffusion_from=0.0))]
+#[pyo3(signature = (scene, events, time, log, boundary_map, max_memory, html=false, observables=None, pair_correlation=None, pair_bins=None, self_diffusion=None, self_diffusion_from=0.0, conserve_energy=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -374,6 +381,7 @@ pub fn simulate<'py>(
     pair_bins: Option<Bound<'py, PyAny>>,
     self_diffusion: Option<f64>,
     self_diffusion_from: f64,
+    conserve_energy: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let pair_bins = unsigned_opt(pair_bins.as_ref(), "pair_bins", 1, 1 << 20)?.unwrap_or(100);
     if pair_correlation.is_some() && observables.is_none() {
@@ -420,6 +428,7 @@ pub fn simulate<'py>(
         self_diffusion: self_diffusion.map(|b| (b, self_diffusion_from)),
         max_memory,
         per_contact,
+        conserve_energy,
     };
     let kept = || {
         [("log", log), ("boundary_map", boundary_map)]

@@ -17,40 +17,26 @@
 //! bias `z` follows Student's t with 99 degrees of freedom; a drift of one sign at every
 //! contact grows `z` like `sqrt(K)`.
 //!
+//! "conserving" is the generated kernel corrected onto the energy of its inputs
+//! (`noslip_sim::Conserving`, `collision_core::conserve`).
+//!
 //! The old form (`two_rounded_constants`) is the generated kernel's map with
 //! `p = g / (1 + g)` and `rho = 2 / (R (1 + g))` each rounded once, written out here.
 
+use collision_core::conserve::weighted_squares;
 use collision_core::{with_dim, Ball, BodyState, Generated, Kernel};
 use noslip_scene::Scene;
 use noslip_sim::setup::setup;
-use noslip_sim::{GenericKernels, PairKernels, Simulation, Step};
+use noslip_sim::{Conserving, GenericKernels, PairKernels, Simulation, Step};
 
 /// Batches of the standard error.
 const BATCHES: usize = 100;
-
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
 
 /// `|u|^2 + w sum U_ij^2` in double-double, `w = g R^2` (its one rounding is a fixed factor
 /// of the spin part, whose changes telescope: no drift per contact).
 fn energy<const N: usize, const S: usize>(w: f64, s: &BodyState<f64, N, S>) -> (f64, f64) {
     let terms = s.velocity.iter().map(|&x| (1.0, x));
-    terms
-        .chain(s.spin.iter().map(|&x| (w, x)))
-        .fold((0.0, 0.0), |(hi, lo), (c, x)| {
-            let (sq, sq_lo) = two_prod(x, x);
-            let (a, a_lo) = two_prod(c, sq);
-            let (s, e) = two_sum(hi, a);
-            (s, lo + e + a_lo + c * sq_lo)
-        })
+    weighted_squares(terms.chain(s.spin.iter().map(|&x| (w, x))))
 }
 
 /// The kernels of the old form: `free` as generated, `fixed` with two rounded constants.
@@ -169,12 +155,19 @@ where
     let generated = GenericKernels {
         species: species.clone(),
     };
-    let (new, new_se, new_k) = measure::<N, S, _>(scene, generated, contacts);
+    let (new, new_se, new_k) = measure::<N, S, _>(scene, generated.clone(), contacts);
+    let conserving = Conserving {
+        kernels: generated,
+        species: species.clone(),
+        enabled: true,
+    };
+    let (fix, fix_se, fix_k) = measure::<N, S, _>(scene, conserving, contacts);
     let (old, old_se, old_k) = measure::<N, S, _>(scene, TwoRoundedConstants { species }, contacts);
     println!(
-        "| {name} | {N} | {old_k} | {old:+.5} | {old_se:.5} | {:+.1} | {new_k} | {new:+.5} | {new_se:.5} | {:+.1} |",
+        "| {name} | {N} | {old_k} | {old:+.5} | {old_se:.5} | {:+.1} | {new_k} | {new:+.5} | {new_se:.5} | {:+.1} | {fix_k} | {fix:+.5} | {fix_se:.5} | {:+.1} |",
         old / old_se,
-        new / new_se
+        new / new_se,
+        fix / fix_se
     );
 }
 
@@ -195,8 +188,8 @@ fn main() {
         all.sort();
         files = all;
     }
-    println!("| scene | n | old: contacts | mean | se | z | new: contacts | mean | se | z |");
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| scene | n | old: contacts | mean | se | z | new: contacts | mean | se | z | conserving: contacts | mean | se | z |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for file in files {
         let text = std::fs::read_to_string(&file).expect("readable scene");
         let scene = Scene::from_toml(&text, &file).expect("valid scene");

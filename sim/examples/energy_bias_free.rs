@@ -13,49 +13,31 @@
 //! 39 degrees of freedom when there is no bias, as in `collision-core`'s `energy_drift` test).
 //! `free` still rounds its two tangential coefficients `p_t = g_1 g_2 / D` and
 //! `rho_i = 2 w_i g_j / (R_i D)` separately, the constants' bias removed from `fixed`
-//! (`docs/accuracy.md`, "Energy bias").
+//! (`docs/accuracy.md`, "Energy bias"). Each run is made twice: the kernel as generated, and
+//! corrected onto the energy of its inputs (`collision_core::conserve::free`).
 
+use collision_core::conserve::{self, weighted_squares};
 use collision_core::{Ball, BodyState, Generated, Kernel};
 use rand::{Rng as _, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-/// `a b` as `hi + lo` exactly.
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-/// `a + b` as `hi + lo` exactly.
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
 /// `E` of the two bodies in double-double, weights `m_b` and `m_b g_b R_b^2` (`w`).
 fn energy<const N: usize, const S: usize>(
     m: [f64; 2],
     w: [f64; 2],
     s: &[BodyState<f64, N, S>; 2],
 ) -> (f64, f64) {
-    let mut terms = Vec::new();
-    for b in 0..2 {
-        for &x in &s[b].velocity {
-            terms.push((m[b], x));
-        }
-        for &x in &s[b].spin {
-            terms.push((m[b] * w[b], x));
-        }
-    }
-    terms.into_iter().fold((0.0, 0.0), |(hi, lo), (c, x)| {
-        let (sq, sq_lo) = two_prod(x, x);
-        let (a, a_lo) = two_prod(c, sq);
-        let (s, e) = two_sum(hi, a);
-        (s, lo + e + a_lo + c * sq_lo)
-    })
+    let body = |b: usize| {
+        let velocity = s[b].velocity.iter().map(move |&x| (m[b], x));
+        velocity.chain(s[b].spin.iter().map(move |&x| (m[b] * w[b], x)))
+    };
+    weighted_squares(body(0).chain(body(1)))
 }
 /// Mean change of `E` per contact (eps of `E_0`) and its batch-means standard error.
 fn run<const N: usize, const S: usize>(
     balls: [Ball<f64>; 2],
     seed: u64,
     contacts: usize,
+    corrected: bool,
 ) -> (f64, f64)
 where
     Generated: Kernel<f64, N, S>,
@@ -80,7 +62,12 @@ where
         let du = s[1].velocity[axis] - s[0].velocity[axis];
         let side = if du < 0.0 { 1.0 } else { -1.0 };
         let nu: [f64; N] = std::array::from_fn(|k| if k == axis { side } else { 0.0 });
-        s = Generated::free(&nu, &balls[0], &balls[1], &s[0], &s[1]);
+        let out = Generated::free(&nu, &balls[0], &balls[1], &s[0], &s[1]);
+        s = if corrected {
+            conserve::free(&balls[0], &balls[1], [&s[0], &s[1]], [&out[0], &out[1]])
+        } else {
+            out
+        };
         let after = energy(m, w, &s);
         batches[i * nb / contacts] += ((after.0 - before.0) + (after.1 - before.1)) * scale;
         before = after;
@@ -101,13 +88,20 @@ fn main() {
                 gamma2: 0.5,
             };
             let balls = [b(r1, 1.0), b(r2, 0.5)];
-            let (m2, s2) = run::<2, 1>(balls.clone(), seed, contacts);
-            let (m3, s3) = run::<3, 3>(balls, seed, contacts);
-            println!(
-                "R = ({r1}, {r2}) seed {seed}: n=2 {m2:+.5} z {:+.1} | n=3 {m3:+.5} z {:+.1}",
-                m2 / s2,
-                m3 / s3
-            );
+            for corrected in [false, true] {
+                let (m2, s2) = run::<2, 1>(balls.clone(), seed, contacts, corrected);
+                let (m3, s3) = run::<3, 3>(balls.clone(), seed, contacts, corrected);
+                let kind = if corrected {
+                    "conserving"
+                } else {
+                    "generated "
+                };
+                println!(
+                    "R = ({r1}, {r2}) seed {seed} {kind}: n=2 {m2:+.5} z {:+.1} | n=3 {m3:+.5} z {:+.1}",
+                    m2 / s2,
+                    m3 / s3
+                );
+            }
         }
     }
 }

@@ -35,6 +35,7 @@ pub mod boundary_map;
 mod canonical;
 mod cells;
 pub mod collapse;
+pub mod conserving;
 pub mod cover;
 pub mod dilute;
 pub mod displacement;
@@ -88,6 +89,7 @@ mod tests;
 pub mod thermostat;
 pub mod trace;
 
+pub use conserving::Conserving;
 pub use engine::{Contact, Event, SetupError, Simulation, Step};
 pub use left_table::LeftTable;
 pub use no_contact::NoContact;

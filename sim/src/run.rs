@@ -121,6 +121,10 @@ pub struct Summary {
     /// without a thermostat): `energy_end = energy_start + energy_injected - (energy lost in
     /// contacts)`, to rounding.
     pub energy_injected: f64,
+    /// Whether the no-slip contacts were corrected onto their balls' energy
+    /// ([`crate::Conserving`]): set by the front end that chose the kernels (`false` from
+    /// [`run`] itself).
+    pub conserve_energy: bool,
 }
 
 /// What the pictures need (bounded whatever the number of events; see [`crate::trace`]).
@@ -449,6 +453,7 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
         below_range,
         kicks: noise.as_ref().map_or(0, Noise::done),
         energy_injected: injected,
+        conserve_energy: false,
     };
     Ok((summary, trace))
 }
