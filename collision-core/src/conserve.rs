@@ -231,7 +231,8 @@ fn spins(ball: &Ball<f64>) -> bool {
     ball.gamma2 * ball.radius * ball.radius > 0.0
 }
 
-/// The state of `ball` after a conservative contact with an immovable body, the kernel's
+/// The state of `ball` after a conservative contact with an immovable body at rest (the
+/// body's motion would change `ball`'s energy: this correction would undo that), the kernel's
 /// `after` corrected onto the energy of `before` (module docs, one movable body: `v = 0`,
 /// `E_rel = E_out`; the mass is a common factor and is left out).
 pub fn fixed<const N: usize, const S: usize>(

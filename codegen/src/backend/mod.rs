@@ -29,6 +29,7 @@
 //! output may alias an input. No allocation, no global state.
 
 mod c;
+mod conserve;
 
 pub use c::{OpenCl, C};
 
@@ -651,9 +652,15 @@ pub fn source_with(
 
 /// The generic kernels of `dims` as one file of `lang`: `noslip_kernels.{h,cl}`, the
 /// kernels ([`kernels_source`]) followed by their certified companions
-/// ([`crate::certify::c::functions`]; in OpenCL each with its batch kernel).
+/// ([`crate::certify::c::functions`]; in OpenCL each with its batch kernel) and, in C, the
+/// energy-conserving correction (`noslip_conserve_fixed_dN`, `noslip_conserve_free_dN`, the
+/// bits of `collision_core::conserve`).
 pub fn generate(lang: Lang, dims: &[usize]) -> String {
-    let extra = crate::certify::c::functions(lang.language(), dims);
+    let mut extra = crate::certify::c::functions(lang.language(), dims);
+    if lang == Lang::C {
+        // The energy-conserving correction, C only (conserve.rs).
+        extra.push_str(&conserve::functions(dims));
+    }
     kernels_source_with(lang, dims, &extra)
 }
 
