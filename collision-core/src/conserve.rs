@@ -70,8 +70,10 @@ pub const MAX_REL_RATIO: f64 = 16.0;
 
 /// `a b` as `hi + lo` exactly: with a fused multiply-add where the build has one (its
 /// rounding error in one operation), else Dekker's product of Veltkamp halves (17 operations,
-/// no library call; exact while `|a|` and `|b|` are below `2^996`, NaN beyond, which the
-/// callers treat as an energy out of range).
+/// no library call; exact while `|a|` and `|b|` are below `2^996` and no partial product
+/// falls below the normal range, NaN beyond the first bound, which the callers treat as an
+/// energy out of range). Where both are exact they give the same pair, so the default build
+/// and an FMA build correct alike there.
 #[inline]
 pub fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
@@ -176,9 +178,10 @@ fn toward(x: f64, up: bool) -> f64 {
 }
 
 /// `x + p` rounded to one of its two neighbouring floats at random, each with probability
-/// one minus its distance from `x + p` over their gap, so that the expected result is `x + p` (up to the `eps^2` of `p`'s own
-/// rounding): stochastic rounding. The random number is a hash of `x`, `p` and `salt`, so
-/// the result is a function of the inputs (the same bits every run).
+/// one minus its distance from `x + p` over their gap, so that the expected result is
+/// `x + p` (up to the `eps^2` of `p`'s own rounding): stochastic rounding. The random number
+/// is a hash of `x`, `p` and `salt`, so the result is a function of the inputs (the same bits
+/// every run).
 ///
 /// Round to nearest would return `x` whenever `|p|` is below half an ulp of `x`, and the
 /// kernels' energy errors are of that size: the correction would then be dropped exactly

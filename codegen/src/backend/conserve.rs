@@ -5,8 +5,10 @@
 //! Rust correction's bits (`tests/c_conserve.rs`). Handwritten, not generated from the DAG:
 //! the correction is the same few loops for every kernel.
 //!
-//! The exact products are Dekker's (no `fma` call); Rust's FMA form gives the same pair, as
-//! both are the exact product split into its rounding and the remainder.
+//! The exact products are Dekker's (no `fma` call), as in Rust's default build; a Rust build
+//! with FMA gives the same pair wherever Dekker's is exact (no partial product below the
+//! normal range: products above about `10^-270`), as both are then the product split
+//! into its rounding and the remainder.
 
 /// The shared helpers, then the two corrections for each of `dims`.
 pub(super) fn functions(dims: &[usize]) -> String {
