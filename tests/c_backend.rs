@@ -10,6 +10,8 @@
 //! results identical; a control shows GCC contracts, and differs, without them.
 
 mod backend;
+#[path = "c_backend/conserve.rs"]
+mod conserve;
 
 use backend::{
     cc, compare, compile_harness, draw, records, run, rust_results, rust_rough_results,

@@ -85,3 +85,6 @@ impl<K: PairKernels<f64, N, S>, const N: usize, const S: usize> PairKernels<f64,
         conserve::fixed(&self.species[species], state, &after)
     }
 }
+
+#[cfg(test)]
+mod tests;

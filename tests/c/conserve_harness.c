@@ -1,4 +1,4 @@
-/* The C energy-conserving correction against the Rust one (tests/c_conserve.rs): applies
+/* The C energy-conserving correction against the Rust one (tests/c_backend/conserve.rs): applies
  * noslip_conserve_fixed_dN and noslip_conserve_free_dN to every record of an input file and
  * writes the corrected states.
  *

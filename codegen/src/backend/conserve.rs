@@ -2,7 +2,7 @@
 //! `noslip_conserve_fixed_dN` and `noslip_conserve_free_dN`, appended to the C header after
 //! the kernels. They spell the Rust functions' operations in their order (double-double
 //! energies, the move, the stochastic rounding from the same hash), so that they return the
-//! Rust correction's bits (`tests/c_conserve.rs`). Handwritten, not generated from the DAG:
+//! Rust correction's bits (`tests/c_backend/conserve.rs`). Handwritten, not generated from the DAG:
 //! the correction is the same few loops for every kernel.
 //!
 //! The exact products are Dekker's (no `fma` call), as in Rust's default build; a Rust build

@@ -1,4 +1,4 @@
-//! The energy-conserving correction on the shipped one-ball tables ([`noslip_sim::Conserving`],
+//! The energy-conserving correction on the shipped one-ball tables ([`Conserving`],
 //! issue 28 item 4): with it the energy has no drift per contact; without it the same runs
 //! drift by the kernel's rounding bias (`docs/accuracy.md`, "An energy-conserving
 //! correction", where the same statistic is quoted over `10^7` contacts).
@@ -15,11 +15,12 @@
 //! those runs 8 and 12 standard errors out at `K = 10^5`, so a correction that did nothing
 //! would fail.
 
+use super::Conserving;
+use crate::setup::setup;
+use crate::{GenericKernels, PairKernels, Simulation, Step};
 use collision_core::conserve::weighted_squares;
 use collision_core::{BodyState, Generated, Kernel};
 use noslip_scene::Scene;
-use noslip_sim::setup::setup;
-use noslip_sim::{Conserving, GenericKernels, PairKernels, Simulation, Step};
 
 const CONTACTS: usize = 100_000;
 const BATCHES: usize = 40;
@@ -83,10 +84,10 @@ fn the_corrected_one_ball_tables_have_no_energy_drift_where_the_kernel_alone_has
     let tables = [
         (
             "disk_between_walls",
-            include_str!("../../scenes/disk_between_walls.toml"),
+            include_str!("../../../scenes/disk_between_walls.toml"),
         ),
-        ("sector", include_str!("../../scenes/sector.toml")),
-        ("sinai", include_str!("../../scenes/sinai.toml")),
+        ("sector", include_str!("../../../scenes/sector.toml")),
+        ("sinai", include_str!("../../../scenes/sinai.toml")),
     ];
     for (name, text) in tables {
         let (plain, corrected) = both::<2, 1>(text, name);
@@ -101,7 +102,7 @@ fn the_corrected_one_ball_tables_have_no_energy_drift_where_the_kernel_alone_has
             );
         }
     }
-    let (_, corrected) = both::<3, 3>(include_str!("../../scenes/sphere3d.toml"), "sphere3d");
+    let (_, corrected) = both::<3, 3>(include_str!("../../../scenes/sphere3d.toml"), "sphere3d");
     assert!(
         corrected.abs() <= BAND,
         "sphere3d: corrected, the energy drifts at {corrected:+.1} standard errors"

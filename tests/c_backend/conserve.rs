@@ -1,4 +1,4 @@
-//! The energy-conserving correction in C (`noslip_conserve_fixed_dN`, `noslip_conserve_free_dN`
+//! Part of `c_backend.rs`: the energy-conserving correction in C (`noslip_conserve_fixed_dN`, `noslip_conserve_free_dN`
 //! of the C header; `noslip_codegen::backend`'s `conserve.rs`) returns the Rust correction's
 //! bits (`collision_core::conserve`): on 20 000 cases per dimension (n = 2..6) drawn from every
 //! regime of the accuracy report (mass ratios, immovable bodies, `gamma^2` to 0, radius ratios,
@@ -8,9 +8,7 @@
 //! of range), and the test counts that most are corrected. A mutation check: the C built with
 //! round to nearest in place of the stochastic rounding differs.
 
-mod backend;
-
-use backend::{cc, compile_harness, draw, run, scratch};
+use super::backend::{cc, compile_harness, draw, run, scratch};
 use collision_core::{conserve, BodyState, Generated, Kernel};
 use noslip_codegen::backend::{generate, Lang};
 use std::path::Path;
