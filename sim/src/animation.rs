@@ -331,11 +331,7 @@ impl<const N: usize> Recorder<N> {
         if self.full {
             return;
         }
-        let balls = match e.contact {
-            crate::Contact::Ball { i, j } => [Some(i), Some(j)],
-            _ => [e.contact.lone_ball(), None],
-        };
-        for i in balls.into_iter().flatten().filter(|&i| i < self.shown) {
+        for i in e.contact.balls().filter(|&i| i < self.shown) {
             let key = &mut self.keys[i];
             let turn = exp_skew::<N>(&key.spin, e.time - key.time);
             key.orientation = mul(&turn, &key.orientation);

@@ -14,7 +14,7 @@
 //! `InputError`); the TC model (`[contact] tc`) is the cure: a contact within `t_c` of a
 //! ball's previous one is elastic.
 
-use crate::{Contact, Event};
+use crate::Event;
 use std::collections::HashMap;
 use std::fmt;
 
@@ -77,17 +77,8 @@ impl Streak {
             self.per_ball.clear();
         }
         self.contacts += 1;
-        let balls = match e.contact {
-            Contact::Ball { i, j } => [i, j],
-            Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
-                [i, i]
-            }
-        };
         let mut busiest = 0;
-        for (k, &b) in balls.iter().enumerate() {
-            if k == 1 && b == balls[0] {
-                break;
-            }
+        for (k, b) in e.contact.balls().enumerate() {
             // A ball counts only while its centre stays put: at a huge absolute time a few ulps
             // of it hold many true flights, which move the centre (an elastic run at `t =
             // 1e61` was once taken for a collapse).

@@ -29,7 +29,7 @@
 //! with a thousand balls); the self-diffusion coefficient is read from `msd_cm`.
 
 use crate::thermostat::Kick;
-use crate::{Contact, Event, PairKernels, Simulation};
+use crate::{Event, PairKernels, Simulation};
 use collision_core::Ball;
 
 /// The displacement of every ball up to its last contact, and that contact's time.
@@ -55,13 +55,7 @@ impl Displacements {
 
     /// Adds the flights contact `e` ended.
     pub fn contact<const N: usize, const S: usize>(&mut self, e: &Event<N, S>) {
-        let (balls, count) = match e.contact {
-            Contact::Ball { i, j } => ([i, j], 2),
-            Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
-                ([i, i], 1)
-            }
-        };
-        for (k, &i) in balls[..count].iter().enumerate() {
+        for (k, i) in e.contact.balls().enumerate() {
             let dt = e.time - self.since[i];
             for (d, u) in self.flown[N * i..N * (i + 1)]
                 .iter_mut()

@@ -223,14 +223,8 @@ pub fn lost<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &Simulation<N, S, K>,
     species: &[Ball<f64>],
 ) -> f64 {
-    let balls = match e.contact {
-        Contact::Ball { i, j } => vec![i, j],
-        Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
-            vec![i]
-        }
-    };
     let mut sum = 0.0;
-    for (k, &i) in balls.iter().enumerate() {
+    for (k, i) in e.contact.balls().enumerate() {
         let b = &species[sim.species_of(i)];
         sum += energy_of(b, &e.pre[k]) - energy_of(b, &e.post[k]);
     }

@@ -45,13 +45,7 @@ impl fmt::Display for BelowRange {
 /// The first ball of contact `e` whose speed after it is nonzero and below the range, or any
 /// ball of it if the contact's time is not finite.
 pub fn below_range<const N: usize, const S: usize>(e: &Event<N, S>) -> Option<BelowRange> {
-    let balls = match e.contact {
-        crate::Contact::Ball { i, j } => vec![(i, 0), (j, 1)],
-        crate::Contact::Wall { i, .. }
-        | crate::Contact::Obstacle { i, .. }
-        | crate::Contact::Boundary { i, .. } => vec![(i, 0)],
-    };
-    balls.into_iter().find_map(|(ball, slot)| {
+    e.contact.balls().enumerate().find_map(|(slot, ball)| {
         let u = &e.post[slot].velocity;
         let u2: f64 = u.iter().map(|x| x * x).sum();
         let moving = u.iter().any(|&x| x != 0.0);

@@ -44,15 +44,17 @@ pub enum Contact {
 }
 
 impl Contact {
-    /// The ball of a contact with an immovable body (box wall, obstacle, boundary); `None` for
-    /// two balls.
-    pub fn lone_ball(&self) -> Option<usize> {
-        match *self {
-            Contact::Ball { .. } => None,
+    /// The contact's balls in the order of an [`Event`]'s indices: `i` then `j` for two balls,
+    /// the lone ball for an immovable body (enumerated, each ball's index in `Event::pre`,
+    /// `post` and `position`).
+    pub fn balls(&self) -> impl Iterator<Item = usize> {
+        let (first, second) = match *self {
+            Contact::Ball { i, j } => (i, Some(j)),
             Contact::Wall { i, .. } | Contact::Obstacle { i, .. } | Contact::Boundary { i, .. } => {
-                Some(i)
+                (i, None)
             }
-        }
+        };
+        std::iter::once(first).chain(second)
     }
 }
 
