@@ -199,18 +199,10 @@ where
         INTERRUPTED => RunError::Interrupted,
         _ => RunError::Input(format!("internal error: the log in memory failed: {e}")),
     })?;
-    // A ball that left the table through a container: the run cannot go on
-    // (`noslip_sim::left_table`), a ValueError naming the container.
-    if let Some(left) = summary.left_table {
-        return Err(fail(left.message(&scene.boundaries[left.boundary].place)));
-    }
-    // Contacts at one instant without end (`noslip_sim::collapse`): the same.
-    if let Some(c) = &summary.collapse {
-        return Err(fail(c.to_string()));
-    }
-    // A gas cooled out of the f64 range (`noslip_sim::speed_range`): the same.
-    if let Some(b) = &summary.below_range {
-        return Err(fail(b.to_string()));
+    // A run that could not go on (a ball out of its container, an inelastic collapse, a gas
+    // cooled out of the f64 range): an InputError with the CLI's message.
+    if let Some(message) = summary.failure(scene) {
+        return Err(fail(message));
     }
     summary.conserve_energy = keep.conserve_energy;
     let sampler = sampler.into_inner();

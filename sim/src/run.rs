@@ -127,6 +127,22 @@ pub struct Summary {
     pub conserve_energy: bool,
 }
 
+impl Summary {
+    /// Why the run could not go on, if so: a ball that left its table (the container named by
+    /// its key in `scene`, [`crate::left_table`]), an inelastic collapse
+    /// ([`crate::collapse`]) or a gas cooled out of the f64 range ([`crate::speed_range`]).
+    /// The front ends report it as an error (exit 2, a Python `InputError`) after what the run
+    /// did up to it.
+    pub fn failure(&self, scene: &noslip_scene::Scene) -> Option<String> {
+        let left = self
+            .left_table
+            .as_ref()
+            .map(|left| left.message(&scene.boundaries[left.boundary].place));
+        left.or_else(|| self.collapse.as_ref().map(ToString::to_string))
+            .or_else(|| self.below_range.as_ref().map(ToString::to_string))
+    }
+}
+
 /// What the pictures need (bounded whatever the number of events; see [`crate::trace`]).
 #[derive(Clone, Debug, Default)]
 pub struct Trace {

@@ -388,18 +388,10 @@ where
         },
     )
     .map_err(|e| Failure::output(format!("cannot write the events log: {e}")))?;
-    // A ball that left the table (named by the container's scene key) and an inelastic
-    // collapse are failures (exit 2), reported after the outputs of the run up to them are
-    // published.
-    let left_table = summary
-        .left_table
-        .map(|left| {
-            let place = &scene.boundaries[left.boundary].place;
-            left.message(place)
-        })
-        .or_else(|| summary.collapse.as_ref().map(|c| c.to_string()))
-        .or_else(|| summary.below_range.as_ref().map(|b| b.to_string()));
-    if let Some(message) = &left_table {
+    // A run that could not go on (`Summary::failure`) is a failure (exit 2), reported after
+    // the outputs of the run up to it are published.
+    let failure = summary.failure(scene);
+    if let Some(message) = &failure {
         summary.stopped = Some(message.clone());
     }
     let events_parquet = events_parquet.into_inner();
@@ -536,11 +528,8 @@ where
         )?;
     }
     outln!("wrote {}", out.display())?;
-    let left_failed = left_table.map(|m| Failure::bad_input(format!("{}: {m}", scene.origin)));
-    left_failed
-        .or(log_failed)
-        .or(map_failed)
-        .map_or(Ok(()), Err)
+    let failed = failure.map(|m| Failure::bad_input(format!("{}: {m}", scene.origin)));
+    failed.or(log_failed).or(map_failed).map_or(Ok(()), Err)
 }
 
 /// Where a CSV boundary map's text goes: its file, or nowhere (a Parquet map keeps the
