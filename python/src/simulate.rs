@@ -18,7 +18,7 @@ use noslip_sim::granular::{self, Sampler};
 use noslip_sim::pair_losses::is_count;
 use noslip_sim::run::{check_time, run_watched, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
-use noslip_sim::{Conserving, GenericKernels, Simulation};
+use noslip_sim::{Conserving, Simulation};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -87,13 +87,7 @@ where
     let setup = setup::<N, S>(scene).map_err(|e| fail(e.to_string()))?;
     let species = setup.species.clone();
     let names: Vec<String> = scene.species.iter().map(|s| s.name.clone()).collect();
-    let kernels = Conserving {
-        kernels: GenericKernels {
-            species: species.clone(),
-        },
-        species: species.clone(),
-        enabled: keep.conserve_energy,
-    };
+    let kernels = Conserving::generic(species.clone(), keep.conserve_energy);
     let mut sim = Simulation::new(setup, kernels).map_err(|e| fail(e.to_string()))?;
     let mut lines = LogColumns::new(N, S);
     let writer: Option<&mut dyn std::io::Write> = if keep.log { Some(&mut lines) } else { None };

@@ -155,12 +155,8 @@ where
     let generated = GenericKernels {
         species: species.clone(),
     };
-    let (new, new_se, new_k) = measure::<N, S, _>(scene, generated.clone(), contacts);
-    let conserving = Conserving {
-        kernels: generated,
-        species: species.clone(),
-        enabled: true,
-    };
+    let (new, new_se, new_k) = measure::<N, S, _>(scene, generated, contacts);
+    let conserving = Conserving::generic(species.clone(), true);
     let (fix, fix_se, fix_k) = measure::<N, S, _>(scene, conserving, contacts);
     let (old, old_se, old_k) = measure::<N, S, _>(scene, TwoRoundedConstants { species }, contacts);
     println!(

@@ -10,7 +10,7 @@
 //! contact: the states differ by an ulp or two there, and a chaotic table amplifies that.
 
 use crate::law::FoldedLaws;
-use crate::{ContactKind, PairKernels};
+use crate::{ContactKind, GenericKernels, PairKernels};
 use collision_core::{conserve, Ball, BodyState};
 
 /// `kernels` with their conservative contacts corrected onto the inputs' energy, or as they
@@ -24,6 +24,19 @@ pub struct Conserving<K> {
     pub species: Vec<Ball<f64>>,
     /// Whether to correct.
     pub enabled: bool,
+}
+
+impl Conserving<GenericKernels<f64>> {
+    /// The generic kernels of `species`, corrected if `enabled`.
+    pub fn generic(species: Vec<Ball<f64>>, enabled: bool) -> Self {
+        Conserving {
+            kernels: GenericKernels {
+                species: species.clone(),
+            },
+            species,
+            enabled,
+        }
+    }
 }
 
 /// Whether a contact of law `kind` conserves energy.

@@ -16,7 +16,7 @@ use noslip_sim::log::LogFile;
 use noslip_sim::plot::{energy_svg, trajectories_svg, Table2d};
 use noslip_sim::run::{self, Limits, Progress, Summary};
 use noslip_sim::setup::{f, setup};
-use noslip_sim::{Conserving, GenericKernels, Setup, Simulation};
+use noslip_sim::{Conserving, Setup, Simulation};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -212,13 +212,7 @@ where
     let species = setup.species.clone();
     let names: Vec<String> = scene.species.iter().map(|s| s.name.clone()).collect();
     let table = Table2d::of(&setup);
-    let kernels = Conserving {
-        kernels: GenericKernels {
-            species: species.clone(),
-        },
-        species: species.clone(),
-        enabled: args.conserve_energy,
-    };
+    let kernels = Conserving::generic(species.clone(), args.conserve_energy);
     let mut sim = Simulation::new(setup, kernels)
         .map_err(|e| Failure::bad_input(format!("{}: {e}", scene.origin)))?;
     let mut sampler = match args.observables {

@@ -68,11 +68,7 @@ where
     let generated = GenericKernels {
         species: species.clone(),
     };
-    let conserving = Conserving {
-        kernels: generated.clone(),
-        species,
-        enabled: true,
-    };
+    let conserving = Conserving::generic(species, true);
     (
         z::<N, S, _>(&scene, generated),
         z::<N, S, _>(&scene, conserving),
