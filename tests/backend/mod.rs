@@ -136,7 +136,8 @@ pub fn draw<const N: usize, const S: usize>(count: usize, seed: u64) -> Cases<N,
     }
 }
 
-fn state<T: Copy, const N: usize, const S: usize>(
+/// A state's values in the records' order: the spin entries, then the velocity.
+pub fn state<T: Copy, const N: usize, const S: usize>(
     s: &BodyState<T, N, S>,
 ) -> impl Iterator<Item = T> + '_ {
     s.spin.iter().chain(&s.velocity).copied()
