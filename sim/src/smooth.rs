@@ -52,7 +52,7 @@ where
     for<'a> &'a T: RefArith<T>,
 {
     // `(1 + 1) dn` is `dn + dn` exactly (a doubling): the same bits as the elastic map always had.
-    pair_restituted(nu, w1, w2, &T::from_ratio(1, 1), state1, state2)
+    pair_restituted(nu, w1, w2, &T::one(), state1, state2)
 }
 
 /// Two balls' states after a smooth contact with normal restitution `e` (no tangential
@@ -72,7 +72,7 @@ where
 {
     let dv: [T; N] = std::array::from_fn(|k| &state2.velocity[k] - &state1.velocity[k]);
     let dn = dot(&dv, nu);
-    let j = &(&(&T::from_ratio(1, 1) + e) * &dn) / &(w1 + w2);
+    let j = &(&(&T::one() + e) * &dn) / &(w1 + w2);
     let (j1, j2) = (w1 * &j, w2 * &j);
     [
         BodyState {
