@@ -112,21 +112,9 @@ impl Streak {
 mod tests {
     use super::{Streak, MAX_CONTACTS_AT_ONCE};
     use crate::{Contact, Event};
-    use collision_core::BodyState;
 
     fn event(time: f64, contact: Contact) -> Event<2, 1> {
-        let s = BodyState {
-            spin: [0.0],
-            velocity: [0.0, 0.0],
-        };
-        Event {
-            time,
-            contact,
-            nu: [1.0, 0.0],
-            position: [[0.0; 2]; 2],
-            pre: [s.clone(), s.clone()],
-            post: [s.clone(), s],
-        }
+        Event::at_rest_but(time, contact, [0.0, 0.0])
     }
 
     #[test]

@@ -63,21 +63,9 @@ pub fn below_range<const N: usize, const S: usize>(e: &Event<N, S>) -> Option<Be
 mod tests {
     use super::below_range;
     use crate::{Contact, Event};
-    use collision_core::BodyState;
 
     fn wall_contact(time: f64, u: [f64; 2]) -> Event<2, 1> {
-        let s = BodyState {
-            spin: [0.0],
-            velocity: u,
-        };
-        Event {
-            time,
-            contact: Contact::Boundary { i: 4, boundary: 0 },
-            nu: [1.0, 0.0],
-            position: [[0.0; 2]; 2],
-            pre: [s.clone(), s.clone()],
-            post: [s.clone(), s],
-        }
+        Event::at_rest_but(time, Contact::Boundary { i: 4, boundary: 0 }, u)
     }
 
     #[test]

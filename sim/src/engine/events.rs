@@ -77,6 +77,26 @@ pub struct Event<const N: usize, const S: usize> {
     pub post: [BodyState<f64, N, S>; 2],
 }
 
+#[cfg(test)]
+impl Event<2, 1> {
+    /// A 2D contact at `time` for the tests of what reads events: `nu = e_x`, both centres at
+    /// the origin, no spin, the velocity `u` before and after.
+    pub(crate) fn at_rest_but(time: f64, contact: Contact, u: [f64; 2]) -> Self {
+        let s = BodyState {
+            spin: [0.0],
+            velocity: u,
+        };
+        Event {
+            time,
+            contact,
+            nu: [1.0, 0.0],
+            position: [[0.0; 2]; 2],
+            pre: [s.clone(), s.clone()],
+            post: [s.clone(), s],
+        }
+    }
+}
+
 /// What [`Simulation::step`](crate::Simulation::step) found.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Step<const N: usize, const S: usize> {
