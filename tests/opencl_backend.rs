@@ -11,6 +11,8 @@
 //! `NOSLIP_REQUIRE_OPENCL` is set (CI sets it in `.ci/run`), when it fails.
 
 mod backend;
+#[path = "opencl_backend/conserve.rs"]
+mod conserve;
 
 use backend::{
     compare, draw, opencl, records, rust_results, scratch, Float, KERNELS, LAWS, WALTON_LAWS,

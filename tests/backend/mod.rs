@@ -11,6 +11,7 @@
 #![allow(dead_code)]
 
 pub mod companions;
+pub mod conserve;
 pub mod opencl;
 
 use collision_core::rng::Rng;

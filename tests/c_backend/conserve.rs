@@ -9,41 +9,29 @@
 //! of range), and the test counts that most are corrected. A mutation check: the C built with
 //! round to nearest in place of the stochastic rounding differs.
 
-use super::backend::{cc, compare, compile_harness, draw, run, scratch, state, Float};
-use collision_core::{conserve, BodyState, Generated, Kernel};
-use noslip_accuracy::case::Case;
-use noslip_accuracy::regime::Regime;
+use super::backend::conserve::{contacts, Drawn};
+use super::backend::{cc, compare, compile_harness, run, scratch, Float};
+use collision_core::{Generated, Kernel};
 use noslip_codegen::backend::{generate, Lang};
 use std::path::Path;
 use std::process::Command;
 
 const CASES: usize = 20_000;
 
-/// Drawn cases with their regimes ([`draw`]).
-type Drawn<const N: usize, const S: usize> = Vec<(Regime, Case<f64, N, S>)>;
-
-/// The cases, the records of `conserve_harness.c`, the Rust results (fixed2, after1, after2
-/// corrected) and the number of corrections that changed something.
+/// The cases, the records of `conserve_harness.c` (ball1, ball2, before1, before2, after1,
+/// after2, fixed2), the Rust results (fixed2, after1, after2 corrected) and the number of
+/// corrections that changed something.
 fn records<const N: usize, const S: usize>() -> (Drawn<N, S>, Vec<u8>, Vec<f64>, usize)
 where
     Generated: Kernel<f64, N, S>,
 {
-    let cases = draw::<N, S>(CASES, 4200 + N as u64).f64;
-    let (mut bytes, mut want, mut changed) = (Vec::new(), Vec::new(), 0);
-    for (_, c) in &cases {
-        let [b1, b2] = &c.balls;
-        let [s1, s2] = &c.states;
-        let [o1, o2] = Generated::free(&c.nu, b1, b2, s1, s2);
-        let fixed2 = Generated::fixed(&c.nu, &b1.radius, b2, &BodyState::zero(), s2);
-        let balls = [b1, b2]
-            .into_iter()
-            .flat_map(|b| [b.inv_mass, b.radius, b.gamma2]);
-        let states = [s1, s2, &o1, &o2, &fixed2].into_iter().flat_map(state);
-        bytes.extend(balls.chain(states).flat_map(f64::bytes));
-        let f = conserve::fixed(b2, s2, &fixed2);
-        let [c1, c2] = conserve::free(b1, b2, [s1, s2], [&o1, &o2]);
-        changed += usize::from(f != fixed2) + usize::from(c1 != o1 || c2 != o2);
-        want.extend([&f, &c1, &c2].into_iter().flat_map(state));
+    let (cases, contacts, changed) = contacts::<N, S>(CASES, 4200 + N as u64);
+    let (mut bytes, mut want) = (Vec::new(), Vec::new());
+    for c in &contacts {
+        let record = c.balls.iter().flatten().chain(c.before.iter().flatten());
+        let record = record.chain(c.after.iter().flatten()).chain(&c.fixed);
+        bytes.extend(record.flat_map(|&x| x.bytes()));
+        want.extend(c.want_fixed.iter().chain(c.want_free.iter().flatten()));
     }
     (cases, bytes, want, changed)
 }

@@ -27,8 +27,9 @@ kernel run with the same constants, and exits 1 on any difference.
 operation order as the Rust kernels, into --out DIR: noslip_kernels.h (C99, usable from C++)
 or noslip_kernels.cl (OpenCL C: device functions and batch kernels) with the free and fixed
 kernels of every dimension of --dims, in double and float, plain and FMA, and their certified
-companions (each output with a rigorous error bound; in OpenCL with batch kernels too); with
---scene also the scene's specialised kernels (noslip_scene_NAME.h or .cl). Each file is written
+companions (each output with a rigorous error bound), then the energy-conserving correction
+(noslip_conserve_fixed_dN, noslip_conserve_free_dN: the bits of --conserve-energy), in OpenCL
+each with its batch kernel too; with --scene also the scene's specialised kernels (noslip_scene_NAME.h or .cl). Each file is written
 atomically. The ABI, the preconditions and the compiler flags: docs/backends.md.";
 
 /// The arguments of `noslip gen`.

@@ -241,7 +241,8 @@ impl Language for OpenCl {
             "2.5 ulp otherwise) on a device whose float config has CL_FP_DENORM (else float subnormals".into(),
             "may flush to zero); the double kernels need cl_khr_fp64 (double `/` is correctly rounded).".into(),
             "Batch kernels NAME_batch(count, arrays..): one contact per work item, arrays of structures;".into(),
-            "the certified companions' too (their bounds also need -cl-fp32-correctly-rounded-divide-sqrt).".into(),
+            "the certified companions' too (their bounds also need -cl-fp32-correctly-rounded-divide-sqrt),".into(),
+            "and the energy-conserving correction's (noslip_conserve_*_batch: outputs the corrected after).".into(),
         ]
     }
 }

@@ -652,15 +652,12 @@ pub fn source_with(
 
 /// The generic kernels of `dims` as one file of `lang`: `noslip_kernels.{h,cl}`, the
 /// kernels ([`kernels_source`]) followed by their certified companions
-/// ([`crate::certify::c::functions`]; in OpenCL each with its batch kernel) and, in C, the
-/// energy-conserving correction (`noslip_conserve_fixed_dN`, `noslip_conserve_free_dN`, the
-/// bits of `collision_core::conserve`).
+/// ([`crate::certify::c::functions`]) and the energy-conserving correction
+/// (`noslip_conserve_fixed_dN`, `noslip_conserve_free_dN`, the bits of
+/// `collision_core::conserve`); in OpenCL each of these with its batch kernel `NAME_batch`.
 pub fn generate(lang: Lang, dims: &[usize]) -> String {
     let mut extra = crate::certify::c::functions(lang.language(), dims);
-    if lang == Lang::C {
-        // The energy-conserving correction, C only (conserve.rs).
-        extra.push_str(&conserve::functions(dims));
-    }
+    extra.push_str(&conserve::functions(lang, dims));
     kernels_source_with(lang, dims, &extra)
 }
 
