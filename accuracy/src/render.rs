@@ -272,8 +272,9 @@ fn tightness(m: &mut String, report: &AccuracyReport) {
         m,
         "**Proven bounds** (`noslip_codegen::bound`, docs/accuracy.md): for every case, a \
          rigorous bound of each movable body's normwise error, derived from the kernel's \
-         operations under the standard model of rounding (running error analysis of that \
-         call, evaluated in upward-rounded arithmetic). Cell: largest bound / largest \
+         operations under the standard model of rounding (per output the smaller of a \
+         running error analysis of that call and a mean-value bound along its roundings, both \
+         evaluated in upward-rounded arithmetic). Cell: largest bound / largest \
          measured error over the regime's cases (the tightness; 1 would be exact), and the \
          largest bound in eps. A measured error above its bound fails the report.\n"
     );
