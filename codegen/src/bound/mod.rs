@@ -287,13 +287,7 @@ impl KernelBound {
             .collect();
         let mut values = self.compiled.run(self.format, &given);
         // Per output, the smaller of the rules' bound and the mean-value one (adjoint.rs).
-        let outputs: Vec<usize> = self
-            .compiled
-            .outputs
-            .iter()
-            .flat_map(|(_, spin, velocity)| spin.iter().chain(velocity))
-            .copied()
-            .collect();
+        let outputs = self.compiled.output_indices();
         let second = adjoint::bounds(&self.compiled, self.format, inputs, &outputs);
         for (&k, &e) in outputs.iter().zip(&second) {
             if e < values[k].error {

@@ -190,6 +190,15 @@ impl Compiled {
         }
     }
 
+    /// The table indices of the outputs, body by body (spin entries, then velocity).
+    pub(crate) fn output_indices(&self) -> Vec<usize> {
+        self.outputs
+            .iter()
+            .flat_map(|(_, spin, velocity)| spin.iter().chain(velocity))
+            .copied()
+            .collect()
+    }
+
     /// Every value of the table for the given inputs (in [`Compiled::inputs`] order).
     pub(crate) fn run(&self, format: Format, inputs: &[Enclosed]) -> Vec<Enclosed> {
         assert_eq!(inputs.len(), self.inputs.len(), "one range per input");

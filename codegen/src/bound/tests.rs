@@ -250,13 +250,7 @@ fn the_mean_value_bound_holds_on_its_own_and_is_mostly_the_tighter() {
                 let p = Program::lower(&model::build(n, v), arith);
                 for format in [Format::F64, Format::F32] {
                     let kb = KernelBound::new(&p, format);
-                    let indices: Vec<usize> = kb
-                        .compiled
-                        .outputs
-                        .iter()
-                        .flat_map(|(_, spin, velocity)| spin.iter().chain(velocity))
-                        .copied()
-                        .collect();
+                    let indices = kb.compiled.output_indices();
                     for (seed, scale) in [(11, 1.0), (12, 1e-30), (13, 1e30)] {
                         let mut rng = Mix(seed);
                         for _ in 0..10 {
