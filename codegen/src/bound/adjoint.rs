@@ -40,9 +40,8 @@
 //! bounds; both hold, so the smaller does.
 
 use super::format::Format;
-use super::propagate::{Compiled, FusedSign, Rule};
+use super::propagate::{Compiled, Enclosed, FusedSign, Rule};
 use super::round::{add_up, down, mul_up, sqrt_down, sqrt_up, up, Interval};
-use super::InputRange;
 
 /// The kernel evaluated over the box of roundings: each value's interval, each value's
 /// rounding radius `rho` (0 for the exact ones), and each step's pre-rounding interval.
@@ -83,21 +82,13 @@ fn decided(x: Interval, y: Interval) -> Option<bool> {
 }
 
 impl Widened {
-    fn new(c: &Compiled, format: Format, inputs: &[InputRange]) -> Widened {
+    fn new(c: &Compiled, format: Format, inputs: &[Enclosed]) -> Widened {
         let total = c.exact_scale.len();
         let (mut value, mut rho) = (Vec::with_capacity(total), Vec::with_capacity(total));
-        for r in inputs {
-            let e = if r.relative_error == 0.0 {
-                0.0
-            } else {
-                mul_up(r.value.mag(), r.relative_error)
-            };
-            value.push(widen(r.value, e));
-            rho.push(e);
-        }
-        for k in &c.constants {
-            value.push(widen(k.value, k.error));
-            rho.push(k.error);
+        // The inputs as given (their rounding `t` within `error`), then the constants.
+        for e in inputs.iter().chain(&c.constants) {
+            value.push(widen(e.value, e.error));
+            rho.push(e.error);
         }
         let mut pre = Vec::with_capacity(c.rules.len());
         for rule in &c.rules {
@@ -160,12 +151,13 @@ fn accumulate(acc: &mut Interval, x: Interval) {
 }
 
 /// The bound of this module for each output of `c` (table indices `outputs`), over the box
-/// `inputs`: `sum_k max |[dy/dv_k]| rho_k`, rounded upward (`+inf` where `F` may not be
+/// `inputs` (each input's enclosure and the error of the float passed, as the rules take
+/// them): `sum_k max |[dy/dv_k]| rho_k`, rounded upward (`+inf` where `F` may not be
 /// differentiable on the box of roundings, or a rounding may overflow).
 pub(crate) fn bounds(
     c: &Compiled,
     format: Format,
-    inputs: &[InputRange],
+    inputs: &[Enclosed],
     outputs: &[usize],
 ) -> Vec<f64> {
     let w = Widened::new(c, format, inputs);

@@ -288,7 +288,7 @@ impl KernelBound {
         let mut values = self.compiled.run(self.format, &given);
         // Per output, the smaller of the rules' bound and the mean-value one (adjoint.rs).
         let outputs = self.compiled.output_indices();
-        let second = adjoint::bounds(&self.compiled, self.format, inputs, &outputs);
+        let second = adjoint::bounds(&self.compiled, self.format, &given, &outputs);
         for (&k, &e) in outputs.iter().zip(&second) {
             if e < values[k].error {
                 values[k] = Enclosed::new(values[k].value, e, values[k].relative);

@@ -256,15 +256,13 @@ fn the_mean_value_bound_holds_on_its_own_and_is_mostly_the_tighter() {
                         for _ in 0..10 {
                             let values = draw_point(&kb, format, &mut rng, scale, &[]);
                             let (computed, exact) = computed_and_exact(&p, format, &values);
-                            let inputs: Vec<InputRange> = kb
+                            let given: Vec<Enclosed> = kb
                                 .inputs()
                                 .iter()
-                                .map(|name| InputRange::point(values[name]))
+                                .map(|name| Enclosed::exact(Interval::point(values[name])))
                                 .collect();
-                            let given: Vec<Enclosed> =
-                                inputs.iter().map(|r| Enclosed::exact(r.value)).collect();
                             let rules = kb.compiled.run(format, &given);
-                            let second = adjoint::bounds(&kb.compiled, format, &inputs, &indices);
+                            let second = adjoint::bounds(&kb.compiled, format, &given, &indices);
                             for (j, (c, y)) in computed.iter().zip(&exact).enumerate() {
                                 let bound = BigRational::from_f64(second[j]).unwrap_or_else(|| {
                                     panic!("n = {n} {v:?} {arith:?}: no bound at {values:?}")
