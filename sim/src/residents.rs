@@ -34,6 +34,10 @@ pub(crate) struct Resident<const N: usize> {
     pub wraps: [i16; N],
     /// The ball's index.
     pub ball: u32,
+    /// The ball's counter `count_i` (its contacts so far, as in its own record): a
+    /// prediction keeps it with the contact it finds, from the record it has just read
+    /// instead of from the partner's own record elsewhere in memory.
+    pub count: u32,
 }
 
 /// Where a cell's list lies in the slab: `slab[start .. start + len]`, room for `cap`.
@@ -77,6 +81,7 @@ fn vacant<const N: usize>() -> Resident<N> {
         },
         wraps: [0; N],
         ball: u32::MAX,
+        count: 0,
     }
 }
 
@@ -114,6 +119,7 @@ impl<const N: usize> Residents<N> {
                 motion,
                 wraps: [0; N],
                 ball,
+                count: 0,
             },
         );
     }
@@ -261,6 +267,12 @@ impl<const N: usize> Residents<N> {
     #[inline]
     pub(crate) fn get_mut(&mut self, at: u32) -> &mut Motion<N> {
         &mut self.slab[at as usize].motion
+    }
+
+    /// The counter of the ball whose home is `at`, to change with the ball's own.
+    #[inline]
+    pub(crate) fn count_mut(&mut self, at: u32) -> &mut u32 {
+        &mut self.slab[at as usize].count
     }
 
     /// The wraps since its record moved of the ball whose home is `at`.

@@ -193,6 +193,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         if balls[1] != balls[0] {
             self.balls[balls[1]].count += 1;
         }
+        for b in balls {
+            *self.motion.count_mut(self.balls[b].home) = self.balls[b].count;
+        }
         self.contacts += 1;
         self.last_contact = t;
         let time = self.absolute(t);

@@ -47,8 +47,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             added += 0.5 * m * twice;
             ball.count += 1;
             ball.last = LastContact::NONE;
-            let (home, velocity) = (ball.home, ball.state.velocity);
+            let (home, velocity, count) = (ball.home, ball.state.velocity, ball.count);
             self.motion.get_mut(home).velocity = velocity;
+            *self.motion.count_mut(home) = count;
         }
         self.rebase(t, false);
         added

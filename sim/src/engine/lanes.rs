@@ -361,6 +361,7 @@ mod tests {
                 motion: flight(&mut next),
                 wraps: std::array::from_fn(|_| (next() * 1.5).round() as i16),
                 ball: 1,
+                count: 0,
             });
             let bases: [[f64; N]; LANES] =
                 std::array::from_fn(|_| std::array::from_fn(|_| (next() * 1.5).round()));

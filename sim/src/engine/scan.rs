@@ -257,7 +257,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         best.offer(t, || What::Ball {
             j: j as u32,
-            count: self.balls[j].count,
+            count: resident.count,
             image: image.map(|k| k as i16),
         });
         false
