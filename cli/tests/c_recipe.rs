@@ -7,7 +7,7 @@
 //! component with the same bits. Each step is shown to matter: leaving it out (the program's
 //! control modes) changes some results.
 
-mod support;
+use crate::support;
 
 use serde_json::{json, Value};
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! the option (a huge count used to run for ever or grow memory without limit; `gen --check
 //! 0` passed without checking anything).
 
-mod support;
+use crate::support;
 use support::{noslip, temp};
 
 #[test]

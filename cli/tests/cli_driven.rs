@@ -3,7 +3,7 @@
 //! written (msd across the kicks, the injected energy's column in each interval's balance), and a bad thermostat, lyapunov and orbits
 //! refused (exit 2, the field named).
 
-mod support;
+use crate::support;
 use support::{noslip, run_ok, temp};
 
 const DRIVEN: &str = "scenes/driven3d.toml";

@@ -5,7 +5,7 @@
 //! intervals, radii, blocks and laws
 //! refused (exit 2, the option or the field named).
 
-mod support;
+use crate::support;
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::record::Field;
 use support::{noslip, run_ok, temp};

@@ -3,7 +3,7 @@
 //! outside itself; bad `--html` paths are refused with exit 2 before any run. (The page
 //! itself is played in a real browser by python/tests/test_animation_browser.py.)
 
-mod support;
+use crate::support;
 
 use std::path::Path;
 use support::{noslip, run_ok, temp};

@@ -1,7 +1,7 @@
 //! `noslip lyapunov` from the outside: a run's outputs, the default `--k` and the memory cap
 //! of large scenes, and bad input (exit 2, one line naming the place).
 
-mod support;
+use crate::support;
 use std::time::Duration;
 use support::{noslip, run_ok, temp, within};
 

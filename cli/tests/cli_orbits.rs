@@ -2,7 +2,7 @@
 //! exactly, a grid search, the bound on its work and its progress, and bad input (exit 2, one
 //! line naming the place).
 
-mod support;
+use crate::support;
 use std::time::Duration;
 use support::{noslip, run_ok, temp, within};
 

@@ -2,7 +2,7 @@
 //! shipped mixture simulates and its kernels check, and bad pairs are refused by `simulate`
 //! and `gen --scene` with exit 2 and one line naming the field.
 
-mod support;
+use crate::support;
 use support::{noslip, run_ok, temp};
 
 #[test]

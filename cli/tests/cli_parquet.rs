@@ -2,7 +2,7 @@
 //! value for value (doubles bit for bit), what the JSON lines log and the CSV boundary map of
 //! the same run hold; their columns are typed and carry units in the metadata.
 
-mod support;
+use crate::support;
 
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::record::Field;

@@ -1,8 +1,8 @@
 //! `noslip simulate` and `noslip gen` from the outside: exit codes, one-line errors, outputs.
 
+use crate::support;
 use std::path::Path;
 use std::process::Command;
-mod support;
 use support::{noslip, run_ok};
 
 #[test]
@@ -143,7 +143,8 @@ fn a_scene_without_possible_contacts_stops_with_its_reason() {
 
 /// A fresh scratch directory for one test.
 fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()));
+    // `simulate-` keeps it apart from the other modules' paths in this test process.
+    let dir = std::env::temp_dir().join(format!("noslip-simulate-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

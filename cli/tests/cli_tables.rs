@@ -1,8 +1,8 @@
 //! Tables from the outside: bad table scenes exit 2 with one line naming the place, the
 //! boundary map's CSV and portraits, and `noslip gen --check` on the shipped table scenes.
 
+use crate::support;
 use std::path::{Path, PathBuf};
-mod support;
 use support::noslip;
 
 fn scratch(name: &str) -> PathBuf {

@@ -7,9 +7,9 @@
 //! cooling state departs the same way. And at `beta = -1` (smooth balls) its fourth cumulant
 //! `a_2` against the Sonine theory (`scripts/sonine_cooling_a2.py`).
 //!
-//! `cargo test -p noslip-sim --test boltzmann -- --ignored --nocapture` (a few minutes).
+//! `cargo test -p noslip-sim --test sim boltzmann:: -- --ignored --nocapture` (a few minutes).
 
-mod common;
+use crate::common;
 use common::dsmc::dsmc;
 use common::{mean_se, two_temperature, T_5};
 

@@ -27,7 +27,7 @@
 //! (L / L_c)^2)`: a `T_tr` about the centre of mass's velocity counts that flow as heat
 //! (`the_cooling_state_in_boxes_of_fewer_mean_free_paths`).
 
-mod common;
+use crate::common;
 use common::cooling::{hcs_in, Measured};
 use common::dsmc::dsmc;
 use common::{mean_se, packing_fraction, two_temperature};
@@ -229,7 +229,7 @@ fn disks_e_0_7_beta_0() {
 }
 
 /// The grid: `beta` in {1, 0.5, 0, -0.5} at `e` in {0.9, 0.7}, spheres and disks (about 15
-/// minutes): `cargo test -p noslip-sim --test cooling_state -- --ignored --nocapture grid`.
+/// minutes): `cargo test -p noslip-sim --test sim -- --ignored --nocapture cooling_state::the_cooling_state_over_the_grid`.
 #[test]
 #[ignore]
 fn the_cooling_state_over_the_grid_is_the_boltzmann_equations() {
@@ -257,7 +257,7 @@ fn the_cooling_state_over_the_grid_is_the_boltzmann_equations() {
 /// (2D: 100, 200, 400 disks in sides 50, 100, 200, all 5.7 `l` wide; 3D: 500 spheres in side
 /// 19, 1000 in 30 and in 40, 6.2, 4.9 and 2.8 `l`), the middle one on the line through the
 /// other two within `t s` (the extrapolation's premise). About 6 minutes: `cargo test -p
-/// noslip-sim --test cooling_state -- --ignored --nocapture boxes`.
+/// noslip-sim --test sim -- --ignored --nocapture cooling_state::the_cooling_state_in_boxes`.
 #[test]
 #[ignore]
 fn the_cooling_state_in_boxes_of_fewer_mean_free_paths() {

@@ -12,7 +12,7 @@ use noslip_sim::run::{run_observed, Limits, Summary};
 use noslip_sim::setup::setup;
 use noslip_sim::{GenericKernels, Simulation};
 
-mod common;
+use crate::common;
 use common::{
     enskog_frequency, haff_gas, mean_se, packing_fraction, periodic_gas, two_temperature, T_5,
 };
@@ -249,7 +249,7 @@ fn the_driven_steady_state_in_2d_and_3d() {
 }
 
 /// Every case over windows four times longer, and the rough balls' ratio likewise
-/// (docs/granular.md's tables): `cargo test -p noslip-sim --test driven -- --ignored
+/// (docs/granular.md's tables): `cargo test -p noslip-sim --test sim driven:: -- --ignored
 /// --nocapture`.
 #[test]
 #[ignore = "several minutes; docs/granular.md"]

@@ -8,7 +8,7 @@
 //! `-1.0`) directly, past that naming, so that the rough maps themselves run (the path a law
 //! that only rounds to `(1, +-1)` takes) and must give the no-slip and smooth maps' bits.
 
-mod common;
+use crate::common;
 
 use collision_core::{Generated, Kernel};
 use noslip_scene::Scene;

@@ -9,7 +9,7 @@
 
 use noslip_sim::granular::Row;
 
-mod common;
+use crate::common;
 use common::cooling::{cooling_gas, hcs_in, Measured};
 use common::{
     enskog_frequency, haff_gas, mean_se, periodic_gas, rows, se_to_catch, two_temperature, T_11,

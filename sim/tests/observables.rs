@@ -5,7 +5,7 @@
 //! the expected value within `t s` of their mean (`t` = 6.87, two-sided 99.9 % with 5 degrees
 //! of freedom), and `s` small enough that the test has power.
 
-mod common;
+use crate::common;
 use common::{ball_volume, contact_chi, mean_se, periodic_gas, rows, T_5};
 use noslip_sim::granular::Row;
 

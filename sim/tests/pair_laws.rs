@@ -8,7 +8,7 @@
 //!   they were, with that pair's `(e, beta)` (first principles, `docs/derivation.md` §15),
 //!   and each pair kind occurs.
 
-mod common;
+use crate::common;
 
 use collision_core::BodyState;
 use noslip_scene::Scene;

@@ -31,7 +31,7 @@
 //! squared standard errors must lie between the 0.1 % and 99.95 % points of `chi^2_5 / 5`
 //! (0.042 and 4.42), the blocks' error being nearly exact (60 and 96 blocks in all).
 
-mod common;
+use crate::common;
 use common::{ball_volume, contact_chi, mean_se, periodic_gas, T_5};
 use noslip_sim::granular::Sampler;
 use std::f64::consts::PI;
@@ -185,7 +185,7 @@ fn self_diffusion_of_dilute_smooth_disks_is_chapman_enskogs() {
 /// The 3D test with 24 more runs (seeds 6..30), to resolve how far the spheres' `D` lies
 /// above `[D]_inf` (docs/granular.md, "Self-diffusion against Chapman-Enskog"): `t_23 =
 /// 3.768`, `chi^2_23 / 23` in `[0.301, 2.261]`. About 3 minutes in the debug profile:
-/// `cargo test -p noslip-sim --test self_diffusion -- --ignored --nocapture`.
+/// `cargo test -p noslip-sim --test sim self_diffusion:: -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn self_diffusion_of_dilute_smooth_spheres_over_24_runs() {
