@@ -37,7 +37,7 @@ fn main() {
     }
     index.push_str(
         "/// Visit every shipped scene: its file and its kernels' dispatch.\n\
-         pub fn each_scene<V: crate::SceneVisitor>(v: &mut V) {\n",
+         pub fn each_scene<V: super::SceneVisitor>(v: &mut V) {\n",
     );
     for (m, path) in modules.iter().zip(&paths) {
         let path = path.canonicalize().expect("a scene file");

@@ -9,7 +9,7 @@
 //! `-ffp-contract=off` (GCC in GNU C modes and C++, clang) the header's own guards keep the
 //! results identical; a control shows GCC contracts, and differs, without them.
 
-mod backend;
+use crate::backend;
 #[path = "c_backend/conserve.rs"]
 mod conserve;
 
@@ -23,6 +23,7 @@ use noslip_accuracy::regime::Regime;
 use noslip_codegen::backend::{file_name, generate, Lang};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::OnceLock;
 
 /// Cases per dimension, kernel and format.
 const CASES: usize = 100_000;
@@ -35,6 +36,23 @@ const CONFIGS: [(&str, &[&str]); 2] = [
         &["-O3", "-march=native", "-ffp-contract=off"],
     ),
 ];
+
+/// The harness compiled against the whole header once per configuration of [`CONFIGS`],
+/// shared by the tests that run it unaltered (a compile takes about 6 s): `(name, executable)`,
+/// in cargo's temporary directory for integration tests.
+fn harnesses() -> &'static [(&'static str, PathBuf)] {
+    static EXES: OnceLock<Vec<(&'static str, PathBuf)>> = OnceLock::new();
+    EXES.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c-backend-harness");
+        std::fs::create_dir_all(&dir).unwrap();
+        let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
+        CONFIGS
+            .iter()
+            .enumerate()
+            .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("harness{k}"))))
+            .collect()
+    })
+}
 
 /// Write `header` into `dir` and compile the harness against it as C99 with `flags`.
 fn build(dir: &Path, header: &str, flags: &[&str], exe: &str) -> PathBuf {
@@ -186,17 +204,12 @@ where
 #[test]
 fn c_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
     let dir = scratch("c-backend");
-    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
-    let exes: Vec<(&str, PathBuf)> = CONFIGS
-        .iter()
-        .enumerate()
-        .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("harness{k}"))))
-        .collect();
+    let exes = harnesses();
     let mut failures = Vec::new();
     for n in collision_core::DIMS.iter().copied() {
         failures.extend(collision_core::with_dim!(
             n,
-            |N, S| check_dim::<N, S>(&dir, &exes, CASES),
+            |N, S| check_dim::<N, S>(&dir, exes, CASES),
             unreachable!("DIMS lists the compiled dimensions")
         ));
     }
@@ -212,20 +225,15 @@ const ROUGH_CASES: usize = 20_000;
 #[test]
 fn c_rough_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
     let dir = scratch("c-backend-rough");
-    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
-    let exes: Vec<(&str, PathBuf)> = CONFIGS
-        .iter()
-        .enumerate()
-        .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("harness{k}"))))
-        .collect();
+    let exes = harnesses();
     let mut failures = Vec::new();
     for n in collision_core::DIMS.iter().copied() {
         failures.extend(collision_core::with_dim!(
             n,
             |N, S| {
                 let cases = draw::<N, S>(ROUGH_CASES, 24 + N as u64);
-                let mut f = check_rough_format(&dir, &exes, &cases.f64);
-                f.extend(check_rough_format(&dir, &exes, &cases.f32));
+                let mut f = check_rough_format(&dir, exes, &cases.f64);
+                f.extend(check_rough_format(&dir, exes, &cases.f32));
                 f
             },
             unreachable!("DIMS lists the compiled dimensions")
@@ -244,20 +252,15 @@ fn c_walton_kernels_are_bit_identical_to_the_rust_kernels_and_finite() {
     // regimes, every law, both configurations).
     const WALTON_CASES: usize = ROUGH_CASES / 2;
     let dir = scratch("c-backend-walton");
-    let header = generate(Lang::C, &[2, 3, 4, 5, 6]);
-    let exes: Vec<(&str, PathBuf)> = CONFIGS
-        .iter()
-        .enumerate()
-        .map(|(k, (name, flags))| (*name, build(&dir, &header, flags, &format!("harness{k}"))))
-        .collect();
+    let exes = harnesses();
     let mut failures = Vec::new();
     for n in collision_core::DIMS.iter().copied() {
         failures.extend(collision_core::with_dim!(
             n,
             |N, S| {
                 let cases = draw::<N, S>(WALTON_CASES, 44 + N as u64);
-                let mut f = check_walton_format(&dir, &exes, &cases.f64);
-                f.extend(check_walton_format(&dir, &exes, &cases.f32));
+                let mut f = check_walton_format(&dir, exes, &cases.f64);
+                f.extend(check_walton_format(&dir, exes, &cases.f32));
                 f
             },
             unreachable!("DIMS lists the compiled dimensions")
@@ -415,11 +418,10 @@ fn one_altered_operation_fails_the_comparison() {
     let input = dir.join("cases.bin");
     std::fs::write(&input, records(&cases)).unwrap();
     let rust = rust_results("free", &cases);
-    let flags = CONFIGS[0].1;
-    let good = build(&dir, &header, flags, "good");
-    let c = run_c::<f64>(&good, 3, "free", &input);
+    let good = &harnesses()[0].1;
+    let c = run_c::<f64>(good, 3, "free", &input);
     assert_eq!(compare("unaltered", &cases, &rust, &c), Ok(()));
-    let bad = build(&dir, &mutated, flags, "bad");
+    let bad = build(&dir, &mutated, CONFIGS[0].1, "bad");
     let c = run_c::<f64>(&bad, 3, "free", &input);
     let err = compare("altered", &cases, &rust, &c)
         .expect_err(&format!("altering `{}` went unnoticed", line.trim()));

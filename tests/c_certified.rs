@@ -14,7 +14,7 @@
 //! the Walton ones under three). The two executables are compiled once and
 //! serve every comparison.
 
-mod backend;
+use crate::backend;
 #[path = "c_certified/extra.rs"]
 mod extra;
 

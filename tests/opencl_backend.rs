@@ -10,7 +10,7 @@
 //! Without an OpenCL device (or headers, or clang) the test says so on stderr and passes, unless
 //! `NOSLIP_REQUIRE_OPENCL` is set (CI sets it in `.ci/run`), when it fails.
 
-mod backend;
+use crate::backend;
 #[path = "opencl_backend/conserve.rs"]
 mod conserve;
 

@@ -20,7 +20,7 @@
 //! Without an OpenCL device (or headers, or clang) the test says so on stderr and passes,
 //! unless `NOSLIP_REQUIRE_OPENCL` is set (CI sets it in `.ci/run`), when it fails.
 
-mod backend;
+use crate::backend;
 
 use backend::companions::{of, Extra, LawFixed, LawFree, RoundedFixed, RoundedFree};
 use backend::{draw, opencl, same, scratch, Float};
@@ -571,7 +571,7 @@ fn opencl_certified_companions_are_bit_identical_to_the_rust_ones() {
 }
 
 /// Every companion of every dimension (220; about a minute to build cold):
-/// `NOSLIP_REQUIRE_OPENCL=1 cargo test -p noslip-tests --test opencl_certified -- --ignored`.
+/// `NOSLIP_REQUIRE_OPENCL=1 cargo test -p noslip-tests --test all opencl_certified:: -- --ignored`.
 #[test]
 #[ignore = "every companion in every dimension: about a minute of OpenCL build"]
 fn every_opencl_certified_companion_is_bit_identical_to_the_rust_one() {

@@ -18,7 +18,7 @@
 //! ball-obstacle takes body 2's spin and the relative velocity `u_2 - u_1` (the obstacle is
 //! at rest), so every case approaches or grazes as drawn.
 
-mod backend;
+use crate::backend;
 
 /// The shipped scenes' specialised Rust kernels (`build.rs`).
 mod scenes {
