@@ -27,6 +27,14 @@ use noslip_sim::setup::setup;
 /// Scenes with more balls are validated only (the engine's work per contact grows with the
 /// balls; `scene_toml` places and runs the same scenes).
 const MAX_BALLS: usize = 16;
+/// Scenes with a box side longer than this many diameters of their smallest ball are not run
+/// through `lyapunov`: a run with no contact in reach stops only after its balls fly a
+/// million box lengths (the engine's rule, `noslip_sim::run`), and that costs the cells
+/// crossed on the way, which grow with the box's size in diameters. Two balls in a box 400
+/// diameters wide take 2 s a run in release, ten times that in this instrumented build,
+/// which exceeds libFuzzer's timeout (`regressions/scene_dynamics/dilute-timeout.toml`, found by
+/// CI). `scene_toml` runs such scenes under its own bound on the simulated time.
+const MAX_BOX_DIAMETERS: f64 = 16.0;
 /// Contacts of each Lyapunov run, and its blocks (the smallest run the rule takes is
 /// `2 (blocks + 1)`).
 const EVENTS: u64 = 48;
@@ -71,6 +79,14 @@ where
     Generated: Dim<N, S>,
 {
     if let Ok(start) = setup::<N, S>(scene) {
+        let diameter = start
+            .species
+            .iter()
+            .map(|b| 2.0 * b.radius)
+            .fold(f64::INFINITY, f64::min);
+        if start.size.iter().any(|&l| l > MAX_BOX_DIAMETERS * diameter) {
+            return;
+        }
         let dimension = start.bodies.len() * (2 * N + S);
         let options = Options {
             events: EVENTS,
