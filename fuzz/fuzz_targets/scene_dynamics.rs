@@ -19,8 +19,8 @@
 use collision_core::{Exact, Generated, Kernel, DIMS};
 use libfuzzer_sys::fuzz_target;
 use noslip_dynamics::lyapunov::{qr, two_trajectory, Dim, Options, Spectrum};
-use noslip_dynamics::Dual;
 use noslip_dynamics::orbits::search::{search, Search};
+use noslip_dynamics::Dual;
 use noslip_scene::Scene;
 use noslip_sim::setup::setup;
 
@@ -54,7 +54,11 @@ fuzz_target!(|data: &[u8]| {
     if scene.ball_count() > MAX_BALLS {
         return;
     }
-    assert!(DIMS.contains(&scene.dim), "validation accepted dim = {}", scene.dim);
+    assert!(
+        DIMS.contains(&scene.dim),
+        "validation accepted dim = {}",
+        scene.dim
+    );
     collision_core::with_dim!(
         scene.dim,
         |N, S| {
@@ -66,11 +70,23 @@ fuzz_target!(|data: &[u8]| {
 });
 
 fn check(s: &Spectrum, dimension_cap: usize) {
-    assert!(s.per_time.len() <= dimension_cap.max(1), "k = {}", s.per_time.len());
+    assert!(
+        s.per_time.len() <= dimension_cap.max(1),
+        "k = {}",
+        s.per_time.len()
+    );
     let block = (s.contacts - s.warmup) / BLOCKS as u64;
-    assert!(s.every <= block.max(1), "every {} beyond a block of {block}", s.every);
+    assert!(
+        s.every <= block.max(1),
+        "every {} beyond a block of {block}",
+        s.every
+    );
     for e in s.per_time.iter().chain(&s.per_contact).chain([&s.sum]) {
-        assert!(e.value.is_finite() && e.error.is_finite(), "{}: {e:?}", s.method);
+        assert!(
+            e.value.is_finite() && e.error.is_finite(),
+            "{}: {e:?}",
+            s.method
+        );
     }
 }
 
@@ -125,8 +141,17 @@ where
     };
     match search::<N, S>(scene, &ask) {
         Ok(report) => {
-            assert!(report.tried <= report.starts, "{} of {}", report.tried, report.starts);
-            assert!(report.contacts <= MAX_CONTACTS, "{} contacts", report.contacts);
+            assert!(
+                report.tried <= report.starts,
+                "{} of {}",
+                report.tried,
+                report.starts
+            );
+            assert!(
+                report.contacts <= MAX_CONTACTS,
+                "{} contacts",
+                report.contacts
+            );
             for o in &report.orbits {
                 assert!(o.start.iter().all(|x| x.is_finite()), "{:?}", o.start);
                 assert!(o.residual.is_finite(), "residual {}", o.residual);
