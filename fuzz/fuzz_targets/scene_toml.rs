@@ -57,8 +57,9 @@ fuzz_target!(|data: &[u8]| {
     };
     // `gen`
     let set = scene.pairs();
-    let rust = generate(&set, "collision_core", "noslip_sim"); // Err: exit 2
-                                                               // `gen --lang c|opencl --scene`: the same folded constants, so the same verdict.
+    // Err: exit 2.
+    let rust = generate(&set, "collision_core", "noslip_sim");
+    // `gen --lang c|opencl --scene`: the same folded constants, so the same verdict.
     for lang in [Lang::C, Lang::OpenCl] {
         let other = generate_scene(lang, &set);
         assert_eq!(
