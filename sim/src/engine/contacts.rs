@@ -178,6 +178,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         )
     }
 
+    /// Counts a change of ball `b`'s velocity (`count_b += 1`) in its record and in its flight
+    /// record in the slab (`Resident::count`, which the scans keep with a contact they find):
+    /// the two must agree, or a contact found would be taken as stale forever.
+    pub(super) fn count_change(&mut self, b: usize) {
+        let ball = &mut self.balls[b];
+        ball.count += 1;
+        *self.motion.count_mut(ball.home) = ball.count;
+    }
+
     pub(super) fn finish(
         &mut self,
         contact: Contact,
@@ -189,12 +198,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         for b in balls {
             self.motion.get_mut(self.balls[b].home).velocity = self.balls[b].state.velocity;
         }
-        self.balls[balls[0]].count += 1;
+        self.count_change(balls[0]);
         if balls[1] != balls[0] {
-            self.balls[balls[1]].count += 1;
-        }
-        for b in balls {
-            *self.motion.count_mut(self.balls[b].home) = self.balls[b].count;
+            self.count_change(balls[1]);
         }
         self.contacts += 1;
         self.last_contact = t;

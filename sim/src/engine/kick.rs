@@ -45,11 +45,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 twice += (u[k] - before) * (u[k] + before);
             }
             added += 0.5 * m * twice;
-            ball.count += 1;
             ball.last = LastContact::NONE;
-            let (home, velocity, count) = (ball.home, ball.state.velocity, ball.count);
+            let (home, velocity) = (ball.home, ball.state.velocity);
             self.motion.get_mut(home).velocity = velocity;
-            *self.motion.count_mut(home) = count;
+            self.count_change(i);
         }
         self.rebase(t, false);
         added
