@@ -23,21 +23,16 @@ use collision_core::rng::Rng;
 use collision_core::{collide_unchecked, collide_unchecked_fma, Exact, Generated, Kernel};
 use noslip_accuracy::case::{flatten, Case};
 use noslip_accuracy::measure::exact_result;
+use noslip_accuracy::static_box::StaticBox;
 use noslip_accuracy::Regime;
 use noslip_codegen::bound::{gappa, Format, InputRange, KernelBound};
 use noslip_codegen::program::Program;
 use noslip_codegen::{model, Arith, Variant};
 use std::time::Instant;
 
-/// The typical box for dimension `n` (see the module docs).
+/// The typical box for dimension `n` (see the module docs; `noslip_accuracy::static_box`).
 fn typical_box(n: usize, name: &str) -> InputRange {
-    let g = 2.0 / n as f64;
-    match name {
-        _ if name.starts_with("inv_mass") => InputRange::range(0.25, 4.0),
-        _ if name.starts_with("radius") => InputRange::range(0.5, 2.0),
-        _ if name.starts_with("gamma2") => InputRange::range(g / 8.0, g),
-        _ => InputRange::range(-1.0, 1.0),
-    }
+    StaticBox::typical(n).range(name).0
 }
 
 /// The balls' parameters (`inv_mass`, `radius`, `gamma2`): the inputs the bound splits.

@@ -13,6 +13,7 @@
 //! - [`measure`]: bits of error, normwise error in each body's energy norm, conditioning.
 //! - [`family`]: the rough-ball family's kernels (`rough`, `walton`) in their own regimes.
 //! - [`proven`]: the proven rounding-error bound of a case, in the measured figure.
+//! - [`static_box`]: a regime's box, and the static bound over it (every input in it).
 //! - [`report`]: one report run; [`render`]: Markdown and JSON; [`plot`]: the SVG plot.
 
 #![warn(missing_docs, unreachable_pub)]
@@ -28,6 +29,7 @@ pub mod proven;
 pub mod regime;
 pub mod render;
 pub mod report;
+pub mod static_box;
 pub mod timing;
 
 pub use case::Case;

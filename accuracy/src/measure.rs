@@ -102,7 +102,7 @@ impl Truth {
     }
 
     /// `computed - exact` for component `k`.
-    fn error(&self, k: usize, computed: f64) -> f64 {
+    pub(crate) fn error(&self, k: usize, computed: f64) -> f64 {
         (computed - self.hi[k]) - self.lo[k]
     }
 }

@@ -12,6 +12,7 @@
 
 use crate::case::Case;
 use crate::method::Method;
+use crate::static_box::StaticBox;
 use noslip_codegen::bound::{Format, InputRange, KernelBound};
 use noslip_codegen::{Arith, Variant};
 
@@ -104,12 +105,12 @@ impl ProvenBound {
         self.format
     }
 
-    /// The kernel's bounds at `case` (inputs as the kernel receives them, widened exactly
-    /// to `f64`), and which case body each returned body is.
-    fn analyse<const N: usize, const S: usize>(
+    /// The kernel `case` dispatches to, its inputs (widened exactly to `f64`, in the
+    /// kernel's order), and which case body each returned body is.
+    fn dispatch<const N: usize, const S: usize>(
         &self,
         case: &Case<f64, N, S>,
-    ) -> (noslip_codegen::bound::Bounds, [usize; 2]) {
+    ) -> (&KernelBound, Vec<f64>, [usize; 2]) {
         let immovable = |b: usize| case.balls[b].inv_mass == 0.0;
         // The kernel's body k is the case's body order[k]; `sign` multiplies the normal.
         let (located, order, sign) = match (immovable(0), immovable(1)) {
@@ -125,12 +126,45 @@ impl ProvenBound {
             Slot::InvMass(b) => case.balls[order[b]].inv_mass,
             Slot::Gamma2(b) => case.balls[order[b]].gamma2,
         };
-        let inputs: Vec<InputRange> = located
-            .slots
+        let inputs = located.slots.iter().map(|&s| value(s)).collect();
+        (&located.kernel, inputs, order)
+    }
+
+    /// The kernel's bounds at `case` (inputs as the kernel receives them, widened exactly
+    /// to `f64`), and which case body each returned body is.
+    fn analyse<const N: usize, const S: usize>(
+        &self,
+        case: &Case<f64, N, S>,
+    ) -> (noslip_codegen::bound::Bounds, [usize; 2]) {
+        let (kernel, inputs, order) = self.dispatch(case);
+        let points: Vec<InputRange> = inputs.into_iter().map(InputRange::point).collect();
+        (kernel.analyse(&points), order)
+    }
+
+    /// The static bound over `boxes` ([`StaticBox::bound_eps`] of the kernel each box
+    /// names, in this bound's format), the largest over them: in eps, `+inf` where the
+    /// rules give no finite bound.
+    pub fn static_bound(&self, boxes: &[StaticBox]) -> f64 {
+        boxes
             .iter()
-            .map(|&s| InputRange::point(value(s)))
-            .collect();
-        (located.kernel.analyse(&inputs), order)
+            .map(|b| {
+                let located = match b.variant {
+                    Variant::Free => &self.free,
+                    Variant::Fixed => &self.fixed,
+                };
+                b.bound_eps(&located.kernel)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Whether `case`, as `collide_unchecked` dispatches it, lies in one of `boxes`.
+    pub fn in_box<const N: usize, const S: usize>(
+        &self,
+        case: &Case<f64, N, S>,
+        boxes: &[StaticBox],
+    ) -> bool {
+        let (kernel, inputs, _) = self.dispatch(case);
+        boxes.iter().any(|b| b.contains(kernel, &inputs))
     }
 
     /// Per body of `case`, the proven bound of its normwise error in eps, with `lambda[b]`

@@ -241,6 +241,7 @@ fn summary(m: &mut String, report: &AccuracyReport) {
         report.dims.first().map_or(0, |d| d.continuity.cases)
     );
     tightness(m, report);
+    static_bounds(m, report);
     let _ = writeln!(
         m,
         "| n | mass: f64 | mass: exact | mass: rounding | gamma: f64 | gamma: exact | gamma: rounding |\n|---|---:|---:|---:|---:|---:|---:|"
@@ -297,6 +298,60 @@ fn tightness(m: &mut String, report: &AccuracyReport) {
                         Some((t, p, v)) => {
                             let broken = if v.proven_broken > 0 { " BROKEN" } else { "" };
                             format!("{t:.1}x ({p:.1}){broken}")
+                        }
+                        None => "-".into(),
+                    }
+                })
+                .collect();
+            let _ = writeln!(m, "| {} | {} |", d.dim, cells.join(" | "));
+        }
+        let _ = writeln!(m);
+    }
+}
+
+/// The static bounds: per kernel, n and regime, the bound over the regime's box against the
+/// largest error measured over the regime's cases in the box.
+fn static_bounds(m: &mut String, report: &AccuracyReport) {
+    let _ = writeln!(
+        m,
+        "**Static bounds** (`noslip_accuracy::static_box`, docs/accuracy.md): one bound of \
+         the absolute error of every movable body's output component that holds for every \
+         input in the regime's box (the same rules over intervals, parameters cut into \
+         geometric pieces). The typical box: per body inv_mass in [1/4, 4], R in [1/2, 2], \
+         gamma2 in [g/8, g] (g = 2/n), entries of nu, U_i and u_i in [-1, 1]. Cell: bound / \
+         largest absolute component error measured over the regime's cases in the box, the \
+         bound in eps, and how many of the regime's cases lie in the box. A measured error \
+         above the static bound fails the report.\n"
+    );
+    if let Some(d) = report.dims.first() {
+        for r in &d.regimes {
+            let _ = writeln!(m, "- {}: {}", r.name, r.static_box);
+        }
+        let _ = writeln!(m);
+    }
+    let regimes: Vec<&str> = report.dims[0]
+        .regimes
+        .iter()
+        .map(|r| r.name.as_str())
+        .collect();
+    for method in [Method::F64, Method::F64Fma, Method::F32] {
+        let _ = writeln!(m, "{}:\n", method.name());
+        let _ = writeln!(m, "| n | {} |", regimes.join(" | "));
+        let _ = writeln!(m, "|---|{}", "---|".repeat(regimes.len()));
+        for d in &report.dims {
+            let cells: Vec<String> = d
+                .regimes
+                .iter()
+                .map(|r| {
+                    let v = r.variants.iter().find(|v| v.variant == method);
+                    match v.and_then(|v| v.static_bound) {
+                        Some(s) if !s.bound_eps.is_finite() => {
+                            format!("no finite bound ({} in box)", s.in_box)
+                        }
+                        Some(s) => {
+                            let broken = if s.broken > 0 { " BROKEN" } else { "" };
+                            let ratio = s.tightness().map_or("-".into(), |t| format!("{t:.0}x"));
+                            format!("{ratio} ({:.3e}; {}){broken}", s.bound_eps, s.in_box)
                         }
                         None => "-".into(),
                     }

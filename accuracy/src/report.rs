@@ -7,6 +7,7 @@ use crate::measure::{bits, conditioning, exact_result, lambda, normwise, Float, 
 use crate::method::{Method, Outcome};
 use crate::proven::ProvenBound;
 use crate::regime::Regime;
+use crate::static_box::StaticBox;
 use crate::timing::Timing;
 use collision_core::rng::Rng;
 use collision_core::{validate, Exact, Generated, Kernel};
@@ -128,6 +129,33 @@ pub struct MethodResult {
     /// Bodies whose measured error exceeds the proven bound (allowing the measure's own
     /// rounding, relative `2^-40`): a defect of the bound. Must be 0.
     pub proven_broken: usize,
+    /// The static bound over the regime's box, against the cases in it (the generated
+    /// float kernels only).
+    pub static_bound: Option<StaticResult>,
+}
+
+/// The static bound of one kernel over a regime's box ([`crate::static_box`]), beside the
+/// largest error measured over the regime's cases that lie in the box.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct StaticResult {
+    /// The largest absolute error bound of a movable body's output component over the box,
+    /// in eps (`+inf`, written `null` in JSON: the rules give no finite bound).
+    pub bound_eps: f64,
+    /// Cases of the regime that lie in the box.
+    pub in_box: usize,
+    /// The largest absolute error of a movable body's output component over those cases,
+    /// in eps.
+    pub measured_eps: f64,
+    /// In-box cases with a component whose error exceeds the static bound (allowing the
+    /// measure's own rounding, relative `2^-40`): a defect of the bound. Must be 0.
+    pub broken: usize,
+}
+
+impl StaticResult {
+    /// `bound / measured` (`None` with nothing measured).
+    pub fn tightness(&self) -> Option<f64> {
+        (self.measured_eps > 0.0).then(|| self.bound_eps / self.measured_eps)
+    }
 }
 
 impl MethodResult {
@@ -155,7 +183,8 @@ pub struct Stability {
     pub worst_error_over_kappa: f64,
     /// Cases whose `f64` result has a NaN or an infinity.
     pub non_finite: usize,
-    /// No non-finite result and no body over its conditioning.
+    /// No non-finite result, no body over its conditioning, and no error above its proven
+    /// or static bound.
     pub passed: bool,
 }
 
@@ -168,6 +197,8 @@ pub struct RegimeResult {
     pub name: String,
     /// How it departs from the typical distribution ([`Regime::about`]).
     pub about: String,
+    /// How its static box departs from the typical box ([`StaticBox::about`]).
+    pub static_box: String,
     /// Cases sampled, before validation excluded any.
     pub sampled: usize,
     /// Sampled cases refused by validation, with the reason (counted, then left out).
@@ -201,6 +232,9 @@ struct Acc {
     proven: Vec<f64>,
     proven_unbounded: usize,
     proven_broken: usize,
+    /// Per case in the method's static box, the largest absolute component error, in eps.
+    static_errors: Vec<f64>,
+    static_bound: Option<StaticResult>,
     non_finite: usize,
     evaluated: usize,
     unsupported: BTreeMap<String, usize>,
@@ -258,6 +292,44 @@ impl Acc {
         }
     }
 
+    /// If the case (`ran_on`, the inputs the kernel ran on widened to `f64`) lies in one
+    /// of `boxes`: the largest absolute error of a movable body's component (`computed`
+    /// against `truth`, both in format `F`), in eps, kept for the static bound.
+    fn record_static<F: Float, const N: usize, const S: usize>(
+        &mut self,
+        proven: &ProvenBound,
+        boxes: &[StaticBox],
+        computed: &[f64],
+        truth: &Truth,
+        ran_on: &Case<f64, N, S>,
+    ) {
+        if !proven.in_box(ran_on, boxes) {
+            return;
+        }
+        let mut worst = 0.0f64;
+        for b in (0..2).filter(|&b| ran_on.balls[b].inv_mass != 0.0) {
+            let body = b * (S + N)..(b + 1) * (S + N);
+            for (k, &c) in computed.iter().enumerate().take(body.end).skip(body.start) {
+                worst = worst.max(truth.error(k, c).abs() / F::EPSILON);
+            }
+        }
+        self.static_errors.push(worst);
+    }
+
+    /// The static bound `bound_eps` against the errors [`Acc::record_static`] kept.
+    fn set_static(&mut self, bound_eps: f64) {
+        let errors = std::mem::take(&mut self.static_errors);
+        self.static_bound = Some(StaticResult {
+            bound_eps,
+            in_box: errors.len(),
+            measured_eps: errors.iter().copied().fold(0.0, f64::max),
+            broken: errors
+                .iter()
+                .filter(|&&e| e > bound_eps * (1.0 + 2f64.powi(-40)))
+                .count(),
+        });
+    }
+
     fn result(
         self,
         variant: Method,
@@ -288,6 +360,7 @@ impl Acc {
             proven_eps: (!self.proven.is_empty()).then(|| Stats::of(&self.proven)),
             proven_unbounded: self.proven_unbounded,
             proven_broken: self.proven_broken,
+            static_bound: self.static_bound,
         }
     }
 }
@@ -342,6 +415,25 @@ where
     let mut cases32 = Vec::new();
     let proven: Vec<Option<ProvenBound>> =
         Method::ALL.iter().map(|&m| ProvenBound::of(N, m)).collect();
+    // The static bounds, one per kernel with a proven bound (the batch method runs the
+    // `f64` kernel: it shares its figure), computed on another core while the cases run;
+    // the cases keep their errors in the boxes for them.
+    let boxes: Vec<Vec<StaticBox>> = proven
+        .iter()
+        .map(|p| {
+            p.as_ref()
+                .map_or(Vec::new(), |p| StaticBox::of(regime, N, p.format()))
+        })
+        .collect();
+    let statics = std::thread::spawn(move || {
+        Method::ALL
+            .iter()
+            .map(|&m| {
+                let p = ProvenBound::of(N, m).filter(|_| m != Method::Batch)?;
+                Some(p.static_bound(&StaticBox::of(regime, N, p.format())))
+            })
+            .collect::<Vec<Option<f64>>>()
+    });
     for (index, case) in cases.iter().enumerate() {
         if interrupted() {
             return None;
@@ -387,13 +479,16 @@ where
                     let (t32, c32) = truth32.as_ref().expect("f32 ran on representable inputs");
                     let errs = a.record::<f32, N, S>(&r, t32, c32);
                     if let (Some(p), Ok(ran_on)) = (&proven[i], &case32) {
-                        a.record_proven(p, errs, &ran_on.map(|&x| f64::from(x)), c32);
+                        let ran_on = ran_on.map(|&x| f64::from(x));
+                        a.record_proven(p, errs, &ran_on, c32);
+                        a.record_static::<f32, N, S>(p, &boxes[i], &r, t32, &ran_on);
                     }
                 }
                 Outcome::Done(r) => {
                     let errs = a.record::<f64, N, S>(&r, &truth, &exact_case);
                     if let Some(p) = &proven[i] {
                         a.record_proven(p, errs, case, &exact_case);
+                        a.record_static::<f64, N, S>(p, &boxes[i], &r, &truth, case);
                     }
                     if variant != Method::F64 {
                         continue;
@@ -420,8 +515,18 @@ where
         }
     }
     stability.passed = stability.non_finite == 0 && stability.over_conditioning == 0;
+    let statics = statics.join().expect("the static bounds' thread");
+    for (i, bound) in statics.into_iter().enumerate() {
+        if let Some(bound) = bound {
+            acc.entry(i).or_default().set_static(bound);
+        }
+    }
     let proven_broken: usize = acc.values().map(|a| a.proven_broken).sum();
-    stability.passed &= proven_broken == 0;
+    let static_broken: usize = acc
+        .values()
+        .filter_map(|a| a.static_bound.map(|s| s.broken))
+        .sum();
+    stability.passed &= proven_broken == 0 && static_broken == 0;
 
     let batch: Vec<Case<f64, N, S>> = cases.iter().take(opts.batch).cloned().collect();
     let batch32: Vec<Case<f32, N, S>> = cases32.iter().take(opts.batch).cloned().collect();
@@ -458,6 +563,7 @@ where
         regime,
         name: regime.name().into(),
         about: regime.about().into(),
+        static_box: StaticBox::about(regime).into(),
         sampled: opts.samples,
         excluded,
         conditioning: Stats::of(&kappas),

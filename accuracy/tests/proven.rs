@@ -21,12 +21,16 @@
 //! [`certified`]): outputs bit-identical to the plain kernel's, every bound at least the
 //! true error; the long run prints how their bounds compare with the interpreter's. The FMA
 //! kernels' companions are checked the same way against the FMA kernels, and the companions
-//! with rounded inputs against the exact map at the intended inputs ([`rounded`]).
+//! with rounded inputs against the exact map at the intended inputs ([`rounded`]). The
+//! static bounds over the regimes' boxes are checked against the exact error of the cases in
+//! them ([`static_bound`]).
 
 #[path = "proven/certified.rs"]
 mod certified;
 #[path = "proven/rounded.rs"]
 mod rounded;
+#[path = "proven/static_bound.rs"]
+mod static_bound;
 #[path = "proven/wide.rs"]
 mod wide;
 

@@ -27,6 +27,12 @@ def test_report_measures_the_no_slip_kernels_and_the_rough_family():
         assert f64["evaluated"] == 20 and f64["non_finite"] == 0, r["name"]
         assert r["stability"]["over_conditioning"] == 0, r["name"]
     assert family["walton"]["kernel"] == "walton" and family["rough"]["kernel"] == "rough"
+    # The static bound over each regime's box holds for every sampled case in the box.
+    typical = next(r for r in dim["regimes"] if r["regime"] == "typical")
+    for name in ("f64", "f64_fma", "f32"):
+        s = next(v for v in typical["variants"] if v["variant"] == name)["static_bound"]
+        assert s["in_box"] > 0 and s["broken"] == 0, name
+        assert 0 < s["measured_eps"] < s["bound_eps"] < float("inf"), name
 
 
 def test_bad_dims_are_input_errors():
