@@ -279,34 +279,11 @@ fn tightness(m: &mut String, report: &AccuracyReport) {
          measured error over the regime's cases (the tightness; 1 would be exact), and the \
          largest bound in eps. A measured error above its bound fails the report.\n"
     );
-    let regimes: Vec<&str> = report.dims[0]
-        .regimes
-        .iter()
-        .map(|r| r.name.as_str())
-        .collect();
-    for method in [Method::F64, Method::F64Fma, Method::F32] {
-        let _ = writeln!(m, "{}:\n", method.name());
-        let _ = writeln!(m, "| n | {} |", regimes.join(" | "));
-        let _ = writeln!(m, "|---|{}", "---|".repeat(regimes.len()));
-        for d in &report.dims {
-            let cells: Vec<String> = d
-                .regimes
-                .iter()
-                .map(|r| {
-                    let v = r.variants.iter().find(|v| v.variant == method);
-                    match v.and_then(|v| Some((v.tightness()?, v.proven_eps?.max, v))) {
-                        Some((t, p, v)) => {
-                            let broken = if v.proven_broken > 0 { " BROKEN" } else { "" };
-                            format!("{t:.1}x ({p:.1}){broken}")
-                        }
-                        None => "-".into(),
-                    }
-                })
-                .collect();
-            let _ = writeln!(m, "| {} | {} |", d.dim, cells.join(" | "));
-        }
-        let _ = writeln!(m);
-    }
+    regime_tables(m, report, |v| {
+        let (t, p) = (v.tightness()?, v.proven_eps?.max);
+        let broken = if v.proven_broken > 0 { " BROKEN" } else { "" };
+        Some(format!("{t:.1}x ({p:.1}){broken}"))
+    });
 }
 
 /// The static bounds: per kernel, n and regime, the bound over the regime's box against the
@@ -329,6 +306,27 @@ fn static_bounds(m: &mut String, report: &AccuracyReport) {
         }
         let _ = writeln!(m);
     }
+    regime_tables(m, report, |v| {
+        let s = v.static_bound?;
+        if !s.bound_eps.is_finite() {
+            return Some(format!("no finite bound ({} in box)", s.in_box));
+        }
+        let broken = if s.broken > 0 { " BROKEN" } else { "" };
+        let ratio = s.tightness().map_or("-".into(), |t| format!("{t:.0}x"));
+        Some(format!(
+            "{ratio} ({:.3e}; {}){broken}",
+            s.bound_eps, s.in_box
+        ))
+    });
+}
+
+/// One table per float kernel form: a row per n, a cell per regime (`cell` of that regime's
+/// result for the form; `-` without one).
+fn regime_tables(
+    m: &mut String,
+    report: &AccuracyReport,
+    cell: impl Fn(&MethodResult) -> Option<String>,
+) {
     let regimes: Vec<&str> = report.dims[0]
         .regimes
         .iter()
@@ -344,17 +342,7 @@ fn static_bounds(m: &mut String, report: &AccuracyReport) {
                 .iter()
                 .map(|r| {
                     let v = r.variants.iter().find(|v| v.variant == method);
-                    match v.and_then(|v| v.static_bound) {
-                        Some(s) if !s.bound_eps.is_finite() => {
-                            format!("no finite bound ({} in box)", s.in_box)
-                        }
-                        Some(s) => {
-                            let broken = if s.broken > 0 { " BROKEN" } else { "" };
-                            let ratio = s.tightness().map_or("-".into(), |t| format!("{t:.0}x"));
-                            format!("{ratio} ({:.3e}; {}){broken}", s.bound_eps, s.in_box)
-                        }
-                        None => "-".into(),
-                    }
+                    v.and_then(&cell).unwrap_or_else(|| "-".into())
                 })
                 .collect();
             let _ = writeln!(m, "| {} | {} |", d.dim, cells.join(" | "));
