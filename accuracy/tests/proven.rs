@@ -306,15 +306,20 @@ macro_rules! per_dim {
 
 collision_core::for_each_dim!(per_dim);
 
+/// The count in the environment variable `name` (a long run's size), else `default`.
+fn env_count(name: &str, default: usize) -> usize {
+    std::env::var(name)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
 /// The long run: `NOSLIP_BOUND_CASES` (default 10^6) cases per n and precision, spread over
 /// the nine regimes and the adversarial mix; prints what it saw.
 #[test]
 #[ignore = "long: about an hour in a release build"]
 fn a_million_cases_per_dimension_and_precision() {
-    let total: usize = std::env::var("NOSLIP_BOUND_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1_000_000);
+    let total = env_count("NOSLIP_BOUND_CASES", 1_000_000);
     let dims: Vec<usize> = std::env::var("NOSLIP_BOUND_DIMS")
         .ok()
         .map(|s| s.split(',').filter_map(|d| d.parse().ok()).collect())

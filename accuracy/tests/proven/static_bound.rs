@@ -98,10 +98,7 @@ fn every_error_in_a_box_is_within_its_static_bound() {
 #[test]
 #[ignore = "every regime at n = 2..6: run with --release"]
 fn every_regime_at_every_n() {
-    let cases: usize = std::env::var("NOSLIP_STATIC_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1000);
+    let cases = crate::env_count("NOSLIP_STATIC_CASES", 1000);
     for n in 2..=6 {
         for regime in Regime::ALL {
             let (bounds, ratio) =

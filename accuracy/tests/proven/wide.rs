@@ -176,10 +176,7 @@ fn the_f32_companions_with_f64_bounds_hold_and_do_not_overflow() {
 #[test]
 #[ignore = "long: minutes in a release build"]
 fn the_f32_companions_with_f64_bounds_long() {
-    let per_source: usize = std::env::var("NOSLIP_WIDE_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2000);
+    let per_source = crate::env_count("NOSLIP_WIDE_CASES", 2000);
     let seen = dims!(per_source; (d2 2 1) (d3 3 3) (d4 4 6) (d5 5 10) (d6 6 15));
     for (n, inf) in seen {
         println!(
