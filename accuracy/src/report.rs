@@ -13,6 +13,7 @@ use collision_core::rng::Rng;
 use collision_core::{validate, Exact, Generated, Kernel};
 use serde::Serialize;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// The most sampled cases per dimension and regime a report takes: 100 times the default
 /// (1000), about 15 minutes; every case keeps its errors for the percentiles, so the memory
@@ -303,7 +304,7 @@ impl Acc {
         truth: &Truth,
         ran_on: &Case<f64, N, S>,
     ) {
-        if !proven.in_box(ran_on, boxes) {
+        if boxes.is_empty() || !proven.in_box(ran_on, boxes) {
             return;
         }
         let mut worst = 0.0f64;
@@ -413,27 +414,35 @@ where
         passed: true,
     };
     let mut cases32 = Vec::new();
-    let proven: Vec<Option<ProvenBound>> =
-        Method::ALL.iter().map(|&m| ProvenBound::of(N, m)).collect();
-    // The static bounds, one per kernel with a proven bound (the batch method runs the
-    // `f64` kernel: it shares its figure), computed on another core while the cases run;
-    // the cases keep their errors in the boxes for them.
-    let boxes: Vec<Vec<StaticBox>> = proven
+    let proven: Vec<Option<Arc<ProvenBound>>> = Method::ALL
         .iter()
-        .map(|p| {
-            p.as_ref()
-                .map_or(Vec::new(), |p| StaticBox::of(regime, N, p.format()))
+        .map(|&m| ProvenBound::of(N, m).map(Arc::new))
+        .collect();
+    // The static bounds, one per kernel with a proven bound (the batch method runs the
+    // `f64` kernel: it shares its figure, and has no boxes), computed on another core while
+    // the cases run; the cases keep their errors in the boxes for them.
+    let boxes: Vec<Vec<StaticBox>> = Method::ALL
+        .iter()
+        .zip(&proven)
+        .map(|(&m, p)| match p {
+            Some(p) if m != Method::Batch => StaticBox::of(regime, N, p.format()),
+            _ => Vec::new(),
         })
         .collect();
-    let statics = std::thread::spawn(move || {
-        Method::ALL
-            .iter()
-            .map(|&m| {
-                let p = ProvenBound::of(N, m).filter(|_| m != Method::Batch)?;
-                Some(p.static_bound(&StaticBox::of(regime, N, p.format())))
-            })
-            .collect::<Vec<Option<f64>>>()
-    });
+    let statics = {
+        let (proven, boxes) = (proven.clone(), boxes.clone());
+        std::thread::spawn(move || {
+            proven
+                .iter()
+                .zip(&boxes)
+                .map(|(p, b)| {
+                    p.as_ref()
+                        .filter(|_| !b.is_empty())
+                        .map(|p| p.static_bound(b))
+                })
+                .collect::<Vec<Option<f64>>>()
+        })
+    };
     for (index, case) in cases.iter().enumerate() {
         if interrupted() {
             return None;
