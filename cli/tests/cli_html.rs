@@ -79,11 +79,16 @@ fn bad_html_paths_are_refused_naming_the_option() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("set");
-    let cases: [(&Path, &[&str]); 4] = [
+    let existing = dir.join("a-directory");
+    std::fs::create_dir_all(&existing).unwrap();
+    let cases: [(&Path, &[&str]); 6] = [
         (&out.join("deeper/a.html"), &[]),
         (&out.join("summary.json"), &[]),
         (Path::new("scenes/sinai.toml"), &[]),
         (&dir.join("log.jsonl"), &["--log"]),
+        // A directory names no file: --out itself, or one that exists.
+        (&out, &[]),
+        (&existing, &[]),
     ];
     for (html, extra) in cases {
         let mut c = noslip();
@@ -104,5 +109,26 @@ fn bad_html_paths_are_refused_naming_the_option() {
             "a refused path costs no run and writes nothing"
         );
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_page_that_cannot_be_written_keeps_the_run_and_its_summary() {
+    let dir = temp("html-full");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("set");
+    // /dev/full: the stream takes no byte. The set and the summary are published, the
+    // failure is one error line and exit 1, as for --log.
+    let o = simulate("scenes/sinai.toml", &out, Path::new("/dev/full"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: cannot write the animation /dev/full"),
+        "{err}"
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with("500 contacts ("));
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"events\": 500"), "{summary}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -583,6 +583,86 @@ fn the_log_named_inside_out_by_another_spelling_keeps_its_name() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// A side output that names a directory (an existing one, or `--out` itself) is refused
+/// before the run, exit 2, naming the option (it was a failure to create the file, exit 1).
+#[test]
+fn a_log_or_map_naming_a_directory_is_refused_naming_the_option() {
+    let dir = scratch("log-directory");
+    let _ = std::fs::remove_dir_all(&dir);
+    let existing = dir.join("existing");
+    std::fs::create_dir_all(&existing).unwrap();
+    let out = dir.join("set");
+    for option in ["--log", "--boundary-map"] {
+        for path in [&existing, &out] {
+            let o = noslip()
+                .args(["simulate", "scenes/sinai.toml", "--events", "20", "--quiet"])
+                .arg("--out")
+                .arg(&out)
+                .arg(option)
+                .arg(path)
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{option} {path:?}: {err}");
+            assert!(err.starts_with(&format!("error: {option}: ")), "{err}");
+            assert!(err.contains("directory"), "{err}");
+            assert!(!out.exists(), "a refused path costs no run");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The summary's momentum and angular-momentum drifts are relative: the same run with every
+/// mass scaled by `10^160` or `10^-170` (velocities and times unchanged) gives the same
+/// figures. A review found `inf` (squares overflowing) and `0` (underflowing) there.
+#[test]
+fn the_momentum_drifts_do_not_depend_on_the_mass_scale() {
+    let dir = scratch("drift-scale");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenes/disk_between_walls.toml"
+    ))
+    .unwrap();
+    assert!(scene.contains("\nmass = 1\n"));
+    let drifts = |mass: &str| {
+        let path = dir.join(format!("m{mass}.toml"));
+        std::fs::write(
+            &path,
+            scene.replace("\nmass = 1\n", &format!("\nmass = {mass}\n")),
+        )
+        .unwrap();
+        let out = dir.join(format!("out{mass}"));
+        run_ok(
+            noslip()
+                .arg("simulate")
+                .arg(&path)
+                .args(["--events", "20", "--quiet", "--out"])
+                .arg(&out),
+        );
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        let f = |k: &str| {
+            s[k].as_f64()
+                .unwrap_or_else(|| panic!("{mass}: {k} = {}", s[k]))
+        };
+        (f("momentum_drift"), f("angular_momentum_drift"))
+    };
+    let (p, l) = drifts("1");
+    assert!(p > 0.1 && l > 0.1, "walls change the momentum: {p} {l}");
+    for mass in ["1e160", "1e-170"] {
+        let (p2, l2) = drifts(mass);
+        // The same contacts (the mass of the only ball scales out of the map); the drifts
+        // differ only by the rounding of the sums, a few eps.
+        for (a, b) in [(p, p2), (l, l2)] {
+            assert!((a - b).abs() <= 1e-13 * a, "mass {mass}: {a} against {b}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// The entries of `dir` whose names contain `part`.
 fn entries_with(dir: &Path, part: &str) -> Vec<std::path::PathBuf> {
     let mut v: Vec<_> = std::fs::read_dir(dir)

@@ -212,24 +212,33 @@ fn scales<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     sim: &Simulation<N, S, K>,
     species: &[collision_core::Ball<f64>],
 ) -> (f64, f64) {
-    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     let (mut p, mut l) = (0.0, 0.0);
     for i in 0..sim.len() {
         let b = &species[sim.species_of(i)];
         let m = 1.0 / b.inv_mass;
         let s = sim.state(i);
-        p += m * norm(&s.velocity);
-        l += m * (norm(&sim.position(i)) * norm(&s.velocity) + 2.0 * b.lambda() * norm(&s.spin));
+        p += m * norm(s.velocity.iter().copied());
+        let position = sim.position(i);
+        l += m
+            * (norm(position.iter().copied()) * norm(s.velocity.iter().copied())
+                + 2.0 * b.lambda() * norm(s.spin.iter().copied()));
     }
     (p.max(f64::MIN_POSITIVE), l.max(f64::MIN_POSITIVE))
 }
 
+/// `|v|`, its squares taken of the entries over the largest magnitude, so that no square
+/// overflows or leaves the normal range (a momentum of `10^160`, or of `10^-170`).
+fn norm(v: impl Iterator<Item = f64> + Clone) -> f64 {
+    let big = v.clone().fold(0.0, |m: f64, x| m.max(x.abs()));
+    if big == 0.0 || !big.is_finite() {
+        return big;
+    }
+    big * v.map(|x| (x / big) * (x / big)).sum::<f64>().sqrt()
+}
+
+/// `|a - b|` ([`norm`]).
 fn distance(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt()
+    norm(a.iter().zip(b).map(|(x, y)| x - y))
 }
 
 /// Run `sim` to the limits; log each contact to `log` (JSON lines) if given.

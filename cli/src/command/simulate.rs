@@ -506,10 +506,13 @@ where
         set.write(&format!("{name}.png"), &portrait.png(&title))
             .map_err(|e| crate::exit::publish_failure(&e))?;
     }
-    if let (Some(r), Some(p), Some(m)) = (recorder, &args.html, &html_member) {
-        let page = noslip_sim::animation_page::html(&r.finish(&sim));
-        html::publish(&mut set, p, m, &page)?;
-    }
+    let html_failed = match (recorder, &args.html, &html_member) {
+        (Some(r), Some(p), Some(m)) => {
+            let page = noslip_sim::animation_page::html(&r.finish(&sim));
+            html::publish(&mut set, p, m, &page)?
+        }
+        _ => None,
+    };
     set.commit().map_err(|e| crate::exit::publish_failure(&e))?;
     print_summary(&summary)?;
     if let Some(d) = sampler.as_ref().and_then(|s| s.self_diffusion()) {
@@ -523,7 +526,11 @@ where
     }
     outln!("wrote {}", out.display())?;
     let failed = failure.map(|m| Failure::bad_input(format!("{}: {m}", scene.origin)));
-    failed.or(log_failed).or(map_failed).map_or(Ok(()), Err)
+    failed
+        .or(log_failed)
+        .or(map_failed)
+        .or(html_failed)
+        .map_or(Ok(()), Err)
 }
 
 /// Where a CSV boundary map's text goes: its file, or nowhere (a Parquet map keeps the

@@ -1,7 +1,7 @@
 //! `noslip simulate --html FILE`: the run as an animation in one self-contained HTML page
 //! (`noslip_sim::animation`), a member of the output set like `--log`.
 
-use super::paths::{lexical, same_dir, same_file, SET_FILES};
+use super::paths::{lexical, not_a_file, same_dir, same_file, SET_FILES};
 use super::Args;
 use crate::exit::Failure;
 use crate::publish::Staging;
@@ -34,6 +34,9 @@ pub(super) fn member(
             return refuse(format!("is also {option}; the two need two files"));
         }
     }
+    if let Some(why) = not_a_file(html, out, MEMBER) {
+        return Err(Failure::bad_input(format!("--html: {why}")));
+    }
     let name = html.file_name().map(|n| n.to_string_lossy().into_owned());
     let member = match name {
         Some(name) if same_dir(html.parent(), out) => name,
@@ -62,13 +65,16 @@ pub(super) fn member(
 }
 
 /// Stage the page as `member` of the set (and `html` as a link to it when outside `--out`;
-/// a stream such as `/dev/stdout` is written directly).
+/// a stream such as `/dev/stdout` is written directly). `Err`: the set cannot be staged
+/// (nothing is published); `Ok(Some(failure))`: the stream could not take the page, which
+/// fails the command (exit 1) after the rest of the set is published and the summary
+/// printed, as a failed `--log` does.
 pub(super) fn publish(
     set: &mut Staging,
     html: &Path,
     member: &str,
     page: &str,
-) -> Result<(), Failure> {
+) -> Result<Option<Failure>, Failure> {
     let direct = same_dir(html.parent(), set.target());
     let at = if direct {
         set.path(member)
@@ -78,9 +84,13 @@ pub(super) fn publish(
     };
     if at == set.path(member) {
         set.write(member, page.as_bytes())
-            .map_err(|e| crate::exit::publish_failure(&e))
-    } else {
-        std::fs::write(&at, page)
-            .map_err(|e| Failure::output(format!("cannot write {}: {e}", html.display())))
+            .map_err(|e| crate::exit::publish_failure(&e))?;
+        return Ok(None);
     }
+    Ok(std::fs::write(&at, page).err().map(|e| {
+        Failure::output(format!(
+            "cannot write the animation {}: {e} (the summary was written)",
+            html.display()
+        ))
+    }))
 }

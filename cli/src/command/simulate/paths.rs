@@ -73,6 +73,9 @@ pub(super) fn side_members(args: &Args, out: &Path) -> Result<[Option<String>; 2
     for (i, (option, path, outside)) in sides.into_iter().enumerate() {
         let Some(p) = path else { continue };
         let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
+        if let Some(why) = not_a_file(p, out, outside[0]) {
+            return Err(Failure::bad_input(format!("{option}: {why}")));
+        }
         let member = match name {
             Some(name) if same_dir(p.parent(), out) => name,
             _ if lexical(p).starts_with(lexical(out)) => {
@@ -103,6 +106,25 @@ pub(super) fn side_members(args: &Args, out: &Path) -> Result<[Option<String>; 2
         members[i] = Some(member);
     }
     Ok(members)
+}
+
+/// Why the file path `p` of a side output (`--log`, `--boundary-map`, `--html`) names no
+/// file it could become: `--out` itself, or an existing directory (refused before the run,
+/// exit 2, rather than failing to create it after).
+pub(super) fn not_a_file(p: &Path, out: &Path, example: &str) -> Option<String> {
+    if lexical(p) == lexical(out) {
+        return Some(format!(
+            "{} is --out itself, a directory; name a file in it (such as {}) or outside it",
+            p.display(),
+            out.join(example).display()
+        ));
+    }
+    p.is_dir().then(|| {
+        format!(
+            "{} is a directory; name a file (the output is one file)",
+            p.display()
+        )
+    })
 }
 
 /// `--time` and `--events` as the scene file has them: a positive finite time, at least one
