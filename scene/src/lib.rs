@@ -25,6 +25,7 @@ mod key_path;
 mod number;
 pub mod pair_law;
 mod pairs;
+mod spin_shape;
 pub mod raw;
 pub mod table;
 mod thermostat;

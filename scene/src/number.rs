@@ -105,7 +105,9 @@ pub fn parse_exact(text: &str) -> Result<BigRational, String> {
     })
 }
 
-struct NumberVisitor;
+/// Reads a [`Number`] from any of its spellings (also the spin's visitor,
+/// `spin_shape.rs`).
+pub(crate) struct NumberVisitor;
 
 impl Visitor<'_> for NumberVisitor {
     type Value = Number;

@@ -112,9 +112,9 @@ pub struct RawSpecies {
 }
 
 /// An angular velocity: `c` (2D, `U = c J`), `omega` (3D, `U x = omega x x`), or the
-/// `n x n` skew matrix row by row.
-#[derive(Deserialize, Debug)]
-#[serde(untagged)]
+/// `n x n` skew matrix row by row. Read by its shape (`spin_shape.rs`), so that a bad
+/// entry's own error reaches the message.
+#[derive(Debug)]
 pub enum RawSpin {
     /// 2D: `c`, with `U = c J`.
     Scalar(Number),
