@@ -61,9 +61,10 @@ pub trait InputScalar: Scalar<Unbounded: collision_core::ScalarRoot> {
     fn below_normal(text: &str, x: &Self) -> bool;
 }
 
-/// The absolute rounding error of an `f64` below the normal range: half the spacing of the
-/// subnormals, `2^-1075`.
-pub const SUBNORMAL_ERROR: f64 = f64::MIN_POSITIVE * f64::EPSILON / 2.0;
+/// The absolute rounding error of an `f64` below the normal range, half the spacing of the
+/// subnormals, as messages write it: `2^-1075` is itself below the smallest subnormal, so no
+/// `f64` holds it (an `f64` constant for it is 0).
+pub const SUBNORMAL_ERROR: &str = "2^-1075 (about 2.5e-324)";
 
 impl InputScalar for Exact {
     /// A short number in one pass (`crate::short`), anything else by the scan.

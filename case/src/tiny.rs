@@ -1,7 +1,7 @@
 //! Velocity and angular-velocity components below the normal range of the float type.
 //!
 //! A component read below the normal range (`|x| < 2.2e-308` in `f64`) is rounded with an
-//! absolute error of up to [`SUBNORMAL_ERROR`] (`2^-1075`) instead of `eps/2` of itself. It
+//! absolute error of up to `2^-1075` ([`SUBNORMAL_ERROR`]) instead of `eps/2` of itself. It
 //! is taken when that error is within `eps/2` of the scale it is measured against, as the
 //! rounding of any normal-range input is:
 //!
@@ -60,7 +60,7 @@ impl Tiny {
             .fold(0.0, f64::max);
         let tail = format!(
             "a component below the normal range of {} (magnitudes under {:e}) is read with an \
-             error of up to {SUBNORMAL_ERROR:e}",
+             error of up to {SUBNORMAL_ERROR}",
             T::NAME,
             f64::MIN_POSITIVE
         );
@@ -81,10 +81,9 @@ impl Tiny {
                     field,
                     format!(
                         "{tail}, and with body {}'s radius {r:e} it moves the contact point by \
-                         up to {:e}, beyond the rounding allowance of the contact's speed \
-                         scale (up to {speed:e}); --exact reads it as written",
+                         up to {r:e} x 2^-1075, beyond the rounding allowance of the contact's \
+                         speed scale (up to {speed:e}); --exact reads it as written",
                         b + 1,
-                        r * SUBNORMAL_ERROR
                     ),
                 ));
             }
@@ -156,10 +155,16 @@ mod tests {
         let e = refused(&case("1", "1", "0", ["1e-310", "3e-311"]));
         assert_eq!(e.field, "bodies[0].velocity[0]", "{e}");
         assert!(e.message.contains("itself below the normal range"), "{e}");
-        // A spin entry on a huge ball: R 2^-1075 = 4.9e-16 against a speed of 1.
+        // The error is 2^-1075, which no f64 holds: the message writes it (it printed 0e0).
+        assert!(e.message.contains("error of up to 2^-1075 (about 2.5e-324)"), "{e}");
+        // A spin entry on a huge ball: R 2^-1075 = 2.5e-16 against a speed of 1.
         let e = refused(&case("1", "1e308", "7e-320", ["1", "0"]));
         assert_eq!(e.field, "bodies[0].angular_velocity", "{e}");
-        assert!(e.message.contains("moves the contact point"), "{e}");
+        assert!(
+            e.message.contains("moves the contact point by up to 1e308 x 2^-1075"),
+            "{e}"
+        );
+        assert!(!e.message.contains("0e0"), "{e}");
         // ... but not on the same ball moving at 1e-6 of the range's top.
         assert!(Case::<f64>::from_json(&case("1", "1e308", "7e-320", ["1e302", "0"])).is_ok());
         // Matrix and omega forms name their entry.
