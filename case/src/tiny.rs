@@ -156,12 +156,17 @@ mod tests {
         assert_eq!(e.field, "bodies[0].velocity[0]", "{e}");
         assert!(e.message.contains("itself below the normal range"), "{e}");
         // The error is 2^-1075, which no f64 holds: the message writes it (it printed 0e0).
-        assert!(e.message.contains("error of up to 2^-1075 (about 2.5e-324)"), "{e}");
+        assert!(
+            e.message
+                .contains("error of up to 2^-1075 (about 2.5e-324)"),
+            "{e}"
+        );
         // A spin entry on a huge ball: R 2^-1075 = 2.5e-16 against a speed of 1.
         let e = refused(&case("1", "1e308", "7e-320", ["1", "0"]));
         assert_eq!(e.field, "bodies[0].angular_velocity", "{e}");
         assert!(
-            e.message.contains("moves the contact point by up to 1e308 x 2^-1075"),
+            e.message
+                .contains("moves the contact point by up to 1e308 x 2^-1075"),
             "{e}"
         );
         assert!(!e.message.contains("0e0"), "{e}");

@@ -148,7 +148,9 @@ mod tests {
             ("[[0, 1], 2]", "mixes numbers and rows"),
             ("[true]", "expected a number (of omega) or a row"),
         ] {
-            let err = spin(text).err().unwrap_or_else(|| panic!("{text} accepted"));
+            let err = spin(text)
+                .err()
+                .unwrap_or_else(|| panic!("{text} accepted"));
             assert!(err.contains(said), "{text}: {err}");
             assert!(!err.contains("untagged"), "{text}: {err}");
         }

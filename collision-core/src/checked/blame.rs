@@ -111,7 +111,9 @@ pub(super) struct Lost<W> {
 /// - for an angular velocity, whose size is about `V / R_b` (`V` the speed scale, see
 ///   [`speed_source`]): the radius when it brings more of the smallness (`R_b V > 1`), else
 ///   the source of `V`;
-/// - for a velocity: the source of `V`.
+/// - for a velocity: the source of `V`;
+/// - the body's own velocity or angular velocity, when the lost component lies below the
+///   rounding of `V` itself (the contact, not the scale, made it small).
 pub(super) fn underflow<T: Scalar>(
     p: &Prepared<T::Unbounded>,
     b: usize,
@@ -159,6 +161,25 @@ pub(super) fn underflow<T: Scalar>(
             format!(
                 "{} is so large that, with the contact-point speed up to {}, {tail}",
                 radius.show(),
+                speed.show()
+            ),
+        );
+    }
+    // A result far below the speed scale (beneath its rounding) is not made small by the
+    // scale: the contact leaves the body little of the motion (an equal partner takes its
+    // normal velocity, and what stays is a component far below the rest).
+    if lost.value.clone().abs() < speed.clone() * T::rounding_slack().unbounded() {
+        let part = if lost.spin {
+            BodyField::AngularVelocity
+        } else {
+            BodyField::Velocity
+        };
+        return InputError::new(
+            Field::Body(b, part),
+            format!(
+                "the contact leaves body {} with motion far below its speed scale \
+                 ({what}, up to {}): {tail}",
+                b + 1,
                 speed.show()
             ),
         );

@@ -259,3 +259,25 @@ fn a_velocity_below_the_range_is_refused_naming_the_speed() {
     assert_eq!(e.field, Field::Body(1, BodyField::Velocity), "{e}");
     assert!(e.message.contains("velocity after contact (about"), "{e}");
 }
+
+/// A result far below the contact's speed scale: an equal partner takes body 1's whole normal
+/// velocity (1), and what stays is its tangential component, about 6.7e-321. The speed scale
+/// is not small, so the refusal must not say it is (it said "the speed, up to 1.0, is so
+/// small that ..."); it names body 1's velocity and says the contact left it little motion.
+#[test]
+fn a_result_far_below_the_speed_scale_is_blamed_on_the_contact_not_the_speed() {
+    let one = ball(1.0, 1.0);
+    let moving = State2::from_scalar_spin(0.0, [1e-320, 1.0]);
+    let e = collide(&[0.0, 1.0], [&one, &one], [&moving, &State2::zero()]).unwrap_err();
+    assert_eq!(e.field, Field::Body(0, BodyField::Velocity), "{e}");
+    assert!(
+        e.message
+            .contains("leaves body 1 with motion far below its speed scale (the speed, up to 1"),
+        "{e}"
+    );
+    assert!(!e.message.contains("so small"), "{e}");
+    // The exact answer confirms the size: body 1's velocity is a few 1e-321.
+    let want = exact_result([0.0, 1.0], [&one, &one], [&moving, &State2::zero()]);
+    let u = Scalar::to_f64(&want[0].velocity[0]).abs();
+    assert!(u > 1e-321 && u < 1e-320, "{u}");
+}
