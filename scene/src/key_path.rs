@@ -14,6 +14,32 @@ pub(crate) fn key_path(text: &str, offset: usize) -> Option<String> {
     in_table(document.as_table(), "", offset)
 }
 
+/// The path of the table of `text` whose span is `span`, as a missing key's error gives it
+/// (the table the key is missing from): `species[1]`, `box`, `contact.balls`, or `""` for
+/// the document's top level; `None` when `text` is not TOML.
+pub(crate) fn table_path(text: &str, span: &Range<usize>) -> Option<String> {
+    let document = ImDocument::parse(text).ok()?;
+    Some(table_in(document.as_table(), "", span).unwrap_or_default())
+}
+
+/// [`table_path`] among the tables under `table` (whose own path is `prefix`).
+fn table_in(table: &Table, prefix: &str, span: &Range<usize>) -> Option<String> {
+    let this = |t: &Table, path: String| {
+        table_in(t, &path, span).or_else(|| (t.span().as_ref() == Some(span)).then_some(path))
+    };
+    table.iter().find_map(|(key, item)| {
+        let path = child(prefix, key);
+        match item {
+            Item::Table(t) => this(t, path),
+            Item::ArrayOfTables(tables) => tables
+                .iter()
+                .enumerate()
+                .find_map(|(i, t)| this(t, format!("{path}[{i}]"))),
+            _ => None,
+        }
+    })
+}
+
 fn holds(span: Option<Range<usize>>, offset: usize) -> bool {
     span.is_some_and(|s| s.contains(&offset))
 }
@@ -92,5 +118,24 @@ mod tests {
         // A table header holds no value; text that is not TOML has no paths.
         assert_eq!(at(text, "[box]"), None);
         assert_eq!(key_path("a = [", 4), None);
+    }
+
+    /// A missing key's error points at its table: the path is the table's, not the first
+    /// key's of the document (a review saw `dim: missing field \`species\``).
+    #[test]
+    fn a_missing_key_is_placed_in_its_table() {
+        let text = "dim = 2\n[box]\nsize = [1, 1]\nboundary = [\"wall\", \"wall\"]\n[[species]]\nname = \"a\"\n\n\
+                    [[species]]\nname = \"b\"\nradius = 1\n[contact.balls]\ne = 1\n";
+        let missing = |text: &str| {
+            let e = toml::from_str::<crate::raw::RawScene>(text).unwrap_err();
+            assert!(e.message().starts_with("missing field"), "{e}");
+            super::table_path(text, &e.span().unwrap())
+        };
+        assert_eq!(missing(text).as_deref(), Some("species[0]"));
+        assert_eq!(missing("dim = 2\n").as_deref(), Some(""));
+        let boxed = "dim = 2\n[box]\nsize = [1, 1]\nboundary = [\"wall\", \"wall\"]\n";
+        assert_eq!(missing(boxed).as_deref(), Some(""));
+        let no_size = "dim = 2\n[[species]]\nname = \"a\"\nmass = 1\nradius = 1\n[box]\n";
+        assert_eq!(missing(no_size).as_deref(), Some("box"));
     }
 }

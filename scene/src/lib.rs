@@ -223,7 +223,16 @@ impl Scene {
     /// Parse and validate scene `text`; `origin` names it in errors.
     pub fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
         let raw: raw::RawScene = toml::from_str(text).map_err(|e| {
+            // A missing key's span is its table's: name the table (or the top level).
+            let missing = e.message().starts_with("missing field");
             let place = match e.span() {
+                Some(span) if missing => match key_path::table_path(text, &span).as_deref() {
+                    Some("") | None => "the top level".to_string(),
+                    Some(table) => {
+                        let (l, c) = line_column(text, span.start);
+                        format!("line {l}, column {c}: {table}")
+                    }
+                },
                 Some(span) => {
                     let (l, c) = line_column(text, span.start);
                     match key_path::key_path(text, span.start) {
