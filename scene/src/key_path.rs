@@ -14,6 +14,47 @@ pub(crate) fn key_path(text: &str, offset: usize) -> Option<String> {
     in_table(document.as_table(), "", offset)
 }
 
+/// The key path of the `key = value` line holding byte `offset`, read from the text alone:
+/// for a document the TOML parser refuses (an integer beyond 64 bits, a syntax error), where
+/// [`key_path`] has no tree to walk. The line's bare or dotted key, under the last table
+/// header above it (`[[name]]` headers numbered from 0); `None` when the line holds no `=`.
+pub(crate) fn line_key(text: &str, offset: usize) -> Option<String> {
+    let offset = offset.min(text.len());
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line = text[start..].lines().next().unwrap_or("");
+    let key = line.split_once('=')?.0.trim();
+    let key_like = |k: &str| {
+        !k.is_empty()
+            && k.chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | ' '))
+    };
+    // A key too long to quote (hundreds of dotted parts) is not named.
+    if !key_like(key) || key.len() > 64 {
+        return None;
+    }
+    let mut table = String::new();
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for header in text[..start].lines().map(str::trim) {
+        if let Some(name) = header.strip_prefix("[[").and_then(|h| h.split_once("]]")) {
+            let name = name.0.trim().to_string();
+            let k = match counts.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, k)) => {
+                    *k += 1;
+                    *k
+                }
+                None => {
+                    counts.push((name.clone(), 0));
+                    0
+                }
+            };
+            table = format!("{name}[{k}]");
+        } else if let Some(name) = header.strip_prefix('[').and_then(|h| h.split_once(']')) {
+            table = name.0.trim().to_string();
+        }
+    }
+    Some(child(&table, &key.replace(' ', "")))
+}
+
 /// The path of the table of `text` whose span is `span`, as a missing key's error gives it
 /// (the table the key is missing from): `species[1]`, `box`, `contact.balls`, or `""` for
 /// the document's top level; `None` when `text` is not TOML.
@@ -118,6 +159,26 @@ mod tests {
         // A table header holds no value; text that is not TOML has no paths.
         assert_eq!(at(text, "[box]"), None);
         assert_eq!(key_path("a = [", 4), None);
+    }
+
+    /// An integer the parser refuses still gets its key, from the text.
+    #[test]
+    fn a_line_the_parser_refuses_is_named_from_the_text() {
+        let text = "dim = 2\n[[species]]\nname = \"a\"\n[[species]]\nname = \"b\"\n\
+                    count = 99999999999999999999\n[box]\nsize = [1, 1]\n";
+        let e = toml::from_str::<crate::raw::RawScene>(text).unwrap_err();
+        let at = e.span().unwrap().start;
+        assert_eq!(key_path(text, at), None, "the parser has no tree here");
+        assert_eq!(
+            super::line_key(text, at).as_deref(),
+            Some("species[1].count")
+        );
+        assert_eq!(
+            super::line_key(text, text.find("size").unwrap()).as_deref(),
+            Some("box.size")
+        );
+        assert_eq!(super::line_key(text, 0).as_deref(), Some("dim"));
+        assert_eq!(super::line_key(text, text.find("[box]").unwrap()), None);
     }
 
     /// A missing key's error points at its table: the path is the table's, not the first

@@ -235,7 +235,9 @@ impl Scene {
                 },
                 Some(span) => {
                     let (l, c) = line_column(text, span.start);
-                    match key_path::key_path(text, span.start) {
+                    let path = key_path::key_path(text, span.start)
+                        .or_else(|| key_path::line_key(text, span.start));
+                    match path {
                         Some(path) => format!("line {l}, column {c}: {path}"),
                         None => format!("line {l}, column {c}"),
                     }

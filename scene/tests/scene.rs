@@ -149,11 +149,11 @@ fn duplicate_keys_are_refused() {
     let cases = [
         (
             "mass = 2\n",
-            "t.toml: line 9, column 1: duplicate key `mass`",
+            "t.toml: line 9, column 1: species[0].mass: duplicate key `mass`",
         ),
         (
             "[[ball]]\nspecies = 0\nspecies = 0\nposition = [1, 1]\n",
-            "t.toml: line 11, column 1: duplicate key `species`",
+            "t.toml: line 11, column 1: ball[0].species: duplicate key `species`",
         ),
         (
             "[random]\nseed = 1\n[random]\nseed = 2\n",
