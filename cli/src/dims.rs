@@ -21,6 +21,11 @@ pub fn parse_dims(s: &str) -> Result<Dims, String> {
         if !(collision_core::DIMS.contains(&a) && collision_core::DIMS.contains(&b)) {
             return Err(out_of_range(s));
         }
+        if a > b {
+            return Err(format!(
+                "the range {s:?} runs backwards: write it from the lower dimension up ({b}..{a})"
+            ));
+        }
         (a..=b).collect()
     } else {
         s.split(',')
@@ -49,6 +54,14 @@ mod tests {
         assert_eq!(parse_dims("2..6").unwrap().0, vec![2, 3, 4, 5, 6]);
         assert_eq!(parse_dims("3..=4").unwrap().0, vec![3, 4]);
         assert_eq!(parse_dims("5, 2,5").unwrap().0, vec![2, 5]);
+    }
+
+    #[test]
+    fn a_backward_range_is_refused_as_such() {
+        for bad in ["6..2", "3..=2"] {
+            let e = parse_dims(bad).unwrap_err();
+            assert!(e.contains("runs backwards"), "{bad}: {e}");
+        }
     }
 
     #[test]

@@ -204,3 +204,33 @@ fn bad_input_exits_2_naming_the_place() {
         assert!(err.contains(message), "{args:?}: {err}");
     }
 }
+
+/// A ball flying along a periodic axis between walls it never reaches has no first contact:
+/// the refusal says so in words (it printed the enum, `(Escapes)`).
+#[test]
+fn a_ball_that_meets_no_boundary_is_refused_in_words() {
+    let dir = temp("orbits-fly");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("fly.toml");
+    std::fs::write(
+        &scene,
+        "dim = 2\n[box]\nsize = [10, 4]\nboundary = [\"periodic\", \"wall\"]\n\
+         [[species]]\nmass = 1\nradius = \"1/2\"\n\
+         [[ball]]\nspecies = 0\nposition = [1, 2]\nvelocity = [1, 0]\n",
+    )
+    .unwrap();
+    let out = noslip()
+        .arg("orbits")
+        .arg(&scene)
+        .args(["--period", "2"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("the ball never touches the table: its flight meets no boundary"),
+        "{err}"
+    );
+    assert!(!err.contains("Escapes"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

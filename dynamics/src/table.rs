@@ -80,6 +80,20 @@ pub enum NoHit {
     Irrational,
 }
 
+impl std::fmt::Display for NoHit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            NoHit::Escapes => {
+                "its flight meets no boundary (it flies on for ever, or across more periodic \
+                 cells than the search follows)"
+            }
+            NoHit::Irrational => {
+                "its next contact time needs a square root that exact arithmetic does not have"
+            }
+        })
+    }
+}
+
 impl<T: Root, const N: usize> Boundary<T, N> {
     /// The contact surface's [`Geometry`] for a ball of radius `r`.
     pub fn geometry(&self, r: &T) -> Geometry<T> {

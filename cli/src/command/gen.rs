@@ -134,8 +134,14 @@ pub fn run(args: &Args) -> Result<Exit, Failure> {
             Exit::Success
         });
     }
-    let module = generate(&set, &args.crate_path, "noslip_sim")
-        .map_err(|e| Failure::bad_input(format!("{}: {e}", scene_path.display())))?;
+    let module = generate(&set, &args.crate_path, "noslip_sim").map_err(|e| {
+        // A bad crate path is the option's fault, not the scene's.
+        let whose = match e {
+            noslip_codegen::specialise::GenerateError::CratePath(_) => "--crate-path".to_string(),
+            _ => scene_path.display().to_string(),
+        };
+        Failure::bad_input(format!("{whose}: {e}"))
+    })?;
     if args.ops {
         outln!("| kernel | kind | specialised ops | generic ops |")?;
         outln!("|---|---|---|---|")?;

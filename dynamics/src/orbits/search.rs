@@ -252,7 +252,7 @@ where
         };
         starts.push(first_contact(f, &xf, &sf).map_err(|e| {
             SearchError::Scene(format!(
-                "{}: the ball never touches the table ({e:?})",
+                "{}: the ball never touches the table: {e}",
                 scene.origin
             ))
         })?);
