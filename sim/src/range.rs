@@ -41,7 +41,7 @@ use crate::nearest::f;
 use crate::{Observables, Setup};
 use noslip_scene::Scene;
 use num_rational::BigRational;
-use num_traits::{Signed, Zero};
+use num_traits::{Signed, ToPrimitive, Zero};
 
 /// The smallest radius as a fraction of the largest box side, `2^-26`: positions are rounded
 /// to `eps L = 2^-52 L`, so contact distances keep at least 26 of the 52 bits.
@@ -69,8 +69,23 @@ fn show(x: &BigRational) -> String {
     if v.is_normal() || x.is_zero() {
         format!("{v:e}")
     } else {
-        let bits = x.numer().bits() as f64 - x.denom().bits() as f64;
-        format!("about 1e{:.0}", bits * std::f64::consts::LOG10_2)
+        // Beyond the normal range of f64: its decimal logarithm from the integers' leading
+        // bits (the quotient itself would round to 0, a subnormal or infinity).
+        let log10 = |n: &num_bigint::BigInt| {
+            let shift = n.bits().saturating_sub(60);
+            let lead = (n.magnitude() >> shift).to_f64().unwrap_or(f64::NAN);
+            lead.log10() + shift as f64 * std::f64::consts::LOG10_2
+        };
+        let l = log10(x.numer()) - log10(x.denom());
+        let (mut e, mut m) = (
+            l.floor(),
+            (10f64.powf(l - l.floor()) * 100.0).round() / 100.0,
+        );
+        if m >= 10.0 {
+            (e, m) = (e + 1.0, m / 10.0);
+        }
+        let sign = if x.is_negative() { "-" } else { "" };
+        format!("about {sign}{m:.2}e{e:.0}")
     }
 }
 
@@ -478,4 +493,28 @@ pub fn check_start<const N: usize, const S: usize>(
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::show;
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+
+    /// Beyond the normal range the magnitude is written to three digits (a review saw
+    /// `5e-324` written as `about 1e-323`).
+    #[test]
+    fn values_beyond_the_normal_range_are_shown_to_three_digits() {
+        let exact = |x: f64| BigRational::from_float(x).unwrap();
+        assert_eq!(show(&exact(5e-324)), "about 4.94e-324");
+        assert_eq!(show(&exact(-1e-310)), "about -1.00e-310");
+        let big = BigRational::from_integer(BigInt::from(10).pow(400) * 3);
+        assert_eq!(show(&big), "about 3.00e400");
+        let tiny = BigRational::new(BigInt::from(7), BigInt::from(10).pow(500));
+        assert_eq!(show(&tiny), "about 7.00e-500");
+        assert_eq!(show(&exact(0.25)), "2.5e-1");
+        // A mantissa that rounds up to 10 moves to the next decade.
+        let near = BigRational::new(BigInt::from(99999), BigInt::from(10).pow(405));
+        assert_eq!(show(&near), "about 1.00e-400");
+    }
 }
