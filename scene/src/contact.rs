@@ -10,7 +10,7 @@
 //! `mu >= 0`, `beta0` in `[-1, 1]`. With `mu = 0` or `beta0 = -1` its `beta` is `-1` at every
 //! contact, and validation names it the rough law `{ e, beta = -1 }` (smooth at `e = 1`).
 
-use crate::number::Number;
+use crate::number::{show_q, Number};
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use serde::de::{self, Deserializer, MapAccess, Visitor};
@@ -58,7 +58,7 @@ impl ContactKind {
         let outside = |key: &str, x: &BigRational, range: &str| {
             Err((
                 format!("{place}.{key}"),
-                format!("must be {range}, got {x}"),
+                format!("must be {range}, got {}", show_q(x)),
             ))
         };
         match self {

@@ -1,6 +1,7 @@
 //! Where validation is: the scene file's origin, errors that name their place in it, and the
 //! field readers every part of validation shares.
 
+use crate::number::show_q;
 use crate::raw::ContactKind;
 use crate::{Number, SceneError};
 use num_rational::BigRational;
@@ -52,7 +53,7 @@ impl Ctx<'_> {
 
     pub(crate) fn positive(&self, place: &str, x: &Number) -> Result<Q, SceneError> {
         if !x.0.is_positive() {
-            return Err(self.err(place, format!("must be positive, got {}", x.0)));
+            return Err(self.err(place, format!("must be positive, got {}", show_q(&x.0))));
         }
         Ok(x.0.clone())
     }

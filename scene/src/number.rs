@@ -4,7 +4,7 @@
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Zero};
+use num_traits::{One, ToPrimitive, Zero};
 use serde::de::{self, Deserializer, Visitor};
 use std::fmt;
 
@@ -105,6 +105,21 @@ pub fn parse_exact(text: &str) -> Result<BigRational, String> {
     })
 }
 
+/// A scene value in a message: its exact fraction when that is short (`3/5`, `-2`), else a
+/// decimal approximation with the fraction after it, as a TOML float reads (`lambda = -0.1`
+/// is the binary fraction `-3602879701896397/36028797018963968`: "about -1.0000e-1
+/// (exactly -3602879701896397/36028797018963968)").
+pub(crate) fn show_q(x: &BigRational) -> String {
+    let exact = x.to_string();
+    if exact.len() <= 20 {
+        return exact;
+    }
+    match x.to_f64().filter(|v| v.is_normal()) {
+        Some(v) => format!("about {v:.4e} (exactly {exact})"),
+        None => exact,
+    }
+}
+
 /// Reads a [`Number`] from any of its spellings (also the spin's visitor,
 /// `spin_shape.rs`).
 pub(crate) struct NumberVisitor;
@@ -153,6 +168,17 @@ mod tests {
 
     fn q(p: i64, d: i64) -> BigRational {
         BigRational::new(p.into(), d.into())
+    }
+
+    #[test]
+    fn long_fractions_are_shown_with_a_decimal_beside_them() {
+        assert_eq!(super::show_q(&q(3, 5)), "3/5");
+        assert_eq!(super::show_q(&q(-2, 1)), "-2");
+        let tenth = BigRational::from_float(-0.1).unwrap();
+        assert_eq!(
+            super::show_q(&tenth),
+            "about -1.0000e-1 (exactly -3602879701896397/36028797018963968)"
+        );
     }
 
     #[test]

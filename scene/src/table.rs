@@ -10,6 +10,7 @@
 
 use crate::convex::{cross, strictly_convex, NotConvex};
 use crate::ctx::Ctx;
+use crate::number::show_q;
 use crate::raw::{ContactKind, RawScene, RawWedge};
 use crate::{Number, SceneError};
 use num_rational::BigRational;
@@ -171,7 +172,7 @@ fn wedge(ctx: &Ctx, w: &RawWedge) -> Result<Vec<WallSpec>, SceneError> {
             if !(a.0.is_positive() && deg < 180.0) {
                 return Err(ctx.err(
                     "table.wedge.angle_degrees",
-                    format!("must be in (0, 180), got {}", a.0),
+                    format!("must be in (0, 180), got {}", show_q(&a.0)),
                 ));
             }
             let rad = deg.to_radians();
@@ -287,7 +288,7 @@ pub(crate) fn boundaries(
         if !c.radius.0.is_positive() {
             return Err(ctx.err(
                 format!("{at}.radius"),
-                format!("must be positive, got {}", c.radius.0),
+                format!("must be positive, got {}", show_q(&c.radius.0)),
             ));
         }
         let contact = ctx.contact(&format!("{at}.contact"), &c.contact)?;

@@ -1,6 +1,7 @@
 //! Semantic checks of a parsed scene, in exact rationals. Each error names its key path.
 
 use crate::ctx::Ctx;
+use crate::number::show_q;
 use crate::raw::{Distribution, RawBall, RawScene, RawSpecies, RawSpin};
 use crate::table::{self, Shape};
 use crate::ContactKind;
@@ -40,7 +41,11 @@ fn gamma2(ctx: &Ctx, at: &str, s: &RawSpecies, radius: &Q, n: usize) -> Result<Q
         allowance::within(x, &Q::zero(), bound, &f64_allowance(bound)).ok_or_else(|| {
             ctx.err(
                 format!("{at}.{key}"),
-                format!("must be in [0, {what}] = [0, {bound}], got {x}"),
+                format!(
+                    "must be in [0, {what}] = [0, {}], got {}",
+                    show_q(bound),
+                    show_q(x)
+                ),
             )
         })
     };
@@ -264,7 +269,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
                 if !l.is_positive() {
                     return Err(ctx.err(
                         format!("box.size[{k}]"),
-                        format!("must be positive, got {l}"),
+                        format!("must be positive, got {}", show_q(l)),
                     ));
                 }
             }
@@ -351,7 +356,7 @@ pub(super) fn validate(raw: RawScene, origin: &str) -> Result<Scene, SceneError>
         ("random.spin", &random.spin),
     ] {
         if x.is_negative() {
-            return Err(ctx.err(key, format!("must be >= 0, got {x}")));
+            return Err(ctx.err(key, format!("must be >= 0, got {}", show_q(x))));
         }
     }
     if raw.simulation.events == Some(0) {
