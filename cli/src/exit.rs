@@ -105,7 +105,9 @@ impl Failure {
 /// A publishing error as a failure: a directory that is not noslip's is bad usage of --out.
 pub fn publish_failure(e: &PublishError) -> Failure {
     match e {
-        PublishError::NotOurs(_) => Failure::bad_input(format!("--out: {e}")),
+        PublishError::NotOurs(_) | PublishError::NoName(_) => {
+            Failure::bad_input(format!("--out: {e}"))
+        }
         PublishError::Io { .. } => Failure::output(format!("cannot write the output: {e}")),
     }
 }

@@ -47,6 +47,9 @@ const MARKER_TEXT: &str = "This directory is a noslip output set: each run repla
 pub enum PublishError {
     /// The output directory exists, is not empty and has no [`MARKER`]; or it is a file.
     NotOurs(PathBuf),
+    /// The output path has no last component to name the set (`.`, `..`, `/`): the set is
+    /// published by renaming a sibling directory onto it.
+    NoName(PathBuf),
     /// An I/O failure at `path`.
     Io {
         /// The file or directory.
@@ -65,6 +68,13 @@ impl fmt::Display for PublishError {
                  marker): refusing to replace it; choose another output directory or remove it",
                 path.display()
             ),
+            PublishError::NoName(path) => write!(
+                f,
+                "{} names no directory of its own (the set replaces a directory by name): give \
+                 one, such as {}",
+                path.display(),
+                path.join("run").display()
+            ),
             PublishError::Io { path, source } => write!(f, "{}: {source}", path.display()),
         }
     }
@@ -74,7 +84,7 @@ impl std::error::Error for PublishError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             PublishError::Io { source, .. } => Some(source),
-            PublishError::NotOurs(_) => None,
+            PublishError::NotOurs(_) | PublishError::NoName(_) => None,
         }
     }
 }
@@ -164,10 +174,7 @@ impl Staging {
         let name = target
             .file_name()
             .and_then(|n| n.to_str())
-            .ok_or_else(|| PublishError::Io {
-                path: target.to_path_buf(),
-                source: io::Error::new(io::ErrorKind::InvalidInput, "not a directory name"),
-            })?
+            .ok_or_else(|| PublishError::NoName(target.to_path_buf()))?
             .to_string();
         let parent = match target.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),

@@ -72,6 +72,22 @@ fn a_set_is_created_then_replaced_whole() {
     fs::remove_dir_all(parent).unwrap();
 }
 
+/// `--out .`, `..` or `/` names no directory the set could replace by name: a usage error
+/// (exit 2 through `publish_failure`), not a write failure, and nothing is touched.
+#[test]
+fn an_output_path_without_a_name_is_refused() {
+    for target in [".", "..", "/"] {
+        let e = Staging::new(Path::new(target)).unwrap_err();
+        assert!(matches!(e, PublishError::NoName(_)), "{target}: {e}");
+        assert!(
+            e.to_string().contains("names no directory of its own"),
+            "{e}"
+        );
+        let f = crate::exit::publish_failure(&e);
+        assert_eq!(f.exit, crate::exit::Exit::BadInput, "{target}");
+    }
+}
+
 #[test]
 fn a_directory_noslip_did_not_make_is_never_replaced() {
     let parent = scratch("not-ours");
