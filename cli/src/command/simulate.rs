@@ -49,7 +49,9 @@ trajectories.svg (a few balls' paths, cut at periodic wraps
 and thinned, and the contact points). --log and --boundary-map belong to the set: a file
 directly in --out is one of its files; a file elsewhere is published in it as events.jsonl
 or boundary-map.csv, the file becoming a link to it (so it always shows the log of the
-set in --out, and a kill at any moment leaves the log and the set of one run).
+set in --out, and a kill at any moment leaves the log and the set of one run). Missing
+parent directories of --out and of these files are created, as mkdir -p would; a path that
+is a directory (or --out itself) is refused.
 --boundary-map FILE writes the boundary map as CSV (one row per contact with an immovable
 body: event, time, ball, kind, id, contact point, boundary coordinate, angles of incidence
 and reflection, normal velocity, tangential velocity and spin before and after, scaled spin;
@@ -58,7 +60,8 @@ portraits, portrait-KIND-ID.svg and .png (Birkhoff coordinates: coordinate again
 of the angle of reflection; tangential velocity against scaled spin gamma R c; after each
 contact; titled, with axes, units and a legend; the SVG's scatter an embedded image). --log writes every contact as a JSON line: time, kind, balls, normal, positions, pre
 and post states; the log appears complete at the end of the run or not at all (if it
-cannot be written, the run still ends, prints and writes its summary, and exits 1).
+cannot be written, the run still ends, prints and writes its summary, and exits 1; so for
+--boundary-map and --html).
 A --log or --boundary-map FILE whose extension is .parquet is written as Apache Parquet
 instead (the same fields as typed columns, units in the metadata key noslip.units; see
 docs/scenes.md); outside --out it is published as events.parquet or boundary-map.parquet.
