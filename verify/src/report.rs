@@ -198,8 +198,18 @@ pub mod golden {
     /// The unified diff of the golden copy against `run` (timings removed), over the
     /// dimensions in `dims`: `Ok(None)` if they agree.
     pub fn compare(golden: &str, run: &Report, dims: &[usize]) -> Result<Option<String>, String> {
-        let golden = Copy::parse(golden)?.restricted(dims).to_json();
-        let fresh = Copy::of(run)?.restricted(dims).to_json();
+        let (golden, fresh) = (Copy::parse(golden)?, Copy::of(run)?);
+        // Other random points give other counts everywhere: say that, not a diff of every
+        // line.
+        if (golden.seed, golden.points) != (fresh.seed, fresh.points) {
+            return Err(format!(
+                "it was made with seed {} and {} points, this run with seed {} and {} points: \
+                 compare with the same --points (and seed)",
+                golden.seed, golden.points, fresh.seed, fresh.points
+            ));
+        }
+        let golden = golden.restricted(dims).to_json();
+        let fresh = fresh.restricted(dims).to_json();
         Ok(crate::diff::unified(
             "golden copy",
             "this run",
@@ -302,6 +312,10 @@ mod tests {
             .without_timings()
             .to_json();
         assert!(golden::compare(&golden23, &run3, &[3]).unwrap().is_some());
+        // A run of other points is refused as such, not shown as a diff of every count.
+        let other_points = report(5, vec![check(3, "energy", true)]);
+        let e = golden::compare(&golden, &other_points, &[3]).unwrap_err();
+        assert!(e.contains("4 points, this run with seed"), "{e}");
     }
 
     #[test]

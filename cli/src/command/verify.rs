@@ -47,7 +47,7 @@ pub struct Args {
     #[arg(long)]
     check_golden: bool,
     /// Rewrite the golden copy's results of the dimensions run from this run.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "check_golden")]
     update_golden: bool,
     /// The golden copy [default: docs/reports/verify.json of the source tree this binary
     /// was built from, wherever it runs].
