@@ -354,6 +354,20 @@ fn bad_intervals_and_laws_exit_2_naming_them() {
         ],
         "--self-diffusion: the start must be at least 0 and finite, got -1",
     );
+    // One ball is its own centre of mass: its displacement about it is always 0.
+    refused(
+        &[
+            "simulate",
+            "scenes/sinai.toml",
+            "--observables",
+            "1",
+            "--self-diffusion",
+            "8",
+            "--quiet",
+        ],
+        "--self-diffusion: needs at least two balls: the displacements are measured about the \
+         centre of mass, which one ball is, so its D would be 0 by construction",
+    );
     let dir = temp("granular-bad");
     std::fs::create_dir_all(&dir).unwrap();
     let bad = dir.join("bad.toml");

@@ -457,6 +457,13 @@ impl Sampler {
                 4.0 * self.every
             ));
         }
+        if self.displacements.balls() < 2 {
+            return Err(
+                "needs at least two balls: the displacements are measured about the \
+                        centre of mass, which one ball is, so its D would be 0 by construction"
+                    .into(),
+            );
+        }
         let mut d = SelfDiffusion::new(self.dim, block, from)?;
         // The start's row, taken before: every displacement is zero there.
         if let [start] = self.rows.as_slice() {
