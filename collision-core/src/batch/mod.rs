@@ -83,7 +83,6 @@ pub use rough::RoughBatchKernel;
 pub use rows::{
     BallRows, FixedRows, FreeRows, LawRowError, LawRows, RestitutionRows, StateRows, StateRowsMut,
     WaltonRows, ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE,
-    STREAM_FROM_BYTES,
 };
 #[cfg(feature = "parallel")]
 pub use share::share_rows;

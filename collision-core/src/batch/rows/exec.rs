@@ -5,7 +5,6 @@
 use super::gather::{item, Gather};
 use super::pass::{NoSlip, Pass};
 use super::scatter::Scatter;
-use super::stream::{fence, stream_copy, STREAM_FROM_BYTES};
 use super::{FreeRows, StateRowsMut};
 use crate::batch::dispatch::at_level;
 use crate::batch::kept::Kept;
@@ -91,22 +90,7 @@ impl Exec {
         for<'a> &'a T: RefArith<T>,
         Generated: BatchKernel<T, N, S>,
     {
-        self.free_rows_streamed_from(rows, out, STREAM_FROM_BYTES)
-    }
-
-    /// [`Exec::free_rows`], its results streamed when the outputs take at least
-    /// `stream_from` bytes (the tests stream small batches).
-    pub(crate) fn free_rows_streamed_from<T, const N: usize, const S: usize>(
-        &self,
-        rows: &FreeRows<'_, T>,
-        out: [StateRowsMut<'_, T>; 2],
-        stream_from: usize,
-    ) where
-        T: Scalar + Send + Sync + 'static,
-        for<'a> &'a T: RefArith<T>,
-        Generated: BatchKernel<T, N, S>,
-    {
-        self.rows_in_passes::<T, N, S, _>(&NoSlip, rows, out, stream_from)
+        self.rows_in_passes::<T, N, S, _>(&NoSlip, rows, out)
     }
 
     /// The row path with the kernel `pass` ([`Pass`]): the checks of the lengths, the
@@ -116,7 +100,6 @@ impl Exec {
         kernel: &K,
         rows: &FreeRows<'_, T>,
         out: [StateRowsMut<'_, T>; 2],
-        stream_from: usize,
     ) where
         T: Scalar + Send + Sync + 'static,
         K: Pass<T, N, S>,
@@ -126,7 +109,6 @@ impl Exec {
             assert_eq!(o.spin.len(), len * N * N, "spin: n^2 per contact");
             assert_eq!(o.velocity.len(), len * N, "velocity: n per contact");
         }
-        let stream = len * std::mem::size_of::<T>() * 2 * (N * N + N) >= stream_from;
         #[cfg(feature = "parallel")]
         if self.splits::<K::Block, [StateLanes<T, N, S>; 2]>(len.div_ceil(LANES)) {
             let pass = pass_for::<T, N, S, K::Block>(len.div_ceil(rayon::current_num_threads()));
@@ -155,29 +137,21 @@ impl Exec {
                             velocity: v2,
                         },
                     ];
-                    self.rows_here(&kernel.slice(range), &part, out, pass, stream);
+                    self.rows_here(&kernel.slice(range), &part, out, pass);
                 },
             );
             return;
         }
-        self.rows_here(
-            kernel,
-            rows,
-            out,
-            pass_for::<T, N, S, K::Block>(len),
-            stream,
-        );
+        self.rows_here(kernel, rows, out, pass_for::<T, N, S, K::Block>(len));
     }
 
-    /// The row path on the calling thread, `pass` contacts at a time, the results
-    /// streamed (`stream.rs`) or stored.
+    /// The row path on the calling thread, `pass` contacts at a time.
     fn rows_here<T, const N: usize, const S: usize, K>(
         &self,
         kernel: &K,
         rows: &FreeRows<'_, T>,
         mut out: [StateRowsMut<'_, T>; 2],
         pass: usize,
-        stream: bool,
     ) where
         T: Scalar + Send + Sync + 'static,
         K: Pass<T, N, S>,
@@ -198,13 +172,6 @@ impl Exec {
             let zero = [BodyState::zero(), BodyState::zero()];
             pairs.resize(blocks_per_pass, Lanewise::splat(&zero));
         }
-        // Large outputs go through a staging copy of the pass's rows, streamed to memory.
-        let mut stage = stream.then(Kept::<[Vec<T>; 4]>::take);
-        if let Some(stage) = stage.as_deref_mut() {
-            for (v, width) in stage.iter_mut().zip([N * N, N, N * N, N]) {
-                v.resize(pass * width, T::zero());
-            }
-        }
         let isa = self.isa();
         for start in (0..len).step_by(pass) {
             let end = (start + pass).min(len);
@@ -222,44 +189,15 @@ impl Exec {
             kernel.run(isa, blocks, pairs);
             let [o1, o2] = &mut out;
             let (k, range) = (end - start, start..end);
-            let Some([s1, v1, s2, v2]) = stage.as_deref_mut() else {
-                let out = &mut [o1.slice::<N>(range.clone()), o2.slice::<N>(range)];
-                at_level(
-                    isa,
-                    Scatter {
-                        blocks: pairs,
-                        len: k,
-                        out,
-                    },
-                );
-                continue;
-            };
-            let staged = &mut [
-                StateRowsMut {
-                    spin: &mut s1[..k * N * N],
-                    velocity: &mut v1[..k * N],
-                },
-                StateRowsMut {
-                    spin: &mut s2[..k * N * N],
-                    velocity: &mut v2[..k * N],
-                },
-            ];
+            let out = &mut [o1.slice::<N>(range.clone()), o2.slice::<N>(range)];
             at_level(
                 isa,
                 Scatter {
                     blocks: pairs,
                     len: k,
-                    out: staged,
+                    out,
                 },
             );
-            for (o, s) in [o1, o2].into_iter().zip(staged.iter()) {
-                let o = o.slice::<N>(range.clone());
-                stream_copy(o.spin, s.spin);
-                stream_copy(o.velocity, s.velocity);
-            }
-        }
-        if stage.is_some() {
-            fence();
         }
     }
 }

@@ -1,5 +1,5 @@
 //! `Exec::rough_free_rows` against the scalar family kernels on each row, bit for bit, with
-//! one law shared and one per row, at every level (serial, split, streamed); and the laws'
+//! one law shared and one per row, at every level (serial, split); and the laws'
 //! checks: every refused value and shape names its field (and row).
 
 use super::tests::{arrays, bits, by_hand, nan_rows, physical, rows, rows_mut};
@@ -38,21 +38,14 @@ fn every_level<R: LawRows<f64>, const N: usize, const S: usize>(
         #[cfg(not(feature = "parallel"))]
         let execs = [serial];
         for exec in execs {
-            for stream_from in [usize::MAX, 0] {
-                let mut got = nan_rows::<N>(len);
-                exec.rough_free_rows_streamed_from::<R, f64, N, S>(
-                    laws,
-                    &rows(a),
-                    rows_mut(&mut got),
-                    stream_from,
-                )
+            let mut got = nan_rows::<N>(len);
+            exec.rough_free_rows::<R, f64, N, S>(laws, &rows(a), rows_mut(&mut got))
                 .expect("valid laws");
-                assert_eq!(
-                    bits(&got),
-                    bits(want),
-                    "n = {N}, {isa}, {exec:?}, {len} rows, {what}, streamed from {stream_from}"
-                );
-            }
+            assert_eq!(
+                bits(&got),
+                bits(want),
+                "n = {N}, {isa}, {exec:?}, {len} rows, {what}"
+            );
         }
     }
 }

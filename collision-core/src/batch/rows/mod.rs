@@ -48,11 +48,9 @@ mod rough_fixed_tests;
 pub use exec::{ROWS_IN_CACHE_BYTES, ROWS_PASS_BYTES, ROWS_PASS_BYTES_OUT_OF_CACHE};
 pub use law::{LawRowError, LawRows, RestitutionRows, WaltonRows};
 pub use rough_fixed::FixedRows;
-pub use stream::STREAM_FROM_BYTES;
 #[cfg(test)]
 mod law_tests;
 mod scatter;
-mod stream;
 #[cfg(test)]
 mod tests;
 

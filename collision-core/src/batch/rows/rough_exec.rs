@@ -4,7 +4,6 @@
 
 use super::law::{LawRowError, LawRows};
 use super::pass::{EachLaw, SharedLaw};
-use super::stream::STREAM_FROM_BYTES;
 use super::{FreeRows, StateRowsMut};
 use crate::batch::each::EachLawBatchKernel;
 use crate::batch::law_lanes::FamilyLaw;
@@ -42,34 +41,13 @@ impl Exec {
         LanesOf<T, R>: 'static,
         Generated: RoughBatchKernel<R::Law, T, N, S> + EachLawBatchKernel<LanesOf<T, R>, T, N, S>,
     {
-        self.rough_free_rows_streamed_from(laws, rows, out, STREAM_FROM_BYTES)
-    }
-
-    /// [`Exec::rough_free_rows`], its results streamed from `stream_from` bytes of outputs.
-    pub(crate) fn rough_free_rows_streamed_from<R, T, const N: usize, const S: usize>(
-        &self,
-        laws: &R,
-        rows: &FreeRows<'_, T>,
-        out: [StateRowsMut<'_, T>; 2],
-        stream_from: usize,
-    ) -> Result<(), LawRowError>
-    where
-        R: LawRows<T>,
-        T: Scalar + Send + Sync + 'static,
-        for<'a> &'a T: RefArith<T>,
-        LanesOf<T, R>: 'static,
-        Generated: RoughBatchKernel<R::Law, T, N, S> + EachLawBatchKernel<LanesOf<T, R>, T, N, S>,
-    {
         laws.check(rows.len::<N>())?;
         match laws.shared() {
-            Some(law) => {
-                self.rows_in_passes::<T, N, S, _>(&SharedLaw(&law), rows, out, stream_from)
-            }
+            Some(law) => self.rows_in_passes::<T, N, S, _>(&SharedLaw(&law), rows, out),
             None => self.rows_in_passes::<T, N, S, _>(
                 &EachLaw(laws.slice(0..rows.len::<N>())),
                 rows,
                 out,
-                stream_from,
             ),
         }
         Ok(())
