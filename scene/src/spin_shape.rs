@@ -13,6 +13,27 @@ use std::fmt;
 const EXPECTING: &str = "a number (2D: c), a list of 3 numbers (3D: omega) or the n x n skew \
                          matrix as a list of rows";
 
+/// The visitor methods of a number (`NumberVisitor`'s), their value wrapped by `$wrap`.
+macro_rules! numbers_as {
+    ($wrap:path) => {
+        fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+            NumberVisitor.visit_i64(v).map($wrap)
+        }
+
+        fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+            NumberVisitor.visit_u64(v).map($wrap)
+        }
+
+        fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
+            NumberVisitor.visit_f64(v).map($wrap)
+        }
+
+        fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
+            NumberVisitor.visit_str(v).map($wrap)
+        }
+    };
+}
+
 impl<'de> Deserialize<'de> for RawSpin {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         d.deserialize_any(SpinVisitor)
@@ -28,21 +49,7 @@ impl<'de> Visitor<'de> for SpinVisitor {
         f.write_str(EXPECTING)
     }
 
-    fn visit_i64<E: de::Error>(self, v: i64) -> Result<RawSpin, E> {
-        NumberVisitor.visit_i64(v).map(RawSpin::Scalar)
-    }
-
-    fn visit_u64<E: de::Error>(self, v: u64) -> Result<RawSpin, E> {
-        NumberVisitor.visit_u64(v).map(RawSpin::Scalar)
-    }
-
-    fn visit_f64<E: de::Error>(self, v: f64) -> Result<RawSpin, E> {
-        NumberVisitor.visit_f64(v).map(RawSpin::Scalar)
-    }
-
-    fn visit_str<E: de::Error>(self, v: &str) -> Result<RawSpin, E> {
-        NumberVisitor.visit_str(v).map(RawSpin::Scalar)
-    }
+    numbers_as!(RawSpin::Scalar);
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<RawSpin, A::Error> {
         let (mut numbers, mut rows) = (Vec::new(), Vec::new());
@@ -83,21 +90,7 @@ impl<'de> Visitor<'de> for EntryVisitor {
         f.write_str("a number (of omega) or a row of numbers (of the matrix)")
     }
 
-    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Entry, E> {
-        NumberVisitor.visit_i64(v).map(Entry::Number)
-    }
-
-    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Entry, E> {
-        NumberVisitor.visit_u64(v).map(Entry::Number)
-    }
-
-    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Entry, E> {
-        NumberVisitor.visit_f64(v).map(Entry::Number)
-    }
-
-    fn visit_str<E: de::Error>(self, v: &str) -> Result<Entry, E> {
-        NumberVisitor.visit_str(v).map(Entry::Number)
-    }
+    numbers_as!(Entry::Number);
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Entry, A::Error> {
         let mut row = Vec::new();
