@@ -354,6 +354,25 @@ fn bad_intervals_and_laws_exit_2_naming_them() {
         ],
         "--self-diffusion: the start must be at least 0 and finite, got -1",
     );
+    // The bins are bounded (2^30 asked for 8 GiB; 0 for none).
+    for bins in ["0", "1048577", "1073741824"] {
+        refused(
+            &[
+                "simulate",
+                gas,
+                "--observables",
+                "1",
+                "--pair-correlation",
+                "2",
+                "--pair-bins",
+                bins,
+                "--quiet",
+            ],
+            &format!(
+                "--pair-correlation: the pair correlation's bins must be in 1..=1048576, got {bins}"
+            ),
+        );
+    }
     // One ball is its own centre of mass: its displacement about it is always 0.
     refused(
         &[

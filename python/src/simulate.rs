@@ -15,6 +15,7 @@ use collision_core::{Generated, Kernel};
 use log_columns::{log_bytes, Columns, LogColumns};
 use noslip_sim::boundary_map::{self, Row};
 use noslip_sim::granular::{self, Sampler};
+use noslip_sim::pair_correlation::MAX_BINS;
 use noslip_sim::pair_losses::is_count;
 use noslip_sim::run::{check_time, run_watched, Limits, Summary, Trace};
 use noslip_sim::setup::{f, setup};
@@ -369,7 +370,15 @@ pub fn simulate<'py>(
     self_diffusion_from: f64,
     conserve_energy: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let pair_bins = unsigned_opt(pair_bins.as_ref(), "pair_bins", 1, 1 << 20)?.unwrap_or(100);
+    // Read as `usize` (an `i32` let -1 through to a panic), its range checked here (2^30 bins
+    // asked for 8 GiB).
+    let pair_bins = unsigned_opt::<usize>(pair_bins.as_ref(), "pair_bins", 1, MAX_BINS)?
+        .unwrap_or(100);
+    if !(1..=MAX_BINS).contains(&pair_bins) {
+        return Err(input_error(format!(
+            "pair_bins: must be an integer in 1..={MAX_BINS}, got {pair_bins}"
+        )));
+    }
     if pair_correlation.is_some() && observables.is_none() {
         return Err(input_error(
             "pair_correlation: g(r) is sampled at the observables' rows: give observables too",
@@ -410,7 +419,7 @@ pub fn simulate<'py>(
         html,
         contacts: max_memory.checked_div(per_contact).unwrap_or(u64::MAX),
         observables,
-        pair_correlation: pair_correlation.map(|r| (r, pair_bins as usize)),
+        pair_correlation: pair_correlation.map(|r| (r, pair_bins)),
         self_diffusion: self_diffusion.map(|b| (b, self_diffusion_from)),
         max_memory,
         per_contact,

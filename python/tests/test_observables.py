@@ -132,6 +132,11 @@ def test_pair_correlation_equals_the_cli_csv(cli: Path, tmp_path: Path) -> None:
         noslip.simulate(scene, events=10, observables=0.5, pair_correlation=1e6)
     with pytest.raises(noslip.InputError, match="pair_correlation: .*give observables"):
         noslip.simulate(scene, events=10, pair_correlation=2)
+    # The bins' bound is enforced: -1 panicked (read as i32), 2**30 asked for 8 GiB.
+    for bins in [-1, 0, 2**20 + 1, 2**30, -(2**32)]:
+        with pytest.raises(noslip.InputError, match=r"pair_bins: must be an integer in 1..=1048576"):
+            noslip.simulate(scene, events=10, observables=0.5, pair_correlation=2,
+                            pair_bins=bins)
 
 
 def test_self_diffusion_equals_the_cli_csv(cli: Path, tmp_path: Path) -> None:

@@ -15,6 +15,10 @@
 
 use crate::{PairKernels, Simulation};
 
+/// The most bins of a pair correlation (8 MiB of counts): a bound given by every front end
+/// (`--pair-bins`, Python's `pair_bins`), so that no argument asks for gigabytes.
+pub const MAX_BINS: usize = 1 << 20;
+
 /// The histogram of pair distances over the samples so far.
 #[derive(Clone, Debug)]
 pub struct PairCorrelation {
@@ -38,8 +42,10 @@ impl PairCorrelation {
                  shortest side"
             ));
         }
-        if bins == 0 {
-            return Err("the pair correlation needs at least one bin".into());
+        if !(1..=MAX_BINS).contains(&bins) {
+            return Err(format!(
+                "the pair correlation's bins must be in 1..={MAX_BINS}, got {bins}"
+            ));
         }
         Ok(PairCorrelation {
             r_max,
