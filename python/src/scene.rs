@@ -133,7 +133,20 @@ impl DictReader<'_> {
         if value.is_instance_of::<PyString>() {
             return Ok(toml::Value::String(value.extract()?));
         }
+        // NumPy arrays and scalars (`np.arange(3)`, `np.int64(10)`, `np.float32(0.5)`): read
+        // as their Python values (`tolist()`: nested lists, ints, exact floats, bools), as a
+        // sweep's grid hands them over.
+        if value.hasattr("dtype")? && value.hasattr("tolist")? {
+            let plain = value.call_method0("tolist")?;
+            if !plain.is(value) {
+                return self.read(&plain, place, depth + 1);
+            }
+        }
         let type_name = value.get_type().name()?.to_string();
+        if type_name == "Decimal" {
+            // Its exact decimal text, read as a scene reads a decimal string.
+            return Ok(toml::Value::String(value.str()?.to_string()));
+        }
         if type_name == "Fraction" {
             let (p, q): (String, String) = (
                 value.getattr("numerator")?.str()?.to_string(),

@@ -37,6 +37,29 @@ def test_scene_from_file_text_and_dict_agree(root):
             )
 
 
+def test_numpy_values_in_a_dict_are_read_as_their_python_values():
+    """np.int64, np.float32, np.bool_, arrays and Decimal in a scene dict are the scene the
+    plain values give (a sweep hands its grid's NumPy values over; they were refused as
+    "got int64")."""
+    from decimal import Decimal
+
+    def scene(count, radius, position, mass, orientation):
+        return noslip.Scene.from_dict({
+            "dim": 2,
+            "box": {"size": [4, 4], "boundary": ["periodic", "periodic"]},
+            "species": [{"name": "a", "mass": mass, "radius": radius, "count": count}],
+            "obstacle": [{"position": position, "radius": 0.5}],
+            "simulation": {"orientation": orientation},
+        })
+
+    plain = scene(3, 0.25, [1.0, 2.0], "1.5", True)
+    numpy = scene(np.int64(3), np.float32(0.25), np.array([1.0, 2.0]), Decimal("1.5"),
+                  np.bool_(True))
+    assert numpy == plain
+    with pytest.raises(noslip.InputError, match=r"species\[0\]\.mass: .*got complex"):
+        scene(3, 0.25, [1.0, 2.0], np.complex128(1), True)
+
+
 def test_a_scene_pickles_as_its_text(root):
     scene = noslip.Scene.from_file(root / "scenes" / "gas2d.toml")
     back = pickle.loads(pickle.dumps(scene))

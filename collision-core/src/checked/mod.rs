@@ -138,7 +138,10 @@ pub(crate) fn prepare<T: Scalar>(
     if !b1.is_immovable() && !b2.is_immovable() && b1.gamma2.is_zero() && b2.gamma2.is_zero() {
         return Err(InputError::new(
             Field::Bodies,
-            "both bodies are point masses (lambda = 0): the no-slip map is undefined; at most one may be",
+            "both bodies are point masses (lambda = 0): at most one may be (the no-slip map is \
+             undefined for two, and the kernels of every contact law divide by the pair's spin \
+             inertia, smooth ones too; a scene runs two point masses with beta = -1 through the \
+             engine's specular map)",
         ));
     }
     let wide = |xs: &[T]| -> Vec<T::Unbounded> { xs.iter().map(Scalar::unbounded).collect() };
