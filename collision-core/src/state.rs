@@ -72,6 +72,21 @@ pub fn skew_entries<T: Scalar, R: AsRef<[T]>>(
         }
         return Ok(skew_pairs(n).map(|(i, j)| at(i, j).clone()).collect());
     }
+    // A NaN or an infinity is named as such (it failed the skew test below, and was reported
+    // as a matrix that is not skew).
+    for (i, row) in matrix.iter().enumerate() {
+        if let Some((j, x)) = row
+            .as_ref()
+            .iter()
+            .enumerate()
+            .find(|(_, x)| !x.is_finite())
+        {
+            return Err(InputError::new(
+                field,
+                format!("entry ({i},{j}) must be finite, got {}", x.show()),
+            ));
+        }
+    }
     // In the unbounded type: U_ij + U_ji and U_ij - U_ji do not overflow.
     let at = |i: usize, j: usize| matrix[i].as_ref()[j].unbounded();
     let scale = matrix
@@ -271,5 +286,28 @@ mod tests {
             State2::<f64>::from_matrix(0, &big, [0.0; 2]).unwrap().spin,
             [f64::MAX]
         );
+    }
+
+    /// A NaN or an infinity is named as not finite, at its entry, not as a matrix that is not
+    /// skew (a review found `[[0, inf], [-inf, 0]]` reported as "not opposite").
+    #[test]
+    fn entries_that_are_not_finite_are_named_as_such() {
+        for (m, said) in [
+            (
+                [[0.0, f64::INFINITY], [-f64::INFINITY, 0.0]],
+                "entry (0,1) must be finite, got inf",
+            ),
+            (
+                [[f64::NAN, 1.0], [-1.0, 0.0]],
+                "entry (0,0) must be finite, got NaN",
+            ),
+            (
+                [[0.0, 1.0], [f64::NAN, 0.0]],
+                "entry (1,0) must be finite, got NaN",
+            ),
+        ] {
+            let e = State2::<f64>::from_matrix(0, &m, [0.0; 2]).unwrap_err();
+            assert_eq!(e.to_string(), format!("body 1 spin: {said}"));
+        }
     }
 }

@@ -89,21 +89,38 @@ def result_dtype(values: Sequence[Tuple[str, Any]]) -> np.dtype[Any]:
     return np.dtype(np.float64)
 
 
-def _cast(x: Any, dtype: np.dtype[Any], field: str) -> _Array:
+def _cast(x: Any, dtype: np.dtype[Any], field: str, scalar: bool = False) -> _Array:
     """``x`` as an array of ``dtype``: the same array when it already is one (read in place,
     no copy), else a converted copy; a finite value beyond float32's range is named, not
-    made infinite."""
+    made infinite, and so is an integer beyond any float's. ``scalar``: a ball parameter,
+    whose nonzero value may not become 0 in float32 (a state entry may: it is measured
+    against the others, as the checked ``collide`` measures a subnormal one)."""
     if isinstance(x, np.ndarray) and x.dtype == dtype:
         return x
-    with np.errstate(over="ignore", invalid="ignore"):
-        a = np.asarray(x).astype(dtype)
+    try:
+        with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+            a = np.asarray(x).astype(dtype)
+    except OverflowError:
+        # A Python int beyond every float (10**400): named, not NumPy's bare OverflowError.
+        raise InputError(
+            f"{field}: an integer beyond the range of {np.dtype(dtype).name} (at most about "
+            f"{float(np.finfo(dtype).max):.3g})"
+        ) from None
     if dtype == np.float32:
         wide = np.asarray(x, dtype=np.float64)
         beyond = np.isinf(a) & np.isfinite(wide)
         if np.any(beyond):
             raise InputError(
-                f"{field}: {wide[beyond].flat[0]!r} is beyond the range of float32 (the inputs' "
-                "common type)"
+                f"{field}: {float(wide[beyond].flat[0])!r} is beyond the range of float32 (the "
+                "inputs' common type)"
+            )
+        # A nonzero value that float32 cannot hold (1e-50 became 0): named as such, not as
+        # the 0 a later check would see.
+        lost = (a == 0) & (wide != 0)
+        if scalar and np.any(lost):
+            raise InputError(
+                f"{field}: {float(wide[lost].flat[0])!r} is below the range of float32 (it would "
+                "be 0; the inputs' common type)"
             )
     return a
 
@@ -174,7 +191,7 @@ def _body_arrays(
         if key not in body:
             continue
         field = f"bodies[{b}].{key}"
-        a = _cast(body[key], dtype, field)
+        a = _cast(body[key], dtype, field, scalar=True)
         if a.ndim == 0:
             a = a.reshape(1)
         elif single or a.ndim != 1 or len(a) not in (1, rows):

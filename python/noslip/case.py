@@ -40,22 +40,33 @@ def _number_text(x: Any, path: str, exact: bool) -> Any:
     raise InputError(f"{path}: expected a number, got {type(x).__name__}")
 
 
-def _to_json(x: Any, path: str, exact: bool) -> Any:
+#: The deepest nesting a case is read to (a case nests at most 5 deep: the bodies, a body,
+#: its angular velocity's rows); deeper is a list or dict inside itself, named as such
+#: rather than Python's RecursionError.
+MAX_CASE_DEPTH = 32
+
+
+def _to_json(x: Any, path: str, exact: bool, depth: int = 0) -> Any:
     """Python values as the JSON case format: dicts, sequences (lists, tuples, NumPy
     arrays), numbers, strings (kept as written: ``"3/5"``, ``"inf"``)."""
     if isinstance(x, (str, bool)) or x is None:
         return x
+    if depth >= MAX_CASE_DEPTH:
+        raise InputError(
+            f"{path or 'case'}: nested more than {MAX_CASE_DEPTH} deep (a case nests at most 5 "
+            "deep; is a list or dict inside itself?)"
+        )
     if isinstance(x, Mapping):
         out: Dict[str, Any] = {}
         for k, v in x.items():
             if not isinstance(k, str):
                 raise InputError(f"{path or 'case'}: keys must be strings, got {k!r}")
-            out[k] = _to_json(v, f"{path}.{k}" if path else k, exact)
+            out[k] = _to_json(v, f"{path}.{k}" if path else k, exact, depth + 1)
         return out
     if hasattr(x, "tolist") and not isinstance(x, numbers.Number):
         x = x.tolist()
     if isinstance(x, (list, tuple)):
-        return [_to_json(v, f"{path}[{i}]", exact) for i, v in enumerate(x)]
+        return [_to_json(v, f"{path}[{i}]", exact, depth + 1) for i, v in enumerate(x)]
     return _number_text(x, path, exact)
 
 

@@ -280,6 +280,12 @@ def orbits(
         starts = starts.tolist()
     if isinstance(starts, (str, bytes)) or not isinstance(starts, (Sequence, type(None))):
         raise InputError(f"starts: expected a sequence of starts, got {type(starts).__name__}")
+    if starts is not None and len(starts) == 0 and grid is None:
+        # An empty list ran the scene's own start (the default of None) without a word.
+        raise InputError(
+            "starts: empty: give at least one start, None for the scene's ball, or grid= for "
+            "a grid of starts"
+        )
     given: List[List[str]] = []
     for i, z in enumerate([] if starts is None else starts):
         if isinstance(z, np.ndarray):

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from noslip._native import Scene
+from noslip._native import InputError, Scene
 from noslip.simulate import simulate
 
 __all__ = [
@@ -93,6 +93,20 @@ def two_temperature_ratio(dim: int, e: float, beta: float, gamma2: float | None 
     return ((a - d) + math.sqrt((a - d) ** 2 + 4.0 * b * c)) / (2.0 * b)
 
 
+def _is_real(x: Any) -> bool:
+    """Whether ``x`` is a real number (a bool is not)."""
+    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool)
+
+
+def _check_gas(balls: Any, phi: Any) -> None:
+    """``balls`` a positive integer and ``phi`` in ``(0, 1)``, naming the argument (they
+    size the box: 0 divided by zero and a negative count made a complex side)."""
+    if isinstance(balls, bool) or not isinstance(balls, (int, np.integer)) or balls < 1:
+        raise InputError(f"balls: must be a positive integer, got {balls!r}")
+    if not (_is_real(phi) and 0 < float(phi) < 1):
+        raise InputError(f"phi: must be a packing fraction in (0, 1), got {phi!r}")
+
+
 def cooling_gas(
     e: float,
     beta: float,
@@ -105,15 +119,23 @@ def cooling_gas(
     """A freely cooling gas of rough balls: ``balls`` uniform balls of radius 1/2 and mass 1
     in a periodic cube at packing fraction ``phi``, the rough law ``{e, beta}`` at every
     contact, a Maxwellian start at temperature 1 (every degree of freedom), placed at random
-    with ``seed``."""
-    side = (balls * _ball_volume(dim) / phi) ** (1.0 / dim)
+    with ``seed``.
+
+    Raises
+    ------
+    InputError
+        ``balls`` not a positive integer or ``phi`` not in ``(0, 1)``, naming it (and the
+        scene's own checks, naming the field).
+    """
+    _check_gas(balls, phi)
+    side = (int(balls) * _ball_volume(dim) / float(phi)) ** (1.0 / dim)
     return Scene.from_dict(
         {
             "description": f"cooling rough gas, e = {e}, beta = {beta}",
             "dim": dim,
             "box": {"size": [side] * dim, "boundary": ["periodic"] * dim},
             "contact": {"balls": {"e": e, "beta": beta}},
-            "species": [{"mass": 1, "radius": "1/2", "count": balls}],
+            "species": [{"mass": 1, "radius": "1/2", "count": int(balls)}],
             "random": {"seed": seed, "velocities": "maxwellian"},
         },
         origin=f"cooling_gas(e={e}, beta={beta}, dim={dim}, balls={balls}, phi={phi})",
@@ -200,13 +222,21 @@ def cooling_ratio(
         the window's rows, not an error bar: rows are correlated), ``theory``
         (:func:`two_temperature_ratio`), ``t_tr_drop`` (``T_tr`` at the end over at the
         start), ``rows`` (rows averaged).
+
+    Raises
+    ------
+    InputError
+        ``collisions`` not positive and finite, or :func:`cooling_gas`'s arguments, naming
+        them.
     """
+    if not (_is_real(collisions) and 0 < float(collisions) < math.inf):
+        raise InputError(f"collisions: must be positive and finite, got {collisions!r}")
     scene = cooling_gas(e, beta, dim=dim, balls=balls, phi=phi, seed=seed)
     # The dilute collision frequency at temperature 1 (docs/granular.md, Haff's law:
     # 2 pi^((n-1)/2) / Gamma(n/2) rho sigma^(n-1) sqrt(T/m), sigma = 1) sets the sampling.
     rho = phi / _ball_volume(dim)
     omega = 2 * math.pi ** ((dim - 1) / 2) / math.gamma(dim / 2) * rho
-    run = simulate(scene, events=int(collisions * balls / 2), observables=0.05 / omega)
+    run = simulate(scene, events=max(1, int(collisions * balls / 2)), observables=0.05 / omega)
     obs = run.observables
     per_ball = 2.0 * obs["contacts"] / balls
     window = per_ball >= collisions / 2

@@ -164,8 +164,11 @@ def simulate(
         Stop after this many contacts (at least 1).
     time : float, optional
         Stop at this simulated time (positive, finite and a normal float, at least
-        ``2.2e-308``, as ``noslip simulate --time``). With neither, the scene's
-        ``[simulation]`` values, else 100000 contacts.
+        ``2.2e-308``, as ``noslip simulate --time``). Each of ``events`` and ``time``
+        overrides the scene's ``[simulation]`` key of that name only, as the CLI's flags do:
+        the run stops at whichever limit comes first, so ``time=`` alone still stops at the
+        scene's ``events`` if it has one (``summary["time"]`` shows where it stopped). With
+        no limit from either, 100000 contacts.
     log : bool
         Keep every contact in :attr:`SimulationResult.events` (``3 (57 + 56 n + 32 s)``
         bytes a contact are counted against ``max_memory``, ``s = n(n-1)/2``: 603 in 2D,

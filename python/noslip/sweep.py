@@ -159,11 +159,20 @@ def _write_part(store: Path, rows: List[Row], types: Mapping[str, "np.dtype[Any]
 
     name = hashlib.sha1("\n".join(r[POINT] for r in rows).encode()).hexdigest()[:16]
     tmp = store / f".part-{name}.{os.getpid()}.tmp"
-    frame = pd.DataFrame(rows)
-    for column, dtype in types.items():
-        if column in frame:
-            frame[column] = frame[column].astype(dtype)
-    frame.to_parquet(tmp, engine="pyarrow", index=False)
+    try:
+        frame = pd.DataFrame(rows)
+        for column, dtype in types.items():
+            if column in frame:
+                frame[column] = frame[column].astype(dtype)
+        frame.to_parquet(tmp, engine="pyarrow", index=False)
+    except (ValueError, TypeError, OverflowError, NotImplementedError) as e:
+        # pyarrow's ArrowInvalid (a 2-D array), ArrowNotImplementedError (a complex value),
+        # an int beyond 64 bits: what a Parquet column cannot hold, named with the store.
+        tmp.unlink(missing_ok=True)
+        raise InputError(
+            f"store: the rows of {rows[0][POINT]} ... cannot be Parquet columns: {e} (a result "
+            "or parameter must be a number, a string, a bool or a 1-D array of them)"
+        ) from None
     os.replace(tmp, store / f"part-{name}.parquet")
 
 
@@ -284,6 +293,8 @@ def sweep(
     types = parameter_types(points)
     path = Path(store) if store is not None else None
     if path is not None:
+        if path.exists() and not path.is_dir():
+            raise InputError(f"store: {path} is a file; the store is a directory of parts")
         path.mkdir(parents=True, exist_ok=True)
         stored = _read_store(path)
         finished = set(stored[POINT]) if stored is not None else set()

@@ -243,6 +243,30 @@ def test_shapes_and_dtypes_are_checked_naming_the_field():
         noslip.collide_batch(np.zeros((4, 7)), bodies)
 
 
+def test_values_no_float_type_holds_are_named():
+    """An int beyond every float is named (it was NumPy's bare OverflowError); in float32 a
+    ball parameter that would become 0 is named as such, and the range error quotes the
+    number, not its NumPy repr."""
+    rng = np.random.default_rng(9)
+
+    def with_mass(bodies, mass):
+        b0 = {k: v for k, v in bodies[0].items() if k != "inv_mass"}
+        return [dict(b0, mass=mass), bodies[1]]
+
+    nu, bodies = random_batch(rng, 4, 3, immovable=False)
+    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.mass: an integer beyond"):
+        noslip.collide_batch(nu, with_mass(bodies, 10**400))
+    with pytest.raises(noslip.InputError, match=r"^bodies\[0\]\.radius: an integer beyond"):
+        noslip.collide_batch(nu, [dict(bodies[0], radius=10**400), bodies[1]])
+    nu32, b32 = random_batch(rng, 4, 3, dtype=np.float32, immovable=False, unit_exactly=False)
+    with pytest.raises(noslip.InputError,
+                       match=r"^bodies\[0\]\.mass: 1e-50 is below the range of float32"):
+        noslip.collide_batch(nu32, with_mass(b32, 1e-50))
+    with pytest.raises(noslip.InputError,
+                       match=r"^bodies\[0\]\.radius: 1e\+300 is beyond the range of float32"):
+        noslip.collide_batch(nu32, [dict(b32[0], radius=1e300), b32[1]])
+
+
 def test_only_the_outputs_are_allocated():
     """NumPy reports its allocations to tracemalloc: the peak during the call is the output
     arrays (2 bodies x (n^2 + n) float64 per row) and nothing per row besides."""

@@ -154,6 +154,11 @@ def test_errors_are_input_errors_naming_the_field():
             noslip.collide(c["normal"], bodies)
     with pytest.raises(noslip.InputError, match=r"^normal: must be a unit vector"):
         noslip.collide([1.0, 1.0], c["bodies"])
+    # A list inside itself is named, not Python's RecursionError.
+    loop: list = []
+    loop.append(loop)
+    with pytest.raises(noslip.InputError, match=r"^normal(\[0\])+: nested more than 32 deep"):
+        noslip.collide(loop, c["bodies"])
 
 
 def test_floats_are_refused_in_exact_mode_with_the_field():

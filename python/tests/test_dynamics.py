@@ -129,6 +129,7 @@ def test_the_bouncing_orbit_is_hyperbolic_when_smooth_and_elliptic_when_no_slip(
         ({"starts": [[1, "1/2", 0, "1e400", 0]]}, r"^starts\[0\]: number 3 is beyond the f64"),
         ({"grid": 0}, r"^grid: must be at least 1"),
         ({"contact": "rough"}, r"^contact: must be"),
+        ({"starts": []}, r"^starts: empty: give at least one start"),
     ],
 )
 def test_bad_orbit_arguments_are_named(root, kwargs, message):

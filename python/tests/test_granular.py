@@ -9,6 +9,7 @@ import math
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -69,3 +70,27 @@ def test_the_sweep_example_runs_as_a_script(tmp_path: Path) -> None:
     assert len(lines[1:7]) == 6  # 2 e x 3 beta
     assert Path(str(store) + ".png").exists() or "no plot" in out.stdout
     assert noslip.__name__ == "noslip"
+
+
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        (lambda: cooling_gas(0.9, 0.5, phi=0), "phi"),
+        (lambda: cooling_gas(0.9, 0.5, phi=1.5), "phi"),
+        (lambda: cooling_gas(0.9, 0.5, balls=-1), "balls"),
+        (lambda: cooling_gas(0.9, 0.5, balls=2.5), "balls"),
+        (lambda: cooling_ratio(0.9, 0.9, collisions=float("nan")), "collisions"),
+        (lambda: cooling_ratio(0.9, 0.9, collisions=float("inf")), "collisions"),
+        (lambda: cooling_ratio(0.9, 0.9, collisions=-1), "collisions"),
+    ],
+)
+def test_bad_gas_arguments_are_named(call: Any, field: str) -> None:
+    """The helpers' own arguments are named (a zero phi divided by zero, a negative count
+    made a complex box side, a NaN count of collisions failed in int())."""
+    with pytest.raises(noslip.InputError, match=rf"^{field}: "):
+        call()
+
+
+def test_numpy_counts_are_taken() -> None:
+    """A NumPy integer count is a count (it was refused as "got int64")."""
+    assert cooling_gas(0.9, 0.5, balls=np.int64(10)) == cooling_gas(0.9, 0.5, balls=10)

@@ -46,6 +46,31 @@ def test_bad_arguments_are_named(kwargs, message):
         noslip.sweep(**args)
 
 
+@pytest.mark.parametrize(
+    "function,grid",
+    [
+        (lambda x: {"m": np.zeros((2, 2))}, {"x": [1]}),  # a 2-D array
+        (lambda x: {"big": 2**70}, {"x": [1]}),  # an int beyond 64 bits
+        (square, {"x": [1 + 2j]}),  # a complex parameter
+    ],
+)
+def test_what_parquet_cannot_hold_is_named_and_leaves_no_part(tmp_path, function, grid):
+    """A result or parameter a Parquet column cannot hold is an InputError naming the store
+    (they were pyarrow's and Python's own exceptions), and no part or temporary is left."""
+    store = tmp_path / "store"
+    with pytest.raises(noslip.InputError, match=r"^store: the rows of .* cannot be Parquet"):
+        noslip.sweep(function, grid, client="serial", store=store)
+    assert list(store.iterdir()) == []
+
+
+def test_a_store_that_is_a_file_is_named(tmp_path):
+    path = tmp_path / "file"
+    path.write_text("not a store")
+    with pytest.raises(noslip.InputError, match=r"^store: .* is a file"):
+        noslip.sweep(square, {"x": [1]}, client="serial", store=path)
+    assert path.read_text() == "not a store"
+
+
 def test_points_are_keyed_by_value():
     assert point_key({"x": np.int64(1)}) == point_key({"x": 1}) == point_key({"x": 1.0})
     assert point_key({"x": np.float64(0.1)}) == point_key({"x": 0.1})
