@@ -321,14 +321,18 @@ fn dict_error(
     big_ints: &[(String, String)],
 ) -> noslip_scene::SceneError {
     let offset = offset_of(&emitted.text, &e.place);
-    // A missing field is reported at the table that lacks it (the top-level table starts at
-    // byte 0, where the first key also starts): name the field itself, `species` or
-    // `box.boundary`, not the first key of the table (`dim`).
+    // A missing field is reported at the table that lacks it (`the top level`, or a table's
+    // line and column): name the field itself, `species` or `box.boundary`.
     let missing = e
         .message
         .strip_prefix("missing field `")
         .and_then(|rest| rest.strip_suffix('`'))
         .map(str::to_string);
+    if let (Some(field), "the top level") = (&missing, e.place.as_str()) {
+        e.place = field.clone();
+        e.message = "missing (a required field)".to_string();
+        return e;
+    }
     if let (Some(field), Some(o)) = (&missing, offset) {
         let table = if o == 0 {
             ""
