@@ -68,8 +68,27 @@ pub(crate) fn checked_map<T, const N: usize, const S: usize>(
 where
     T: Scalar,
 {
+    checked_law_map(nu, balls, states, true, map)
+}
+
+/// [`checked_map`] under a law with a tangential part (`tangential`) or without one, which
+/// takes two point masses ([`checked::prepare_law`]).
+pub(crate) fn checked_law_map<T, const N: usize, const S: usize>(
+    nu: &[T; N],
+    balls: [&Ball<T>; 2],
+    states: [&BodyState<T, N, S>; 2],
+    tangential: bool,
+    map: impl FnOnce(
+        &[T::Unbounded; N],
+        [&Ball<T::Unbounded>; 2],
+        [&BodyState<T::Unbounded, N, S>; 2],
+    ) -> [BodyState<T::Unbounded, N, S>; 2],
+) -> Result<[BodyState<T, N, S>; 2], InputError>
+where
+    T: Scalar,
+{
     let inputs = states.map(|s| (s.spin.as_slice(), s.velocity.as_slice()));
-    let p = checked::prepare(nu, balls, inputs)?;
+    let p = checked::prepare_law(nu, balls, inputs, tangential)?;
     let array = |v: &[T::Unbounded]| -> Vec<T::Unbounded> { v.to_vec() };
     let nu_w: [T::Unbounded; N] = fixed_len(array(&p.nu));
     let states_w: [BodyState<T::Unbounded, N, S>; 2] = std::array::from_fn(|b| BodyState {

@@ -62,6 +62,7 @@ pub mod reference;
 mod restitution;
 pub mod rng;
 mod scalar;
+pub mod smooth;
 mod state;
 mod walton;
 mod wide;

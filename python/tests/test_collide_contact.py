@@ -43,6 +43,33 @@ def test_rough_law_scales_the_normal_and_tangential_slip():
     assert [s[0], s[2]] == [-beta * 3, 0]  # t+ = -beta t
 
 
+def test_two_point_masses_meet_under_a_smooth_law_only():
+    """Two point masses (``gamma2 = 0``) were refused under every law; under a smooth one
+    (``beta = -1``) their contact is the specular map: ``dn`` becomes ``-e dn``, spins kept.
+    A law with a tangential part still refuses them, naming the bodies; a validated batch
+    agrees with ``collide``."""
+    def body(mass: Any, u: List[Any]) -> dict[str, Any]:
+        return {"mass": mass, "radius": 1, "gamma2": 0, "angular_velocity": [[0, 2], [-2, 0]],
+                "velocity": u}
+
+    bodies = [body(1, [0, -1]), body(3, [F(1, 2), 0])]
+    for contact, e in [("smooth", F(1)), ({"e": F(1, 2), "beta": -1}, F(1, 2))]:
+        a, b = noslip.collide([0, -1], bodies, exact=True, contact=contact)
+        dn_before = (0 - (-1)) * -1
+        dn_after = (b["velocity"][1] - a["velocity"][1]) * -1
+        assert dn_after == -e * dn_before
+        assert a["angular_velocity"] == b["angular_velocity"] == [[0, 2], [-2, 0]]
+    with pytest.raises(noslip.InputError, match=r"^bodies: both bodies are point masses"):
+        noslip.collide([0, -1], bodies, contact={"e": 0.5, "beta": 0})
+    floats = [dict(body(1.0, [0.0, -1.0])), dict(body(3.0, [0.5, 0.0]))]
+    single = noslip.collide([0.0, -1.0], floats, contact="smooth")
+    batch = noslip.collide_batch(np.array([0.0, -1.0]), [
+        {k: np.asarray(v, dtype=np.float64) for k, v in b.items()} for b in floats
+    ], contact="smooth", validate=True)
+    for k in range(2):
+        assert np.array_equal(batch[k]["velocity"], single[k]["velocity"])
+
+
 def test_walton_slides_on_the_coulomb_bound_and_sticks_as_the_rough_law():
     # Sticking would take the tangential impulse (1 + beta0)|t|/b = (4/3) 3 / (7/2) = 8/7;
     # the normal one is (1 + e)|dn| = 6. mu = 1/10 allows 6/10: it slides, u_x drops by 6/10.

@@ -64,11 +64,23 @@ const fn normal_ulps(n: usize) -> u32 {
 }
 
 /// Validate and clamp (see [`crate::collide`] for the checks; [`crate::allowance`] for the
-/// rule), for any `n = nu.len()`.
+/// rule), for any `n = nu.len()`, under a law with a tangential part (the no-slip map).
 pub(crate) fn prepare<T: Scalar>(
     nu: &[T],
     balls: [&Ball<T>; 2],
     states: Parts<'_, T>,
+) -> Result<Prepared<T::Unbounded>, InputError> {
+    prepare_law(nu, balls, states, true)
+}
+
+/// [`prepare`] under a law with a tangential part (`tangential`) or without one (the rough
+/// law at `beta = -1`, smooth): without one, two point masses may meet (the specular map
+/// needs no spin inertia).
+pub(crate) fn prepare_law<T: Scalar>(
+    nu: &[T],
+    balls: [&Ball<T>; 2],
+    states: Parts<'_, T>,
+    tangential: bool,
 ) -> Result<Prepared<T::Unbounded>, InputError> {
     let n = nu.len();
     if n < 2 {
@@ -135,13 +147,12 @@ pub(crate) fn prepare<T: Scalar>(
             "both bodies are immovable (mass \"inf\"): at most one may be",
         ));
     }
-    if !b1.is_immovable() && !b2.is_immovable() && b1.gamma2.is_zero() && b2.gamma2.is_zero() {
+    if tangential && both_point_masses(b1, b2) {
         return Err(InputError::new(
             Field::Bodies,
-            "both bodies are point masses (lambda = 0): at most one may be (the no-slip map is \
-             undefined for two, and the kernels of every contact law divide by the pair's spin \
-             inertia, smooth ones too; a scene runs two point masses with beta = -1 through the \
-             engine's specular map)",
+            "both bodies are point masses (lambda = 0): at most one may be, under a law with a \
+             tangential part (the no-slip map, the rough one with beta > -1, Walton's); a \
+             smooth law (beta = -1) takes two",
         ));
     }
     let wide = |xs: &[T]| -> Vec<T::Unbounded> { xs.iter().map(Scalar::unbounded).collect() };
@@ -195,6 +206,12 @@ fn graze<W: Scalar>(nu: &[W], balls: &[Ball<W>; 2], u: &mut [Vec<W>; 2]) -> Resu
         }
     }
     Ok(())
+}
+
+/// Whether both bodies are movable point masses (`gamma2 = 0`): no law with a tangential
+/// part is defined between them, and no kernel takes them.
+pub(crate) fn both_point_masses<T: Scalar>(b1: &Ball<T>, b2: &Ball<T>) -> bool {
+    !b1.is_immovable() && !b2.is_immovable() && b1.gamma2.is_zero() && b2.gamma2.is_zero()
 }
 
 /// Both bodies' `(spin, velocity)`, borrowed.

@@ -281,3 +281,58 @@ fn a_result_far_below_the_speed_scale_is_blamed_on_the_contact_not_the_speed() {
     let u = Scalar::to_f64(&want[0].velocity[0]).abs();
     assert!(u > 1e-321 && u < 1e-320, "{u}");
 }
+
+/// Two point masses under a smooth law (`beta = -1`): taken, their contact the specular map
+/// with restitution `e` exactly (in exact arithmetic: `dv . nu` becomes `-e` times itself,
+/// momentum and spins kept, tangential velocities untouched); under any law with a tangential
+/// part refused, naming the bodies (no kernel takes them: the rough kernel gave NaN).
+#[test]
+fn two_point_masses_meet_under_a_smooth_law_only() {
+    use crate::{collide_rough, Restitution};
+    let q = |p: i64, d: i64| Exact::checked_ratio(p, d).expect("nonzero denominator");
+    let point =
+        |m: i64| Ball::new(2, Mass::Finite(q(m, 1)), q(1, 1), Inertia::Gamma2(q(0, 1))).unwrap();
+    let (b1, b2) = (point(1), point(3));
+    let nu = [q(3, 5), q(4, 5)];
+    let s1 = State2::from_scalar_spin(q(2, 1), [q(1, 1), q(1, 2)]);
+    let s2 = State2::from_scalar_spin(q(-1, 1), [q(-1, 3), q(0, 1)]);
+    let dn = |a: &State2<Exact>, b: &State2<Exact>| {
+        (0..2).fold(q(0, 1), |s, k| {
+            s + (b.velocity[k].clone() - a.velocity[k].clone()) * nu[k].clone()
+        })
+    };
+    for e in [q(1, 1), q(1, 2), q(0, 1)] {
+        let law = Restitution::new(e.clone(), q(-1, 1)).unwrap();
+        let [p1, p2] = collide_rough(&nu, [&b1, &b2], &law, [&s1, &s2]).unwrap();
+        assert_eq!(dn(&p1, &p2), -(e.clone() * dn(&s1, &s2)), "e = {e}");
+        assert_eq!((&p1.spin, &p2.spin), (&s1.spin, &s2.spin));
+        for k in 0..2 {
+            let momentum = |a: &State2<Exact>, b: &State2<Exact>| {
+                a.velocity[k].clone() + b.velocity[k].clone() * q(3, 1)
+            };
+            assert_eq!(momentum(&p1, &p2), momentum(&s1, &s2));
+        }
+        // The tangential velocities (along (-4/5, 3/5)) are untouched.
+        let t =
+            |s: &State2<Exact>| s.velocity[0].clone() * q(-4, 5) + s.velocity[1].clone() * q(3, 5);
+        assert_eq!((t(&p1), t(&p2)), (t(&s1), t(&s2)));
+    }
+    // In floats too (the checked path's unbounded arithmetic, then rounded).
+    let f = |m: f64| Ball::new(2, Mass::Finite(m), 1.0, Inertia::Gamma2(0.0)).unwrap();
+    let smooth = Restitution::new(0.5, -1.0).unwrap();
+    let (u1, u2) = (State2::from_scalar_spin(0.0, [0.0, 1.0]), State2::zero());
+    let out = collide_rough(&[0.0, 1.0], [&f(1.0), &f(1.0)], &smooth, [&u1, &u2]).unwrap();
+    assert_eq!(
+        (out[0].velocity, out[1].velocity),
+        ([0.0, 0.25], [0.0, 0.75])
+    );
+    // A tangential part: refused, as the no-slip map is.
+    let rough = Restitution::new(0.5, 0.0).unwrap();
+    let e = collide_rough(&[0.0, 1.0], [&f(1.0), &f(1.0)], &rough, [&u1, &u2]).unwrap_err();
+    assert_eq!(e.field, Field::Bodies, "{e}");
+    assert!(
+        e.message.contains("a smooth law (beta = -1) takes two"),
+        "{e}"
+    );
+    assert!(collide(&[0.0, 1.0], [&f(1.0), &f(1.0)], [&u1, &u2]).is_err());
+}

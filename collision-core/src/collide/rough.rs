@@ -8,7 +8,9 @@ use crate::{Ball, BodyState, InputError, Restitution, Scalar};
 /// [`collide`](super::collide) under the rough-ball law `law`: `dn+ = -e dn`, `t+ = -beta t`
 /// for the slip of the contact point. Every input is checked as there, and `law` by
 /// [`Restitution::new`] (`e` in `[0, 1]`, `beta` in `[-1, 1]`, no NaN; the error names
-/// the field). `(1, 1)` gives [`collide`](super::collide)'s results.
+/// the field). `(1, 1)` gives [`collide`](super::collide)'s results. At `beta = -1` (no
+/// tangential impulse) two point masses may meet: their contact is the specular map with
+/// restitution `e` ([`crate::smooth::pair_restituted`]), which no kernel takes.
 pub fn collide_rough<T, const N: usize, const S: usize>(
     nu: &[T; N],
     balls: [&Ball<T>; 2],
@@ -24,7 +26,21 @@ where
         e: law.e.unbounded(),
         beta: law.beta.unbounded(),
     };
-    super::checked_map(nu, balls, states, |nu, balls, states| {
+    // Without a tangential part (beta = -1) two point masses may meet; no kernel takes them
+    // (each divides by the pair's spin inertia), the specular map does.
+    let smooth = law.beta == -T::one();
+    super::checked_law_map(nu, balls, states, !smooth, |nu, balls, states| {
+        if smooth && crate::checked::both_point_masses(balls[0], balls[1]) {
+            let [b1, b2] = balls;
+            return crate::smooth::pair_restituted(
+                nu,
+                &b1.inv_mass,
+                &b2.inv_mass,
+                &law_w.e,
+                states[0],
+                states[1],
+            );
+        }
         collide_rough_unchecked(nu, balls, &law_w, states)
     })
 }
