@@ -47,33 +47,16 @@ where
     T: Scalar,
     Generated: Kernel<T::Unbounded, N, S>,
 {
-    checked_map(nu, balls, states, |nu, balls, states| {
+    checked_map(nu, balls, states, true, |nu, balls, states| {
         collide_unchecked(nu, balls, states)
     })
 }
 
 /// The checked path around a collision map `map` of any law: the inputs checked and clamped
-/// ([`checked::prepare`]), moved into the unbounded-exponent arithmetic `T::Unbounded`, mapped,
+/// ([`checked::prepare_law`]: two point masses are refused under a law with a tangential
+/// part, `tangential`), moved into the unbounded-exponent arithmetic `T::Unbounded`, mapped,
 /// and the results rounded back where they fit ([`checked::round_results`]).
 pub(crate) fn checked_map<T, const N: usize, const S: usize>(
-    nu: &[T; N],
-    balls: [&Ball<T>; 2],
-    states: [&BodyState<T, N, S>; 2],
-    map: impl FnOnce(
-        &[T::Unbounded; N],
-        [&Ball<T::Unbounded>; 2],
-        [&BodyState<T::Unbounded, N, S>; 2],
-    ) -> [BodyState<T::Unbounded, N, S>; 2],
-) -> Result<[BodyState<T, N, S>; 2], InputError>
-where
-    T: Scalar,
-{
-    checked_law_map(nu, balls, states, true, map)
-}
-
-/// [`checked_map`] under a law with a tangential part (`tangential`) or without one, which
-/// takes two point masses ([`checked::prepare_law`]).
-pub(crate) fn checked_law_map<T, const N: usize, const S: usize>(
     nu: &[T; N],
     balls: [&Ball<T>; 2],
     states: [&BodyState<T, N, S>; 2],

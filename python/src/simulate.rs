@@ -372,8 +372,8 @@ pub fn simulate<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     // Read as `usize` (an `i32` let -1 through to a panic), its range checked here (2^30 bins
     // asked for 8 GiB).
-    let pair_bins = unsigned_opt::<usize>(pair_bins.as_ref(), "pair_bins", 1, MAX_BINS)?
-        .unwrap_or(100);
+    let pair_bins =
+        unsigned_opt::<usize>(pair_bins.as_ref(), "pair_bins", 1, MAX_BINS)?.unwrap_or(100);
     if !(1..=MAX_BINS).contains(&pair_bins) {
         return Err(input_error(format!(
             "pair_bins: must be an integer in 1..={MAX_BINS}, got {pair_bins}"

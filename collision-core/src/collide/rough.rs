@@ -29,7 +29,7 @@ where
     // Without a tangential part (beta = -1) two point masses may meet; no kernel takes them
     // (each divides by the pair's spin inertia), the specular map does.
     let smooth = law.beta == -T::one();
-    super::checked_law_map(nu, balls, states, !smooth, |nu, balls, states| {
+    super::checked_map(nu, balls, states, !smooth, |nu, balls, states| {
         if smooth && crate::checked::both_point_masses(balls[0], balls[1]) {
             let [b1, b2] = balls;
             return crate::smooth::pair_restituted(

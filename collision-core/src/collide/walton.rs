@@ -25,7 +25,7 @@ where
         mu: law.mu.unbounded(),
         beta0: law.beta0.unbounded(),
     };
-    super::checked_map(nu, balls, states, |nu, balls, states| {
+    super::checked_map(nu, balls, states, true, |nu, balls, states| {
         collide_walton_unchecked(nu, balls, &law_w, states)
     })
 }
