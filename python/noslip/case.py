@@ -157,6 +157,13 @@ def collide(
                 f"normal: expected a sequence of n numbers, got {type(normal).__name__}"
             )
         dim = len(normal)
+        if dim == 1 and isinstance(normal, (list, tuple)) and isinstance(normal[0], (list, tuple)):
+            # `[[0, -1]]`: a normal wrapped once more, not a 1D case (it said "dim: must be
+            # at least 2, got 1", naming an argument the caller did not give).
+            raise InputError(
+                f"normal: expected a sequence of n numbers, got a sequence holding one "
+                f"sequence of {len(normal[0])} (unwrap it)"
+            )
     case: Dict[str, Any] = {
         "dim": dim,
         "normal": normal,

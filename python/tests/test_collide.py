@@ -154,11 +154,17 @@ def test_errors_are_input_errors_naming_the_field():
             noslip.collide(c["normal"], bodies)
     with pytest.raises(noslip.InputError, match=r"^normal: must be a unit vector"):
         noslip.collide([1.0, 1.0], c["bodies"])
+    # A normal wrapped once more is named as such, not as a 1D case (it blamed `dim`).
+    with pytest.raises(noslip.InputError, match=r"^normal: expected a sequence of n numbers, got a"):
+        noslip.collide([c["normal"]], c["bodies"])
     # A list inside itself is named, not Python's RecursionError.
     loop: list = []
     loop.append(loop)
-    with pytest.raises(noslip.InputError, match=r"^normal(\[0\])+: nested more than 32 deep"):
-        noslip.collide(loop, c["bodies"])
+    looped = json.loads(json.dumps(c["bodies"]))
+    looped[0]["velocity"] = loop
+    with pytest.raises(noslip.InputError,
+                       match=r"^bodies\[0\]\.velocity(\[0\])+: nested more than 32 deep"):
+        noslip.collide(c["normal"], looped)
 
 
 def test_floats_are_refused_in_exact_mode_with_the_field():
