@@ -201,13 +201,12 @@ pub mod golden {
         let (golden, fresh) = (Copy::parse(golden)?, Copy::of(run)?);
         // Other random points give other counts everywhere: say that, not a diff of every
         // line.
-        if (golden.seed, golden.points) != (fresh.seed, fresh.points) {
-            return Err(format!(
-                "it was made with seed {} and {} points, this run with seed {} and {} points: \
-                 compare with the same --points (and seed)",
-                golden.seed, golden.points, fresh.seed, fresh.points
-            ));
-        }
+        same_sampling(
+            &golden,
+            &fresh,
+            "it",
+            "compare with the same --points (and seed)",
+        )?;
         let golden = golden.restricted(dims).to_json();
         let fresh = fresh.restricted(dims).to_json();
         Ok(crate::diff::unified(
@@ -234,17 +233,36 @@ pub mod golden {
             .filter(|c| !dims.contains(&c.dim))
             .cloned()
             .collect();
-        if !kept.is_empty() && (old.seed, old.points) != (fresh.seed, fresh.points) {
-            return Err(format!(
-                "the golden copy was made with seed {} and {} points, this run with seed {} and \
-                 {} points: update it with the same --points, or with every dimension it holds",
-                old.seed, old.points, fresh.seed, fresh.points
-            ));
+        if !kept.is_empty() {
+            same_sampling(
+                &old,
+                &fresh,
+                "the golden copy",
+                "update it with the same --points, or with every dimension it holds",
+            )?;
         }
         let mut merged = fresh;
         merged.results.extend(kept);
         merged.results.sort_by_key(|c| c.dim);
         Ok(merged)
+    }
+
+    /// `Err` when `fresh` was sampled otherwise than `golden` (another seed or number of
+    /// points): "`subject` was made with seed .. and .. points, this run with ..: `advice`".
+    fn same_sampling(
+        golden: &Copy,
+        fresh: &Copy,
+        subject: &str,
+        advice: &str,
+    ) -> Result<(), String> {
+        if (golden.seed, golden.points) == (fresh.seed, fresh.points) {
+            return Ok(());
+        }
+        Err(format!(
+            "{subject} was made with seed {} and {} points, this run with seed {} and {} \
+             points: {advice}",
+            golden.seed, golden.points, fresh.seed, fresh.points
+        ))
     }
 }
 
