@@ -53,7 +53,7 @@ where
 }
 
 /// The checked path around a collision map `map` of any law: the inputs checked and clamped
-/// ([`checked::prepare_law`]: two point masses are refused under a law with a tangential
+/// ([`checked::prepare`]: two point masses are refused under a law with a tangential
 /// part, `tangential`), moved into the unbounded-exponent arithmetic `T::Unbounded`, mapped,
 /// and the results rounded back where they fit ([`checked::round_results`]).
 pub(crate) fn checked_map<T, const N: usize, const S: usize>(
@@ -71,7 +71,7 @@ where
     T: Scalar,
 {
     let inputs = states.map(|s| (s.spin.as_slice(), s.velocity.as_slice()));
-    let p = checked::prepare_law(nu, balls, inputs, tangential)?;
+    let p = checked::prepare(nu, balls, inputs, tangential)?;
     let array = |v: &[T::Unbounded]| -> Vec<T::Unbounded> { v.to_vec() };
     let nu_w: [T::Unbounded; N] = fixed_len(array(&p.nu));
     let states_w: [BodyState<T::Unbounded, N, S>; 2] = std::array::from_fn(|b| BodyState {
@@ -119,7 +119,7 @@ pub fn collide_general<T: Scalar>(
         (&body[..s], &body[s..])
     };
     let inputs = [part(0), part(1)];
-    let p = checked::prepare(nu, balls, inputs)?;
+    let p = checked::prepare(nu, balls, inputs, true)?;
     let xi_w = DVector::from_iterator(
         xi.len(),
         (0..2).flat_map(|b| p.spins[b].iter().chain(&p.velocities[b]).cloned()),

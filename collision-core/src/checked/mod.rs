@@ -28,7 +28,7 @@ pub fn validate_parts<T: Scalar>(
     balls: [&Ball<T>; 2],
     states: [(&[T], &[T]); 2],
 ) -> Result<(), InputError> {
-    prepare(nu, balls, states).map(|_| ())
+    prepare(nu, balls, states, true).map(|_| ())
 }
 
 /// The inputs of a collision after the checks, in `W` (the `Unbounded` of the input type):
@@ -64,19 +64,11 @@ const fn normal_ulps(n: usize) -> u32 {
 }
 
 /// Validate and clamp (see [`crate::collide`] for the checks; [`crate::allowance`] for the
-/// rule), for any `n = nu.len()`, under a law with a tangential part (the no-slip map).
+/// rule), for any `n = nu.len()`, under a law with a tangential part (`tangential`: the
+/// no-slip map, the rough one at `beta > -1`, Walton's) or without one (the rough law at
+/// `beta = -1`, smooth): without one, two point masses may meet (the specular map needs no
+/// spin inertia).
 pub(crate) fn prepare<T: Scalar>(
-    nu: &[T],
-    balls: [&Ball<T>; 2],
-    states: Parts<'_, T>,
-) -> Result<Prepared<T::Unbounded>, InputError> {
-    prepare_law(nu, balls, states, true)
-}
-
-/// [`prepare`] under a law with a tangential part (`tangential`) or without one (the rough
-/// law at `beta = -1`, smooth): without one, two point masses may meet (the specular map
-/// needs no spin inertia).
-pub(crate) fn prepare_law<T: Scalar>(
     nu: &[T],
     balls: [&Ball<T>; 2],
     states: Parts<'_, T>,

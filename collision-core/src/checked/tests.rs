@@ -43,18 +43,18 @@ fn normalised_normals_are_accepted_in_every_dimension_and_no_further_one() {
                 .collect();
             let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
             let nu: Vec<f64> = d.iter().map(|x| x / norm).collect();
-            assert!(super::prepare(&nu, [&b, &b], parts).is_ok(), "{nu:?}");
+            assert!(super::prepare(&nu, [&b, &b], parts, true).is_ok(), "{nu:?}");
         }
         // |nu|^2 = (1 + k eps)^2 = 1 + 2k eps (rounded): k = 4 + n is the allowance's edge.
         let edge = 4.0 + n as f64;
         let mut nu = vec![0.0; n];
         nu[0] = 1.0 + edge * eps;
         assert!(
-            super::prepare(&nu, [&b, &b], parts).is_ok(),
+            super::prepare(&nu, [&b, &b], parts, true).is_ok(),
             "{n}: at the edge"
         );
         nu[0] = 1.0 + (edge + 1.0) * eps;
-        let e = super::prepare(&nu, [&b, &b], parts).unwrap_err();
+        let e = super::prepare(&nu, [&b, &b], parts, true).unwrap_err();
         assert_eq!(e.field, Field::Normal, "{n}: beyond the edge");
     }
 }
