@@ -1,10 +1,12 @@
 """Arguments shared by the entry points: a scene given as a :class:`Scene`, TOML text, a
-dict or a path."""
+dict or a path; integers and real numbers as Python or NumPy scalars."""
 
 from __future__ import annotations
 
 import os
 from typing import Any, Mapping, Union
+
+import numpy as np
 
 from noslip._native import InputError, Scene
 
@@ -34,3 +36,14 @@ def as_scene(scene: SceneLike) -> Scene:
         "scene: expected a Scene, TOML text, a path (os.PathLike) or a dict, got "
         f"{type(scene).__name__}"
     )
+
+
+def is_integer(x: Any) -> bool:
+    """Whether ``x`` is an integer, Python's or NumPy's (a bool is not)."""
+    return isinstance(x, (int, np.integer)) and not isinstance(x, (bool, np.bool_))
+
+
+def is_real(x: Any) -> bool:
+    """Whether ``x`` is a real number, an integer or a float, Python's or NumPy's (a bool is
+    not)."""
+    return is_integer(x) or isinstance(x, (float, np.floating))

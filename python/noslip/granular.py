@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from noslip._args import is_integer, is_real
 from noslip._native import InputError, Scene
 from noslip.simulate import simulate
 
@@ -93,17 +94,12 @@ def two_temperature_ratio(dim: int, e: float, beta: float, gamma2: float | None 
     return ((a - d) + math.sqrt((a - d) ** 2 + 4.0 * b * c)) / (2.0 * b)
 
 
-def _is_real(x: Any) -> bool:
-    """Whether ``x`` is a real number (a bool is not)."""
-    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool)
-
-
 def _check_gas(balls: Any, phi: Any) -> None:
     """``balls`` a positive integer and ``phi`` in ``(0, 1)``, naming the argument (they
     size the box: 0 divided by zero and a negative count made a complex side)."""
-    if isinstance(balls, bool) or not isinstance(balls, (int, np.integer)) or balls < 1:
+    if not is_integer(balls) or balls < 1:
         raise InputError(f"balls: must be a positive integer, got {balls!r}")
-    if not (_is_real(phi) and 0 < float(phi) < 1):
+    if not (is_real(phi) and 0 < float(phi) < 1):
         raise InputError(f"phi: must be a packing fraction in (0, 1), got {phi!r}")
 
 
@@ -229,7 +225,7 @@ def cooling_ratio(
         ``collisions`` not positive and finite, or :func:`cooling_gas`'s arguments, naming
         them.
     """
-    if not (_is_real(collisions) and 0 < float(collisions) < math.inf):
+    if not (is_real(collisions) and 0 < float(collisions) < math.inf):
         raise InputError(f"collisions: must be positive and finite, got {collisions!r}")
     scene = cooling_gas(e, beta, dim=dim, balls=balls, phi=phi, seed=seed)
     # The dilute collision frequency at temperature 1 (docs/granular.md, Haff's law:

@@ -27,6 +27,7 @@ from typing import (
 
 import numpy as np
 
+from noslip._args import is_integer, is_real
 from noslip._native import InputError
 
 if TYPE_CHECKING:
@@ -141,11 +142,9 @@ def parameter_types(points: Sequence[Mapping[str, Any]]) -> Dict[str, "np.dtype[
     names = {k for p in points for k in p}
     for name in names:
         values = [p.get(name) for p in points]
-        if all(isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_))
-               for v in values):
+        if all(is_integer(v) for v in values):
             types[name] = np.dtype(np.int64)
-        elif all(isinstance(v, (int, float, np.integer, np.floating))
-                 and not isinstance(v, (bool, np.bool_)) for v in values):
+        elif all(is_real(v) for v in values):
             types[name] = np.dtype(np.float64)
     return types
 
@@ -214,7 +213,7 @@ def _check_arguments(
     for name, value, least in (("points_per_task", points_per_task, 1), ("retries", retries, 0)):
         if value is None and name == "points_per_task":
             continue
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        if not is_integer(value):
             raise InputError(f"{name}: expected an int >= {least}, got {type(value).__name__}")
         if value < least:
             raise InputError(f"{name}: must be at least {least}, got {value}")
