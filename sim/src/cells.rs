@@ -227,6 +227,17 @@ impl<const N: usize> Grid<N> {
         self.for_cells(c, Some(self.layer(axis, step)), f);
     }
 
+    /// The number of cells [`Grid::near`] lists for a cell away from the grid's edges:
+    /// `prod_k (2 K_k + 1)`, or with `only` (a layer along its axis) the same without that
+    /// axis's factor. At an edge there may be fewer (none beyond a wall).
+    #[inline]
+    pub(crate) fn near_len(&self, only: Option<(usize, i64)>) -> usize {
+        match only {
+            None => self.offsets.len(),
+            Some((axis, delta)) => self.layers[2 * axis + usize::from(delta > 0)].len(),
+        }
+    }
+
     /// The restriction of [`Grid::for_cells`] to the layer of [`Grid::for_layer`].
     #[inline]
     pub(crate) fn layer(&self, axis: usize, step: i64) -> (usize, i64) {

@@ -347,6 +347,14 @@ impl Calendar {
         Some((top.time, top.ball as usize))
     }
 
+    /// The ball whose event comes `k` after the earliest's, if the current bucket holds it
+    /// (after [`Calendar::peek`]; `k = 0` is the earliest). Only as a hint of what comes
+    /// next: the events between may change it.
+    #[inline]
+    pub(crate) fn upcoming(&self, k: usize) -> Option<usize> {
+        self.now.get(self.head + k).map(|e| e.ball as usize)
+    }
+
     /// Adds the balls of `list` (a bucket just reached) to the current bucket's list, sorted
     /// once: a few comparisons a ball for the few balls of a bucket, and popping the earliest
     /// then moves nothing.

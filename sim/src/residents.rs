@@ -257,6 +257,12 @@ impl<const N: usize> Residents<N> {
         prefetch(self.cell(cell).first());
     }
 
+    /// Asks the CPU to start loading the record at `at` (a hint, as above).
+    #[inline]
+    pub(crate) fn prefetch_record(&self, at: u32) {
+        prefetch(self.slab.get(at as usize));
+    }
+
     /// The flight of the ball whose home is `at`.
     #[inline]
     pub(crate) fn get(&self, at: u32) -> &Motion<N> {

@@ -345,6 +345,57 @@ fn prefetching_changes_no_event() {
 }
 
 #[test]
+fn prefetching_changes_no_event_in_3d() {
+    // In 3D the look-ahead takes a crossing's layer (9 cells) and leaves a full scan (27
+    // cells) to the scan's own prefetch (`engine/ahead.rs`): both, with the lanes of the
+    // gathered scan (no obstacles), periodic images and walls, give the plain run's events
+    // bit for bit.
+    let run = |prefetch: bool| {
+        let ball = Ball {
+            inv_mass: 1.0,
+            radius: 0.5,
+            gamma2: 0.4,
+        };
+        let bodies: Vec<Body<3, 3>> = (0..512)
+            .zip(spread::<3>(512, -1.0, 1.0))
+            .map(|(b, velocity)| Body {
+                species: 0,
+                position: std::array::from_fn(|k| (2 * ((b >> (3 * k)) % 8) + 1) as f64),
+                state: BodyState {
+                    spin: [0.0; 3],
+                    velocity,
+                },
+            })
+            .collect();
+        let setup = Setup {
+            size: [16.0; 3],
+            periodic: [true, false, true],
+            species: vec![ball.clone()],
+            obstacles: vec![],
+            bodies,
+            orientation: false,
+            table: crate::Table::boxed(),
+        };
+        let kernels = GenericKernels {
+            species: vec![ball],
+        };
+        let mut sim = Simulation::new(setup, kernels).unwrap();
+        sim.set_prefetch(prefetch);
+        let events = (0..5000)
+            .map(|_| match sim.step(f64::INFINITY) {
+                Step::Contact(e) => format!("{e:?}"),
+                other => panic!("{other:?}"),
+            })
+            .collect::<Vec<String>>();
+        (events, sim.crossings())
+    };
+    let (plain, crossings) = run(false);
+    assert!(plain.iter().any(|e| e.contains("Wall")));
+    assert!(crossings > 5000, "{crossings}");
+    assert_eq!(plain, run(true).0);
+}
+
+#[test]
 fn the_energy_alone_is_the_observables_energy_bit_for_bit() {
     // `energy` skips the positions, not a term: along a run of spinning disks of unequal
     // speeds, its bits are those of `observables().energy` at every sampled contact.

@@ -50,9 +50,12 @@
 //! taken without branches (`predict::contact_time_or_nan`, the same bits as
 //! `contact_time`). The calendar's lists, the slab and the scan reuse their memory:
 //! nothing is allocated per event once they have grown. When the cell list outgrows the
-//! caches (`PREFETCH_FROM_BYTES` of slab, 4 MiB), a prediction first prefetches the neighbour cells'
-//! places in the slab, then their first records, so that the cache misses of the `3^n` cells
-//! overlap instead of following one another; the scan itself is the same.
+//! caches (`PREFETCH_FROM_BYTES` of slab, 4 MiB), the records of the next two events in the
+//! calendar and, for a scan of at most nine cells (a 2D neighbourhood, a 3D crossing's
+//! layer), its cells' places and first records are requested one link per event ahead
+//! (`ahead.rs`); a larger scan first prefetches its cells' places in the slab, then their
+//! first records, so that the cache misses of the `3^n` cells overlap instead of following
+//! one another. The scans themselves are the same.
 //!
 //! **Images.** A ball-ball entry stores its partner's image in the owner's record
 //! coordinates, `k = s - W_j + W_i` for the cell shift `s` it was predicted with: the partner
@@ -96,6 +99,7 @@
 //! it also returns [`Step::Quiet`], a notice, once the balls have travelled 1000, 2000, 4000
 //! ... box lengths without a contact; the caller decides whether to go on.
 
+mod ahead;
 mod contacts;
 mod events;
 mod kick;
@@ -145,8 +149,8 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
     orientation: Option<Vec<Matrix<N>>>,
     unturned: Vec<f64>,
-    /// Whether a prediction prefetches its neighbour cells' lists: a cell list larger than
-    /// the caches ([`PREFETCH_FROM_BYTES`]).
+    /// Whether the next events' memory is looked ahead and a prediction prefetches its
+    /// neighbour cells' lists: a cell list larger than the caches ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
     /// The slab places of the balls a scan meets ([`Residents::gather_cells`]), kept between scans.
     near: std::cell::RefCell<lanes::Gathered<N>>,
@@ -484,6 +488,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             if time > self.rebase_at {
                 self.rebase(self.rebase_at, true);
                 continue;
+            }
+            if self.prefetch {
+                self.look_ahead();
             }
             // Ball i's event stays in the queue until every branch below re-predicts i.
             let what = self.balls[i]

@@ -126,9 +126,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let home = self.balls[i].home;
         let m = *self.motion.get(home);
         let w_i = self.motion.wraps(home);
-        if self.prefetch {
+        if self.prefetch && !self.looks_ahead(only) {
             // Start the loads of the cells' lists together, in two rounds (the headers, then
-            // the records they point to), instead of one after another as the scan meets them.
+            // the records they point to), instead of one after another as the scan meets them
+            // (a scan of a few cells had them requested an event or two ago: `ahead.rs`).
             let grid = &self.grid;
             grid.for_cells(c, only, |nb| self.motion.prefetch_header(nb.cell));
             grid.for_cells(c, only, |nb| self.motion.prefetch_list(nb.cell));

@@ -1,0 +1,91 @@
+//! Looking ahead: the memory of the next events in the calendar loaded while this one runs.
+//!
+//! From a few tens of thousands of balls on, the records an event reads are mostly not in
+//! the caches, and their loads form a chain: the ball's record gives its flight's place in
+//! the slab, its cell and its partner; the cell gives the places of its neighbours' lists
+//! (the spans), the places give the records. Taken one event at a time, each link waits for
+//! the memory. The calendar already knows the next events (the current bucket's sorted list,
+//! `queue.rs`), whose balls' records were read when the bucket was sorted, so the chain is
+//! started one link per event ahead: while event `k` runs,
+//!
+//! - for event `k + 2`: its flight record, its partner's record if it is a contact, and the
+//!   spans of the cells its scan will read;
+//! - for event `k + 1`: the first records of those cells' lists (their spans now cached),
+//!   and for a contact the partner's flight record and the spans of the partner's scan.
+//!
+//! The cells are looked ahead only for a scan of at most [`AHEAD_CELLS`] cells: a 2D
+//! neighbourhood, or the layer a crossing reaches in 3D. A 3D neighbourhood (27 cells, in
+//! nine stretches) looked ahead for two events at once kept the miss buffers full and gained
+//! nothing at `10^6` balls, where the records alone gained a little and the bounded rule the
+//! most (docs/benchmarks.md, "Looking ahead").
+//!
+//! A scan looked ahead prefetches nothing itself; a larger one still requests its spans and
+//! then its lists together when it starts (`scan.rs`).
+//!
+//! The events between may change what comes next: a wrong guess costs a few loads and
+//! nothing else, since a prefetch changes no value (logs are the same bytes).
+
+use super::Simulation;
+use crate::queue::What;
+use crate::PairKernels;
+use collision_core::batch::prefetch;
+
+/// The most cells of a scan looked ahead (module docs): `3^2`.
+const AHEAD_CELLS: usize = 9;
+
+impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
+    /// Starts the loads of the next two events' records and cells (module docs); the
+    /// earliest event is the one about to run.
+    #[inline]
+    pub(super) fn look_ahead(&self) {
+        if let Some(i) = self.queue.upcoming(2) {
+            let record = &self.balls[i];
+            self.motion.prefetch_record(record.home);
+            if let Some(What::Ball { j, .. }) = record.next() {
+                prefetch(self.balls.get(j as usize));
+            }
+            self.for_cells_ahead(i, |cell| self.motion.prefetch_header(cell));
+        }
+        if let Some(i) = self.queue.upcoming(1) {
+            self.for_cells_ahead(i, |cell| self.motion.prefetch_list(cell));
+            if let Some(What::Ball { j, .. }) = self.balls[i].next() {
+                let j = j as usize;
+                self.motion.prefetch_record(self.balls[j].home);
+                self.for_cells_ahead(j, |cell| self.motion.prefetch_header(cell));
+            }
+        }
+    }
+
+    /// `f` for the flat index of each cell ball `i`'s next scan reads, if they are at most
+    /// [`AHEAD_CELLS`]: after a crossing (its pending event) the layer it reaches from the
+    /// next cell, as `predict_after_crossing` scans it, else every cell within reach of its
+    /// own, as `predict` does (a contact's record may move to another cell first: then the
+    /// guess is off by a cell).
+    #[inline]
+    fn for_cells_ahead(&self, i: usize, mut f: impl FnMut(usize)) {
+        let record = &self.balls[i];
+        let mut c = record.cell();
+        let only = match record.next() {
+            Some(What::Cell { axis, up }) => {
+                let (axis, n) = (axis as usize, self.grid.n[axis as usize]);
+                c[axis] = if up {
+                    (c[axis] + 1) % n
+                } else {
+                    (c[axis] + n - 1) % n
+                };
+                Some(self.grid.layer(axis, if up { 1 } else { -1 }))
+            }
+            _ => None,
+        };
+        if self.looks_ahead(only) {
+            self.grid.for_cells(&c, only, |nb| f(nb.cell));
+        }
+    }
+
+    /// Whether a scan of the cells within reach, or of the layer `only`, is looked ahead
+    /// (at most [`AHEAD_CELLS`] cells): the scan itself then prefetches nothing (`scan.rs`).
+    #[inline]
+    pub(super) fn looks_ahead(&self, only: Option<(usize, i64)>) -> bool {
+        self.grid.near_len(only) <= AHEAD_CELLS
+    }
+}
