@@ -27,6 +27,13 @@ def as_scene(scene: SceneLike) -> Scene:
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, str):
+        try:
+            scene.encode("utf-8")
+        except UnicodeEncodeError as e:
+            raise InputError(
+                f"scene: TOML text that is not valid Unicode (a lone surrogate at character "
+                f"{e.start})"
+            ) from None
         return Scene(scene)
     if isinstance(scene, os.PathLike):
         return Scene.from_file(scene)

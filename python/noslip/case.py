@@ -47,9 +47,17 @@ MAX_CASE_DEPTH = 32
 
 
 def _to_json(x: Any, path: str, exact: bool, depth: int = 0) -> Any:
-    """Python values as the JSON case format: dicts, sequences (lists, tuples, NumPy
-    arrays), numbers, strings (kept as written: ``"3/5"``, ``"inf"``)."""
-    if isinstance(x, (str, bool)) or x is None:
+    """Python values as the JSON case format: dicts, sequences (lists, tuples, ranges,
+    deques, NumPy arrays), numbers, strings (kept as written: ``"3/5"``, ``"inf"``)."""
+    if isinstance(x, str):
+        try:
+            x.encode("utf-8")
+        except UnicodeEncodeError:
+            raise InputError(
+                f"{path or 'case'}: {x!r} is not valid Unicode text (a lone surrogate)"
+            ) from None
+        return x
+    if isinstance(x, bool) or x is None:
         return x
     if depth >= MAX_CASE_DEPTH:
         raise InputError(
@@ -65,7 +73,7 @@ def _to_json(x: Any, path: str, exact: bool, depth: int = 0) -> Any:
         return out
     if hasattr(x, "tolist") and not isinstance(x, numbers.Number):
         x = x.tolist()
-    if isinstance(x, (list, tuple)):
+    if isinstance(x, Sequence) and not isinstance(x, (bytes, bytearray)):
         return [_to_json(v, f"{path}[{i}]", exact, depth + 1) for i, v in enumerate(x)]
     return _number_text(x, path, exact)
 

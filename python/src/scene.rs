@@ -93,10 +93,14 @@ impl DictReader<'_> {
             let mut table = toml::Table::new();
             for (k, v) in d.iter() {
                 let key: String = k.extract().map_err(|_| {
-                    bad(format!(
-                        "keys must be strings, got {}",
-                        k.repr().map_or("?".into(), |r| r.to_string())
-                    ))
+                    bad(if k.is_instance_of::<PyString>() {
+                        format!("a key {}", not_unicode(&k))
+                    } else {
+                        format!(
+                            "keys must be strings, got {}",
+                            k.repr().map_or("?".into(), |r| r.to_string())
+                        )
+                    })
                 })?;
                 let v = self.read(&v, &join(place, &key), depth + 1)?;
                 table.insert(key, v);
@@ -131,7 +135,10 @@ impl DictReader<'_> {
             return Ok(toml::Value::Float(value.extract()?));
         }
         if value.is_instance_of::<PyString>() {
-            return Ok(toml::Value::String(value.extract()?));
+            return value
+                .extract()
+                .map(toml::Value::String)
+                .map_err(|_| bad(not_unicode(value)));
         }
         // NumPy arrays and scalars (`np.arange(3)`, `np.int64(10)`, `np.float32(0.5)`): read
         // as their Python values (`tolist()`: nested lists, ints, exact floats, bools), as a
@@ -315,6 +322,23 @@ fn offset_of(text: &str, place: &str) -> Option<usize> {
 /// A dict's scene error with its place as the dict path the user wrote (`species[0].mass`),
 /// not a line and column of the TOML text made from the dict; an int too large for a
 /// machine-integer field (made a string by [`DictReader::read`]) says so.
+/// Argument `name`, a Python `str`, as Rust text; an `InputError` naming
+/// it if it holds a lone surrogate (which UTF-8 cannot encode).
+fn unicode(text: &Bound<'_, PyString>, name: &str) -> PyResult<String> {
+    text.to_cow().map(|t| t.into_owned()).map_err(|_| {
+        input_error(format!(
+            "{name}: not valid Unicode text (it holds a lone surrogate)"
+        ))
+    })
+}
+
+/// What is wrong with a Python `str` that Rust cannot take (a lone surrogate, which UTF-8
+/// cannot encode), with its `repr` (which escapes it).
+fn not_unicode(text: &Bound<'_, PyAny>) -> String {
+    let shown = text.repr().map_or("?".into(), |r| r.to_string());
+    format!("{shown} is not valid Unicode text (a lone surrogate)")
+}
+
 fn dict_error(
     mut e: noslip_scene::SceneError,
     emitted: &Emitter,
@@ -382,8 +406,10 @@ impl Scene {
     ///     looks like a file name (one line, ending in ``.toml`` or naming a file) gets a hint
     ///     to use ``Scene.from_file``.
     #[new]
-    #[pyo3(signature = (text, origin = "<string>".to_string()), text_signature = "(text, origin='<string>')")]
-    fn new(text: String, origin: String) -> PyResult<Self> {
+    #[pyo3(signature = (text, origin = None), text_signature = "(text, origin='<string>')")]
+    fn new(text: &Bound<'_, PyString>, origin: Option<&Bound<'_, PyString>>) -> PyResult<Self> {
+        let text = unicode(text, "text")?;
+        let origin = origin.map_or(Ok("<string>".to_string()), |o| unicode(o, "origin"))?;
         let inner = parse(&text, &origin)?;
         Ok(Scene {
             text,
@@ -444,8 +470,9 @@ impl Scene {
     ///     field by its own path: ``<dict>: species: missing (a required field)``);
     ///     containers nested more than 64 deep (or inside themselves) are refused.
     #[staticmethod]
-    #[pyo3(signature = (scene, origin = "<dict>".to_string()), text_signature = "(scene, origin='<dict>')")]
-    fn from_dict(scene: &Bound<'_, PyDict>, origin: String) -> PyResult<Self> {
+    #[pyo3(signature = (scene, origin = None), text_signature = "(scene, origin='<dict>')")]
+    fn from_dict(scene: &Bound<'_, PyDict>, origin: Option<&Bound<'_, PyString>>) -> PyResult<Self> {
+        let origin = origin.map_or(Ok("<dict>".to_string()), |o| unicode(o, "origin"))?;
         let mut reader = DictReader {
             origin: &origin,
             big_ints: Vec::new(),

@@ -1,9 +1,11 @@
 """noslip.collide against the command line (`noslip collide`), bit for bit in f64 and
 equal in exact rationals, and the conservation laws in exact arithmetic."""
 
+import collections
 import json
 from fractions import Fraction
 
+import numpy as np
 import pytest
 
 import noslip
@@ -157,6 +159,21 @@ def test_errors_are_input_errors_naming_the_field():
     # A normal wrapped once more is named as such, not as a 1D case (it blamed `dim`).
     with pytest.raises(noslip.InputError, match=r"^normal: expected a sequence of n numbers, got a"):
         noslip.collide([c["normal"]], c["bodies"])
+    # Any sequence is a sequence: a deque or a range is read as the list it holds.
+    normal = c["normal"]
+    want = noslip.collide(normal, c["bodies"])
+    for seq in (collections.deque(normal), tuple(normal)):
+        got = noslip.collide(seq, c["bodies"])
+        assert all(np.array_equal(g["velocity"], w["velocity"]) for g, w in zip(got, want))
+    with pytest.raises(noslip.InputError, match=r"^dim: must be at least 2, got 1"):
+        noslip.collide(range(1, 2), c["bodies"])
+    # A string Python holds but UTF-8 cannot encode (a lone surrogate) is named, not
+    # Python's UnicodeEncodeError.
+    odd = json.loads(json.dumps(c["bodies"]))
+    odd[1]["distribution"] = "\udc80"
+    with pytest.raises(noslip.InputError,
+                       match=r"^bodies\[1\]\.distribution: '\\udc80' is not valid Unicode text"):
+        noslip.collide(c["normal"], odd)
     # A list inside itself is named, not Python's RecursionError.
     loop: list = []
     loop.append(loop)

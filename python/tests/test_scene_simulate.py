@@ -339,6 +339,27 @@ for scene in (loop, {"dim": 2, "x": deep}):
         noslip.Scene.from_dict({"dim": 2, "table": {"wedge": {"directions": [[1, 0], [0]]}}})
 
 
+def test_text_that_is_not_unicode_is_an_input_error():
+    """A Python string UTF-8 cannot encode (a lone surrogate) anywhere a scene takes text
+    is an InputError naming it, not Python's UnicodeEncodeError."""
+    scene = {"dim": 2, "box": {"size": [10, 10], "periodic": [True, True]},
+             "species": [{"mass": 1, "radius": 0.5, "count": 4}]}
+    cases = [
+        (lambda: noslip.Scene.from_dict({**scene, "description": "\udc80"}),
+         r"^<dict>: description: '\\udc80' is not valid Unicode text \(a lone surrogate\)"),
+        (lambda: noslip.Scene.from_dict({**scene, "\udc81": 1}),
+         r"^<dict>: scene: a key '\\udc81' is not valid Unicode text"),
+        (lambda: noslip.Scene.from_dict(scene, origin="\udc80"),
+         r"^origin: not valid Unicode text"),
+        (lambda: noslip.Scene("dim = 2 # \udc80"), r"^text: not valid Unicode text"),
+        (lambda: noslip.simulate("dim = 2 # \udc80", events=1),
+         r"^scene: TOML text that is not valid Unicode \(a lone surrogate at character 10\)"),
+    ]
+    for make, message in cases:
+        with pytest.raises(noslip.InputError, match=message):
+            make()
+
+
 def test_a_file_name_given_as_text_gets_a_hint(root):
     """A path where TOML text is expected fails to parse; the message says to use
     Scene.from_file, for a `.toml` name and for any existing file."""

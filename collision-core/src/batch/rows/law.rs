@@ -6,7 +6,7 @@
 
 use crate::batch::lanes::{Lanes, LANES};
 use crate::batch::law_lanes::{FamilyLaw, RestitutionLanes, WaltonLanes, WithLaw};
-use crate::error::InputError;
+use crate::error::{Field, InputError};
 use crate::{Restitution, Scalar, Walton};
 use std::fmt;
 use std::ops::Range;
@@ -34,7 +34,8 @@ pub struct WaltonRows<'a, T> {
 /// A refused column of laws: its shape (`row` none), or the value of one row.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LawRowError {
-    /// The row whose law is refused; `None` for a column of the wrong length.
+    /// The row whose law is refused; `None` for a column of the wrong length, or a refused
+    /// value that every row shares (a column of one value).
     pub row: Option<usize>,
     /// The field and what is wrong with it (`restitution e: must be in [0, 1], got 1.5`).
     pub error: InputError,
@@ -85,7 +86,7 @@ pub trait LawRows<T>: Sync {
 }
 
 /// The length check of one column named by `field`.
-fn shape<T>(column: &[T], len: usize, field: crate::error::Field) -> Result<(), LawRowError> {
+fn shape<T>(column: &[T], len: usize, field: Field) -> Result<(), LawRowError> {
     if column.len() == len || column.len() == 1 {
         return Ok(());
     }
@@ -138,19 +139,26 @@ fn all_finite_non_negative<T: Scalar>(column: &[T]) -> bool {
 
 /// Checks each row from 0 to `rows` (1 when every column is shared) with `law`, unless
 /// `fast` (every column within its range) says every row passes: `law` then names the first
-/// refused row and field.
-fn check_rows<L>(
+/// refused row and field, or the field alone if `columns` (each field's column) holds one
+/// value shared by every row.
+fn check_rows<T, L>(
     rows: usize,
     fast: bool,
+    columns: &[(Field, &[T])],
     law: impl Fn(usize) -> Result<L, InputError>,
 ) -> Result<(), LawRowError> {
     if fast {
         return Ok(());
     }
     for i in 0..rows {
-        law(i).map_err(|error| LawRowError {
-            row: Some(i),
-            error,
+        law(i).map_err(|error| {
+            let shared = columns
+                .iter()
+                .any(|(field, column)| *field == error.field && column.len() == 1);
+            LawRowError {
+                row: (!shared).then_some(i),
+                error,
+            }
         })?;
     }
     Ok(())
@@ -196,12 +204,15 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for RestitutionRows<'a, T> {
     }
 
     fn check(&self, len: usize) -> Result<(), LawRowError> {
-        use crate::error::Field;
         shape(self.e, len, Field::RestitutionE)?;
         shape(self.beta, len, Field::RestitutionBeta)?;
         let (zero, one) = (T::zero(), T::one());
         let fast = all_within(self.e, &zero, &one) && all_within(self.beta, &-one.clone(), &one);
-        check_rows(rows_to_check(&self.columns(), len), fast, |i| {
+        let columns = [
+            (Field::RestitutionE, self.e),
+            (Field::RestitutionBeta, self.beta),
+        ];
+        check_rows(rows_to_check(&self.columns(), len), fast, &columns, |i| {
             Restitution::new(at(self.e, i), at(self.beta, i))
         })
     }
@@ -237,7 +248,6 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for WaltonRows<'a, T> {
     }
 
     fn check(&self, len: usize) -> Result<(), LawRowError> {
-        use crate::error::Field;
         shape(self.e, len, Field::RestitutionE)?;
         shape(self.mu, len, Field::FrictionMu)?;
         shape(self.beta0, len, Field::WaltonBeta0)?;
@@ -245,7 +255,12 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for WaltonRows<'a, T> {
         let fast = all_within(self.e, &zero, &one)
             && all_finite_non_negative(self.mu)
             && all_within(self.beta0, &-one.clone(), &one);
-        check_rows(rows_to_check(&self.columns(), len), fast, |i| {
+        let columns = [
+            (Field::RestitutionE, self.e),
+            (Field::FrictionMu, self.mu),
+            (Field::WaltonBeta0, self.beta0),
+        ];
+        check_rows(rows_to_check(&self.columns(), len), fast, &columns, |i| {
             Walton::new(at(self.e, i), at(self.mu, i), at(self.beta0, i))
         })
     }
