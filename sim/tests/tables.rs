@@ -74,8 +74,9 @@ struct Run {
 
 /// Up to `events` contacts of the table `name`, checking after every one that every ball is
 /// inside the table within `tol = 64 eps (L + |a|)` (`L` the table's length scale, `a` the
-/// centre: the rounding of coordinates of that size and of the local clock, whose re-basing
-/// keeps a flight's rounding to 16 ulps of `L`).
+/// centre: the rounding of coordinates of that size, and of the local clock, which is re-based
+/// before the fastest ball flies `CLOCK_CELLS` = 128 cell widths, at most `L` each here, so that
+/// half an ulp of a local time moves a ball by at most `64 eps L`).
 fn run<const N: usize, const S: usize>(name: &str, events: u64) -> Run
 where
     Generated: Kernel<f64, N, S>,
@@ -113,8 +114,9 @@ where
 
 /// Each contact rounds the energy of the ball a few times: `|E - E_0| / E_0 <= 8 k eps`
 /// after `k` contacts even if every error had the same sign (the same bound as the gases';
-/// the one-ball tables drift linearly, by about 0.2 eps per contact, from the rounding of
-/// the `fixed` kernel's two constants: docs/scenes.md, "Energy drift of the one-ball tables").
+/// the one-ball tables drifted linearly, by about 0.2 eps per contact, until the `fixed`
+/// kernel's spin coefficient was derived from its velocity coefficient: docs/tables.md,
+/// "Energy and the table, over 10^6 contacts").
 fn check(name: &str, r: &Run, events: u64) {
     eprintln!("{name}: {r:?}");
     assert!(r.worst >= -1.0, "{name}: the ball left the table: {r:?}");
