@@ -238,6 +238,29 @@ impl<const N: usize> Grid<N> {
         }
     }
 
+    /// The cell a ball in cell `c` enters when it crosses a face along `axis`, moving `up` or
+    /// down (wrapping around the grid: a crossing is scheduled only where the axis is
+    /// periodic or the face is not the box's), and whether it wrapped.
+    #[inline]
+    pub(crate) fn crossed(&self, c: &[usize; N], axis: usize, up: bool) -> ([usize; N], bool) {
+        let n = self.n[axis];
+        let mut next = *c;
+        next[axis] = if up {
+            (c[axis] + 1) % n
+        } else {
+            (c[axis] + n - 1) % n
+        };
+        let wrapped = if up { next[axis] == 0 } else { c[axis] == 0 };
+        (next, wrapped)
+    }
+
+    /// The layer a crossing along `axis` (moving `up` or down) newly brings within reach of
+    /// the cell entered: [`Grid::layer`] on that side.
+    #[inline]
+    pub(crate) fn reached(&self, axis: usize, up: bool) -> (usize, i64) {
+        self.layer(axis, if up { 1 } else { -1 })
+    }
+
     /// The restriction of [`Grid::for_cells`] to the layer of [`Grid::for_layer`].
     #[inline]
     pub(crate) fn layer(&self, axis: usize, step: i64) -> (usize, i64) {

@@ -41,41 +41,42 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         if let Some(i) = self.queue.upcoming(2) {
             let record = &self.balls[i];
             self.motion.prefetch_record(record.home);
-            if let Some(What::Ball { j, .. }) = record.next() {
+            let next = record.next();
+            if let Some(What::Ball { j, .. }) = next {
                 prefetch(self.balls.get(j as usize));
             }
-            self.for_cells_ahead(i, |cell| self.motion.prefetch_header(cell));
+            self.for_cells_ahead(i, next, |cell| self.motion.prefetch_header(cell));
         }
         if let Some(i) = self.queue.upcoming(1) {
-            self.for_cells_ahead(i, |cell| self.motion.prefetch_list(cell));
-            if let Some(What::Ball { j, .. }) = self.balls[i].next() {
+            let next = self.balls[i].next();
+            self.for_cells_ahead(i, next, |cell| self.motion.prefetch_list(cell));
+            if let Some(What::Ball { j, .. }) = next {
                 let j = j as usize;
                 self.motion.prefetch_record(self.balls[j].home);
-                self.for_cells_ahead(j, |cell| self.motion.prefetch_header(cell));
+                // After the contact the partner is predicted again by a full scan, whatever
+                // its own pending event.
+                self.for_cells_ahead(j, None, |cell| self.motion.prefetch_header(cell));
             }
         }
     }
 
-    /// `f` for the flat index of each cell ball `i`'s next scan reads, if they are at most
-    /// [`AHEAD_CELLS`]: after a crossing (its pending event) the layer it reaches from the
-    /// next cell, as `predict_after_crossing` scans it, else every cell within reach of its
-    /// own, as `predict` does (a contact's record may move to another cell first: then the
-    /// guess is off by a cell).
+    /// `f` for the flat index of each cell ball `i`'s scan at event `next` reads, if they are
+    /// at most [`AHEAD_CELLS`]: after a crossing the layer it reaches from the cell entered,
+    /// as `predict_after_crossing` scans it, else every cell within reach of its own, as
+    /// `predict` does (a contact's record may move to another cell first: then the guess is
+    /// off by a cell).
     #[inline]
-    fn for_cells_ahead(&self, i: usize, mut f: impl FnMut(usize)) {
-        let record = &self.balls[i];
-        let mut c = record.cell();
-        let only = match record.next() {
+    fn for_cells_ahead(&self, i: usize, next: Option<What<N>>, mut f: impl FnMut(usize)) {
+        let c = self.balls[i].cell();
+        let (c, only) = match next {
             Some(What::Cell { axis, up }) => {
-                let (axis, n) = (axis as usize, self.grid.n[axis as usize]);
-                c[axis] = if up {
-                    (c[axis] + 1) % n
-                } else {
-                    (c[axis] + n - 1) % n
-                };
-                Some(self.grid.layer(axis, if up { 1 } else { -1 }))
+                let axis = axis as usize;
+                (
+                    self.grid.crossed(&c, axis, up).0,
+                    Some(self.grid.reached(axis, up)),
+                )
             }
-            _ => None,
+            _ => (c, None),
         };
         if self.looks_ahead(only) {
             self.grid.for_cells(&c, only, |nb| f(nb.cell));

@@ -90,8 +90,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         }
         let mut best = Best::<N> { i, best: kept };
         let c = self.balls[i].cell();
-        let layer = self.grid.layer(axis, if up { 1 } else { -1 });
-        self.scan(i, &mut best, &c, Some(layer));
+        self.scan(i, &mut best, &c, Some(self.grid.reached(axis, up)));
         self.schedule(i, best);
     }
 
@@ -347,18 +346,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     pub(super) fn cross(&mut self, i: usize, axis: usize, up: bool) {
         let c = self.balls[i].cell();
         let home = self.balls[i].home;
-        let n = self.grid.n[axis];
-        let mut c2 = c;
-        if up {
-            c2[axis] = (c[axis] + 1) % n;
-            if c2[axis] == 0 {
-                self.motion.wraps_mut(home)[axis] += 1;
-            }
-        } else {
-            c2[axis] = (c[axis] + n - 1) % n;
-            if c[axis] == 0 {
-                self.motion.wraps_mut(home)[axis] -= 1;
-            }
+        let (c2, wrapped) = self.grid.crossed(&c, axis, up);
+        if wrapped {
+            self.motion.wraps_mut(home)[axis] += if up { 1 } else { -1 };
         }
         self.balls[i].cell = c2.map(|x| x as u32);
         let (from, to) = (self.grid.flat(&c), self.grid.flat(&c2));
