@@ -319,9 +319,6 @@ fn offset_of(text: &str, place: &str) -> Option<usize> {
     Some(line_start + column.checked_sub(1)?)
 }
 
-/// A dict's scene error with its place as the dict path the user wrote (`species[0].mass`),
-/// not a line and column of the TOML text made from the dict; an int too large for a
-/// machine-integer field (made a string by [`DictReader::read`]) says so.
 /// Argument `name`, a Python `str`, as Rust text; an `InputError` naming
 /// it if it holds a lone surrogate (which UTF-8 cannot encode).
 fn unicode(text: &Bound<'_, PyString>, name: &str) -> PyResult<String> {
@@ -339,6 +336,9 @@ fn not_unicode(text: &Bound<'_, PyAny>) -> String {
     format!("{shown} is not valid Unicode text (a lone surrogate)")
 }
 
+/// A dict's scene error with its place as the dict path the user wrote (`species[0].mass`),
+/// not a line and column of the TOML text made from the dict; an int too large for a
+/// machine-integer field (made a string by [`DictReader::read`]) says so.
 fn dict_error(
     mut e: noslip_scene::SceneError,
     emitted: &Emitter,
