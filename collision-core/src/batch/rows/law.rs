@@ -64,12 +64,12 @@ pub trait LawRows<T>: Sync {
     fn shared(&self) -> Option<Self::Law> {
         self.columns()
             .iter()
-            .all(|c| c.len() == 1)
+            .all(|(_, c)| c.len() == 1)
             .then(|| self.law(0))
     }
 
     /// The columns, in the law's order, with their fields.
-    fn columns(&self) -> Vec<&[T]>;
+    fn columns(&self) -> Vec<(Field, &[T])>;
 
     /// Rows `range` (a shared column stays shared).
     fn slice(&self, range: Range<usize>) -> Self;
@@ -85,21 +85,23 @@ pub trait LawRows<T>: Sync {
     fn check(&self, len: usize) -> Result<(), LawRowError>;
 }
 
-/// The length check of one column named by `field`.
-fn shape<T>(column: &[T], len: usize, field: Field) -> Result<(), LawRowError> {
-    if column.len() == len || column.len() == 1 {
-        return Ok(());
+/// The length check of the columns, in order: each one value per contact or one shared.
+fn shapes<T>(columns: &[(Field, &[T])], len: usize) -> Result<(), LawRowError> {
+    for &(field, column) in columns {
+        if column.len() != len && column.len() != 1 {
+            return Err(LawRowError {
+                row: None,
+                error: InputError::new(
+                    field,
+                    format!(
+                        "{} values for {len} contacts (give one per contact, or one shared)",
+                        column.len()
+                    ),
+                ),
+            });
+        }
     }
-    Err(LawRowError {
-        row: None,
-        error: InputError::new(
-            field,
-            format!(
-                "{} values for {len} contacts (give one per contact, or one shared)",
-                column.len()
-            ),
-        ),
-    })
+    Ok(())
 }
 
 /// `x[i]`, or the one value of a shared column.
@@ -137,12 +139,12 @@ fn all_finite_non_negative<T: Scalar>(column: &[T]) -> bool {
         .fold(true, |ok, x| ok & (&zero <= x) & x.is_finite())
 }
 
-/// Checks each row from 0 to `rows` (1 when every column is shared) with `law`, unless
-/// `fast` (every column within its range) says every row passes: `law` then names the first
-/// refused row and field, or the field alone if `columns` (each field's column) holds one
-/// value shared by every row.
+/// Checks each row of `len` contacts (one when every column is shared: its one law is checked
+/// even for no contacts) with `law`, unless `fast` (every column within its range) says every
+/// row passes: `law` then names the first refused row and field, or the field alone if its
+/// column (in `columns`) holds one value shared by every row.
 fn check_rows<T, L>(
-    rows: usize,
+    len: usize,
     fast: bool,
     columns: &[(Field, &[T])],
     law: impl Fn(usize) -> Result<L, InputError>,
@@ -150,6 +152,11 @@ fn check_rows<T, L>(
     if fast {
         return Ok(());
     }
+    let rows = if columns.iter().all(|(_, c)| c.len() == 1) {
+        1
+    } else {
+        len
+    };
     for i in 0..rows {
         law(i).map_err(|error| {
             let shared = columns
@@ -162,16 +169,6 @@ fn check_rows<T, L>(
         })?;
     }
     Ok(())
-}
-
-/// The number of rows to check: `len`, or 1 when every column is shared (its one law is
-/// checked even for no contacts).
-fn rows_to_check<T>(columns: &[&[T]], len: usize) -> usize {
-    if columns.iter().all(|c| c.len() == 1) {
-        1
-    } else {
-        len
-    }
 }
 
 fn slice_column<'a, T>(x: &'a [T], range: &Range<usize>) -> &'a [T] {
@@ -192,8 +189,11 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for RestitutionRows<'a, T> {
         }
     }
 
-    fn columns(&self) -> Vec<&[T]> {
-        vec![self.e, self.beta]
+    fn columns(&self) -> Vec<(Field, &[T])> {
+        vec![
+            (Field::RestitutionE, self.e),
+            (Field::RestitutionBeta, self.beta),
+        ]
     }
 
     fn slice(&self, range: Range<usize>) -> Self {
@@ -204,15 +204,11 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for RestitutionRows<'a, T> {
     }
 
     fn check(&self, len: usize) -> Result<(), LawRowError> {
-        shape(self.e, len, Field::RestitutionE)?;
-        shape(self.beta, len, Field::RestitutionBeta)?;
+        let columns = self.columns();
+        shapes(&columns, len)?;
         let (zero, one) = (T::zero(), T::one());
         let fast = all_within(self.e, &zero, &one) && all_within(self.beta, &-one.clone(), &one);
-        let columns = [
-            (Field::RestitutionE, self.e),
-            (Field::RestitutionBeta, self.beta),
-        ];
-        check_rows(rows_to_check(&self.columns(), len), fast, &columns, |i| {
+        check_rows(len, fast, &columns, |i| {
             Restitution::new(at(self.e, i), at(self.beta, i))
         })
     }
@@ -235,8 +231,12 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for WaltonRows<'a, T> {
         }
     }
 
-    fn columns(&self) -> Vec<&[T]> {
-        vec![self.e, self.mu, self.beta0]
+    fn columns(&self) -> Vec<(Field, &[T])> {
+        vec![
+            (Field::RestitutionE, self.e),
+            (Field::FrictionMu, self.mu),
+            (Field::WaltonBeta0, self.beta0),
+        ]
     }
 
     fn slice(&self, range: Range<usize>) -> Self {
@@ -248,19 +248,13 @@ impl<'a, T: Scalar + Send + Sync> LawRows<T> for WaltonRows<'a, T> {
     }
 
     fn check(&self, len: usize) -> Result<(), LawRowError> {
-        shape(self.e, len, Field::RestitutionE)?;
-        shape(self.mu, len, Field::FrictionMu)?;
-        shape(self.beta0, len, Field::WaltonBeta0)?;
+        let columns = self.columns();
+        shapes(&columns, len)?;
         let (zero, one) = (T::zero(), T::one());
         let fast = all_within(self.e, &zero, &one)
             && all_finite_non_negative(self.mu)
             && all_within(self.beta0, &-one.clone(), &one);
-        let columns = [
-            (Field::RestitutionE, self.e),
-            (Field::FrictionMu, self.mu),
-            (Field::WaltonBeta0, self.beta0),
-        ];
-        check_rows(rows_to_check(&self.columns(), len), fast, &columns, |i| {
+        check_rows(len, fast, &columns, |i| {
             Walton::new(at(self.e, i), at(self.mu, i), at(self.beta0, i))
         })
     }
