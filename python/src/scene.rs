@@ -471,7 +471,10 @@ impl Scene {
     ///     containers nested more than 64 deep (or inside themselves) are refused.
     #[staticmethod]
     #[pyo3(signature = (scene, origin = None), text_signature = "(scene, origin='<dict>')")]
-    fn from_dict(scene: &Bound<'_, PyDict>, origin: Option<&Bound<'_, PyString>>) -> PyResult<Self> {
+    fn from_dict(
+        scene: &Bound<'_, PyDict>,
+        origin: Option<&Bound<'_, PyString>>,
+    ) -> PyResult<Self> {
         let origin = origin.map_or(Ok("<dict>".to_string()), |o| unicode(o, "origin"))?;
         let mut reader = DictReader {
             origin: &origin,
