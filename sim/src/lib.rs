@@ -32,6 +32,7 @@
 pub mod animation;
 pub mod animation_page;
 pub mod boundary_map;
+mod buckets;
 mod canonical;
 mod cells;
 pub mod collapse;

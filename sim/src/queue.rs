@@ -15,8 +15,9 @@
 //! (deterministic). When the list is empty the next bucket is loaded into it and sorted once
 //! (or, if every bucket is empty, `c` jumps to the overflow's earliest bucket).
 //!
-//! **Costs.** Setting or removing a ball's event is `O(1)` in a bucket or the overflow (a
-//! swap-remove; each ball knows its place), and in place (its time written, nothing moved)
+//! **Costs.** Setting or removing a ball's event is `O(1)` in a bucket (one cache line, the
+//! ball found by a search of it: [`crate::buckets`]) or the overflow (a swap-remove; each
+//! ball there knows its place), and in place (its time written, nothing moved)
 //! when the new time stays in the same bucket or in the overflow. The earliest event leaves
 //! the sorted list by one step of its start (`head`), moving nothing; another ball leaves or
 //! enters it by moving the shorter side of the list by one (a binary search for an entry's
@@ -31,6 +32,7 @@
 //! [`Calendar::open`]: the new times are kept unordered and placed once by the rebuild.
 //! Nothing is allocated once the lists have grown.
 
+use crate::buckets::Buckets;
 use crate::canonical::{order, Key};
 
 /// What ball `i` will meet.
@@ -70,8 +72,8 @@ enum Place {
     None,
     /// At this index of the current bucket's sorted list.
     Now(u32),
-    /// At this index of its bucket (`b_i mod B`).
-    Bucket(u32),
+    /// In its bucket (`b_i mod B`; [`crate::buckets`]).
+    Bucket,
     /// At this index of the overflow list.
     Overflow(u32),
 }
@@ -123,9 +125,7 @@ pub(crate) struct Calendar {
     /// The first pending entry of `now`.
     head: usize,
     /// Balls with `current < b_i < current + B`, in bucket `b_i mod B`.
-    buckets: Vec<Vec<u32>>,
-    /// Balls in the buckets, all together.
-    in_buckets: usize,
+    buckets: Buckets,
     overflow: Vec<u32>,
     /// The current bucket `c`.
     current: u64,
@@ -144,8 +144,7 @@ impl Calendar {
         Calendar {
             now: Vec::new(),
             head: 0,
-            buckets: vec![Vec::new()],
-            in_buckets: 0,
+            buckets: Buckets::new(1),
             overflow: Vec::new(),
             current: 0,
             inv_width: 1.0,
@@ -162,10 +161,8 @@ impl Calendar {
             .extend(self.now[self.head..].iter().map(|e| e.ball));
         self.now.clear();
         self.head = 0;
-        for list in &mut self.buckets {
-            self.overflow.append(list);
-        }
-        self.in_buckets = 0;
+        let overflow = &mut self.overflow;
+        self.buckets.drain_all(|ball| overflow.push(ball));
         for (k, &ball) in self.overflow.iter().enumerate() {
             slots.slot_mut(ball as usize).place = Place::Overflow(k as u32);
         }
@@ -175,11 +172,11 @@ impl Calendar {
     /// The number of balls with a pending event.
     #[cfg(test)]
     pub(crate) fn len(&self) -> usize {
-        self.now.len() - self.head + self.in_buckets + self.overflow.len()
+        self.now.len() - self.head + self.buckets.len() + self.overflow.len()
     }
 
     fn mask(&self) -> u64 {
-        self.buckets.len() as u64 - 1
+        self.buckets.count() as u64 - 1
     }
 
     /// `b = floor(t / delta)` (saturating at `2^63 - 1`; 0 for `t <= 0`): a cast to a
@@ -213,8 +210,8 @@ impl Calendar {
         let b = self.bucket(time);
         let slot = *slots.slot(ball);
         let stays = match slot.place {
-            Place::Bucket(_) => b == self.bucket(slot.time),
-            Place::Overflow(_) => b.saturating_sub(self.current) >= self.buckets.len() as u64,
+            Place::Bucket => b == self.bucket(slot.time),
+            Place::Overflow(_) => b.saturating_sub(self.current) >= self.buckets.count() as u64,
             _ => false,
         };
         slots.slot_mut(ball).time = time;
@@ -233,11 +230,9 @@ impl Calendar {
         } else if b <= self.current {
             let time = slots.slot(ball as usize).time;
             self.put_now(slots, Entry { time, ball });
-        } else if b - self.current < self.buckets.len() as u64 {
-            let slot = (b & self.mask()) as usize;
-            slots.slot_mut(ball as usize).place = Place::Bucket(self.buckets[slot].len() as u32);
-            self.buckets[slot].push(ball);
-            self.in_buckets += 1;
+        } else if b - self.current < self.buckets.count() as u64 {
+            slots.slot_mut(ball as usize).place = Place::Bucket;
+            self.buckets.push((b & self.mask()) as usize, ball);
         } else {
             slots.slot_mut(ball as usize).place = Place::Overflow(self.overflow.len() as u32);
             self.overflow.push(ball);
@@ -257,14 +252,9 @@ impl Calendar {
         match slot.place {
             Place::None => {}
             Place::Now(at) => self.take_now(slots, at as usize),
-            Place::Bucket(at) => {
+            Place::Bucket => {
                 let b = self.bucket(slot.time) & self.mask();
-                let list = &mut self.buckets[b as usize];
-                list.swap_remove(at as usize);
-                if let Some(&moved) = list.get(at as usize) {
-                    slots.slot_mut(moved as usize).place = Place::Bucket(at);
-                }
-                self.in_buckets -= 1;
+                self.buckets.remove(b as usize, ball as u32);
             }
             Place::Overflow(at) => {
                 self.overflow.swap_remove(at as usize);
@@ -321,7 +311,7 @@ impl Calendar {
     /// The earliest pending event `(t_i, i)` (least `(t_i, key_i, i)`), if any.
     pub(crate) fn peek(&mut self, slots: &mut (impl Slots + ?Sized)) -> Option<(f64, usize)> {
         while self.head == self.now.len() {
-            if self.in_buckets == 0 {
+            if self.buckets.len() == 0 {
                 // Every bucket is empty: jump to the overflow's earliest bucket.
                 let first = self
                     .overflow
@@ -337,11 +327,7 @@ impl Calendar {
                 self.reschedule_overflow(slots);
             }
             let slot = (self.current & self.mask()) as usize;
-            let mut list = std::mem::take(&mut self.buckets[slot]);
-            self.in_buckets -= list.len();
-            self.load(slots, &list);
-            list.clear();
-            self.buckets[slot] = list;
+            self.load(slots, slot);
         }
         let top = self.now[self.head];
         Some((top.time, top.ball as usize))
@@ -355,15 +341,17 @@ impl Calendar {
         self.now.get(self.head + k).map(|e| e.ball as usize)
     }
 
-    /// Adds the balls of `list` (a bucket just reached) to the current bucket's list, sorted
+    /// Adds the balls of bucket `bucket` (just reached) to the current bucket's list, sorted
     /// once: a few comparisons a ball for the few balls of a bucket, and popping the earliest
     /// then moves nothing.
-    fn load(&mut self, slots: &mut (impl Slots + ?Sized), list: &[u32]) {
-        let keys = &*slots;
-        self.now.extend(list.iter().map(|&ball| Entry {
-            time: keys.slot(ball as usize).time,
-            ball,
-        }));
+    fn load(&mut self, slots: &mut (impl Slots + ?Sized), bucket: usize) {
+        let (keys, now) = (&*slots, &mut self.now);
+        self.buckets.drain(bucket, |ball| {
+            now.push(Entry {
+                time: keys.slot(ball as usize).time,
+                ball,
+            })
+        });
         self.sort_now(slots);
     }
 
@@ -401,10 +389,7 @@ impl Calendar {
         self.now.clear();
         self.head = 0;
         pending.append(&mut self.overflow);
-        for list in &mut self.buckets {
-            pending.append(list);
-        }
-        self.in_buckets = 0;
+        self.buckets.drain_all(|ball| pending.push(ball));
         let (mut sum, mut finite) = (0.0, 0usize);
         for &ball in &pending {
             let t = &mut slots.slot_mut(ball as usize).time;
@@ -423,8 +408,8 @@ impl Calendar {
             1.0
         };
         let buckets = m.div_ceil(2).next_power_of_two();
-        if self.buckets.len() != buckets {
-            self.buckets.resize_with(buckets, Vec::new);
+        if self.buckets.count() != buckets {
+            self.buckets.resize(buckets);
         }
         self.current = 0;
         for &ball in &pending {
