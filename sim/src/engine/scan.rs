@@ -196,8 +196,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     /// Offers ball `i` (flight `m`) meeting the balls of the first `count` places of `near`:
-    /// their times [`LANES`] at a time ([`super::lanes`]), then to [`Self::offer_ball`] only
-    /// those at the least time found (or the best's, if earlier).
+    /// their times [`LANES`] at a time ([`super::lanes`]), then to [`Self::offer_timed`],
+    /// with the lane's time, only those at the least time found (or the best's, if earlier).
     #[inline(always)]
     fn offer_gathered(
         &self,
@@ -208,12 +208,16 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         count: usize,
     ) {
         let bound = near.least(best.bound(), Flight(m, &self.motion, &self.grid.size));
+        let offer = |best: &mut Best<N>, p: usize| {
+            let resident = self.motion.at(near.places[p]);
+            let image = image_of(near.base(p), resident);
+            self.offer_timed(i, best, m, &image, resident, near.time(p))
+        };
         let mut refused = false;
         for p in 0..count {
             // NaN (no contact) compares false.
             if near.time(p) <= bound {
-                let resident = self.motion.at(near.places[p]);
-                refused |= self.offer_ball(i, best, m, near.base(p), resident);
+                refused |= offer(best, p);
             }
         }
         if refused {
@@ -221,8 +225,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             // scalar loop meets them (rare: a pair left touching, its residue pointing inwards).
             for p in 0..count {
                 if near.time(p) > bound {
-                    let resident = self.motion.at(near.places[p]);
-                    self.offer_ball(i, best, m, near.base(p), resident);
+                    offer(best, p);
                 }
             }
         }
@@ -240,19 +243,41 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         base: &[f64; N],
         resident: &Resident<N>,
     ) -> bool {
-        let j = resident.ball as usize;
-        if j == i {
+        if resident.ball as usize == i {
             return false;
         }
-        // j's image in i's record coordinates: s - W_j + W_i (exact in f64).
-        let image: [f64; N] = std::array::from_fn(|k| base[k] - f64::from(resident.wraps[k]));
+        let image = image_of(base, resident);
         // The same bits as from j's side (canonical::pair_time): no ordering here.
         let t = pair_time(m, &resident.motion, &image, &self.grid.size);
-        // NaN: no contact (never better).
+        self.offer_timed(i, best, m, &image, resident, t)
+    }
+
+    /// [`Self::offer_ball`] with the pair's canonical time `t` already computed ([`pair_time`]
+    /// of `m` and the resident at `image`, NaN if they never meet): by the scalar offer, or
+    /// by the lanes, whose times are the same bits ([`super::lanes`]; checked here on every
+    /// offer in the tests).
+    #[inline(always)]
+    fn offer_timed(
+        &self,
+        i: usize,
+        best: &mut Best<N>,
+        m: &Motion<N>,
+        image: &[f64; N],
+        resident: &Resident<N>,
+        t: f64,
+    ) -> bool {
+        #[cfg(test)]
+        assert_eq!(
+            t.to_bits(),
+            pair_time(m, &resident.motion, image, &self.grid.size).to_bits(),
+            "a lane's time is the canonical time, bit for bit"
+        );
+        let j = resident.ball as usize;
+        // NaN: no contact (never better; a ball's time with itself is NaN).
         if t.is_nan() || !best.may_beat(t) {
             return false;
         }
-        if self.balls[i].last.is_ball(j) && self.repeats(i, j, m, &image, resident) {
+        if self.balls[i].last.is_ball(j) && self.repeats(i, j, m, image, resident) {
             return true;
         }
         best.offer(t, || What::Ball {
@@ -381,4 +406,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
         }
     }
+}
+
+/// The image of `resident`'s ball in the scanning ball's record coordinates, `s - W_j + W_i`,
+/// from its cell's image `base = s + W_i` (whole numbers, exact in `f64`).
+#[inline(always)]
+fn image_of<const N: usize>(base: &[f64; N], resident: &Resident<N>) -> [f64; N] {
+    std::array::from_fn(|k| base[k] - f64::from(resident.wraps[k]))
 }
