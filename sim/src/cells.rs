@@ -345,6 +345,8 @@ impl<const N: usize> Grid<N> {
             at: [0; N],
             // Each axis lists at least c_k itself, but a layer beyond a wall lists nothing.
             done: len.contains(&0),
+            // An axis lists a cell twice (two images) only if it lists more than it has.
+            distinct: (0..N).all(|k| len[k] <= self.n[k]),
         }
     }
 }
@@ -392,6 +394,7 @@ impl<const N: usize> Iterator for Near<'_, N> {
 }
 
 /// An odometer over the product of each axis' cells (the last axis fastest).
+#[derive(Clone)]
 pub(crate) struct Odometer<const N: usize> {
     /// Per axis, the flat index's term `t_k stride_k` of each of its cells.
     pub(crate) part: [[usize; 5]; N],
@@ -402,6 +405,9 @@ pub(crate) struct Odometer<const N: usize> {
     at: [usize; N],
     /// Whether the walk is over (or, before it starts, lists no cell).
     pub(crate) done: bool,
+    /// Whether it lists each cell once (else some cell at several periodic images: a
+    /// periodic axis of fewer than `2 K_k + 1` cells).
+    pub(crate) distinct: bool,
 }
 
 impl<const N: usize> Iterator for Odometer<N> {

@@ -221,6 +221,10 @@ fn neighbours_are_the_cells_of_the_definition_in_its_order() {
                 g.for_neighbours(&[c0, c1], |nb| got.push((nb.cell, nb.shift)));
                 assert_eq!(got, by_definition(g, &[c0, c1]), "{:?} {c0} {c1}", g.n);
                 assert_eq!(g.flat(&[c0, c1]), c0 * g.n[1] + c1);
+                // `distinct` says whether no cell is listed twice (at two images).
+                let cells: std::collections::BTreeSet<usize> = got.iter().map(|g| g.0).collect();
+                let distinct = g.odometer(&[c0, c1], None).distinct;
+                assert_eq!(distinct, cells.len() == got.len(), "{:?} {c0} {c1}", g.n);
             }
         }
     }

@@ -54,8 +54,9 @@ pub(super) struct Gathered<const N: usize> {
     pub(super) places: Vec<u32>,
     /// Per place, in a scan with shifted cells: the index of its cell's image in `bases`.
     codes: Vec<u16>,
-    /// The cells' images `s + W_i` in the scanning ball's record coordinates: one for the
-    /// whole scan, or one per cell if some cell is shifted (a periodic image).
+    /// The cells' images `s + W_i` in the scanning ball's record coordinates: the first for
+    /// the whole scan, or one per cell if some cell is shifted (a periodic image); it only
+    /// grows.
     bases: Vec<[f64; N]>,
     /// Whether the cells have images of their own (`codes` is then set).
     shifted: bool,
@@ -86,27 +87,24 @@ impl<const N: usize> Default for Gathered<N> {
 }
 
 impl<const N: usize> Gathered<N> {
-    /// Starts a scan whose cells all have the image `base` (no periodic shift).
+    /// Starts a scan whose cells all have the image `base` (no periodic shift): the first
+    /// of `bases` (which only grows: no allocation per scan).
     #[inline]
     pub(super) fn unshifted(&mut self, base: [f64; N]) {
-        self.bases.clear();
-        self.bases.push(base);
+        match self.bases.first_mut() {
+            Some(first) => *first = base,
+            None => self.bases.push(base),
+        }
         self.shifted = false;
     }
 
-    /// Starts a scan whose cells each have their own image ([`Self::gather_walk`]).
-    #[inline]
-    pub(super) fn shifted(&mut self) {
-        self.bases.clear();
-        self.shifted = true;
-    }
-
-    /// Starts a shifted scan ([`Self::shifted`]) and gathers the places of the cells of
+    /// Starts a scan whose cells each have their own image, and gathers the places of the cells of
     /// `walk` (a cell at the grid's edge: [`crate::cells::Near::listing`]) with their images
     /// `s + W_i` (`s` the cell's shift, `w_i` the scanning ball's wraps): per cell, four
     /// places and codes whatever its length, as in
     /// [`crate::residents::Residents::gather_cells`], in one loop with the odometer's
-    /// position in locals; returns the number of places.
+    /// position in locals; returns the number of places. The room is made once, before the
+    /// loop, and each axis's terms `s_k + W_ik` are converted once, not once per cell.
     #[inline(always)]
     pub(super) fn gather_walk(
         &mut self,
@@ -114,38 +112,50 @@ impl<const N: usize> Gathered<N> {
         walk: &Odometer<N>,
         w_i: &[i16; N],
     ) -> usize {
-        self.shifted();
-        let mut count = 0;
+        self.shifted = true;
         if walk.done {
             return 0;
         }
+        // Distinct cells hold at most every ball once; a cell listed at several images, as
+        // often as it is listed (counted first: only in a grid of a few cells an axis).
+        let listed = if walk.distinct {
+            residents.len()
+        } else {
+            walk.clone().map(|nb| residents.span(nb.cell).1).sum()
+        };
+        let room = listed + LANES;
+        if self.places.len() < room {
+            self.places.resize(room, 0);
+        }
+        if self.codes.len() < room {
+            self.codes.resize(room, 0);
+        }
+        // Per axis, each of its cells' image term, exact in f64.
+        let terms: [[f64; 5]; N] = std::array::from_fn(|k| {
+            std::array::from_fn(|a| f64::from(walk.shifts[k][a]) + f64::from(w_i[k]))
+        });
+        let cells: usize = walk.len.iter().product();
+        if self.bases.len() < cells {
+            self.bases.resize(cells, [0.0; N]);
+        }
+        let (places, codes) = (&mut self.places[..room], &mut self.codes[..room]);
+        let mut count = 0;
+        let mut code = 0;
         let mut at = [0usize; N];
         loop {
             let cell: usize = (0..N).map(|k| walk.part[k][at[k]]).sum();
-            let code = self.bases.len() as u16;
-            self.bases.push(cell_image(
-                &std::array::from_fn(|k| walk.shifts[k][at[k]]),
-                w_i,
-            ));
+            self.bases[code] = std::array::from_fn(|k| terms[k][at[k]]);
             let (start, len) = residents.span(cell);
-            let need = count + len.max(LANES);
-            if self.places.len() < need {
-                self.places.resize(need.next_power_of_two(), 0);
-            }
-            if self.codes.len() < need {
-                self.codes.resize(need.next_power_of_two(), 0);
-            }
-            let places: &mut [u32; LANES] =
-                (&mut self.places[count..count + LANES]).try_into().unwrap();
-            *places = [start, start + 1, start + 2, start + 3];
-            let codes: &mut [u16; LANES] =
-                (&mut self.codes[count..count + LANES]).try_into().unwrap();
-            *codes = [code; LANES];
+            let first: &mut [u32; LANES] = (&mut places[count..count + LANES]).try_into().unwrap();
+            *first = [start, start + 1, start + 2, start + 3];
+            let first: &mut [u16; LANES] = (&mut codes[count..count + LANES]).try_into().unwrap();
+            *first = [code as u16; LANES];
             for k in LANES..len {
-                self.places[count + k] = start + k as u32;
-                self.codes[count + k] = code;
+                places[count + k] = start + k as u32;
+                codes[count + k] = code as u16;
             }
             count += len;
+            code += 1;
             let mut k = N;
             loop {
                 if k == 0 {
