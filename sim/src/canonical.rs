@@ -27,8 +27,9 @@
 //! **Order** ([`Key`]). Events are taken in the order of `(t, key)`: the key orders the
 //! events of one time by their lowest ball, then their kind (ball, wall, obstacle, boundary),
 //! then the other body (the higher ball, the wall's side, the obstacle, the boundary), then
-//! the image. Cell crossings (an engine's own, moving no record) come after every contact of
-//! their time.
+//! the image. A cell crossing (an engine's own event, moving no record) is keyed the same
+//! way, its kind last: it comes after its own ball's contacts of its time, and among the
+//! other balls' by its ball; since it moves no record, where it falls changes no contact.
 //!
 //! **Re-basing.** The clock is re-based at local time `T = sqrt(span^2 / v^2)` ([`rebase_at`]):
 //! `span` is a number of the narrowest cell widths of the grid rule (`crate::cells`), `v^2`
@@ -230,7 +231,7 @@ pub(crate) mod kind {
     pub(crate) const WALL: u8 = 1;
     pub(crate) const OBSTACLE: u8 = 2;
     pub(crate) const BOUNDARY: u8 = 3;
-    /// A cell crossing: after every contact of its time.
+    /// A cell crossing: after its ball's contacts of its time (the last kind).
     pub(crate) const CELL: u8 = 15;
 }
 

@@ -38,11 +38,16 @@ fn every_mutation_is_caught_by_some_check() {
     }
 }
 
+/// The control: the same evaluation of the same DAG as the mutations' (`n = 3`), with no
+/// mutation, passes every check (and at `n = 2` too).
 #[test]
 fn the_uncorrupted_dag_passes_every_check() {
     for variant in Variant::ALL {
+        let kernel = mutated::<3, 3>(variant, None);
+        let results = identity_checks::<3, 3>(kernel.as_ref(), variant, &OPTS, &mut |_| {});
+        assert!(results.iter().all(|r| r.passed), "n = 3: {results:?}");
         let kernel = mutated::<2, 1>(variant, None);
         let results = identity_checks::<2, 1>(kernel.as_ref(), variant, &OPTS, &mut |_| {});
-        assert!(results.iter().all(|r| r.passed), "{results:?}");
+        assert!(results.iter().all(|r| r.passed), "n = 2: {results:?}");
     }
 }
