@@ -1,6 +1,8 @@
 //! The C99 and OpenCL C back ends: the hooks of [`Language`] for each.
 
-use super::{BatchParam, Language, Param, Precision, Unit};
+use super::language::Language;
+use super::precision::Precision;
+use super::unit::{BatchParam, Param, Unit};
 use std::fmt::Write;
 
 /// C99, as a self-contained header of `static inline` functions, usable from C++ as is.

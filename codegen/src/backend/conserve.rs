@@ -13,7 +13,8 @@
 //! normal range: products above about `10^-270`), as both are then the product split
 //! into its rounding and the remainder.
 
-use super::{Lang, Precision};
+use super::lang::Lang;
+use super::precision::Precision;
 
 /// The words of the correction's text that differ between C99 and OpenCL C.
 struct Spelling {
