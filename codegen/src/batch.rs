@@ -38,13 +38,16 @@
 //! values held instead of 13, 18, 24; the AVX2 kernels' stack accesses per pass fell from 58,
 //! 113, 198 to 46, 93, 148).
 //!
-//! Two parameter modes per variant:
+//! Two parameter modes per variant for every law ([`Params::ALL`]), and a third for the
+//! rough-ball family:
 //!
 //! - per contact ([`Params::PerContact`]): the balls are lane arrays of the block;
 //! - shared ([`Params::Shared`]): one set of ball parameters for the whole batch, passed as
 //!   scalars. Every node that depends only on them (`D`, `g_1 g_2 / D`, `rho_i`, ...) is
 //!   computed once per call, before the block loop, by the same operations; only the
-//!   per-contact rest runs in the lane loop.
+//!   per-contact rest runs in the lane loop;
+//! - each ([`Params::Each`], the rough and Walton kernels only): the ball parameters and the
+//!   law per contact, nothing computed once per call.
 //!
 //! The parts: the parameter modes and the kernels' names (`batch/params.rs`), the blocks'
 //! types and each input's place in them (`layout.rs`), the split of the steps into per call

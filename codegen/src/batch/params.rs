@@ -20,7 +20,8 @@ pub enum Params {
 }
 
 impl Params {
-    /// Both, in emission order.
+    /// The two modes every law has, in emission order ([`Params::Each`], the rough family's
+    /// third, is emitted with those kernels only).
     pub const ALL: [Params; 2] = [Params::PerContact, Params::Shared];
 
     /// The batch kernel's function name: `free`, `fixed`, `free_shared`, `fixed_shared`.
