@@ -148,6 +148,7 @@ impl Buckets {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use collision_core::rng::Rng;
     use std::collections::BTreeSet;
 
     /// Pushes, removals (inline and spilled, the last ball and others) and drains, against
@@ -156,13 +157,8 @@ mod tests {
     fn buckets_hold_what_a_set_holds() {
         let mut buckets = Buckets::new(4);
         let mut model: Vec<BTreeSet<u32>> = vec![BTreeSet::new(); 4];
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |n: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % n
-        };
+        let mut rng = Rng::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |n: u64| rng.integer(0..=n - 1);
         let mut ball = 0u32;
         for round in 0..20_000 {
             let b = next(4) as usize;

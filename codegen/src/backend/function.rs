@@ -6,7 +6,8 @@
 use super::language::Language;
 use super::precision::Precision;
 use super::unit::{Param, Unit};
-use crate::program::{Op, Operand, Program};
+use crate::certify::step_expr;
+use crate::program::{Operand, Program};
 use num_rational::BigRational;
 use std::fmt::Write;
 
@@ -30,23 +31,6 @@ pub fn constant_literal(value: &BigRational, p: Precision) -> String {
 
 fn operand(program: &Program, x: &Operand) -> String {
     program.name(x).to_string()
-}
-
-fn expression(lang: &dyn Language, program: &Program, op: &Op, p: Precision) -> String {
-    let o = |x: &Operand| operand(program, x);
-    let fma = lang.fma(p);
-    match op {
-        Op::Add(a, b) => format!("{} + {}", o(a), o(b)),
-        Op::Sub(a, b) => format!("{} - {}", o(a), o(b)),
-        Op::Mul(a, b) => format!("{} * {}", o(a), o(b)),
-        Op::Div(a, b) => format!("{} / {}", o(a), o(b)),
-        Op::Neg(a) => format!("-{}", o(a)),
-        Op::MulAdd(a, b, c) => format!("{fma}({}, {}, {})", o(a), o(b), o(c)),
-        Op::MulSub(a, b, c) => format!("{fma}({}, {}, -{})", o(a), o(b), o(c)),
-        Op::NegMulAdd(a, b, c) => format!("{fma}(-{}, {}, {})", o(a), o(b), o(c)),
-        Op::Sqrt(a) => format!("{}({})", lang.sqrt(p), o(a)),
-        Op::SelectLt([x, y, a, b]) => format!("{} < {} ? {} : {}", o(x), o(y), o(a), o(b)),
-    }
 }
 
 /// The length of an output array for dimension `n`: `S + N`.
@@ -116,7 +100,7 @@ pub fn function(lang: &dyn Language, unit: &Unit, p: Precision) -> String {
             f,
             "    const {ty} {} = {};",
             s.name,
-            expression(lang, program, &s.op, p)
+            step_expr(program, &s.op, lang.fma(p), lang.sqrt(p), false)
         );
     }
     for param in &unit.params {

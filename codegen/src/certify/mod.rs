@@ -197,7 +197,8 @@ pub struct Certified {
 /// (`a + b`, `a - b`, `a * b`, `a / b`, `-a`), or a fused one through `fma` (`f64::mul_add`,
 /// `fma`, ...) as the FMA kernels call it: `fma(a, b, c)`, `fma(a, b, -c)`, `fma(-a, b, c)`.
 /// A square root is `{sqrt}(a)`; a select `if x < y { a } else { b }` in Rust
-/// (`select_rust`), `x < y ? a : b` in C, as the plain kernels spell them.
+/// (`select_rust`), `x < y ? a : b` in C, as the plain kernels spell them (the C and OpenCL
+/// back end spells its kernels' steps with it: `crate::backend`).
 pub(crate) fn step_expr(
     program: &Program,
     op: &Op,
