@@ -82,6 +82,7 @@ pub mod setup;
 pub mod smooth;
 pub mod species_laws;
 pub mod speed_range;
+mod stage;
 pub mod table;
 #[cfg(test)]
 mod table_tests;

@@ -31,9 +31,22 @@
 //! rebuild. Re-predicting every ball (the start, a re-basing) goes through
 //! [`Calendar::open`]: the new times are kept unordered and placed once by the rebuild.
 //! Nothing is allocated once the lists have grown.
+//!
+//! **Held back.** Where the buckets outgrow the caches ([`STAGE_FROM_BYTES`]), a change to a
+//! bucket (a ball put in or taken out) is held back a few events while its block is loaded
+//! ([`crate::stage`]); the changes to a bucket reach it, in their order, before the calendar
+//! reads it, so the pop order is the same.
 
 use crate::buckets::Buckets;
 use crate::canonical::{order, Key};
+use crate::stage::{Change, Stage};
+
+/// The size of the buckets' blocks from which their changes are held back ([`crate::stage`]):
+/// 1 MiB (`2^14` buckets, from `2^14 + 1` pending events on), a core's L2 cache on the hosts
+/// measured.
+/// Below it the blocks stay cached and holding back costs more than it saves
+/// (docs/benchmarks.md, "The calendar's changes held back").
+const STAGE_FROM_BYTES: usize = 1 << 20;
 
 /// What ball `i` will meet.
 #[derive(Clone, Copy, Debug)]
@@ -74,6 +87,8 @@ enum Place {
     Now(u32),
     /// In its bucket (`b_i mod B`; [`crate::buckets`]).
     Bucket,
+    /// On its way to its bucket: the insertion held back at this index ([`crate::stage`]).
+    Staged(u32),
     /// At this index of the overflow list.
     Overflow(u32),
 }
@@ -136,6 +151,13 @@ pub(crate) struct Calendar {
     /// Between [`Calendar::open`] and [`Calendar::rebuild`]: every event goes to the
     /// overflow, to be placed once by the rebuild.
     filling: bool,
+    /// The changes to the buckets held back, if `staging` ([`crate::stage`]).
+    stage: Stage,
+    /// Whether changes to the buckets are held back: chosen at each rebuild by the blocks'
+    /// size ([`STAGE_FROM_BYTES`]), unless `forced`.
+    staging: bool,
+    /// Staging on or off whatever the size (tests).
+    forced: Option<bool>,
 }
 
 impl Calendar {
@@ -150,13 +172,47 @@ impl Calendar {
             inv_width: 1.0,
             scratch: Vec::new(),
             filling: false,
+            stage: Stage::default(),
+            staging: false,
+            forced: None,
         }
+    }
+
+    /// Holds back the changes to the buckets (`Some(true)`) or not (`Some(false)`) whatever
+    /// their size, or as the size decides (`None`): a test of both ways on small setups.
+    #[cfg(test)]
+    pub(crate) fn force_staging(&mut self, slots: &mut (impl Slots + ?Sized), on: Option<bool>) {
+        self.flush_stage(slots);
+        self.forced = on;
+        self.staging = on.unwrap_or(self.staging);
+    }
+
+    /// Every held change reaches its block, in their order.
+    fn flush_stage(&mut self, slots: &mut (impl Slots + ?Sized)) {
+        let mask = self.mask();
+        let buckets = &mut self.buckets;
+        self.stage
+            .flush(|change| apply(buckets, mask, slots, change));
+    }
+
+    /// Holds `change` back ([`crate::stage`]), its block asked for; the oldest held change
+    /// reaches its block if the ring was full. Returns its index in the ring.
+    #[inline]
+    fn hold(&mut self, slots: &mut (impl Slots + ?Sized), change: Change) -> u32 {
+        let mask = self.mask();
+        self.buckets.prefetch((change.bucket & mask) as usize);
+        let (at, oldest) = self.stage.push(change);
+        if let Some(oldest) = oldest {
+            apply(&mut self.buckets, mask, slots, oldest);
+        }
+        at
     }
 
     /// Opens the calendar for a refill, every ball re-predicted before the next
     /// [`Calendar::rebuild`]: until then the pending events are kept unordered (in the
     /// overflow), so that the refill is `O(1)` a ball whatever the clock did meanwhile.
     pub(crate) fn open(&mut self, slots: &mut (impl Slots + ?Sized)) {
+        self.flush_stage(slots);
         self.overflow
             .extend(self.now[self.head..].iter().map(|e| e.ball));
         self.now.clear();
@@ -172,7 +228,8 @@ impl Calendar {
     /// The number of balls with a pending event.
     #[cfg(test)]
     pub(crate) fn len(&self) -> usize {
-        self.now.len() - self.head + self.buckets.len() + self.overflow.len()
+        let buckets = self.buckets.len() as isize + self.stage.net();
+        self.now.len() - self.head + buckets as usize + self.overflow.len()
     }
 
     fn mask(&self) -> u64 {
@@ -211,6 +268,7 @@ impl Calendar {
         let slot = *slots.slot(ball);
         let stays = match slot.place {
             Place::Bucket => b == self.bucket(slot.time),
+            Place::Staged(at) => b == self.stage.bucket(at),
             Place::Overflow(_) => b.saturating_sub(self.current) >= self.buckets.count() as u64,
             _ => false,
         };
@@ -231,8 +289,18 @@ impl Calendar {
             let time = slots.slot(ball as usize).time;
             self.put_now(slots, Entry { time, ball });
         } else if b - self.current < self.buckets.count() as u64 {
-            slots.slot_mut(ball as usize).place = Place::Bucket;
-            self.buckets.push((b & self.mask()) as usize, ball);
+            if self.staging {
+                let insert = Change {
+                    bucket: b,
+                    ball,
+                    insert: true,
+                };
+                let at = self.hold(slots, insert);
+                slots.slot_mut(ball as usize).place = Place::Staged(at);
+            } else {
+                slots.slot_mut(ball as usize).place = Place::Bucket;
+                self.buckets.push((b & self.mask()) as usize, ball);
+            }
         } else {
             slots.slot_mut(ball as usize).place = Place::Overflow(self.overflow.len() as u32);
             self.overflow.push(ball);
@@ -252,10 +320,19 @@ impl Calendar {
         match slot.place {
             Place::None => {}
             Place::Now(at) => self.take_now(slots, at as usize),
+            Place::Bucket if self.staging => {
+                let remove = Change {
+                    bucket: self.bucket(slot.time),
+                    ball: ball as u32,
+                    insert: false,
+                };
+                self.hold(slots, remove);
+            }
             Place::Bucket => {
                 let b = self.bucket(slot.time) & self.mask();
                 self.buckets.remove(b as usize, ball as u32);
             }
+            Place::Staged(at) => self.stage.cancel(at),
             Place::Overflow(at) => {
                 self.overflow.swap_remove(at as usize);
                 if let Some(&moved) = self.overflow.get(at as usize) {
@@ -311,7 +388,9 @@ impl Calendar {
     /// The earliest pending event `(t_i, i)` (least `(t_i, key_i, i)`), if any.
     pub(crate) fn peek(&mut self, slots: &mut (impl Slots + ?Sized)) -> Option<(f64, usize)> {
         while self.head == self.now.len() {
-            if self.buckets.len() == 0 {
+            if self.buckets.len() as isize + self.stage.net() == 0 {
+                // The held changes (if any) leave every bucket empty.
+                self.flush_stage(slots);
                 // Every bucket is empty: jump to the overflow's earliest bucket.
                 let first = self
                     .overflow
@@ -327,6 +406,10 @@ impl Calendar {
                 self.reschedule_overflow(slots);
             }
             let slot = (self.current & self.mask()) as usize;
+            let mask = self.mask();
+            let buckets = &mut self.buckets;
+            self.stage
+                .take(self.current, |change| apply(buckets, mask, slots, change));
             self.load(slots, slot);
         }
         let top = self.now[self.head];
@@ -382,6 +465,7 @@ impl Calendar {
     /// events whose mean time ahead is `tbar` (so about 8 per bucket), with `B >= m / 2`
     /// buckets, a power of two (a horizon `B delta` of 4 to 8 `tbar`). `O(balls)`.
     pub(crate) fn rebuild(&mut self, slots: &mut (impl Slots + ?Sized), shift: f64) {
+        self.flush_stage(slots);
         self.filling = false;
         let mut pending = std::mem::take(&mut self.scratch);
         pending.clear();
@@ -411,6 +495,8 @@ impl Calendar {
         if self.buckets.count() != buckets {
             self.buckets.resize(buckets);
         }
+        let bytes = buckets * std::mem::size_of::<[u32; 16]>();
+        self.staging = self.forced.unwrap_or(bytes >= STAGE_FROM_BYTES);
         self.current = 0;
         for &ball in &pending {
             let time = slots.slot(ball as usize).time;
@@ -425,6 +511,18 @@ impl Calendar {
         self.sort_now(slots);
         pending.clear();
         self.scratch = pending;
+    }
+}
+
+/// A held change reaches its block (of the buckets `b mod B`, `mask = B - 1`).
+#[inline]
+fn apply(buckets: &mut Buckets, mask: u64, slots: &mut (impl Slots + ?Sized), change: Change) {
+    let bucket = (change.bucket & mask) as usize;
+    if change.insert {
+        slots.slot_mut(change.ball as usize).place = Place::Bucket;
+        buckets.push(bucket, change.ball);
+    } else {
+        buckets.remove(bucket, change.ball);
     }
 }
 

@@ -105,9 +105,12 @@ impl Rng {
 
 /// Runs an event loop on both: pop the earliest, give its ball (and now and then another)
 /// a new time ahead (near, far, tied, or none), re-base now and then; every pop agrees.
-fn agree(balls: usize, steps: usize, seed: u64) {
+/// With `staged`, the calendar holds back its changes to the buckets ([`crate::stage`]),
+/// whatever their size.
+fn agree(balls: usize, steps: usize, seed: u64, staged: bool) {
     let mut rng = Rng(seed);
     let mut cal = Keyed::new(balls);
+    cal.cal.force_staging(&mut cal.slots, Some(staged));
     let mut reference = Reference::default();
     let ahead = |rng: &mut Rng| match rng.below(10) {
         0 => 1e3 * rng.unit(),           // far: the overflow
@@ -175,7 +178,16 @@ fn agree(balls: usize, steps: usize, seed: u64) {
 #[test]
 fn pops_in_time_then_key_then_ball_order_like_a_sorted_set() {
     for (balls, seed) in [(1, 1), (2, 2), (7, 3), (100, 4), (1000, 5)] {
-        agree(balls, 20_000, seed);
+        agree(balls, 20_000, seed, false);
+    }
+}
+
+#[test]
+fn changes_held_back_pop_in_the_same_order() {
+    // The ring holds 32 changes: with 1000 balls many are held, evicted and taken as their
+    // buckets are reached; with 7, a ball's insertion is often cancelled while held.
+    for (balls, seed) in [(1, 1), (2, 2), (7, 3), (100, 4), (1000, 5), (5000, 6)] {
+        agree(balls, 20_000, seed, true);
     }
 }
 

@@ -55,7 +55,9 @@
 //! layer), its cells' places and first records are requested one link per event ahead
 //! (`ahead.rs`); a larger scan first prefetches its cells' places in the slab, then their
 //! first records, so that the cache misses of the `3^n` cells overlap instead of following
-//! one another. The scans themselves are the same.
+//! one another. The scans themselves are the same. Likewise, when the calendar's buckets
+//! outgrow a core's L2 cache, its changes to them wait a few events while their blocks load
+//! (`stage.rs`).
 //!
 //! **Images.** A ball-ball entry stores its partner's image in the owner's record
 //! coordinates, `k = s - W_j + W_i` for the cell shift `s` it was predicted with: the partner
@@ -286,10 +288,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         Ok(sim)
     }
 
-    /// Sets whether predictions prefetch (a test of the prefetching scan on a small setup).
+    /// Sets whether predictions prefetch and the calendar holds back its changes to the
+    /// buckets (`queue.rs`): a test of both on a small setup.
     #[cfg(test)]
     pub(crate) fn set_prefetch(&mut self, on: bool) {
         self.prefetch = on;
+        self.queue
+            .force_staging(self.balls.as_mut_slice(), Some(on));
     }
 
     /// Ball `i`'s flight record (`Motion`), from its home in the slab.
