@@ -394,17 +394,5 @@ impl<T: InputScalar> Case<T> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The fields spelled once are the paths `join` spells.
-    #[test]
-    fn body_fields_are_the_joined_paths() {
-        for (i, path) in BODY_PATHS.iter().enumerate() {
-            assert_eq!(*path, format!("bodies[{i}]"));
-            for key in BODY_KEYS {
-                assert_eq!(body_field(i, key), join(path, key));
-            }
-        }
-    }
-}
+#[path = "case_tests.rs"]
+mod tests;
