@@ -6,8 +6,7 @@
 //! kernel's, the immovable body's its input (as those functions return it): the scalar path's
 //! bits on every row.
 
-use super::inputs::{nu_row, param, BodyArrays, Inputs};
-use super::law::LawColumns;
+use super::inputs::{nu_row, param, BodyArrays, Inputs, LawColumns};
 use super::outputs::{put, Outputs};
 use collision_core::batch::{
     BallRows, EachLawBatchKernel, Exec, FixedRows, LawRowError, RestitutionLanes, RestitutionRows,

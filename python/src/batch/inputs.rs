@@ -3,10 +3,18 @@
 //! are C-contiguous).
 
 use crate::error::input_error;
-use collision_core::batch::{BallRows, FreeRows, StateRows};
+use collision_core::batch::{BallRows, FreeRows, RestitutionRows, StateRows, WaltonRows};
 use collision_core::{Ball, BodyState, Scalar};
 use numpy::ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use pyo3::prelude::*;
+
+/// The law's columns, as Python passes them (already of the batch's dtype, 1-D, contiguous).
+pub(crate) enum LawColumns<'a, T> {
+    /// `e`, `beta`.
+    Rough(RestitutionRows<'a, T>),
+    /// `e`, `mu`, `beta0`.
+    Walton(WaltonRows<'a, T>),
+}
 
 /// The arrays of one body: `angular_velocity` `(N, n, n)`, `velocity` `(N, n)`, and the
 /// kernel parameters `inv_mass`, `radius`, `gamma2`, each of length `N` or 1 (shared).

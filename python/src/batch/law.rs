@@ -14,11 +14,10 @@
 //! `collide_rough_unchecked` / `collide_walton_unchecked`. Not split on the validated path, and not interrupted by Ctrl-C (a batch of 10^6
 //! rows takes about 0.1 s unvalidated, 1-2 s validated).
 
-use super::inputs::{nu_row, Inputs};
+use super::inputs::{nu_row, Inputs, LawColumns};
 use super::outputs::{put, state_rows_mut, Outputs};
 use collision_core::batch::{
-    EachLawBatchKernel, Exec, LawRowError, LawRows, RestitutionLanes, RestitutionRows,
-    RoughBatchKernel, WaltonLanes, WaltonRows,
+    EachLawBatchKernel, Exec, LawRowError, LawRows, RestitutionLanes, RoughBatchKernel, WaltonLanes,
 };
 use collision_core::kernels::{RoughKernel, WaltonKernel};
 use collision_core::{
@@ -26,14 +25,6 @@ use collision_core::{
     Generated, RefArith, Restitution, Scalar, ScalarRoot, Walton,
 };
 use noslip_case::CaseError;
-
-/// The law's columns, as Python passes them (already of the batch's dtype, 1-D, contiguous).
-pub(crate) enum LawColumns<'a, T> {
-    /// `e`, `beta`.
-    Rough(RestitutionRows<'a, T>),
-    /// `e`, `mu`, `beta0`.
-    Walton(WaltonRows<'a, T>),
-}
 
 /// A refused column, named as the case format names the law's fields (`contact.e`, ...).
 fn law_error(e: LawRowError) -> String {

@@ -41,6 +41,12 @@ use pyo3::prelude::*;
 pub(crate) use run::piece_rows;
 use run::{run_all, Stop};
 
+/// Rows per chunk: the unit of the split between threads (runs of whole chunks), of the
+/// validated rows' first error, and of the scratch of the rows with an immovable body and of
+/// arrays that are not row-major (64 blocks of 8, 30 to 130 kB in `f64`, in the core's L2
+/// cache).
+const CHUNK: usize = 512;
+
 /// One body's arrays as Python passes them: `angular_velocity`, `velocity`, `inv_mass`,
 /// `radius`, `gamma2`.
 pub(crate) type BodyIn<'py, T> = (
@@ -201,8 +207,8 @@ where
         })
         .collect::<PyResult<_>>()?;
     let laws = match columns[..] {
-        [e, beta] => law::LawColumns::Rough(RestitutionRows { e, beta }),
-        [e, mu, beta0] => law::LawColumns::Walton(WaltonRows { e, mu, beta0 }),
+        [e, beta] => inputs::LawColumns::Rough(RestitutionRows { e, beta }),
+        [e, mu, beta0] => inputs::LawColumns::Walton(WaltonRows { e, mu, beta0 }),
         _ => unreachable!("two or three columns"),
     };
     let n = input.dim;

@@ -1,4 +1,4 @@
-//! The whole batch, chunk by chunk ([`CHUNK`] rows), on the calling thread or shared with
+//! The whole batch, chunk by chunk ([`CHUNK`](super::CHUNK) rows), on the calling thread or shared with
 //! rayon's threads in runs of whole chunks (`collision_core::batch::share_rows`); each run
 //! validated row by row (`checked.rs`), or run by the batch kernels (`unchecked.rs`: straight
 //! from row-major arrays, or row by row from others).
@@ -7,16 +7,11 @@ use super::checked::{run_chunk_checked, RowError};
 use super::inputs::Inputs;
 use super::outputs::Outputs;
 use super::unchecked::{run_chunk, run_rows, Scratch};
+use super::CHUNK;
 use collision_core::batch::{share_rows, BatchKernel, Exec};
 use collision_core::{skew_pairs, Generated, Kernel, RefArith, Scalar};
 use num_traits::Float;
 use std::sync::Mutex;
-
-/// Rows per chunk: the unit of the split between threads (runs of whole chunks), of the
-/// validated rows' first error, and of the scratch of the rows with an immovable body and of
-/// arrays that are not row-major (64 blocks of 8, 30 to 130 kB in `f64`, in the core's L2
-/// cache).
-pub(super) const CHUNK: usize = 512;
 
 /// `m`'s guard, also after a panic elsewhere (the first error stays usable).
 fn lock<X>(m: &Mutex<X>) -> std::sync::MutexGuard<'_, X> {

@@ -9,7 +9,7 @@
 
 use super::inputs::{nu_row, Inputs};
 use super::outputs::{put, state_rows_mut, Outputs};
-use super::run::CHUNK;
+use super::CHUNK;
 use collision_core::batch::BatchKernel;
 use collision_core::batch::FreeRows;
 use collision_core::batch::{Contact, Exec, FixedBatch, FreeBatch, PairBatch, StateBatch};
