@@ -44,7 +44,7 @@
 //! `(1 - 2u)^d` of the rule's root): depth `d + 3`. A square root or select anywhere else is
 //! refused ([`super::Unsupported`]).
 
-use super::running::Builder;
+use super::builder::Builder;
 use super::{Arg, Bounded, Expr};
 use crate::program::{Op, Operand};
 

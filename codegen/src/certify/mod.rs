@@ -72,6 +72,7 @@
 //! The inputs are exact (`e = 0`) unless the companion takes them as rounded ([`rounded`]:
 //! a normal or `gamma2` within a run-time relative `rho` of the intended value).
 
+mod builder;
 pub mod c;
 pub mod clamp;
 pub mod fast;

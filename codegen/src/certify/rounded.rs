@@ -28,7 +28,7 @@
 //! rule's value: depth 3 in the running count. A NaN `rho` or one at least `2^-10` gives
 //! `+inf` (a select), and so does every output depending on that input.
 
-use super::running::Builder;
+use super::builder::Builder;
 use super::{Arg, Bounded, Expr};
 use crate::program::Operand;
 
