@@ -16,8 +16,8 @@
 //! its block. What the calendar pops is unchanged: a bucket is read only after every change
 //! to it has reached it.
 
-/// The changes held back: about two events' worth at the four to five settings of an
-/// event in 3D (each a removal and an insertion).
+/// The changes held back: a few events' worth (an event sets the times of one or two balls,
+/// each a removal from one bucket and an insertion into another).
 pub(crate) const STAGED: usize = 32;
 
 /// A change to a bucket's block.
