@@ -257,6 +257,16 @@ impl<const N: usize> Residents<N> {
         prefetch(self.cell(cell).first());
     }
 
+    /// Asks the CPU to start loading what a ball's move out of `cell` or into it writes: the
+    /// list's last record (moved into a leaver's slot) and the slot after it (an arrival's).
+    #[inline]
+    pub(crate) fn prefetch_tail(&self, cell: usize) {
+        let span = self.spans[cell];
+        let end = (span.start + span.len) as usize;
+        prefetch(self.slab.get(end.wrapping_sub(1)));
+        prefetch(self.slab.get(end));
+    }
+
     /// Asks the CPU to start loading the record at `at` (a hint, as above).
     #[inline]
     pub(crate) fn prefetch_record(&self, at: u32) {
