@@ -60,6 +60,12 @@ impl Buckets {
         self.blocks.len()
     }
 
+    /// The memory of the blocks, in bytes.
+    #[inline]
+    pub(crate) fn bytes(&self) -> usize {
+        self.blocks.len() * std::mem::size_of::<Block>()
+    }
+
     /// The number of balls in all the buckets.
     #[inline]
     pub(crate) fn len(&self) -> usize {

@@ -495,7 +495,7 @@ impl Calendar {
         if self.buckets.count() != buckets {
             self.buckets.resize(buckets);
         }
-        let bytes = buckets * std::mem::size_of::<[u32; 16]>();
+        let bytes = self.buckets.bytes();
         self.staging = self.forced.unwrap_or(bytes >= STAGE_FROM_BYTES);
         self.current = 0;
         for &ball in &pending {

@@ -257,14 +257,17 @@ impl<const N: usize> Residents<N> {
         prefetch(self.cell(cell).first());
     }
 
-    /// Asks the CPU to start loading what a ball's move out of `cell` or into it writes: the
-    /// list's last record (moved into a leaver's slot) and the slot after it (an arrival's).
+    /// Asks the CPU to start loading the slot a ball's move out of cell `leaves` reads (its
+    /// list's last record, moved into the leaver's slot) and the one a move into cell `enters`
+    /// writes (the slot after its list's last).
     #[inline]
-    pub(crate) fn prefetch_tail(&self, cell: usize) {
-        let span = self.spans[cell];
-        let end = (span.start + span.len) as usize;
-        prefetch(self.slab.get(end.wrapping_sub(1)));
-        prefetch(self.slab.get(end));
+    pub(crate) fn prefetch_move(&self, leaves: usize, enters: usize) {
+        let end = |cell: usize| {
+            let span = self.spans[cell];
+            (span.start + span.len) as usize
+        };
+        prefetch(self.slab.get(end(leaves).wrapping_sub(1)));
+        prefetch(self.slab.get(end(enters)));
     }
 
     /// Asks the CPU to start loading the record at `at` (a hint, as above).

@@ -77,7 +77,7 @@ impl Stage {
         let at = (self.head + self.len) % STAGED;
         self.ring[at] = change;
         self.len += 1;
-        self.count(change, 1);
+        self.count(change, true);
         (at as u32, evicted)
     }
 
@@ -88,20 +88,24 @@ impl Stage {
         self.head = (self.head + 1) % STAGED;
         self.len -= 1;
         (change.ball != HOLE).then(|| {
-            self.count(change, 0);
+            self.count(change, false);
             change
         })
     }
 
-    /// Adds a held change to the counts (`add` 1), or takes it out of them (`add` 0).
+    /// Counts `change` in (`held`) or out of the counts of held insertions and removals.
     #[inline]
-    fn count(&mut self, change: Change, add: usize) {
+    fn count(&mut self, change: Change, held: bool) {
         let n = if change.insert {
             &mut self.inserts
         } else {
             &mut self.removes
         };
-        *n = *n + 2 * add - 1;
+        if held {
+            *n += 1;
+        } else {
+            *n -= 1;
+        }
     }
 
     /// The bucket of the insertion held at `at` (from [`Stage::push`]).
@@ -136,7 +140,7 @@ impl Stage {
             let at = (self.head + k) % STAGED;
             let change = self.ring[at];
             if change.ball != HOLE && change.bucket == bucket {
-                self.count(change, 0);
+                self.count(change, false);
                 self.ring[at].ball = HOLE;
                 apply(change);
             }

@@ -64,8 +64,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             self.for_cells_ahead(i, next, |cell| self.motion.prefetch_list(cell));
             if let Some(What::Cell { axis, up }) = next {
                 let (from, to) = self.moved(i, axis, up);
-                self.motion.prefetch_tail(from);
-                self.motion.prefetch_tail(to);
+                self.motion.prefetch_move(from, to);
             }
             if let Some(What::Ball { j, .. }) = next {
                 let j = j as usize;
