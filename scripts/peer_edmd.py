@@ -19,10 +19,12 @@ Usage::
 
     scripts/peer_edmd.py PATH/TO/EDMD [--balls 4000,32000,108000]
         [--phi 0.1,0.2,0.3,0.4] [--rounds 3] [--contacts C] [--no-slip] [--noslip BINARY]
-        [--before BINARY]
+        [--before BINARY] [--lists SKIN]
 
 ``--before`` adds an earlier build of ``event_rate`` to every round (before, noslip, Cell,
-Single), and the table its times and noslip's time over them.
+Single), and the table its times and noslip's time over them. ``--lists SKIN`` adds noslip's
+list engine (``event_rate --lists SKIN``, the same binary) to every round, and the table its
+times and its speed over the best variant's.
 
 A second table gives each program's peak resident memory and, between successive ``N``, the
 bytes each added ball costs.
@@ -105,12 +107,18 @@ def run_peer(binary: Path, n: int, phi: float, warm: int, contacts: int) -> tupl
 
 
 def run_noslip(
-    binary: Path, n: int, phi: float, warm: int, contacts: int, smooth: bool
+    binary: Path,
+    n: int,
+    phi: float,
+    warm: int,
+    contacts: int,
+    smooth: bool,
+    extra: list[str] | None = None,
 ) -> tuple[float, int]:
-    """Microseconds per contact of one timed stretch of ``event_rate``, and the peak memory
-    in bytes."""
+    """Microseconds per contact of one timed stretch of ``event_rate`` (with the arguments
+    ``extra`` added), and the peak memory in bytes."""
     args = [str(binary), "--dims", "3", "--balls", str(n), "--phi", str(phi), "--runs", "1"]
-    args += ["--warm", str(warm), "--contacts", str(contacts)]
+    args += ["--warm", str(warm), "--contacts", str(contacts), *(extra or [])]
     if smooth:
         args.append("--smooth")
     out, _, peak = run_measured(args)
@@ -145,6 +153,12 @@ def main() -> None:
         default=None,
         help="an earlier event_rate binary, timed in the same rounds",
     )
+    parser.add_argument(
+        "--lists",
+        type=float,
+        default=None,
+        help="also time noslip's list engine with this skin (event_rate --lists SKIN)",
+    )
     a = parser.parse_args()
     balls = [int(x) for x in a.balls.split(",")]
     phis = [float(x) for x in a.phi.split(",")]
@@ -168,12 +182,16 @@ def main() -> None:
                     order = ["noslip", "Cell", "Single"]
                     if a.before is not None:
                         order.insert(0, "before")
+                    if a.lists is not None:
+                        order.insert(1, "lists")
                     if r % 2:
                         order.reverse()
                     for who in order:
-                        if who in ("noslip", "before"):
-                            binary = ours if who == "noslip" else a.before
-                            t, peak = run_noslip(binary, n, phi, warm, contacts, not a.no_slip)
+                        if who in ("noslip", "before", "lists"):
+                            binary = a.before if who == "before" else ours
+                            extra = ["--lists", str(a.lists)] if who == "lists" else []
+                            smooth = not a.no_slip
+                            t, peak = run_noslip(binary, n, phi, warm, contacts, smooth, extra)
                         else:
                             t, peak = run_peer(peers[who], n, phi, warm, contacts)
                         times.setdefault((n, phi, who), []).append(t)
@@ -186,8 +204,11 @@ def main() -> None:
     before = a.before is not None
     head = "| N | phi | " + ("before | " if before else "") + "noslip | "
     head += "noslip / before (time) | " if before else ""
-    print(head + "peer Cell | peer Single | noslip / best peer (speed) |")
-    print("|---:|---:|" + ("---:|---:|" if before else "") + "---:|---:|---:|---:|")
+    lists = a.lists is not None
+    tail = " lists | lists / best peer (speed) |" if lists else ""
+    print(head + "peer Cell | peer Single | noslip / best peer (speed) |" + tail)
+    rule = "|---:|---:|" + ("---:|---:|" if before else "") + "---:|---:|---:|---:|"
+    print(rule + ("---:|---:|" if lists else ""))
     for n in balls:
         for phi in phis:
             ours, cell, single = (times[(n, phi, w)] for w in ("noslip", "Cell", "Single"))
@@ -200,15 +221,19 @@ def main() -> None:
                 row += f"{spread(old)} | {spread(ours)} | {gain:.2f} | "
             else:
                 row += f"{spread(ours)} | "
-            print(row + f"{spread(cell)} | {spread(single)} | {ratio:.2f} |")
+            row += f"{spread(cell)} | {spread(single)} | {ratio:.2f} |"
+            if lists:
+                by_lists = times[(n, phi, "lists")]
+                row += f" {spread(by_lists)} | {best / statistics.median(by_lists):.2f} |"
+            print(row)
     print()
     print("# peak resident memory (ru_maxrss, MiB; it counts the forking Python too, about")
     print("# 15 MiB), and bytes per ball added from the previous N (the memory a ball costs)")
     print("| N | phi | noslip | peer Cell | peer Single |")
     print("|---:|---:|---:|---:|---:|")
     programs = ("noslip", "Cell", "Single")
-    if before:
-        print("# (the before build's memory is not shown)")
+    if before or lists:
+        print("# (the before build's and the list engine's memory are not shown)")
     for phi in phis:
         for k, n in enumerate(balls):
             entries = []

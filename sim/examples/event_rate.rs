@@ -4,7 +4,7 @@
 //! ```text
 //! cargo run --release -p noslip-sim --example event_rate -- \
 //!     [--dims 2,3] [--balls 100,1000,10000,100000] [--phi 0.1,0.2,0.3,0.4] \
-//!     [--runs 3] [--contacts C] [--warm W] [--smooth] [--seed S]
+//!     [--runs 3] [--contacts C] [--warm W] [--smooth] [--seed S] [--lists SKIN]
 //! ```
 //!
 //! Each gas: `N` balls of radius 1/2 (contact distance 1, mass 1, uniform density) in a
@@ -19,10 +19,14 @@
 //! the wall clock elsewhere), its inverse in µs per contact, the cell crossings per contact, the build time and the
 //! stale ball-ball events per contact (a partner's contact came first: a full rescan each).
 //! `--smooth` makes the ball-ball contacts smooth (specular, as in hard-sphere codes); the
-//! default is no-slip, through the generic generated kernels.
+//! default is no-slip, through the generic generated kernels. `--lists SKIN` runs the list
+//! engine (`noslip_sim::ListSimulation`, shells of radius `SKIN` contact distances) instead of
+//! the cell engine; its crossings column counts the shells drawn again.
 
 use collision_core::{Ball, BodyState, Generated, Kernel};
-use noslip_sim::{Body, ContactKind, GenericKernels, Setup, Simulation, Step, Table};
+use noslip_sim::{
+    Body, ContactKind, GenericKernels, ListSimulation, Setup, Simulation, Step, Table,
+};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
@@ -145,17 +149,49 @@ struct Rates {
     build: f64,
 }
 
-/// Steps `sim` through `contacts` contacts; false if it stopped early.
-fn advance<const N: usize, const S: usize>(
-    sim: &mut Simulation<N, S, GenericKernels<f64>>,
-    contacts: u64,
-) -> bool
+/// What the measurement asks of an engine.
+trait Engine<const N: usize, const S: usize> {
+    fn step(&mut self) -> Step<N, S>;
+    /// Cell crossings (the cell engine) or shells drawn again (the list engine).
+    fn moves(&self) -> u64;
+    fn stale(&self) -> u64;
+}
+
+impl<const N: usize, const S: usize> Engine<N, S> for Simulation<N, S, GenericKernels<f64>>
 where
     Generated: Kernel<f64, N, S>,
 {
+    fn step(&mut self) -> Step<N, S> {
+        Simulation::step(self, f64::INFINITY)
+    }
+    fn moves(&self) -> u64 {
+        self.crossings()
+    }
+    fn stale(&self) -> u64 {
+        self.stale_events()
+    }
+}
+
+impl<const N: usize, const S: usize> Engine<N, S> for ListSimulation<N, S, GenericKernels<f64>>
+where
+    Generated: Kernel<f64, N, S>,
+{
+    fn step(&mut self) -> Step<N, S> {
+        ListSimulation::step(self, f64::INFINITY)
+    }
+    fn moves(&self) -> u64 {
+        self.redraws()
+    }
+    fn stale(&self) -> u64 {
+        self.stale_events()
+    }
+}
+
+/// Steps `sim` through `contacts` contacts; false if it stopped early.
+fn advance<const N: usize, const S: usize>(sim: &mut impl Engine<N, S>, contacts: u64) -> bool {
     let mut done = 0;
     while done < contacts {
-        match sim.step(f64::INFINITY) {
+        match sim.step() {
             Step::Contact(_) => done += 1,
             Step::Quiet { .. } => {}
             _ => return false,
@@ -177,30 +213,46 @@ where
     let kernels = GenericKernels {
         species: setup.species.clone(),
     };
-    let mut sim = Simulation::new(setup, kernels).map_err(|e| e.to_string())?;
+    match opts.lists {
+        Some(skin) => {
+            let sim = ListSimulation::with_skin(setup, kernels, skin).map_err(|e| e.to_string())?;
+            run(sim, &clock, balls, opts)
+        }
+        None => {
+            let sim = Simulation::new(setup, kernels).map_err(|e| e.to_string())?;
+            run(sim, &clock, balls, opts)
+        }
+    }
+}
+
+/// Warms `sim` up and times its runs (`clock` started before it was built).
+fn run<const N: usize, const S: usize>(
+    mut sim: impl Engine<N, S>,
+    clock: &Instant,
+    balls: usize,
+    opts: &Options,
+) -> Result<Rates, String> {
     let build = clock.elapsed().as_secs_f64();
     let warm = opts.warm.unwrap_or((2 * balls as u64).max(100_000));
     let contacts = opts.contacts.unwrap_or((balls as u64).max(200_000));
     if !advance(&mut sim, warm) {
         return Err("the gas stopped during the warm-up".into());
     }
-    let (crossings0, stale0) = (sim.crossings(), sim.stale_events());
+    let (moves0, stale0) = (sim.moves(), sim.stale());
     let mut rates = Vec::new();
     for _ in 0..opts.runs {
-        let t0 = seconds(&clock);
+        let t0 = seconds(clock);
         if !advance(&mut sim, contacts) {
             return Err("the gas stopped".into());
         }
-        rates.push(contacts as f64 / (seconds(&clock) - t0));
+        rates.push(contacts as f64 / (seconds(clock) - t0));
     }
     rates.sort_by(f64::total_cmp);
     let timed = (contacts * opts.runs as u64) as f64;
-    let crossings = (sim.crossings() - crossings0) as f64 / timed;
-    let stale = (sim.stale_events() - stale0) as f64 / timed;
     Ok(Rates {
         rates,
-        crossings,
-        stale,
+        crossings: (sim.moves() - moves0) as f64 / timed,
+        stale: (sim.stale() - stale0) as f64 / timed,
         build,
     })
 }
@@ -214,10 +266,13 @@ struct Options {
     warm: Option<u64>,
     smooth: bool,
     seed: u64,
+    /// The list engine's skin, if it runs instead of the cell engine.
+    lists: Option<f64>,
 }
 
 const USAGE: &str = "usage: event_rate [--dims 2,3] [--balls 100,1000,10000,100000] \
-[--phi 0.1,0.2,0.3,0.4] [--runs 3] [--contacts C] [--warm W] [--smooth] [--seed S]";
+[--phi 0.1,0.2,0.3,0.4] [--runs 3] [--contacts C] [--warm W] [--smooth] [--seed S] \
+[--lists SKIN]";
 
 /// Print `message` and the usage line, and exit with status 2.
 fn refuse(message: &str) -> ! {
@@ -248,6 +303,7 @@ fn options() -> Options {
         warm: None,
         smooth: false,
         seed: 1,
+        lists: None,
     };
     let mut i = 0;
     while i < args.len() {
@@ -261,6 +317,7 @@ fn options() -> Options {
             "--contacts" => o.contacts = Some(list(flag, value)[0]),
             "--warm" => o.warm = Some(list(flag, value)[0]),
             "--seed" => o.seed = list(flag, value)[0],
+            "--lists" => o.lists = Some(list(flag, value)[0]),
             "--smooth" => {
                 o.smooth = true;
                 i += 1;

@@ -252,6 +252,15 @@ pub(crate) fn key<const N: usize>(first: usize, kind: u8, other: u32, image: &[i
     ((first as u128) << 96) | (u128::from(kind) << 92) | (u128::from(other) << 60) | packed
 }
 
+/// The key of the contact of balls `i` and `j`, `j` at image `image` in `i`'s record
+/// coordinates: [`key`] of its lower ball, with the image as seen from that ball (`-k` from
+/// the higher), so that the pair's event has one key whichever ball holds it.
+#[inline]
+pub(crate) fn pair_key<const N: usize>(i: usize, j: usize, image: &[i16; N]) -> Key {
+    let lo_image = if i < j { *image } else { image.map(|k| -k) };
+    key(i.min(j), kind::BALL, i.max(j) as u32, &lo_image)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -35,7 +35,7 @@ use crate::motion::Motion;
 use crate::residents::{Resident, Residents};
 
 /// Partners per chunk.
-pub(super) const LANES: usize = 4;
+pub(crate) const LANES: usize = 4;
 
 /// What [`Gathered::least`] meets the places with: the scanning ball's flight, the records,
 /// and the box's sides.
@@ -284,7 +284,7 @@ impl<const N: usize> Gathered<N> {
 /// cell's image in `a`'s record coordinates), in a box of sides `size`; NaN where the pair
 /// never meets.
 #[inline(always)]
-pub(super) fn pair_times<const N: usize>(
+pub(crate) fn pair_times<const N: usize>(
     a: &Motion<N>,
     lanes: [&Resident<N>; LANES],
     bases: [&[f64; N]; LANES],
@@ -340,7 +340,7 @@ pub(super) fn pair_times<const N: usize>(
 /// A neighbour cell's image in the scanning ball's record coordinates, `s + W_i` (whole
 /// numbers, exact in `f64`).
 #[inline(always)]
-pub(super) fn cell_image<const N: usize>(shift: &[i8; N], wraps: &[i16; N]) -> [f64; N] {
+pub(crate) fn cell_image<const N: usize>(shift: &[i8; N], wraps: &[i16; N]) -> [f64; N] {
     std::array::from_fn(|k| f64::from(shift[k]) + f64::from(wraps[k]))
 }
 

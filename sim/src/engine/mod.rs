@@ -105,7 +105,7 @@ mod ahead;
 mod contacts;
 mod events;
 mod kick;
-mod lanes;
+pub(crate) mod lanes;
 mod quiet;
 mod record;
 mod scan;

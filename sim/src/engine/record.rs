@@ -15,7 +15,7 @@
 //! the events of one time (`canonical::key`), is a function of the ball and the event
 //! ([`key_of`]), computed when two times tie instead of stored (16 bytes a ball).
 
-use crate::canonical::{key, kind, Key};
+use crate::canonical::{key, kind, pair_key, Key};
 use crate::last_contact::LastContact;
 use crate::queue::{Slot, Slots, What};
 use crate::residents::Homes;
@@ -84,22 +84,12 @@ impl<const N: usize, const S: usize> BallRecord<N, S> {
     }
 }
 
-/// `-k`.
-#[inline]
-fn negated<const N: usize>(image: &[i16; N]) -> [i16; N] {
-    image.map(|k| -k)
-}
-
 /// The key of ball `i`'s event `what` ([`crate::canonical::key`]): its lowest ball, kind,
 /// other body and image (a pair's image as seen from its lower ball, `-k` from the higher).
 #[inline]
 pub(super) fn key_of<const N: usize>(i: usize, what: &What<N>) -> Key {
     match *what {
-        What::Ball { j, image, .. } => {
-            let j = j as usize;
-            let lo_image = if i < j { image } else { negated(&image) };
-            key(i.min(j), kind::BALL, i.max(j) as u32, &lo_image)
-        }
+        What::Ball { j, image, .. } => pair_key(i, j as usize, &image),
         What::Obstacle { o, image } => key(i, kind::OBSTACLE, o, &image),
         What::Wall { axis, upper } => key(
             i,

@@ -1,0 +1,383 @@
+//! The list engine: an event loop with a neighbour list per ball (shells, as in Donev,
+//! Torquato and Stillinger, J. Comput. Phys. 202, 737 (2005), and the `Single` variant of
+//! Smallenburg's EDMD), for gases of balls in a box. It writes the same event log as the cell
+//! engine ([`crate::Simulation`]) and the all-pairs reference, byte for byte: every contact
+//! time is canonical ([`crate::canonical`], docs/engine.md), so the engines differ only in
+//! how they find the pairs to ask.
+//!
+//! **Shells.** Ball `i` has a shell of radius `delta` around a centre `c_i` (its position
+//! when the shell was drawn) and a list of the balls whose shells come within `d_max + 2
+//! delta` of it ([`shells`]); a pair can touch only while listed, as long as both stay in
+//! their shells. Leaving its shell is an event of the ball (keyed as a cell crossing: it moves
+//! no record): the shell is drawn again around its position, its list rebuilt from the
+//! centres' own cell list, and it is predicted again. There are no cell crossings, and a
+//! prediction after a contact asks the list (about `phi 2^n (1 + 2 delta / d)^n` balls) where
+//! the cell engine asks its `3^n` cells.
+//!
+//! **Images.** Ball `i`'s record coordinates are the box's plus `W_i L`, `W_i` found when its
+//! record moves (the record's centre against its shell's, whole box lengths: the ball is
+//! within `delta` of `c_i + W_i L`). A listed neighbour `j` at shell image `m` is then at
+//! image `k = m - W_j + W_i` in `i`'s record coordinates, the image the cell engine names
+//! (`s - W_j + W_i` for its cell shift `s`); with at least three centre cells a periodic
+//! side (`L_k >= 3 (d_max + 2 delta)`), it is the only image within reach.
+//!
+//! **The rest** is the cell engine's: one pending event per ball in the same calendar
+//! ([`crate::queue`]), the canonical order of `(time, key)`, counters that make a partner's
+//! old contact stale, the rule against repeating a contact still touching
+//! ([`crate::last_contact`]), the box walls, the laws under the TC model, and the re-basing
+//! of the clock at the canonical times (every record moved there, every ball predicted
+//! again). Not here: obstacles, table boundaries, orientations, the thermostat's kicks and
+//! the notices of a gas with no contact ahead ([`crate::Step::Quiet`], [`crate::Step::Never`]
+//! but at rest): [`ListSimulation::new`] refuses a setup that needs them.
+
+mod ball;
+mod contacts;
+mod predict;
+mod shells;
+mod strided;
+#[cfg(test)]
+mod tests;
+
+use crate::canonical::{clock_span2, d_max, rebase_at};
+use crate::cells::Grid;
+use crate::engine::SetupError;
+use crate::motion::Motion;
+use crate::no_contact::NoContact;
+use crate::queue::Calendar;
+use crate::residents::Resident;
+use crate::{PairKernels, Setup, Step, Table};
+use ball::{Next, Own};
+use collision_core::{Ball, BodyState};
+use shells::Shells;
+use std::fmt;
+
+/// The shell radius `delta` in units of the largest contact distance `d_max`, unless the
+/// caller chooses ([`ListSimulation::with_skin`]); measured in docs/benchmarks.md ("The list
+/// engine").
+pub const SKIN: f64 = 0.3;
+
+/// Why the list engine refuses a setup (the cell engine takes it).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ListsRefusal {
+    /// What the cell engine refuses too.
+    Setup(SetupError),
+    /// The setup has obstacles.
+    Obstacles,
+    /// The table has boundaries besides the box, or no box.
+    Table,
+    /// The setup tracks orientations.
+    Orientation,
+    /// The shell radius is not positive and finite.
+    Skin(f64),
+    /// A periodic side holds fewer than three cells of the centres' grid: shorter than three
+    /// times `d_max + 2 delta`.
+    ShortSide {
+        /// The periodic axis `k`.
+        axis: usize,
+        /// The side `L_k`.
+        size: f64,
+        /// `d_max + 2 delta`.
+        reach: f64,
+    },
+}
+
+impl fmt::Display for ListsRefusal {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            ListsRefusal::Setup(e) => write!(f, "{e}"),
+            ListsRefusal::Obstacles => write!(f, "the list engine takes no obstacles"),
+            ListsRefusal::Table => write!(f, "the list engine takes a box and no other boundary"),
+            ListsRefusal::Orientation => write!(f, "the list engine does not track orientations"),
+            ListsRefusal::Skin(s) => write!(f, "shell radius {s} must be positive and finite"),
+            ListsRefusal::ShortSide { axis, size, reach } => write!(
+                f,
+                "periodic side {axis} ({size}) is shorter than 3 list reaches ({reach})"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for ListsRefusal {}
+
+impl From<SetupError> for ListsRefusal {
+    fn from(e: SetupError) -> Self {
+        ListsRefusal::Setup(e)
+    }
+}
+
+/// An event-driven simulation with neighbour lists; see the module docs.
+pub struct ListSimulation<const N: usize, const S: usize, K> {
+    kernels: K,
+    species: Vec<Ball<f64>>,
+    table: Table<N>,
+    size: [f64; N],
+    periodic: [bool; N],
+    /// The shell radius `delta`.
+    delta: f64,
+    balls: Vec<Own<N, S>>,
+    /// Per ball: what a neighbour's prediction reads (its flight record, its wraps `W_i`,
+    /// with record coordinates the box's plus `W_i L` while its record stays, and its
+    /// counter).
+    flights: Vec<Resident<N>>,
+    /// The pair times of a prediction's list, kept between predictions.
+    times: Vec<f64>,
+    /// Whether this CPU runs AVX2 (a prediction's pair times are then computed in its
+    /// registers, four at a time).
+    avx2: bool,
+    shells: Shells<N>,
+    queue: Calendar,
+    /// The local clock; the absolute time is `origin + origin_low + now`.
+    now: f64,
+    origin: f64,
+    origin_low: f64,
+    /// An upper bound of `|u_i|^2` (exact at the last rebase).
+    speed2: f64,
+    /// `(CLOCK_CELLS w_min)^2` of the cell engine's grid rule ([`clock_span2`]).
+    span2: f64,
+    rebase_at: f64,
+    quiet_rebases: u32,
+    contacts: u64,
+    redraws: u64,
+    stale: u64,
+    rebases: u64,
+}
+
+impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N, S, K> {
+    /// The list engine on `setup`, shells of radius [`SKIN`] `d_max`.
+    pub fn new(setup: Setup<N, S>, kernels: K) -> Result<Self, ListsRefusal> {
+        Self::with_skin(setup, kernels, SKIN)
+    }
+
+    /// The list engine on `setup`, shells of radius `skin d_max` (`d_max` the largest contact
+    /// distance).
+    pub fn with_skin(setup: Setup<N, S>, kernels: K, skin: f64) -> Result<Self, ListsRefusal> {
+        let Setup {
+            size,
+            periodic,
+            species,
+            obstacles,
+            bodies,
+            orientation,
+            table,
+        } = setup;
+        if !obstacles.is_empty() {
+            return Err(ListsRefusal::Obstacles);
+        }
+        if !table.boxed || !table.boundaries.is_empty() {
+            return Err(ListsRefusal::Table);
+        }
+        if orientation {
+            return Err(ListsRefusal::Orientation);
+        }
+        if let Some(k) = (0..N).find(|&k| !(size[k] > 0.0 && size[k].is_finite())) {
+            return Err(SetupError::BoxSize {
+                axis: k,
+                size: size[k],
+            }
+            .into());
+        }
+        let mut r_ball = 0.0f64;
+        for (i, b) in bodies.iter().enumerate() {
+            let s = species.get(b.species).ok_or(SetupError::Species {
+                ball: i,
+                species: b.species,
+            })?;
+            r_ball = r_ball.max(s.radius);
+            if let Some(k) = (0..N).find(|&k| !(0.0..=size[k]).contains(&b.position[k])) {
+                return Err(SetupError::Outside { ball: i, axis: k }.into());
+            }
+        }
+        let d_max = d_max(r_ball, 0.0);
+        // The cell engine's grid, for the canonical re-basing time alone.
+        let cells = Grid::new(size, periodic, d_max, bodies.len())?;
+        let delta = skin * d_max;
+        if !(delta > 0.0 && delta.is_finite()) {
+            return Err(ListsRefusal::Skin(skin));
+        }
+        // A centre is within a few ulps of its side of its shell (it is computed from the
+        // ball's flight): the slack of the cell rule covers it.
+        let longest = size.iter().copied().fold(0.0, f64::max);
+        let reach = (d_max + 2.0 * delta) * (1.0 + 1e-9) + 64.0 * f64::EPSILON * longest;
+        // Room for three cells a side however few the balls (the grid caps cells per body).
+        let room = bodies.len().max(3usize.pow(N as u32));
+        let grid = Grid::new(size, periodic, reach, room)?;
+        if let Some(k) = (0..N).find(|&k| periodic[k] && grid.n[k] < 3) {
+            return Err(ListsRefusal::ShortSide {
+                axis: k,
+                size: size[k],
+                reach,
+            });
+        }
+        let n = bodies.len();
+        let flights = bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| Resident {
+                motion: Motion {
+                    pos: b.position,
+                    since: 0.0,
+                    velocity: b.state.velocity,
+                    radius: species[b.species].radius,
+                },
+                wraps: [0; N],
+                ball: i as u32,
+                count: 0,
+            })
+            .collect();
+        let balls = bodies
+            .into_iter()
+            .map(|b| Own {
+                slot: crate::queue::Slot::EMPTY,
+                next: None,
+                found: None,
+                state: b.state,
+                previous: f64::NEG_INFINITY,
+                kind: b.species as u32,
+                last: crate::last_contact::LastContact::NONE,
+            })
+            .collect();
+        let mut sim = ListSimulation {
+            kernels,
+            species,
+            table,
+            size,
+            periodic,
+            delta,
+            balls,
+            flights,
+            shells: Shells::new(grid, n, reach),
+            times: Vec::new(),
+            #[cfg(target_arch = "x86_64")]
+            avx2: is_x86_feature_detected!("avx2"),
+            #[cfg(not(target_arch = "x86_64"))]
+            avx2: false,
+            queue: Calendar::new(),
+            now: 0.0,
+            origin: 0.0,
+            origin_low: 0.0,
+            speed2: 0.0,
+            span2: clock_span2(&cells.width),
+            rebase_at: f64::INFINITY,
+            quiet_rebases: 0,
+            contacts: 0,
+            redraws: 0,
+            stale: 0,
+            rebases: 0,
+        };
+        for i in 0..n {
+            sim.draw(i);
+        }
+        sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
+        sim.rebase_at = rebase_at(sim.span2, sim.speed2, 0, sim.any_periodic());
+        sim.predict_all();
+        Ok(sim)
+    }
+
+    /// The absolute time now.
+    pub fn now(&self) -> f64 {
+        self.absolute(self.now)
+    }
+
+    fn absolute(&self, local: f64) -> f64 {
+        self.origin + (self.origin_low + local)
+    }
+
+    fn local(&self, absolute: f64) -> f64 {
+        (absolute - self.origin) - self.origin_low
+    }
+
+    /// The number of balls.
+    pub fn len(&self) -> usize {
+        self.balls.len()
+    }
+
+    /// Whether there are no balls.
+    pub fn is_empty(&self) -> bool {
+        self.balls.is_empty()
+    }
+
+    /// Contacts processed so far.
+    pub fn contacts(&self) -> u64 {
+        self.contacts
+    }
+
+    /// Shells drawn again (a ball left its shell) so far.
+    pub fn redraws(&self) -> u64 {
+        self.redraws
+    }
+
+    /// Ball-ball events found stale so far (the partner's counter had changed).
+    pub fn stale_events(&self) -> u64 {
+        self.stale
+    }
+
+    /// Times the local clock was re-based.
+    pub fn rebases(&self) -> u64 {
+        self.rebases
+    }
+
+    /// The mean length of the neighbour lists now.
+    pub fn mean_list(&self) -> f64 {
+        let total: usize = (0..self.len()).map(|i| self.shells.list(i).len()).sum();
+        total as f64 / self.len().max(1) as f64
+    }
+
+    /// Ball `i`'s state `(U, u)` (constant between contacts).
+    pub fn state(&self, i: usize) -> &BodyState<f64, N, S> {
+        &self.balls[i].state
+    }
+
+    fn any_periodic(&self) -> bool {
+        self.periodic.contains(&true)
+    }
+
+    fn speed2_of(&self, i: usize) -> f64 {
+        self.balls[i].state.velocity.iter().map(|x| x * x).sum()
+    }
+
+    /// Processes events until the next contact at or before the absolute time `until` and
+    /// returns it, as [`crate::Simulation::step`]: [`Step::Until`] (the clock at `until`)
+    /// if there is none by then, [`Step::Never`] if every ball is at rest.
+    pub fn step(&mut self, until: f64) -> Step<N, S> {
+        loop {
+            let until = self.local(until);
+            let Some((time, i)) = self.queue.peek(self.balls.as_mut_slice()) else {
+                if until.is_finite() {
+                    self.now = self.now.max(until);
+                }
+                return Step::Never(NoContact::AtRest);
+            };
+            if time > until {
+                if until.is_finite() {
+                    self.now = self.now.max(until);
+                }
+                return Step::Until;
+            }
+            if time > self.rebase_at {
+                self.rebase(self.rebase_at, true);
+                continue;
+            }
+            let next = self.balls[i]
+                .next
+                .expect("a ball in the calendar has an event");
+            self.now = self.now.max(time);
+            match next {
+                Next::Shell => {
+                    self.draw(i);
+                    self.redraws += 1;
+                    self.predict_after_draw(i);
+                }
+                Next::Ball { j, count, .. } if count != self.flights[j as usize].count => {
+                    self.stale += 1;
+                    self.predict(i);
+                }
+                Next::Ball { j, image, .. } => {
+                    return Step::Contact(self.ball_ball(i, j as usize, &image, time))
+                }
+                Next::Wall { axis, upper } => {
+                    return Step::Contact(self.ball_wall(i, axis as usize, upper, time))
+                }
+            }
+        }
+    }
+}

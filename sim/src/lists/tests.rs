@@ -1,0 +1,242 @@
+//! The list engine's event log equals the cell engine's and the all-pairs reference's, byte
+//! for byte: gases in n = 2..6, dense and dilute, periodic, walled and mixed boxes, one and
+//! two species, smooth, no-slip and rough contacts, the TC model.
+
+use super::{ListSimulation, ListsRefusal};
+use crate::reference::Reference;
+use crate::run::event_json;
+use crate::setup::setup;
+use crate::{GenericKernels, Setup, Simulation, Step};
+use collision_core::{Generated, Kernel};
+use noslip_scene::Scene;
+
+/// The next contact of the list engine (`None` once every ball is at rest): it steps to a
+/// contact or to the end, never to a notice.
+fn next_of_lists<const N: usize, const S: usize>(
+    sim: &mut ListSimulation<N, S, GenericKernels<f64>>,
+) -> Option<crate::Event<N, S>>
+where
+    Generated: Kernel<f64, N, S>,
+{
+    match sim.step(f64::INFINITY) {
+        Step::Contact(e) => Some(e),
+        Step::Never(_) => None,
+        other => panic!("the list engine stepped to {other:?}"),
+    }
+}
+
+/// The next contact of the cell engine.
+fn next_of_cells<const N: usize, const S: usize>(
+    sim: &mut Simulation<N, S, GenericKernels<f64>>,
+) -> Option<crate::Event<N, S>>
+where
+    Generated: Kernel<f64, N, S>,
+{
+    loop {
+        match sim.step(f64::INFINITY) {
+            Step::Contact(e) => return Some(e),
+            Step::Quiet { .. } | Step::Until => {}
+            _ => return None,
+        }
+    }
+}
+
+/// The first `contacts` lines of the list engine's log against the cell engine's and, if
+/// `reference`, the all-pairs reference's; returns the list engine's shell redraws and
+/// re-basings (a comparison without them would not test them).
+fn compare<const N: usize, const S: usize>(
+    name: &str,
+    setup: Setup<N, S>,
+    skin: f64,
+    contacts: u64,
+    reference: bool,
+) -> (u64, u64)
+where
+    Generated: Kernel<f64, N, S>,
+{
+    let kernels = GenericKernels {
+        species: setup.species.clone(),
+    };
+    let mut lists = ListSimulation::with_skin(setup.clone(), kernels.clone(), skin).unwrap();
+    let mut cells = Simulation::new(setup.clone(), kernels.clone()).unwrap();
+    let mut all = reference.then(|| Reference::new(setup, kernels));
+    for index in 1..=contacts {
+        let line = |e: Option<crate::Event<N, S>>| e.map(|e| event_json(index, &e).to_string());
+        let got = line(next_of_lists(&mut lists));
+        assert_eq!(
+            got,
+            line(next_of_cells(&mut cells)),
+            "{name}: contact {index}"
+        );
+        if let Some(all) = &mut all {
+            assert_eq!(got, line(all.next_contact()), "{name}: contact {index}");
+        }
+        if got.is_none() {
+            break;
+        }
+    }
+    eprintln!(
+        "{name}: {} contacts, {} redraws, {} re-basings, mean list {:.1}",
+        lists.contacts(),
+        lists.redraws(),
+        lists.rebases(),
+        lists.mean_list()
+    );
+    (lists.redraws(), lists.rebases())
+}
+
+/// [`compare`] on a scene's text.
+fn compare_scene(name: &str, text: &str, skin: f64, contacts: u64, reference: bool) -> (u64, u64) {
+    let scene = Scene::from_toml(text, name).unwrap();
+    collision_core::with_dim!(
+        scene.dim,
+        |N, S| compare(
+            name,
+            setup::<N, S>(&scene).unwrap(),
+            skin,
+            contacts,
+            reference
+        ),
+        unreachable!("dim {}", scene.dim)
+    )
+}
+
+/// A gas of `count` balls of radius 1/2 in a box of side `side` in `dim` dimensions, with the
+/// given boundaries and contact law (TOML lines under `[contact]`), placed at random.
+fn gas(dim: usize, side: &str, count: usize, boundary: &str, contact: &str) -> String {
+    let sides = vec![side; dim].join(", ");
+    let boundaries = vec![format!("\"{boundary}\""); dim].join(", ");
+    format!(
+        r#"
+dim = {dim}
+[box]
+size = [{sides}]
+boundary = [{boundaries}]
+[[species]]
+mass = 1
+radius = "1/2"
+count = {count}
+[contact]
+{contact}
+[random]
+seed = 7
+speed = 1
+spin = 1
+"#
+    )
+}
+
+/// `text`'s balls on a random subset of a lattice's sites (random sequential placement stops
+/// short of the dense gases).
+fn on_lattice(text: String) -> String {
+    text + "placement = \"lattice\"\n"
+}
+
+#[test]
+fn dense_and_dilute_2d_gases_log_the_same_bytes_in_every_engine() {
+    for (name, side) in [("dense", "14"), ("dilute", "360")] {
+        let text = format!(
+            r#"
+dim = 2
+[box]
+size = [{side}, {side}]
+boundary = ["periodic", "periodic"]
+[[species]]
+mass = 3
+radius = 1
+count = 10
+[[species]]
+mass = 1
+radius = "1/2"
+count = 60
+[random]
+seed = 5
+speed = 1
+spin = 1
+"#
+        );
+        let (redraws, rebases) = compare_scene(name, &text, 0.15, 10_000, true);
+        assert!(
+            redraws > 0 && rebases > 0,
+            "{name}: {redraws} redraws, {rebases} re-basings"
+        );
+    }
+}
+
+#[test]
+fn three_dimensional_gases_log_the_same_bytes_in_every_engine() {
+    // Packing fractions 0.40, 0.12 and 0.26 (side 8.7, 12.8 and 10 for 500 balls), no-slip and smooth,
+    // periodic, walled and mixed boxes, two skins.
+    let cases = [
+        (
+            "3D dense no-slip",
+            on_lattice(gas(3, "8.7", 500, "periodic", "")),
+        ),
+        (
+            "3D dense smooth",
+            on_lattice(gas(3, "8.7", 500, "periodic", "balls = \"smooth\"")),
+        ),
+        ("3D dilute walled", gas(3, "12.8", 500, "wall", "")),
+        (
+            "3D mixed",
+            gas(3, "10", 500, "periodic", "").replace(
+                r#"boundary = ["periodic", "periodic", "periodic"]"#,
+                r#"boundary = ["periodic", "wall", "periodic"]"#,
+            ),
+        ),
+    ];
+    for (name, text) in &cases {
+        for skin in [0.05, 0.3] {
+            let (redraws, _) = compare_scene(name, text, skin, 5_000, false);
+            assert!(redraws > 0, "{name}: no redraws");
+        }
+    }
+    // Against the reference too, at one skin (re-basings: the 2D test).
+    compare_scene(cases[0].0, &cases[0].1, 0.15, 10_000, true);
+}
+
+#[test]
+fn gases_in_4d_to_6d_log_the_same_bytes_in_every_engine() {
+    for (dim, side, count) in [(4, "5.3", 250), (5, "4.2", 400), (6, "3.4", 300)] {
+        let text = on_lattice(gas(dim, side, count, "periodic", ""));
+        // Re-basings come later here (the 2D and 3D tests take them).
+        let (redraws, _) = compare_scene(&format!("{dim}D"), &text, 0.05, 5_000, false);
+        assert!(redraws > 0, "{dim}D: no redraws");
+    }
+}
+
+/// Rough and inelastic contacts under the TC model, and the Walton law: pairs left touching
+/// at `e = 0` too (`crate::last_contact`), refused alike.
+#[test]
+fn rough_gases_log_the_same_bytes_in_every_engine() {
+    let laws = [
+        "balls = { e = \"0.95\", beta = \"0.5\" }\ntc = \"0.02\"",
+        "balls = { e = \"0.9\", mu = \"0.2\", beta0 = \"0.3\" }",
+        "balls = { e = 0, beta = \"0.5\" }\ntc = \"1e-5\"",
+    ];
+    for law in laws {
+        let text = gas(3, "9", 300, "periodic", law);
+        compare_scene(law, &text, 0.15, 3_000, true);
+    }
+}
+
+#[test]
+fn what_the_list_engine_does_not_take_is_refused_by_name() {
+    let refusal = |text: &str| {
+        let scene = Scene::from_toml(text, "refused").unwrap();
+        let setup = setup::<2, 1>(&scene).unwrap();
+        let kernels = GenericKernels {
+            species: setup.species.clone(),
+        };
+        ListSimulation::new(setup, kernels).err()
+    };
+    // A side of 3 holds two cells of reach 1.3: refused; 5 holds three.
+    let short = gas(2, "3.5", 4, "periodic", "");
+    assert!(matches!(
+        refusal(&short),
+        Some(ListsRefusal::ShortSide { axis: 0, .. })
+    ));
+    assert_eq!(refusal(&gas(2, "5", 4, "periodic", "")), None);
+    let obstacle = gas(2, "8", 4, "periodic", "") + "[[obstacle]]\nposition = [4, 4]\nradius = 1\n";
+    assert_eq!(refusal(&obstacle), Some(ListsRefusal::Obstacles));
+}
