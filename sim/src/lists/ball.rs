@@ -10,18 +10,25 @@ use collision_core::BodyState;
 /// A ball's pending event.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Next<const N: usize> {
-    /// The contact with ball `j` as of `j`'s counter `count`, `j` at image `image` (box
-    /// lengths, in the owner's record coordinates).
-    Ball { j: u32, count: u32, image: [i16; N] },
+    /// The contact with the ball in slot `j` (its index `id`) as of its counter `count`, at
+    /// image `image` (box lengths, in the owner's record coordinates).
+    Ball {
+        j: u32,
+        id: u32,
+        count: u32,
+        image: [i16; N],
+    },
     /// The box wall of `axis` (at `L_k` if `upper`).
     Wall { axis: u8, upper: bool },
     /// Leaving its shell: the shell is drawn again ([`super::shells`]).
     Shell,
 }
 
-/// What a ball's own events read and write.
+/// What a ball's own events read and write, in its slot (`crate::lists`, "Slots").
 #[derive(Clone, Debug)]
 pub(super) struct Own<const N: usize, const S: usize> {
+    /// The ball's index (the setup's and the log's).
+    pub id: u32,
     /// Its pending event's time and place in the calendar.
     pub slot: Slot,
     /// Its pending event.
@@ -40,12 +47,13 @@ pub(super) struct Own<const N: usize, const S: usize> {
     pub last: LastContact,
 }
 
-/// The key of ball `i`'s event `next` ([`crate::canonical::key`]); leaving a shell moves no
-/// record, and is keyed as the cell engine's crossings are (the last kind).
+/// The key of the event `next` of the ball of index `i` ([`crate::canonical::key`]: by the
+/// balls' indices, not their slots); leaving a shell moves no record, and is keyed as the cell
+/// engine's crossings are (the last kind).
 #[inline]
 pub(super) fn key_of<const N: usize>(i: usize, next: &Next<N>) -> Key {
     match *next {
-        Next::Ball { j, image, .. } => pair_key(i, j as usize, &image),
+        Next::Ball { id, image, .. } => pair_key(i, id as usize, &image),
         Next::Wall { axis, upper } => key(
             i,
             kind::WALL,
@@ -69,6 +77,8 @@ impl<const N: usize, const S: usize> Slots for [Own<N, S>] {
 
     #[inline]
     fn key(&self, ball: usize) -> Key {
-        self[ball].next.map_or(Key::MAX, |next| key_of(ball, &next))
+        let own = &self[ball];
+        own.next
+            .map_or(Key::MAX, |next| key_of(own.id as usize, &next))
     }
 }

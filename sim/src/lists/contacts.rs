@@ -22,11 +22,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         image: &[i16; N],
         t: f64,
     ) -> Event<N, S> {
-        let (lo, hi, image) = if i < j {
+        // Body 1 is the lower index (not slot).
+        let (lo, hi, image) = if self.balls[i].id < self.balls[j].id {
             (i, j, *image)
         } else {
             (j, i, image.map(|k| -k))
         };
+        let ids = [self.balls[lo].id as usize, self.balls[hi].id as usize];
         let d = pair_offset(
             &self.flights[lo].motion,
             &self.flights[hi].motion,
@@ -41,11 +43,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         let species = [self.balls[lo].kind as usize, self.balls[hi].kind as usize];
         let kind = self.law(self.table.ball_law(species[0], species[1]), [lo, hi], t);
         let [s1, s2] = law::pair(&self.kernels, &self.species, kind, species, &nu, &pre);
-        self.balls[lo].last = LastContact::ball(hi);
-        self.balls[hi].last = LastContact::ball(lo);
+        self.balls[lo].last = LastContact::ball(ids[1]);
+        self.balls[hi].last = LastContact::ball(ids[0]);
         self.balls[lo].state = s1;
         self.balls[hi].state = s2;
-        let event = self.finish(Contact::Ball { i: lo, j: hi }, nu, [lo, hi], pre, t);
+        let contact = Contact::Ball {
+            i: ids[0],
+            j: ids[1],
+        };
+        let event = self.finish(contact, nu, [lo, hi], pre, t);
         self.after_contact([lo, hi], t);
         event
     }
@@ -71,7 +77,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             &pre[0],
         );
         self.balls[i].last = LastContact::NONE;
-        let event = self.finish(Contact::Wall { i, axis, upper }, nu, [i, i], pre, t);
+        let id = self.balls[i].id as usize;
+        let event = self.finish(Contact::Wall { i: id, axis, upper }, nu, [i, i], pre, t);
         self.after_contact([i, i], t);
         event
     }

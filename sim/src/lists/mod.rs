@@ -21,6 +21,11 @@
 //! (`s - W_j + W_i` for its cell shift `s`); with at least three centre cells a periodic
 //! side (`L_k >= 3 (d_max + 2 delta)`), it is the only image within reach.
 //!
+//! **Slots.** The balls' records lie in slots in the order of their shells' cells, laid out
+//! again at the start and at every re-basing ([`ListSimulation::reorder`]), so that a list's
+//! balls lie near each other in memory whatever the balls' indices; the indices (the log's,
+//! the events' keys, body 1 of a pair) are kept with the records.
+//!
 //! **The rest** is the cell engine's: one pending event per ball in the same calendar
 //! ([`crate::queue`]), the canonical order of `(time, key)`, counters that make a partner's
 //! old contact stale, the rule against repeating a contact still touching
@@ -30,6 +35,7 @@
 //! the notices of a gas with no contact ahead ([`crate::Step::Quiet`], [`crate::Step::Never`]
 //! but at rest): [`ListSimulation::new`] refuses a setup that needs them.
 
+mod ahead;
 mod ball;
 mod contacts;
 mod predict;
@@ -55,6 +61,10 @@ use std::fmt;
 /// caller chooses ([`ListSimulation::with_skin`]); measured in docs/benchmarks.md ("The list
 /// engine").
 pub const SKIN: f64 = 0.3;
+
+/// The size of the flight records and lists from which the next events' memory is requested
+/// ahead (`ahead.rs`): 4 MiB, several times a core's L2 cache, as the cell engine's rule.
+const PREFETCH_FROM_BYTES: usize = 4 << 20;
 
 /// Why the list engine refuses a setup (the cell engine takes it).
 #[derive(Clone, Debug, PartialEq)]
@@ -114,7 +124,12 @@ pub struct ListSimulation<const N: usize, const S: usize, K> {
     periodic: [bool; N],
     /// The shell radius `delta`.
     delta: f64,
+    /// Per slot: what the ball's own events read and write.
     balls: Vec<Own<N, S>>,
+    /// Per ball index: its slot.
+    slot_of: Vec<u32>,
+    /// Whether the next events' memory is requested ahead ([`PREFETCH_FROM_BYTES`]).
+    prefetch: bool,
     /// Per ball: what a neighbour's prediction reads (its flight record, its wraps `W_i`,
     /// with record coordinates the box's plus `W_i L` while its record stays, and its
     /// counter).
@@ -226,7 +241,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             .collect();
         let balls = bodies
             .into_iter()
-            .map(|b| Own {
+            .enumerate()
+            .map(|(i, b)| Own {
+                id: i as u32,
                 slot: crate::queue::Slot::EMPTY,
                 next: None,
                 found: None,
@@ -244,6 +261,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             periodic,
             delta,
             balls,
+            slot_of: (0..n as u32).collect(),
+            prefetch: false,
             flights,
             shells: Shells::new(grid, n, reach),
             times: Vec::new(),
@@ -267,6 +286,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         for i in 0..n {
             sim.draw(i);
         }
+        let bytes = std::mem::size_of::<Resident<N>>() + sim.shells.list_bytes();
+        sim.prefetch = n * bytes >= PREFETCH_FROM_BYTES;
         sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
         sim.rebase_at = rebase_at(sim.span2, sim.speed2, 0, sim.any_periodic());
         sim.predict_all();
@@ -316,6 +337,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         self.rebases
     }
 
+    /// Sets whether the next events' memory is requested ahead (`ahead.rs`): a test of both
+    /// ways on a small gas.
+    #[cfg(test)]
+    pub(crate) fn set_prefetch(&mut self, on: bool) {
+        self.prefetch = on;
+    }
+
     /// The mean length of the neighbour lists now.
     pub fn mean_list(&self) -> f64 {
         let total: usize = (0..self.len()).map(|i| self.shells.list(i).len()).sum();
@@ -324,7 +352,30 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
 
     /// Ball `i`'s state `(U, u)` (constant between contacts).
     pub fn state(&self, i: usize) -> &BodyState<f64, N, S> {
-        &self.balls[i].state
+        &self.balls[self.slot_of[i] as usize].state
+    }
+
+    /// Lays the balls' slots out in the order of their shells' cells (the records, the
+    /// lists and the cells' members follow; the calendar is built again by the caller).
+    fn reorder(&mut self) {
+        let mut order: Vec<u32> = (0..self.len() as u32).collect();
+        order.sort_by_key(|&s| self.shells.cell_of(s as usize));
+        if order
+            .iter()
+            .enumerate()
+            .all(|(new, &old)| new == old as usize)
+        {
+            return;
+        }
+        self.balls = order
+            .iter()
+            .map(|&s| self.balls[s as usize].clone())
+            .collect();
+        self.flights = order.iter().map(|&s| self.flights[s as usize]).collect();
+        for (slot, own) in self.balls.iter().enumerate() {
+            self.slot_of[own.id as usize] = slot as u32;
+        }
+        self.shells.permute(&order);
     }
 
     fn any_periodic(&self) -> bool {
@@ -356,6 +407,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             if time > self.rebase_at {
                 self.rebase(self.rebase_at, true);
                 continue;
+            }
+            if self.prefetch {
+                self.look_ahead();
             }
             let next = self.balls[i]
                 .next

@@ -71,7 +71,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
                 return self.predict(i);
             }
         }
-        let kept = kept.map(|(t, next)| (t, key_of(i, &next), next));
+        let id = self.balls[i].id as usize;
+        let kept = kept.map(|(t, next)| (t, key_of(id, &next), next));
         let found = self.best_contact(i, Some(kept));
         self.schedule(i, found);
     }
@@ -80,12 +81,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
     /// leaving its shell.
     fn schedule(&mut self, i: usize, found: Found<N>) {
         let m = self.flights[i].motion;
+        let id = self.balls[i].id as usize;
         let mut best = found;
         let w_i = self.flights[i].wraps;
         let c = self.shells.centre(i);
         let centre = std::array::from_fn(|k| c[k] + f64::from(w_i[k]) * self.size[k]);
         if let Some(t) = shell_exit(&m, &centre, self.delta) {
-            let key = key(i, kind::CELL, 0, &[0; N]);
+            let key = key(id, kind::CELL, 0, &[0; N]);
             if beats(&best, t, key) {
                 best = Some((t, key, Next::Shell));
             }
@@ -99,7 +101,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             );
             if let Some((tau, upper)) = wall {
                 let t = m.since + tau;
-                let key = key(i, kind::WALL, 2 * axis as u32 + u32::from(upper), &[0; N]);
+                let key = key(id, kind::WALL, 2 * axis as u32 + u32::from(upper), &[0; N]);
                 if beats(&best, t, key) {
                     let axis = axis as u8;
                     best = Some((t, key, Next::Wall { axis, upper }));
@@ -115,9 +117,16 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         }
     }
 
-    /// Predicts every ball, the calendar opened first and sized for the new times after (the
-    /// start and every re-basing).
+    /// Lays the balls out in the order of their shells' cells ([`ListSimulation::reorder`])
+    /// and predicts every ball, in a new calendar sized for the new times after (the start and
+    /// every re-basing).
     pub(super) fn predict_all(&mut self) {
+        self.reorder();
+        // The old calendar's places name old slots: every ball starts with none.
+        self.queue = crate::queue::Calendar::new();
+        for own in &mut self.balls {
+            own.slot = crate::queue::Slot::EMPTY;
+        }
         self.queue.open(self.balls.as_mut_slice());
         for i in 0..self.len() {
             self.predict(i);
@@ -160,7 +169,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
     ) -> Found<N> {
         let me = &self.flights[i];
         let (m, w_i) = (me.motion, me.wraps);
-        let last_i = self.balls[i].last;
+        let (id_i, last_i) = (self.balls[i].id as usize, self.balls[i].last);
         let mut best = None;
         for (near, &t) in list.iter().zip(times) {
             // NaN (no contact) is never at most anything.
@@ -171,7 +180,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             let other = &self.flights[j];
             let image: [i16; N] =
                 std::array::from_fn(|k| i16::from(near.image[k]) - other.wraps[k] + w_i[k]);
-            let key = pair_key(i, j, &image);
+            let id_j = other.ball as usize;
+            let key = pair_key(id_i, id_j, &image);
             if !beats(&best, t, key) {
                 continue;
             }
@@ -180,11 +190,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             let t_ref = m.since.max(other.motion.since);
             let offset = || pair_offset(&m, &other.motion, &k, &self.size, t_ref);
             let last_j = || self.balls[j].last;
-            if LastContact::repeats_pair((i, last_i), (j, last_j), offset, sigma) {
+            if LastContact::repeats_pair((id_i, last_i), (id_j, last_j), offset, sigma) {
                 continue;
             }
             let next = Next::Ball {
                 j: j as u32,
+                id: other.ball,
                 count: other.count,
                 image,
             };

@@ -106,6 +106,41 @@ impl<const N: usize> Shells<N> {
         &self.centre[i]
     }
 
+    /// Requests ball `i`'s list (its first two cache lines: the lists are a few tens of
+    /// 12-byte entries).
+    #[inline]
+    pub(super) fn prefetch_list(&self, i: usize) {
+        self.lists.prefetch_row(i);
+    }
+
+    /// The bytes a ball's list takes in the slab (its row's room).
+    pub(super) fn list_bytes(&self) -> usize {
+        self.lists.row_bytes()
+    }
+
+    /// Ball `i`'s cell (flat index).
+    #[inline]
+    pub(super) fn cell_of(&self, i: usize) -> u32 {
+        self.cell[i].0
+    }
+
+    /// Moves every ball from slot `order[s]` to slot `s`: its centre, cell and list, and every
+    /// list entry and cell member naming it.
+    pub(super) fn permute(&mut self, order: &[u32]) {
+        let mut new_of = vec![0u32; order.len()];
+        for (new, &old) in order.iter().enumerate() {
+            new_of[old as usize] = new as u32;
+        }
+        self.centre = order.iter().map(|&s| self.centre[s as usize]).collect();
+        self.cell = order.iter().map(|&s| self.cell[s as usize]).collect();
+        self.lists.permute_rows(order);
+        self.lists.for_each_mut(|n| n.j = new_of[n.j as usize]);
+        self.members
+            .for_each_mut(|m| m.ball = new_of[m.ball as usize]);
+        self.seen.fill(0);
+        self.fresh.clear();
+    }
+
     /// The entries of the last drawn ball's list whose balls were not in its list before.
     #[inline]
     pub(super) fn fresh(&self) -> &[Neighbour<N>] {
@@ -277,8 +312,9 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     /// Every list is exactly the balls within reach (by a direct all-pairs, all-images
-    /// search), with the image that brings them there, and every entry's twin is where it
-    /// says, after random redraws.
+    /// search), with the image that brings them there, every entry's twin is where it says,
+    /// and every ball is where its cell says, after random redraws and a random permutation of
+    /// the slots.
     #[test]
     fn the_lists_are_the_pairs_within_reach_after_every_redraw() {
         let size = [7.0, 9.0];
@@ -294,6 +330,14 @@ mod tests {
             shells.draw(i, random(&mut rng));
         }
         for round in 0..400 {
+            if round == 200 {
+                // The slots laid out again in a random order.
+                let mut order: Vec<u32> = (0..balls as u32).collect();
+                for k in 0..balls {
+                    order.swap(k, rng.random_range(k..balls));
+                }
+                shells.permute(&order);
+            }
             let i = rng.random_range(0..balls);
             shells.draw(i, random(&mut rng));
             if round % 40 != 0 {

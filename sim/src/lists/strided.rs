@@ -78,6 +78,45 @@ impl<T: Copy> Strided<T> {
         self.len[r] = 0;
     }
 
+    /// Requests the first two cache lines of row `r`.
+    #[inline]
+    pub(super) fn prefetch_row(&self, r: usize) {
+        let start = r * self.stride;
+        let line = 64 / std::mem::size_of::<T>().max(1);
+        collision_core::batch::prefetch(self.data.get(start));
+        collision_core::batch::prefetch(self.data.get(start + line));
+    }
+
+    /// The bytes of a row's room (the stride).
+    pub(super) fn row_bytes(&self) -> usize {
+        self.stride * std::mem::size_of::<T>()
+    }
+
+    /// Moves row `order[r]` to row `r`, for every `r` (`order` a permutation of the rows).
+    pub(super) fn permute_rows(&mut self, order: &[u32]) {
+        let s = self.stride;
+        let mut data = vec![self.fill; self.data.len()];
+        let mut len = vec![0; self.len.len()];
+        for (r, &old) in order.iter().enumerate() {
+            let (old, n) = (old as usize, self.len[old as usize]);
+            data[r * s..r * s + n as usize]
+                .copy_from_slice(&self.data[old * s..old * s + n as usize]);
+            len[r] = n;
+        }
+        self.data = data;
+        self.len = len;
+    }
+
+    /// Calls `f` on every element of every row.
+    pub(super) fn for_each_mut(&mut self, mut f: impl FnMut(&mut T)) {
+        for (r, &n) in self.len.iter().enumerate() {
+            let start = r * self.stride;
+            self.data[start..start + n as usize]
+                .iter_mut()
+                .for_each(&mut f);
+        }
+    }
+
     /// Twice the stride, every row copied to its new place.
     #[cold]
     fn grow(&mut self) {

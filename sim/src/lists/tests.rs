@@ -220,6 +220,26 @@ fn rough_gases_log_the_same_bytes_in_every_engine() {
     }
 }
 
+/// Looking ahead (`ahead.rs`, on from 4 MiB of records and lists) changes no event: a dense
+/// gas with it forced on logs the cell engine's bytes.
+#[test]
+fn looking_ahead_changes_no_event() {
+    let text = on_lattice(gas(3, "8.7", 500, "periodic", ""));
+    let scene = Scene::from_toml(&text, "ahead").unwrap();
+    let setup = setup::<3, 3>(&scene).unwrap();
+    let kernels = GenericKernels {
+        species: setup.species.clone(),
+    };
+    let mut lists = ListSimulation::new(setup.clone(), kernels.clone()).unwrap();
+    lists.set_prefetch(true);
+    let mut cells = Simulation::new(setup, kernels).unwrap();
+    for index in 1..=5_000 {
+        let line = |e: Option<crate::Event<3, 3>>| e.map(|e| event_json(index, &e).to_string());
+        let got = line(next_of_lists(&mut lists));
+        assert_eq!(got, line(next_of_cells(&mut cells)), "contact {index}");
+    }
+}
+
 #[test]
 fn what_the_list_engine_does_not_take_is_refused_by_name() {
     let refusal = |text: &str| {
