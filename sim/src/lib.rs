@@ -35,6 +35,7 @@ pub mod boundary_map;
 mod buckets;
 mod canonical;
 mod cells;
+mod clock;
 pub mod collapse;
 pub mod conserving;
 pub mod cover;

@@ -3,7 +3,7 @@
 //! and the re-prediction of the balls involved.
 
 use super::{Contact, Event, Simulation};
-use crate::canonical::{image_f64, obstacle_image, pair_offset, rebase_at};
+use crate::canonical::{image_f64, obstacle_image, pair_offset};
 use crate::last_contact::LastContact;
 use crate::law::{self, tc_law, ContactKind};
 use crate::left_table::{leaves, LeftTable};
@@ -18,12 +18,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// bound and re-base the clock at `t` if the lowered re-basing time is past (every ball
     /// is then predicted again), else predict the balls involved.
     pub(super) fn after_contact(&mut self, balls: [usize; 2], t: f64) {
-        for b in balls {
-            self.speed2 = self.speed2.max(self.speed2_of(b));
-        }
-        self.quiet_rebases = 0;
-        self.rebase_at = rebase_at(self.span2, self.speed2, 0, self.any_periodic());
-        if t > self.rebase_at {
+        if self.clock.contact(balls.map(|b| self.speed2_of(b)), t) {
             self.rebase(t, false);
             return;
         }

@@ -28,8 +28,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// If `dv` does not hold one increment per ball.
     pub fn kick(&mut self, dv: &[[f64; N]]) -> f64 {
         assert_eq!(dv.len(), self.len(), "one velocity increment per ball");
-        while self.now > self.rebase_at {
-            self.rebase(self.rebase_at, true);
+        while self.now > self.clock.rebase_at() {
+            self.rebase(self.clock.rebase_at(), true);
         }
         let t = self.now;
         let mut added = 0.0;

@@ -112,8 +112,9 @@ mod scan;
 
 pub use events::{Contact, Event, SetupError, Step};
 
-use super::canonical::{clock_span2, d_max, rebase_at};
+use super::canonical::{clock_span2, d_max};
 use super::cells::Grid;
+use super::clock::Clock;
 use super::left_table::LeftTable;
 use super::motion::Motion;
 use super::no_contact::{NoContact, QUIET_BOX_LENGTHS};
@@ -158,18 +159,10 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     near: std::cell::RefCell<lanes::Gathered<N>>,
     /// The order of the balls' pending events (their slots are in `balls`).
     queue: Calendar,
-    /// The local clock; the absolute time is `origin + origin_low + now`.
+    /// The local clock's time; the absolute time is `clock.absolute(now)`.
     now: f64,
-    origin: f64,
-    origin_low: f64,
-    /// An upper bound of `|u_i|^2` (exact at the last rebase).
-    speed2: f64,
-    /// `(CLOCK_CELLS w_min)^2` ([`clock_span2`]).
-    span2: f64,
-    /// The local time of the next re-basing ([`crate::canonical::rebase_at`]).
-    rebase_at: f64,
-    /// Re-basings since the last contact.
-    quiet_rebases: u32,
+    /// The clock's origin and re-basing rule.
+    clock: Clock,
     /// The local time of the last contact (or of the start).
     last_contact: f64,
     /// Events (crossings, re-predictions) since the last contact, and when to check next
@@ -266,12 +259,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             near: Default::default(),
             queue: Calendar::new(),
             now: 0.0,
-            origin: 0.0,
-            origin_low: 0.0,
-            speed2: 0.0,
-            span2,
-            rebase_at: f64::INFINITY,
-            quiet_rebases: 0,
+            clock: Clock::new(span2, 0.0, false),
             last_contact: 0.0,
             quiet: 0,
             next_check: 0,
@@ -282,8 +270,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             stale: 0,
             rebases: 0,
         };
-        sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
-        sim.rebase_at = rebase_at(sim.span2, sim.speed2, 0, sim.any_periodic());
+        let speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
+        sim.clock = Clock::new(span2, speed2, sim.any_periodic());
         sim.predict_all();
         Ok(sim)
     }
@@ -309,11 +297,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     }
 
     fn absolute(&self, local: f64) -> f64 {
-        self.origin + (self.origin_low + local)
+        self.clock.absolute(local)
     }
 
     fn local(&self, absolute: f64) -> f64 {
-        (absolute - self.origin) - self.origin_low
+        self.clock.local(absolute)
     }
 
     /// The number of cells of the cell list (at most 4 per ball and obstacle).
@@ -490,8 +478,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 }
                 return Step::Until;
             }
-            if time > self.rebase_at {
-                self.rebase(self.rebase_at, true);
+            if time > self.clock.rebase_at() {
+                self.rebase(self.clock.rebase_at(), true);
                 continue;
             }
             if self.prefetch {

@@ -2,7 +2,6 @@
 //! contact can come ([`NoContact`]) and the travel since the last contact.
 
 use super::{Simulation, Step};
-use crate::canonical::{moved_origin, rebase_at};
 use crate::no_contact::{Flight, NoContact};
 use crate::PairKernels;
 
@@ -92,12 +91,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             self.motion.get_mut(self.balls[i].home).since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
-        (self.origin, self.origin_low) = moved_origin(self.origin, self.origin_low, t);
+        self.clock.rebase(t, quiet, speed2);
         self.last_contact -= t;
         self.now = (self.now - t).max(0.0);
-        self.speed2 = speed2;
-        self.quiet_rebases = if quiet { self.quiet_rebases + 1 } else { 0 };
-        self.rebase_at = rebase_at(self.span2, speed2, self.quiet_rebases, self.any_periodic());
         self.predict_all();
         self.rebases += 1;
     }

@@ -3,7 +3,7 @@
 //! canonical normal, the counters, the re-predictions.
 
 use super::ListSimulation;
-use crate::canonical::{image_f64, moved_origin, pair_offset, rebase_at};
+use crate::canonical::{image_f64, pair_offset};
 use crate::engine::{Contact, Event};
 use crate::last_contact::LastContact;
 use crate::law::{self, tc_law, ContactKind};
@@ -125,12 +125,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
     /// `t` if the lowered re-basing time is past (every ball predicted again), else the balls
     /// involved predicted.
     fn after_contact(&mut self, balls: [usize; 2], t: f64) {
-        for b in balls {
-            self.speed2 = self.speed2.max(self.speed2_of(b));
-        }
-        self.quiet_rebases = 0;
-        self.rebase_at = rebase_at(self.span2, self.speed2, 0, self.any_periodic());
-        if t > self.rebase_at {
+        if self.clock.contact(balls.map(|b| self.speed2_of(b)), t) {
             self.rebase(t, false);
             return;
         }
@@ -150,11 +145,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             self.flights[i].motion.since = 0.0;
             speed2 = speed2.max(self.speed2_of(i));
         }
-        (self.origin, self.origin_low) = moved_origin(self.origin, self.origin_low, t);
+        self.clock.rebase(t, quiet, speed2);
         self.now = (self.now - t).max(0.0);
-        self.speed2 = speed2;
-        self.quiet_rebases = if quiet { self.quiet_rebases + 1 } else { 0 };
-        self.rebase_at = rebase_at(self.span2, speed2, self.quiet_rebases, self.any_periodic());
         self.predict_all();
         self.rebases += 1;
     }

@@ -44,8 +44,9 @@ mod strided;
 #[cfg(test)]
 mod tests;
 
-use crate::canonical::{clock_span2, d_max, rebase_at};
+use crate::canonical::{clock_span2, d_max};
 use crate::cells::Grid;
+use crate::clock::Clock;
 use crate::engine::SetupError;
 use crate::motion::Motion;
 use crate::no_contact::NoContact;
@@ -141,16 +142,10 @@ pub struct ListSimulation<const N: usize, const S: usize, K> {
     avx2: bool,
     shells: Shells<N>,
     queue: Calendar,
-    /// The local clock; the absolute time is `origin + origin_low + now`.
+    /// The local clock's time; the absolute time is `clock.absolute(now)`.
     now: f64,
-    origin: f64,
-    origin_low: f64,
-    /// An upper bound of `|u_i|^2` (exact at the last rebase).
-    speed2: f64,
-    /// `(CLOCK_CELLS w_min)^2` of the cell engine's grid rule ([`clock_span2`]).
-    span2: f64,
-    rebase_at: f64,
-    quiet_rebases: u32,
+    /// The clock's origin and re-basing rule (the span of the cell engine's grid rule).
+    clock: Clock,
     contacts: u64,
     redraws: u64,
     stale: u64,
@@ -272,12 +267,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             avx2: false,
             queue: Calendar::new(),
             now: 0.0,
-            origin: 0.0,
-            origin_low: 0.0,
-            speed2: 0.0,
-            span2: clock_span2(&cells.width),
-            rebase_at: f64::INFINITY,
-            quiet_rebases: 0,
+            clock: Clock::new(clock_span2(&cells.width), 0.0, false),
             contacts: 0,
             redraws: 0,
             stale: 0,
@@ -288,8 +278,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         }
         let bytes = std::mem::size_of::<Resident<N>>() + sim.shells.list_bytes();
         sim.prefetch = n * bytes >= PREFETCH_FROM_BYTES;
-        sim.speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
-        sim.rebase_at = rebase_at(sim.span2, sim.speed2, 0, sim.any_periodic());
+        let speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
+        sim.clock = Clock::new(clock_span2(&cells.width), speed2, sim.any_periodic());
         sim.predict_all();
         Ok(sim)
     }
@@ -300,11 +290,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
     }
 
     fn absolute(&self, local: f64) -> f64 {
-        self.origin + (self.origin_low + local)
+        self.clock.absolute(local)
     }
 
     fn local(&self, absolute: f64) -> f64 {
-        (absolute - self.origin) - self.origin_low
+        self.clock.local(absolute)
     }
 
     /// The number of balls.
@@ -404,8 +394,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
                 }
                 return Step::Until;
             }
-            if time > self.rebase_at {
-                self.rebase(self.rebase_at, true);
+            if time > self.clock.rebase_at() {
+                self.rebase(self.clock.rebase_at(), true);
                 continue;
             }
             if self.prefetch {
