@@ -2,12 +2,12 @@
 //! Torquato and Stillinger, J. Comput. Phys. 202, 737 (2005), and the `Single` variant of
 //! Smallenburg's EDMD), for gases of balls in a box. It writes the same event log as the cell
 //! engine ([`crate::Simulation`]) and the all-pairs reference, byte for byte: every contact
-//! time is canonical ([`crate::canonical`], docs/engine.md), so the engines differ only in
+//! time is canonical (`canonical.rs`, docs/engine.md), so the engines differ only in
 //! how they find the pairs to ask.
 //!
 //! **Shells.** Ball `i` has a shell of radius `delta` around a centre `c_i` (its position
 //! when the shell was drawn) and a list of the balls whose shells come within `d_max + 2
-//! delta` of it ([`shells`]); a pair can touch only while listed, as long as both stay in
+//! delta` of it (`shells.rs`); a pair can touch only while listed, as long as both stay in
 //! their shells. Leaving its shell is an event of the ball (keyed as a cell crossing: it moves
 //! no record): the shell is drawn again around its position, its list rebuilt from the
 //! centres' own cell list, and it is predicted again. There are no cell crossings, and a
@@ -22,14 +22,14 @@
 //! side (`L_k >= 3 (d_max + 2 delta)`), it is the only image within reach.
 //!
 //! **Slots.** The balls' records lie in slots in the order of their shells' cells, laid out
-//! again at the start and at every re-basing ([`ListSimulation::reorder`]), so that a list's
+//! again at the start and at every re-basing (`ListSimulation::reorder`), so that a list's
 //! balls lie near each other in memory whatever the balls' indices; the indices (the log's,
 //! the events' keys, body 1 of a pair) are kept with the records.
 //!
 //! **The rest** is the cell engine's: one pending event per ball in the same calendar
-//! ([`crate::queue`]), the canonical order of `(time, key)`, counters that make a partner's
+//! (`queue.rs`), the canonical order of `(time, key)`, counters that make a partner's
 //! old contact stale, the rule against repeating a contact still touching
-//! ([`crate::last_contact`]), the box walls, the laws under the TC model, and the re-basing
+//! (`last_contact.rs`), the box walls, the laws under the TC model, and the re-basing
 //! of the clock at the canonical times (every record moved there, every ball predicted
 //! again). Not here: obstacles, table boundaries, orientations, the thermostat's kicks and
 //! the notices of a gas with no contact ahead ([`crate::Step::Quiet`], [`crate::Step::Never`]
