@@ -107,6 +107,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             self.flights[balls[1]].count += 1;
         }
         self.contacts += 1;
+        self.quiet = 0;
+        self.next_check = self.first_check();
         let time = self.absolute(t);
         for b in balls {
             self.balls[b].previous = time;

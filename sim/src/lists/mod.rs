@@ -6,9 +6,9 @@
 //! how they find the pairs to ask.
 //!
 //! **Shells.** Ball `i` has a shell of radius `delta` around a centre `c_i` (its position
-//! when the shell was drawn) and a list of the balls whose shells come within `d_max + 2
-//! delta` of it (`shells.rs`); a pair can touch only while listed, as long as both stay in
-//! their shells. Leaving its shell is an event of the ball (keyed as a cell crossing: it moves
+//! when the shell was drawn) and a list of the balls whose shells' centres lie within `d_max
+//! + 2 delta` of `c_i` (`shells.rs`); a pair can touch only while listed, as long as both stay
+//! in their shells. Leaving its shell is an event of the ball (keyed as a cell crossing: it moves
 //! no record): the shell is drawn again around its position, its list rebuilt from the
 //! centres' own cell list, and it is predicted again. There are no cell crossings, and a
 //! prediction after a contact asks the list (about `phi 2^n (1 + 2 delta / d)^n` balls) where
@@ -31,14 +31,16 @@
 //! old contact stale, the rule against repeating a contact still touching
 //! (`last_contact.rs`), the box walls, the laws under the TC model, and the re-basing
 //! of the clock at the canonical times (every record moved there, every ball predicted
-//! again). Not here: obstacles, table boundaries, orientations, the thermostat's kicks and
-//! the notices of a gas with no contact ahead ([`crate::Step::Quiet`], [`crate::Step::Never`]
-//! but at rest): [`ListSimulation::new`] refuses a setup that needs them.
+//! again), and the decision that no contact will happen again ([`crate::Step::Never`],
+//! `quiet.rs`). Not here: obstacles, table boundaries, orientations, the thermostat's kicks
+//! ([`ListSimulation::new`] refuses a setup that has them) and the notices of long stretches
+//! without a contact ([`crate::Step::Quiet`]).
 
 mod ahead;
 mod ball;
 mod contacts;
 mod predict;
+mod quiet;
 mod shells;
 mod strided;
 #[cfg(test)]
@@ -67,6 +69,38 @@ pub const SKIN: f64 = 0.3;
 /// ahead (`ahead.rs`): 4 MiB, several times a core's L2 cache, as the cell engine's rule.
 const PREFETCH_FROM_BYTES: usize = 4 << 20;
 
+/// The least skin: a shell of `1e-6 d_max` still holds a ball for many ulps of its flight.
+pub const MIN_SKIN: f64 = 1e-6;
+
+/// The centres' cell list: cells wider than `reach`, at least three along every periodic
+/// axis, the cap on cells per body ([`Grid::new`]) raised as far as that needs, up to 4096
+/// times the balls; a periodic side that still holds fewer is refused.
+fn centres_grid<const N: usize>(
+    size: [f64; N],
+    periodic: [bool; N],
+    reach: f64,
+    balls: usize,
+) -> Result<Grid<N>, ListsRefusal> {
+    let short = |axis: usize| ListsRefusal::ShortSide {
+        axis,
+        size: size[axis],
+        reach,
+    };
+    let most = balls.max(1) << 12;
+    let mut room = balls.max(3usize.pow(N as u32));
+    loop {
+        let grid = Grid::new(size, periodic, reach, room).map_err(|e| match e {
+            SetupError::ShortSide { axis, .. } => short(axis),
+            e => ListsRefusal::Setup(e),
+        })?;
+        match (0..N).find(|&k| periodic[k] && grid.n[k] < 3) {
+            None => return Ok(grid),
+            Some(k) if room >= most => return Err(short(k)),
+            Some(_) => room = (8 * room).min(most),
+        }
+    }
+}
+
 /// Why the list engine refuses a setup (the cell engine takes it).
 #[derive(Clone, Debug, PartialEq)]
 pub enum ListsRefusal {
@@ -78,10 +112,13 @@ pub enum ListsRefusal {
     Table,
     /// The setup tracks orientations.
     Orientation,
-    /// The shell radius is not positive and finite.
+    /// The table has a thermostat (the list engine takes no kicks).
+    Thermostat,
+    /// The skin is below [`MIN_SKIN`] or not finite.
     Skin(f64),
-    /// A periodic side holds fewer than three cells of the centres' grid: shorter than three
-    /// times `d_max + 2 delta`.
+    /// A periodic side holds fewer than three cells of the centres' grid (cells wider than
+    /// the lists' reach `d_max + 2 delta`): shorter than three reaches, or too thin beside the
+    /// others for the cells the balls may have.
     ShortSide {
         /// The periodic axis `k`.
         axis: usize,
@@ -99,10 +136,11 @@ impl fmt::Display for ListsRefusal {
             ListsRefusal::Obstacles => write!(f, "the list engine takes no obstacles"),
             ListsRefusal::Table => write!(f, "the list engine takes a box and no other boundary"),
             ListsRefusal::Orientation => write!(f, "the list engine does not track orientations"),
-            ListsRefusal::Skin(s) => write!(f, "shell radius {s} must be positive and finite"),
+            ListsRefusal::Thermostat => write!(f, "the list engine takes no thermostat"),
+            ListsRefusal::Skin(s) => write!(f, "skin {s} must be finite and at least {MIN_SKIN}"),
             ListsRefusal::ShortSide { axis, size, reach } => write!(
                 f,
-                "periodic side {axis} ({size}) is shorter than 3 list reaches ({reach})"
+                "periodic side {axis} ({size}) holds fewer than 3 cells of the lists' reach ({reach})"
             ),
         }
     }
@@ -131,7 +169,7 @@ pub struct ListSimulation<const N: usize, const S: usize, K> {
     slot_of: Vec<u32>,
     /// Whether the next events' memory is requested ahead ([`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
-    /// Per ball: what a neighbour's prediction reads (its flight record, its wraps `W_i`,
+    /// Per slot: what a neighbour's prediction reads (its flight record, its wraps `W_i`,
     /// with record coordinates the box's plus `W_i L` while its record stays, and its
     /// counter).
     flights: Vec<Resident<N>>,
@@ -150,6 +188,10 @@ pub struct ListSimulation<const N: usize, const S: usize, K> {
     redraws: u64,
     stale: u64,
     rebases: u64,
+    /// Events (redraws, stale contacts) since the last contact, and when to check next
+    /// whether contacts can still happen (`quiet.rs`).
+    quiet: u64,
+    next_check: u64,
 }
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N, S, K> {
@@ -176,6 +218,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         if !table.boxed || !table.boundaries.is_empty() {
             return Err(ListsRefusal::Table);
         }
+        if table.thermostat.is_some() {
+            return Err(ListsRefusal::Thermostat);
+        }
         if orientation {
             return Err(ListsRefusal::Orientation);
         }
@@ -200,24 +245,17 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         let d_max = d_max(r_ball, 0.0);
         // The cell engine's grid, for the canonical re-basing time alone.
         let cells = Grid::new(size, periodic, d_max, bodies.len())?;
-        let delta = skin * d_max;
-        if !(delta > 0.0 && delta.is_finite()) {
+        if !(skin >= MIN_SKIN && skin.is_finite()) {
             return Err(ListsRefusal::Skin(skin));
         }
+        let delta = skin * d_max;
         // A centre is within a few ulps of its side of its shell (it is computed from the
-        // ball's flight): the slack of the cell rule covers it.
+        // ball's flight, whose coordinates reach the box's side plus the clock's span of
+        // flight): the slack covers it.
         let longest = size.iter().copied().fold(0.0, f64::max);
-        let reach = (d_max + 2.0 * delta) * (1.0 + 1e-9) + 64.0 * f64::EPSILON * longest;
-        // Room for three cells a side however few the balls (the grid caps cells per body).
-        let room = bodies.len().max(3usize.pow(N as u32));
-        let grid = Grid::new(size, periodic, reach, room)?;
-        if let Some(k) = (0..N).find(|&k| periodic[k] && grid.n[k] < 3) {
-            return Err(ListsRefusal::ShortSide {
-                axis: k,
-                size: size[k],
-                reach,
-            });
-        }
+        let span = clock_span2(&cells.width).sqrt();
+        let reach = (d_max + 2.0 * delta) * (1.0 + 1e-9) + 64.0 * f64::EPSILON * (longest + span);
+        let grid = centres_grid(size, periodic, reach, bodies.len())?;
         let n = bodies.len();
         let flights = bodies
             .iter()
@@ -272,6 +310,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             redraws: 0,
             stale: 0,
             rebases: 0,
+            quiet: 0,
+            next_check: 0,
         };
         for i in 0..n {
             sim.draw(i);
@@ -382,6 +422,15 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
     pub fn step(&mut self, until: f64) -> Step<N, S> {
         loop {
             let until = self.local(until);
+            if self.quiet >= self.next_check {
+                self.next_check = self.next_check.saturating_mul(2).max(self.first_check());
+                if let Some(why) = self.no_contact() {
+                    if until.is_finite() {
+                        self.now = self.now.max(until);
+                    }
+                    return Step::Never(why);
+                }
+            }
             let Some((time, i)) = self.queue.peek(self.balls.as_mut_slice()) else {
                 if until.is_finite() {
                     self.now = self.now.max(until);
@@ -410,10 +459,12 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
                     self.draw(i);
                     self.redraws += 1;
                     self.predict_after_draw(i);
+                    self.quiet += 1;
                 }
                 Next::Ball { j, count, .. } if count != self.flights[j as usize].count => {
                     self.stale += 1;
                     self.predict(i);
+                    self.quiet += 1;
                 }
                 Next::Ball { j, image, .. } => {
                     return Step::Contact(self.ball_ball(i, j as usize, &image, time))

@@ -16,9 +16,11 @@ use crate::PairKernels;
 /// record coordinates): `t_i + tau` for the root `tau >= 0` of `|e + tau u| = delta`, `e =
 /// a_i - centre`, taken from the closest approach as the contact times are
 /// ([`crate::predict`]): `tau_0 = -(e . u) / |u|^2`, `h = e + tau_0 u`, `tau = tau_0 +
-/// sqrt((delta^2 - |h|^2) / |u|^2)`, at least 0. A record older than the shell puts `a_i`
-/// far from the centre; this form rounds only numbers of the size of `|e|`, where the
-/// textbook root loses `|e|^2 / delta` to cancellation. `None` at rest.
+/// sqrt((delta^2 - |h|^2) / |u|^2)`, at least 0 (the radicand at least 0: a ball outside its
+/// shell by rounding leaves at its closest approach, or at once). A record older than the
+/// shell puts `a_i` far from the centre; this form rounds only numbers of the size of `|e|`,
+/// where the textbook root loses `|e|^2 / delta` to cancellation. `None` at rest. Not a
+/// canonical time: leaving a shell moves no record, so no contact time depends on it.
 #[inline]
 pub(super) fn shell_exit<const N: usize>(
     m: &Motion<N>,

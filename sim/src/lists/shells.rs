@@ -45,7 +45,7 @@ struct Member<const N: usize> {
 #[derive(Debug)]
 pub(super) struct Shells<const N: usize> {
     /// The cells of the centres (wider than `reach`).
-    pub grid: Grid<N>,
+    grid: Grid<N>,
     /// `reach^2`: a pair is listed when its centres' squared distance is at most this.
     reach2: f64,
     /// Per ball: its shell's centre `c_i`, in the box.
