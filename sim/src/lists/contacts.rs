@@ -7,6 +7,7 @@ use crate::canonical::{image_f64, pair_offset};
 use crate::engine::{Contact, Event};
 use crate::last_contact::LastContact;
 use crate::law::{self, tc_law, ContactKind};
+use crate::no_contact::QUIET_BOX_LENGTHS;
 use crate::normal::unit;
 use crate::PairKernels;
 use collision_core::BodyState;
@@ -109,6 +110,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         self.contacts += 1;
         self.quiet = 0;
         self.next_check = self.first_check();
+        self.last_contact = t;
+        self.next_notice = QUIET_BOX_LENGTHS;
         let time = self.absolute(t);
         for b in balls {
             self.balls[b].previous = time;
@@ -148,6 +151,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             speed2 = speed2.max(self.speed2_of(i));
         }
         self.clock.rebase(t, quiet, speed2);
+        self.last_contact -= t;
         self.now = (self.now - t).max(0.0);
         self.predict_all();
         self.rebases += 1;

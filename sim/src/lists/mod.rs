@@ -31,10 +31,10 @@
 //! old contact stale, the rule against repeating a contact still touching
 //! (`last_contact.rs`), the box walls, the laws under the TC model, and the re-basing
 //! of the clock at the canonical times (every record moved there, every ball predicted
-//! again), and the decision that no contact will happen again ([`crate::Step::Never`],
-//! `quiet.rs`). Not here: obstacles, table boundaries, orientations, the thermostat's kicks
-//! ([`ListSimulation::new`] refuses a setup that has them) and the notices of long stretches
-//! without a contact ([`crate::Step::Quiet`]).
+//! again), the decision that no contact will happen again ([`crate::Step::Never`]) and the
+//! notices of long stretches without one ([`crate::Step::Quiet`], `quiet.rs`). Not here:
+//! obstacles, table boundaries, orientations and the thermostat's kicks:
+//! [`ListSimulation::new`] refuses a setup that has them.
 
 mod ahead;
 mod ball;
@@ -51,7 +51,7 @@ use crate::cells::Grid;
 use crate::clock::Clock;
 use crate::engine::SetupError;
 use crate::motion::Motion;
-use crate::no_contact::NoContact;
+use crate::no_contact::{NoContact, QUIET_BOX_LENGTHS};
 use crate::queue::Calendar;
 use crate::residents::Resident;
 use crate::{PairKernels, Setup, Step, Table};
@@ -192,6 +192,10 @@ pub struct ListSimulation<const N: usize, const S: usize, K> {
     /// whether contacts can still happen (`quiet.rs`).
     quiet: u64,
     next_check: u64,
+    /// The local time of the last contact (or of the start).
+    last_contact: f64,
+    /// The travel (box lengths) at which the next [`Step::Quiet`] notice is due.
+    next_notice: f64,
 }
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N, S, K> {
@@ -312,6 +316,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             rebases: 0,
             quiet: 0,
             next_check: 0,
+            last_contact: 0.0,
+            next_notice: QUIET_BOX_LENGTHS,
         };
         for i in 0..n {
             sim.draw(i);
@@ -418,7 +424,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
 
     /// Processes events until the next contact at or before the absolute time `until` and
     /// returns it, as [`crate::Simulation::step`]: [`Step::Until`] (the clock at `until`)
-    /// if there is none by then, [`Step::Never`] if every ball is at rest.
+    /// if there is none by then, [`Step::Never`] if no contact can happen again, and
+    /// [`Step::Quiet`] once the balls have flown 1000, 2000, 4000 ... box lengths without a
+    /// contact.
     pub fn step(&mut self, until: f64) -> Step<N, S> {
         loop {
             let until = self.local(until);
@@ -429,6 +437,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
                         self.now = self.now.max(until);
                     }
                     return Step::Never(why);
+                }
+                let box_lengths = self.quiet_travel();
+                if box_lengths >= self.next_notice {
+                    self.next_notice = 2.0 * box_lengths;
+                    return Step::Quiet { box_lengths };
                 }
             }
             let Some((time, i)) = self.queue.peek(self.balls.as_mut_slice()) else {

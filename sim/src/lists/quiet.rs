@@ -1,8 +1,10 @@
-//! Deciding that no contact will ever happen again (`crate::no_contact`), as the cell engine
-//! does: a gas whose balls all fly at one velocity, or a single ball, would otherwise leave
-//! and draw its shells forever. Checked at the first step and then after `max(1024, 2 balls)`,
-//! twice, four times that many events without a contact; the exact pair test is run when its
-//! cost is at most `max(2^20, 16 quiet)` pair checks, so `O(1)` per event.
+//! Deciding that no contact will ever happen again (`crate::no_contact`), and noticing long
+//! stretches without one, as the cell engine does: a gas whose balls all fly at one velocity,
+//! or a single ball, would otherwise leave and draw its shells forever. Checked at the first
+//! step and then after `max(1024, 2 balls)`, twice, four times that many events without a
+//! contact; the exact pair test is run when its cost is at most `max(2^20, 16 quiet)` pair
+//! checks, so `O(1)` per event. The notices come at the checks once the slowest moving ball
+//! has flown 1000, 2000, 4000 ... box lengths (the longest side) since the last contact.
 
 use super::ListSimulation;
 use crate::canonical::fold;
@@ -13,6 +15,21 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
     /// Events without a contact before the first check after a contact.
     pub(super) fn first_check(&self) -> u64 {
         (2 * self.len() as u64).max(1024)
+    }
+
+    /// Box lengths (the longest side) the slowest moving ball flew since the last contact (0
+    /// if every ball is at rest).
+    pub(super) fn quiet_travel(&self) -> f64 {
+        let slowest = (0..self.len())
+            .map(|s| self.speed2_of(s).sqrt())
+            .filter(|&v| v > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let longest = self.size.iter().copied().fold(0.0, f64::max);
+        if slowest.is_finite() {
+            (self.now - self.last_contact) * slowest / longest
+        } else {
+            0.0
+        }
     }
 
     /// Whether no contact can happen again ([`NoContact`]).

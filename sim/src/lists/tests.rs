@@ -308,6 +308,53 @@ fn a_ball_on_the_far_face_and_balls_at_rest_log_the_same_bytes() {
     }
 }
 
+/// A ball that flies along a corridor past a ball at rest, never meeting it, its relative
+/// motion not closing on itself (a drift of `sqrt(2) / 10` across): no decision, but notices
+/// at 1000 and then at least 2000 box lengths, as the cell engine gives them.
+#[test]
+fn a_long_flight_without_contacts_is_noticed() {
+    let ball = |position: [f64; 3], velocity: [f64; 3]| crate::Body {
+        species: 0,
+        position,
+        state: collision_core::BodyState {
+            spin: [0.0; 3],
+            velocity,
+        },
+    };
+    let setup = Setup::<3, 3> {
+        size: [20.0; 3],
+        periodic: [true; 3],
+        species: vec![collision_core::Ball {
+            inv_mass: 1.0,
+            radius: 0.5,
+            gamma2: 0.4,
+        }],
+        obstacles: Vec::new(),
+        bodies: vec![
+            ball([5.0, 5.0, 5.0], [1.0, 2f64.sqrt() / 10.0, 0.0]),
+            ball([15.0, 15.0, 15.0], [0.0; 3]),
+        ],
+        orientation: false,
+        table: crate::Table::boxed(),
+    };
+    let kernels = GenericKernels {
+        species: setup.species.clone(),
+    };
+    let mut lists = ListSimulation::new(setup.clone(), kernels.clone()).unwrap();
+    let mut cells = Simulation::new(setup, kernels).unwrap();
+    for least in [1000.0, 2000.0] {
+        for (name, step) in [
+            ("lists", lists.step(f64::INFINITY)),
+            ("cells", cells.step(f64::INFINITY)),
+        ] {
+            match step {
+                Step::Quiet { box_lengths } => assert!(box_lengths >= least, "{name}"),
+                other => panic!("{name}: {other:?}"),
+            }
+        }
+    }
+}
+
 /// The cell engine's next step up to `until`, past its notices.
 fn next_of_cells_until<const N: usize, const S: usize>(
     sim: &mut Simulation<N, S, GenericKernels<f64>>,
