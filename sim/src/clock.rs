@@ -28,8 +28,22 @@ pub(crate) struct Clock {
 }
 
 impl Clock {
+    /// A clock at absolute time 0 for balls of velocities `velocities` (their squared speeds
+    /// summed over the axes in order, as the engines' `speed2_of`).
+    pub(crate) fn start<'a, const N: usize>(
+        span2: f64,
+        velocities: impl IntoIterator<Item = &'a [f64; N]>,
+        periodic: bool,
+    ) -> Self {
+        let speed2 = velocities
+            .into_iter()
+            .map(|u| u.iter().map(|x| x * x).sum())
+            .fold(0.0, f64::max);
+        Self::new(span2, speed2, periodic)
+    }
+
     /// A clock at absolute time 0 for balls whose squared speeds are at most `speed2`.
-    pub(crate) fn new(span2: f64, speed2: f64, periodic: bool) -> Self {
+    fn new(span2: f64, speed2: f64, periodic: bool) -> Self {
         Clock {
             origin: 0.0,
             origin_low: 0.0,

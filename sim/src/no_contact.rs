@@ -80,7 +80,33 @@ pub(crate) struct Flight<'a, const N: usize> {
     pub obstacles: &'a [FixedBall<N>],
 }
 
+/// The least positive speed `sqrt(v^2)` of the squared speeds `speed2` (`None` if every one
+/// is 0): the slowest moving ball's, whose travel the notices measure.
+pub(crate) fn slowest(speed2: impl IntoIterator<Item = f64>) -> Option<f64> {
+    let slowest = speed2
+        .into_iter()
+        .map(f64::sqrt)
+        .filter(|&v| v > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    slowest.is_finite().then_some(slowest)
+}
+
 impl<const N: usize> Flight<'_, N> {
+    /// Whether no contact can happen again after `quiet` events without one: every ball at
+    /// rest ([`NoContact::AtRest`]), or, where the pairs alone decide (`pairs`: a box and no
+    /// other boundary), [`Flight::separated`] within `max(2^20, 16 quiet)` pair checks, so
+    /// `O(1)` per event.
+    pub(crate) fn decide(&self, quiet: u64, pairs: bool) -> Option<NoContact> {
+        if self.least_speed().is_none() {
+            return Some(NoContact::AtRest);
+        }
+        if !pairs {
+            return None;
+        }
+        let budget = usize::try_from(quiet.saturating_mul(16)).unwrap_or(usize::MAX);
+        self.separated(budget.max(1 << 20))
+    }
+
     /// [`NoContact::Separated`] if it holds; `None` if it does not, or if the pair test would
     /// cost more than `budget` pair checks (it stops at the first pair that may touch, so in a
     /// gas it costs O(1)).

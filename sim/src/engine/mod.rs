@@ -244,6 +244,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         let slab = (bodies.len() + grid.cells()) * std::mem::size_of::<Resident<N>>();
         let prefetch = slab >= PREFETCH_FROM_BYTES;
         let span2 = clock_span2(&grid.width);
+        // The clock from the starting velocities; periodic only in a box.
+        let velocities = bodies.iter().map(|b| &b.state.velocity);
+        let table_periodic = table.boxed && grid.periodic.contains(&true);
         let mut sim = Simulation {
             kernels,
             species,
@@ -259,7 +262,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             near: Default::default(),
             queue: Calendar::new(),
             now: 0.0,
-            clock: Clock::new(span2, 0.0, false),
+            clock: Clock::start(span2, velocities, table_periodic),
             last_contact: 0.0,
             quiet: 0,
             next_check: 0,
@@ -270,8 +273,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             stale: 0,
             rebases: 0,
         };
-        let speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
-        sim.clock = Clock::new(span2, speed2, sim.any_periodic());
         sim.predict_all();
         Ok(sim)
     }
@@ -352,11 +353,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         } else {
             [false; N]
         }
-    }
-
-    /// Whether an axis is periodic.
-    fn any_periodic(&self) -> bool {
-        self.periodic().iter().any(|&p| p)
     }
 
     /// The fixed ball obstacles.

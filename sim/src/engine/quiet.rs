@@ -2,7 +2,7 @@
 //! contact can come ([`NoContact`]) and the travel since the last contact.
 
 use super::{Simulation, Step};
-use crate::no_contact::{Flight, NoContact};
+use crate::no_contact::{slowest, Flight, NoContact};
 use crate::PairKernels;
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S, K> {
@@ -35,16 +35,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             balls: self.len(),
             obstacles: &self.obstacles,
         };
-        if flight.least_speed().is_none() {
-            return Some(NoContact::AtRest);
-        }
-        if !self.table.boxed || !self.table.boundaries.is_empty() {
-            // Without a box the empty queue decides (step); with boundaries every axis is
-            // walled, and a moving ball may still meet them.
-            return None;
-        }
-        let budget = usize::try_from(self.quiet.saturating_mul(16)).unwrap_or(usize::MAX);
-        flight.separated(budget.max(1 << 20))
+        // Without a box the empty queue decides (step); with boundaries every axis is
+        // walled, and a moving ball may still meet them.
+        let pairs = self.table.boxed && self.table.boundaries.is_empty();
+        flight.decide(self.quiet, pairs)
     }
 
     /// Box lengths (the longest side) the slowest moving ball travelled since the last
@@ -57,11 +51,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
 
     /// The speed `|u|` of the slowest moving ball, `None` if every ball is at rest.
     pub(crate) fn slowest_speed(&self) -> Option<f64> {
-        let slowest = (0..self.len())
-            .map(|i| self.speed_of(i))
-            .filter(|&v| v > 0.0)
-            .fold(f64::INFINITY, f64::min);
-        slowest.is_finite().then_some(slowest)
+        slowest((0..self.len()).map(|i| self.speed2_of(i)))
     }
 
     /// The longest side of the box, the unit of box lengths.

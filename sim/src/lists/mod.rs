@@ -257,10 +257,13 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         // ball's flight, whose coordinates reach the box's side plus the clock's span of
         // flight): the slack covers it.
         let longest = size.iter().copied().fold(0.0, f64::max);
-        let span = clock_span2(&cells.width).sqrt();
+        let span2 = clock_span2(&cells.width);
+        let span = span2.sqrt();
         let reach = (d_max + 2.0 * delta) * (1.0 + 1e-9) + 64.0 * f64::EPSILON * (longest + span);
         let grid = centres_grid(size, periodic, reach, bodies.len())?;
         let n = bodies.len();
+        let velocities = bodies.iter().map(|b| &b.state.velocity);
+        let clock = Clock::start(span2, velocities, periodic.contains(&true));
         let flights = bodies
             .iter()
             .enumerate()
@@ -309,7 +312,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             avx2: false,
             queue: Calendar::new(),
             now: 0.0,
-            clock: Clock::new(clock_span2(&cells.width), 0.0, false),
+            clock,
             contacts: 0,
             redraws: 0,
             stale: 0,
@@ -324,8 +327,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         }
         let bytes = std::mem::size_of::<Resident<N>>() + sim.shells.list_bytes();
         sim.prefetch = n * bytes >= PREFETCH_FROM_BYTES;
-        let speed2 = (0..n).map(|i| sim.speed2_of(i)).fold(0.0, f64::max);
-        sim.clock = Clock::new(clock_span2(&cells.width), speed2, sim.any_periodic());
         sim.predict_all();
         Ok(sim)
     }
@@ -412,10 +413,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             self.slot_of[own.id as usize] = slot as u32;
         }
         self.shells.permute(&order);
-    }
-
-    fn any_periodic(&self) -> bool {
-        self.periodic.contains(&true)
     }
 
     fn speed2_of(&self, i: usize) -> f64 {

@@ -8,7 +8,7 @@
 
 use super::ListSimulation;
 use crate::canonical::fold;
-use crate::no_contact::{Flight, NoContact};
+use crate::no_contact::{slowest, Flight, NoContact};
 use crate::PairKernels;
 
 impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N, S, K> {
@@ -20,16 +20,9 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
     /// Box lengths (the longest side) the slowest moving ball flew since the last contact (0
     /// if every ball is at rest).
     pub(super) fn quiet_travel(&self) -> f64 {
-        let slowest = (0..self.len())
-            .map(|s| self.speed2_of(s).sqrt())
-            .filter(|&v| v > 0.0)
-            .fold(f64::INFINITY, f64::min);
         let longest = self.size.iter().copied().fold(0.0, f64::max);
-        if slowest.is_finite() {
-            (self.now - self.last_contact) * slowest / longest
-        } else {
-            0.0
-        }
+        slowest((0..self.len()).map(|s| self.speed2_of(s)))
+            .map_or(0.0, |v| (self.now - self.last_contact) * v / longest)
     }
 
     /// Whether no contact can happen again ([`NoContact`]).
@@ -50,10 +43,6 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             balls: self.len(),
             obstacles: &[],
         };
-        if flight.least_speed().is_none() {
-            return Some(NoContact::AtRest);
-        }
-        let budget = usize::try_from(self.quiet.saturating_mul(16)).unwrap_or(usize::MAX);
-        flight.separated(budget.max(1 << 20))
+        flight.decide(self.quiet, true)
     }
 }

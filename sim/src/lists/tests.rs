@@ -135,6 +135,35 @@ spin = 1
     )
 }
 
+/// Balls of radius 1/2 and mass 1 (`gamma^2 = 2 / (n + 2)`, uniform density) at the given
+/// centres and velocities, each with angular velocity `spin`, in a periodic cube of side
+/// `side`.
+fn hand_built<const N: usize, const S: usize>(
+    side: f64,
+    spin: [f64; S],
+    balls: &[([f64; N], [f64; N])],
+) -> Setup<N, S> {
+    Setup {
+        size: [side; N],
+        periodic: [true; N],
+        species: vec![collision_core::Ball {
+            inv_mass: 1.0,
+            radius: 0.5,
+            gamma2: 2.0 / (N as f64 + 2.0),
+        }],
+        obstacles: Vec::new(),
+        bodies: (balls.iter())
+            .map(|&(position, velocity)| crate::Body {
+                species: 0,
+                position,
+                state: collision_core::BodyState { spin, velocity },
+            })
+            .collect(),
+        orientation: false,
+        table: crate::Table::boxed(),
+    }
+}
+
 /// `text`'s balls on a random subset of a lattice's sites (random sequential placement stops
 /// short of the dense gases).
 fn on_lattice(text: String) -> String {
@@ -256,33 +285,14 @@ fn looking_ahead_changes_no_event() {
 /// log the same contacts, and stop at the same finite times with the same clocks.
 #[test]
 fn a_ball_on_the_far_face_and_balls_at_rest_log_the_same_bytes() {
-    let ball = |position: [f64; 2], velocity: [f64; 2]| crate::Body {
-        species: 0,
-        position,
-        state: collision_core::BodyState {
-            spin: [0.3],
-            velocity,
-        },
-    };
-    let setup = Setup::<2, 1> {
-        size: [10.0, 10.0],
-        periodic: [true, true],
-        species: vec![collision_core::Ball {
-            inv_mass: 1.0,
-            radius: 0.5,
-            gamma2: 0.5,
-        }],
-        obstacles: Vec::new(),
-        bodies: vec![
-            ball([10.0, 5.0], [0.7, 0.1]),
-            ball([5.0, 5.0], [0.0, 0.0]),
-            ball([2.5, 7.5], [0.0, 0.0]),
-            ball([7.5, 2.5], [-0.4, 0.9]),
-            ball([2.0, 2.0], [0.3, -0.8]),
-        ],
-        orientation: false,
-        table: crate::Table::boxed(),
-    };
+    let balls = [
+        ([10.0, 5.0], [0.7, 0.1]),
+        ([5.0, 5.0], [0.0, 0.0]),
+        ([2.5, 7.5], [0.0, 0.0]),
+        ([7.5, 2.5], [-0.4, 0.9]),
+        ([2.0, 2.0], [0.3, -0.8]),
+    ];
+    let setup = hand_built(10.0, [0.3], &balls);
     let kernels = GenericKernels {
         species: setup.species.clone(),
     };
@@ -313,30 +323,11 @@ fn a_ball_on_the_far_face_and_balls_at_rest_log_the_same_bytes() {
 /// at 1000 and then at least 2000 box lengths, as the cell engine gives them.
 #[test]
 fn a_long_flight_without_contacts_is_noticed() {
-    let ball = |position: [f64; 3], velocity: [f64; 3]| crate::Body {
-        species: 0,
-        position,
-        state: collision_core::BodyState {
-            spin: [0.0; 3],
-            velocity,
-        },
-    };
-    let setup = Setup::<3, 3> {
-        size: [20.0; 3],
-        periodic: [true; 3],
-        species: vec![collision_core::Ball {
-            inv_mass: 1.0,
-            radius: 0.5,
-            gamma2: 0.4,
-        }],
-        obstacles: Vec::new(),
-        bodies: vec![
-            ball([5.0, 5.0, 5.0], [1.0, 2f64.sqrt() / 10.0, 0.0]),
-            ball([15.0, 15.0, 15.0], [0.0; 3]),
-        ],
-        orientation: false,
-        table: crate::Table::boxed(),
-    };
+    let balls = [
+        ([5.0, 5.0, 5.0], [1.0, 2f64.sqrt() / 10.0, 0.0]),
+        ([15.0, 15.0, 15.0], [0.0; 3]),
+    ];
+    let setup = hand_built(20.0, [0.0; 3], &balls);
     let kernels = GenericKernels {
         species: setup.species.clone(),
     };
@@ -375,29 +366,11 @@ where
 /// velocity end both engines alike ([`crate::NoContact`]).
 #[test]
 fn a_gas_without_contacts_ahead_ends_as_in_the_cell_engine() {
-    let gas = |velocities: &[[f64; 3]]| Setup::<3, 3> {
-        size: [6.0, 6.0, 6.0],
-        periodic: [true; 3],
-        species: vec![collision_core::Ball {
-            inv_mass: 1.0,
-            radius: 0.5,
-            gamma2: 0.4,
-        }],
-        obstacles: Vec::new(),
-        bodies: velocities
-            .iter()
-            .enumerate()
-            .map(|(i, &velocity)| crate::Body {
-                species: 0,
-                position: [1.0 + 2.0 * i as f64, 3.0, 3.0],
-                state: collision_core::BodyState {
-                    spin: [0.0; 3],
-                    velocity,
-                },
-            })
-            .collect(),
-        orientation: false,
-        table: crate::Table::boxed(),
+    let gas = |velocities: &[[f64; 3]]| {
+        let balls: Vec<_> = (velocities.iter().enumerate())
+            .map(|(i, &velocity)| ([1.0 + 2.0 * i as f64, 3.0, 3.0], velocity))
+            .collect();
+        hand_built(6.0, [0.0; 3], &balls)
     };
     let cases = [
         vec![[0.3, 0.2, 0.1]],
