@@ -26,8 +26,8 @@ Single), and the table its times and noslip's time over them. ``--lists SKIN`` a
 list engine (``event_rate --lists SKIN``, the same binary) to every round, and the table its
 times and its speed over the best variant's.
 
-A second table gives each program's peak resident memory and, between successive ``N``, the
-bytes each added ball costs.
+A second table gives each program's peak resident memory (the before build's and the list
+engine's too, when they run) and, between successive ``N``, the bytes each added ball costs.
 """
 
 from __future__ import annotations
@@ -229,11 +229,11 @@ def main() -> None:
     print()
     print("# peak resident memory (ru_maxrss, MiB; it counts the forking Python too, about")
     print("# 15 MiB), and bytes per ball added from the previous N (the memory a ball costs)")
-    print("| N | phi | noslip | peer Cell | peer Single |")
-    print("|---:|---:|---:|---:|---:|")
-    programs = ("noslip", "Cell", "Single")
-    if before or lists:
-        print("# (the before build's and the list engine's memory are not shown)")
+    programs = (["before"] if before else []) + ["noslip"] + (["lists"] if lists else [])
+    programs += ["Cell", "Single"]
+    names = {"Cell": "peer Cell", "Single": "peer Single"}
+    print("| N | phi | " + " | ".join(names.get(w, w) for w in programs) + " |")
+    print("|---:|---:|" + "---:|" * len(programs))
     for phi in phis:
         for k, n in enumerate(balls):
             entries = []
