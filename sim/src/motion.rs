@@ -2,8 +2,10 @@
 
 /// Ball `i`'s centre `a_i` at its own time `t_i`, its velocity `u_i` (a copy of its state's,
 /// kept equal by the engine) and its radius `R_i`: the flight `a_i + (t - t_i) u_i` and the
-/// contact distance `R_i + R_j`: `2n + 2` numbers read together.
+/// contact distance `R_i + R_j`: `2n + 2` numbers read together, in this order (`repr(C)`: the
+/// 3D lanes load them four at a time, `engine/lanes3.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub(crate) struct Motion<const N: usize> {
     /// The centre `a_i` at time `since`.
     pub pos: [f64; N],

@@ -106,6 +106,8 @@ mod contacts;
 mod events;
 mod kick;
 pub(crate) mod lanes;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod lanes3;
 mod quiet;
 mod record;
 mod scan;

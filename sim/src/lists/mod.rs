@@ -39,6 +39,7 @@
 mod ahead;
 mod ball;
 mod contacts;
+mod lanes;
 mod predict;
 mod quiet;
 mod shells;

@@ -2,14 +2,12 @@
 //! again; moving a record.
 
 use super::ball::{key_of, Next};
-use super::shells::Neighbour;
+use super::lanes::list_times;
 use super::ListSimulation;
 use crate::canonical::{self, image_f64, key, kind, order, pair_key, pair_offset, Key};
-use crate::engine::lanes::{cell_image, pair_times, LANES};
 use crate::last_contact::LastContact;
 use crate::motion::Motion;
 use crate::predict::exit_time;
-use crate::residents::Resident;
 use crate::PairKernels;
 
 /// The time at which a flight `m` leaves the ball of radius `delta` around `centre` (in its
@@ -146,8 +144,7 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
             None => self.shells.list(i),
             Some(_) => self.shells.fresh(),
         };
-        list_times(self.avx2, i, list, &self.flights, &self.size, &mut times);
-        let least = times.iter().fold(f64::INFINITY, |a, &t| a.min(t));
+        let least = list_times(self.avx2, i, list, &self.flights, &self.size, &mut times);
         let mut found = self.offer(i, list, &times, least);
         if found.is_none() && least.is_finite() {
             found = self.offer(i, list, &times, f64::INFINITY);
@@ -169,41 +166,54 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
         times: &[f64],
         at_most: f64,
     ) -> Found<N> {
-        let me = &self.flights[i];
-        let (m, w_i) = (me.motion, me.wraps);
-        let (id_i, last_i) = (self.balls[i].id as usize, self.balls[i].last);
         let mut best = None;
-        for (near, &t) in list.iter().zip(times) {
-            // NaN (no contact) is never at most anything.
-            if t.partial_cmp(&at_most).is_none_or(|o| o.is_gt()) {
-                continue;
+        for (p, &t) in times.iter().enumerate() {
+            // NaN (no contact) is never at most anything; in general one partner is.
+            if t <= at_most {
+                best = self.consider(i, &list[p], t, best);
             }
-            let j = near.j as usize;
-            let other = &self.flights[j];
-            let image: [i16; N] =
-                std::array::from_fn(|k| i16::from(near.image[k]) - other.wraps[k] + w_i[k]);
-            let id_j = other.ball as usize;
-            let key = pair_key(id_i, id_j, &image);
-            if !beats(&best, t, key) {
-                continue;
-            }
-            let k = image_f64(&image);
-            let sigma = m.radius + other.motion.radius;
-            let t_ref = m.since.max(other.motion.since);
-            let offset = || pair_offset(&m, &other.motion, &k, &self.size, t_ref);
-            let last_j = || self.balls[j].last;
-            if LastContact::repeats_pair((id_i, last_i), (id_j, last_j), offset, sigma) {
-                continue;
-            }
-            let next = Next::Ball {
-                j: j as u32,
-                id: other.ball,
-                count: other.count,
-                image,
-            };
-            best = Some((t, key, next));
         }
         best
+    }
+
+    /// Ball `i`'s contact at `t` with the partner `near` of its list, if it beats `best`
+    /// (the canonical order) and is no repeat ([`LastContact::repeats_pair`]); else `best`.
+    #[inline(never)]
+    fn consider(
+        &self,
+        i: usize,
+        near: &super::shells::Neighbour<N>,
+        t: f64,
+        best: Found<N>,
+    ) -> Found<N> {
+        let me = &self.flights[i];
+        let (m, w_i) = (&me.motion, &me.wraps);
+        let id_i = self.balls[i].id as usize;
+        let j = near.j as usize;
+        let other = &self.flights[j];
+        let image: [i16; N] =
+            std::array::from_fn(|k| i16::from(near.image[k]) - other.wraps[k] + w_i[k]);
+        let id_j = other.ball as usize;
+        let key = pair_key(id_i, id_j, &image);
+        if !beats(&best, t, key) {
+            return best;
+        }
+        let k = image_f64(&image);
+        let sigma = m.radius + other.motion.radius;
+        let t_ref = m.since.max(other.motion.since);
+        let offset = || pair_offset(m, &other.motion, &k, &self.size, t_ref);
+        let last_j = || self.balls[j].last;
+        let last_i = self.balls[i].last;
+        if LastContact::repeats_pair((id_i, last_i), (id_j, last_j), offset, sigma) {
+            return best;
+        }
+        let next = Next::Ball {
+            j: j as u32,
+            id: other.ball,
+            count: other.count,
+            image,
+        };
+        Some((t, key, next))
     }
 
     /// Draws ball `i`'s shell again around its position now, `c_i` that position folded into
@@ -244,68 +254,5 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> ListSimulation<N
                 -1
             }
         });
-    }
-}
-
-/// The pair times of ball `i` (its flight and wraps in `flights`) with the balls of its
-/// `list`, [`LANES`] at a time ([`pair_times`], the canonical time lane by lane: the same
-/// bits as [`crate::canonical::pair_time`]), into `times`; compiled for AVX2 if `avx2` (the
-/// CPU runs it).
-#[inline]
-fn list_times<const N: usize>(
-    avx2: bool,
-    i: usize,
-    list: &[Neighbour<N>],
-    flights: &[Resident<N>],
-    size: &[f64; N],
-    times: &mut Vec<f64>,
-) {
-    #[cfg(target_arch = "x86_64")]
-    if avx2 {
-        // SAFETY: the CPU runs AVX2 (detected when the engine was built).
-        return unsafe { list_times_avx2(i, list, flights, size, times) };
-    }
-    let _ = avx2;
-    list_times_portable(i, list, flights, size, times)
-}
-
-/// [`list_times`] compiled for AVX2.
-///
-/// # Safety
-/// The CPU must run AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn list_times_avx2<const N: usize>(
-    i: usize,
-    list: &[Neighbour<N>],
-    flights: &[Resident<N>],
-    size: &[f64; N],
-    times: &mut Vec<f64>,
-) {
-    list_times_portable(i, list, flights, size, times)
-}
-
-/// [`list_times`] for the target's baseline. The last chunk is padded with the ball itself,
-/// whose pair time with itself is NaN (`|dv| = 0`).
-#[inline(always)]
-fn list_times_portable<const N: usize>(
-    i: usize,
-    list: &[Neighbour<N>],
-    flights: &[Resident<N>],
-    size: &[f64; N],
-    times: &mut Vec<f64>,
-) {
-    let me = &flights[i];
-    times.clear();
-    for chunk in list.chunks(LANES) {
-        let bases: [[f64; N]; LANES] = std::array::from_fn(|l| {
-            chunk
-                .get(l)
-                .map_or([0.0; N], |near| cell_image(&near.image, &me.wraps))
-        });
-        let lanes: [&Resident<N>; LANES] =
-            std::array::from_fn(|l| &flights[chunk.get(l).map_or(i, |near| near.j as usize)]);
-        let t = pair_times(&me.motion, lanes, bases.each_ref(), size);
-        times.extend_from_slice(&t[..chunk.len()]);
     }
 }
