@@ -143,10 +143,10 @@ unsafe fn list_times3(
         unsafe { _mm256_storeu_pd(times[c * LANES..c * LANES + LANES].as_mut_ptr(), t) };
     }
     times.truncate(len);
-    let mut lanes = [0.0; LANES];
+    let mut per_lane = [0.0; LANES];
     // SAFETY: four `f64` of room.
-    unsafe { _mm256_storeu_pd(lanes.as_mut_ptr(), least) };
-    lanes.iter().fold(f64::INFINITY, |a, &t| a.min(t))
+    unsafe { _mm256_storeu_pd(per_lane.as_mut_ptr(), least) };
+    per_lane.iter().fold(f64::INFINITY, |a, &t| a.min(t))
 }
 
 /// The images `m - W_j + W_i` of a chunk's four partners along axis `k`, as `f64` lanes.
