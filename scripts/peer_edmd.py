@@ -6,14 +6,20 @@ give the path of a checkout. Its ``Cell`` and ``Single`` variants are compiled h
 temporary directory, with the flags of their own Makefiles (``-Ofast -funroll-loops
 -march=native``), each source included unchanged by a small harness that sets ``N``,
 ``packfrac`` and the FCC start (``initialconfig = 1``), runs ``warm`` collisions, then times
-one stretch of ``contacts`` collisions with ``clock()`` (the process's CPU time).
+one stretch of ``contacts`` collisions with ``clock()`` (the process's CPU time). The stretch
+is ``max(N, 10^6)`` collisions unless ``--contacts`` says otherwise: one to four seconds a
+program at these ``N`` (a stretch of 2 10^5, a fifth of a second at ``N`` = 4000, moved by up
+to 40 % between rounds on a shared host).
 
 noslip's side is ``sim/examples/event_rate`` (built here in release) on the 3D gas of the
 same ``N`` and ``phi``, smooth contacts (as the peer's), one stretch per round.
 
 Each round runs noslip, Cell and Single once per ``(N, phi)``, and the rounds alternate
 (noslip, peer, noslip, peer, ...); the table gives the median and the min-max of microseconds
-per collision over the rounds, and noslip's speed over the best variant's.
+per collision over the rounds, and noslip's speed over the best variant's as the median
+(min-max) of the ratios within each round (the faster of Cell and Single in that round over
+noslip in that round): programs run back to back in a round share the machine's load of the
+moment, so these paired ratios move less than a ratio of two medians would.
 
 Usage::
 
@@ -22,9 +28,9 @@ Usage::
         [--before BINARY] [--lists SKIN]
 
 ``--before`` adds an earlier build of ``event_rate`` to every round (before, noslip, Cell,
-Single), and the table its times and noslip's time over them. ``--lists SKIN`` adds noslip's
-list engine (``event_rate --lists SKIN``, the same binary) to every round, and the table its
-times and its speed over the best variant's.
+Single), and the table its times and noslip's time over them (paired within each round too).
+``--lists SKIN`` adds noslip's list engine (``event_rate --lists SKIN``, the same binary) to
+every round, and the table its times and its speed over the best variant's (paired).
 
 A second table gives each program's peak resident memory (the before build's and the list
 engine's too, when they run) and, between successive ``N``, the bytes each added ball costs.
@@ -133,6 +139,12 @@ def spread(xs: list[float]) -> str:
     return f"{statistics.median(xs):.2f} ({min(xs):.2f}-{max(xs):.2f})"
 
 
+def paired(ours: list[float], cell: list[float], single: list[float]) -> str:
+    """The speed of ``ours`` over the faster peer variant, round by round: ``median
+    (min-max)`` of ``min(cell_r, single_r) / ours_r`` (times per collision)."""
+    return spread([min(c, s) / o for o, c, s in zip(ours, cell, single)])
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("checkout", type=Path)
@@ -177,7 +189,7 @@ def main() -> None:
         for r in range(a.rounds):
             for n in balls:
                 warm = max(2 * n, 100_000)
-                contacts = a.contacts or max(n, 200_000)
+                contacts = a.contacts or max(n, 1_000_000)
                 for phi in phis:
                     order = ["noslip", "Cell", "Single"]
                     if a.before is not None:
@@ -199,7 +211,8 @@ def main() -> None:
                         print(f"round {r + 1}: N {n} phi {phi} {who}: {t:.3f} us", file=sys.stderr)
     kind = "no-slip" if a.no_slip else "smooth"
     load = os.getloadavg()
-    print(f"# us per collision, medians (min-max) of {a.rounds} alternated rounds; noslip {kind}")
+    print(f"# us per collision, medians (min-max) of {a.rounds} alternated rounds; noslip {kind};")
+    print("# speed over the best peer: median (min-max) of the ratios within each round")
     print(f"# load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at the end")
     before = a.before is not None
     head = "| N | phi | " + ("before | " if before else "") + "noslip | "
@@ -212,19 +225,17 @@ def main() -> None:
     for n in balls:
         for phi in phis:
             ours, cell, single = (times[(n, phi, w)] for w in ("noslip", "Cell", "Single"))
-            best = min(statistics.median(cell), statistics.median(single))
-            ratio = best / statistics.median(ours)
             row = f"| {n} | {phi} | "
             if before:
                 old = times[(n, phi, "before")]
-                gain = statistics.median(ours) / statistics.median(old)
-                row += f"{spread(old)} | {spread(ours)} | {gain:.2f} | "
+                gain = spread([o / b for o, b in zip(ours, old)])
+                row += f"{spread(old)} | {spread(ours)} | {gain} | "
             else:
                 row += f"{spread(ours)} | "
-            row += f"{spread(cell)} | {spread(single)} | {ratio:.2f} |"
+            row += f"{spread(cell)} | {spread(single)} | {paired(ours, cell, single)} |"
             if lists:
                 by_lists = times[(n, phi, "lists")]
-                row += f" {spread(by_lists)} | {best / statistics.median(by_lists):.2f} |"
+                row += f" {spread(by_lists)} | {paired(by_lists, cell, single)} |"
             print(row)
     print()
     print("# peak resident memory (ru_maxrss, MiB; it counts the forking Python too, about")
