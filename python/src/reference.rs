@@ -9,8 +9,9 @@
 //!   the timed runs, and reused: the reference of `collide_batch(..., out=)`.
 //! - `rows_new`: the same into new output memory on each run, allocated as NumPy allocates
 //!   a large array (`mmap`, advised for huge pages), so that it pays the first touch (the
-//!   kernel's page faults and zeroing) as `collide_batch` does when it returns new arrays:
-//!   the reference of new arrays.
+//!   kernel's page faults and zeroing) as `collide_batch` does when it returns new arrays,
+//!   and written as it writes them, from the last rows to the first
+//!   (`Exec::last_rows_first`): the reference of new arrays.
 //! - `steps`: the three steps a program ran before `free_rows`: chunks of 512 rows, each
 //!   gathered into a `FreeBatch` (`fill_from_rows`), run by `Exec::free` and scattered
 //!   (`PairBatch::write_rows`), into reused outputs.
@@ -175,7 +176,10 @@ where
     });
     timed("rows_new", &mut || {
         let mut fresh = sizes.map(Fresh::new);
-        free_rows(fresh.each_mut().map(Fresh::slice));
+        let [s1, v1, s2, v2] = fresh.each_mut().map(Fresh::slice);
+        // New memory, as `collide_batch` writes its new arrays (`Exec::last_rows_first`).
+        exec.last_rows_first()
+            .free_rows::<f64, N, S>(rows, state_rows_mut([s1, s2], [v1, v2]));
         std::hint::black_box(&fresh);
     });
     timed("steps", &mut || {

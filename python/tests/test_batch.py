@@ -117,7 +117,9 @@ def test_unvalidated_runs_of_rows_give_the_bits_of_short_batches(n):
     """Without validation the serial path takes row-major arrays in runs of 32768 rows (then
     reruns the rows with an immovable body by `fixed`): over two whole runs and a part of a
     third, at n = 2 and 3 (the AVX-512 permutes of the gather and scatter where the CPU has
-    them), serial and split, every row is what a batch of 1000 rows (one short run) gives."""
+    them), serial and split, every row is what a batch of 1000 rows (one short run) gives.
+    New arrays are written from the last rows to the first, arrays given as `out` from the
+    first to the last: both give these bits."""
     rng = np.random.default_rng(40 + n)
     rows = 2 * 32768 + 4099
     nu, bodies = random_batch(rng, rows, n, unit_exactly=False)
@@ -128,9 +130,12 @@ def test_unvalidated_runs_of_rows_give_the_bits_of_short_batches(n):
     want = [{k: np.concatenate([p[b][k] for p in parts]) for k in parts[0][b]} for b in range(2)]
     for parallel in (False, True):
         got = noslip.collide_batch(nu, bodies, validate=False, parallel=parallel)
+        out = [{k: np.full_like(v, np.nan) for k, v in b.items()} for b in want]
+        into = noslip.collide_batch(nu, bodies, validate=False, parallel=parallel, out=out)
         for b in range(2):
             for k in ("angular_velocity", "velocity"):
                 assert same_bits(got[b][k], want[b][k]), (n, b, k, parallel)
+                assert same_bits(into[b][k], want[b][k]), (n, b, k, parallel, "out")
 
 
 def test_float32_is_the_float64_map_up_to_f32_rounding():

@@ -71,6 +71,9 @@ unsafe impl<O: Send> Sync for OutPtr<O> {}
 pub struct Exec {
     isa: Isa,
     split: Option<Split>,
+    /// Whether the row path runs its passes from the last rows to the first
+    /// ([`Exec::last_rows_first`]).
+    backward: bool,
 }
 
 /// From which size on a batch is split across rayon's pool.
@@ -96,6 +99,7 @@ impl Exec {
         Exec {
             isa: Isa::detect(),
             split: cfg!(feature = "parallel").then_some(Split::Bytes(PARALLEL_FROM_BYTES)),
+            backward: false,
         }
     }
 
@@ -123,6 +127,27 @@ impl Exec {
             split: Some(Split::Contacts(contacts)),
             ..self
         }
+    }
+
+    /// The same, with the row path ([`Exec::free_rows`] and the family kernels' row paths)
+    /// running its passes from the last rows to the first: the same results, bit for bit
+    /// (every row is its own contact). For outputs in memory never written before (new
+    /// arrays): the kernel zeroes a huge page when it is first written, from its start to
+    /// its end, so its end is what the cache holds; written from the end down, each page is
+    /// written where it is still in cache. Out of cache at n = 3 (10^6 rows, four new output
+    /// arrays, 192 MB), writing backward into new memory cost 19-21 ms against 27-28 forward,
+    /// and 12.8-15.2 ms into memory already written (docs/benchmarks.md, session 52): for new
+    /// memory only.
+    pub fn last_rows_first(self) -> Self {
+        Exec {
+            backward: true,
+            ..self
+        }
+    }
+
+    /// Whether the row path runs its passes from the last rows to the first.
+    pub fn is_backward(&self) -> bool {
+        self.backward
     }
 
     /// The instruction set the batch kernels run on.
@@ -332,6 +357,7 @@ mod split_tests {
         let auto = Exec {
             isa: Isa::Baseline,
             split: Some(Split::Bytes(PARALLEL_FROM_BYTES)),
+            backward: false,
         };
         let from = PARALLEL_FROM_BYTES.div_ceil(block);
         assert!(!auto.splits::<In, Out>(from - 1));

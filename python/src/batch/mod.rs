@@ -91,10 +91,12 @@ where
 {
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
     let n = input.dim;
+    // New arrays are memory never written: written from the last rows to the first.
+    let fresh = out.is_none();
     into_outputs(py, &input, out, |out, interrupted| {
         collision_core::with_dim!(
             n,
-            |N, S| run_all::<T, N, S>(&input, validate, parallel, out, interrupted),
+            |N, S| run_all::<T, N, S>(&input, validate, parallel, fresh, out, interrupted),
             Err(Stop::Refused(format!("dimension {n} has no batch kernels")))
         )
     })

@@ -53,10 +53,17 @@ pub(super) enum Stop {
 /// of at most [`RUN_CHUNKS`] chunks (0.1-0.4 ms of work; [`ROW_RUN_CHUNKS`], 0.5-3.5 ms, on
 /// the serial path of row-major arrays without validation); once it
 /// answers true the runs not yet started are skipped.
+///
+/// `fresh`: `out` is new memory, never written. Row-major arrays without validation are then
+/// written from the last rows to the first (the runs of the serial path in reverse, and each
+/// run's passes, [`Exec::last_rows_first`]): the kernel zeroes each huge page at its first
+/// write from start to end, so its end is what the cache holds (docs/benchmarks.md, session
+/// 52). The results are the same; only the order of the rows' writes changes.
 pub(super) fn run_all<T, const N: usize, const S: usize>(
     input: &Inputs<'_, T>,
     validate: bool,
     parallel: bool,
+    fresh: bool,
     out: Outputs<'_, T>,
     interrupted: &(dyn Fn() -> bool + Sync),
 ) -> Result<(), Stop>
@@ -65,12 +72,17 @@ where
     for<'x> &'x T: RefArith<T>,
     Generated: BatchKernel<T, N, S> + Kernel<T::Unbounded, N, S>,
 {
-    let exec = Exec::auto().serial();
     let pairs: [(usize, usize); S] = {
         let all: Vec<(usize, usize)> = skew_pairs(N).collect();
         std::array::from_fn(|k| all[k])
     };
     let rows = input.rows();
+    let backward = fresh && !validate && rows.is_some();
+    let exec = if backward {
+        Exec::auto().serial().last_rows_first()
+    } else {
+        Exec::auto().serial()
+    };
     let Outputs {
         spin: [s1, s2],
         velocity: [v1, v2],
@@ -152,14 +164,21 @@ where
         };
         let run_rows = run_chunks * CHUNK;
         let mut scratch = Scratch::<T, N, S>::take();
-        let result = s1
+        let mut runs: Vec<_> = s1
             .chunks_mut(run_rows * N * N)
             .zip(s2.chunks_mut(run_rows * N * N))
             .zip(v1.chunks_mut(run_rows * N))
             .zip(v2.chunks_mut(run_rows * N))
             .enumerate()
+            .collect();
+        if backward {
+            runs.reverse();
+        }
+        let result = runs
+            .into_iter()
             .take_while(|_| go_on())
-            .try_for_each(|(r, (((s1, s2), v1), v2))| {
+            .try_for_each(|(r, run)| {
+                let (((s1, s2), v1), v2) = run;
                 piece(r * run_rows, &mut scratch, s1, s2, v1, v2)
             });
         scratch.give_back();

@@ -173,7 +173,15 @@ impl Exec {
             pairs.resize(blocks_per_pass, Lanewise::splat(&zero));
         }
         let isa = self.isa();
-        for start in (0..len).step_by(pass) {
+        let passes = len.div_ceil(pass);
+        for p in 0..passes {
+            // From the last pass to the first, for new memory (`Exec::last_rows_first`).
+            let k = if self.is_backward() {
+                passes - 1 - p
+            } else {
+                p
+            };
+            let start = pass * k;
             let end = (start + pass).min(len);
             let used = (end - start).div_ceil(LANES);
             let (blocks, pairs) = (&mut blocks[..used], &mut pairs[..used]);

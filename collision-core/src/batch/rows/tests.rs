@@ -256,7 +256,8 @@ fn every_level_gathers_and_scatters_as_the_baseline() {
 }
 
 /// `Exec::free_rows` at every level (serial, and split from the first contact on with
-/// feature `parallel`) against the scalar kernel `free` on each row and against
+/// feature `parallel`; passes in address order and from the last rows to the first,
+/// `Exec::last_rows_first`) against the scalar kernel `free` on each row and against
 /// `fill_from_rows`, `Exec::free`, `write_rows`, bit for bit; lengths around a block, a
 /// pass and a run of a split.
 fn free_rows_is_the_scalar_kernel<const N: usize, const S: usize>()
@@ -299,10 +300,16 @@ where
         assert_eq!(bits(&steps), bits(&want), "n = {N}, {len} rows: steps");
         for isa in Isa::available() {
             let serial = Exec::auto().with_isa(isa).expect("available").serial();
+            let backward = serial.last_rows_first();
             #[cfg(feature = "parallel")]
-            let execs = [serial, serial.parallel_from(0)];
+            let execs = [
+                serial,
+                backward,
+                serial.parallel_from(0),
+                backward.parallel_from(0),
+            ];
             #[cfg(not(feature = "parallel"))]
-            let execs = [serial];
+            let execs = [serial, backward];
             for exec in execs {
                 let mut got = nan_rows::<N>(len);
                 exec.free_rows::<f64, N, S>(&rows(&a), rows_mut(&mut got));
