@@ -124,6 +124,34 @@ def test_out_and_float32_with_a_law():
         assert same_bits(out[b]["angular_velocity"], got[b]["angular_velocity"])
 
 
+@pytest.mark.parametrize("kind", ["rough", "walton"])
+def test_new_arrays_over_many_passes_are_out_and_short_batches(kind):
+    """Without validation, new arrays under a law are written from the last rows to the first
+    (`Exec::last_rows_first`), arrays given as `out` from the first to the last: over many
+    passes (20000 rows at n = 3, out of the L2 cache) and a law per row, serial and split,
+    both give the bits of batches of 1000 rows (one short call each)."""
+    rng = np.random.default_rng(31 if kind == "rough" else 32)
+    rows = 20000
+    nu, bodies = random_batch(rng, rows, 3, unit_exactly=False)
+    law = laws(rng, rows, kind)
+    parts = []
+    for i in range(0, rows, 1000):
+        part = [{k: v[i : i + 1000] for k, v in b.items()} for b in bodies]
+        part_law = {k: v[i : i + 1000] for k, v in law.items()}
+        parts.append(noslip.collide_batch(nu[i : i + 1000], part, contact=part_law, validate=False))
+    want = [{k: np.concatenate([p[b][k] for p in parts]) for k in parts[0][b]} for b in range(2)]
+    for parallel in (False, True):
+        got = noslip.collide_batch(nu, bodies, contact=law, validate=False, parallel=parallel)
+        out = [{k: np.full_like(v, np.nan) for k, v in b.items()} for b in want]
+        into = noslip.collide_batch(
+            nu, bodies, contact=law, validate=False, parallel=parallel, out=out
+        )
+        for b in range(2):
+            for k in ("angular_velocity", "velocity"):
+                assert same_bits(got[b][k], want[b][k]), (kind, b, k, parallel)
+                assert same_bits(into[b][k], want[b][k]), (kind, b, k, parallel, "out")
+
+
 @pytest.mark.parametrize("validate", [True, False])
 def test_bad_laws_name_the_row_and_the_field(validate):
     rng = np.random.default_rng(9)

@@ -37,11 +37,17 @@ fn law_error(e: LawRowError) -> String {
 
 /// Every row of `input` under `laws` into `out`; a refused law or (with `validate`) row
 /// is the error message.
+///
+/// `fresh`: `out` is new memory, never written. The row path then runs its passes from the
+/// last rows to the first ([`Exec::last_rows_first`], as `run::run_all` does for the no-slip
+/// map): the same results, and the same error, since every law is checked before any row
+/// runs.
 pub(super) fn run_law<T, const N: usize, const S: usize>(
     input: &Inputs<'_, T>,
     laws: &LawColumns<'_, T>,
     validate: bool,
     parallel: bool,
+    fresh: bool,
     mut out: Outputs<'_, T>,
 ) -> Result<(), String>
 where
@@ -114,6 +120,7 @@ where
     } else {
         Exec::auto().serial()
     };
+    let exec = if fresh { exec.last_rows_first() } else { exec };
     {
         let Outputs {
             spin: [s1, s2],

@@ -214,10 +214,12 @@ where
         _ => unreachable!("two or three columns"),
     };
     let n = input.dim;
+    // New arrays are memory never written: written from the last rows to the first.
+    let fresh = out.is_none();
     into_outputs(py, &input, out, |out, _| {
         collision_core::with_dim!(
             n,
-            |N, S| law::run_law::<T, N, S>(&input, &laws, validate, parallel, out)
+            |N, S| law::run_law::<T, N, S>(&input, &laws, validate, parallel, fresh, out)
                 .map_err(Stop::Refused),
             Err(Stop::Refused(format!("dimension {n} has no batch kernels")))
         )

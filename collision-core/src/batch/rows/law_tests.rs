@@ -1,5 +1,5 @@
 //! `Exec::rough_free_rows` against the scalar family kernels on each row, bit for bit, with
-//! one law shared and one per row, at every level (serial, split); and the laws'
+//! one law shared and one per row, at every level (serial, split; passes in both orders); and the laws'
 //! checks: every refused value and shape names its field (and row).
 
 use super::tests::{arrays, bits, by_hand, nan_rows, physical, rows, rows_mut};
@@ -33,10 +33,17 @@ fn every_level<R: LawRows<f64>, const N: usize, const S: usize>(
     let len = a.nu.len() / N;
     for isa in Isa::available() {
         let serial = Exec::auto().with_isa(isa).expect("available").serial();
+        // Both orders of the passes (`Exec::last_rows_first`, for new outputs).
+        let backward = serial.last_rows_first();
         #[cfg(feature = "parallel")]
-        let execs = [serial, serial.parallel_from(0)];
+        let execs = [
+            serial,
+            backward,
+            serial.parallel_from(0),
+            backward.parallel_from(0),
+        ];
         #[cfg(not(feature = "parallel"))]
-        let execs = [serial];
+        let execs = [serial, backward];
         for exec in execs {
             let mut got = nan_rows::<N>(len);
             exec.rough_free_rows::<R, f64, N, S>(laws, &rows(a), rows_mut(&mut got))
