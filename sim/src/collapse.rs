@@ -54,13 +54,23 @@ impl fmt::Display for Collapse {
     }
 }
 
+/// Balls of one instant found by a linear search up to this many; beyond, through an index.
+const LINEAR: usize = 16;
+
 /// The contacts of the current instant, per ball: their count, and the ball's centre at the
-/// first of them (its bits).
+/// first of them (its bits). Nothing is allocated once the lists have grown, and nothing is
+/// hashed while an instant holds at most [`LINEAR`] balls (every instant but a lattice
+/// start's or a collapse's): a run records every contact here.
 #[derive(Debug, Default)]
 pub struct Streak {
     start: f64,
     contacts: u64,
-    per_ball: HashMap<usize, (u32, Vec<u64>)>,
+    /// The balls of the instant, in the order met, each with its contacts at it.
+    balls: Vec<(usize, u32)>,
+    /// Ball `balls[k]`'s centre (the bits of its `n` coordinates) at `centres[k n..(k + 1) n]`.
+    centres: Vec<u64>,
+    /// Where each ball is in `balls`, once the instant holds more than [`LINEAR`] balls.
+    index: HashMap<usize, usize>,
 }
 
 impl Streak {
@@ -74,7 +84,11 @@ impl Streak {
         if self.contacts == 0 || !same {
             self.start = e.time;
             self.contacts = 0;
-            self.per_ball.clear();
+            self.balls.clear();
+            self.centres.clear();
+            if !self.index.is_empty() {
+                self.index.clear();
+            }
         }
         self.contacts += 1;
         let mut busiest = 0;
@@ -82,22 +96,50 @@ impl Streak {
             // A ball counts only while its centre stays put: at a huge absolute time a few ulps
             // of it hold many true flights, which move the centre (an elastic run at `t =
             // 1e61` was once taken for a collapse).
-            let at: Vec<u64> = e.position[k].iter().map(|x| x.to_bits()).collect();
-            let (c, centre) = self.per_ball.entry(b).or_insert((0, Vec::new()));
-            if *centre != at {
-                (*c, *centre) = (0, at);
-            }
-            *c += 1;
-            busiest = busiest.max(*c);
+            let at = e.position[k].map(f64::to_bits);
+            let c = match self.find(b) {
+                Some(p) => {
+                    let centre = &mut self.centres[p * N..(p + 1) * N];
+                    let count = &mut self.balls[p].1;
+                    if *centre != at {
+                        centre.copy_from_slice(&at);
+                        *count = 0;
+                    }
+                    *count += 1;
+                    *count
+                }
+                None => {
+                    self.balls.push((b, 1));
+                    self.centres.extend_from_slice(&at);
+                    let p = self.balls.len() - 1;
+                    if !self.index.is_empty() {
+                        self.index.insert(b, p);
+                    } else if self.balls.len() > LINEAR {
+                        self.index
+                            .extend(self.balls.iter().enumerate().map(|(p, &(b, _))| (b, p)));
+                    }
+                    1
+                }
+            };
+            busiest = busiest.max(c);
         }
         (busiest > MAX_CONTACTS_AT_ONCE).then(|| self.collapse())
     }
 
+    /// Ball `b`'s place in `balls`, if it has a contact at this instant.
+    fn find(&self, b: usize) -> Option<usize> {
+        if self.index.is_empty() {
+            self.balls.iter().position(|&(x, _)| x == b)
+        } else {
+            self.index.get(&b).copied()
+        }
+    }
+
     fn collapse(&self) -> Collapse {
-        let most = self.per_ball.values().map(|v| v.0).max().unwrap_or(0);
-        let mut balls: Vec<(usize, u32)> = (self.per_ball.iter())
-            .filter(|&(_, v)| 10 * v.0 >= most)
-            .map(|(&b, v)| (b, v.0))
+        let most = self.balls.iter().map(|v| v.1).max().unwrap_or(0);
+        let mut balls: Vec<(usize, u32)> = (self.balls.iter())
+            .filter(|&&(_, c)| 10 * c >= most)
+            .copied()
             .collect();
         balls.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
         Collapse {
@@ -158,6 +200,27 @@ mod tests {
         );
         // A later time starts a new instant.
         assert_eq!(streak.record(&event(3.5, wall(7))), None);
+        // An instant of more balls than the linear search holds: ball 25, met after 40 others
+        // (found through the index), is caught; a move of its centre restarts its count.
+        for b in 0..40 {
+            assert_eq!(streak.record(&event(4.0, wall(100 + b))), None);
+        }
+        let mut moved = event(4.0, wall(25));
+        moved.position = [[1.0, 0.0], [1.0, 0.0]];
+        for _ in 0..MAX_CONTACTS_AT_ONCE {
+            assert_eq!(streak.record(&moved), None);
+        }
+        let mut found = None;
+        for k in 0..=MAX_CONTACTS_AT_ONCE {
+            if let Some(c) = streak.record(&event(4.0, wall(25))) {
+                found = Some((k, c));
+                break;
+            }
+        }
+        let (k, c) = found.expect("a collapse");
+        assert_eq!(k, MAX_CONTACTS_AT_ONCE);
+        assert_eq!(c.balls, vec![25]);
+        assert_eq!(c.contacts, 40 + 2 * u64::from(MAX_CONTACTS_AT_ONCE) + 1);
         // At a huge absolute time a few ulps hold many true flights: one time, moving centres
         // (an elastic pair at t = 1e61): not a collapse.
         for k in 0..(3 * MAX_CONTACTS_AT_ONCE) {

@@ -47,6 +47,12 @@ pub fn check_time(t: f64) -> Result<f64, String> {
     Ok(t)
 }
 
+/// The balls' energies the drift samples may cost a contact, at most ([`Limits::samples`]):
+/// samples are at least `balls / 8` contacts apart. A ball's energy is about 32
+/// instructions (callgrind), a contact of a 3D gas about 10 000: so at most about 2.5 % of
+/// a contact's instructions (docs/benchmarks.md, "What `noslip simulate` adds").
+pub const SAMPLE_BALLS_PER_CONTACT: u64 = 8;
+
 /// When to stop, and how much to record.
 #[derive(Clone, Debug)]
 pub struct Limits {
@@ -54,7 +60,9 @@ pub struct Limits {
     pub events: Option<u64>,
     /// Stop at this simulated time.
     pub time: Option<f64>,
-    /// Energy samples for the drift plot (at most).
+    /// Energy samples for the drift plot (at most). A sample reads every ball, so they are
+    /// also at least `balls / `[`SAMPLE_BALLS_PER_CONTACT`] contacts apart: a large gas's
+    /// samples then cost at most that many balls' energies a contact.
     pub samples: u64,
     /// Balls whose trajectories are recorded (2D picture).
     pub traced: usize,
@@ -328,7 +336,9 @@ pub fn run_watched<const N: usize, const S: usize, K: PairKernels<f64, N, S>>(
     let (p_scale, l_scale) = scales(sim, species);
     let events = limits.events.unwrap_or(u64::MAX);
     let until = limits.time.unwrap_or(f64::INFINITY);
-    let every = (events.min(1 << 40) / limits.samples.max(1)).max(1);
+    let every = (events.min(1 << 40) / limits.samples.max(1))
+        .max(sim.len() as u64 / SAMPLE_BALLS_PER_CONTACT)
+        .max(1);
     let traced = limits.traced.min(sim.len());
     let size = sim.box_size();
     let two = |x: &[f64; N]| [x[0], x[1]];
