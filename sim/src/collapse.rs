@@ -59,7 +59,7 @@ const LINEAR: usize = 16;
 
 /// The contacts of the current instant, per ball: their count, and the ball's centre at the
 /// first of them (its bits). Nothing is allocated once the lists have grown, and nothing is
-/// hashed while an instant holds at most [`LINEAR`] balls (every instant but a lattice
+/// hashed while an instant holds at most 16 balls (every instant but a lattice
 /// start's or a collapse's): a run records every contact here.
 #[derive(Debug, Default)]
 pub struct Streak {
