@@ -35,7 +35,8 @@ class SimulationResult:
         ``energy_injected`` (a scene's ``[thermostat]``: its kicks and the energy they added,
         ``docs/granular.md``), ...
     energy : dict of ndarray
-        Samples over the run (up to 2000): ``events`` (contacts done), ``drift``
+        Samples over the run (up to 2000, at least ``balls / 8`` contacts apart, so that a
+        large gas's samples stay a small part of its run): ``events`` (contacts done), ``drift``
         ``(E - E_0) / E_0`` and ``energy`` ``E = E_0 (1 + drift)``, with
         ``E = sum_i m_i (|u_i|^2 + lambda_i |U_i|_F^2) / 2``.
     events : dict of ndarray
