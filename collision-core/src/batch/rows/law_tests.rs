@@ -2,7 +2,7 @@
 //! one law shared and one per row, at every level (serial, split; passes in both orders); and the laws'
 //! checks: every refused value and shape names its field (and row).
 
-use super::tests::{arrays, bits, by_hand, nan_rows, physical, rows, rows_mut};
+use super::tests::{arrays, bits, by_hand, nan_rows, physical, row_execs, rows, rows_mut};
 use super::*;
 use crate::batch::each::tests::{restitutions, waltons};
 use crate::batch::{Exec, Isa, PairBatch};
@@ -32,19 +32,7 @@ fn every_level<R: LawRows<f64>, const N: usize, const S: usize>(
 {
     let len = a.nu.len() / N;
     for isa in Isa::available() {
-        let serial = Exec::auto().with_isa(isa).expect("available").serial();
-        // Both orders of the passes (`Exec::last_rows_first`, for new outputs).
-        let backward = serial.last_rows_first();
-        #[cfg(feature = "parallel")]
-        let execs = [
-            serial,
-            backward,
-            serial.parallel_from(0),
-            backward.parallel_from(0),
-        ];
-        #[cfg(not(feature = "parallel"))]
-        let execs = [serial, backward];
-        for exec in execs {
+        for exec in row_execs(isa) {
             let mut got = nan_rows::<N>(len);
             exec.rough_free_rows::<R, f64, N, S>(laws, &rows(a), rows_mut(&mut got))
                 .expect("valid laws");

@@ -255,6 +255,19 @@ fn every_level_gathers_and_scatters_as_the_baseline() {
     levels_gather_and_scatter_alike::<6, 15>();
 }
 
+/// The `Exec`s the row paths are tested with at `isa`: serial and, with feature
+/// `parallel`, split from the first contact on; each with its passes in address order and
+/// from the last rows to the first (`Exec::last_rows_first`, for new outputs).
+pub(super) fn row_execs(isa: Isa) -> Vec<Exec> {
+    let serial = Exec::auto().with_isa(isa).expect("available").serial();
+    let backward = serial.last_rows_first();
+    #[cfg_attr(not(feature = "parallel"), allow(unused_mut))]
+    let mut execs = vec![serial, backward];
+    #[cfg(feature = "parallel")]
+    execs.extend([serial.parallel_from(0), backward.parallel_from(0)]);
+    execs
+}
+
 /// `Exec::free_rows` at every level (serial, and split from the first contact on with
 /// feature `parallel`; passes in address order and from the last rows to the first,
 /// `Exec::last_rows_first`) against the scalar kernel `free` on each row and against
@@ -299,18 +312,7 @@ where
         pairs.write_rows(rows_mut(&mut steps));
         assert_eq!(bits(&steps), bits(&want), "n = {N}, {len} rows: steps");
         for isa in Isa::available() {
-            let serial = Exec::auto().with_isa(isa).expect("available").serial();
-            let backward = serial.last_rows_first();
-            #[cfg(feature = "parallel")]
-            let execs = [
-                serial,
-                backward,
-                serial.parallel_from(0),
-                backward.parallel_from(0),
-            ];
-            #[cfg(not(feature = "parallel"))]
-            let execs = [serial, backward];
-            for exec in execs {
+            for exec in row_execs(isa) {
                 let mut got = nan_rows::<N>(len);
                 exec.free_rows::<f64, N, S>(&rows(&a), rows_mut(&mut got));
                 assert_eq!(
