@@ -39,8 +39,9 @@ scene's [simulation] values, else 100000 events). Prints a summary (events, even
 second, kinetic energy and the drift of energy, linear and angular momentum relative to the
 start) and writes to --out, published as one set (the whole directory is replaced at once;
 a non-empty directory noslip did not make is refused): summary.json, energy.svg (energy
-drift over events: at most 2000 samples, at least balls/8 contacts apart), with --observables DT observables.csv and observables.parquet (granular
-temperatures, collision frequency, pressure, a2 and energy lost per contact kind every DT,
+drift over events: at most 2000 samples, at least balls/8 contacts apart), with
+--observables DT observables.csv and observables.parquet (granular temperatures, collision
+frequency, pressure, a2 and energy lost per contact kind every DT,
 in a mixture also per pair of species with the pair's contacts, lost_ball_ball_A-B and
 contacts_A-B; the same numbers; docs/granular.md), observables.svg (the temperatures against time) and
 observables-pressure.svg, -a2.svg, -msd.svg (with --pair-correlation also

@@ -91,9 +91,7 @@ where
 {
     let input = Inputs::new(normal.as_array(), [views(&body1), views(&body2)])?;
     let n = input.dim;
-    // New arrays are memory never written: written from the last rows to the first.
-    let fresh = out.is_none();
-    into_outputs(py, &input, out, |out, interrupted| {
+    into_outputs(py, &input, out, |out, fresh, interrupted| {
         collision_core::with_dim!(
             n,
             |N, S| run_all::<T, N, S>(&input, validate, parallel, fresh, out, interrupted),
@@ -103,17 +101,20 @@ where
 }
 
 /// `run` on the outputs of `input` (`out`, checked, or new arrays), the GIL released; the
-/// arrays, or the error `run` stopped with (a Python signal first).
+/// arrays, or the error `run` stopped with (a Python signal first). `run`'s second argument
+/// says whether the outputs are new arrays (memory never written, which the row path writes
+/// from the last rows to the first: `Exec::last_rows_first`).
 fn into_outputs<'py, T>(
     py: Python<'py>,
     input: &Inputs<'_, T>,
     out: Option<OutIn<'py, T>>,
-    run: impl FnOnce(Outputs<'_, T>, &(dyn Fn() -> bool + Sync)) -> Result<(), Stop> + Send,
+    run: impl FnOnce(Outputs<'_, T>, bool, &(dyn Fn() -> bool + Sync)) -> Result<(), Stop> + Send,
 ) -> PyResult<BatchOut<'py, T>>
 where
     T: Element + Scalar + Send + Sync,
 {
     let (rows, n) = (input.rows, input.dim);
+    let fresh = out.is_none();
     let (spin, velocity) = match out {
         Some(out) => {
             check_out(&out, rows, n)?;
@@ -150,7 +151,7 @@ where
         // the clock is read every time, far below the cost of a run.
         let signals = Signals::new(1);
         let interrupted = || signals.interrupted();
-        let done = py.detach(|| run(out, &interrupted));
+        let done = py.detach(|| run(out, fresh, &interrupted));
         match (done, signals.raised()) {
             (_, Some(e)) => Err(e),
             (Err(Stop::Refused(m)), None) => Err(input_error(m)),
@@ -214,9 +215,7 @@ where
         _ => unreachable!("two or three columns"),
     };
     let n = input.dim;
-    // New arrays are memory never written: written from the last rows to the first.
-    let fresh = out.is_none();
-    into_outputs(py, &input, out, |out, _| {
+    into_outputs(py, &input, out, |out, fresh, _| {
         collision_core::with_dim!(
             n,
             |N, S| law::run_law::<T, N, S>(&input, &laws, validate, parallel, fresh, out)
