@@ -7,7 +7,8 @@
 //! **Room.** Cell `c`'s list is `slab[start_c .. start_c + len_c]`, with room for `cap_c`
 //! records. [`Residents::compact`] lays every list out again in cell order with room for one
 //! more record than it holds (an empty cell gets room for one); the engine compacts at every
-//! re-basing. A ball arriving in a full cell moves that cell's list to the end of the slab
+//! re-basing. The engine's first slab is laid out that way at once
+//! ([`Residents::laid_out`]), so the first compaction finds nothing to do. A ball arriving in a full cell moves that cell's list to the end of the slab
 //! with twice the room (its old place is left unused); when the unused places outnumber the
 //! used ones the slab is compacted at once, so memory stays `O(balls + cells)`.
 //!
@@ -68,6 +69,9 @@ pub(crate) struct Residents<const N: usize> {
     balls: usize,
     /// The room of the lists, `sum_c cap_c` (the rest of the slab is unused).
     room: usize,
+    /// Whether the slab is laid out as [`Residents::compact`] would lay it out (no record
+    /// moved since it was laid out): compacting it again would change nothing.
+    compact: bool,
 }
 
 /// A placeholder for a slot no ball holds.
@@ -86,7 +90,57 @@ fn vacant<const N: usize>() -> Resident<N> {
 }
 
 impl<const N: usize> Residents<N> {
+    /// Ball `i` (of `cell_of.len()`), its flight `motion(i)`, in cell `cell_of[i]`: the
+    /// slab laid out at once as [`Residents::compact`] lays it out (the lists in cell order,
+    /// each in ball order with room for one more record), its homes set in `homes`.
+    /// The records pushed one by one ([`Residents::push`]) and compacted give the same slab;
+    /// this allocates it once and writes each record once, where pushing moves the lists
+    /// that fill up and compacting copies the whole slab into a second one (at `10^6` balls
+    /// a third of the time to the first contact and a quarter of its peak memory;
+    /// docs/benchmarks.md, "The start at `10^6` balls").
+    pub(crate) fn laid_out(
+        cells: usize,
+        cell_of: &[u32],
+        motion: impl Fn(usize) -> Motion<N>,
+        homes: &mut (impl Homes + ?Sized),
+    ) -> Self {
+        let mut spans = vec![Span::default(); cells];
+        for &c in cell_of {
+            spans[c as usize].len += 1;
+        }
+        let mut room = 0u32;
+        for span in &mut spans {
+            *span = Span {
+                start: room,
+                len: 0,
+                cap: span.len + 1,
+            };
+            room += span.cap;
+        }
+        let mut slab = vec![vacant(); room as usize];
+        for (ball, &c) in cell_of.iter().enumerate() {
+            let span = &mut spans[c as usize];
+            let at = span.start + span.len;
+            span.len += 1;
+            slab[at as usize] = Resident {
+                motion: motion(ball),
+                wraps: [0; N],
+                ball: ball as u32,
+                count: 0,
+            };
+            homes.set_home(ball, at);
+        }
+        Residents {
+            slab,
+            spans,
+            balls: cell_of.len(),
+            room: room as usize,
+            compact: true,
+        }
+    }
+
     /// No balls yet, `cells` empty cells.
+    #[cfg(test)]
     pub(crate) fn new(cells: usize) -> Self {
         // As compaction lays them out: room for one record in each.
         Residents {
@@ -100,10 +154,12 @@ impl<const N: usize> Residents<N> {
                 .collect(),
             balls: 0,
             room: cells,
+            compact: true,
         }
     }
 
     /// Adds the next ball (index `len()`) to `cell`; its home is set in `homes`.
+    #[cfg(test)]
     pub(crate) fn push(
         &mut self,
         homes: &mut (impl Homes + ?Sized),
@@ -127,6 +183,7 @@ impl<const N: usize> Residents<N> {
     /// Appends `resident` to `cell`'s list, moving the list to the end of the slab with twice
     /// the room when it is full (module docs).
     fn append(&mut self, homes: &mut (impl Homes + ?Sized), cell: usize, resident: Resident<N>) {
+        self.compact = false;
         if self.spans[cell].len == self.spans[cell].cap {
             self.regrow(homes, cell);
         }
@@ -162,28 +219,46 @@ impl<const N: usize> Residents<N> {
     }
 
     /// Lays every list out again in the order of the cells, each with room for one more
-    /// record than it holds (module docs). `O(balls + cells)`.
+    /// record than it holds (module docs). `O(balls + cells)`; nothing to do if no record
+    /// moved since the slab was last laid out.
+    ///
+    /// The lists are laid out in the slab's own memory: the records are first copied out in
+    /// cell order (a copy of the balls, not of the room), so the peak is the slab and the
+    /// records, not two slabs. The new room, `balls + cells`, never exceeds the slab's length
+    /// (a list's room only grows, from `len + 1` at the last layout).
     pub(crate) fn compact(&mut self, homes: &mut (impl Homes + ?Sized)) {
-        let room: usize = self.spans.iter().map(|s| s.len as usize + 1).sum();
-        let mut slab = Vec::with_capacity(room);
-        for span in self.spans.iter_mut() {
+        if self.compact {
+            return;
+        }
+        let mut records = Vec::with_capacity(self.balls);
+        for span in &self.spans {
             let (from, len) = (span.start as usize, span.len as usize);
-            let start = slab.len();
-            slab.extend_from_slice(&self.slab[from..from + len]);
-            slab.push(vacant());
+            records.extend_from_slice(&self.slab[from..from + len]);
+        }
+        let room = self.balls + self.spans.len();
+        self.slab.clear();
+        let mut next = 0;
+        for span in self.spans.iter_mut() {
+            let len = span.len as usize;
+            let start = self.slab.len();
+            self.slab.extend_from_slice(&records[next..next + len]);
+            self.slab.push(vacant());
+            next += len;
             *span = Span {
                 start: start as u32,
                 len: len as u32,
                 cap: len as u32 + 1,
             };
         }
-        for (k, r) in slab.iter().enumerate() {
+        drop(records);
+        self.slab.shrink_to(room);
+        for (k, r) in self.slab.iter().enumerate() {
             if r.ball != u32::MAX {
                 homes.set_home(r.ball as usize, k as u32);
             }
         }
-        self.slab = slab;
         self.room = room;
+        self.compact = true;
     }
 
     /// The number of balls.
@@ -352,6 +427,33 @@ mod tests {
             }
             self[ball] = at;
         }
+    }
+
+    #[test]
+    fn laid_out_at_once_is_pushed_one_by_one_and_compacted() {
+        // Cells filled unevenly: empty ones, one ball, and lists that outgrow their room.
+        let cells = 9;
+        let cell_of: Vec<u32> = (0..60u32).map(|b| (b * b + 3 * b) % 7).collect();
+        let (mut pushed, mut homes_pushed) = (Residents::<2>::new(cells), Vec::<u32>::new());
+        for (b, &c) in cell_of.iter().enumerate() {
+            pushed.push(&mut homes_pushed, c as usize, motion(b as f64));
+        }
+        pushed.compact(&mut homes_pushed);
+        let mut homes = Vec::<u32>::new();
+        let mut laid = Residents::<2>::laid_out(cells, &cell_of, |b| motion(b as f64), &mut homes);
+        assert_eq!(laid.slab, pushed.slab);
+        assert_eq!(laid.spans, pushed.spans);
+        assert_eq!((laid.balls, laid.room), (pushed.balls, pushed.room));
+        assert_eq!(homes, homes_pushed);
+        // Compacting what is laid out changes nothing; a move makes it compact again.
+        laid.compact(&mut homes);
+        assert_eq!(laid.slab, pushed.slab);
+        laid.relocate(&mut homes, 5, cell_of[5] as usize, 8);
+        assert!(!laid.compact);
+        laid.compact(&mut homes);
+        assert_eq!(laid.cell(8).iter().map(|r| r.ball).collect::<Vec<_>>(), [5]);
+        assert_eq!(laid.slab.len(), laid.room);
+        assert_eq!(laid.spans[8].cap, 2);
     }
 
     #[test]

@@ -149,6 +149,7 @@ pub struct Simulation<const N: usize, const S: usize, K> {
     /// Per ball: centre, its time, velocity and radius (the neighbour scan's reads), stored
     /// by cell (the cell lists).
     motion: Residents<N>,
+    /// Per cell: the obstacles whose centres lie in it (empty, no cells, without obstacles).
     fixed_members: Vec<Vec<u32>>,
     /// `A_i` at the ball's time minus `unturned_i`: the flight time (at constant `U_i`) not
     /// applied to it yet, kept by rebases so that they need no matrix exponential.
@@ -217,9 +218,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         } else {
             Grid::single(size)
         };
-        let mut motion = Residents::new(grid.cells());
-        let mut fixed_members = vec![Vec::new(); grid.cells()];
         let mut balls = Vec::with_capacity(bodies.len());
+        let mut cell_of = Vec::with_capacity(bodies.len());
         for (i, b) in bodies.iter().enumerate() {
             let outside = (0..N).find(|&k| !(0.0..=size[k]).contains(&b.position[k]));
             if let (Some(k), true) = (outside, table.boxed) {
@@ -227,17 +227,26 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             }
             let c = grid.cell_of(&b.position);
             balls.push(BallRecord::new(b.state.clone(), b.species, c));
-            motion.push(
-                balls.as_mut_slice(),
-                grid.flat(&c),
-                Motion {
-                    pos: b.position,
-                    since: 0.0,
-                    velocity: b.state.velocity,
-                    radius: species[b.species].radius,
-                },
-            );
+            cell_of.push(grid.flat(&c) as u32);
         }
+        let flight = |i: usize| {
+            let b = &bodies[i];
+            Motion {
+                pos: b.position,
+                since: 0.0,
+                velocity: b.state.velocity,
+                radius: species[b.species].radius,
+            }
+        };
+        let motion = Residents::laid_out(grid.cells(), &cell_of, flight, balls.as_mut_slice());
+        drop(cell_of);
+        // Read only by the scans of a table with obstacles.
+        let cells_with_obstacles = if obstacles.is_empty() {
+            0
+        } else {
+            grid.cells()
+        };
+        let mut fixed_members = vec![Vec::new(); cells_with_obstacles];
         for (o, f) in obstacles.iter().enumerate() {
             let c = grid.cell_of(&f.position);
             fixed_members[grid.flat(&c)].push(o as u32);

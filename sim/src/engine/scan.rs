@@ -13,6 +13,10 @@ use crate::predict::exit_time;
 use crate::queue::What;
 use crate::residents::Resident;
 use crate::PairKernels;
+use collision_core::batch::prefetch;
+
+/// How many predictions ahead [`Simulation::predict_all`] asks for a ball's record.
+const RECORDS_AHEAD: usize = 8;
 
 /// Ball `i`'s earliest event offered so far, least `(t, key)` (the key, [`key_of`], made
 /// only for a tie).
@@ -62,15 +66,22 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         self.schedule(i, best);
     }
 
-    /// Lays the records out in cell order ([`crate::residents::Residents::compact`]) and
-    /// predicts every ball, cell after cell (so that neighbouring predictions read the same
-    /// lists), then sizes the calendar for them: the start and every re-basing. The calendar
+    /// Lays the records out in cell order ([`crate::residents::Residents::compact`]; at the
+    /// start they already are) and predicts every ball, cell after cell (so that neighbouring
+    /// predictions read the same lists; each ball's record, scattered in that order, asked for
+    /// [`RECORDS_AHEAD`] predictions early), then sizes the calendar for them: the start and
+    /// every re-basing. The calendar
     /// is opened first ([`crate::queue::Calendar::open`]): the new times are placed once.
     pub(super) fn predict_all(&mut self) {
         self.queue.open(self.balls.as_mut_slice());
         self.motion.compact(self.balls.as_mut_slice());
         let order: Vec<usize> = self.motion.in_cell_order().collect();
-        for i in order {
+        for (k, &i) in order.iter().enumerate() {
+            // Balls in cell order are scattered in ball order: each one's record is asked
+            // for a few predictions before its own.
+            if let Some(&ahead) = order.get(k + RECORDS_AHEAD) {
+                prefetch(self.balls.get(ahead));
+            }
             self.predict(i);
         }
         self.queue.rebuild(self.balls.as_mut_slice(), 0.0);
