@@ -93,10 +93,10 @@ impl<const N: usize> Residents<N> {
     /// Ball `i` (of `cell_of.len()`), its flight `motion(i)`, in cell `cell_of[i]`: the
     /// slab laid out at once as [`Residents::compact`] lays it out (the lists in cell order,
     /// each in ball order with room for one more record), its homes set in `homes`.
-    /// The records pushed one by one ([`Residents::push`]) and compacted give the same slab;
-    /// this allocates it once and writes each record once, where pushing moves the lists
-    /// that fill up and compacting copies the whole slab into a second one (at `10^6` balls
-    /// a third of the time to the first contact and a quarter of its peak memory;
+    /// The records pushed one by one (`Residents::push`, in the tests) and compacted give
+    /// the same slab; this allocates it once and writes each record once, where pushing
+    /// moves the lists that fill up and compacting copies the whole slab (at `10^6` balls a
+    /// third of the time to the first contact and a quarter of its peak memory;
     /// docs/benchmarks.md, "The start at `10^6` balls").
     pub(crate) fn laid_out(
         cells: usize,
