@@ -261,14 +261,14 @@ impl<const N: usize> Grid<N> {
         self.layer(axis, if up { 1 } else { -1 })
     }
 
-    /// The restriction of [`Grid::for_cells`] to the layer of [`Grid::for_layer`].
+    /// The restriction of [`Grid::for_cells`] to the layer of `Grid::for_layer` (in the tests).
     #[inline]
     pub(crate) fn layer(&self, axis: usize, step: i64) -> (usize, i64) {
         (axis, step * self.reach[axis])
     }
 
-    /// [`Grid::for_neighbours`], or with `only = (axis, delta)` the offset `delta` alone along
-    /// `axis`: `f` for each of [`Grid::near`]'s cells.
+    /// `Grid::for_neighbours` (in the tests), or with `only = (axis, delta)` the offset
+    /// `delta` alone along `axis`: `f` for each of [`Grid::near`]'s cells.
     #[inline]
     pub(crate) fn for_cells(
         &self,
