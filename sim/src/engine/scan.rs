@@ -70,8 +70,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
     /// start they already are) and predicts every ball, cell after cell (so that neighbouring
     /// predictions read the same lists; each ball's record, scattered in that order, asked for
     /// [`RECORDS_AHEAD`] predictions early), then sizes the calendar for them: the start and
-    /// every re-basing. The calendar
-    /// is opened first ([`crate::queue::Calendar::open`]): the new times are placed once.
+    /// every re-basing. The calendar is opened first ([`crate::queue::Calendar::open`]): the
+    /// new times are placed once.
     pub(super) fn predict_all(&mut self) {
         self.queue.open(self.balls.as_mut_slice());
         self.motion.compact(self.balls.as_mut_slice());
