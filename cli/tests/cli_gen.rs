@@ -7,9 +7,9 @@ use std::process::Command;
 
 /// `noslip gen` on a walled 2D scene of one species of two balls (so ball-ball kernels).
 fn gen(mass: &str, radius: &str, extra: &[&str]) -> (i32, String, String) {
-    let dir = std::env::temp_dir().join(format!("noslip-gen-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(format!("m{mass}-r{radius}.toml").replace('/', "_"));
+    // A file of its own in the temp dir, removed below (no directory left behind).
+    let name = format!("noslip-gen-{}-m{mass}-r{radius}.toml", std::process::id());
+    let file = std::env::temp_dir().join(name.replace('/', "_"));
     std::fs::write(
         &file,
         format!(

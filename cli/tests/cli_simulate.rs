@@ -24,6 +24,7 @@ fn a_bad_scene_exits_2_with_one_line() {
             "{err}"
         );
     }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -59,6 +60,7 @@ fn sinai_runs_and_writes_its_pictures() {
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["events"], 300);
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -139,6 +141,7 @@ fn a_scene_without_possible_contacts_stops_with_its_reason() {
         .as_str()
         .unwrap()
         .starts_with("no contact can happen"));
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A fresh scratch directory for one test.

@@ -66,6 +66,7 @@ fn bad_tables_exit_2_with_one_line_naming_the_place() {
             assert!(err.contains(want), "{table}: {err}");
         }
     }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -128,6 +129,7 @@ fn the_boundary_map_has_a_row_per_boundary_contact_and_a_portrait_per_boundary()
         let png = std::fs::read(out.join(format!("portrait-{name}.png"))).unwrap();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
