@@ -8,9 +8,10 @@
 //! records. [`Residents::compact`] lays every list out again in cell order with room for one
 //! more record than it holds (an empty cell gets room for one); the engine compacts at every
 //! re-basing. The engine's first slab is laid out that way at once
-//! ([`Residents::laid_out`]), so the first compaction finds nothing to do. A ball arriving in a full cell moves that cell's list to the end of the slab
-//! with twice the room (its old place is left unused); when the unused places outnumber the
-//! used ones the slab is compacted at once, so memory stays `O(balls + cells)`.
+//! ([`Residents::laid_out`]), so the first compaction finds nothing to do. A ball arriving
+//! in a full cell moves that cell's list to the end of the slab with twice the room (its old
+//! place is left unused); when the unused places outnumber the used ones the slab is
+//! compacted at once, so memory stays `O(balls + cells)`.
 //!
 //! **Homes.** Where a ball's record lies in the slab (its *home*) is kept by the owner,
 //! in the ball's own record beside its other fields ([`Homes`]: the engine's event then
@@ -74,6 +75,20 @@ pub(crate) struct Residents<const N: usize> {
     compact: bool,
 }
 
+/// The lists of `spans` (their lengths as they are) placed one after another from the slab's
+/// start, in cell order, each with room for one more record than it holds: `start_c = sum_{c'
+/// < c} cap_c'`, `cap_c = len_c + 1`, the layout of [`Residents::compact`]. Returns the room,
+/// `sum_c cap_c`.
+fn lay_out(spans: &mut [Span]) -> usize {
+    let mut room = 0;
+    for span in spans {
+        span.start = room;
+        span.cap = span.len + 1;
+        room += span.cap;
+    }
+    room as usize
+}
+
 /// A placeholder for a slot no ball holds.
 fn vacant<const N: usize>() -> Resident<N> {
     Resident {
@@ -108,16 +123,12 @@ impl<const N: usize> Residents<N> {
         for &c in cell_of {
             spans[c as usize].len += 1;
         }
-        let mut room = 0u32;
+        let room = lay_out(&mut spans);
+        // Each list filled again below, ball by ball.
         for span in &mut spans {
-            *span = Span {
-                start: room,
-                len: 0,
-                cap: span.len + 1,
-            };
-            room += span.cap;
+            span.len = 0;
         }
-        let mut slab = vec![vacant(); room as usize];
+        let mut slab = vec![vacant(); room];
         for (ball, &c) in cell_of.iter().enumerate() {
             let span = &mut spans[c as usize];
             let at = span.start + span.len;
@@ -134,7 +145,7 @@ impl<const N: usize> Residents<N> {
             slab,
             spans,
             balls: cell_of.len(),
-            room: room as usize,
+            room,
             compact: true,
         }
     }
@@ -142,20 +153,12 @@ impl<const N: usize> Residents<N> {
     /// No balls yet, `cells` empty cells.
     #[cfg(test)]
     pub(crate) fn new(cells: usize) -> Self {
-        // As compaction lays them out: room for one record in each.
-        Residents {
-            slab: vec![vacant(); cells],
-            spans: (0..cells as u32)
-                .map(|c| Span {
-                    start: c,
-                    len: 0,
-                    cap: 1,
-                })
-                .collect(),
-            balls: 0,
-            room: cells,
-            compact: true,
-        }
+        Self::laid_out(
+            cells,
+            &[],
+            |_| unreachable!("no balls"),
+            &mut Vec::<u32>::new(),
+        )
     }
 
     /// Adds the next ball (index `len()`) to `cell`; its home is set in `homes`.
@@ -235,20 +238,15 @@ impl<const N: usize> Residents<N> {
             let (from, len) = (span.start as usize, span.len as usize);
             records.extend_from_slice(&self.slab[from..from + len]);
         }
-        let room = self.balls + self.spans.len();
+        let room = lay_out(&mut self.spans);
         self.slab.clear();
         let mut next = 0;
-        for span in self.spans.iter_mut() {
+        for span in &self.spans {
             let len = span.len as usize;
-            let start = self.slab.len();
+            debug_assert_eq!(self.slab.len(), span.start as usize);
             self.slab.extend_from_slice(&records[next..next + len]);
             self.slab.push(vacant());
             next += len;
-            *span = Span {
-                start: start as u32,
-                len: len as u32,
-                cap: len as u32 + 1,
-            };
         }
         drop(records);
         self.slab.shrink_to(room);
