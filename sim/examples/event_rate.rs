@@ -31,6 +31,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 
+#[path = "support/args.rs"]
+mod args;
+use args::Cli;
+
 /// Large arrays on 2 MiB pages, as the `noslip` command has them (`noslip_sim::huge_pages`).
 #[global_allocator]
 static ALLOC: noslip_sim::huge_pages::HugePages = noslip_sim::huge_pages::HugePages;
@@ -274,23 +278,10 @@ const USAGE: &str = "usage: event_rate [--dims 2,3] [--balls 100,1000,10000,1000
 [--phi 0.1,0.2,0.3,0.4] [--runs 3] [--contacts C] [--warm W] [--smooth] [--seed S] \
 [--lists SKIN]";
 
-/// Print `message` and the usage line, and exit with status 2.
-fn refuse(message: &str) -> ! {
-    eprintln!("event_rate: {message}\n{USAGE}");
-    std::process::exit(2)
-}
-
-fn list<T: std::str::FromStr>(flag: &str, value: Option<&String>) -> Vec<T> {
-    let value = value.unwrap_or_else(|| refuse(&format!("{flag} needs a value")));
-    value
-        .split(',')
-        .map(|x| {
-            x.replace('_', "")
-                .parse()
-                .unwrap_or_else(|_| refuse(&format!("{flag}: cannot read {x:?}")))
-        })
-        .collect()
-}
+const CLI: Cli = Cli {
+    name: "event_rate",
+    usage: USAGE,
+};
 
 fn options() -> Options {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -310,14 +301,14 @@ fn options() -> Options {
         let flag = args[i].as_str();
         let value = args.get(i + 1);
         match flag {
-            "--dims" => o.dims = list(flag, value),
-            "--balls" => o.balls = list(flag, value),
-            "--phi" => o.phi = list(flag, value),
-            "--runs" => o.runs = list::<usize>(flag, value)[0].max(1),
-            "--contacts" => o.contacts = Some(list(flag, value)[0]),
-            "--warm" => o.warm = Some(list(flag, value)[0]),
-            "--seed" => o.seed = list(flag, value)[0],
-            "--lists" => o.lists = Some(list(flag, value)[0]),
+            "--dims" => o.dims = CLI.list(flag, value),
+            "--balls" => o.balls = CLI.list(flag, value),
+            "--phi" => o.phi = CLI.list(flag, value),
+            "--runs" => o.runs = CLI.list::<usize>(flag, value)[0].max(1),
+            "--contacts" => o.contacts = Some(CLI.list(flag, value)[0]),
+            "--warm" => o.warm = Some(CLI.list(flag, value)[0]),
+            "--seed" => o.seed = CLI.list(flag, value)[0],
+            "--lists" => o.lists = Some(CLI.list(flag, value)[0]),
             "--smooth" => {
                 o.smooth = true;
                 i += 1;
@@ -327,7 +318,7 @@ fn options() -> Options {
                 println!("{USAGE}");
                 std::process::exit(0)
             }
-            _ => refuse(&format!("unknown argument {flag:?}")),
+            _ => CLI.refuse(&format!("unknown argument {flag:?}")),
         }
         i += 2;
     }

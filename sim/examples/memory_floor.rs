@@ -25,6 +25,10 @@
 use std::hint::black_box;
 use std::time::Instant;
 
+#[path = "support/args.rs"]
+mod args;
+use args::Cli;
+
 /// Large arrays on 2 MiB pages, as the `noslip` command has them (`noslip_sim::huge_pages`).
 #[global_allocator]
 static ALLOC: noslip_sim::huge_pages::HugePages = noslip_sim::huge_pages::HugePages;
@@ -113,40 +117,36 @@ fn fresh(mib: usize) -> f64 {
     start.elapsed().as_secs_f64() * 1e3 / mib as f64
 }
 
-fn list(flag: &str, value: &str) -> Vec<usize> {
-    value
-        .split(',')
-        .map(|s| {
-            s.parse()
-                .unwrap_or_else(|_| panic!("{flag}: {s:?} is not a whole number"))
-        })
-        .collect()
-}
+const CLI: Cli = Cli {
+    name: "memory_floor",
+    usage: "usage: memory_floor [--mib 1,8,64,800] [--rounds 3]",
+};
 
 fn main() {
     let (mut sizes, mut rounds) = (vec![1, 8, 64, 800], 3);
     let args: Vec<String> = std::env::args().skip(1).collect();
     for pair in args.chunks(2) {
-        match (pair[0].as_str(), pair.get(1)) {
-            ("--mib", Some(v)) => sizes = list("--mib", v),
-            ("--rounds", Some(v)) => rounds = list("--rounds", v)[0],
-            _ => {
-                eprintln!("usage: memory_floor [--mib 1,8,64,800] [--rounds 3]");
-                std::process::exit(2);
-            }
+        let (flag, value) = (pair[0].as_str(), pair.get(1));
+        match flag {
+            "--mib" => sizes = CLI.list(flag, value),
+            "--rounds" => rounds = CLI.list(flag, value)[0],
+            _ => CLI.refuse(&format!("unknown argument {flag:?}")),
         }
+    }
+    if sizes.contains(&0) || rounds == 0 {
+        CLI.refuse("--mib and --rounds must be at least 1");
     }
     println!("    MiB  round   chase ns/line  independent ns/line  fresh ms/MiB");
     let mut state = 0x6e6f_736c_6970u64;
     for &mib in &sizes {
-        let mut words = vec![0u64; (mib.max(1) << 17).max(2 * LINE)];
+        let mut words = vec![0u64; mib << 17];
         cycle(&mut words, &mut state);
         let lines = words.len() / LINE;
         let at: Vec<usize> = (0..LOADS)
             .map(|_| (next(&mut state) as usize % lines) * LINE)
             .collect();
         for round in 1..=rounds {
-            let (c, i, f) = (chase(&words), independent(&words, &at), fresh(mib.max(1)));
+            let (c, i, f) = (chase(&words), independent(&words, &at), fresh(mib));
             println!("{mib:7} {round:6} {c:15.1} {i:20.1} {f:13.2}");
         }
     }
