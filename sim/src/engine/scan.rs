@@ -150,9 +150,11 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             // In 2D a neighbourhood holds two or three balls at `phi` 0.2, five at 0.4: the
             // lanes would not pay (callgrind: 6 % more instructions, 9 % more mispredicted
             // branches); the gathered places go to the scalar offer in one loop.
-            let count = self
-                .motion
-                .gather_cells(flat, offsets, near.room(self.motion.len()));
+            // SAFETY: an interior cell's neighbours, and room for every ball and four more.
+            let count = unsafe {
+                self.motion
+                    .gather_cells(flat, offsets, near.room(self.motion.len()))
+            };
             let base: [f64; N] = w_i.map(f64::from);
             for &at in &near.places[..count] {
                 self.offer_ball(i, best, &m, &base, self.motion.at(at));
@@ -164,7 +166,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
                 Listing::Interior(flat, offsets) => {
                     near.unshifted(w_i.map(f64::from));
                     let room = near.room(self.motion.len());
-                    self.motion.gather_cells(flat, offsets, room)
+                    // SAFETY: as above.
+                    unsafe { self.motion.gather_cells(flat, offsets, room) }
                 }
                 Listing::Edge(walk) => near.gather_walk(&self.motion, walk, &w_i),
             };
