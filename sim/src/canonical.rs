@@ -125,6 +125,12 @@ pub(crate) fn obstacle_image<const N: usize>(
 
 /// A centre folded into the box on the periodic axes: `x - floor(x / L) L` (in `[0, L]`,
 /// `L` itself only by rounding), other axes unchanged.
+///
+/// A coordinate in `(0, L)` (most of them: a contact rarely happens across the box's side)
+/// is returned as it is, without the division: there `x / L` rounds to a number in
+/// `[0, 1)` (below 1 because `x <= L - ulp(L)` and the doubles below 1 are `2^-53` apart),
+/// so the floor is `+0` and `x - 0 L = x`, the same bits. Zero itself takes the formula
+/// (`-0` folds to `+0`).
 #[inline]
 pub(crate) fn fold<const N: usize>(
     x: &[f64; N],
@@ -132,7 +138,7 @@ pub(crate) fn fold<const N: usize>(
     periodic: &[bool; N],
 ) -> [f64; N] {
     std::array::from_fn(|k| {
-        if periodic[k] {
+        if periodic[k] && !(0.0 < x[k] && x[k] < size[k]) {
             x[k] - floor(x[k] / size[k]) * size[k]
         } else {
             x[k]
@@ -391,6 +397,59 @@ mod tests {
         let size = [2.0, 2.0];
         assert_eq!(fold(&[-0.5, -0.5], &size, &[true, false]), [1.5, -0.5]);
         assert_eq!(fold(&[4.25, 1.0], &size, &[true, true]), [0.25, 1.0]);
+    }
+
+    /// The fold's shortcut for a coordinate inside `(0, L)` gives the bits of the formula
+    /// `x - floor(x / L) L`: at the ends of the interval (the largest double below `L`, the
+    /// least positive doubles), at both zeros, at `L`, outside, and at 10^5 random points,
+    /// for sides of every binade's shape.
+    #[test]
+    fn the_fold_s_shortcut_is_the_formula_bit_for_bit() {
+        let formula = |x: f64, l: f64| x - floor(x / l) * l;
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut unit = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let sides = [
+            1.0,
+            2.0,
+            3.0,
+            7.5,
+            21.873_7,
+            137.823,
+            626.657,
+            1e-3,
+            1e12,
+            f64::MAX / 4.0,
+        ];
+        for l in sides {
+            let below = f64::from_bits(l.to_bits() - 1);
+            let mut xs = vec![
+                below,
+                f64::from_bits(below.to_bits() - 1),
+                f64::MIN_POSITIVE,
+                f64::from_bits(1),
+                0.0,
+                -0.0,
+                l,
+                -below,
+                l + below,
+                -f64::MIN_POSITIVE,
+            ];
+            xs.extend((0..10_000).map(|_| unit() * l));
+            xs.extend((0..100).map(|_| (unit() * 3.0 - 1.0) * l));
+            for x in xs {
+                let got = fold(&[x], &[l], &[true])[0];
+                assert_eq!(
+                    got.to_bits(),
+                    formula(x, l).to_bits(),
+                    "x = {x:e}, L = {l:e}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -245,10 +245,12 @@ impl<const N: usize> Grid<N> {
     pub(crate) fn crossed(&self, c: &[usize; N], axis: usize, up: bool) -> ([usize; N], bool) {
         let n = self.n[axis];
         let mut next = *c;
-        next[axis] = if up {
-            (c[axis] + 1) % n
-        } else {
-            (c[axis] + n - 1) % n
+        // `(c + 1) mod n` and `(c - 1) mod n` without a division.
+        next[axis] = match (up, c[axis]) {
+            (true, c) if c + 1 == n => 0,
+            (true, c) => c + 1,
+            (false, 0) => n - 1,
+            (false, c) => c - 1,
         };
         let wrapped = if up { next[axis] == 0 } else { c[axis] == 0 };
         (next, wrapped)
