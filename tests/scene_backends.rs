@@ -337,7 +337,7 @@ fn scene_c_kernels_are_bit_identical_to_the_rust_scene_kernels() {
     let (sets, kernels) = shipped_sets();
     let exes = build(&dir, &sets);
     let mut check = Check {
-        dir: dir.clone(),
+        dir: dir.to_path_buf(),
         pass: Pass::C(exes),
         cases: CASES,
         failures: Vec::new(),
@@ -372,7 +372,7 @@ fn scene_opencl_kernels_are_bit_identical_to_the_rust_scene_kernels() {
         Err(why) => return opencl::skip(TEST, &why),
     };
     let mut check = Check {
-        dir: dir.clone(),
+        dir: dir.to_path_buf(),
         pass: Pass::ClWrite(String::new()),
         cases: CL_CASES,
         failures: Vec::new(),
