@@ -341,7 +341,10 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
         if !self.table.boxed {
             return;
         }
-        for k in (0..N).filter(|&k| !self.grid.periodic[k]) {
+        for k in 0..N {
+            if self.grid.periodic[k] {
+                continue;
+            }
             let wall = exit_time(
                 m.pos[k],
                 m.velocity[k],
