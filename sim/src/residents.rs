@@ -290,9 +290,9 @@ impl<const N: usize> Residents<N> {
     ///
     /// # Safety
     /// Every `flat + offsets[k]` is a cell of the grid and they are distinct cells (an
-    /// interior cell's neighbourhood, [`crate::cells::Listing::Interior`]), and `out` holds
-    /// `balls + 4` places: distinct cells hold at most every ball once, so the four stores of
-    /// the last cell end within `out`.
+    /// interior cell's neighbourhood, [`crate::cells::Listing::Interior`]): distinct cells
+    /// hold at most every ball once, so with `out` holding `balls + 4` places (asserted) the
+    /// four stores of the last cell end within it.
     #[inline(always)]
     pub(crate) unsafe fn gather_cells(
         &self,
@@ -300,7 +300,8 @@ impl<const N: usize> Residents<N> {
         offsets: &[isize],
         out: &mut [u32],
     ) -> usize {
-        debug_assert!(
+        // Checked once a call (the stores below rely on it).
+        assert!(
             out.len() >= self.balls + 4,
             "room for every ball and four more"
         );
