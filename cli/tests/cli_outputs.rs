@@ -17,12 +17,9 @@ fn noslip() -> Command {
     c
 }
 
-/// A fresh empty directory for one test.
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("noslip-outputs-{test}-{}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh empty directory for one test ([`support::scratch`]).
+fn scratch(test: &str) -> crate::support::Scratch {
+    crate::support::scratch(&format!("outputs-{test}"))
 }
 
 fn text(bytes: &[u8]) -> String {

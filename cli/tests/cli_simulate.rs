@@ -7,8 +7,7 @@ use support::{noslip, run_ok};
 
 #[test]
 fn a_bad_scene_exits_2_with_one_line() {
-    let dir = std::env::temp_dir().join(format!("noslip-sim-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("bad");
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, "dim = 2\n[box]\nsize = [1, 1]\nboundary = [\"wall\", \"wall\"]\n[[species]]\nmass = 1\nradius = \"1/4\"\nlambda = 1\ncount = 1\n").unwrap();
     for sub in [
@@ -24,14 +23,12 @@ fn a_bad_scene_exits_2_with_one_line() {
             "{err}"
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn sinai_runs_and_writes_its_pictures() {
-    let dir = std::env::temp_dir().join(format!("noslip-sinai-{}", std::process::id()));
+    let dir = scratch("sinai");
     let log = dir.join("events.jsonl");
-    std::fs::create_dir_all(&dir).unwrap();
     let stdout = run_ok(
         noslip()
             .args([
@@ -60,7 +57,6 @@ fn sinai_runs_and_writes_its_pictures() {
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["events"], 300);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -94,8 +90,7 @@ fn gen_prints_the_module_and_checks_it() {
 fn a_scene_without_possible_contacts_stops_with_its_reason() {
     // issue 16: one disk moving parallel to the walls of a periodic axis, an event limit and
     // no time limit, ran forever printing nothing.
-    let dir = std::env::temp_dir().join(format!("noslip-never-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("never");
     let scene = dir.join("parallel.toml");
     std::fs::write(
         &scene,
@@ -141,16 +136,12 @@ fn a_scene_without_possible_contacts_stops_with_its_reason() {
         .as_str()
         .unwrap()
         .starts_with("no contact can happen"));
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// A fresh scratch directory for one test.
-fn scratch(name: &str) -> std::path::PathBuf {
-    // `simulate-` keeps it apart from the other modules' paths in this test process.
-    let dir = std::env::temp_dir().join(format!("noslip-simulate-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for one test ([`support::scratch`]; `simulate-` keeps it apart
+/// from the other modules' paths in this test process).
+fn scratch(name: &str) -> support::Scratch {
+    support::scratch(&format!("simulate-{name}"))
 }
 
 /// Run `cmd`, killing it (and failing) if it does not finish within `seconds`.

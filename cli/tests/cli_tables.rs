@@ -2,14 +2,12 @@
 //! boundary map's CSV and portraits, and `noslip gen --check` on the shipped table scenes.
 
 use crate::support;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use support::noslip;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("noslip-tables-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for one test ([`support::scratch`]).
+fn scratch(name: &str) -> support::Scratch {
+    support::scratch(&format!("tables-{name}"))
 }
 
 const DISK: &str = "dim = 2\n[[species]]\nmass = 1\nradius = \"1/10\"\n[[ball]]\nspecies = 0\nposition = [\"1/2\", \"1/2\"]\nvelocity = [1, 0]\n";
@@ -66,7 +64,6 @@ fn bad_tables_exit_2_with_one_line_naming_the_place() {
             assert!(err.contains(want), "{table}: {err}");
         }
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -129,7 +126,6 @@ fn the_boundary_map_has_a_row_per_boundary_contact_and_a_portrait_per_boundary()
         let png = std::fs::read(out.join(format!("portrait-{name}.png"))).unwrap();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

@@ -27,12 +27,9 @@ fn noslip() -> Command {
     c
 }
 
-/// A fresh empty directory for one test.
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("noslip-faults-{test}-{}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh empty directory for one test ([`support::scratch`]).
+fn scratch(test: &str) -> crate::support::Scratch {
+    crate::support::scratch(&format!("faults-{test}"))
 }
 
 /// Stderr lines that report an error.

@@ -1,8 +1,9 @@
 //! What the command-line tests share: the `noslip` binary run from the repository root, a run
-//! that must succeed, and a per-process temporary path. Each test file uses what it needs of it.
+//! that must succeed, a per-process temporary path and scratch directories removed when a
+//! test is done with them. Each test file uses what it needs of it.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -27,6 +28,45 @@ pub fn run_ok(command: &mut Command) -> String {
 /// A path in the temporary directory, unique to `name` and this process.
 pub fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
+}
+
+/// A fresh empty directory at [`temp`]`(name)`, removed with its contents when the test
+/// drops it: at its end, and also when it fails or returns early.
+pub fn scratch(name: &str) -> Scratch {
+    let dir = temp(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    Scratch(dir)
+}
+
+/// [`scratch`]'s directory: a path, removed with its contents on drop.
+pub struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for Scratch {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.0.as_os_str()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        // A test may have removed it already (checking that it can).
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }
 
 /// Runs `command` to its end, or kills it and fails after `limit` (a run without bound, a
