@@ -18,6 +18,7 @@
 //! again one axis at a time while the cap allows; so memory is `O(bodies)` whatever the box,
 //! no cell count overflows, and the reach stays 1.
 
+use crate::select::select;
 use crate::SetupError;
 
 /// The cap on the number of cells per body (ball or obstacle); see the module docs.
@@ -243,16 +244,15 @@ impl<const N: usize> Grid<N> {
     /// periodic or the face is not the box's), and whether it wrapped.
     #[inline]
     pub(crate) fn crossed(&self, c: &[usize; N], axis: usize, up: bool) -> ([usize; N], bool) {
-        let n = self.n[axis];
+        let (n, from) = (self.n[axis], c[axis]);
         let mut next = *c;
-        // `(c + 1) mod n` and `(c - 1) mod n` without a division.
-        next[axis] = match (up, c[axis]) {
-            (true, c) if c + 1 == n => 0,
-            (true, c) => c + 1,
-            (false, 0) => n - 1,
-            (false, c) => c - 1,
-        };
-        let wrapped = if up { next[axis] == 0 } else { c[axis] == 0 };
+        // `(c + 1) mod n` and `(c - 1) mod n` without a division, chosen without a branch on
+        // the direction ([`crate::select`]).
+        let (top, bottom) = (from + 1 == n, from == 0);
+        let above = select(top, 0, from + 1);
+        let below = select(bottom, n - 1, from.wrapping_sub(1));
+        next[axis] = select(up, above, below);
+        let wrapped = (up & top) | (!up & bottom);
         (next, wrapped)
     }
 
@@ -260,7 +260,7 @@ impl<const N: usize> Grid<N> {
     /// the cell entered: [`Grid::layer`] on that side.
     #[inline]
     pub(crate) fn reached(&self, axis: usize, up: bool) -> (usize, i64) {
-        self.layer(axis, if up { 1 } else { -1 })
+        self.layer(axis, select(up, 1, -1))
     }
 
     /// The restriction of [`Grid::for_cells`] to the layer of `Grid::for_layer` (in the tests).

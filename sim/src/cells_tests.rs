@@ -235,3 +235,41 @@ fn neighbours_are_the_cells_of_the_definition_in_its_order() {
         assert_eq!(got, by_definition(&g, &c), "{c:?}");
     }
 }
+
+/// A crossing's next cell and wrap, chosen without a branch on the direction (`crossed`),
+/// are `(c +- 1) mod n` and whether it passed the axis's end, on every cell and axis of
+/// grids with 1, 2 and 7 cells an axis; and the layer it reaches is the one a step of
+/// `+-1` gives.
+#[test]
+fn a_crossing_steps_one_cell_modulo_the_axis() {
+    for (size, n) in [([10.0, 1.0, 3.0], [7, 1, 2]), ([10.0, 3.0, 1.2], [7, 2, 1])] {
+        let g = Grid::<3>::new(size, [true, true, false], 1.4, 100).unwrap();
+        assert_eq!(g.n, n);
+        for c0 in 0..g.n[0] {
+            for c1 in 0..g.n[1] {
+                for c2 in 0..g.n[2] {
+                    let c = [c0, c1, c2];
+                    for axis in 0..3 {
+                        for up in [false, true] {
+                            let n = g.n[axis] as i64;
+                            let step = if up { 1 } else { -1 };
+                            let mut want = c;
+                            want[axis] = (c[axis] as i64 + step).rem_euclid(n) as usize;
+                            let wrapped = if up {
+                                c[axis] + 1 == g.n[axis]
+                            } else {
+                                c[axis] == 0
+                            };
+                            assert_eq!(
+                                g.crossed(&c, axis, up),
+                                (want, wrapped),
+                                "{c:?} {axis} {up}"
+                            );
+                            assert_eq!(g.reached(axis, up), g.layer(axis, step));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

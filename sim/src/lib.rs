@@ -78,6 +78,7 @@ mod reference;
 mod residents;
 pub mod rough;
 pub mod run;
+mod select;
 pub mod self_diffusion;
 pub mod sequential;
 pub mod setup;

@@ -52,16 +52,17 @@ fn dots<const N: usize>(d: &[f64; N], dv: &[f64; N]) -> (f64, f64) {
 }
 
 /// The time at which a coordinate `x` moving with speed `v` reaches `lo` (moving down) or
-/// `hi` (moving up): `(lo - x) / v` or `(hi - x) / v`, at least 0; `None` at rest.
+/// `hi` (moving up): `(lo - x) / v` or `(hi - x) / v`, at least 0; `None` at rest (or for a
+/// NaN `v`).
+///
+/// The face is selected, not branched to ([`crate::select`]): the sign of `v` is a coin toss
+/// from one call to the next.
 #[inline]
 pub fn exit_time(x: f64, v: f64, lo: f64, hi: f64) -> Option<(f64, bool)> {
-    if v > 0.0 {
-        Some((((hi - x) / v).max(0.0), true))
-    } else if v < 0.0 {
-        Some((((lo - x) / v).max(0.0), false))
-    } else {
-        None
-    }
+    let up = v > 0.0;
+    let face = crate::select::select(up, hi, lo);
+    let tau = ((face - x) / v).max(0.0);
+    (up || v < 0.0).then_some((tau, up))
 }
 
 #[cfg(test)]
@@ -92,6 +93,45 @@ mod tests {
             );
         }
         assert_eq!(exit_time(0.5, 0.0, 0.0, 1.0), None);
+    }
+
+    /// The face chosen by a select is the one the branches chose, bit for bit: both signs
+    /// of `v` and of zero, NaN, infinities, and positions on and beyond the faces.
+    #[test]
+    fn exit_time_is_the_branching_formula() {
+        let branching = |x: f64, v: f64, lo: f64, hi: f64| {
+            if v > 0.0 {
+                Some((((hi - x) / v).max(0.0), true))
+            } else if v < 0.0 {
+                Some((((lo - x) / v).max(0.0), false))
+            } else {
+                None
+            }
+        };
+        let xs = [0.0, -0.0, 0.25, 1.0, 1.5, -3.0, 1e300];
+        let vs = [
+            0.0,
+            -0.0,
+            2.0,
+            -0.5,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE / 8.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        let bits = |r: Option<(f64, bool)>| r.map(|(t, up)| (t.to_bits(), up));
+        for &x in &xs {
+            for &v in &vs {
+                for (lo, hi) in [(0.0, 1.0), (-0.0, 0.5), (1.0, 1.0 + 1e-16)] {
+                    assert_eq!(
+                        bits(exit_time(x, v, lo, hi)),
+                        bits(branching(x, v, lo, hi)),
+                        "x {x} v {v} lo {lo} hi {hi}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -375,7 +375,8 @@ impl<const N: usize, const S: usize, K: PairKernels<f64, N, S>> Simulation<N, S,
             let lo = c[k] as f64 * w + f64::from(w_i[k]) * self.grid.size[k];
             if let Some((tau, up)) = exit_time(m.pos[k], m.velocity[k], lo, lo + w) {
                 let last = c[k] + 1 == self.grid.n[k];
-                let blocked = !self.grid.periodic[k] && ((up && last) || (!up && c[k] == 0));
+                // `&` and `|` after the axis's test: no branch on the direction.
+                let blocked = !self.grid.periodic[k] && ((up & last) | (!up & (c[k] == 0)));
                 if !blocked {
                     best.offer(m.since + tau, || What::Cell { axis: k as u8, up });
                 }
