@@ -1,8 +1,8 @@
 //! `if c { a } else { b }` without a branch, for conditions that are coin tosses from one
 //! event to the next: the side a ball moves to along an axis (`v > 0`), the direction of a
-//! cell crossing. A branch on them is mispredicted about every second time (about 15 cycles
+//! cell crossing. A branch on them is mispredicted about every second time (over ten cycles
 //! each), and the compiler turns a plain `if` on them into such a branch: callgrind's branch
-//! simulation counted 7.5 mispredictions a contact on the sign of `v` in the crossing times
+//! simulation counted about 7 mispredictions a contact on the sign of `v` in the crossing times
 //! alone (3D, 4000 balls, `phi` 0.1; docs/benchmarks.md, session 56).
 //!
 //! The value is chosen by a mask of its bits, which the compiler keeps as a select
