@@ -55,8 +55,8 @@ fn dots<const N: usize>(d: &[f64; N], dv: &[f64; N]) -> (f64, f64) {
 /// `hi` (moving up): `(lo - x) / v` or `(hi - x) / v`, at least 0; `None` at rest (or for a
 /// NaN `v`).
 ///
-/// The face is selected, not branched to ([`crate::select`]): the sign of `v` is a coin toss
-/// from one call to the next.
+/// The face is selected by a mask of its bits, not branched to: the sign of `v` is a coin
+/// toss from one call to the next (the engine's `select` module).
 #[inline]
 pub fn exit_time(x: f64, v: f64, lo: f64, hi: f64) -> Option<(f64, bool)> {
     let up = v > 0.0;
