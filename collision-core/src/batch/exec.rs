@@ -74,6 +74,9 @@ pub struct Exec {
     /// Whether the row path runs its passes from the last rows to the first
     /// ([`Exec::last_rows_first`]).
     backward: bool,
+    /// Whether the row path writes its results past the caches where it can
+    /// ([`Exec::streamed_results`]).
+    streamed: bool,
 }
 
 /// From which size on a batch is split across rayon's pool.
@@ -100,6 +103,7 @@ impl Exec {
             isa: Isa::detect(),
             split: cfg!(feature = "parallel").then_some(Split::Bytes(PARALLEL_FROM_BYTES)),
             backward: false,
+            streamed: false,
         }
     }
 
@@ -148,6 +152,27 @@ impl Exec {
     /// Whether the row path runs its passes from the last rows to the first.
     pub fn is_backward(&self) -> bool {
         self.backward
+    }
+
+    /// The same, with [`Exec::free_rows`] writing its results with non-temporal stores
+    /// where it can: the same results, bit for bit. Ordinary stores read each output line
+    /// before writing it; these do not, and leave nothing in the caches. For outputs far
+    /// larger than the caches that the caller does not read again at once, in memory
+    /// already written (into new memory writing backward is faster, `last_rows_first`).
+    /// Where: the AVX-512 scatter of full blocks at n = 2 and 3 (`rows/avx512.rs`), when
+    /// each output array starts at a multiple of 16 bytes (as NumPy's do); elsewhere the
+    /// ordinary stores. Out of cache (256 MB of rows, Zen 4) `free_rows` then took 0.93x
+    /// its time at n = 2 and 0.94x at n = 3 (docs/batch.md).
+    pub fn streamed_results(self) -> Self {
+        Exec {
+            streamed: true,
+            ..self
+        }
+    }
+
+    /// Whether the row path writes its results with non-temporal stores where it can.
+    pub fn is_streamed(&self) -> bool {
+        self.streamed
     }
 
     /// The instruction set the batch kernels run on.
@@ -358,6 +383,7 @@ mod split_tests {
             isa: Isa::Baseline,
             split: Some(Split::Bytes(PARALLEL_FROM_BYTES)),
             backward: false,
+            streamed: false,
         };
         let from = PARALLEL_FROM_BYTES.div_ceil(block);
         assert!(!auto.splits::<In, Out>(from - 1));

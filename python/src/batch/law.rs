@@ -120,7 +120,8 @@ where
     } else {
         Exec::auto().serial()
     };
-    let exec = if fresh { exec.last_rows_first() } else { exec };
+    let out_bytes = std::mem::size_of::<T>() * 2 * rows * (N * N + N);
+    let exec = super::run::row_exec(exec, fresh, out_bytes);
     {
         let Outputs {
             spin: [s1, s2],

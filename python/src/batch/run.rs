@@ -38,6 +38,26 @@ const RUN_CHUNKS: usize = 8;
 /// 1.26x the one call of the Rust reference on the same arrays (docs/python.md).
 const ROW_RUN_CHUNKS: usize = 64;
 
+/// Output bytes from which results written into arrays already in memory (`out=`) are
+/// streamed past the caches ([`Exec::streamed_results`]): 16 MiB, half the L3 cache of the
+/// AVX-512 host measured. Below it the caller may well read the results from the cache;
+/// above it they leave the caches anyway, and ordinary stores read each output line
+/// before writing it (docs/python.md, "Figures").
+pub(super) const STREAM_FROM_BYTES: usize = 16 << 20;
+
+/// The row path's `Exec` on one thread: passes from the last rows to the first into new
+/// memory (`fresh`), results streamed into large outputs already in memory
+/// ([`STREAM_FROM_BYTES`] of `out_bytes`).
+pub(super) fn row_exec(exec: Exec, fresh: bool, out_bytes: usize) -> Exec {
+    if fresh {
+        exec.last_rows_first()
+    } else if out_bytes >= STREAM_FROM_BYTES {
+        exec.streamed_results()
+    } else {
+        exec
+    }
+}
+
 /// Why a batch stopped before its last row.
 #[derive(Debug, PartialEq)]
 pub(super) enum Stop {
@@ -78,10 +98,11 @@ where
     };
     let rows = input.rows();
     let backward = fresh && !validate && rows.is_some();
-    let exec = if backward {
-        Exec::auto().serial().last_rows_first()
-    } else {
+    let out_bytes = std::mem::size_of::<T>() * 2 * (out.spin[0].len() + out.velocity[0].len());
+    let exec = if validate || rows.is_none() {
         Exec::auto().serial()
+    } else {
+        row_exec(Exec::auto().serial(), fresh, out_bytes)
     };
     let Outputs {
         spin: [s1, s2],

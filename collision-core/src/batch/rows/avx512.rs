@@ -12,8 +12,9 @@ use super::plan::{self, Plan};
 use super::{BallRows, FreeRows, StateRowsMut};
 use crate::batch::lanes::{BallLanes, FreeLanes, StateLanes, LANES};
 use core::arch::x86_64::{
-    _mm512_cvtepu8_epi64, _mm512_loadu_pd, _mm512_mask_mov_pd, _mm512_mask_sub_pd,
-    _mm512_permutex2var_pd, _mm512_setzero_pd, _mm512_storeu_pd, _mm_loadl_epi64,
+    _mm512_castpd512_pd128, _mm512_castpd_ps, _mm512_cvtepu8_epi64, _mm512_extractf32x4_ps,
+    _mm512_loadu_pd, _mm512_mask_mov_pd, _mm512_mask_sub_pd, _mm512_permutex2var_pd,
+    _mm512_setzero_pd, _mm512_storeu_pd, _mm_castps_pd, _mm_loadl_epi64, _mm_sfence, _mm_stream_pd,
 };
 
 /// The largest n whose full blocks are gathered and scattered here. From n = 5 on, a
@@ -56,13 +57,18 @@ impl<const N: usize, const S: usize> Planned for ScatterSpins<N, S> {
 }
 
 /// Destination `D` of `P`'s plan: `dst[8 D .. 8 D + 8]` from the sources `src[8 j .. 8 j +
-/// 8]`, `+0` first, then each step's values (`0 - ` them for a negated step).
+/// 8]`, `+0` first, then each step's values (`0 - ` them for a negated step); with
+/// `STREAM`, written as four 16-byte non-temporal stores (`movntpd`), which need `dst` at a
+/// multiple of 16 bytes only (a 64-byte one needs 64).
 ///
 /// # Safety
 /// As [`run`].
 #[target_feature(enable = "avx512f")]
 #[inline]
-unsafe fn destination<P: Planned, const D: usize>(src: *const f64, dst: *mut f64) {
+unsafe fn destination<P: Planned, const D: usize, const STREAM: bool>(
+    src: *const f64,
+    dst: *mut f64,
+) {
     if D >= P::PLAN.destinations {
         return;
     }
@@ -87,24 +93,35 @@ unsafe fn destination<P: Planned, const D: usize>(src: *const f64, dst: *mut f64
                 _mm512_mask_mov_pd(acc, s.mask, r)
             };
         }
-        _mm512_storeu_pd(dst.add(8 * D), acc);
+        let q = dst.add(8 * D);
+        if STREAM {
+            let quarter = |acc| _mm_castps_pd(acc);
+            let all = _mm512_castpd_ps(acc);
+            _mm_stream_pd(q, _mm512_castpd512_pd128(acc));
+            _mm_stream_pd(q.add(2), quarter(_mm512_extractf32x4_ps::<1>(all)));
+            _mm_stream_pd(q.add(4), quarter(_mm512_extractf32x4_ps::<2>(all)));
+            _mm_stream_pd(q.add(6), quarter(_mm512_extractf32x4_ps::<3>(all)));
+        } else {
+            _mm512_storeu_pd(q, acc);
+        }
     }
 }
 
 /// `dst[8 d .. 8 d + 8]` for every destination `d` of `P`'s plan, from the sources
 /// `src[8 j .. 8 j + 8]`: one call per destination, each a constant, so the whole plan is
-/// straight-line code.
+/// straight-line code; with `STREAM`, by non-temporal stores ([`destination`]).
 ///
 /// # Safety
 /// The CPU has AVX-512F; `src` is valid for reads of `8 j + 8` values for every source `j`
-/// of the plan, `dst` for writes of `8 destinations` values.
+/// of the plan, `dst` for writes of `8 destinations` values; with `STREAM`, `dst` is at a
+/// multiple of 16 bytes.
 #[target_feature(enable = "avx512f")]
 #[inline]
-unsafe fn run<P: Planned>(src: *const f64, dst: *mut f64) {
+unsafe fn run<P: Planned, const STREAM: bool>(src: *const f64, dst: *mut f64) {
     macro_rules! each {
         ($($d:literal)*) => {
             // SAFETY: the caller's.
-            $(unsafe { destination::<P, $d>(src, dst) };)*
+            $(unsafe { destination::<P, $d, STREAM>(src, dst) };)*
         };
     }
     const _: () = assert!(plan::MAX_DESTINATIONS == 36);
@@ -139,15 +156,17 @@ pub(super) unsafe fn gather<const N: usize, const S: usize>(
         let vectors = |x: &[f64]| x[b * LANES * N..(b + 1) * LANES * N].as_ptr();
         // SAFETY: AVX-512F (the caller's); the block's 8 rows of `n` values (`n` sources)
         // into its `n` lane arrays.
-        unsafe { run::<GatherVectors<N>>(vectors(nu), block.contact.nu.as_mut_ptr().cast()) };
+        unsafe {
+            run::<GatherVectors<N>, false>(vectors(nu), block.contact.nu.as_mut_ptr().cast())
+        };
         for k in 0..2 {
             let state = &mut block.contact.states[k];
             let spin = spins[k][b * LANES * N * N..(b + 1) * LANES * N * N].as_ptr();
             // SAFETY: as above, `n^2` sources of 8 rows of matrices, `S` lane arrays.
-            unsafe { run::<GatherSpins<N, S>>(spin, state.spin.as_mut_ptr().cast()) };
+            unsafe { run::<GatherSpins<N, S>, false>(spin, state.spin.as_mut_ptr().cast()) };
             let velocity = vectors(velocities[k]);
             // SAFETY: as for `nu`.
-            unsafe { run::<GatherVectors<N>>(velocity, state.velocity.as_mut_ptr().cast()) };
+            unsafe { run::<GatherVectors<N>, false>(velocity, state.velocity.as_mut_ptr().cast()) };
             balls(&rows.balls[k], start + b * LANES, &mut block.balls[k]);
         }
     }
@@ -182,6 +201,39 @@ pub(super) unsafe fn scatter<const N: usize, const S: usize>(
     blocks: &[[StateLanes<f64, N, S>; 2]],
     out: &mut [StateRowsMut<'_, f64>; 2],
 ) {
+    // SAFETY: the caller's.
+    unsafe { scatter_with::<N, S, false>(blocks, out) }
+}
+
+/// [`scatter`] by non-temporal stores ([`crate::batch::Exec::streamed_results`]), then a
+/// store fence, so that the rows are written, in order, before anything after it.
+///
+/// # Safety
+/// The CPU has AVX-512F; each of the four arrays of `out` starts at a multiple of 16
+/// bytes.
+///
+/// # Panics
+/// As [`scatter`].
+#[target_feature(enable = "avx512f")]
+pub(super) unsafe fn scatter_streamed<const N: usize, const S: usize>(
+    blocks: &[[StateLanes<f64, N, S>; 2]],
+    out: &mut [StateRowsMut<'_, f64>; 2],
+) {
+    // SAFETY: the caller's; every destination is 8 rows of `n` or `n^2` values (a multiple
+    // of 16 bytes) past the array's start.
+    unsafe { scatter_with::<N, S, true>(blocks, out) };
+    _mm_sfence();
+}
+
+/// [`scatter`], by non-temporal stores if `STREAM`.
+///
+/// # Safety
+/// As [`scatter`]; with `STREAM`, as [`scatter_streamed`].
+#[target_feature(enable = "avx512f")]
+unsafe fn scatter_with<const N: usize, const S: usize, const STREAM: bool>(
+    blocks: &[[StateLanes<f64, N, S>; 2]],
+    out: &mut [StateRowsMut<'_, f64>; 2],
+) {
     let len = LANES * blocks.len();
     let [o1, o2] = out;
     let spins = [&mut o1.spin[..len * N * N], &mut o2.spin[..len * N * N]];
@@ -191,11 +243,16 @@ pub(super) unsafe fn scatter<const N: usize, const S: usize>(
             let spin = &mut spins[k][b * LANES * N * N..(b + 1) * LANES * N * N];
             // SAFETY: AVX-512F (the caller's); `S` lane arrays in, 8 rows of `n^2` values
             // (`n^2` destinations) out.
-            unsafe { run::<ScatterSpins<N, S>>(block[k].spin.as_ptr().cast(), spin.as_mut_ptr()) };
+            unsafe {
+                run::<ScatterSpins<N, S>, STREAM>(block[k].spin.as_ptr().cast(), spin.as_mut_ptr())
+            };
             let velocity = &mut velocities[k][b * LANES * N..(b + 1) * LANES * N];
             // SAFETY: as above, `n` lane arrays in, 8 rows of `n` values out.
             unsafe {
-                run::<ScatterVectors<N>>(block[k].velocity.as_ptr().cast(), velocity.as_mut_ptr())
+                run::<ScatterVectors<N>, STREAM>(
+                    block[k].velocity.as_ptr().cast(),
+                    velocity.as_mut_ptr(),
+                )
             };
         }
     }

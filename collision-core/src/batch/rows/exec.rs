@@ -204,6 +204,7 @@ impl Exec {
                     blocks: pairs,
                     len: k,
                     out,
+                    stream: self.is_streamed(),
                 },
             );
         }

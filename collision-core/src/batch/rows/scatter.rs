@@ -111,6 +111,9 @@ pub(super) struct Scatter<'b, 'o, 'x, T, const N: usize, const S: usize> {
     pub(super) blocks: &'b [[StateLanes<T, N, S>; 2]],
     pub(super) len: usize,
     pub(super) out: &'x mut [StateRowsMut<'o, T>; 2],
+    /// Non-temporal stores where the level and the alignment allow
+    /// ([`crate::batch::Exec::streamed_results`]).
+    pub(super) stream: bool,
 }
 
 impl<T: Scalar + 'static, const N: usize, const S: usize> AtLevel for Scatter<'_, '_, '_, T, N, S> {
@@ -135,8 +138,20 @@ impl<T: Scalar + 'static, const N: usize, const S: usize> AtLevel for Scatter<'_
                         .cast::<[StateRowsMut<'_, f64>; 2]>(),
                 )
             };
-            // SAFETY: the CPU has AVX-512F (checked just now).
-            unsafe { super::avx512::scatter(blocks, out) };
+            // Every full block writes whole 16-byte pieces of each array from its start
+            // (8 rows of `n` and of `n^2` values), so the arrays' starts decide.
+            let at16 = |p: *const f64| (p as usize) % 16 == 0;
+            let aligned = out
+                .iter()
+                .all(|o| at16(o.spin.as_ptr()) && at16(o.velocity.as_ptr()));
+            if self.stream && aligned {
+                // SAFETY: the CPU has AVX-512F (checked just now); the arrays start at
+                // multiples of 16 bytes.
+                unsafe { super::avx512::scatter_streamed(blocks, out) };
+            } else {
+                // SAFETY: the CPU has AVX-512F (checked just now).
+                unsafe { super::avx512::scatter(blocks, out) };
+            }
             let start = full * LANES;
             if start < self.len {
                 for (lanes, o) in self.blocks[full].iter().zip(self.out.iter_mut()) {
@@ -176,6 +191,7 @@ impl<T: Scalar + 'static, const N: usize, const S: usize> PairBatch<T, N, S> {
                 blocks: self.blocks(),
                 len,
                 out: &mut out,
+                stream: false,
             },
         );
     }

@@ -257,15 +257,88 @@ fn every_level_gathers_and_scatters_as_the_baseline() {
 
 /// The `Exec`s the row paths are tested with at `isa`: serial and, with feature
 /// `parallel`, split from the first contact on; each with its passes in address order and
-/// from the last rows to the first (`Exec::last_rows_first`, for new outputs).
+/// from the last rows to the first (`Exec::last_rows_first`, for new outputs), and with
+/// its results streamed (`Exec::streamed_results`).
 pub(super) fn row_execs(isa: Isa) -> Vec<Exec> {
     let serial = Exec::auto().with_isa(isa).expect("available").serial();
     let backward = serial.last_rows_first();
+    let streamed = serial.streamed_results();
     #[cfg_attr(not(feature = "parallel"), allow(unused_mut))]
-    let mut execs = vec![serial, backward];
+    let mut execs = vec![serial, backward, streamed];
     #[cfg(feature = "parallel")]
-    execs.extend([serial.parallel_from(0), backward.parallel_from(0)]);
+    execs.extend([
+        serial.parallel_from(0),
+        backward.parallel_from(0),
+        streamed.parallel_from(0),
+    ]);
     execs
+}
+
+/// `Exec::streamed_results` writes the bits of ordinary stores into outputs at a multiple
+/// of 16 bytes (the non-temporal stores, on AVX-512 at n = 2 and 3) and into outputs that
+/// are not (the ordinary stores then), at every level; lengths around a block and a pass.
+fn streamed_rows_are_the_same_bits<const N: usize, const S: usize>()
+where
+    Generated: crate::batch::BatchKernel<f64, N, S>,
+{
+    for len in [8, 13, 1100, 5000] {
+        let a = physical(arrays::<N>(len as u64 + 3 * N as u64, len, [false, true]));
+        let mut want = nan_rows::<N>(len);
+        Exec::auto()
+            .serial()
+            .free_rows::<f64, N, S>(&rows(&a), rows_mut(&mut want));
+        for isa in Isa::available() {
+            let exec = Exec::auto().with_isa(isa).expect("available").serial();
+            for offset in [0, 1] {
+                // Each array one value longer, the rows from `offset` on: at a multiple of
+                // 16 bytes (glibc's `malloc` gives 16) for 0, not for 1.
+                let mut got =
+                    [0, 1].map(|_| [vec![f64::NAN; len * N * N + 1], vec![f64::NAN; len * N + 1]]);
+                let aligned = got
+                    .iter()
+                    .flatten()
+                    .all(|x| (x[offset..].as_ptr() as usize) % 16 == 0);
+                assert_eq!(
+                    aligned,
+                    offset == 0,
+                    "the test's premise: malloc's alignment"
+                );
+                let [[s1, v1], [s2, v2]] = &mut got;
+                let out = [
+                    StateRowsMut {
+                        spin: &mut s1[offset..offset + len * N * N],
+                        velocity: &mut v1[offset..offset + len * N],
+                    },
+                    StateRowsMut {
+                        spin: &mut s2[offset..offset + len * N * N],
+                        velocity: &mut v2[offset..offset + len * N],
+                    },
+                ];
+                exec.streamed_results()
+                    .free_rows::<f64, N, S>(&rows(&a), out);
+                let got: Vec<u64> = got
+                    .iter()
+                    .flatten()
+                    .flat_map(|x| {
+                        let rows = x.len() - 1;
+                        x[offset..offset + rows].iter().map(|v| v.to_bits())
+                    })
+                    .collect();
+                assert_eq!(
+                    got,
+                    bits(&want),
+                    "n = {N}, {isa}, {len} rows, offset {offset}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn streamed_results_are_the_same_bits_aligned_or_not() {
+    streamed_rows_are_the_same_bits::<2, 1>();
+    streamed_rows_are_the_same_bits::<3, 3>();
+    streamed_rows_are_the_same_bits::<4, 6>();
 }
 
 /// `Exec::free_rows` at every level (serial, and split from the first contact on with
