@@ -332,45 +332,11 @@ pub fn compare<T: Float, const N: usize, const S: usize>(
     Ok(())
 }
 
-/// A fresh scratch directory for one test, removed when the test is done with it, also when
-/// it returns early (a compiler or an OpenCL platform missing: the test skips) or panics.
-pub fn scratch(name: &str) -> Scratch {
-    let dir = std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    Scratch(dir)
-}
-
-/// [`scratch`]'s directory: a path, removed with its contents on drop.
-pub struct Scratch(PathBuf);
-
-impl std::ops::Deref for Scratch {
-    type Target = Path;
-
-    fn deref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl AsRef<Path> for Scratch {
-    fn as_ref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl AsRef<std::ffi::OsStr> for Scratch {
-    fn as_ref(&self) -> &std::ffi::OsStr {
-        self.0.as_os_str()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        // Already removed by a test that checks its own removal, or never written: either
-        // way nothing is left.
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
+/// Scratch directories removed when a test is done with them (shared with the command
+/// line's tests).
+#[path = "../scratch.rs"]
+mod scratch;
+pub use scratch::scratch;
 
 /// The checked-in C sources of these tests (`tests/c/`).
 pub fn c_source(name: &str) -> PathBuf {

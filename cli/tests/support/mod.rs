@@ -3,7 +3,7 @@
 //! test is done with them. Each test file uses what it needs of it.
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -30,44 +30,11 @@ pub fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
 }
 
-/// A fresh empty directory at [`temp`]`(name)`, removed with its contents when the test
-/// drops it: at its end, and also when it fails or returns early.
-pub fn scratch(name: &str) -> Scratch {
-    let dir = temp(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    Scratch(dir)
-}
-
-/// [`scratch`]'s directory: a path, removed with its contents on drop.
-pub struct Scratch(PathBuf);
-
-impl std::ops::Deref for Scratch {
-    type Target = Path;
-
-    fn deref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl AsRef<Path> for Scratch {
-    fn as_ref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl AsRef<std::ffi::OsStr> for Scratch {
-    fn as_ref(&self) -> &std::ffi::OsStr {
-        self.0.as_os_str()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        // A test may have removed it already (checking that it can).
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
+/// Scratch directories at [`temp`]`(name)`, removed when a test is done with them (the
+/// file the repository's backend tests use).
+#[path = "../../../tests/scratch.rs"]
+mod scratch;
+pub use scratch::{scratch, Scratch};
 
 /// Runs `command` to its end, or kills it and fails after `limit` (a run without bound, a
 /// hang, is a failure, not a test that never ends).

@@ -120,8 +120,7 @@ where
     } else {
         Exec::auto().serial()
     };
-    let out_bytes = std::mem::size_of::<T>() * 2 * rows * (N * N + N);
-    let exec = super::run::row_exec(exec, fresh, out_bytes);
+    let exec = super::run::row_exec::<T, N>(exec, fresh, rows);
     {
         let Outputs {
             spin: [s1, s2],

@@ -45,10 +45,11 @@ const ROW_RUN_CHUNKS: usize = 64;
 /// before writing it (docs/python.md, "Figures").
 pub(super) const STREAM_FROM_BYTES: usize = 16 << 20;
 
-/// The row path's `Exec` on one thread: passes from the last rows to the first into new
-/// memory (`fresh`), results streamed into large outputs already in memory
-/// ([`STREAM_FROM_BYTES`] of `out_bytes`).
-pub(super) fn row_exec(exec: Exec, fresh: bool, out_bytes: usize) -> Exec {
+/// `exec` for the row path on `rows` rows of `T` at dimension `N`: passes from the last
+/// rows to the first into new memory (`fresh`), results streamed into outputs already in
+/// memory from [`STREAM_FROM_BYTES`] of them (two states of `n^2 + n` values a row).
+pub(super) fn row_exec<T, const N: usize>(exec: Exec, fresh: bool, rows: usize) -> Exec {
+    let out_bytes = std::mem::size_of::<T>() * 2 * rows * (N * N + N);
     if fresh {
         exec.last_rows_first()
     } else if out_bytes >= STREAM_FROM_BYTES {
@@ -98,11 +99,10 @@ where
     };
     let rows = input.rows();
     let backward = fresh && !validate && rows.is_some();
-    let out_bytes = std::mem::size_of::<T>() * 2 * (out.spin[0].len() + out.velocity[0].len());
     let exec = if validate || rows.is_none() {
         Exec::auto().serial()
     } else {
-        row_exec(Exec::auto().serial(), fresh, out_bytes)
+        row_exec::<T, N>(Exec::auto().serial(), fresh, out.velocity[0].len() / N)
     };
     let Outputs {
         spin: [s1, s2],

@@ -95,12 +95,11 @@ unsafe fn destination<P: Planned, const D: usize, const STREAM: bool>(
         }
         let q = dst.add(8 * D);
         if STREAM {
-            let quarter = |acc| _mm_castps_pd(acc);
             let all = _mm512_castpd_ps(acc);
             _mm_stream_pd(q, _mm512_castpd512_pd128(acc));
-            _mm_stream_pd(q.add(2), quarter(_mm512_extractf32x4_ps::<1>(all)));
-            _mm_stream_pd(q.add(4), quarter(_mm512_extractf32x4_ps::<2>(all)));
-            _mm_stream_pd(q.add(6), quarter(_mm512_extractf32x4_ps::<3>(all)));
+            _mm_stream_pd(q.add(2), _mm_castps_pd(_mm512_extractf32x4_ps::<1>(all)));
+            _mm_stream_pd(q.add(4), _mm_castps_pd(_mm512_extractf32x4_ps::<2>(all)));
+            _mm_stream_pd(q.add(6), _mm_castps_pd(_mm512_extractf32x4_ps::<3>(all)));
         } else {
             _mm512_storeu_pd(q, acc);
         }
