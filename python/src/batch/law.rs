@@ -39,9 +39,9 @@ fn law_error(e: LawRowError) -> String {
 /// is the error message.
 ///
 /// `fresh`: `out` is new memory, never written. The row path then runs its passes from the
-/// last rows to the first ([`Exec::last_rows_first`], as `run::run_all` does for the no-slip
-/// map): the same results, and the same error, since every law is checked before any row
-/// runs.
+/// last rows to the first ([`Exec::last_rows_first`]); from 16 MiB of outputs, new or not,
+/// its results are streamed (`run::row_exec`, as for the no-slip map): the same results,
+/// and the same error, since every law is checked before any row runs.
 pub(super) fn run_law<T, const N: usize, const S: usize>(
     input: &Inputs<'_, T>,
     laws: &LawColumns<'_, T>,

@@ -257,26 +257,29 @@ fn every_level_gathers_and_scatters_as_the_baseline() {
 
 /// The `Exec`s the row paths are tested with at `isa`: serial and, with feature
 /// `parallel`, split from the first contact on; each with its passes in address order and
-/// from the last rows to the first (`Exec::last_rows_first`, for new outputs), and with
-/// its results streamed (`Exec::streamed_results`).
+/// from the last rows to the first (`Exec::last_rows_first`, for new outputs), with its
+/// results streamed (`Exec::streamed_results`), and with both (large new outputs).
 pub(super) fn row_execs(isa: Isa) -> Vec<Exec> {
     let serial = Exec::auto().with_isa(isa).expect("available").serial();
     let backward = serial.last_rows_first();
     let streamed = serial.streamed_results();
+    let both = backward.streamed_results();
     #[cfg_attr(not(feature = "parallel"), allow(unused_mut))]
-    let mut execs = vec![serial, backward, streamed];
+    let mut execs = vec![serial, backward, streamed, both];
     #[cfg(feature = "parallel")]
     execs.extend([
         serial.parallel_from(0),
         backward.parallel_from(0),
         streamed.parallel_from(0),
+        both.parallel_from(0),
     ]);
     execs
 }
 
 /// `Exec::streamed_results` writes the bits of ordinary stores into outputs at a multiple
 /// of 16 bytes (the non-temporal stores, on AVX-512 at n = 2 and 3) and into outputs that
-/// are not (the ordinary stores then), at every level; lengths around a block and a pass.
+/// are not (the ordinary stores then), at every level, with its passes in address order and
+/// from the last rows to the first; lengths around a block and a pass.
 fn streamed_rows_are_the_same_bits<const N: usize, const S: usize>()
 where
     Generated: crate::batch::BatchKernel<f64, N, S>,
@@ -289,7 +292,8 @@ where
             .free_rows::<f64, N, S>(&rows(&a), rows_mut(&mut want));
         for isa in Isa::available() {
             let exec = Exec::auto().with_isa(isa).expect("available").serial();
-            for offset in [0, 1] {
+            let streamed = [exec, exec.last_rows_first()].map(Exec::streamed_results);
+            for (exec, offset) in streamed.into_iter().flat_map(|e| [(e, 0), (e, 1)]) {
                 // Each array one value longer, the rows from `offset` on: at a multiple of
                 // 16 bytes (glibc's `malloc` gives 16) for 0, not for 1.
                 let mut got =
@@ -314,8 +318,7 @@ where
                         velocity: &mut v2[offset..offset + len * N],
                     },
                 ];
-                exec.streamed_results()
-                    .free_rows::<f64, N, S>(&rows(&a), out);
+                exec.free_rows::<f64, N, S>(&rows(&a), out);
                 let got: Vec<u64> = got
                     .iter()
                     .flatten()
@@ -327,7 +330,8 @@ where
                 assert_eq!(
                     got,
                     bits(&want),
-                    "n = {N}, {isa}, {len} rows, offset {offset}"
+                    "n = {N}, {isa}, {len} rows, offset {offset}, backward {}",
+                    exec.is_backward()
                 );
             }
         }
