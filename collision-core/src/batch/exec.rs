@@ -161,8 +161,9 @@ impl Exec {
     /// [`Exec::last_rows_first`] for new memory (0.93-0.96x the time of the backward passes
     /// alone into new NumPy arrays, Zen 4, docs/python.md). Where: the AVX-512 scatter of
     /// full blocks at n = 2 and 3 (`rows/avx512.rs`), when each output array starts at a
-    /// multiple of 16 bytes (as NumPy's do); elsewhere the ordinary stores. Out of cache (256 MB of rows, Zen 4) `free_rows` then took 0.93x
-    /// its time at n = 2 and 0.94x at n = 3 (docs/batch.md).
+    /// multiple of 16 bytes (as NumPy's do); elsewhere the ordinary stores. Out of cache
+    /// (256 MB of rows, Zen 4) `free_rows` then took 0.93x its time at n = 2 and 0.94x at
+    /// n = 3 (docs/batch.md).
     pub fn streamed_results(self) -> Self {
         Exec {
             streamed: true,

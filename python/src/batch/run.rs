@@ -100,12 +100,13 @@ where
         std::array::from_fn(|k| all[k])
     };
     let rows = input.rows();
-    let backward = fresh && !validate && rows.is_some();
     let exec = if validate || rows.is_none() {
         Exec::auto().serial()
     } else {
         row_exec::<T, N>(Exec::auto().serial(), fresh, out.velocity[0].len() / N)
     };
+    // The runs go in reverse exactly when their passes do (new memory, the row path).
+    let backward = exec.is_backward();
     let Outputs {
         spin: [s1, s2],
         velocity: [v1, v2],
