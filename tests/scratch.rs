@@ -5,10 +5,16 @@
 
 use std::path::{Path, PathBuf};
 
-/// A fresh empty directory `noslip-{name}-{pid}` in the temporary directory, removed with
-/// its contents when the returned [`Scratch`] is dropped.
+/// A path in the temporary directory, unique to `name` and this process:
+/// `noslip-{name}-{pid}`.
+pub fn temp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
+}
+
+/// A fresh empty directory at [`temp`]`(name)`, removed with its contents when the returned
+/// [`Scratch`] is dropped.
 pub fn scratch(name: &str) -> Scratch {
-    let dir = std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()));
+    let dir = temp(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     Scratch(dir)

@@ -3,7 +3,6 @@
 //! test is done with them. Each test file uses what it needs of it.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -25,16 +24,11 @@ pub fn run_ok(command: &mut Command) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
-/// A path in the temporary directory, unique to `name` and this process.
-pub fn temp(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("noslip-{name}-{}", std::process::id()))
-}
-
-/// Scratch directories at [`temp`]`(name)`, removed when a test is done with them (the
-/// file the repository's backend tests use).
+/// Paths in the temporary directory and scratch directories there, removed when a test is
+/// done with them (the file the repository's backend tests use).
 #[path = "../../../tests/scratch.rs"]
 mod scratch;
-pub use scratch::{scratch, Scratch};
+pub use scratch::{scratch, temp, Scratch};
 
 /// Runs `command` to its end, or kills it and fails after `limit` (a run without bound, a
 /// hang, is a failure, not a test that never ends).
