@@ -15,12 +15,19 @@
 //! - `independent`: loads of random lines whose addresses are known in advance (a list), so
 //!   the core overlaps as many misses as it can track: the cost per line of the memory
 //!   traffic alone, the floor of anything that knows its addresses early enough.
+//! - `pair` and `straddle`: the same, but each address is a random 128-byte block's two
+//!   lines (`pair`) or the last line of one block and the first of the next (`straddle`),
+//!   both loaded; ns per *two* lines. A record of more than 64 bytes, or one of 64 bytes
+//!   not on a line's start, is such a pair: this asks whether its second line costs as
+//!   much as a line of its own (the core's adjacent-line prefetch may fetch it with the
+//!   first).
 //!
 //! and, per working set, `fresh`: ms per MiB to map new memory and write it once (the
 //! kernel clears each new page at its first write), what every byte a run allocates costs
 //! before it holds anything.
 //!
-//! The figures for one host are in docs/benchmarks.md ("The start at `10^6` balls").
+//! The figures for one host are in docs/benchmarks.md ("The start at `10^6` balls"; `pair`
+//! and `straddle`: "A record's second line", session 58).
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -136,7 +143,10 @@ fn main() {
     if sizes.contains(&0) || rounds == 0 {
         CLI.refuse("--mib and --rounds must be at least 1");
     }
-    println!("    MiB  round   chase ns/line  independent ns/line  fresh ms/MiB");
+    println!(
+        "    MiB  round   chase ns/line  independent ns/line  pair ns/2 lines  \
+         straddle ns/2 lines  fresh ms/MiB"
+    );
     let mut state = 0x6e6f_736c_6970u64;
     for &mib in &sizes {
         let mut words = vec![0u64; mib << 17];
@@ -145,9 +155,26 @@ fn main() {
         let at: Vec<usize> = (0..LOADS)
             .map(|_| (next(&mut state) as usize % lines) * LINE)
             .collect();
+        // Two lines an address: a block's (2k, 2k + 1), or across blocks (2k + 1, 2k + 2).
+        let blocks = lines / 2;
+        let two_lines = |state: &mut u64, first: usize| -> Vec<usize> {
+            (0..LOADS / 2)
+                .flat_map(|_| {
+                    let line = (2 * (next(state) as usize % (blocks - 1)) + first) * LINE;
+                    [line, line + LINE]
+                })
+                .collect()
+        };
+        let (pairs, straddles) = (two_lines(&mut state, 0), two_lines(&mut state, 1));
         for round in 1..=rounds {
-            let (c, i, f) = (chase(&words), independent(&words, &at), fresh(mib));
-            println!("{mib:7} {round:6} {c:15.1} {i:20.1} {f:13.2}");
+            let (c, i) = (chase(&words), independent(&words, &at));
+            // `independent` gives ns a load; two loads an address.
+            let (p, s) = (
+                2.0 * independent(&words, &pairs),
+                2.0 * independent(&words, &straddles),
+            );
+            let f = fresh(mib);
+            println!("{mib:7} {round:6} {c:15.1} {i:20.1} {p:16.1} {s:20.1} {f:13.2}");
         }
     }
 }
