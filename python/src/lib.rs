@@ -32,6 +32,12 @@ pub mod simulate;
 
 use pyo3::prelude::*;
 
+/// Large arrays (the engine's records at many balls) on 2 MiB pages, as the `noslip` command
+/// has them (`noslip_sim::huge_pages`; measured through `noslip.simulate` in
+/// docs/benchmarks.md, session 58).
+#[global_allocator]
+static ALLOC: noslip_sim::huge_pages::HugePages = noslip_sim::huge_pages::HugePages;
+
 /// The native module: the Python package `noslip` re-exports and documents it.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -12,13 +12,11 @@
 //! `never` the advice is ignored, and on other systems it is the system allocator.
 //!
 //! A binary opts in with `#[global_allocator] static ALLOC: HugePages = HugePages;` (the
-//! `noslip` command and the event-loop benchmarks do). The Python extension does not: a
-//! wheel that registered a version of it ran a `10^6`-disk gas through `noslip.simulate`
-//! 1.3 times slower (docs/benchmarks.md, session 58). The cost: with the kernel's
-//! `defrag = madvise` a fault on an advised region may compact memory to find a free 2 MiB
-//! page (setup of a `10^6`-ball gas takes longer), and memory is committed in 2 MiB steps
-//! (at most one extra huge page per large allocation). Measured in docs/benchmarks.md
-//! ("Huge pages").
+//! `noslip` command, the event-loop benchmarks and, since session 58, the Python extension
+//! do). The cost: with the kernel's `defrag = madvise` a fault on an advised region may
+//! compact memory to find a free 2 MiB page (setup of a `10^6`-ball gas takes longer), and
+//! memory is committed in 2 MiB steps (at most one extra huge page per large allocation).
+//! Measured in docs/benchmarks.md ("Huge pages"; for Python, session 58).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 
