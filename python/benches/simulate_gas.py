@@ -1,7 +1,7 @@
 """What a contact costs through ``noslip.simulate`` on a large gas, against another build.
 
     python python/benches/simulate_gas.py [--dim 2] [--balls 1000000] [--phi 0.2]
-        [--events 1000000] [--rounds 4] [--python OTHER/bin/python]
+        [--events 3000000] [--rounds 3] [--python OTHER/bin/python]
 
 A periodic box of ``--balls`` balls of radius 1/2 (mass 1, no-slip contacts, seeded random
 placement) at packing fraction ``--phi``. Each round runs ``simulate`` twice in a fresh
@@ -10,16 +10,19 @@ of their CPU times over ``E``: µs a contact in steady state, without the setup 
 first contacts. With ``--python``, each round runs that interpreter's ``noslip`` too
 (another build installed in another environment), alternated with this one; printed: per
 build the median (min-max) over the rounds, and the ratio of the two paired within rounds.
+At ``10^6`` balls two runs' setups (their first touches of about 600 MB) vary by more than
+``10^6`` contacts cost, hence the default ``E`` of ``3 10^6`` (docs/benchmarks.md, session 58).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import math
 import statistics
 import subprocess
 import sys
+
+from noslip.granular import _ball_volume
 
 # Run in a child process: one `simulate` of `events` contacts, its CPU time printed.
 CHILD = """
@@ -34,8 +37,7 @@ print(time.process_time() - start)
 
 def scene(dim: int, balls: int, phi: float) -> dict[str, object]:
     """The periodic gas: side ``L = (N V_1 / phi)^(1/n)``, ``V_1`` the volume of one ball."""
-    volume = math.pi ** (dim / 2) * 0.5**dim / math.gamma(dim / 2 + 1)
-    side = (balls * volume / phi) ** (1 / dim)
+    side = (balls * _ball_volume(dim) / phi) ** (1 / dim)
     return {
         "dim": dim,
         "box": {"size": [side] * dim, "boundary": ["periodic"] * dim},
@@ -70,8 +72,8 @@ def main() -> None:
     ap.add_argument("--dim", type=int, default=2)
     ap.add_argument("--balls", type=int, default=1_000_000)
     ap.add_argument("--phi", type=float, default=0.2)
-    ap.add_argument("--events", type=int, default=1_000_000)
-    ap.add_argument("--rounds", type=int, default=4)
+    ap.add_argument("--events", type=int, default=3_000_000)
+    ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--python", help="another build's interpreter, alternated with this one")
     args = ap.parse_args()
     gas = scene(args.dim, args.balls, args.phi)
