@@ -245,11 +245,20 @@ impl Calendar {
     }
 
     /// The order of entries `a` and `b`: `(t_a, key_a, a)` against `(t_b, key_b, b)`
-    /// ([`order`]), the keys read only for equal times.
+    /// ([`order`]), the keys read only for equal times. Times that compare unequal as floats
+    /// decide at once (one compare each way); only equal ones (or `-0` against `+0`, NaN)
+    /// go on to `total_cmp`, so the order is `total_cmp`'s.
     #[inline]
     fn cmp(slots: &(impl Slots + ?Sized), a: &Entry, b: &Entry) -> std::cmp::Ordering {
+        use std::cmp::Ordering::{Equal, Greater, Less};
+        if a.time < b.time {
+            return Less;
+        }
+        if a.time > b.time {
+            return Greater;
+        }
         match a.time.total_cmp(&b.time) {
-            std::cmp::Ordering::Equal => {
+            Equal => {
                 let (ka, kb) = (slots.key(a.ball as usize), slots.key(b.ball as usize));
                 order((a.time, ka), (b.time, kb)).then_with(|| a.ball.cmp(&b.ball))
             }
@@ -281,6 +290,7 @@ impl Calendar {
 
     /// Ball `ball` (pending at `time`) goes into bucket `b`'s place: the current bucket's
     /// list, a bucket or the overflow.
+    #[inline]
     fn insert(&mut self, slots: &mut (impl Slots + ?Sized), ball: u32, b: u64) {
         if self.filling {
             slots.slot_mut(ball as usize).place = Place::Overflow(self.overflow.len() as u32);
@@ -315,6 +325,7 @@ impl Calendar {
 
     /// Takes ball `ball`, whose slot was `slot`, out of its place (its place becomes
     /// [`Place::None`]).
+    #[inline]
     fn take_out(&mut self, slots: &mut (impl Slots + ?Sized), ball: usize, slot: Slot) {
         slots.slot_mut(ball).place = Place::None;
         match slot.place {
@@ -354,7 +365,10 @@ impl Calendar {
     /// the gap (the earliest, at `head`, moves nothing).
     fn take_now(&mut self, slots: &mut (impl Slots + ?Sized), at: usize) {
         let (head, len) = (self.head, self.now.len());
-        if at - head < len - 1 - at {
+        if at == head {
+            // The earliest (a popped event's ball, set again): nothing moves.
+            self.head = head + 1;
+        } else if at - head < len - 1 - at {
             self.now.copy_within(head..at, head + 1);
             self.head = head + 1;
             self.renumber(slots, head + 1, at + 1);
