@@ -246,24 +246,19 @@ impl Calendar {
 
     /// The order of entries `a` and `b`: `(t_a, key_a, a)` against `(t_b, key_b, b)`
     /// ([`order`]), the keys read only for equal times. Times that compare unequal as floats
-    /// decide at once (one compare each way); only equal ones (or `-0` against `+0`, NaN)
-    /// go on to `total_cmp`, so the order is `total_cmp`'s.
+    /// decide at once (one compare each way); the rest go to [`order`], whose `total_cmp`
+    /// also orders `-0` against `+0` and NaN (which [`order`]'s times never are), so the
+    /// order is its own.
     #[inline]
     fn cmp(slots: &(impl Slots + ?Sized), a: &Entry, b: &Entry) -> std::cmp::Ordering {
-        use std::cmp::Ordering::{Equal, Greater, Less};
         if a.time < b.time {
-            return Less;
+            return std::cmp::Ordering::Less;
         }
         if a.time > b.time {
-            return Greater;
+            return std::cmp::Ordering::Greater;
         }
-        match a.time.total_cmp(&b.time) {
-            Equal => {
-                let (ka, kb) = (slots.key(a.ball as usize), slots.key(b.ball as usize));
-                order((a.time, ka), (b.time, kb)).then_with(|| a.ball.cmp(&b.ball))
-            }
-            o => o,
-        }
+        let (ka, kb) = (slots.key(a.ball as usize), slots.key(b.ball as usize));
+        order((a.time, ka), (b.time, kb)).then_with(|| a.ball.cmp(&b.ball))
     }
 
     /// Ball `ball`'s pending event is now at `time` (replacing any it had); its key is
